@@ -1,0 +1,13 @@
+# Warnings are errors for the project's own code; third-party headers come in as SYSTEM.
+add_library(body_warnings INTERFACE)
+target_compile_options(body_warnings INTERFACE -Wall -Wextra -Wpedantic -Werror
+  $<$<COMPILE_LANGUAGE:CXX>:-Wnon-virtual-dtor>)
+
+if(BODY_SANITIZE)
+  add_compile_options(-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined)
+  add_link_options(-fsanitize=address,undefined)
+endif()
+
+if(CMAKE_BUILD_TYPE STREQUAL "Debug")
+  add_compile_definitions(BODY_GL_DEBUG=1)
+endif()

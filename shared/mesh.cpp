@@ -1,0 +1,156 @@
+#include "shared/mesh.h"
+
+#include <algorithm>
+#include <numeric>
+#include <unordered_map>
+
+namespace body {
+namespace {
+
+uint64_t edge_key(uint32_t a, uint32_t b) { return (uint64_t(std::min(a, b)) << 32) | std::max(a, b); }
+
+struct EdgeUse {
+    uint32_t count = 0;
+    int direction_sum = 0;  // +1 for a->b with a<b, -1 otherwise; 0 when consistently oriented
+    uint32_t first_triangle = 0;
+};
+
+size_t find_root(std::vector<uint32_t>& parent, uint32_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+}
+
+// A vertex is manifold when the edges opposite it in its triangles (its link)
+// form a single path or cycle: every link vertex has degree <= 2 and the link is connected.
+size_t count_nonmanifold_vertices(size_t vertex_count, std::span<const uint32_t> indices) {
+    std::vector<uint32_t> start(vertex_count + 1, 0);
+    for (uint32_t v : indices) start[v + 1] += 2;
+    std::partial_sum(start.begin(), start.end(), start.begin());
+    std::vector<uint32_t> link(start.back());
+    std::vector<uint32_t> fill(start.begin(), start.end() - 1);
+    for (size_t t = 0; t + 2 < indices.size(); t += 3) {
+        for (int k = 0; k < 3; ++k) {
+            uint32_t v = indices[t + k], a = indices[t + (k + 1) % 3], b = indices[t + (k + 2) % 3];
+            link[fill[v]++] = a;
+            link[fill[v]++] = b;
+        }
+    }
+    size_t bad = 0;
+    std::unordered_map<uint32_t, uint32_t> local;  // link vertex -> local id
+    std::vector<uint32_t> parent, degree;
+    for (size_t v = 0; v < vertex_count; ++v) {
+        if (start[v] == start[v + 1]) continue;
+        local.clear();
+        parent.clear();
+        degree.clear();
+        auto id = [&](uint32_t x) {
+            auto [it, inserted] = local.emplace(x, uint32_t(parent.size()));
+            if (inserted) {
+                parent.push_back(it->second);
+                degree.push_back(0);
+            }
+            return it->second;
+        };
+        size_t components = 0;
+        for (uint32_t i = start[v]; i < start[v + 1]; i += 2) {
+            uint32_t a = id(link[i]), b = id(link[i + 1]);
+            degree[a]++;
+            degree[b]++;
+            size_t ra = find_root(parent, a), rb = find_root(parent, b);
+            if (ra != rb) parent[ra] = uint32_t(rb);
+        }
+        for (uint32_t i = 0; i < parent.size(); ++i) components += find_root(parent, i) == i;
+        bool ok = components == 1 && std::all_of(degree.begin(), degree.end(), [](uint32_t d) { return d <= 2; });
+        bad += !ok;
+    }
+    return bad;
+}
+
+}  // namespace
+
+MeshTopology analyze_topology(std::span<const Vec3> positions, std::span<const uint32_t> indices,
+                              double degenerate_area) {
+    MeshTopology topo;
+    topo.triangles = indices.size() / 3;
+    std::unordered_map<uint64_t, EdgeUse> edges;
+    edges.reserve(indices.size());
+    std::vector<uint8_t> used(positions.size(), 0);
+    std::vector<uint32_t> parent(topo.triangles);
+    std::iota(parent.begin(), parent.end(), 0u);
+
+    for (size_t t = 0; t < topo.triangles; ++t) {
+        const uint32_t* tri = &indices[3 * t];
+        if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2]) {
+            topo.degenerate_triangles++;
+        } else {
+            Vec3 n = glm::cross(positions[tri[1]] - positions[tri[0]], positions[tri[2]] - positions[tri[0]]);
+            if (0.5 * glm::length(n) <= degenerate_area) topo.degenerate_triangles++;
+        }
+        for (int k = 0; k < 3; ++k) {
+            uint32_t a = tri[k], b = tri[(k + 1) % 3];
+            used[a] = 1;
+            if (a == b) continue;
+            EdgeUse& e = edges[edge_key(a, b)];
+            if (e.count == 0)
+                e.first_triangle = uint32_t(t);
+            else {
+                size_t ra = find_root(parent, uint32_t(t)), rb = find_root(parent, e.first_triangle);
+                if (ra != rb) parent[ra] = uint32_t(rb);
+            }
+            e.count++;
+            e.direction_sum += a < b ? 1 : -1;
+        }
+    }
+    topo.edges = edges.size();
+    for (const auto& [key, e] : edges) {
+        if (e.count == 1)
+            topo.boundary_edges++;
+        else if (e.count > 2)
+            topo.nonmanifold_edges++;
+        else if (e.direction_sum != 0)
+            topo.misoriented_edges++;
+    }
+    topo.vertices = size_t(std::count(used.begin(), used.end(), uint8_t(1)));
+    for (uint32_t t = 0; t < topo.triangles; ++t) topo.components += find_root(parent, t) == t;
+    topo.nonmanifold_vertices = count_nonmanifold_vertices(positions.size(), indices);
+    topo.euler = long(topo.vertices) - long(topo.edges) + long(topo.triangles);
+    return topo;
+}
+
+double mesh_volume(std::span<const Vec3> positions, std::span<const uint32_t> indices) {
+    double v = 0.0;
+    for (size_t t = 0; t + 2 < indices.size(); t += 3)
+        v += glm::dot(positions[indices[t]], glm::cross(positions[indices[t + 1]], positions[indices[t + 2]]));
+    return v / 6.0;
+}
+
+double mesh_area(std::span<const Vec3> positions, std::span<const uint32_t> indices) {
+    double a = 0.0;
+    for (size_t t = 0; t + 2 < indices.size(); t += 3) {
+        const Vec3& p = positions[indices[t]];
+        a += glm::length(glm::cross(positions[indices[t + 1]] - p, positions[indices[t + 2]] - p));
+    }
+    return a * 0.5;
+}
+
+Aabb mesh_bounds(std::span<const Vec3> positions) {
+    Aabb box;
+    for (const Vec3& p : positions) box.extend(p);
+    return box;
+}
+
+std::vector<Vec3> vertex_normals(std::span<const Vec3> positions, std::span<const uint32_t> indices) {
+    std::vector<Vec3> normals(positions.size(), Vec3(0.0));
+    for (size_t t = 0; t + 2 < indices.size(); t += 3) {
+        const Vec3& p = positions[indices[t]];
+        Vec3 n = glm::cross(positions[indices[t + 1]] - p, positions[indices[t + 2]] - p);
+        for (int k = 0; k < 3; ++k) normals[indices[t + k]] += n;
+    }
+    for (Vec3& n : normals) {
+        double len = glm::length(n);
+        if (len > 0) n /= len;
+    }
+    return normals;
+}
+
+}  // namespace body

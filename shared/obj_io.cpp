@@ -1,0 +1,111 @@
+#include "shared/obj_io.h"
+
+#include <tiny_obj_loader.h>
+
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <ostream>
+#include <unordered_map>
+
+#include "shared/atomic_file.h"
+
+namespace body {
+namespace {
+
+std::string write_meshes(std::ostream& out, std::span<const Mesh> meshes, const ObjWriteOptions& options) {
+    out.precision(options.precision);
+    out << "# bodygen OBJ\n";
+    size_t base = 1;
+    for (const Mesh& mesh : meshes) {
+        out << "o " << (mesh.name.empty() ? std::string("structure") : mesh.name) << "\n";
+        for (const Vec3& p : mesh.positions) out << "v " << p.x << ' ' << p.y << ' ' << p.z << "\n";
+        std::vector<Vec3> computed;
+        std::span<const Vec3> normals = mesh.normals;
+        if (options.normals && normals.size() != mesh.positions.size()) {
+            computed = vertex_normals(mesh.positions, mesh.indices);
+            normals = computed;
+        }
+        if (options.normals)
+            for (const Vec3& n : normals) out << "vn " << n.x << ' ' << n.y << ' ' << n.z << "\n";
+        for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+            out << 'f';
+            for (int k = 0; k < 3; ++k) {
+                size_t i = base + mesh.indices[t + k];
+                if (options.normals)
+                    out << ' ' << i << "//" << i;
+                else
+                    out << ' ' << i;
+            }
+            out << "\n";
+        }
+        base += mesh.positions.size();
+    }
+    return {};
+}
+
+}  // namespace
+
+Status write_obj(const std::string& path, std::span<const Mesh> meshes, const ObjWriteOptions& options) {
+    return write_file_atomically(path, [&](std::ostream& out) { return write_meshes(out, meshes, options); });
+}
+
+Result<std::vector<Mesh>> read_obj(const std::string& path) {
+    if (!std::filesystem::is_regular_file(path)) return input_error(path + ": no such file");
+    tinyobj::ObjReaderConfig config;
+    config.triangulate = true;
+    config.vertex_color = false;
+    tinyobj::ObjReader reader;
+    if (!reader.ParseFromFile(path, config)) {
+        std::string why = reader.Error();
+        while (!why.empty() && (why.back() == '\n' || why.back() == '\r')) why.pop_back();
+        for (char& c : why)
+            if (c == '\n') c = ' ';
+        return input_error(path + ": not a readable OBJ file: " + (why.empty() ? "parse error" : why));
+    }
+    const auto& attrib = reader.GetAttrib();
+    const size_t vertex_total = attrib.vertices.size() / 3;
+    std::vector<Mesh> meshes;
+    for (const auto& shape : reader.GetShapes()) {
+        Mesh mesh;
+        mesh.name = shape.name;
+        std::unordered_map<int, uint32_t> remap;
+        for (const auto& idx : shape.mesh.indices) {
+            if (idx.vertex_index < 0 || size_t(idx.vertex_index) >= vertex_total)
+                return input_error(path + ": object '" + shape.name + "': vertex index out of range");
+            auto [it, inserted] = remap.emplace(idx.vertex_index, uint32_t(mesh.positions.size()));
+            if (inserted) {
+                const float* v = &attrib.vertices[3 * size_t(idx.vertex_index)];
+                Vec3 p(v[0], v[1], v[2]);
+                if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+                    return input_error(path + ": object '" + shape.name + "': non-finite vertex");
+                mesh.positions.push_back(p);
+            }
+            mesh.indices.push_back(it->second);
+        }
+        if (!mesh.indices.empty()) meshes.push_back(std::move(mesh));
+    }
+    if (meshes.empty()) return input_error(path + ": no triangles");
+    return meshes;
+}
+
+Result<Mesh> read_obj_merged(const std::string& path) {
+    auto meshes = read_obj(path);
+    if (!meshes) return meshes.error();
+    Mesh merged;
+    merged.name = meshes->size() == 1 ? meshes->front().name : std::filesystem::path(path).stem().string();
+    std::map<std::tuple<double, double, double>, uint32_t> weld;
+    for (const Mesh& m : *meshes) {
+        std::vector<uint32_t> remap(m.positions.size());
+        for (size_t i = 0; i < m.positions.size(); ++i) {
+            const Vec3& p = m.positions[i];
+            auto [it, inserted] = weld.emplace(std::make_tuple(p.x, p.y, p.z), uint32_t(merged.positions.size()));
+            if (inserted) merged.positions.push_back(p);
+            remap[i] = it->second;
+        }
+        for (uint32_t i : m.indices) merged.indices.push_back(remap[i]);
+    }
+    return merged;
+}
+
+}  // namespace body

@@ -1,0 +1,26 @@
+#pragma once
+// Wavefront OBJ: writing (one `o NAME` per mesh, optional normals, written
+// atomically) and reading (through tinyobjloader; one Mesh per object/group).
+#include <span>
+#include <string>
+#include <vector>
+
+#include "shared/error.h"
+#include "shared/mesh.h"
+
+namespace body {
+
+struct ObjWriteOptions {
+    bool normals = false;  // write `vn` per vertex (computed when a mesh has none)
+    int precision = 9;     // significant digits for coordinates
+};
+
+Status write_obj(const std::string& path, std::span<const Mesh> meshes, const ObjWriteOptions& options = {});
+
+// Reads all objects; polygons are fan-triangulated, vertices welded by index.
+Result<std::vector<Mesh>> read_obj(const std::string& path);
+
+// Reads all objects and merges them into one mesh (welding identical positions).
+Result<Mesh> read_obj_merged(const std::string& path);
+
+}  // namespace body
