@@ -1,0 +1,22 @@
+#pragma once
+// bodygen subcommands. Each takes the arguments after the subcommand name and
+// returns a process exit code (0 ok, 1 runtime failure, 2 bad usage/input).
+#include <string>
+#include <vector>
+
+#include "shared/error.h"
+
+namespace body::cli {
+
+using Args = std::vector<std::string>;
+
+struct Command {
+    const char* name;
+    const char* summary;
+    int (*run)(const Args& args);
+};
+
+// Prints "bodygen: <message>" on stderr and returns the error's exit code.
+int report(const Error& error);
+
+}  // namespace body::cli

@@ -1,0 +1,63 @@
+// bodygen: the offline builder. Dispatches to one subcommand per file in builder/cli/.
+#include <cstdio>
+#include <cstring>
+#include <span>
+#include <string>
+
+#include "body/version.h"
+#include "builder/cli/commands.h"
+#include "shared/error.h"
+
+namespace body::cli {
+
+int report(const Error& error) {
+    std::fprintf(stderr, "bodygen: %s\n", error.message.c_str());
+    return error.exit_code;
+}
+
+int run_contours_check(const Args& args);  // cmd_check.cpp
+
+}  // namespace body::cli
+
+namespace {
+
+using body::cli::Command;
+
+// The subcommand table; each entry lives in builder/cli/cmd_<name>.cpp.
+const Command kCommands[] = {
+    {"check", "validate a contour stack and print its slices and contours", body::cli::run_contours_check},
+};
+
+void print_help(std::FILE* out) {
+    std::fprintf(out,
+                 "bodygen %s - turns anatomy traced on image slices into watertight progressive meshes\n\n"
+                 "usage: bodygen <command> [options]\n\ncommands:\n",
+                 BODY_VERSION_STRING);
+    for (const Command& c : kCommands) std::fprintf(out, "  %-10s %s\n", c.name, c.summary);
+    std::fprintf(out,
+                 "\noptions:\n  --help     this text (also: bodygen <command> --help)\n"
+                 "  --version  print the version\n\nexit codes: 0 ok, 1 runtime failure, 2 bad usage or bad input\n");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    if (argc < 2) {
+        print_help(stderr);
+        return body::kExitBadInput;
+    }
+    const std::string first = argv[1];
+    if (first == "--help" || first == "-h" || first == "help") {
+        print_help(stdout);
+        return body::kExitOk;
+    }
+    if (first == "--version") {
+        std::printf("bodygen %s\n", BODY_VERSION_STRING);
+        return body::kExitOk;
+    }
+    for (const Command& c : kCommands) {
+        if (first == c.name) return c.run(body::cli::Args(argv + 2, argv + argc));
+    }
+    std::fprintf(stderr, "bodygen: unknown command '%s' (see bodygen --help)\n", first.c_str());
+    return body::kExitBadInput;
+}
