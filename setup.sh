@@ -19,7 +19,7 @@ HOST_PACKAGES=(
   libmeshoptimizer-dev libstb-dev fonts-dejavu-core zlib1g-dev
   libnifti2-dev libdcmtk-dev
   libegl-mesa0 libgl1-mesa-dri libgles2 xvfb xauth
-  glmark2-data python3-pydicom mricron-data dpkg-dev
+  glmark2-data python3 python3-pydicom mricron-data dpkg-dev
 )
 CROSS_PACKAGES=(
   g++-aarch64-linux-gnu qemu-user

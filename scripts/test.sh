@@ -1,0 +1,71 @@
+#!/usr/bin/env bash
+# The whole test suite, as CI runs it (README: ./setup.sh test). Expects the
+# dependencies installed (setup.sh does that before calling this script).
+#   1. format check
+#   2. Release build (g++) and the CTest labels unit, cli, render; then the
+#      cross label (builds build-arm64/ and runs the smoke under qemu-aarch64)
+#   3. ASan+UBSan build (clang) with libFuzzer targets: unit + fuzz labels
+#   4. .deb packages for amd64 and arm64, architecture checked with dpkg-deb
+set -uo pipefail
+cd "$(dirname "$0")/.."
+ROOT=$PWD
+JOBS=${JOBS:-$(nproc)}
+LOG_DIR=${LOG_DIR:-$ROOT/build/test-logs}
+mkdir -p "$LOG_DIR"
+passed=0
+failed=0
+failures=()
+start=$(date +%s)
+
+step() { # name command...
+    local name=$1; shift
+    local t0=$(date +%s)
+    echo "=== $name"
+    if "$@"; then
+        passed=$((passed + 1)); echo "=== $name: ok ($(( $(date +%s) - t0 )) s)"
+    else
+        failed=$((failed + 1)); failures+=("$name"); echo "=== $name: FAILED ($(( $(date +%s) - t0 )) s)"
+    fi
+}
+
+configure_and_build() { # dir [cmake args...]
+    local dir=$1; shift
+    cmake -S "$ROOT" -B "$dir" -G Ninja "$@" >"$LOG_DIR/$(basename "$dir")-configure.log" 2>&1 \
+        || { tail -30 "$LOG_DIR/$(basename "$dir")-configure.log"; return 1; }
+    cmake --build "$dir" -j "$JOBS" 2>&1 | tail -40
+    return "${PIPESTATUS[0]}"
+}
+
+run_ctest() { # dir label-regex
+    ctest --test-dir "$1" -L "$2" -j "$JOBS" --output-on-failure --no-tests=error
+}
+
+check_debs() {
+    local ok=0 deb arch
+    (cd build && cpack -G DEB >/dev/null) || return 1
+    (cd build-arm64 && cpack -G DEB >/dev/null) || return 1
+    for pair in "build:amd64" "build-arm64:arm64"; do
+        deb=$(ls "${pair%%:*}"/bodygen_*.deb | head -1)
+        arch=$(dpkg-deb -f "$deb" Architecture)
+        dpkg-deb -I "$deb" | sed -n '/Package:/,/Depends:/p'
+        dpkg-deb -c "$deb" | grep -E 'bin/(bodygen|bodyview)$' || { echo "$deb lacks the binaries"; ok=1; }
+        [ "$arch" = "${pair##*:}" ] || { echo "$deb: architecture $arch, expected ${pair##*:}"; ok=1; }
+    done
+    return $ok
+}
+
+step "format check" scripts/format.sh --check
+step "release build" configure_and_build build -DCMAKE_BUILD_TYPE=Release -DBODY_BUILD_BENCH=ON
+step "release tests (unit, cli, render)" run_ctest build 'unit|cli|render'
+step "cross smoke (aarch64 under qemu)" run_ctest build 'cross'
+step "sanitizer build (clang, ASan+UBSan, libFuzzer)" configure_and_build build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DBODY_SANITIZE=ON -DBODY_FUZZ=ON -DBODY_BUILD_BENCH=OFF
+step "sanitizer tests (unit, fuzz)" env ASAN_OPTIONS=detect_leaks=1:abort_on_error=0 UBSAN_OPTIONS=print_stacktrace=1 \
+    ctest --test-dir build-asan -L 'unit|fuzz' -j "$JOBS" --output-on-failure --no-tests=error
+step "debian packages (amd64, arm64)" check_debs
+
+echo
+echo "test.sh: wall time $(( $(date +%s) - start )) s"
+for f in "${failures[@]}"; do echo "FAILED: $f"; done
+echo "$passed passed, $failed failed"
+[ "$failed" -eq 0 ]
