@@ -1,0 +1,139 @@
+// tile_band: the contract's properties for every method (each contour edge
+// used once in the right direction, closed consistently oriented band, no
+// fold, outward normals) and minimum area against brute force.
+#include "builder/tiling/tiling.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <utility>
+#include <vector>
+
+#include "builder/tiling/tiling_internal.h"
+
+namespace {
+
+using body::TilingMethod;
+using body::Vec3;
+
+std::vector<Vec3> ellipse(size_t n, double a, double b, double z, double cx = 0, double cy = 0, double phase = 0,
+                          double rot = 0) {
+    std::vector<Vec3> c(n);
+    for (size_t k = 0; k < n; ++k) {
+        double t = phase + 2 * M_PI * double(k) / double(n);
+        double x = a * std::cos(t), y = b * std::sin(t);
+        c[k] = {cx + x * std::cos(rot) - y * std::sin(rot), cy + x * std::sin(rot) + y * std::cos(rot), z};
+    }
+    return c;
+}
+
+// A star-shaped contour with `spikes` lobes (non-convex).
+std::vector<Vec3> star(size_t n, int spikes, double r0, double r1, double z, double phase = 0) {
+    std::vector<Vec3> c(n);
+    for (size_t k = 0; k < n; ++k) {
+        double t = phase + 2 * M_PI * double(k) / double(n);
+        double r = r0 + r1 * std::cos(spikes * t);
+        c[k] = {r * std::cos(t), r * std::sin(t), z};
+    }
+    return c;
+}
+
+struct Checked {
+    size_t folds = 0;
+    double area = 0;
+};
+
+// Asserts the band contract and returns its fold count and area.
+Checked check_band(const std::vector<Vec3>& lower, const std::vector<Vec3>& upper, TilingMethod method) {
+    std::vector<uint32_t> tris;
+    auto status = body::tile_band(lower, upper, method, tris);
+    EXPECT_TRUE(status.ok());
+    const uint32_t m = uint32_t(lower.size()), n = uint32_t(upper.size());
+    EXPECT_EQ(tris.size(), 3u * (m + n));
+    std::map<std::pair<uint32_t, uint32_t>, int> directed;
+    for (size_t t = 0; t + 2 < tris.size(); t += 3)
+        for (int e = 0; e < 3; ++e) {
+            uint32_t a = tris[t + e], b = tris[t + (e + 1) % 3];
+            EXPECT_LT(a, m + n);
+            ++directed[{a, b}];
+        }
+    for (uint32_t i = 0; i < m; ++i) {  // lower edges forward, once
+        EXPECT_EQ((directed[{i, (i + 1) % m}]), 1) << "lower edge " << i;
+        EXPECT_EQ((directed[{(i + 1) % m, i}]), 0) << "lower edge " << i;
+    }
+    for (uint32_t j = 0; j < n; ++j) {  // upper edges backward, once
+        EXPECT_EQ((directed[{m + (j + 1) % n, m + j}]), 1) << "upper edge " << j;
+        EXPECT_EQ((directed[{m + j, m + (j + 1) % n}]), 0) << "upper edge " << j;
+    }
+    for (auto& [e, count] : directed) {  // every other edge shared by two triangles, opposite ways
+        bool contour = (e.first < m && e.second < m) || (e.first >= m && e.second >= m);
+        if (contour) continue;
+        EXPECT_EQ(count, 1) << e.first << "-" << e.second;
+        EXPECT_EQ((directed[{e.second, e.first}]), 1) << e.first << "-" << e.second;
+    }
+    body::tiling_detail::Band band(lower, upper);
+    Checked out;
+    for (size_t t = 0; t + 2 < tris.size(); t += 3) {
+        uint32_t a = tris[t], b = tris[t + 1], c = tris[t + 2];
+        body::tiling_detail::Cost cost;
+        if (c >= m && a < m && b < m)
+            cost = band.lower_cost(a, c - m);
+        else
+            cost = band.upper_cost(a, c - m);  // (L_i, U_j+1, U_j)
+        out.folds += cost.folds;
+        out.area += cost.area;
+    }
+    return out;
+}
+
+class TilingMethods : public ::testing::TestWithParam<TilingMethod> {};
+
+TEST_P(TilingMethods, CylinderIsFaithfulAndOutward) {
+    auto lower = ellipse(40, 10, 10, 0), upper = ellipse(40, 10, 10, 1);
+    auto r = check_band(lower, upper, GetParam());
+    EXPECT_EQ(r.folds, 0u);
+    // Every triangle faces radially outward.
+    std::vector<uint32_t> tris;
+    ASSERT_TRUE(body::tile_band(lower, upper, GetParam(), tris).ok());
+    std::vector<Vec3> all(lower);
+    all.insert(all.end(), upper.begin(), upper.end());
+    for (size_t t = 0; t < tris.size(); t += 3) {
+        Vec3 a = all[tris[t]], b = all[tris[t + 1]], c = all[tris[t + 2]];
+        Vec3 nrm = glm::cross(b - a, c - a), centre = (a + b + c) / 3.0;
+        EXPECT_GT(nrm.x * centre.x + nrm.y * centre.y, 0.0);
+    }
+    // The straight cylinder's band is the lateral surface of 40 quads.
+    EXPECT_NEAR(r.area, 40 * 2 * 10 * std::sin(M_PI / 40) * 1.0, 1e-9);
+}
+
+TEST_P(TilingMethods, VeryDifferentCounts) {
+    check_band(ellipse(500, 10, 6, 0), ellipse(7, 9, 7, 2), GetParam());
+    check_band(ellipse(3, 9, 7, 0), ellipse(300, 10, 6, 2), GetParam());
+}
+
+TEST_P(TilingMethods, ShiftedTwistedAndNonConvex) {
+    auto r1 = check_band(ellipse(60, 10, 4, 0), ellipse(45, 10, 4, 1, 3, -2, 1.3, 0.7), GetParam());
+    EXPECT_EQ(r1.folds, 0u);
+    auto r2 = check_band(star(120, 5, 10, 3, 0), star(90, 5, 9, 3.5, 1.5, 0.2), GetParam());
+    EXPECT_EQ(r2.folds, 0u);
+    check_band(star(200, 7, 10, 4, 0), ellipse(31, 6, 6, 1.0), GetParam());
+}
+
+TEST_P(TilingMethods, RejectsBadInput) {
+    std::vector<uint32_t> tris;
+    std::vector<Vec3> two = {{0, 0, 0}, {1, 0, 0}};
+    auto s = body::tile_band(two, ellipse(5, 1, 1, 1), GetParam(), tris);
+    ASSERT_FALSE(s.ok());
+    EXPECT_NE(s.error().message.find("lower"), std::string::npos);
+    auto bad = ellipse(5, 1, 1, 1);
+    bad[3].y = NAN;
+    s = body::tile_band(ellipse(5, 1, 1, 0), bad, GetParam(), tris);
+    ASSERT_FALSE(s.ok());
+    EXPECT_NE(s.error().message.find("upper contour point 3"), std::string::npos);
+}
+
+INSTANTIATE_TEST_SUITE_P(Both, TilingMethods, ::testing::Values(TilingMethod::Optimal, TilingMethod::Multires),
+                         [](const auto& info) { return std::string(body::tiling_method_name(info.param)); });
+
+}  // namespace
