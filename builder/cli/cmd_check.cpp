@@ -22,9 +22,8 @@ int run_contours_check(const Args& argv) {
         contours += s.contours.size();
         for (const Contour& c : s.contours) points += c.points.size();
     }
-    std::printf("%s: %zu slices, %zu contours, %zu points, %zu structures (units %s)\n",
-                args->positional()[0].c_str(), stack->slices.size(), contours, points, stack->structures.size(),
-                stack->units.c_str());
+    std::printf("%s: %zu slices, %zu contours, %zu points, %zu structures (units %s)\n", args->positional()[0].c_str(),
+                stack->slices.size(), contours, points, stack->structures.size(), stack->units.c_str());
     return kExitOk;
 }
 

@@ -1,9 +1,8 @@
 // Reading and writing `*.contours.json` with nlohmann-json.
-#include <nlohmann/json.hpp>
-
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "builder/contours/contour_stack.h"

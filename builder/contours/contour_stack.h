@@ -21,15 +21,15 @@ inline constexpr double kSliceMergeTolerance = 1e-3;
 
 struct Contour {
     std::vector<Vec2> points;
-    std::string structure;        // structure id; empty when unlabelled
-    size_t source_slice = 0;      // index of the slice in the input file (for messages)
-    size_t source_contour = 0;    // index of the contour within that input slice
+    std::string structure;      // structure id; empty when unlabelled
+    size_t source_slice = 0;    // index of the slice in the input file (for messages)
+    size_t source_contour = 0;  // index of the contour within that input slice
 };
 
 struct Slice {
     double z = 0.0;
     std::vector<Contour> contours;
-    size_t source_index = 0;      // first input slice merged into this one
+    size_t source_index = 0;  // first input slice merged into this one
 };
 
 struct StructureInfo {
@@ -41,7 +41,7 @@ struct StructureInfo {
 struct ContourStack {
     std::string units = "mm";
     std::vector<StructureInfo> structures;
-    std::vector<Slice> slices;    // sorted by increasing z after reading
+    std::vector<Slice> slices;  // sorted by increasing z after reading
 };
 
 // Parses a contour stack. Errors name `path`, the slice/contour index in the

@@ -13,15 +13,20 @@
 
 int main(int argc, char** argv) {
     if (argc < 3) {
-        std::fprintf(stderr, "usage: body_compare_png A.png B.png [--max-mean D] [--max-bad-fraction F] [--pixel-threshold T]\n");
+        std::fprintf(
+            stderr,
+            "usage: body_compare_png A.png B.png [--max-mean D] [--max-bad-fraction F] [--pixel-threshold T]\n");
         return 2;
     }
     double max_mean = 2.0, max_bad = 0.01;
     int threshold = 32;
     for (int i = 3; i + 1 < argc; i += 2) {
-        if (!std::strcmp(argv[i], "--max-mean")) max_mean = std::atof(argv[i + 1]);
-        else if (!std::strcmp(argv[i], "--max-bad-fraction")) max_bad = std::atof(argv[i + 1]);
-        else if (!std::strcmp(argv[i], "--pixel-threshold")) threshold = std::atoi(argv[i + 1]);
+        if (!std::strcmp(argv[i], "--max-mean"))
+            max_mean = std::atof(argv[i + 1]);
+        else if (!std::strcmp(argv[i], "--max-bad-fraction"))
+            max_bad = std::atof(argv[i + 1]);
+        else if (!std::strcmp(argv[i], "--pixel-threshold"))
+            threshold = std::atoi(argv[i + 1]);
         else {
             std::fprintf(stderr, "body_compare_png: unknown option %s\n", argv[i]);
             return 2;
