@@ -22,6 +22,6 @@ endif()
 set(CPACK_DEBIAN_PACKAGE_DEPENDS
     "libc6, libstdc++6, libegl1, libgles2, libglfw3, libgbm1, libdrm2, libevdev2, fonts-dejavu-core, libegl-mesa0, libgl1-mesa-dri")
 if(BODY_WITH_IMPORT)
-  string(APPEND CPACK_DEBIAN_PACKAGE_DEPENDS ", libnifti2-2 | libnifti2, libdcmtk17")
+  string(APPEND CPACK_DEBIAN_PACKAGE_DEPENDS ", libniftiio2, libznz3, libdcmtk17")
 endif()
 include(CPack)

@@ -47,7 +47,7 @@ check_debs() {
     for pair in "build:amd64" "build-arm64:arm64"; do
         deb=$(ls "${pair%%:*}"/bodygen_*.deb | head -1)
         arch=$(dpkg-deb -f "$deb" Architecture)
-        dpkg-deb -I "$deb" | sed -n '/Package:/,/Depends:/p'
+        dpkg-deb -I "$deb" | grep -E '^ (Package|Version|Architecture|Depends):'
         dpkg-deb -c "$deb" | grep -E 'bin/(bodygen|bodyview)$' || { echo "$deb lacks the binaries"; ok=1; }
         [ "$arch" = "${pair##*:}" ] || { echo "$deb: architecture $arch, expected ${pair##*:}"; ok=1; }
     done
