@@ -22,48 +22,6 @@ static Status validate_contour(std::span<const Vec3> c, const char* which) {
     return ok_status();
 }
 
-// Greedy shortest-diagonal tiling (Christiansen & Sederberg 1978), starting at
-// the upper vertex nearest lower[0] after aligning centroids; a fold is avoided
-// where the other move does not fold.
-void tile_greedy(std::span<const Vec3> lower, std::span<const Vec3> upper, std::vector<uint32_t>& triangles) {
-    using tiling_detail::Band;
-    const size_t m = lower.size(), n = upper.size();
-    Vec3 cl(0.0), cu(0.0);
-    for (const Vec3& p : lower) cl += p / double(m);
-    for (const Vec3& p : upper) cu += p / double(n);
-    size_t j0 = 0;
-    double best = 1e300;
-    for (size_t j = 0; j < n; ++j) {
-        Vec3 d = (upper[j] - cu) - (lower[0] - cl);
-        double d2 = d.x * d.x + d.y * d.y;
-        if (d2 < best) best = d2, j0 = j;
-    }
-    Band band(lower, upper);
-    std::vector<uint8_t> moves;
-    moves.reserve(m + n);
-    size_t a = 0, b = 0;
-    while (a < m || b < n) {
-        size_t i = a % m, j = (j0 + b) % n;
-        bool up;
-        if (a == m)
-            up = true;
-        else if (b == n)
-            up = false;
-        else {
-            auto lc = band.lower_cost(i, j), uc = band.upper_cost(i, j);
-            if (lc.folds != uc.folds)
-                up = uc.folds < lc.folds;
-            else {
-                Vec3 dl = lower[(i + 1) % m] - upper[j], du = upper[(j + 1) % n] - lower[i];
-                up = glm::dot(du, du) < glm::dot(dl, dl);
-            }
-        }
-        moves.push_back(up ? 1 : 0);
-        (up ? b : a)++;
-    }
-    tiling_detail::emit_path(m, n, 0, j0, moves, triangles);
-}
-
 const char* tiling_method_name(TilingMethod method) {
     switch (method) {
         case TilingMethod::Optimal: return "optimal";

@@ -5,8 +5,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
+#include <random>
 #include <utility>
 #include <vector>
 
@@ -40,7 +42,7 @@ std::vector<Vec3> star(size_t n, int spikes, double r0, double r1, double z, dou
 }
 
 struct Checked {
-    size_t folds = 0;
+    uint32_t folds = 0;
     double area = 0;
 };
 
@@ -131,6 +133,106 @@ TEST_P(TilingMethods, RejectsBadInput) {
     s = body::tile_band(ellipse(5, 1, 1, 0), bad, GetParam(), tris);
     ASSERT_FALSE(s.ok());
     EXPECT_NE(s.error().message.find("upper contour point 3"), std::string::npos);
+}
+
+// Minimum (folds, area) over every closed path, by enumeration (tiny inputs).
+// With `manifold`, paths that fan one vertex to the whole other contour (a
+// cyclic run of n upper or m lower moves) are excluded.
+body::tiling_detail::Cost brute_force(const std::vector<Vec3>& lower, const std::vector<Vec3>& upper, bool manifold) {
+    body::tiling_detail::Band band(lower, upper);
+    const size_t m = lower.size(), n = upper.size();
+    body::tiling_detail::Cost best{~0u, 0};
+    for (size_t j0 = 0; j0 < n; ++j0)
+        for (uint32_t mask = 0; mask < (1u << (m + n)); ++mask) {
+            if (size_t(__builtin_popcount(mask)) != n) continue;  // bit set = upper move
+            if (manifold) {
+                const size_t total = m + n;
+                auto bit = [&](size_t s) { return int((mask >> (s % total)) & 1u); };
+                size_t longest[2] = {0, 0};
+                for (size_t s = 0; s < total; ++s) {
+                    if (bit(s) == bit(s + total - 1)) continue;  // not the start of a run
+                    size_t len = 1;
+                    while (len < total && bit(s + len) == bit(s)) ++len;
+                    longest[bit(s)] = std::max(longest[bit(s)], len);
+                }
+                if (longest[1] >= n || longest[0] >= m) continue;
+            }
+            body::tiling_detail::Cost c;
+            size_t i = 0, j = j0;
+            for (size_t s = 0; s < m + n; ++s) {
+                if ((mask >> s) & 1)
+                    c = c + band.upper_cost(i, j), j = (j + 1) % n;
+                else
+                    c = c + band.lower_cost(i, j), i = (i + 1) % m;
+            }
+            if (c < best) best = c;
+        }
+    return best;
+}
+
+std::vector<Vec3> random_contour(std::mt19937& rng, size_t n, double z) {
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    std::vector<Vec3> c(n);
+    double phase = 2 * M_PI * u(rng), cx = 2 * u(rng) - 1, cy = 2 * u(rng) - 1;
+    for (size_t k = 0; k < n; ++k) {
+        double t = phase + 2 * M_PI * (double(k) + 0.8 * u(rng)) / double(n), r = 3 + 2 * u(rng);
+        c[k] = {cx + r * std::cos(t), cy + r * std::sin(t), z};
+    }
+    return c;
+}
+
+TEST(TilingOptimal, MatchesBruteForce) {
+    std::mt19937 rng(7);
+    int repaired = 0;
+    for (int trial = 0; trial < 40; ++trial) {
+        size_t m = 3 + rng() % 6, n = 3 + rng() % 6;
+        auto lower = random_contour(rng, m, 0), upper = random_contour(rng, n, 1 + 0.5 * (rng() % 3));
+        auto expected = brute_force(lower, upper, true), unconstrained = brute_force(lower, upper, false);
+        auto got = check_band(lower, upper, TilingMethod::Optimal);
+        if (!(unconstrained < expected) && !(expected < unconstrained)) {  // the optimum is a manifold band
+            EXPECT_EQ(got.folds, expected.folds) << "trial " << trial;
+            EXPECT_NEAR(got.area, expected.area, 1e-9 * expected.area) << "trial " << trial;
+        } else {  // repaired by a local flip: no better than the manifold optimum, and close to it
+            ++repaired;
+            EXPECT_FALSE(got.folds < expected.folds) << "trial " << trial;
+            EXPECT_GE(got.area, expected.area * (1 - 1e-9)) << "trial " << trial;
+            EXPECT_LE(got.area, expected.area * 1.25) << "trial " << trial;
+        }
+        auto multi = check_band(lower, upper, TilingMethod::Multires);
+        EXPECT_LE(multi.folds, expected.folds + 0) << "trial " << trial;
+        EXPECT_LE(multi.area, expected.area * 1.2) << "trial " << trial;
+    }
+    EXPECT_LT(repaired, 10);
+}
+
+// A smooth random closed curve: a circle of radius ~4 with a few random
+// Fourier modes, sampled unevenly.
+std::vector<Vec3> smooth_contour(std::mt19937& rng, size_t n, double z) {
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    double amp[4], ph[4];
+    for (int f = 0; f < 4; ++f) amp[f] = 0.6 * u(rng) / (f + 1), ph[f] = 2 * M_PI * u(rng);
+    double phase = 2 * M_PI * u(rng), cx = u(rng) - 0.5, cy = u(rng) - 0.5;
+    std::vector<Vec3> c(n);
+    for (size_t k = 0; k < n; ++k) {
+        double t = phase + 2 * M_PI * (double(k) + 0.5 * u(rng)) / double(n), r = 4;
+        for (int f = 0; f < 4; ++f) r += amp[f] * std::cos((f + 2) * t + ph[f]);
+        c[k] = {cx + r * std::cos(t), cy + r * std::sin(t), z};
+    }
+    return c;
+}
+
+// Multires stays close to the optimum on larger pairs.
+TEST(TilingMultires, NearOptimalArea) {
+    std::mt19937 rng(11);
+    for (int trial = 0; trial < 6; ++trial) {
+        auto lower = smooth_contour(rng, 150 + rng() % 200, 0), upper = smooth_contour(rng, 100 + rng() % 200, 1.5);
+        auto opt = check_band(lower, upper, TilingMethod::Optimal);
+        auto multi = check_band(lower, upper, TilingMethod::Multires);
+        EXPECT_LE(multi.folds, opt.folds) << "trial " << trial;
+        EXPECT_LE(multi.area, opt.area * 1.05) << "trial " << trial;
+        std::printf("trial %d: optimal %.4f (%u folds) multires %.4f (%u folds)\n", trial, opt.area,
+                    unsigned(opt.folds), multi.area, unsigned(multi.folds));
+    }
 }
 
 INSTANTIATE_TEST_SUITE_P(Both, TilingMethods, ::testing::Values(TilingMethod::Optimal, TilingMethod::Multires),
