@@ -1,0 +1,34 @@
+#pragma once
+// Self-intersection count of a triangle mesh.
+//
+// Contract:
+// - `positions` are the vertices, `indices` three per triangle (any
+//   orientation); indices must be < positions.size().
+// - Returns the number of unordered pairs of triangles that intersect, counting
+//   touching as intersecting. Triangles that share one vertex index count only
+//   if they also meet away from that vertex; triangles that share an edge count
+//   only if they are coplanar and overlap (a fold). Duplicate triangles (three
+//   shared indices) count as intersecting. Degenerate triangles (zero area)
+//   are skipped. Adjacency is by index: vertices at equal positions with
+//   different indices are not adjacent.
+// - Stops once `stop_after` pairs are found (0 = count them all), so the
+//   default answers "is there any?".
+// - A uniform grid over the triangles' bounding boxes avoids the quadratic
+//   pair search; memory is O(triangles) for typical meshes.
+#include <cstddef>
+#include <cstdint>
+#include <span>
+
+#include "shared/geometry.h"
+
+namespace body {
+
+size_t count_self_intersections(std::span<const Vec3> positions, std::span<const uint32_t> indices,
+                                size_t stop_after = 1);
+
+// The pair test on its own: do triangles (a0, a1, a2) and (b0, b1, b2), sharing
+// no vertex, intersect (touching included)?
+bool triangles_intersect(const Vec3& a0, const Vec3& a1, const Vec3& a2, const Vec3& b0, const Vec3& b1,
+                         const Vec3& b2);
+
+}  // namespace body

@@ -1,0 +1,101 @@
+// count_self_intersections / triangles_intersect: closed meshes are clean,
+// crossings, folds and shared-vertex crossings are found, pairs counted once.
+#include "shared/mesh_intersect.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "shared/mesh.h"
+
+namespace {
+
+using body::Vec3;
+
+body::Mesh uv_sphere(int rings, int segments, Vec3 centre = Vec3(0.0), double radius = 1.0) {
+    body::Mesh m;
+    m.positions.push_back(centre + radius * Vec3(0, 0, 1));
+    for (int r = 1; r < rings; ++r) {
+        double t = M_PI * r / rings;
+        for (int s = 0; s < segments; ++s) {
+            double p = 2 * M_PI * s / segments;
+            m.positions.push_back(centre +
+                                  radius * Vec3(std::sin(t) * std::cos(p), std::sin(t) * std::sin(p), std::cos(t)));
+        }
+    }
+    m.positions.push_back(centre + radius * Vec3(0, 0, -1));
+    auto ring = [&](int r, int s) { return uint32_t(1 + (r - 1) * segments + (s % segments)); };
+    for (int s = 0; s < segments; ++s) m.indices.insert(m.indices.end(), {0, ring(1, s), ring(1, s + 1)});
+    for (int r = 1; r + 1 < rings; ++r)
+        for (int s = 0; s < segments; ++s)
+            m.indices.insert(m.indices.end(), {ring(r, s), ring(r + 1, s), ring(r + 1, s + 1), ring(r, s),
+                                               ring(r + 1, s + 1), ring(r, s + 1)});
+    uint32_t south = uint32_t(m.positions.size() - 1);
+    for (int s = 0; s < segments; ++s)
+        m.indices.insert(m.indices.end(), {south, ring(rings - 1, s + 1), ring(rings - 1, s)});
+    return m;
+}
+
+void append(body::Mesh& to, const body::Mesh& from) {
+    uint32_t base = uint32_t(to.positions.size());
+    to.positions.insert(to.positions.end(), from.positions.begin(), from.positions.end());
+    for (uint32_t i : from.indices) to.indices.push_back(base + i);
+}
+
+TEST(TrianglesIntersect, PairCases) {
+    Vec3 a0(0, 0, 0), a1(1, 0, 0), a2(0, 1, 0);
+    EXPECT_TRUE(body::triangles_intersect(a0, a1, a2, {0.2, 0.2, -1}, {0.2, 0.2, 1}, {0.3, 0.9, 0}));    // pierces
+    EXPECT_FALSE(body::triangles_intersect(a0, a1, a2, {0.2, 0.2, 0.1}, {0.2, 0.5, 1}, {0.8, 0.2, 1}));  // above
+    EXPECT_TRUE(body::triangles_intersect(a0, a1, a2, {0.2, 0.2, 0}, {0.2, 0.5, 1}, {0.8, 0.2, 1}));     // touches
+    EXPECT_TRUE(body::triangles_intersect(a0, a1, a2, {0.1, 0.1, 0}, {2, 0.1, 0}, {0.1, 2, 0}));  // coplanar overlap
+    EXPECT_FALSE(body::triangles_intersect(a0, a1, a2, {1, 1, 0}, {2, 1, 0}, {1, 2, 0}));         // coplanar apart
+    EXPECT_TRUE(body::triangles_intersect(a0, a1, a2, {0.1, 0.1, 0}, {0.2, 0.1, 0}, {0.1, 0.2, 0}));  // inside
+}
+
+TEST(SelfIntersections, ClosedSphereIsClean) {
+    auto m = uv_sphere(24, 48);
+    EXPECT_EQ(body::count_self_intersections(m.positions, m.indices, 0), 0u);
+}
+
+TEST(SelfIntersections, OverlappingSpheresAreFoundAndCounted) {
+    auto m = uv_sphere(12, 24);
+    append(m, uv_sphere(12, 24, Vec3(0.5, 0.1, 0.05)));
+    size_t all = body::count_self_intersections(m.positions, m.indices, 0);
+    EXPECT_GT(all, 20u);
+    EXPECT_EQ(body::count_self_intersections(m.positions, m.indices), 1u);
+    EXPECT_EQ(body::count_self_intersections(m.positions, m.indices, 5), 5u);
+    // Apart: clean.
+    auto apart = uv_sphere(12, 24);
+    append(apart, uv_sphere(12, 24, Vec3(2.5, 0, 0)));
+    EXPECT_EQ(body::count_self_intersections(apart.positions, apart.indices, 0), 0u);
+}
+
+TEST(SelfIntersections, PushedVertexPiercesTheOtherSide) {
+    auto m = uv_sphere(16, 32);
+    m.positions[0] = {0, 0, -1.5};  // the north pole pulled through the south
+    EXPECT_GT(body::count_self_intersections(m.positions, m.indices, 0), 0u);
+}
+
+TEST(SelfIntersections, AdjacentTriangles) {
+    // Two triangles sharing edge 0-1: flat (clean), folded onto each other (hit).
+    std::vector<Vec3> p = {{0, 0, 0}, {1, 0, 0}, {0.5, 1, 0}, {0.5, -1, 0}, {0.5, 0.5, 0}};
+    std::vector<uint32_t> flat = {0, 1, 2, 1, 0, 3};
+    EXPECT_EQ(body::count_self_intersections(p, flat, 0), 0u);
+    std::vector<uint32_t> folded = {0, 1, 2, 1, 0, 4};
+    EXPECT_EQ(body::count_self_intersections(p, folded, 0), 1u);
+    // Sharing vertex 0: a fan that crosses itself, and one that does not.
+    std::vector<Vec3> q = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0.5, 0.5, -0.5}, {0.5, 0.2, 0.5}, {-1, 0, 0.2}};
+    std::vector<uint32_t> crossing = {0, 1, 2, 0, 3, 4};
+    EXPECT_EQ(body::count_self_intersections(q, crossing, 0), 1u);
+    std::vector<uint32_t> apart = {0, 1, 2, 0, 5, 3};
+    EXPECT_EQ(body::count_self_intersections(q, apart, 0), 0u);
+    // Coplanar fans around a shared vertex: overlapping wedges hit, disjoint do not.
+    std::vector<Vec3> r = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}, {-1, 0.2, 0}, {-0.2, 1, 0}};
+    std::vector<uint32_t> overlap = {0, 1, 2, 0, 3, 5};
+    EXPECT_EQ(body::count_self_intersections(r, overlap, 0), 1u);
+    std::vector<uint32_t> side = {0, 2, 5, 0, 5, 4};
+    EXPECT_EQ(body::count_self_intersections(r, side, 0), 0u);
+}
+
+}  // namespace
