@@ -3,6 +3,7 @@
 #include <cmath>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 
 #include "builder/contours/contour_stack.h"
@@ -12,6 +13,14 @@ namespace body {
 namespace {
 
 using nlohmann::json;
+
+// A string member, or `fallback` when absent; nullopt when present but not a string.
+std::optional<std::string> string_member(const json& object, const char* key, const std::string& fallback) {
+    auto it = object.find(key);
+    if (it == object.end()) return fallback;
+    if (!it->is_string()) return std::nullopt;
+    return it->get<std::string>();
+}
 
 std::string place(const std::string& path, size_t slice) { return path + ": slice " + std::to_string(slice); }
 std::string place(const std::string& path, size_t slice, size_t contour) {
@@ -42,7 +51,9 @@ Result<std::vector<StructureInfo>> parse_structures(const json& root, const std:
         StructureInfo info;
         info.id = s["id"].get<std::string>();
         if (info.id.empty()) return input_error(where + ": empty id");
-        info.name = s.value("name", info.id);
+        auto name = string_member(s, "name", info.id);
+        if (!name) return input_error(where + ": \"name\" must be a string");
+        info.name = *name;
         if (s.contains("color")) {
             auto c = parse_color(s["color"], where);
             if (!c) return c.error();
@@ -95,15 +106,19 @@ Result<ContourStack> parse_contour_stack(const std::string& json_text, const std
             (void)probe;
         } catch (const json::parse_error& e) {
             return input_error(path + ": byte " + std::to_string(e.byte) + ": invalid JSON");
+        } catch (const json::exception& e) {
+            return input_error(path + ": invalid JSON (" + std::string(e.what()) + ")");
         }
         return input_error(path + ": invalid JSON");
     }
-    if (!root.is_object() || root.value("format", std::string()) != "bodygen.contours")
+    if (!root.is_object() || string_member(root, "format", "") != std::optional<std::string>("bodygen.contours"))
         return input_error(path + ": not a contour stack (\"format\" must be \"bodygen.contours\")");
     if (!root.contains("version") || !root["version"].is_number_integer() || root["version"].get<int>() != 1)
         return input_error(path + ": unsupported version (expected 1)");
     ContourStack stack;
-    stack.units = root.value("units", std::string("mm"));
+    auto units = string_member(root, "units", "mm");
+    if (!units) return input_error(path + ": \"units\" must be a string");
+    stack.units = *units;
     auto structures = parse_structures(root, path);
     if (!structures) return structures.error();
     stack.structures = std::move(*structures);

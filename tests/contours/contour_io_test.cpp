@@ -52,6 +52,10 @@ TEST(ContourIo, BadInputNamesThePlace) {
          "slice 1 contour 0: unknown structure"},
         {R"({"format": "bodygen.contours", "version": 1, "structures": [{"id": "a", "color": [2, 0, 0]}], "slices": []})",
          "structure 0"},
+        // Found by the fuzzer: a member of the wrong type and a number out of range.
+        {R"({"format": [{"id": "k"}], "slices": []})", "format"},
+        {R"({"format": "bodygen.contours", "version": 1, "units": 3, "slices": []})", "units"},
+        {"5e777777777777777", "invalid JSON"},
     };
     for (const BadCase& c : cases) {
         auto s = parse_contour_stack(c.json, "bad.json");
