@@ -16,6 +16,7 @@ int report(const Error& error) {
 }
 
 int run_contours_check(const Args& args);  // cmd_check.cpp
+int run_slice(const Args& args);           // cmd_slice.cpp
 
 }  // namespace body::cli
 
@@ -26,6 +27,7 @@ using body::cli::Command;
 // The subcommand table; each entry lives in builder/cli/cmd_<name>.cpp.
 const Command kCommands[] = {
     {"check", "validate a contour stack and print its slices and contours", body::cli::run_contours_check},
+    {"slice", "slice a closed OBJ mesh with parallel planes into a contour stack", body::cli::run_slice},
 };
 
 void print_help(std::FILE* out) {
