@@ -1,7 +1,13 @@
 #pragma once
 // The platform layer: one small interface over window systems and GL contexts.
-// Backends: headless_* (EGL surfaceless, always built), glfw_* (desktop),
-// drm_* (DRM/KMS + GBM + EGL on boards without a desktop). Chosen at run time.
+// Backends: headless_* (EGL surfaceless/pbuffer + offscreen framebuffer, always
+// built), glfw_* (desktop window, GLES 3 through EGL), drm_* (DRM/KMS + GBM +
+// EGL on boards without a desktop). Chosen at run time with `--platform`.
+//
+// Contract: create_surface() returns a Surface whose GLES 3.0 context is
+// current on the calling thread. Render into framebuffer() (0 for on-screen
+// backends, an FBO for headless), then present(). All calls on one thread.
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -16,5 +22,72 @@ enum class Backend { Auto, Headless, Glfw, Drm };
 std::vector<Backend> compiled_backends();
 const char* backend_name(Backend backend);
 Result<Backend> parse_backend(const std::string& name);
+
+// One input event in surface pixels (origin top-left). Backends and the evdev
+// touch layer (platform/evdev_*) produce these; the kiosk app consumes them.
+struct InputEvent {
+    enum class Type : uint8_t {
+        TouchDown,
+        TouchMove,
+        TouchUp,
+        MouseDown,
+        MouseUp,
+        MouseMove,
+        Scroll,
+        Key,
+        Quit,  // window closed, SIGINT/SIGTERM
+    };
+    Type type = Type::MouseMove;
+    int id = 0;            // touch slot/tracking id; mouse button (0 left, 1 right, 2 middle)
+    float x = 0, y = 0;    // position in pixels (touch, mouse)
+    float dx = 0, dy = 0;  // scroll offsets (Scroll)
+    int key = 0;           // key code (Key): ASCII for printable keys, 256 Escape
+    bool pressed = false;  // Key: down (true) or up
+    double time = 0;       // seconds, the same clock as Surface::time()
+};
+inline constexpr int kKeyEscape = 256;
+
+struct SurfaceOptions {
+    Backend backend = Backend::Auto;
+    int width = 0, height = 0;  // 0: the display's preferred size (headless: 1280x800)
+    bool fullscreen = true;     // glfw: fullscreen on the primary monitor, else a window
+    std::string mode;           // drm: "WxH" or "WxH@Hz"; empty for the preferred mode
+    std::string drm_device;     // drm: e.g. /dev/dri/card0; empty to try card0..card9
+    std::string title = "bodyview";
+};
+
+class Surface {
+public:
+    virtual ~Surface() = default;
+    virtual Backend backend() const = 0;
+    virtual void make_current() = 0;
+    // Shows the frame (swap buffers / page flip). Headless: glFinish only.
+    virtual Status present() = 0;
+    // Size of framebuffer() in pixels.
+    virtual int width() const = 0;
+    virtual int height() const = 0;
+    // The GL framebuffer to draw into: 0 on screen, an offscreen FBO headless.
+    virtual unsigned framebuffer() const = 0;
+    // Appends pending events; returns false once the user asked to quit.
+    virtual bool poll_events(std::vector<InputEvent>& out) = 0;
+    // Monotonic seconds since the surface was created.
+    virtual double time() const = 0;
+};
+
+// Creates the surface for `options.backend`; Auto picks a display server if
+// one is reachable, else DRM if /dev/dri/card* opens, else fails with a reason.
+// Headless is used only when asked for.
+Result<std::unique_ptr<Surface>> create_surface(const SurfaceOptions& options);
+
+// Backend constructors (defined in the backend files; absent ones fail cleanly).
+Result<std::unique_ptr<Surface>> create_headless_surface(const SurfaceOptions& options);
+Result<std::unique_ptr<Surface>> create_glfw_surface(const SurfaceOptions& options);
+Result<std::unique_ptr<Surface>> create_drm_surface(const SurfaceOptions& options);
+
+// Reads the RGBA8 pixels of the current read framebuffer, top row first.
+std::vector<uint8_t> read_pixels_rgba(unsigned framebuffer, int width, int height);
+
+// Parses "1280x800" into width/height.
+Result<std::pair<int, int>> parse_size(const std::string& text);
 
 }  // namespace body::platform

@@ -1,0 +1,181 @@
+// The renderer benchmark (see benchmark.h). Timing: glFinish after each frame,
+// steady_clock, median over the timed frames. The baseline is re-measured at
+// every LOD so ratios compare like with like.
+#include "kiosk/render/benchmark.h"
+
+#include <GLES3/gl3.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+
+#include "kiosk/render/model_source.h"
+#include "kiosk/render/renderer.h"
+#include "shared/obj_io.h"
+
+namespace body::render {
+namespace {
+
+long status_field_kib(const char* field) {
+    std::ifstream in("/proc/self/status");
+    std::string line;
+    const std::string key = std::string(field) + ":";
+    while (std::getline(in, line))
+        if (line.rfind(key, 0) == 0) return std::atol(line.c_str() + key.size());
+    return -1;
+}
+
+// Midpoint subdivision (each triangle -> 4) with shared edge midpoints.
+void subdivide(std::vector<Vec3f>& p, std::vector<uint32_t>& idx) {
+    std::map<uint64_t, uint32_t> mid;
+    auto midpoint = [&](uint32_t a, uint32_t b) {
+        uint64_t key = (static_cast<uint64_t>(std::min(a, b)) << 32) | std::max(a, b);
+        auto [it, inserted] = mid.emplace(key, static_cast<uint32_t>(p.size()));
+        if (inserted) p.push_back((p[a] + p[b]) * 0.5f);
+        return it->second;
+    };
+    std::vector<uint32_t> out;
+    out.reserve(idx.size() * 4);
+    for (size_t f = 0; f + 2 < idx.size(); f += 3) {
+        uint32_t a = idx[f], b = idx[f + 1], c = idx[f + 2];
+        uint32_t ab = midpoint(a, b), bc = midpoint(b, c), ca = midpoint(c, a);
+        out.insert(out.end(), {a, ab, ca, ab, b, bc, ca, bc, c, ab, bc, ca});
+    }
+    idx = std::move(out);
+}
+
+// An icosphere with a smooth bumpy displacement (stands in when no bunny is installed).
+void icosphere(std::vector<Vec3f>& p, std::vector<uint32_t>& idx) {
+    const float t = (1.0f + std::sqrt(5.0f)) / 2.0f;
+    p = {{-1, t, 0},  {1, t, 0},  {-1, -t, 0}, {1, -t, 0}, {0, -1, t},  {0, 1, t},
+         {0, -1, -t}, {0, 1, -t}, {t, 0, -1},  {t, 0, 1},  {-t, 0, -1}, {-t, 0, 1}};
+    idx = {0, 11, 5, 0, 5, 1, 0, 1, 7, 0, 7, 10, 0, 10, 11, 1, 5, 9, 5, 11, 4,  11, 10, 2,  10, 7, 6, 7, 1, 8,
+           3, 9,  4, 3, 4, 2, 3, 2, 6, 3, 6, 8,  3, 8,  9,  4, 9, 5, 2, 4,  11, 6,  2,  10, 8,  6, 7, 9, 8, 1};
+}
+
+Result<ModelSource> generated_model(size_t target_triangles) {
+    std::vector<Vec3f> p;
+    std::vector<uint32_t> idx;
+    std::string name;
+    const char* bunny = "/usr/share/glmark2/models/bunny.obj";
+    if (auto mesh = read_obj_merged(bunny); mesh) {
+        for (const Vec3& v : mesh->positions) p.emplace_back(v);
+        idx = mesh->indices;
+        name = "bunny (subdivided)";
+    } else {
+        icosphere(p, idx);
+        name = "bumpy sphere";
+    }
+    while (idx.size() / 3 * 4 <= target_triangles * 5 / 4 && idx.size() / 3 < target_triangles) subdivide(p, idx);
+    if (name == "bumpy sphere")
+        for (Vec3f& v : p) {
+            Vec3f n = glm::normalize(v);
+            v = n * (1.0f + 0.05f * std::sin(9.0f * n.x) * std::sin(7.0f * n.y) * std::sin(8.0f * n.z));
+        }
+    return ModelSource(name, Vec3f(0.85f, 0.62f, 0.55f), std::move(p), {}, std::move(idx));
+}
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v.empty() ? 0.0 : v[v.size() / 2];
+}
+
+}  // namespace
+
+long peak_rss_kib() { return status_field_kib("VmHWM"); }
+long current_rss_kib() { return status_field_kib("VmRSS"); }
+
+Status run_benchmark(platform::Surface& surface, const BenchmarkOptions& options) {
+    surface.make_current();
+    glFinish();
+    const long empty_rss = peak_rss_kib();
+    const char* gl_renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+
+    ModelSource* source = nullptr;
+    std::vector<ModelSource> loaded;
+    if (!options.model.empty()) {
+        auto l = load_model_file(options.model);
+        if (!l) return l.error();
+        loaded = std::move(l.value());
+    } else {
+        auto g = generated_model(options.target_triangles);
+        if (!g) return g.error();
+        loaded.push_back(std::move(g.value()));
+    }
+    // The largest structure is the one measured.
+    source = &*std::max_element(loaded.begin(), loaded.end(), [](const ModelSource& a, const ModelSource& b) {
+        return a.full_triangles() < b.full_triangles();
+    });
+
+    Renderer renderer;
+    if (auto s = renderer.init(); !s) return s;
+    auto id = renderer.add_model(source->mesh(), source->name());
+    if (!id) return id.error();
+    (void)source->take_dirty();
+    Vec3f center;
+    float radius = 0;
+    renderer.bounds(id.value(), center, radius);
+    const Camera camera = Camera::framing(center, radius);
+    const Lighting lighting;
+    FrameOptions frame;
+    frame.width = surface.width();
+    frame.height = surface.height();
+    frame.framebuffer = surface.framebuffer();
+
+    std::printf("bodyview benchmark: %s, %dx%d, GL_RENDERER %s\n", source->name().c_str(), frame.width, frame.height,
+                gl_renderer ? gl_renderer : "?");
+    std::printf("model: %zu triangles (%s LOD)\n", source->full_triangles(),
+                source->progressive() ? "progressive-mesh" : "meshoptimizer preview");
+    std::printf("%-5s %-9s %-15s %10s %8s %s\n", "LOD", "triangles", "style", "median_ms", "ratio", "goal");
+
+    auto time_style = [&](Style style) {
+        renderer.state(id.value())->style = style;
+        std::vector<double> ms;
+        for (int i = 0; i < 3 + options.frames; ++i) {
+            auto t0 = std::chrono::steady_clock::now();
+            renderer.render(camera, lighting, frame);
+            glFinish();
+            auto t1 = std::chrono::steady_clock::now();
+            if (i >= 3) ms.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
+        }
+        return median(ms);
+    };
+    const std::map<Style, double> goals = {{Style::Smooth, 1.1}, {Style::Hatching, 1.5}, {Style::Lines, 2.0}};
+    for (double lod : {1.0, 0.4, 0.1}) {
+        source->set_lod(lod);
+        if (auto s = renderer.update_model(id.value(), source->mesh(), source->take_dirty()); !s) return s;
+        // Build the lazily created edge list / textures outside the timed frames.
+        for (Style s : kAllStyles) {
+            renderer.state(id.value())->style = s;
+            renderer.render(camera, lighting, frame);
+        }
+        glFinish();
+        double base_a = time_style(Style::Baseline);
+        std::vector<std::pair<Style, double>> rows;
+        for (Style s : kAllStyles) rows.emplace_back(s, time_style(s));
+        double base_b = time_style(Style::Baseline);
+        double base = std::min(base_a, base_b);
+        std::printf("%3.0f%%  %-9zu %-15s %10.2f %8.2f\n", lod * 100, source->triangles(), "baseline", base, 1.0);
+        for (auto& [s, ms] : rows) {
+            auto g = goals.find(s);
+            char goal[32] = "";
+            if (g != goals.end())
+                std::snprintf(goal, sizeof(goal), "<= %.1fx %s", g->second, ms / base <= g->second ? "ok" : "MISSED");
+            std::printf("%3.0f%%  %-9zu %-15s %10.2f %8.2f %s\n", lod * 100, source->triangles(), style_name(s), ms,
+                        ms / base, goal);
+        }
+    }
+    const long peak = peak_rss_kib();
+    std::printf(
+        "peak RSS: empty context %.1f MiB, with the model in every style %.1f MiB, above baseline %.1f MiB "
+        "(goal < 64 MiB: %s)\n",
+        empty_rss / 1024.0, peak / 1024.0, (peak - empty_rss) / 1024.0,
+        (peak - empty_rss) < 64 * 1024 ? "ok" : "MISSED");
+    renderer.shutdown();
+    return ok_status();
+}
+
+}  // namespace body::render

@@ -1,0 +1,25 @@
+#pragma once
+// `bodyview --headless --benchmark`: per style and LOD, the median frame time
+// and its ratio to a minimal baseline drawn in the same run (the same buffers,
+// the flat-colour shader), plus peak RSS above the empty-context baseline.
+#include <string>
+
+#include "platform/platform.h"
+#include "shared/error.h"
+
+namespace body::render {
+
+struct BenchmarkOptions {
+    std::string model;                  // .bpm/.obj; empty: a generated ~1M-triangle model
+    size_t target_triangles = 1000000;  // for the generated model
+    int frames = 15;                    // timed frames per measurement (after 3 warm-up frames)
+};
+
+// Prints the table to stdout. The surface's context must be current.
+Status run_benchmark(platform::Surface& surface, const BenchmarkOptions& options);
+
+// Peak and current resident set size of this process in KiB (/proc/self/status).
+long peak_rss_kib();
+long current_rss_kib();
+
+}  // namespace body::render

@@ -1,0 +1,768 @@
+// BodyView's GLES 3.0 renderer: buffers per model, the five styles, selection
+// and x-ray, depth-correct mixing. References: thesis section 3.4 (silhouette
+// and detail lines; multi-texture hatching after Lake et al. 2000); McGuire &
+// Hughes 2004 (edge templates); Praun et al. 2001 and Webb et al. 2002 (tonal
+// art maps); Blinn 1977 (specular). Layout after Dear ImGui's
+// imgui_impl_opengl3.cpp: one state struct, init/shutdown/render.
+#include "kiosk/render/renderer.h"
+
+#include <GLES3/gl3.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <map>
+
+#include "kiosk/render/edge_list.h"
+#include "kiosk/render/tonal_art_map.h"
+
+namespace body::render {
+
+#ifdef BODY_GL_DEBUG
+#define BODY_GL_CHECK(where)                                                                               \
+    do {                                                                                                   \
+        for (GLenum e = glGetError(); e != GL_NO_ERROR; e = glGetError())                                  \
+            std::fprintf(stderr, "bodyview: GL error 0x%04x after %s\n", static_cast<unsigned>(e), where); \
+    } while (0)
+#else
+#define BODY_GL_CHECK(where) \
+    do {                     \
+    } while (0)
+#endif
+
+namespace {
+
+constexpr int kTextureWidth = 2048;  // texels per row of the position/index textures (GLES 3.0 minimum)
+constexpr GLuint kPosition = 0, kNormal = 1;
+
+struct Program {
+    GLuint id = 0;
+    std::map<std::string, GLint> locations;
+    GLint loc(const char* name) {
+        auto it = locations.find(name);
+        if (it != locations.end()) return it->second;
+        GLint l = glGetUniformLocation(id, name);
+        locations.emplace(name, l);
+        return l;
+    }
+};
+
+struct Model {
+    std::string name;
+    ModelState state;
+    GLuint vao = 0, vbo_position = 0, vbo_normal = 0, ebo = 0;
+    size_t vertex_capacity = 0, index_capacity = 0;
+    size_t vertex_count = 0, index_count = 0;
+    Vec3f center{0.0f};
+    float radius = 0.0f;
+    // Lazily created for `lines` and `wireframe`.
+    GLuint position_texture = 0, index_texture = 0;
+    GLuint edge_vao = 0, edge_vbo = 0;
+    size_t edge_count = 0;
+    bool edges_stale = true;
+    bool internal = false;  // the manipulation sphere
+};
+
+uint32_t pack_normal(const Vec3f& n) {
+    auto q = [](float v) {
+        int i = static_cast<int>(std::lround(std::clamp(v, -1.0f, 1.0f) * 511.0f));
+        return static_cast<uint32_t>(i) & 0x3ffu;
+    };
+    return q(n.x) | (q(n.y) << 10) | (q(n.z) << 20);
+}
+
+std::vector<Vec3f> area_normals(std::span<const Vec3f> p, std::span<const uint32_t> idx, size_t vertex_count) {
+    std::vector<Vec3f> n(vertex_count, Vec3f(0.0f));
+    for (size_t f = 0; f + 2 < idx.size(); f += 3) {
+        uint32_t a = idx[f], b = idx[f + 1], c = idx[f + 2];
+        if (a >= vertex_count || b >= vertex_count || c >= vertex_count) continue;
+        Vec3f fn = glm::cross(p[b] - p[a], p[c] - p[a]);
+        n[a] += fn;
+        n[b] += fn;
+        n[c] += fn;
+    }
+    for (auto& v : n) {
+        float l = glm::length(v);
+        v = l > 0.0f ? v / l : Vec3f(0.0f, 0.0f, 1.0f);
+    }
+    return n;
+}
+
+Result<GLuint> compile(GLenum type, const std::string& name) {
+    const char* src = shader_source(name);
+    if (!src) return runtime_error("shader " + name + ": not embedded in this build");
+    GLuint s = glCreateShader(type);
+    glShaderSource(s, 1, &src, nullptr);
+    glCompileShader(s);
+    GLint ok = 0;
+    glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        char log[2048] = {};
+        glGetShaderInfoLog(s, sizeof(log), nullptr, log);
+        glDeleteShader(s);
+        std::string one_line(log);
+        std::replace(one_line.begin(), one_line.end(), '\n', ' ');
+        return runtime_error("shader " + name + ": compile failed: " + one_line);
+    }
+    return s;
+}
+
+Result<Program> link(const std::string& vert, const std::string& frag) {
+    auto vs = compile(GL_VERTEX_SHADER, vert);
+    if (!vs) return vs.error();
+    auto fs = compile(GL_FRAGMENT_SHADER, frag);
+    if (!fs) {
+        glDeleteShader(vs.value());
+        return fs.error();
+    }
+    Program p;
+    p.id = glCreateProgram();
+    glAttachShader(p.id, vs.value());
+    glAttachShader(p.id, fs.value());
+    glBindAttribLocation(p.id, kPosition, "a_position");
+    glBindAttribLocation(p.id, kNormal, "a_normal");
+    glLinkProgram(p.id);
+    glDeleteShader(vs.value());
+    glDeleteShader(fs.value());
+    GLint ok = 0;
+    glGetProgramiv(p.id, GL_LINK_STATUS, &ok);
+    if (!ok) {
+        char log[2048] = {};
+        glGetProgramInfoLog(p.id, sizeof(log), nullptr, log);
+        glDeleteProgram(p.id);
+        std::string one_line(log);
+        std::replace(one_line.begin(), one_line.end(), '\n', ' ');
+        return runtime_error("program " + vert + "+" + frag + ": link failed: " + one_line);
+    }
+    return p;
+}
+
+// Uploads elements [begin, end) of an array laid out kTextureWidth per row.
+void texture_rows(GLuint tex, size_t begin, size_t end, GLenum format, GLenum type, const uint8_t* base,
+                  size_t element_size) {
+    glBindTexture(GL_TEXTURE_2D, tex);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    const size_t w = kTextureWidth;
+    while (begin < end) {
+        size_t row = begin / w, col = begin % w;
+        size_t count = std::min(end - begin, w - col);
+        if (col == 0 && count == w) {
+            size_t rows = (end - begin) / w;
+            glTexSubImage2D(GL_TEXTURE_2D, 0, 0, static_cast<GLint>(row), static_cast<GLsizei>(w),
+                            static_cast<GLsizei>(rows), format, type, base + begin * element_size);
+            begin += rows * w;
+            continue;
+        }
+        glTexSubImage2D(GL_TEXTURE_2D, 0, static_cast<GLint>(col), static_cast<GLint>(row), static_cast<GLsizei>(count),
+                        1, format, type, base + begin * element_size);
+        begin += count;
+    }
+}
+
+GLuint make_data_texture(GLenum internal, size_t capacity) {
+    GLuint tex = 0;
+    glGenTextures(1, &tex);
+    glBindTexture(GL_TEXTURE_2D, tex);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    size_t rows = (capacity + kTextureWidth - 1) / kTextureWidth;
+    glTexStorage2D(GL_TEXTURE_2D, 1, internal, kTextureWidth, static_cast<GLsizei>(std::max<size_t>(rows, 1)));
+    return tex;
+}
+
+// Reads a whole GL buffer back (GLES 3.0 mapping) for the lazily built data.
+template <typename T>
+std::vector<T> read_buffer(GLenum target, GLuint buffer, size_t count) {
+    std::vector<T> out(count);
+    if (count == 0) return out;
+    glBindBuffer(target, buffer);
+    void* p = glMapBufferRange(target, 0, static_cast<GLsizeiptr>(count * sizeof(T)), GL_MAP_READ_BIT);
+    if (p) {
+        std::copy_n(static_cast<const T*>(p), count, out.data());
+        glUnmapBuffer(target);
+    }
+    return out;
+}
+
+}  // namespace
+
+const char* style_name(Style style) {
+    switch (style) {
+        case Style::Smooth: return "smooth";
+        case Style::Wireframe: return "wireframe";
+        case Style::Lines: return "lines";
+        case Style::Hatching: return "hatching";
+        case Style::Hatching2Tone: return "hatching-2tone";
+        case Style::Baseline: return "baseline";
+    }
+    return "?";
+}
+
+Result<Style> parse_style(const std::string& name) {
+    for (Style s :
+         {Style::Smooth, Style::Wireframe, Style::Lines, Style::Hatching, Style::Hatching2Tone, Style::Baseline})
+        if (name == style_name(s)) return s;
+    return input_error("unknown style '" + name + "' (expected smooth, wireframe, lines, hatching, hatching-2tone)");
+}
+
+glm::mat4 Camera::view() const { return glm::lookAt(eye, target, up); }
+glm::mat4 Camera::projection(float aspect) const {
+    return glm::perspective(glm::radians(fov_y_deg), aspect, near_plane, far_plane);
+}
+Camera Camera::framing(Vec3f center, float radius, Vec3f direction) {
+    Camera c;
+    radius = std::max(radius, 1e-6f);
+    float d = radius / std::sin(glm::radians(c.fov_y_deg) * 0.5f) * 1.02f;
+    c.target = center;
+    c.eye = center + glm::normalize(direction) * d;
+    c.near_plane = std::max(d - radius * 1.5f, d * 0.01f);
+    c.far_plane = d + radius * 1.5f;
+    return c;
+}
+
+struct Renderer::State {
+    bool ready = false;
+    Program baseline, smooth, hatching, xray, edges, wireframe;
+    GLuint tam = 0;
+    GLuint corner_vbo = 0;  // the 4 corners of an edge quad
+    GLuint empty_vao = 0;   // wireframe draws without attributes
+    std::map<ModelId, Model> models;
+    ModelId next_id = 1;
+    ModelId sphere = 0;
+    FrameStats stats;
+};
+
+Renderer::Renderer() : s_(std::make_unique<State>()) {}
+Renderer::~Renderer() = default;
+
+Status Renderer::init() {
+    if (s_->ready) return ok_status();
+    struct Want {
+        Program* p;
+        const char* vert;
+        const char* frag;
+    };
+    for (Want w :
+         {Want{&s_->baseline, "mesh.vert", "baseline.frag"}, Want{&s_->smooth, "mesh.vert", "smooth.frag"},
+          Want{&s_->hatching, "mesh.vert", "hatching.frag"}, Want{&s_->xray, "mesh.vert", "xray.frag"},
+          Want{&s_->edges, "edges.vert", "edges.frag"}, Want{&s_->wireframe, "wireframe.vert", "wireframe.frag"}}) {
+        auto p = link(w.vert, w.frag);
+        if (!p) {
+            shutdown();
+            return p.error();
+        }
+        *w.p = std::move(p.value());
+    }
+    glBindAttribLocation(s_->edges.id, 0, "a_corner");
+
+    // Tonal art map: a 2D array texture, one layer per tone, our own mip chain.
+    TonalArtMap tam = make_tonal_art_map(256, 6);
+    glGenTextures(1, &s_->tam);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, s_->tam);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    const auto levels = static_cast<GLsizei>(tam.levels.size());
+    glTexStorage3D(GL_TEXTURE_2D_ARRAY, levels, GL_R8, tam.size, tam.size, tam.tones);
+    for (GLsizei l = 0; l < levels; ++l) {
+        int s = std::max(1, tam.size >> l);
+        for (int t = 0; t < tam.tones; ++t)
+            glTexSubImage3D(GL_TEXTURE_2D_ARRAY, l, 0, 0, t, s, s, 1, GL_RED, GL_UNSIGNED_BYTE,
+                            tam.levels[static_cast<size_t>(l)][static_cast<size_t>(t)].data());
+    }
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, GL_REPEAT);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_T, GL_REPEAT);
+
+    const float corners[] = {0, -1, 0, 1, 1, -1, 1, 1};
+    glGenBuffers(1, &s_->corner_vbo);
+    glBindBuffer(GL_ARRAY_BUFFER, s_->corner_vbo);
+    glBufferData(GL_ARRAY_BUFFER, sizeof(corners), corners, GL_STATIC_DRAW);
+    glGenVertexArrays(1, &s_->empty_vao);
+    s_->ready = true;
+
+    // The manipulation sphere: a UV sphere of radius 1.
+    std::vector<Vec3f> sp;
+    std::vector<uint32_t> si;
+    const int rings = 24, segments = 48;
+    for (int r = 0; r <= rings; ++r)
+        for (int g = 0; g <= segments; ++g) {
+            float th = glm::pi<float>() * static_cast<float>(r) / rings;
+            float ph = 2.0f * glm::pi<float>() * static_cast<float>(g) / segments;
+            sp.emplace_back(std::sin(th) * std::cos(ph), std::cos(th), -std::sin(th) * std::sin(ph));
+        }
+    for (int r = 0; r < rings; ++r)
+        for (int g = 0; g < segments; ++g) {
+            uint32_t a = static_cast<uint32_t>(r * (segments + 1) + g), b = a + segments + 1;
+            si.insert(si.end(), {a, b, a + 1, a + 1, b, b + 1});
+        }
+    auto sphere = add_model({sp, sp, si}, "manipulation sphere");
+    if (!sphere) return sphere.error();
+    s_->sphere = sphere.value();
+    s_->models[s_->sphere].internal = true;
+    BODY_GL_CHECK("init");
+    return ok_status();
+}
+
+namespace {
+void free_model(Model& m) {
+    GLuint buffers[] = {m.vbo_position, m.vbo_normal, m.ebo, m.edge_vbo};
+    glDeleteBuffers(4, buffers);
+    GLuint vaos[] = {m.vao, m.edge_vao};
+    glDeleteVertexArrays(2, vaos);
+    GLuint textures[] = {m.position_texture, m.index_texture};
+    glDeleteTextures(2, textures);
+}
+}  // namespace
+
+void Renderer::shutdown() {
+    for (auto& [id, m] : s_->models) free_model(m);
+    s_->models.clear();
+    for (Program* p : {&s_->baseline, &s_->smooth, &s_->hatching, &s_->xray, &s_->edges, &s_->wireframe}) {
+        if (p->id) glDeleteProgram(p->id);
+        *p = Program{};
+    }
+    if (s_->tam) glDeleteTextures(1, &s_->tam);
+    if (s_->corner_vbo) glDeleteBuffers(1, &s_->corner_vbo);
+    if (s_->empty_vao) glDeleteVertexArrays(1, &s_->empty_vao);
+    s_->tam = s_->corner_vbo = s_->empty_vao = 0;
+    s_->ready = false;
+}
+
+Result<ModelId> Renderer::add_model(const MeshData& mesh, const std::string& name) {
+    const size_t vcount = mesh.vertex_count == SIZE_MAX ? mesh.positions.size() : mesh.vertex_count;
+    const size_t icount = mesh.index_count == SIZE_MAX ? mesh.indices.size() : mesh.index_count;
+    if (!s_->ready) return runtime_error(name + ": renderer not initialised");
+    if (mesh.positions.empty() || mesh.indices.empty() || vcount == 0 || icount < 3)
+        return input_error(name + ": empty mesh");
+    if (vcount > mesh.positions.size() || icount > mesh.indices.size() ||
+        (!mesh.normals.empty() && mesh.normals.size() < mesh.positions.size()))
+        return input_error(name + ": counts exceed the arrays");
+    for (size_t i = 0; i < mesh.indices.size(); ++i)
+        if (mesh.indices[i] >= mesh.positions.size())
+            return input_error(name + ": index " + std::to_string(i) + " refers to vertex " +
+                               std::to_string(mesh.indices[i]) + " of " + std::to_string(mesh.positions.size()));
+    if (mesh.positions.size() > static_cast<size_t>(kTextureWidth) * 8192 ||
+        mesh.indices.size() > static_cast<size_t>(kTextureWidth) * 8192)
+        return input_error(name + ": too large for one model");
+
+    Model m;
+    m.name = name;
+    m.vertex_capacity = mesh.positions.size();
+    m.index_capacity = mesh.indices.size();
+    m.vertex_count = vcount;
+    m.index_count = icount - icount % 3;
+    Aabb box;
+    for (size_t i = 0; i < vcount; ++i) box.extend(Vec3(mesh.positions[i]));
+    m.center = Vec3f((box.min + box.max) * 0.5);
+    m.radius = static_cast<float>(box.extent() * 0.5);
+
+    std::vector<Vec3f> computed;
+    std::span<const Vec3f> normals = mesh.normals;
+    if (normals.empty()) {
+        computed = area_normals(mesh.positions, mesh.indices.first(m.index_count), mesh.positions.size());
+        normals = computed;
+    }
+    std::vector<uint32_t> packed(normals.size());
+    for (size_t i = 0; i < normals.size(); ++i) packed[i] = pack_normal(normals[i]);
+
+    glGenVertexArrays(1, &m.vao);
+    glBindVertexArray(m.vao);
+    glGenBuffers(1, &m.vbo_position);
+    glBindBuffer(GL_ARRAY_BUFFER, m.vbo_position);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(m.vertex_capacity * sizeof(Vec3f)), mesh.positions.data(),
+                 GL_DYNAMIC_DRAW);
+    glVertexAttribPointer(kPosition, 3, GL_FLOAT, GL_FALSE, sizeof(Vec3f), nullptr);
+    glEnableVertexAttribArray(kPosition);
+    glGenBuffers(1, &m.vbo_normal);
+    glBindBuffer(GL_ARRAY_BUFFER, m.vbo_normal);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(packed.size() * 4), packed.data(), GL_DYNAMIC_DRAW);
+    glVertexAttribPointer(kNormal, 4, GL_INT_2_10_10_10_REV, GL_TRUE, 4, nullptr);
+    glEnableVertexAttribArray(kNormal);
+    glGenBuffers(1, &m.ebo);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m.ebo);
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(m.index_capacity * 4), mesh.indices.data(),
+                 GL_DYNAMIC_DRAW);
+    glBindVertexArray(0);
+    BODY_GL_CHECK("add_model");
+
+    ModelId id = s_->next_id++;
+    s_->models.emplace(id, std::move(m));
+    return id;
+}
+
+Status Renderer::update_model(ModelId id, const MeshData& mesh, const Dirty& dirty) {
+    auto it = s_->models.find(id);
+    if (it == s_->models.end()) return input_error("update_model: unknown model " + std::to_string(id));
+    Model& m = it->second;
+    const size_t vcount = mesh.vertex_count == SIZE_MAX ? mesh.positions.size() : mesh.vertex_count;
+    const size_t icount = mesh.index_count == SIZE_MAX ? mesh.indices.size() : mesh.index_count;
+    if (mesh.positions.size() > m.vertex_capacity || mesh.indices.size() > m.index_capacity ||
+        vcount > mesh.positions.size() || icount > mesh.indices.size() || dirty.vertex_end > mesh.positions.size() ||
+        dirty.index_end > mesh.indices.size() || (!mesh.normals.empty() && mesh.normals.size() < dirty.vertex_end))
+        return input_error(m.name + ": update exceeds the uploaded capacity");
+    for (size_t i = dirty.index_begin; i < dirty.index_end; ++i)
+        if (mesh.indices[i] >= mesh.positions.size())
+            return input_error(m.name + ": index " + std::to_string(i) + " out of range");
+    if (dirty.vertex_begin < dirty.vertex_end) {
+        const size_t b = dirty.vertex_begin, n = dirty.vertex_end - dirty.vertex_begin;
+        glBindBuffer(GL_ARRAY_BUFFER, m.vbo_position);
+        glBufferSubData(GL_ARRAY_BUFFER, static_cast<GLintptr>(b * sizeof(Vec3f)),
+                        static_cast<GLsizeiptr>(n * sizeof(Vec3f)), mesh.positions.data() + b);
+        std::vector<uint32_t> packed(n);
+        std::vector<Vec3f> computed;
+        if (mesh.normals.empty())
+            computed = area_normals(mesh.positions, mesh.indices.first(icount - icount % 3), mesh.positions.size());
+        std::span<const Vec3f> normals = mesh.normals.empty() ? std::span<const Vec3f>(computed) : mesh.normals;
+        for (size_t i = 0; i < n; ++i) packed[i] = pack_normal(normals[b + i]);
+        glBindBuffer(GL_ARRAY_BUFFER, m.vbo_normal);
+        glBufferSubData(GL_ARRAY_BUFFER, static_cast<GLintptr>(b * 4), static_cast<GLsizeiptr>(n * 4), packed.data());
+        if (m.position_texture)
+            texture_rows(m.position_texture, b, dirty.vertex_end, GL_RGB, GL_FLOAT,
+                         reinterpret_cast<const uint8_t*>(mesh.positions.data()), sizeof(Vec3f));
+        Aabb box;
+        for (size_t i = 0; i < vcount; ++i) box.extend(Vec3(mesh.positions[i]));
+        m.center = Vec3f((box.min + box.max) * 0.5);
+        m.radius = static_cast<float>(box.extent() * 0.5);
+    }
+    if (dirty.index_begin < dirty.index_end) {
+        const size_t b = dirty.index_begin, n = dirty.index_end - dirty.index_begin;
+        glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m.ebo);
+        glBufferSubData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLintptr>(b * 4), static_cast<GLsizeiptr>(n * 4),
+                        mesh.indices.data() + b);
+        if (m.index_texture)
+            texture_rows(m.index_texture, b, dirty.index_end, GL_RED_INTEGER, GL_UNSIGNED_INT,
+                         reinterpret_cast<const uint8_t*>(mesh.indices.data()), 4);
+    }
+    if (icount - icount % 3 != m.index_count || dirty.index_begin < dirty.index_end) m.edges_stale = true;
+    m.vertex_count = vcount;
+    m.index_count = icount - icount % 3;
+    BODY_GL_CHECK("update_model");
+    return ok_status();
+}
+
+void Renderer::remove_model(ModelId id) {
+    auto it = s_->models.find(id);
+    if (it == s_->models.end() || it->second.internal) return;
+    free_model(it->second);
+    s_->models.erase(it);
+}
+
+ModelState* Renderer::state(ModelId id) {
+    auto it = s_->models.find(id);
+    return it == s_->models.end() || it->second.internal ? nullptr : &it->second.state;
+}
+const ModelState* Renderer::state(ModelId id) const {
+    auto it = s_->models.find(id);
+    return it == s_->models.end() || it->second.internal ? nullptr : &it->second.state;
+}
+
+std::vector<ModelId> Renderer::models() const {
+    std::vector<ModelId> out;
+    for (const auto& [id, m] : s_->models)
+        if (!m.internal) out.push_back(id);
+    return out;
+}
+
+bool Renderer::bounds(ModelId id, Vec3f& center, float& radius) const {
+    auto it = s_->models.find(id);
+    if (it == s_->models.end()) return false;
+    center = it->second.center;
+    radius = it->second.radius;
+    return true;
+}
+
+namespace {
+// World-space bounding sphere of a model (the largest axis scale of the transform).
+void world_sphere(const Model& m, Vec3f& c, float& r) {
+    const glm::mat4& t = m.state.transform;
+    c = Vec3f(t * glm::vec4(m.center, 1.0f));
+    float s = std::max({glm::length(Vec3f(t[0])), glm::length(Vec3f(t[1])), glm::length(Vec3f(t[2]))});
+    r = m.radius * s;
+}
+}  // namespace
+
+void Renderer::scene_bounds(Vec3f& center, float& radius) const {
+    Aabb box;
+    for (const auto& [id, m] : s_->models) {
+        if (m.internal || !m.state.visible) continue;
+        Vec3f c;
+        float r = 0;
+        world_sphere(m, c, r);
+        box.extend(Vec3(c - Vec3f(r)));
+        box.extend(Vec3(c + Vec3f(r)));
+    }
+    center = box.empty() ? Vec3f(0.0f) : Vec3f((box.min + box.max) * 0.5);
+    radius = box.empty() ? 0.0f : static_cast<float>(glm::length(box.max - box.min) * 0.5 / std::sqrt(3.0)) * 1.0f;
+    if (!box.empty()) {
+        // Tighter than the box diagonal: the farthest model sphere from the center.
+        float r = 0;
+        for (const auto& [id, m] : s_->models) {
+            if (m.internal || !m.state.visible) continue;
+            Vec3f c;
+            float mr = 0;
+            world_sphere(m, c, mr);
+            r = std::max(r, glm::length(c - center) + mr);
+        }
+        radius = r;
+    }
+}
+
+void Renderer::set_group_style(int group, Style style) {
+    for (auto& [id, m] : s_->models)
+        if (!m.internal && m.state.group == group) m.state.style = style;
+}
+void Renderer::set_group_visible(int group, bool visible) {
+    for (auto& [id, m] : s_->models)
+        if (!m.internal && m.state.group == group) m.state.visible = visible;
+}
+
+const FrameStats& Renderer::last_frame_stats() const { return s_->stats; }
+
+namespace {
+
+struct Frame {
+    glm::mat4 view, projection;
+    const Lighting* lighting;
+    const FrameOptions* options;
+};
+
+void set_matrices(Program& p, const Frame& f, const Model& m) {
+    glm::mat4 mv = f.view * m.state.transform;
+    glm::mat3 nm = glm::transpose(glm::inverse(glm::mat3(mv)));
+    glUniformMatrix4fv(p.loc("u_model_view"), 1, GL_FALSE, glm::value_ptr(mv));
+    glUniformMatrix4fv(p.loc("u_projection"), 1, GL_FALSE, glm::value_ptr(f.projection));
+    glUniformMatrix3fv(p.loc("u_normal_matrix"), 1, GL_FALSE, glm::value_ptr(nm));
+}
+
+void set_lights(Program& p, const Lighting& l) {
+    glUniform3fv(p.loc("u_key_dir"), 1, glm::value_ptr(l.key_dir));
+    glUniform3fv(p.loc("u_fill_dir"), 1, glm::value_ptr(l.fill_dir));
+    glUniform3fv(p.loc("u_rim_dir"), 1, glm::value_ptr(l.rim_dir));
+    glUniform4f(p.loc("u_light_levels"), l.key, l.fill, l.rim, l.ambient);
+}
+
+void draw_triangles(const Model& m) {
+    glBindVertexArray(m.vao);
+    glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(m.index_count), GL_UNSIGNED_INT, nullptr);
+}
+
+}  // namespace
+
+// Position texture (and the edge list or index texture) for the styles that fetch.
+static void ensure_position_texture(Model& m) {
+    if (m.position_texture) return;
+    auto positions = read_buffer<Vec3f>(GL_ARRAY_BUFFER, m.vbo_position, m.vertex_capacity);
+    m.position_texture = make_data_texture(GL_RGB32F, m.vertex_capacity);
+    texture_rows(m.position_texture, 0, m.vertex_capacity, GL_RGB, GL_FLOAT,
+                 reinterpret_cast<const uint8_t*>(positions.data()), sizeof(Vec3f));
+}
+
+static void ensure_edges(Model& m, GLuint corner_vbo) {
+    ensure_position_texture(m);
+    if (!m.edges_stale && m.edge_vao) return;
+    auto indices = read_buffer<uint32_t>(GL_ELEMENT_ARRAY_BUFFER, m.ebo, m.index_count);
+    std::vector<EdgeRecord> edges = build_edge_list(indices);
+    m.edge_count = edges.size();
+    if (!m.edge_vao) {
+        glGenVertexArrays(1, &m.edge_vao);
+        glGenBuffers(1, &m.edge_vbo);
+    }
+    glBindVertexArray(m.edge_vao);
+    glBindBuffer(GL_ARRAY_BUFFER, corner_vbo);
+    glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 8, nullptr);
+    glEnableVertexAttribArray(0);
+    glBindBuffer(GL_ARRAY_BUFFER, m.edge_vbo);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(edges.size() * sizeof(EdgeRecord)), edges.data(),
+                 GL_DYNAMIC_DRAW);
+    glVertexAttribIPointer(1, 4, GL_UNSIGNED_INT, sizeof(EdgeRecord), nullptr);
+    glVertexAttribDivisor(1, 1);
+    glEnableVertexAttribArray(1);
+    glBindVertexArray(0);
+    m.edges_stale = false;
+}
+
+static void ensure_index_texture(Model& m) {
+    ensure_position_texture(m);
+    if (m.index_texture) return;
+    auto indices = read_buffer<uint32_t>(GL_ELEMENT_ARRAY_BUFFER, m.ebo, m.index_capacity);
+    m.index_texture = make_data_texture(GL_R32UI, m.index_capacity);
+    texture_rows(m.index_texture, 0, m.index_capacity, GL_RED_INTEGER, GL_UNSIGNED_INT,
+                 reinterpret_cast<const uint8_t*>(indices.data()), 4);
+}
+
+void Renderer::render(const Camera& camera, const Lighting& lighting, const FrameOptions& o) {
+    State& s = *s_;
+    s.stats = FrameStats{};
+    glBindFramebuffer(GL_FRAMEBUFFER, o.framebuffer);
+    glViewport(0, 0, o.width, o.height);
+    glClearColor(o.background.r, o.background.g, o.background.b, 1.0f);
+    glClearDepthf(1.0f);
+    glDepthMask(GL_TRUE);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    if (!s.ready || o.width <= 0 || o.height <= 0) return;
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LEQUAL);
+    glEnable(GL_CULL_FACE);
+    glCullFace(GL_BACK);
+    glDisable(GL_BLEND);
+
+    Frame f{camera.view(), camera.projection(static_cast<float>(o.width) / static_cast<float>(o.height)), &lighting,
+            &o};
+    bool any_selected = false;
+    for (auto& [id, m] : s.models) any_selected |= !m.internal && m.state.visible && m.state.selected;
+    const bool fade_rest = o.xray_unselected && any_selected;
+
+    // ---- opaque pass
+    std::vector<Model*> transparent;
+    for (auto& [id, m] : s.models) {
+        if (m.internal || !m.state.visible || m.index_count == 0) continue;
+        if (m.state.selected || fade_rest) {
+            transparent.push_back(&m);
+            continue;
+        }
+        ++s.stats.models_drawn;
+        s.stats.triangles += m.index_count / 3;
+        ++s.stats.draw_calls;
+        const Vec3f col = m.state.color;
+        switch (m.state.style) {
+            case Style::Baseline: {
+                glUseProgram(s.baseline.id);
+                set_matrices(s.baseline, f, m);
+                glUniform4f(s.baseline.loc("u_color"), col.r, col.g, col.b, 1.0f);
+                draw_triangles(m);
+                break;
+            }
+            case Style::Smooth: {
+                glUseProgram(s.smooth.id);
+                set_matrices(s.smooth, f, m);
+                set_lights(s.smooth, lighting);
+                glUniform4f(s.smooth.loc("u_color"), col.r, col.g, col.b, 1.0f);
+                draw_triangles(m);
+                break;
+            }
+            case Style::Hatching:
+            case Style::Hatching2Tone: {
+                Program& p = s.hatching;
+                glUseProgram(p.id);
+                set_matrices(p, f, m);
+                set_lights(p, lighting);
+                // Hatch paper tinted lightly by the structure colour.
+                Vec3f paper = glm::mix(o.paper, col, 0.25f);
+                glUniform4f(p.loc("u_color"), paper.r, paper.g, paper.b, 1.0f);
+                glActiveTexture(GL_TEXTURE0);
+                glBindTexture(GL_TEXTURE_2D_ARRAY, s.tam);
+                glUniform1i(p.loc("u_tam"), 0);
+                glUniform1f(p.loc("u_hatch_scale"), 1.6f / std::max(m.radius, 1e-6f));
+                glUniform1i(p.loc("u_two_tone"), m.state.style == Style::Hatching2Tone ? 1 : 0);
+                draw_triangles(m);
+                break;
+            }
+            case Style::Lines: {
+                glUseProgram(s.baseline.id);
+                set_matrices(s.baseline, f, m);
+                glUniform4f(s.baseline.loc("u_color"), o.paper.r, o.paper.g, o.paper.b, 1.0f);
+                glEnable(GL_POLYGON_OFFSET_FILL);
+                glPolygonOffset(1.0f, 1.0f);
+                draw_triangles(m);
+                glDisable(GL_POLYGON_OFFSET_FILL);
+                ensure_edges(m, s.corner_vbo);
+                Program& p = s.edges;
+                glUseProgram(p.id);
+                glm::mat4 mvp = f.projection * f.view * m.state.transform;
+                Vec3f eye_object = Vec3f(glm::inverse(m.state.transform) * glm::vec4(camera.eye, 1.0f));
+                glUniformMatrix4fv(p.loc("u_model_view_projection"), 1, GL_FALSE, glm::value_ptr(mvp));
+                glUniform3fv(p.loc("u_eye_object"), 1, glm::value_ptr(eye_object));
+                glUniform1f(p.loc("u_cos_crease"), std::cos(glm::radians(o.crease_angle_deg)));
+                glUniform2f(p.loc("u_viewport"), static_cast<float>(o.width), static_cast<float>(o.height));
+                glUniform1f(p.loc("u_width_px"), o.line_width_px);
+                glUniform1i(p.loc("u_texture_width"), kTextureWidth);
+                glUniform4f(p.loc("u_color"), o.ink.r, o.ink.g, o.ink.b, 1.0f);
+                glActiveTexture(GL_TEXTURE0);
+                glBindTexture(GL_TEXTURE_2D, m.position_texture);
+                glUniform1i(p.loc("u_positions"), 0);
+                glDisable(GL_CULL_FACE);
+                glBindVertexArray(m.edge_vao);
+                glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, static_cast<GLsizei>(m.edge_count));
+                glEnable(GL_CULL_FACE);
+                s.stats.edges += m.edge_count;
+                ++s.stats.draw_calls;
+                break;
+            }
+            case Style::Wireframe: {
+                ensure_index_texture(m);
+                Program& p = s.wireframe;
+                glUseProgram(p.id);
+                set_matrices(p, f, m);
+                set_lights(p, lighting);
+                glUniform4f(p.loc("u_color"), col.r, col.g, col.b, 1.0f);
+                glUniform1f(p.loc("u_width_px"), o.line_width_px * 0.75f);
+                glUniform1i(p.loc("u_texture_width"), kTextureWidth);
+                glActiveTexture(GL_TEXTURE0);
+                glBindTexture(GL_TEXTURE_2D, m.position_texture);
+                glUniform1i(p.loc("u_positions"), 0);
+                glActiveTexture(GL_TEXTURE1);
+                glBindTexture(GL_TEXTURE_2D, m.index_texture);
+                glUniform1i(p.loc("u_indices"), 1);
+                glActiveTexture(GL_TEXTURE0);
+                glBindVertexArray(s.empty_vao);
+                glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(m.index_count));
+                break;
+            }
+        }
+        BODY_GL_CHECK(style_name(m.state.style));
+    }
+
+    // ---- transparent pass: back to front by view depth of the bounding sphere
+    std::vector<std::pair<float, Model*>> order;
+    for (Model* m : transparent) {
+        Vec3f c;
+        float r = 0;
+        world_sphere(*m, c, r);
+        order.emplace_back((f.view * glm::vec4(c, 1.0f)).z, m);
+    }
+    std::sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    glEnable(GL_BLEND);
+    glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+    auto draw_transparent = [&](Model& m, Program& p, Vec3f color, float alpha, bool lit) {
+        glUseProgram(p.id);
+        set_matrices(p, f, m);
+        if (lit) set_lights(p, lighting);
+        glUniform4f(p.loc("u_color"), color.r, color.g, color.b, alpha);
+        // Depth pre-pass: only the nearest layer of this model blends.
+        glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+        draw_triangles(m);
+        glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+        glDepthFunc(GL_EQUAL);
+        draw_triangles(m);
+        glDepthFunc(GL_LEQUAL);
+        s.stats.draw_calls += 2;
+        s.stats.triangles += m.index_count / 3;
+        ++s.stats.models_drawn;
+    };
+    for (auto& [z, m] : order) {
+        if (m->state.selected)
+            draw_transparent(*m, s.smooth, o.selection_color, 0.45f, true);
+        else
+            draw_transparent(*m, s.xray, glm::mix(m->state.color, Vec3f(0.55f, 0.62f, 0.75f), 0.5f), 0.10f, false);
+    }
+    if (o.manipulation_sphere && any_selected) {
+        Model& sphere = s.models[s.sphere];
+        for (auto& [id, m] : s.models) {
+            if (m.internal || !m.state.visible || !m.state.selected) continue;
+            Vec3f c;
+            float r = 0;
+            world_sphere(m, c, r);
+            sphere.state.transform = glm::scale(glm::translate(glm::mat4(1.0f), c), Vec3f(r * 1.05f));
+            draw_transparent(sphere, s.xray, Vec3f(1.0f), 0.06f, false);
+        }
+    }
+    glDisable(GL_BLEND);
+    glBindVertexArray(0);
+    glUseProgram(0);
+    BODY_GL_CHECK("render");
+}
+
+}  // namespace body::render

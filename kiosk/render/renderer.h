@@ -1,0 +1,161 @@
+#pragma once
+// BodyView's OpenGL ES 3.0 renderer (GLSL ES 3.00 only, no geometry shaders):
+// the textbook styles of thesis section 3.4 per model, mixed depth-correctly in
+// one frame. Shaped like Dear ImGui's OpenGL3 backend: init() / shutdown() /
+// render() around one private state struct; shader compile/link logs are
+// returned as errors; debug builds (BODY_GL_DEBUG) check glGetError after
+// each pass.
+//
+// Usage (the GLES 3 context of a platform::Surface must be current):
+//   Renderer r;  r.init();
+//   ModelId id = r.add_model({positions, normals, indices}, "liver").value();
+//   r.state(id)->style = Style::Hatching;
+//   r.render(camera, lighting, frame);  surface->present();
+//
+// Models: positions/normals/indices are copied into GL buffers sized once at
+// the given capacity (MeshData::capacity_*), then patched with update_model()
+// and the dirty ranges of a progressive mesh (shared/pm), drawing the current
+// prefixes vertex_count/index_count. Units are object space; ModelState::transform
+// places a model in the world. The renderer keeps no CPU copy of the mesh except
+// the edge list of models drawn in the `lines` style (16 bytes per edge).
+//
+// Frame order: opaque models (any style), then transparent ones (selected =
+// purple, x-ray/faded unselected) sorted back to front, each with a depth
+// pre-pass so only its nearest layer blends, then the white manipulation
+// sphere of each selected model.
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "shared/error.h"
+#include "shared/geometry.h"
+
+namespace body::render {
+
+enum class Style : uint8_t {
+    Smooth,         // per-pixel Blinn-Phong, key/fill/rim
+    Wireframe,      // barycentric edges in the fragment shader, constant pixel width
+    Lines,          // paper-white fill + silhouette/boundary/crease edges (thesis "hand-drawn 1")
+    Hatching,       // 6-tone tonal art map (thesis "hand-drawn 2", Praun/Webb)
+    Hatching2Tone,  // the thesis' two-texture threshold variant (Lake et al.)
+    Baseline,       // one flat colour: the benchmark's minimal baseline
+};
+inline constexpr Style kAllStyles[] = {Style::Smooth, Style::Wireframe, Style::Lines, Style::Hatching,
+                                       Style::Hatching2Tone};
+const char* style_name(Style style);  // "smooth", "wireframe", "lines", "hatching", "hatching-2tone", "baseline"
+Result<Style> parse_style(const std::string& name);
+
+// A mesh to upload: the first vertex_count positions (and normals, or empty to
+// have area-weighted normals computed) and the first index_count indices
+// (triangles, counter-clockwise from outside) are drawn. capacity_* (>= the
+// counts; 0 = the span size) size the GL buffers for later growth.
+struct MeshData {
+    std::span<const Vec3f> positions;
+    std::span<const Vec3f> normals;
+    std::span<const uint32_t> indices;
+    size_t vertex_count = SIZE_MAX;  // SIZE_MAX: positions.size()
+    size_t index_count = SIZE_MAX;   // SIZE_MAX: indices.size()
+};
+
+// Half-open element ranges changed since the last upload (vertices: positions
+// and normals; indices: index entries).
+struct Dirty {
+    size_t vertex_begin = 0, vertex_end = 0;
+    size_t index_begin = 0, index_end = 0;
+};
+
+using ModelId = uint32_t;
+
+struct ModelState {
+    Style style = Style::Smooth;
+    Vec3f color{0.85f, 0.62f, 0.55f};
+    glm::mat4 transform{1.0f};  // object -> world
+    bool visible = true;
+    bool selected = false;  // transparent purple + the white manipulation sphere
+    int group = 0;          // for set_group_* (e.g. "organs", "skeleton")
+};
+
+struct Camera {
+    Vec3f eye{0.0f, 0.0f, 3.0f}, target{0.0f}, up{0.0f, 1.0f, 0.0f};
+    float fov_y_deg = 35.0f;
+    float near_plane = 0.01f, far_plane = 100.0f;
+    glm::mat4 view() const;
+    glm::mat4 projection(float aspect) const;
+    // A camera looking at the sphere (center, radius) from `direction` (world,
+    // toward the eye) so that it fills the view; near/far hug the sphere.
+    static Camera framing(Vec3f center, float radius, Vec3f direction = {0.35f, 0.25f, 1.0f});
+};
+
+// Lights are attached to the camera: directions in view space, toward the light.
+struct Lighting {
+    Vec3f key_dir{-0.45f, 0.55f, 0.70f};
+    Vec3f fill_dir{0.65f, -0.15f, 0.55f};
+    Vec3f rim_dir{0.0f, 0.4f, -1.0f};
+    float key = 0.80f, fill = 0.22f, rim = 0.35f, ambient = 0.12f;
+};
+
+struct FrameOptions {
+    int width = 0, height = 0;  // viewport in pixels
+    unsigned framebuffer = 0;   // platform::Surface::framebuffer()
+    Vec3f background{0.97f, 0.96f, 0.93f};
+    Vec3f paper{1.0f, 1.0f, 0.99f};  // `lines` fill
+    Vec3f ink{0.10f, 0.09f, 0.09f};  // `lines` edges
+    Vec3f selection_color{0.55f, 0.25f, 0.80f};
+    float line_width_px = 2.0f;      // silhouettes; creases 0.7x, wireframe 1x
+    float crease_angle_deg = 45.0f;  // dihedral angle above which an edge is a crease
+    bool xray_unselected = false;    // fade everything not selected (when something is)
+    bool manipulation_sphere = true;
+};
+
+struct FrameStats {
+    size_t models_drawn = 0, triangles = 0, edges = 0, draw_calls = 0;
+};
+
+class Renderer {
+public:
+    Renderer();
+    ~Renderer();
+    Renderer(const Renderer&) = delete;
+    Renderer& operator=(const Renderer&) = delete;
+
+    // Compiles the shaders and builds the tonal art map. Needs a current GLES 3
+    // context. Errors carry the shader name and its info log.
+    Status init();
+    // Frees every GL object (call with the context current). Idempotent.
+    void shutdown();
+
+    // Uploads a mesh; errors (out-of-range index, empty mesh) name `name`.
+    Result<ModelId> add_model(const MeshData& mesh, const std::string& name);
+    // Patches the ranges of `mesh` named by `dirty` and sets the drawn counts.
+    // The arrays must be the full arrays (dirty ranges index into them).
+    Status update_model(ModelId id, const MeshData& mesh, const Dirty& dirty);
+    void remove_model(ModelId id);
+    // nullptr for an unknown id.
+    ModelState* state(ModelId id);
+    const ModelState* state(ModelId id) const;
+    std::vector<ModelId> models() const;
+    // Object-space bounding sphere of the uploaded vertices.
+    bool bounds(ModelId id, Vec3f& center, float& radius) const;
+    // World-space bounding sphere of all visible models (radius 0 when none).
+    void scene_bounds(Vec3f& center, float& radius) const;
+
+    void set_group_style(int group, Style style);
+    void set_group_visible(int group, bool visible);
+
+    // Draws one frame into options.framebuffer.
+    void render(const Camera& camera, const Lighting& lighting, const FrameOptions& options);
+    const FrameStats& last_frame_stats() const;
+
+    struct State;  // defined in renderer.cpp
+
+private:
+    std::unique_ptr<State> s_;
+};
+
+// Embedded GLSL sources (kiosk/shaders/, generated into the build at compile
+// time); nullptr for an unknown name such as "smooth.frag".
+const char* shader_source(const std::string& name);
+
+}  // namespace body::render

@@ -1,0 +1,6 @@
+#version 300 es
+// The benchmark's minimal baseline and the paper fill of the `lines` style: one colour.
+precision mediump float;
+uniform vec4 u_color;
+out vec4 o_color;
+void main() { o_color = u_color; }

@@ -1,0 +1,6 @@
+#version 300 es
+// Ink for the `lines` style edges.
+precision mediump float;
+uniform vec4 u_color;
+out vec4 o_color;
+void main() { o_color = u_color; }

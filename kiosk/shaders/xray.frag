@@ -1,0 +1,16 @@
+#version 300 es
+// X-ray/fade for unselected models and the white manipulation sphere:
+// transparent, more opaque where the surface turns away (Fresnel-like).
+precision highp float;
+in vec3 v_view_pos;
+in vec3 v_view_normal;
+in vec3 v_object_pos;
+in vec3 v_object_normal;
+uniform vec4 u_color;  // rgb, base alpha
+out vec4 o_color;
+void main() {
+    vec3 n = normalize(v_view_normal);
+    float facing = abs(dot(n, normalize(-v_view_pos)));
+    float a = u_color.a + (1.0 - u_color.a) * pow(1.0 - facing, 2.5) * 0.85;
+    o_color = vec4(u_color.rgb, a);
+}

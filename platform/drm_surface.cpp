@@ -1,0 +1,252 @@
+// DRM/KMS backend: mode setting, GBM surface, EGL on GBM and page flipping with
+// at most one flip in flight; the original CRTC is restored on exit and after
+// SIGINT/SIGTERM. Structure after kmscube (drm-common.c, drm-legacy.c).
+#include <GLES3/gl3.h>
+#include <fcntl.h>
+#include <gbm.h>
+#include <poll.h>
+#include <unistd.h>
+#include <xf86drm.h>
+#include <xf86drmMode.h>
+
+#include <chrono>
+#include <csignal>
+#include <cstring>
+
+#include "platform/drm_select.h"
+#include "platform/egl_context.h"
+#include "platform/platform.h"
+
+namespace body::platform {
+namespace {
+
+volatile std::sig_atomic_t g_quit_requested = 0;
+void on_signal(int) { g_quit_requested = 1; }
+
+std::string connector_name(const drmModeConnector* c) {
+    const char* type = drmModeGetConnectorTypeName(c->connector_type);
+    return std::string(type ? type : "Unknown") + "-" + std::to_string(c->connector_type_id);
+}
+
+// Describes every connector for the pure selection (drm_select.h).
+std::vector<DrmConnector> describe_connectors(int fd, const drmModeRes* res) {
+    std::vector<DrmConnector> out;
+    for (int i = 0; i < res->count_connectors; ++i) {
+        drmModeConnector* c = drmModeGetConnector(fd, res->connectors[i]);
+        if (!c) continue;
+        DrmConnector d;
+        d.id = c->connector_id;
+        d.name = connector_name(c);
+        d.connected = c->connection == DRM_MODE_CONNECTED;
+        for (int m = 0; m < c->count_modes; ++m)
+            d.modes.push_back({c->modes[m].hdisplay, c->modes[m].vdisplay, static_cast<int>(c->modes[m].vrefresh),
+                               (c->modes[m].type & DRM_MODE_TYPE_PREFERRED) != 0});
+        if (c->encoder_id) {
+            if (drmModeEncoder* e = drmModeGetEncoder(fd, c->encoder_id)) {
+                d.current_crtc = e->crtc_id;
+                drmModeFreeEncoder(e);
+            }
+        }
+        for (int e = 0; e < c->count_encoders; ++e) {
+            drmModeEncoder* enc = drmModeGetEncoder(fd, c->encoders[e]);
+            if (!enc) continue;
+            for (int k = 0; k < res->count_crtcs; ++k)
+                if (enc->possible_crtcs & (1u << k)) d.possible_crtcs.push_back(res->crtcs[k]);
+            drmModeFreeEncoder(enc);
+        }
+        drmModeFreeConnector(c);
+        out.push_back(std::move(d));
+    }
+    return out;
+}
+
+class DrmSurface final : public Surface {
+public:
+    ~DrmSurface() override { teardown(); }
+
+    Status init(const SurfaceOptions& options) {
+        auto request = parse_mode_request(options.mode);
+        if (!request) return request.error();
+        if (auto s = open_device(options.drm_device); !s) return s;
+        drmModeRes* res = drmModeGetResources(fd_);
+        if (!res) return runtime_error("drm: " + device_ + " has no KMS resources (not a display controller?)");
+        auto connectors = describe_connectors(fd_, res);
+        drmModeConnector* chosen = nullptr;
+        auto sel = select_drm_output(connectors, request.value());
+        if (sel) chosen = drmModeGetConnector(fd_, connectors[sel->connector].id);
+        drmModeFreeResources(res);
+        if (!sel) return sel.error();
+        if (!chosen) return runtime_error("drm: connector vanished during set-up");
+        mode_ = chosen->modes[sel->mode];
+        connector_id_ = chosen->connector_id;
+        drmModeFreeConnector(chosen);
+        crtc_id_ = sel->crtc;
+        saved_crtc_ = drmModeGetCrtc(fd_, crtc_id_);
+
+        gbm_ = gbm_create_device(fd_);
+        if (!gbm_) return runtime_error("drm: gbm_create_device failed on " + device_);
+        gbm_surface_ = gbm_surface_create(gbm_, mode_.hdisplay, mode_.vdisplay, GBM_FORMAT_XRGB8888,
+                                          GBM_BO_USE_SCANOUT | GBM_BO_USE_RENDERING);
+        if (!gbm_surface_) return runtime_error("drm: gbm_surface_create failed");
+        auto egl = EglContext::open(EGL_PLATFORM_GBM_KHR, gbm_, EGL_WINDOW_BIT, GBM_FORMAT_XRGB8888);
+        if (!egl) return runtime_error("drm: " + egl.error().message);
+        egl_ = std::move(egl.value());
+        if (auto s = egl_->create_window_surface(gbm_surface_); !s) return s;
+        if (auto s = egl_->make_current(); !s) return s;
+
+        std::signal(SIGINT, on_signal);
+        std::signal(SIGTERM, on_signal);
+        start_ = std::chrono::steady_clock::now();
+        // First frame: clear, swap, set the mode on that buffer.
+        glClearColor(0, 0, 0, 1);
+        glClear(GL_COLOR_BUFFER_BIT);
+        if (auto s = egl_->swap_buffers(); !s) return s;
+        gbm_bo* bo = gbm_surface_lock_front_buffer(gbm_surface_);
+        auto fb = framebuffer_for(bo);
+        if (!fb) return fb.error();
+        if (drmModeSetCrtc(fd_, crtc_id_, fb.value(), 0, 0, &connector_id_, 1, &mode_) != 0)
+            return runtime_error("drm: drmModeSetCrtc failed (" + std::string(std::strerror(errno)) + ")");
+        mode_set_ = true;
+        front_ = bo;
+        return ok_status();
+    }
+
+    Backend backend() const override { return Backend::Drm; }
+    void make_current() override { (void)egl_->make_current(); }
+    int width() const override { return mode_.hdisplay; }
+    int height() const override { return mode_.vdisplay; }
+    unsigned framebuffer() const override { return 0; }
+    double time() const override {
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    }
+    bool poll_events(std::vector<InputEvent>& out) override {
+        if (g_quit_requested) {
+            out.push_back({InputEvent::Type::Quit, 0, 0, 0, 0, 0, 0, false, time()});
+            return false;
+        }
+        return true;  // touch comes from the evdev input layer
+    }
+
+    // Swap, queue a flip of the new front buffer, wait for it (so at most one
+    // flip is ever in flight), then release the previous buffer.
+    Status present() override {
+        if (auto s = egl_->swap_buffers(); !s) return s;
+        gbm_bo* next = gbm_surface_lock_front_buffer(gbm_surface_);
+        if (!next) return runtime_error("drm: no free GBM buffer");
+        auto fb = framebuffer_for(next);
+        if (!fb) return fb.error();
+        bool waiting = true;
+        if (drmModePageFlip(fd_, crtc_id_, fb.value(), DRM_MODE_PAGE_FLIP_EVENT, &waiting) != 0) {
+            gbm_surface_release_buffer(gbm_surface_, next);
+            return runtime_error("drm: drmModePageFlip failed (" + std::string(std::strerror(errno)) + ")");
+        }
+        drmEventContext ev{};
+        ev.version = 2;
+        ev.page_flip_handler = [](int, unsigned, unsigned, unsigned, void* data) { *static_cast<bool*>(data) = false; };
+        while (waiting) {
+            pollfd p{fd_, POLLIN, 0};
+            int r = ::poll(&p, 1, 1000);
+            if (r < 0 && errno == EINTR) {
+                if (g_quit_requested) break;
+                continue;
+            }
+            if (r <= 0) return runtime_error("drm: page flip timed out");
+            drmHandleEvent(fd_, &ev);
+        }
+        if (front_) gbm_surface_release_buffer(gbm_surface_, front_);
+        front_ = next;
+        return ok_status();
+    }
+
+private:
+    Status open_device(const std::string& requested) {
+        std::vector<std::string> candidates;
+        if (!requested.empty()) {
+            candidates.push_back(requested);
+        } else {
+            for (int i = 0; i < 10; ++i) candidates.push_back("/dev/dri/card" + std::to_string(i));
+        }
+        std::string last = "no /dev/dri/card* device";
+        for (const auto& path : candidates) {
+            int fd = ::open(path.c_str(), O_RDWR | O_CLOEXEC);
+            if (fd < 0) {
+                if (errno != ENOENT || !requested.empty()) last = path + ": " + std::strerror(errno);
+                continue;
+            }
+            drmModeRes* res = drmModeGetResources(fd);
+            if (res) {
+                drmModeFreeResources(res);
+                fd_ = fd;
+                device_ = path;
+                return ok_status();
+            }
+            last = path + ": not a KMS device";
+            ::close(fd);
+        }
+        return runtime_error("drm: cannot open a display device (" + last + ")");
+    }
+
+    static void destroy_fb(gbm_bo* bo, void* data) {
+        auto* holder = static_cast<std::pair<int, uint32_t>*>(data);
+        if (holder->second) drmModeRmFB(holder->first, holder->second);
+        delete holder;
+        (void)bo;
+    }
+
+    Result<uint32_t> framebuffer_for(gbm_bo* bo) {
+        if (auto* existing = static_cast<std::pair<int, uint32_t>*>(gbm_bo_get_user_data(bo))) return existing->second;
+        uint32_t fb = 0;
+        uint32_t handles[4] = {gbm_bo_get_handle(bo).u32, 0, 0, 0};
+        uint32_t strides[4] = {gbm_bo_get_stride(bo), 0, 0, 0};
+        uint32_t offsets[4] = {0, 0, 0, 0};
+        if (drmModeAddFB2(fd_, gbm_bo_get_width(bo), gbm_bo_get_height(bo), GBM_FORMAT_XRGB8888, handles, strides,
+                          offsets, &fb, 0) != 0)
+            return runtime_error("drm: drmModeAddFB2 failed (" + std::string(std::strerror(errno)) + ")");
+        gbm_bo_set_user_data(bo, new std::pair<int, uint32_t>(fd_, fb), destroy_fb);
+        return fb;
+    }
+
+    void teardown() {
+        if (mode_set_ && saved_crtc_) {
+            drmModeSetCrtc(fd_, saved_crtc_->crtc_id, saved_crtc_->buffer_id, saved_crtc_->x, saved_crtc_->y,
+                           &connector_id_, 1, &saved_crtc_->mode);
+        }
+        if (saved_crtc_) drmModeFreeCrtc(saved_crtc_);
+        saved_crtc_ = nullptr;
+        if (front_ && gbm_surface_) gbm_surface_release_buffer(gbm_surface_, front_);
+        front_ = nullptr;
+        egl_.reset();
+        if (gbm_surface_) gbm_surface_destroy(gbm_surface_);
+        if (gbm_) gbm_device_destroy(gbm_);
+        gbm_surface_ = nullptr;
+        gbm_ = nullptr;
+        if (fd_ >= 0) ::close(fd_);
+        fd_ = -1;
+        if (mode_set_) {
+            std::signal(SIGINT, SIG_DFL);
+            std::signal(SIGTERM, SIG_DFL);
+        }
+    }
+
+    int fd_ = -1;
+    std::string device_;
+    drmModeModeInfo mode_{};
+    uint32_t connector_id_ = 0, crtc_id_ = 0;
+    drmModeCrtc* saved_crtc_ = nullptr;
+    bool mode_set_ = false;
+    gbm_device* gbm_ = nullptr;
+    gbm_surface* gbm_surface_ = nullptr;
+    gbm_bo* front_ = nullptr;
+    std::unique_ptr<EglContext> egl_;
+    std::chrono::steady_clock::time_point start_;
+};
+
+}  // namespace
+
+Result<std::unique_ptr<Surface>> create_drm_surface(const SurfaceOptions& options) {
+    auto surface = std::make_unique<DrmSurface>();
+    if (auto s = surface->init(options); !s) return s.error();
+    return std::unique_ptr<Surface>(std::move(surface));
+}
+
+}  // namespace body::platform
