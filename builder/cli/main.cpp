@@ -17,6 +17,7 @@ int report(const Error& error) {
 
 int run_contours_check(const Args& args);  // cmd_check.cpp
 int run_slice(const Args& args);           // cmd_slice.cpp
+int run_contours(const Args& args);        // cmd_contours.cpp
 
 }  // namespace body::cli
 
@@ -28,6 +29,7 @@ using body::cli::Command;
 const Command kCommands[] = {
     {"check", "validate a contour stack and print its slices and contours", body::cli::run_contours_check},
     {"slice", "slice a closed OBJ mesh with parallel planes into a contour stack", body::cli::run_slice},
+    {"contours", "extract contours from a NIfTI label volume or DICOM RT-STRUCT", body::cli::run_contours},
 };
 
 void print_help(std::FILE* out) {

@@ -1,0 +1,159 @@
+// bodygen contours LABELS.nii[.gz]|RTSTRUCT.dcm -o OUT.contours.json: extract a
+// contour stack from a label volume or an RT structure set.
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <string>
+
+#include "builder/cli/commands.h"
+#include "shared/error.h"
+
+#ifdef BODY_WITH_IMPORT
+#include "builder/contours/contour_stack.h"
+#include "builder/import/import.h"
+#include "shared/cli_args.h"
+#endif
+
+namespace body::cli {
+
+namespace {
+
+constexpr const char* kUsage =
+    "usage: bodygen contours LABELS.nii[.gz]|RTSTRUCT.dcm -o OUT.contours.json [options]\n"
+    "  --labels FILE     label table (index name lines, FSL/MRIcron .txt or .lut);\n"
+    "                    default: <volume>.txt / <volume>.lut beside the volume\n"
+    "  --axis z|y|x      slicing axis of the volume (default z)\n"
+    "  --step K          every K-th slice (default 1)\n"
+    "  --only 3,7,12     only these labels (RT-STRUCT: ROI numbers)\n"
+    "  --threshold T     non-integer volumes: extract value >= T as one mask\n"
+    "  --tolerance V     simplification tolerance in voxels (default 0.5; 0 keeps every vertex)\n"
+    "  --jobs N          structures extracted in parallel (default 1)\n"
+    "  --quiet           no progress bar or notes\n";
+
+}  // namespace
+
+#ifdef BODY_WITH_IMPORT
+
+namespace {
+
+Result<std::vector<int64_t>> parse_only(const std::string& text) {
+    std::vector<int64_t> out;
+    size_t pos = 0;
+    while (pos <= text.size()) {
+        size_t comma = text.find(',', pos);
+        if (comma == std::string::npos) comma = text.size();
+        const std::string item = text.substr(pos, comma - pos);
+        char* end = nullptr;
+        const long long v = std::strtoll(item.c_str(), &end, 10);
+        if (item.empty() || *end != '\0' || v <= 0) {
+            return input_error("option --only: '" + item + "' is not a positive label number");
+        }
+        out.push_back(v);
+        pos = comma + 1;
+    }
+    return out;
+}
+
+void draw_progress(size_t done, size_t total) {
+    const int width = 30;
+    const int filled = total ? static_cast<int>(width * done / total) : width;
+    std::fprintf(stderr, "\r  [%.*s%*s] %zu/%zu structures", filled, "##############################", width - filled,
+                 "", done, total);
+    if (done == total) std::fputc('\n', stderr);
+    std::fflush(stderr);
+}
+
+}  // namespace
+
+// Shared with other commands that take the same import options.
+Result<ImportOptions> import_options_from_args(const CliArgs& args) {
+    ImportOptions o;
+    o.labels_path = args.get_or("labels", "");
+    const std::string axis = args.get_or("axis", "z");
+    if (axis == "x")
+        o.axis = 0;
+    else if (axis == "y")
+        o.axis = 1;
+    else if (axis == "z")
+        o.axis = 2;
+    else
+        return input_error("option --axis: '" + axis + "' is not x, y or z");
+    auto step = args.get_long("step", 1);
+    if (!step) return step.error();
+    if (*step < 1 || *step > 100000) return input_error("option --step: must be a positive integer");
+    o.step = static_cast<int>(*step);
+    if (auto only = args.get("only")) {
+        auto list = parse_only(*only);
+        if (!list) return list.error();
+        o.only = std::move(*list);
+    }
+    if (args.has("threshold")) {
+        auto t = args.get_double("threshold", 0.0);
+        if (!t) return t.error();
+        o.threshold = *t;
+    }
+    auto tol = args.get_double("tolerance", o.tolerance);
+    if (!tol) return tol.error();
+    if (*tol < 0.0 || *tol > 10.0) return input_error("option --tolerance: must be between 0 and 10 voxels");
+    o.tolerance = *tol;
+    auto jobs = args.get_long("jobs", 1);
+    if (!jobs) return jobs.error();
+    if (*jobs < 1 || *jobs > 1024) return input_error("option --jobs: must be between 1 and 1024");
+    o.jobs = static_cast<int>(*jobs);
+    return o;
+}
+
+int run_contours(const Args& argv) {
+    auto args = CliArgs::parse(argv, {"labels", "axis", "step", "only", "threshold", "tolerance", "jobs", "output"},
+                               {"help", "quiet"});
+    if (!args) return report(args.error());
+    if (args->has("help")) {
+        std::printf("%s", kUsage);
+        return kExitOk;
+    }
+    if (args->positional().size() != 1) return report(input_error("contours: expected one input file (see --help)"));
+    const auto output = args->get("output");
+    if (!output || output->empty()) return report(input_error("contours: -o OUT.contours.json is required"));
+    auto options = import_options_from_args(*args);
+    if (!options) return report(options.error());
+    const bool quiet = args->has("quiet");
+    if (!quiet) {
+        options->note = [](const std::string& m) { std::fprintf(stderr, "bodygen: note: %s\n", m.c_str()); };
+        if (::isatty(2)) options->progress = draw_progress;
+    }
+    const std::string& input = args->positional()[0];
+    const SourceKind kind = detect_source_kind(input);
+    if (kind == SourceKind::ContourStack) {
+        return report(input_error(input + ": already a contour stack (use bodygen check)"));
+    }
+    const auto start = std::chrono::steady_clock::now();
+    auto stack = load_any_contour_source(input, *options);
+    if (!stack) return report(stack.error());
+    if (auto written = write_contour_stack(*output, *stack); !written) return report(written.error());
+    size_t contours = 0, points = 0;
+    for (const Slice& s : stack->slices) {
+        contours += s.contours.size();
+        for (const Contour& c : s.contours) points += c.points.size();
+    }
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::printf("%s: %zu structures, %zu slices, %zu contours, %zu points in %.2f s\n", output->c_str(),
+                stack->structures.size(), stack->slices.size(), contours, points, seconds);
+    return kExitOk;
+}
+
+#else
+
+int run_contours(const Args& argv) {
+    for (const std::string& a : argv) {
+        if (a == "--help") {
+            std::printf("%s", kUsage);
+            return kExitOk;
+        }
+    }
+    return report(input_error("contours: this bodygen was built without import support (BODY_WITH_IMPORT=OFF)"));
+}
+
+#endif
+
+}  // namespace body::cli

@@ -1,0 +1,37 @@
+// Input-type dispatch for bodygen contours / bodygen build.
+#include "builder/import/import.h"
+
+#include <fstream>
+
+namespace body {
+
+SourceKind detect_source_kind(const std::string& path) {
+    auto ends = [&](const char* suffix) {
+        std::string lower;
+        for (char c : path) lower += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+        return lower.ends_with(suffix);
+    };
+    if (ends(".json")) return SourceKind::ContourStack;
+    if (ends(".nii") || ends(".nii.gz") || ends(".hdr") || ends(".img") || ends(".hdr.gz") || ends(".img.gz")) {
+        return SourceKind::Nifti;
+    }
+    if (ends(".dcm")) return SourceKind::RtStruct;
+    std::ifstream in(path, std::ios::binary);
+    char head[132] = {};
+    if (in.read(head, sizeof head) && std::string(head + 128, 4) == "DICM") return SourceKind::RtStruct;
+    return SourceKind::Unknown;
+}
+
+Result<ContourStack> load_any_contour_source(const std::string& path, const ImportOptions& options) {
+    switch (detect_source_kind(path)) {
+        case SourceKind::ContourStack: return read_contour_stack(path);
+        case SourceKind::Nifti: return import_nifti_labels(path, options);
+        case SourceKind::RtStruct: return import_rtstruct(path, options);
+        case SourceKind::Unknown: break;
+    }
+    return input_error(path +
+                       ": unknown input type (expected .contours.json, a NIfTI label volume .nii/.nii.gz, or a DICOM "
+                       "RT-STRUCT .dcm)");
+}
+
+}  // namespace body

@@ -1,0 +1,67 @@
+#pragma once
+// Segmentations in: NIfTI label volumes and DICOM RT-STRUCT -> contour stacks.
+//
+// Conventions (the contract with the reconstruction pipeline):
+// - Units are millimetres in scanner space. NIfTI voxel indices map through the
+//   sform when sform_code > 0, else the qform when qform_code > 0, else the
+//   pixdim scaling (NIfTI "method 1").
+// - Slicing along voxel axis `axis` (0 = i/x, 1 = j/y, 2 = k/z) takes every
+//   `step`-th voxel plane, starting at index 0. A slice lies on the plane
+//   through its voxel centres. When that plane is perpendicular to a scanner
+//   axis A (the usual case), the stack's (x, y, z) are the scanner coordinates
+//   cyclically permuted so that z is A: A = z -> (x, y, z), A = x -> (y, z, x),
+//   A = y -> (z, x, y) -- a rotation, so meshes keep their handedness. An
+//   oblique plane gets a rigid frame with z along its normal (a note says so).
+// - In-plane, the boundary lies on the voxel faces (marching squares with
+//   vertices halfway between an inside and an outside voxel centre, see
+//   marching_squares.h), so a contour encloses its voxels' cross-section up to
+//   1/8 voxel per convex corner cut (and gained per concave corner): for a
+//   simple region the area is the voxel count minus 1/2 voxel, exactly, before
+//   simplification. Along the slice axis the surface convention is up to the
+//   pipeline's caps: the voxels of a region span half a voxel beyond its first
+//   and last slice planes.
+// - Diagonal-only pixel contacts are not connections (4-connected regions per
+//   label), consistently for every label, so regions of different labels never
+//   overlap and the rings of one structure on a slice never touch or cross,
+//   simplified or not.
+// - Structures are emitted in increasing label order, contours on a slice by
+//   structure then by ring; the result does not depend on `jobs`.
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "builder/contours/contour_stack.h"
+#include "shared/error.h"
+
+namespace body {
+
+struct ImportOptions {
+    std::string labels_path;          // label table; empty: look for <volume>.txt/.lut beside the volume
+    int axis = 2;                     // 0 x, 1 y, 2 z (voxel axes)
+    int step = 1;                     // every step-th slice
+    std::vector<int64_t> only;        // labels to extract; empty: all present
+    std::optional<double> threshold;  // binarise: value >= threshold is label 1
+    double tolerance = 0.5;           // simplification tolerance in voxels (0: none)
+    int jobs = 1;                     // worker threads across structures
+    // Called from the calling thread as structures finish: (done, total).
+    std::function<void(size_t, size_t)> progress;
+    // Non-fatal findings (skipped contours, oblique frames, empty labels).
+    std::function<void(const std::string&)> note;
+};
+
+enum class SourceKind { ContourStack, Nifti, RtStruct, Unknown };
+
+// By extension (.contours.json/.json, .nii/.nii.gz/.hdr/.img) and, for DICOM,
+// the "DICM" preamble or a .dcm extension.
+SourceKind detect_source_kind(const std::string& path);
+
+Result<ContourStack> import_nifti_labels(const std::string& path, const ImportOptions& options);
+Result<ContourStack> import_rtstruct(const std::string& path, const ImportOptions& options);
+
+// Dispatch for `bodygen build` and `bodygen contours`: a contour stack file is
+// read as is; label volumes and RT-STRUCTs are imported.
+Result<ContourStack> load_any_contour_source(const std::string& path, const ImportOptions& options);
+
+}  // namespace body

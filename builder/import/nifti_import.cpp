@@ -1,0 +1,460 @@
+// NIfTI label volume -> contour stack: read with niftilib, then per label and
+// per slice marching squares (marching_squares.h) and topology-preserving
+// Douglas-Peucker (ring_simplify.h). Structures are independent and run on
+// `jobs` threads.
+// - NIfTI-1 format: Cox et al., "A (sort of) new image data format standard:
+//   NIfTI-1", NIH/NIMH DFWG, 2004 (qform/sform conventions).
+#include <nifti1_io.h>
+#include <zlib.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <condition_variable>
+#include <cstring>
+#include <filesystem>
+#include <limits>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <thread>
+
+#include "builder/import/import.h"
+#include "builder/import/label_table.h"
+#include "builder/import/marching_squares.h"
+#include "builder/import/ring_simplify.h"
+
+namespace body {
+namespace {
+
+struct LabelVolume {
+    size_t dim[3] = {1, 1, 1};
+    double affine[3][4] = {};  // voxel index (i, j, k, 1) -> scanner mm
+    std::vector<int32_t> labels;
+    size_t index(size_t i, size_t j, size_t k) const { return (k * dim[1] + j) * dim[0] + i; }
+};
+
+struct NiftiDeleter {
+    void operator()(nifti_image* nim) const { nifti_image_free(nim); }
+};
+using NiftiPtr = std::unique_ptr<nifti_image, NiftiDeleter>;
+
+template <typename T>
+void convert_labels(const void* data, size_t count, double slope, double inter, std::vector<double>& out) {
+    const T* p = static_cast<const T*>(data);
+    out.resize(count);
+    for (size_t i = 0; i < count; ++i) out[i] = static_cast<double>(p[i]) * slope + inter;
+}
+
+bool is_integer_type(int datatype) {
+    switch (datatype) {
+        case DT_UINT8:
+        case DT_INT8:
+        case DT_INT16:
+        case DT_UINT16:
+        case DT_INT32:
+        case DT_UINT32:
+        case DT_INT64:
+        case DT_UINT64: return true;
+        default: return false;
+    }
+}
+
+// niftilib fills a short read with zeros and only warns, so a truncated file
+// would pass as a volume with a missing part: check the data length first.
+std::string check_data_length(const nifti_image& nim) {
+    const std::string file = nim.iname ? nim.iname : "";
+    const uint64_t needed = static_cast<uint64_t>(nim.iname_offset > 0 ? nim.iname_offset : 0) +
+                            static_cast<uint64_t>(nim.nvox) * static_cast<uint64_t>(nim.nbyper);
+    uint64_t have = 0;
+    if (file.size() > 3 && file.ends_with(".gz")) {
+        gzFile gz = gzopen(file.c_str(), "rb");
+        if (!gz) return "cannot open the image data " + file;
+        std::vector<char> buffer(1 << 16);
+        int n = 0;
+        while (have < needed && (n = gzread(gz, buffer.data(), static_cast<unsigned>(buffer.size()))) > 0) {
+            have += static_cast<uint64_t>(n);
+        }
+        int err = Z_OK;
+        const char* message = gzerror(gz, &err);
+        const bool broken = n < 0 || (err != Z_OK && err != Z_STREAM_END);
+        const std::string reason = broken ? std::string(message ? message : "corrupt gzip stream") : "";
+        gzclose(gz);
+        if (broken && have < needed) {
+            return "image data truncated (gzip: " + reason + "; " + std::to_string(have) + " of " +
+                   std::to_string(needed) + " bytes)";
+        }
+    } else {
+        std::error_code ec;
+        have = std::filesystem::file_size(file, ec);
+        if (ec) return "cannot read the image data " + file + " (" + ec.message() + ")";
+    }
+    if (have < needed) {
+        return "image data truncated (" + std::to_string(have) + " of " + std::to_string(needed) + " bytes)";
+    }
+    return {};
+}
+
+// Phase 1: header, dimensions, data and the voxel -> scanner transform.
+Result<LabelVolume> read_label_volume(const std::string& path, const ImportOptions& options) {
+    const std::string where = path + ": ";
+    if (!std::filesystem::exists(path)) return input_error(where + "no such file");
+    nifti_set_debug_level(0);
+    NiftiPtr nim(nifti_image_read(path.c_str(), 0));
+    if (!nim) return input_error(where + "not a readable NIfTI-1/ANALYZE header (corrupt, truncated or wrong dims)");
+    for (int d = 1; d <= 3; ++d) {
+        if (nim->dim[d] < 1)
+            return input_error(where + "wrong dims: dim[" + std::to_string(d) + "] = " + std::to_string(nim->dim[d]));
+    }
+    for (int d = 4; d <= nim->dim[0] && d <= 7; ++d) {
+        if (nim->dim[d] > 1) {
+            return input_error(where + "wrong dims: a label volume is 3-D, but dim[" + std::to_string(d) +
+                               "] = " + std::to_string(nim->dim[d]));
+        }
+    }
+    const bool integral = is_integer_type(nim->datatype);
+    const bool real = nim->datatype == DT_FLOAT32 || nim->datatype == DT_FLOAT64;
+    if (!integral && !real) {
+        return input_error(where + "unsupported data type " + nifti_datatype_string(nim->datatype) +
+                           " (labels need an integer type)");
+    }
+    if (real && !options.threshold) {
+        return input_error(where + "non-integer data type " + nifti_datatype_string(nim->datatype) +
+                           " without --threshold: pass --threshold T to extract value >= T");
+    }
+    if (const std::string reason = check_data_length(*nim); !reason.empty()) return input_error(where + reason);
+    if (nifti_image_load(nim.get()) != 0 || !nim->data) {
+        return input_error(where + "image data truncated or unreadable (expected " +
+                           std::to_string(nim->nvox * static_cast<size_t>(nim->nbyper)) + " bytes)");
+    }
+    LabelVolume vol;
+    for (int d = 0; d < 3; ++d) vol.dim[d] = static_cast<size_t>(nim->dim[d + 1]);
+    const size_t count = vol.dim[0] * vol.dim[1] * vol.dim[2];
+
+    double slope = nim->scl_slope, inter = nim->scl_inter;
+    if (slope == 0.0 || !std::isfinite(slope) || !std::isfinite(inter)) slope = 1.0, inter = 0.0;
+    std::vector<double> values;
+    switch (nim->datatype) {
+        case DT_UINT8: convert_labels<uint8_t>(nim->data, count, slope, inter, values); break;
+        case DT_INT8: convert_labels<int8_t>(nim->data, count, slope, inter, values); break;
+        case DT_INT16: convert_labels<int16_t>(nim->data, count, slope, inter, values); break;
+        case DT_UINT16: convert_labels<uint16_t>(nim->data, count, slope, inter, values); break;
+        case DT_INT32: convert_labels<int32_t>(nim->data, count, slope, inter, values); break;
+        case DT_UINT32: convert_labels<uint32_t>(nim->data, count, slope, inter, values); break;
+        case DT_INT64: convert_labels<int64_t>(nim->data, count, slope, inter, values); break;
+        case DT_UINT64: convert_labels<uint64_t>(nim->data, count, slope, inter, values); break;
+        case DT_FLOAT32: convert_labels<float>(nim->data, count, slope, inter, values); break;
+        default: convert_labels<double>(nim->data, count, slope, inter, values); break;
+    }
+    vol.labels.resize(count);
+    for (size_t i = 0; i < count; ++i) {
+        const double v = values[i];
+        if (options.threshold) {
+            vol.labels[i] = v >= *options.threshold ? 1 : 0;
+            continue;
+        }
+        if (!std::isfinite(v) || v != std::floor(v) || v < 0.0 || v > std::numeric_limits<int32_t>::max()) {
+            return input_error(where + "voxel " + std::to_string(i) + " has value " + std::to_string(v) +
+                               ", not a label (non-negative integer); use --threshold for masks");
+        }
+        vol.labels[i] = static_cast<int32_t>(v);
+    }
+
+    const mat44* m = nullptr;
+    if (nim->sform_code > 0)
+        m = &nim->sto_xyz;
+    else if (nim->qform_code > 0)
+        m = &nim->qto_xyz;
+    for (int r = 0; r < 3; ++r) {
+        for (int c = 0; c < 4; ++c) {
+            if (m)
+                vol.affine[r][c] = m->m[r][c];
+            else
+                vol.affine[r][c] = (r == c) ? std::fabs(nim->pixdim[r + 1] > 0 ? nim->pixdim[r + 1] : 1.0f) : 0.0;
+        }
+    }
+    for (int r = 0; r < 3; ++r) {
+        for (int c = 0; c < 4; ++c) {
+            if (!std::isfinite(vol.affine[r][c])) return input_error(where + "non-finite voxel-to-scanner transform");
+        }
+    }
+    return vol;
+}
+
+// Phase 2: the output frame of a slicing axis (see import.h).
+struct SliceFrame {
+    int axis = 2, u = 0, v = 1;  // voxel axes: slice normal, in-plane x, in-plane y
+    Vec3 e1, e2, n;              // output x, y, z directions in scanner space
+    Vec3 col[3], origin;
+    bool oblique = false;
+
+    Vec3 scanner(double i_u, double i_v, double k) const {
+        return origin + col[u] * i_u + col[v] * i_v + col[axis] * k;
+    }
+    Vec2 in_plane(double i_u, double i_v, double k) const {
+        const Vec3 p = scanner(i_u, i_v, k);
+        return {glm::dot(e1, p), glm::dot(e2, p)};
+    }
+    double z(double k) const { return glm::dot(n, scanner(0.0, 0.0, k)); }
+};
+
+Result<SliceFrame> slice_frame(const LabelVolume& vol, int axis, const std::string& path) {
+    SliceFrame f;
+    f.axis = axis;
+    f.u = (axis + 1) % 3;
+    f.v = (axis + 2) % 3;
+    for (int c = 0; c < 3; ++c) f.col[c] = Vec3(vol.affine[0][c], vol.affine[1][c], vol.affine[2][c]);
+    f.origin = Vec3(vol.affine[0][3], vol.affine[1][3], vol.affine[2][3]);
+    const Vec3 normal = glm::cross(f.col[f.u], f.col[f.v]);
+    const double len = glm::length(normal);
+    if (!(len > 0.0)) return input_error(path + ": singular voxel-to-scanner transform");
+    int a = 0;
+    for (int k = 1; k < 3; ++k) {
+        if (std::fabs(normal[k]) > std::fabs(normal[a])) a = k;
+    }
+    const double off = std::hypot(normal[(a + 1) % 3], normal[(a + 2) % 3]);
+    if (off <= 1e-6 * len) {
+        f.n = Vec3(0.0), f.e1 = Vec3(0.0), f.e2 = Vec3(0.0);
+        f.n[a] = 1.0, f.e1[(a + 1) % 3] = 1.0, f.e2[(a + 2) % 3] = 1.0;
+    } else {
+        f.oblique = true;
+        f.n = normal / len;
+        f.e1 = glm::normalize(f.col[f.u]);
+        f.e2 = glm::cross(f.n, f.e1);
+    }
+    return f;
+}
+
+struct Extent {
+    size_t lo[3] = {SIZE_MAX, SIZE_MAX, SIZE_MAX};
+    size_t hi[3] = {0, 0, 0};
+    size_t voxels = 0;
+};
+
+struct LabelResult {
+    int64_t label = 0;
+    std::vector<std::pair<size_t, std::vector<std::vector<Vec2>>>> slices;  // slice index -> rings (output frame)
+};
+
+// Phase 3: one label, all its slices.
+void extract_label(const LabelVolume& vol, const SliceFrame& f, int32_t label, const Extent& e, int step,
+                   double tolerance, LabelResult& out) {
+    out.label = label;
+    const size_t u0 = e.lo[f.u], v0 = e.lo[f.v];
+    const size_t w = e.hi[f.u] - u0 + 1, h = e.hi[f.v] - v0 + 1;
+    std::vector<uint8_t> mask(w * h);
+    std::vector<std::vector<Vec2>> rings;
+    size_t idx[3];
+    for (size_t k = e.lo[f.axis]; k <= e.hi[f.axis]; ++k) {
+        if (k % static_cast<size_t>(step) != 0) continue;
+        idx[f.axis] = k;
+        bool any = false;
+        for (size_t y = 0; y < h; ++y) {
+            idx[f.v] = v0 + y;
+            for (size_t x = 0; x < w; ++x) {
+                idx[f.u] = u0 + x;
+                const bool in = vol.labels[vol.index(idx[0], idx[1], idx[2])] == label;
+                mask[y * w + x] = in;
+                any |= in;
+            }
+        }
+        if (!any) continue;
+        trace_mask_boundaries(mask, w, h, rings);
+        simplify_rings(rings, tolerance);
+        for (auto& ring : rings) {
+            for (Vec2& p : ring) {
+                p = f.in_plane(static_cast<double>(u0) + p.x, static_cast<double>(v0) + p.y, static_cast<double>(k));
+            }
+        }
+        out.slices.emplace_back(k, std::move(rings));
+        rings = {};
+    }
+}
+
+std::string structure_id(const std::string& name) {
+    std::string id;
+    for (char c : name) {
+        const bool keep = std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';
+        id += keep ? c : '_';
+    }
+    return id;
+}
+
+// Distinct colours for labels the table does not colour (golden-ratio hues).
+Vec3 palette_color(int64_t label) {
+    const double h = std::fmod(static_cast<double>(label) * 0.618033988749895, 1.0) * 6.0;
+    const double s = 0.55, v = 0.9;
+    const int i = static_cast<int>(h);
+    const double fr = h - i, p = v * (1 - s), q = v * (1 - s * fr), t = v * (1 - s * (1 - fr));
+    switch (i % 6) {
+        case 0: return {v, t, p};
+        case 1: return {q, v, p};
+        case 2: return {p, v, t};
+        case 3: return {p, q, v};
+        case 4: return {t, p, v};
+        default: return {v, p, q};
+    }
+}
+
+Result<LabelTable> find_label_table(const std::string& path, const ImportOptions& options) {
+    LabelTable table;
+    if (!options.labels_path.empty()) {
+        auto t = read_label_table(options.labels_path);
+        if (!t) return t.error();
+        table = std::move(*t);
+    }
+    // Beside the volume: <v>.nii.gz -> <v>.nii.txt, <v>.nii.lut, <v>.txt, <v>.lut.
+    std::string base = path;
+    if (base.size() > 3 && base.ends_with(".gz")) base.resize(base.size() - 3);
+    std::vector<std::string> candidates = {base + ".txt", base + ".lut"};
+    if (base.ends_with(".nii")) {
+        const std::string stem = base.substr(0, base.size() - 4);
+        candidates.push_back(stem + ".txt");
+        candidates.push_back(stem + ".lut");
+    }
+    for (const std::string& c : candidates) {
+        if (c == options.labels_path || !std::filesystem::is_regular_file(c)) continue;
+        if (!options.labels_path.empty() && !c.ends_with(".lut")) continue;  // explicit names win
+        auto t = read_label_table(c);
+        if (!t) {
+            if (options.note) options.note("ignoring " + t.error().message);
+            continue;
+        }
+        merge_label_table(table, *t);
+    }
+    return table;
+}
+
+}  // namespace
+
+Result<ContourStack> import_nifti_labels(const std::string& path, const ImportOptions& options) {
+    if (options.axis < 0 || options.axis > 2) return input_error("--axis must be x, y or z");
+    if (options.step < 1) return input_error("--step must be at least 1");
+    if (!(options.tolerance >= 0.0) || options.tolerance > 10.0) {
+        return input_error("--tolerance must be between 0 and 10 voxels");
+    }
+    auto vol = read_label_volume(path, options);
+    if (!vol) return vol.error();
+    auto frame = slice_frame(*vol, options.axis, path);
+    if (!frame) return frame.error();
+    auto table = find_label_table(path, options);
+    if (!table) return table.error();
+    if (frame->oblique && options.note) {
+        options.note(path + ": slice planes are oblique to the scanner axes; output is in a rigid slice frame");
+    }
+
+    // Extents of every label in one pass.
+    std::map<int32_t, Extent> extents;
+    for (size_t k = 0; k < vol->dim[2]; ++k) {
+        for (size_t j = 0; j < vol->dim[1]; ++j) {
+            for (size_t i = 0; i < vol->dim[0]; ++i) {
+                const int32_t l = vol->labels[vol->index(i, j, k)];
+                if (l == 0) continue;
+                Extent& e = extents[l];
+                const size_t at[3] = {i, j, k};
+                for (int d = 0; d < 3; ++d) e.lo[d] = std::min(e.lo[d], at[d]), e.hi[d] = std::max(e.hi[d], at[d]);
+                ++e.voxels;
+            }
+        }
+    }
+    std::vector<int32_t> labels;
+    if (!options.only.empty()) {
+        for (int64_t l : options.only) {
+            if (l <= 0 || l > std::numeric_limits<int32_t>::max() || !extents.count(static_cast<int32_t>(l))) {
+                return input_error(path + ": label " + std::to_string(l) + " (--only) does not occur in the volume");
+            }
+            labels.push_back(static_cast<int32_t>(l));
+        }
+        std::sort(labels.begin(), labels.end());
+        labels.erase(std::unique(labels.begin(), labels.end()), labels.end());
+    } else {
+        for (const auto& [l, e] : extents) labels.push_back(l);
+        if (options.note && !options.threshold) {
+            for (const auto& [l, entry] : table->entries) {
+                if (l > 0 && !entry.name.empty() && !extents.count(static_cast<int32_t>(l))) {
+                    options.note(path + ": label " + std::to_string(l) + " (" + entry.name + ") has no voxels");
+                }
+            }
+        }
+    }
+    if (labels.empty()) return input_error(path + ": no labelled voxels (every voxel is 0)");
+
+    // Phase 4: structures in parallel; results in label order.
+    std::vector<LabelResult> results(labels.size());
+    std::atomic<size_t> next{0};
+    size_t done = 0;
+    std::mutex mutex;
+    std::condition_variable cv;
+    auto work = [&] {
+        for (size_t i = next++; i < labels.size(); i = next++) {
+            extract_label(*vol, *frame, labels[i], extents[labels[i]], options.step, options.tolerance, results[i]);
+            std::lock_guard lock(mutex);
+            ++done;
+            cv.notify_one();
+        }
+    };
+    const size_t jobs = std::clamp<size_t>(static_cast<size_t>(std::max(options.jobs, 1)), 1, labels.size());
+    std::vector<std::thread> threads;
+    for (size_t t = 0; jobs > 1 && t < jobs; ++t) threads.emplace_back(work);
+    if (jobs == 1) {
+        for (size_t i = 0; i < labels.size(); ++i) {
+            extract_label(*vol, *frame, labels[i], extents[labels[i]], options.step, options.tolerance, results[i]);
+            if (options.progress) options.progress(i + 1, labels.size());
+        }
+    } else {
+        std::unique_lock lock(mutex);
+        size_t reported = 0;
+        while (reported < labels.size()) {
+            cv.wait(lock, [&] { return done > reported; });
+            reported = done;
+            if (options.progress) {
+                lock.unlock();
+                options.progress(reported, labels.size());
+                lock.lock();
+            }
+        }
+    }
+    for (auto& t : threads) t.join();
+
+    // Phase 5: assemble the stack.
+    ContourStack stack;
+    std::map<size_t, Slice> slices;
+    std::map<std::string, int> used_ids;
+    for (const LabelResult& r : results) {
+        if (r.slices.empty()) {
+            if (options.note) {
+                options.note(path + ": label " + std::to_string(r.label) + " has no voxels on the sampled slices");
+            }
+            continue;
+        }
+        StructureInfo s;
+        auto it = table->entries.find(r.label);
+        const bool named = it != table->entries.end() && !it->second.name.empty();
+        if (options.threshold && !named)
+            s.name = "mask";
+        else
+            s.name = named ? it->second.name : "label " + std::to_string(r.label);
+        s.id =
+            named ? structure_id(it->second.name) : (options.threshold ? "mask" : "label_" + std::to_string(r.label));
+        if (used_ids[s.id]++ > 0) s.id += "_" + std::to_string(r.label);
+        s.color = (it != table->entries.end() && it->second.color) ? *it->second.color : palette_color(r.label);
+        for (const auto& [k, rings] : r.slices) {
+            Slice& slice = slices[k];
+            slice.z = frame->z(static_cast<double>(k));
+            for (const auto& ring : rings) slice.contours.push_back(Contour{ring, s.id, 0, 0});
+        }
+        stack.structures.push_back(std::move(s));
+    }
+    for (auto& [k, s] : slices) stack.slices.push_back(std::move(s));
+    std::sort(stack.slices.begin(), stack.slices.end(), [](const Slice& a, const Slice& b) { return a.z < b.z; });
+    for (size_t si = 0; si < stack.slices.size(); ++si) {
+        stack.slices[si].source_index = si;
+        for (size_t ci = 0; ci < stack.slices[si].contours.size(); ++ci) {
+            stack.slices[si].contours[ci].source_slice = si;
+            stack.slices[si].contours[ci].source_contour = ci;
+        }
+    }
+    return stack;
+}
+
+}  // namespace body
