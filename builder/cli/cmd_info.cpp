@@ -1,0 +1,49 @@
+// bodygen info IN.bpm: structures, levels, sizes and the error curve.
+#include <cstdio>
+
+#include "builder/cli/commands.h"
+#include "shared/atomic_file.h"
+#include "shared/cli_args.h"
+#include "shared/pm/progressive_mesh.h"
+
+namespace body::cli {
+
+int run_info(const Args& argv) {
+    auto args = CliArgs::parse(argv, {}, {"help"});
+    if (!args) return report(args.error());
+    if (args->has("help")) {
+        std::printf("usage: bodygen info IN.bpm\n");
+        return kExitOk;
+    }
+    if (args->positional().size() != 1) return report(input_error("info: expected one input .bpm file"));
+    const std::string& path = args->positional()[0];
+    auto bytes = read_file(path);
+    if (!bytes) return report(bytes.error());
+    auto pms = pm::read_bpm_bytes({reinterpret_cast<const uint8_t*>(bytes->data()), bytes->size()}, path);
+    if (!pms) return report(pms.error());
+    size_t splits = 0;
+    for (auto& p : *pms) splits += p->max_level();
+    std::printf("%s: %zu bytes, %zu structures, %zu vertex splits (%.2f bytes per split overall)\n", path.c_str(),
+                bytes->size(), pms->size(), splits, splits ? double(bytes->size()) / double(splits) : 0.0);
+    for (size_t s = 0; s < pms->size(); ++s) {
+        const pm::ProgressiveMesh& p = *(*pms)[s];
+        const Vec3f c = p.color(), lo = p.bounds_min(), hi = p.bounds_max();
+        std::printf(
+            "structure %zu '%s': colour (%.3f %.3f %.3f), bounds (%g %g %g)-(%g %g %g), normals %s\n"
+            "  base %zu vertices / %zu triangles, full %zu vertices / %zu triangles, %zu splits, quantization "
+            "bound %g\n",
+            s, p.name().c_str(), double(c.x), double(c.y), double(c.z), double(lo.x), double(lo.y), double(lo.z),
+            double(hi.x), double(hi.y), double(hi.z), p.has_normals() ? "yes" : "no", p.base_vertex_count(),
+            p.base_triangle_count(), p.max_vertex_count(), p.max_triangle_count(), p.max_level(),
+            double(p.quantization_bound()));
+        std::printf("  error curve (triangles -> stored error):");
+        for (double r : {0.0, 0.01, 0.02, 0.05, 0.1, 0.2, 0.5, 1.0}) {
+            const size_t level = p.level_for_triangles(size_t(r * double(p.max_triangle_count())));
+            std::printf(" %zu:%g", p.triangles_at(level), double(p.error_at(level)));
+        }
+        std::printf("\n");
+    }
+    return kExitOk;
+}
+
+}  // namespace body::cli

@@ -1,0 +1,70 @@
+#pragma once
+// Progressive-mesh construction: quadric-error edge collapses (Garland & Heckbert
+// 1997) recorded as vertex splits (Hoppe 1996), and the .bpm writer.
+//
+// Placement: every collapse is a half-edge collapse (the removed vertex moves onto
+// the surviving one, which keeps its input position). Of the two directions the
+// quadric-cheaper one is taken. This is what makes every level "a prefix of the
+// vertex array + a prefix of the face array + index patches": vertex data never
+// changes between levels, so nothing but indices is rewritten at run time.
+//
+// Ordering: a binary heap of directed edge collapses keyed by (quadric cost, from,
+// to) with lazy invalidation through per-vertex stamps; deterministic (no hash
+// iteration, IEEE double arithmetic with contraction disabled in this library).
+//
+// Rejected collapses: triangle flips and folds (a normal turning by more than 78 degrees), and
+// near-degenerate results, link-condition violations (would make the surface
+// non-manifold), interior-to-boundary pulls, and anything that would reduce a
+// closed component below a tetrahedron or an open one below one triangle.
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "shared/error.h"
+#include "shared/geometry.h"
+#include "shared/mesh.h"
+
+namespace body::lod {
+
+struct LodOptions {
+    size_t min_triangles = 0;        // stop collapsing at this many triangles (0: as far as topology allows)
+    double boundary_weight = 100.0;  // weight of the boundary-preserving plane quadrics (x edge length^2)
+    size_t chunk_splits = 4096;      // vertex splits per SPLT section (streaming granularity)
+    bool normals = true;             // store octahedral normals (from the mesh, else area-weighted)
+};
+
+// A progressive mesh in refinement order, in the builder's precision.
+// Vertex v < base_vertices belongs to the base mesh; split j adds vertex
+// base_vertices + j as a child of splits[j].parent.
+struct VertexSplit {
+    uint32_t parent = 0;
+    uint32_t face_count = 0;  // faces this split adds (1 on a boundary edge, else 2)
+    double error = 0.0;       // object-space error of the level before this split (non-increasing in j)
+};
+
+struct ProgressiveBuild {
+    std::vector<Vec3> positions;    // all vertices in PM order
+    std::vector<Vec3> normals;      // one per vertex
+    std::vector<uint32_t> indices;  // all faces in PM order, as they are when each face appears
+    size_t base_vertices = 0, base_faces = 0;
+    std::vector<VertexSplit> splits;
+    // Faces whose corner at the parent moves to the child when split j is applied:
+    // patch_faces[patch_begin[j] .. patch_begin[j + 1]).
+    std::vector<uint32_t> patch_begin;
+    std::vector<uint32_t> patch_faces;
+};
+
+// Simplifies `mesh` as far as options allow and returns the refinement sequence.
+// Unreferenced vertices and degenerate triangles of the input are dropped.
+Result<ProgressiveBuild> build_progressive_mesh(const Mesh& mesh, const LodOptions& options = {});
+
+// The mesh at level `level` (0 = base, splits.size() = full), in PM vertex order.
+Mesh extract_level(const ProgressiveBuild& pm, size_t level);
+
+// Serializes meshes (one structure each: name, colour, bounds) as a .bpm file image.
+Result<std::vector<uint8_t>> encode_bpm(std::span<const Mesh> meshes, const LodOptions& options = {});
+// Builds the progressive meshes and writes them atomically to `path`.
+Status write_bpm_from_meshes(const std::string& path, std::span<const Mesh> meshes, const LodOptions& options = {});
+
+}  // namespace body::lod

@@ -1,0 +1,130 @@
+#pragma once
+// Building blocks of the `.bpm` progressive-mesh format shared by the writer
+// (builder/lod/bpm_writer.cpp) and the reader (shared/pm/progressive_mesh.cpp).
+// The byte layout is documented in shared/pm/FORMAT.md; keep both in step.
+//
+// Everything here is integer or correctly rounded IEEE arithmetic so that the
+// writer produces the same bytes on x86-64 and aarch64.
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace body::pm {
+
+inline constexpr char kMagic[4] = {'B', 'P', 'M', '\0'};
+inline constexpr uint16_t kVersion = 1;
+inline constexpr size_t kFileHeaderSize = 16;     // magic, version, flags, structure count, header crc
+inline constexpr size_t kSectionHeaderSize = 12;  // tag, structure, reserved, payload length
+inline constexpr size_t kSectionTrailerSize = 4;  // crc32 over header + payload
+inline constexpr uint32_t kMaxPatchFan = 63;      // a split's parent has at most this many faces
+
+// Section tags, four ASCII bytes read as a little-endian uint32.
+constexpr uint32_t make_tag(const char (&s)[5]) {
+    return uint32_t(uint8_t(s[0])) | uint32_t(uint8_t(s[1])) << 8 | uint32_t(uint8_t(s[2])) << 16 |
+           uint32_t(uint8_t(s[3])) << 24;
+}
+inline constexpr uint32_t kTagInfo = make_tag("INFO");
+inline constexpr uint32_t kTagBase = make_tag("BASE");
+inline constexpr uint32_t kTagSplits = make_tag("SPLT");
+inline constexpr uint32_t kTagEnd = make_tag("END.");
+std::string tag_name(uint32_t tag);  // printable, e.g. "SPLT"
+
+// CRC-32 (IEEE 802.3, the zlib one), `crc` is the running value (start at 0).
+uint32_t crc32(std::span<const uint8_t> bytes, uint32_t crc = 0);
+
+// Little-endian appends and reads; readers check bounds through ByteReader.
+void put_u16(std::vector<uint8_t>& out, uint16_t v);
+void put_u32(std::vector<uint8_t>& out, uint32_t v);
+void put_f32(std::vector<uint8_t>& out, float v);
+void put_varint(std::vector<uint8_t>& out, uint64_t v);  // LEB128
+uint16_t get_u16(const uint8_t* p);
+uint32_t get_u32(const uint8_t* p);
+
+class ByteReader {
+public:
+    explicit ByteReader(std::span<const uint8_t> bytes) : bytes_(bytes) {}
+    bool u16(uint16_t& v);
+    bool u32(uint32_t& v);
+    bool f32(float& v);
+    bool varint(uint64_t& v);
+    bool bytes(size_t n, std::span<const uint8_t>& out);
+    size_t offset() const { return pos_; }
+    size_t left() const { return bytes_.size() - pos_; }
+
+private:
+    std::span<const uint8_t> bytes_;
+    size_t pos_ = 0;
+};
+
+// 16-bit quantization of a coordinate inside [lo, hi]; dequantize(quantize(x))
+// differs from x by at most (hi - lo) / 65535 / 2 plus float rounding.
+uint16_t quantize16(double x, float lo, float hi);
+float dequantize16(uint16_t q, float lo, float hi);
+
+// Octahedral unit-vector encoding with 8 bits per component.
+void oct_encode8(double x, double y, double z, uint8_t out[2]);
+void oct_decode8(const uint8_t in[2], float out[3]);
+
+// Zig-zag mapping of the wrap-around difference of two 16/8-bit codes.
+inline uint16_t zigzag16(uint16_t to, uint16_t from) {
+    int16_t d = int16_t(uint16_t(to - from));
+    return uint16_t((uint16_t(d) << 1) ^ uint16_t(d >> 15));
+}
+inline uint16_t unzigzag16(uint16_t z, uint16_t from) {
+    uint16_t d = uint16_t((z >> 1) ^ uint16_t(-(z & 1)));
+    return uint16_t(from + d);
+}
+inline uint8_t zigzag8(uint8_t to, uint8_t from) {
+    int8_t d = int8_t(uint8_t(to - from));
+    return uint8_t((uint8_t(d) << 1) ^ uint8_t(d >> 7));
+}
+inline uint8_t unzigzag8(uint8_t z, uint8_t from) {
+    uint8_t d = uint8_t((z >> 1) ^ uint8_t(-(z & 1)));
+    return uint8_t(from + d);
+}
+
+// Packed vertex of the base chunk (meshopt vertex codec, stride 8).
+struct BaseVertex {
+    uint16_t q[3];
+    uint8_t oct[2];
+};
+static_assert(sizeof(BaseVertex) == 8);
+
+// Packed record of a vertex split (meshopt vertex codec, stride 16): the child's
+// quantized position and normal as zig-zag differences from its parent's, the
+// distance child - parent in the vertex order, and the level error.
+struct SplitVertex {
+    uint16_t dq[3];
+    uint8_t doct[2];
+    uint32_t parent_delta;
+    float error;
+};
+static_assert(sizeof(SplitVertex) == 16);
+
+// The connectivity replay shared by writer and reader. It tracks, for the most
+// refined level decoded so far, which corners (face * 3 + k) reference each
+// vertex, so that a split's index patches can be sent as a bit mask over its
+// parent's corners (sorted ascending) instead of explicit corner numbers.
+class SplitReplay {
+public:
+    void reset(size_t vertex_capacity, size_t face_capacity);
+    // Appends faces [first_face, first_face + count) with the given indices.
+    void add_faces(size_t first_face, std::span<const uint32_t> indices);
+    // The corners of `v`, ascending, into `out` (cleared first).
+    void corners_of(uint32_t v, std::vector<uint32_t>& out) const;
+    // Moves the corners selected by `mask` (bit i = i-th of corners_of(parent))
+    // to `child`, writing them to `moved`. False if the mask names a missing corner.
+    bool apply_mask(uint32_t parent, uint32_t child, uint64_t mask, std::vector<uint32_t>& scratch,
+                    std::vector<uint32_t>& moved);
+    uint32_t index(size_t corner) const { return indices_[corner]; }
+
+private:
+    static constexpr uint32_t kNone = 0xffffffffu;
+    std::vector<uint32_t> head_;     // per vertex: first corner or kNone
+    std::vector<uint32_t> next_;     // per corner: next corner of the same vertex
+    std::vector<uint32_t> indices_;  // per corner: the vertex at the replayed level
+};
+
+}  // namespace body::pm

@@ -1,0 +1,354 @@
+// The .bpm reader (streaming, section by section) and the ProgressiveMesh
+// runtime. Format: shared/pm/FORMAT.md. Progressive meshes after H. Hoppe,
+// "Progressive meshes", SIGGRAPH 1996; byte codecs are meshoptimizer's
+// (A. Kapoulkine, meshopt_decodeVertexBuffer / meshopt_decodeIndexBuffer).
+#include "shared/pm/progressive_mesh.h"
+
+#include <meshoptimizer.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "shared/atomic_file.h"
+
+namespace body::pm {
+
+// ---------------------------------------------------------------- runtime
+
+float ProgressiveMesh::quantization_bound() const {
+    Vec3f step = (bbox_max_ - bbox_min_) / 65535.0f;
+    // Half a step per axis, plus float rounding of the dequantized value.
+    float ulp = 4e-7f * std::max({std::fabs(bbox_min_.x), std::fabs(bbox_min_.y), std::fabs(bbox_min_.z),
+                                  std::fabs(bbox_max_.x), std::fabs(bbox_max_.y), std::fabs(bbox_max_.z)});
+    return 0.5f * glm::length(step) + 2.0f * ulp;
+}
+
+size_t ProgressiveMesh::level_for_triangles(size_t triangles) const {
+    if (triangles < base_faces_) return 0;
+    auto end = face_end_.begin() + ptrdiff_t(decoded_splits_);
+    return size_t(std::upper_bound(face_end_.begin(), end, uint32_t(std::min<size_t>(triangles, UINT32_MAX))) -
+                  face_end_.begin());
+}
+
+size_t ProgressiveMesh::level_for_error(float error) const {
+    auto end = split_error_.begin() + ptrdiff_t(decoded_splits_);
+    // split_error_ is non-increasing: the first entry <= error is the coarsest such level.
+    auto it = std::partition_point(split_error_.begin(), end, [&](float e) { return e > error; });
+    return size_t(it - split_error_.begin());
+}
+
+size_t ProgressiveMesh::refine_to(size_t level) {
+    level = std::min(level, decoded_splits_);
+    for (size_t j = level_; j < level; ++j) {
+        const uint32_t child = uint32_t(base_vertices_ + j);
+        const uint32_t b = patch_begin_[j], e = patch_begin_[j + 1];
+        for (uint32_t i = b; i < e; ++i) {
+            uint32_t c = patch_corners_[i];
+            indices_[c] = child;
+            dirty_indices_.add(c, c + 1);
+        }
+    }
+    if (level > level_) level_ = level;
+    return level_;
+}
+
+size_t ProgressiveMesh::coarsen_to(size_t level) {
+    for (size_t j = level_; j-- > level;) {
+        const uint32_t parent = parents_[base_vertices_ + j];
+        const uint32_t b = patch_begin_[j], e = patch_begin_[j + 1];
+        for (uint32_t i = b; i < e; ++i) {
+            uint32_t c = patch_corners_[i];
+            indices_[c] = parent;
+            dirty_indices_.add(c, c + 1);
+        }
+    }
+    if (level < level_) level_ = level;
+    return level_;
+}
+
+// ---------------------------------------------------------------- reader
+
+BpmStream::BpmStream(std::string source_name) : source_(std::move(source_name)) {}
+
+namespace {
+
+std::string where_of(const std::string& source, uint32_t tag, uint32_t structure, size_t offset) {
+    return source + ": section " + tag_name(tag) + " of structure " + std::to_string(structure) + " at byte " +
+           std::to_string(offset);
+}
+
+}  // namespace
+
+Status BpmStream::feed(std::span<const uint8_t> bytes) {
+    if (failed_) return input_error(failure_);
+    pending_.insert(pending_.end(), bytes.begin(), bytes.end());
+    auto fail = [&](std::string message) -> Status {
+        failed_ = true;
+        failure_ = std::move(message);
+        return input_error(failure_);
+    };
+    size_t pos = 0;
+    if (!header_done_) {
+        if (pending_.size() < kFileHeaderSize) return ok_status();
+        const uint8_t* h = pending_.data();
+        if (std::memcmp(h, kMagic, 4) != 0)
+            return fail(source_ + ": file header at byte 0: not a .bpm file (bad magic)");
+        if (crc32({h, 12}) != get_u32(h + 12)) return fail(source_ + ": file header at byte 0: checksum mismatch");
+        if (get_u16(h + 4) != kVersion)
+            return fail(source_ + ": file header at byte 4: unsupported version " + std::to_string(get_u16(h + 4)));
+        declared_structures_ = get_u32(h + 8);
+        if (declared_structures_ > 65535) return fail(source_ + ": file header at byte 8: too many structures");
+        header_done_ = true;
+        pos = kFileHeaderSize;
+    }
+    while (pending_.size() - pos >= kSectionHeaderSize) {
+        const uint8_t* s = pending_.data() + pos;
+        const size_t offset = consumed_ + pos;
+        const uint32_t tag = get_u32(s), structure = get_u16(s + 4), length = get_u32(s + 8);
+        const std::string where = where_of(source_, tag, structure, offset);
+        if (complete_) return fail(where + ": data after the END section");
+        if (tag != kTagInfo && tag != kTagBase && tag != kTagSplits && tag != kTagEnd)
+            return fail(where + ": unknown section tag");
+        if (length > (1u << 30)) return fail(where + ": section length " + std::to_string(length) + " too large");
+        const size_t total = kSectionHeaderSize + size_t(length) + kSectionTrailerSize;
+        if (pending_.size() - pos < total) break;
+        if (crc32({s, kSectionHeaderSize + length}) != get_u32(s + kSectionHeaderSize + length))
+            return fail(where + ": checksum mismatch");
+        Status st = parse_section(tag, structure, {s + kSectionHeaderSize, length}, offset);
+        if (!st) return fail(st.error().message);
+        pos += total;
+    }
+    pending_.erase(pending_.begin(), pending_.begin() + ptrdiff_t(pos));
+    consumed_ += pos;
+    return ok_status();
+}
+
+Status BpmStream::finish() const {
+    if (failed_) return input_error(failure_);
+    if (complete_) return ok_status();
+    if (!header_done_)
+        return input_error(source_ + ": file header at byte 0: truncated (" + std::to_string(pending_.size()) +
+                           " of 16 bytes)");
+    if (pending_.size() >= kSectionHeaderSize) {
+        const uint32_t tag = get_u32(pending_.data()), structure = get_u16(pending_.data() + 4);
+        return input_error(
+            where_of(source_, tag, structure, consumed_) + ": truncated (" + std::to_string(pending_.size()) + " of " +
+            std::to_string(kSectionHeaderSize + get_u32(pending_.data() + 8) + kSectionTrailerSize) + " bytes)");
+    }
+    return input_error(source_ + ": truncated at byte " + std::to_string(consumed_ + pending_.size()) +
+                       ": the END section is missing");
+}
+
+Status BpmStream::parse_section(uint32_t tag, uint32_t structure, std::span<const uint8_t> payload, size_t offset) {
+    const std::string where = where_of(source_, tag, structure, offset);
+    if (tag == kTagEnd) {
+        ByteReader r(payload);
+        uint32_t count = 0;
+        if (!r.u32(count) || count != meshes_.size() || count != declared_structures_)
+            return input_error(where + ": structure count does not match");
+        for (auto& m : meshes_) {
+            if (m->decoded_splits_ != m->split_count_ || !m->base_ready_)
+                return input_error(where + ": structure '" + m->name_ + "' is incomplete");
+        }
+        complete_ = true;
+        return ok_status();
+    }
+    if (tag == kTagInfo) {
+        if (structure != meshes_.size() || structure >= declared_structures_)
+            return input_error(where + ": INFO out of order");
+        return parse_info(payload, where);
+    }
+    if (structure >= meshes_.size()) return input_error(where + ": section before the structure's INFO");
+    ProgressiveMesh& m = *meshes_[structure];
+    if (tag == kTagBase) {
+        if (m.base_ready_) return input_error(where + ": second BASE section");
+        return parse_base(m, payload, where);
+    }
+    if (!m.base_ready_) return input_error(where + ": SPLT before BASE");
+    return parse_splits(m, payload, where);
+}
+
+Status BpmStream::parse_info(std::span<const uint8_t> payload, const std::string& where) {
+    ByteReader r(payload);
+    auto m = std::make_unique<ProgressiveMesh>();
+    uint16_t name_length = 0;
+    std::span<const uint8_t> name;
+    float f[9];
+    uint32_t flags, bv, bf, splits, faces, chunk;
+    bool ok = r.u16(name_length) && r.bytes(name_length, name);
+    for (float& x : f) ok = ok && r.f32(x);
+    ok = ok && r.u32(flags) && r.u32(bv) && r.u32(bf) && r.u32(splits) && r.u32(faces) && r.u32(chunk);
+    if (!ok) return input_error(where + ": INFO payload too short");
+    for (float x : f)
+        if (!std::isfinite(x)) return input_error(where + ": non-finite colour or bounds");
+    const uint64_t vertices = uint64_t(bv) + splits;
+    if (bv == 0 || bf == 0 || faces < bf || vertices > (1u << 28) || faces > (1u << 28) || chunk == 0 ||
+        uint64_t(faces - bf) > 3ull * splits)
+        return input_error(where + ": inconsistent counts");
+    m->name_.assign(name.begin(), name.end());
+    m->color_ = Vec3f(f[0], f[1], f[2]);
+    m->bbox_min_ = Vec3f(f[3], f[4], f[5]);
+    m->bbox_max_ = Vec3f(f[6], f[7], f[8]);
+    m->has_normals_ = flags & 1;
+    m->base_vertices_ = bv;
+    m->base_faces_ = bf;
+    m->split_count_ = splits;
+    m->face_count_ = faces;
+    m->chunk_splits_ = chunk;
+    m->positions_.assign(vertices, Vec3f(0.0f));
+    m->normals_.assign(vertices, Vec3f(0.0f, 0.0f, 1.0f));
+    m->morph_targets_.assign(vertices, Vec3f(0.0f));
+    m->parents_.assign(vertices, 0);
+    m->indices_.assign(size_t(faces) * 3, 0);
+    m->face_end_.assign(splits, 0);
+    m->split_error_.assign(splits, 0.0f);
+    m->patch_begin_.assign(size_t(splits) + 1, 0);
+    m->patch_corners_.clear();
+    m->qpos_.assign(vertices * 3, 0);
+    m->qoct_.assign(vertices * 2, 0);
+    m->replay_.reset(vertices, faces);
+    meshes_.push_back(std::move(m));
+    return ok_status();
+}
+
+Status BpmStream::parse_base(ProgressiveMesh& m, std::span<const uint8_t> payload, const std::string& where) {
+    ByteReader r(payload);
+    uint32_t vbytes = 0, ibytes = 0;
+    std::span<const uint8_t> vbuf, ibuf;
+    if (!r.u32(vbytes) || !r.bytes(vbytes, vbuf) || !r.u32(ibytes) || !r.bytes(ibytes, ibuf) || r.left() != 0)
+        return input_error(where + ": BASE payload sizes do not add up");
+    std::vector<BaseVertex> verts(m.base_vertices_);
+    if (meshopt_decodeVertexBuffer(verts.data(), verts.size(), sizeof(BaseVertex), vbuf.data(), vbuf.size()) != 0)
+        return input_error(where + ": vertex data does not decode");
+    decoded_indices_.resize(m.base_faces_ * 3);
+    if (meshopt_decodeIndexBuffer(decoded_indices_.data(), decoded_indices_.size(), 4, ibuf.data(), ibuf.size()) != 0)
+        return input_error(where + ": index data does not decode");
+    for (uint32_t v : decoded_indices_)
+        if (v >= m.base_vertices_) return input_error(where + ": base index " + std::to_string(v) + " out of range");
+    for (size_t v = 0; v < verts.size(); ++v) {
+        for (int k = 0; k < 3; ++k) {
+            m.qpos_[v * 3 + k] = verts[v].q[k];
+            m.positions_[v][k] = dequantize16(verts[v].q[k], m.bbox_min_[k], m.bbox_max_[k]);
+        }
+        m.qoct_[v * 2] = verts[v].oct[0];
+        m.qoct_[v * 2 + 1] = verts[v].oct[1];
+        if (m.has_normals_) {
+            float n[3];
+            oct_decode8(verts[v].oct, n);
+            m.normals_[v] = Vec3f(n[0], n[1], n[2]);
+        }
+        m.morph_targets_[v] = m.positions_[v];
+        m.parents_[v] = uint32_t(v);
+    }
+    std::copy(decoded_indices_.begin(), decoded_indices_.end(), m.indices_.begin());
+    m.replay_.add_faces(0, decoded_indices_);
+    m.decoded_faces_ = m.base_faces_;
+    m.base_ready_ = true;
+    m.dirty_vertices_.add(0, m.base_vertices_);
+    m.dirty_indices_.add(0, m.base_faces_ * 3);
+    if (m.split_count_ == 0) {
+        m.replay_ = SplitReplay{};
+        m.qpos_ = {};
+        m.qoct_ = {};
+    }
+    return ok_status();
+}
+
+Status BpmStream::parse_splits(ProgressiveMesh& m, std::span<const uint8_t> payload, const std::string& where) {
+    ByteReader r(payload);
+    uint32_t first = 0, count = 0, new_faces = 0, vbytes = 0, ibytes = 0, tbytes = 0;
+    std::span<const uint8_t> vbuf, ibuf, tbuf;
+    if (!r.u32(first) || !r.u32(count) || !r.u32(new_faces) || !r.u32(vbytes) || !r.bytes(vbytes, vbuf) ||
+        !r.u32(ibytes) || !r.bytes(ibytes, ibuf) || !r.u32(tbytes) || !r.bytes(tbytes, tbuf) || r.left() != 0)
+        return input_error(where + ": SPLT payload sizes do not add up");
+    if (first != m.decoded_splits_ || count == 0 || count > m.split_count_ - m.decoded_splits_ ||
+        new_faces > m.face_count_ - m.decoded_faces_)
+        return input_error(where + ": split range " + std::to_string(first) + "+" + std::to_string(count) +
+                           " does not follow split " + std::to_string(m.decoded_splits_));
+    std::vector<SplitVertex> recs(count);
+    if (meshopt_decodeVertexBuffer(recs.data(), count, sizeof(SplitVertex), vbuf.data(), vbuf.size()) != 0)
+        return input_error(where + ": split records do not decode");
+    decoded_indices_.resize(size_t(new_faces) * 3);
+    if (meshopt_decodeIndexBuffer(decoded_indices_.data(), decoded_indices_.size(), 4, ibuf.data(), ibuf.size()) != 0)
+        return input_error(where + ": split faces do not decode");
+    ByteReader topo(tbuf);
+    size_t face_cursor = 0;  // into decoded_indices_ (faces)
+    float previous_error = first == 0 ? INFINITY : m.split_error_[first - 1];
+    for (uint32_t i = 0; i < count; ++i) {
+        const size_t j = first + i;
+        const uint32_t child = uint32_t(m.base_vertices_ + j);
+        const SplitVertex& rec = recs[i];
+        const std::string at = where + ": split " + std::to_string(j);
+        if (rec.parent_delta == 0 || rec.parent_delta > child) return input_error(at + ": parent out of range");
+        const uint32_t parent = child - rec.parent_delta;
+        if (!(rec.error >= 0.0f) || rec.error > previous_error) return input_error(at + ": error not monotonic");
+        previous_error = rec.error;
+        uint64_t faces = 0, mask = 0;
+        if (!topo.varint(faces) || !topo.varint(mask) || faces == 0 || faces > 3 || face_cursor + faces > new_faces)
+            return input_error(at + ": topology record malformed");
+        // Index patches first (on the level before the split), then the new faces.
+        if (!m.replay_.apply_mask(parent, child, mask, scratch_, moved_))
+            return input_error(at + ": patch mask names a missing corner");
+        std::span<const uint32_t> fi(decoded_indices_.data() + face_cursor * 3, faces * 3);
+        for (uint32_t v : fi)
+            if (v > child) return input_error(at + ": face index " + std::to_string(v) + " out of range");
+        m.replay_.add_faces(m.decoded_faces_, fi);
+        std::copy(fi.begin(), fi.end(), m.indices_.begin() + ptrdiff_t(m.decoded_faces_ * 3));
+        m.dirty_indices_.add(m.decoded_faces_ * 3, (m.decoded_faces_ + faces) * 3);
+        m.decoded_faces_ += faces;
+        face_cursor += faces;
+        m.face_end_[j] = uint32_t(m.decoded_faces_);
+        m.split_error_[j] = rec.error;
+        m.patch_corners_.insert(m.patch_corners_.end(), moved_.begin(), moved_.end());
+        m.patch_begin_[j + 1] = uint32_t(m.patch_corners_.size());
+        // The child's vertex data, coded against its parent.
+        for (int k = 0; k < 3; ++k) {
+            uint16_t q = unzigzag16(rec.dq[k], m.qpos_[parent * 3 + k]);
+            m.qpos_[size_t(child) * 3 + k] = q;
+            m.positions_[child][k] = dequantize16(q, m.bbox_min_[k], m.bbox_max_[k]);
+        }
+        for (int k = 0; k < 2; ++k) m.qoct_[size_t(child) * 2 + k] = unzigzag8(rec.doct[k], m.qoct_[parent * 2 + k]);
+        if (m.has_normals_) {
+            float n[3];
+            oct_decode8(&m.qoct_[size_t(child) * 2], n);
+            m.normals_[child] = Vec3f(n[0], n[1], n[2]);
+        }
+        m.parents_[child] = parent;
+        m.morph_targets_[child] = m.positions_[parent];
+        m.dirty_vertices_.add(child, child + 1);
+    }
+    if (face_cursor != new_faces || topo.left() != 0)
+        return input_error(where + ": split face count does not match its records");
+    m.decoded_splits_ += count;
+    if (m.decoded_splits_ == m.split_count_) {
+        if (m.decoded_faces_ != m.face_count_) return input_error(where + ": face count does not match INFO");
+        m.replay_ = SplitReplay{};
+        m.qpos_ = {};
+        m.qoct_ = {};
+    }
+    return ok_status();
+}
+
+Result<std::vector<std::unique_ptr<ProgressiveMesh>>> read_bpm_bytes(std::span<const uint8_t> bytes,
+                                                                     const std::string& source_name) {
+    BpmStream stream(source_name);
+    Status st = stream.feed(bytes);
+    if (!st) return st.error();
+    st = stream.finish();
+    if (!st) return st.error();
+    std::vector<std::unique_ptr<ProgressiveMesh>> out;
+    for (size_t i = 0; i < stream.structure_count(); ++i) {
+        auto m = std::make_unique<ProgressiveMesh>(std::move(stream.structure(i)));
+        out.push_back(std::move(m));
+    }
+    return out;
+}
+
+Result<std::vector<std::unique_ptr<ProgressiveMesh>>> read_bpm(const std::string& path) {
+    auto data = read_file(path);
+    if (!data) return data.error();
+    return read_bpm_bytes({reinterpret_cast<const uint8_t*>(data->data()), data->size()}, path);
+}
+
+}  // namespace body::pm

@@ -1,0 +1,168 @@
+#pragma once
+// Progressive meshes at run time: the `.bpm` reader and the ProgressiveMesh the
+// kiosk draws. Format: shared/pm/FORMAT.md. Background: thesis section 3.3.
+//
+// A level is "k vertex splits applied on top of the base mesh". At level k the
+// mesh is exactly
+//   vertices  positions()[0 .. vertex_count())     (a prefix, never rewritten)
+//   triangles indices()[0 .. 3 * triangle_count())  (a prefix, three per triangle,
+//                                                    counter-clockwise from outside)
+// and moving between levels only rewrites a few entries of indices() (the index
+// patches of each split) and changes the two counts. So the renderer can size its
+// GL buffers once at max_vertex_count()/max_triangle_count(), upload what
+// dirty_vertices()/dirty_indices() say after each change, and draw the prefixes.
+//
+// Units are object space (millimetres for anatomy). Positions are dequantized
+// from 16 bits per axis in the structure's bounding box, so they differ from the
+// builder's input by at most quantization_bound() (half a step per axis).
+//
+// Threading: none inside; one ProgressiveMesh per thread at a time.
+// Allocation: arrays are sized when a structure's INFO section arrives; feeding
+// chunks decodes into them; refine_to/coarsen_to never allocate.
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "shared/error.h"
+#include "shared/geometry.h"
+#include "shared/pm/bpm_format.h"
+
+namespace body::pm {
+
+// Half-open range [begin, end) of array elements; empty when begin >= end.
+struct DirtyRange {
+    size_t begin = 0, end = 0;
+    bool empty() const { return begin >= end; }
+    void add(size_t b, size_t e) {
+        if (b >= e) return;
+        if (empty()) {
+            begin = b;
+            end = e;
+        } else {
+            begin = b < begin ? b : begin;
+            end = e > end ? e : end;
+        }
+    }
+};
+
+class ProgressiveMesh {
+public:
+    // --- what the file says about the structure
+    const std::string& name() const { return name_; }
+    Vec3f color() const { return color_; }
+    Vec3f bounds_min() const { return bbox_min_; }
+    Vec3f bounds_max() const { return bbox_max_; }
+    bool has_normals() const { return has_normals_; }
+    // Largest distance between a stored and a dequantized position (object units).
+    float quantization_bound() const;
+
+    // --- levels. Level k = k splits applied; 0 is the base mesh.
+    size_t max_level() const { return split_count_; }           // all splits of the complete file
+    size_t available_level() const { return decoded_splits_; }  // splits decoded so far (streaming)
+    bool base_ready() const { return base_ready_; }             // false until the BASE chunk arrived
+    size_t level() const { return level_; }
+    size_t base_vertex_count() const { return base_vertices_; }
+    size_t base_triangle_count() const { return base_faces_; }
+    size_t max_vertex_count() const { return base_vertices_ + split_count_; }
+    size_t max_triangle_count() const { return face_count_; }
+    size_t vertex_count() const { return base_vertices_ + level_; }
+    size_t triangle_count() const { return triangles_at(level_); }
+    size_t triangles_at(size_t level) const { return level == 0 ? base_faces_ : face_end_[level - 1]; }
+    // Object-space error of level k: an estimate of the symmetric Hausdorff distance
+    // to the full mesh; non-increasing in k, 0 at max_level().
+    float error_at(size_t level) const { return level < split_count_ ? split_error_[level] : 0.0f; }
+
+    // Level selection, limited to available_level().
+    size_t level_for_triangles(size_t triangles) const;  // the finest level with at most that many (>= 0)
+    size_t level_for_error(float error) const;           // the coarsest level whose error <= error
+
+    // Moves to a level (clamped to [0, available_level()]); cost proportional to
+    // the number of splits crossed and their patches. Both return the new level.
+    size_t refine_to(size_t level);
+    size_t coarsen_to(size_t level);
+    size_t set_level(size_t level) { return level >= level_ ? refine_to(level) : coarsen_to(level); }
+
+    // --- arrays, sized max_vertex_count() / 3 * max_triangle_count(); entries past
+    // the current prefix are valid once decoded but are not part of this level.
+    std::span<const Vec3f> positions() const { return positions_; }
+    std::span<const Vec3f> normals() const { return normals_; }  // unit; (0,0,1) when the file has none
+    // Geomorph source: the position of each vertex's parent (the vertex it splits
+    // from; itself for base vertices). Draw mix(morph_targets, positions, t) for
+    // the vertices added since the previous level, t going 0 -> 1.
+    std::span<const Vec3f> morph_targets() const { return morph_targets_; }
+    std::span<const uint32_t> parents() const { return parents_; }
+    std::span<const uint32_t> indices() const { return indices_; }
+
+    // Elements changed since clear_dirty(): vertex data newly decoded, index
+    // entries newly decoded or patched by refine/coarsen.
+    DirtyRange dirty_vertices() const { return dirty_vertices_; }
+    DirtyRange dirty_indices() const { return dirty_indices_; }
+    void clear_dirty() { dirty_vertices_ = dirty_indices_ = DirtyRange{}; }
+
+private:
+    friend class BpmStream;
+    std::string name_;
+    Vec3f color_{0.8f}, bbox_min_{0.0f}, bbox_max_{0.0f};
+    bool has_normals_ = false, base_ready_ = false;
+    size_t base_vertices_ = 0, base_faces_ = 0, face_count_ = 0, split_count_ = 0, chunk_splits_ = 0;
+    size_t decoded_splits_ = 0, decoded_faces_ = 0, level_ = 0;
+
+    std::vector<Vec3f> positions_, normals_, morph_targets_;
+    std::vector<uint32_t> parents_, indices_;
+    std::vector<uint32_t> face_end_;       // per split: triangle count after it
+    std::vector<float> split_error_;       // per split: error of the level before it
+    std::vector<uint32_t> patch_begin_;    // per split + 1: range into patch_corners_
+    std::vector<uint32_t> patch_corners_;  // index entries set to the child on refine, parent on coarsen
+    DirtyRange dirty_vertices_, dirty_indices_;
+    // Decoding state, released when the structure is complete.
+    SplitReplay replay_;
+    std::vector<uint16_t> qpos_;  // 3 per vertex: quantized positions (children are coded against parents)
+    std::vector<uint8_t> qoct_;   // 2 per vertex: octahedral normals
+};
+
+// Reads a .bpm file from byte chunks as they arrive (network, disk, a test).
+// Every complete section is decoded at once; a structure is drawable as soon as
+// its BASE section is in, and refines up to its last complete SPLT chunk.
+class BpmStream {
+public:
+    explicit BpmStream(std::string source_name = "<stream>");
+    // Appends bytes. Returns an error (and stays failed) on a corrupt header or
+    // section, naming the section, the structure and the byte offset in the file.
+    Status feed(std::span<const uint8_t> bytes);
+    // True when the END section arrived and was valid.
+    bool complete() const { return complete_; }
+    // Structures whose INFO has arrived (their declared count is structure_count_declared()).
+    size_t structure_count() const { return meshes_.size(); }
+    size_t structure_count_declared() const { return declared_structures_; }
+    ProgressiveMesh& structure(size_t i) { return *meshes_[i]; }
+    const ProgressiveMesh& structure(size_t i) const { return *meshes_[i]; }
+    size_t bytes_consumed() const { return consumed_; }
+    // Error for a stream that ended early: names the section being received and its offset.
+    Status finish() const;
+
+private:
+    Status parse_section(uint32_t tag, uint32_t structure, std::span<const uint8_t> payload, size_t offset);
+    Status parse_info(std::span<const uint8_t> payload, const std::string& where);
+    Status parse_base(ProgressiveMesh& m, std::span<const uint8_t> payload, const std::string& where);
+    Status parse_splits(ProgressiveMesh& m, std::span<const uint8_t> payload, const std::string& where);
+
+    std::string source_;
+    std::vector<uint8_t> pending_;  // bytes of the section being received
+    size_t consumed_ = 0;           // file offset of pending_[0]
+    bool header_done_ = false, complete_ = false, failed_ = false;
+    std::string failure_;
+    size_t declared_structures_ = 0;
+    std::vector<std::unique_ptr<ProgressiveMesh>> meshes_;
+    std::vector<uint32_t> scratch_, moved_, decoded_indices_;
+};
+
+// Reads a whole file; errors name the path, section and byte offset.
+Result<std::vector<std::unique_ptr<ProgressiveMesh>>> read_bpm(const std::string& path);
+// Reads from memory (the same checks as a file).
+Result<std::vector<std::unique_ptr<ProgressiveMesh>>> read_bpm_bytes(std::span<const uint8_t> bytes,
+                                                                     const std::string& source_name);
+
+}  // namespace body::pm

@@ -1,0 +1,102 @@
+// Progressive meshes on the Stanford bunny (Debian glmark2-data) and the bodygen
+// lod/extract/info commands end to end. Label cli: the bunny build is too slow
+// for the qemu-aarch64 unit run.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+
+#include "builder/lod/hausdorff.h"
+#include "builder/lod/simplify.h"
+#include "shared/obj_io.h"
+#include "shared/pm/progressive_mesh.h"
+#include "tests/cli/cli_test.h"
+#include "tests/lod/lod_test_util.h"
+
+namespace body {
+namespace {
+
+constexpr const char* kBunny = "/usr/share/glmark2/models/bunny.obj";
+
+class LodBunny : public ::testing::Test {
+protected:
+    void SetUp() override {
+        if (!std::filesystem::exists(kBunny)) GTEST_SKIP() << "needs " << kBunny << " (Debian package glmark2-data)";
+        auto m = read_obj_merged(kBunny);
+        ASSERT_TRUE(m.ok()) << m.error().message;
+        bunny_ = std::move(*m);
+    }
+    Mesh bunny_;
+};
+
+TEST_F(LodBunny, EveryLevelIsAClosedManifoldWithinItsStoredError) {
+    const MeshTopology input = analyze_topology(bunny_.positions, bunny_.indices);
+    ASSERT_TRUE(input.closed_manifold()) << "the packaged bunny is expected to be closed";
+    auto bytes = lod::encode_bpm(std::vector<Mesh>{bunny_});
+    ASSERT_TRUE(bytes.ok()) << bytes.error().message;
+    auto pms = pm::read_bpm_bytes(*bytes, "bunny.bpm");
+    ASSERT_TRUE(pms.ok()) << pms.error().message;
+    pm::ProgressiveMesh& m = *(*pms)[0];
+    EXPECT_EQ(m.max_triangle_count(), bunny_.triangle_count());
+    EXPECT_LE(m.base_triangle_count(), bunny_.triangle_count() / 100);
+    std::printf("bunny: %zu bytes, %zu splits, %.2f bytes/split, base %zu triangles\n", bytes->size(), m.max_level(),
+                double(bytes->size()) / double(m.max_level()), m.base_triangle_count());
+    // The scan itself has a few back-to-back neighbours; no level may be worse.
+    const double input_fold = std::min(-0.95, test::min_adjacent_normal_cosine(bunny_.positions, bunny_.indices));
+    int levels = 0;
+    double worst_ratio = 0.0;
+    for (int i = 0; i < 22; ++i) {
+        const double r = std::pow(2.0, -7.0 + 7.0 * i / 21.0);
+        m.set_level(m.level_for_triangles(size_t(r * double(m.max_triangle_count()))));
+        std::vector<Vec3> pos;
+        for (size_t v = 0; v < m.vertex_count(); ++v) pos.push_back(Vec3(m.positions()[v]));
+        std::vector<uint32_t> idx(m.indices().begin(), m.indices().begin() + ptrdiff_t(m.triangle_count() * 3));
+        const MeshTopology t = analyze_topology(pos, idx);
+        EXPECT_TRUE(t.closed_manifold()) << "level " << m.level();
+        EXPECT_EQ(t.genus(), input.genus());
+        EXPECT_GE(test::min_adjacent_normal_cosine(pos, idx), input_fold) << "fold at level " << m.level();
+        if (i % 4 == 0) {
+            const double measured = lod::symmetric_hausdorff(pos, idx, bunny_.positions, bunny_.indices);
+            const double stored = m.error_at(m.level()) + m.quantization_bound();
+            worst_ratio = std::max(worst_ratio, measured / stored);
+            EXPECT_LE(measured, stored) << "level " << m.level() << " triangles " << m.triangle_count();
+        }
+        ++levels;
+    }
+    std::printf("bunny: worst measured/stored Hausdorff %.3f\n", worst_ratio);
+    EXPECT_GE(levels, 20);
+}
+
+TEST_F(LodBunny, CommandsRoundTrip) {
+    const std::string dir = std::string(BODY_BINARY_DIR) + "/tests/lod";
+    const std::string bpm = dir + "/bunny_cli.bpm", obj = dir + "/bunny_cli_10.obj";
+    auto r = test::run(test::bin("bodygen") + " lod " + kBunny + " -o " + bpm + " --min-triangles 500");
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    r = test::run(test::bin("bodygen") + " info " + bpm);
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find("69666 triangles"), std::string::npos) << r.output;
+    r = test::run(test::bin("bodygen") + " extract " + bpm + " --ratio 0.1 -o " + obj);
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    auto level = read_obj_merged(obj);
+    ASSERT_TRUE(level.ok()) << level.error().message;
+    EXPECT_LE(level->triangle_count(), 6967u);
+    EXPECT_GE(level->triangle_count(), 6900u);
+    EXPECT_TRUE(analyze_topology(level->positions, level->indices).closed_manifold());
+    r = test::run(test::bin("bodygen") + " extract " + bpm + " --triangles 10 -o " + obj);
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    auto base = read_obj_merged(obj);
+    ASSERT_TRUE(base.ok());
+    EXPECT_GE(base->triangle_count(), 500u);  // --min-triangles kept
+    // Bad usage and bad files exit 2 with a message.
+    r = test::run(test::bin("bodygen") + " extract " + bpm + " -o " + obj);
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    const std::string cut = dir + "/bunny_cut.bpm";
+    std::filesystem::copy_file(bpm, cut, std::filesystem::copy_options::overwrite_existing);
+    std::filesystem::resize_file(cut, std::filesystem::file_size(bpm) / 2);
+    r = test::run(test::bin("bodygen") + " info " + cut);
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find("truncated"), std::string::npos) << r.output;
+}
+
+}  // namespace
+}  // namespace body
