@@ -1,0 +1,39 @@
+#pragma once
+// Caps: closing a structure where it ends (nothing linked above or below).
+//
+// A cap covers a planar region given as loops on one slice: loops[0] is the
+// outer boundary, the others are holes inside it. Loops are closed (last
+// point not repeated), any orientation, simple and pairwise disjoint.
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "shared/error.h"
+#include "shared/geometry.h"
+
+namespace body {
+
+enum class CapStyle {
+    Flat,  // the region triangulated in its plane
+    Dome,  // the region lifted to a dome about half a slice spacing high
+    None,  // left open
+};
+
+const char* cap_style_name(CapStyle style);
+
+// Triangulates a polygon with holes (ear clipping after bridging each hole to
+// the outer boundary). Triangle ids index the loops concatenated in order
+// (loops[0] first). Triangles are counter-clockwise seen from +z. No new
+// vertices. Fails when the region cannot be triangulated without degenerate
+// triangles (e.g. zero area).
+Status triangulate_polygon_with_holes(std::span<const std::span<const Vec2>> loops, std::vector<uint32_t>& triangles);
+
+// Builds a cap over a region at height `z`. `ids[k][i]` is the mesh vertex of
+// loops[k][i]. Triangles face +z when `up`, -z otherwise. A dome adds vertices
+// to `positions` at most `dome_height` away from the plane, on the side the
+// cap faces. Triangles (global ids) are appended to `triangles`.
+Status build_cap(std::span<const std::span<const Vec2>> loops, std::span<const std::span<const uint32_t>> ids, double z,
+                 bool up, CapStyle style, double dome_height, std::vector<Vec3>& positions,
+                 std::vector<uint32_t>& triangles);
+
+}  // namespace body

@@ -1,0 +1,237 @@
+// Flat caps: ear clipping of a polygon with holes, each hole first bridged to
+// the outer boundary through a mutually visible vertex pair.
+//
+// References:
+//   D. Eberly, "Triangulation by Ear Clipping", Geometric Tools, 2002-2015
+//     (hole bridging: rightmost hole vertex, ray cast, reflex-vertex visibility).
+//   G. H. Meisters, "Polygons have ears", Amer. Math. Monthly 82, 1975.
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "builder/caps/caps.h"
+
+namespace body {
+namespace {
+
+struct Vert {
+    Vec2 p;
+    uint32_t id;  // index into the concatenated loops
+};
+
+double cross3(const Vec2& a, const Vec2& b, const Vec2& c) {
+    return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+}
+
+bool in_triangle(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& p) {
+    return cross3(a, b, p) >= 0 && cross3(b, c, p) >= 0 && cross3(c, a, p) >= 0;
+}
+
+// Loop k as vertices in the wanted orientation (ccw for the outer boundary, cw for holes).
+std::vector<Vert> oriented_loop(std::span<const Vec2> loop, uint32_t first_id, bool ccw) {
+    std::vector<Vert> out(loop.size());
+    for (size_t i = 0; i < loop.size(); ++i) out[i] = {loop[i], first_id + uint32_t(i)};
+    if ((signed_area2(loop.data(), loop.size()) > 0) != ccw) std::reverse(out.begin(), out.end());
+    return out;
+}
+
+// Joins `hole` (clockwise) into `outer` (counter-clockwise) through a visible pair.
+void bridge_hole(std::vector<Vert>& outer, const std::vector<Vert>& hole) {
+    size_t mi = 0;
+    for (size_t i = 1; i < hole.size(); ++i)
+        if (hole[i].p.x > hole[mi].p.x) mi = i;
+    const Vec2 M = hole[mi].p;
+    // Closest edge hit by the ray from M towards +x.
+    double best_x = 1e300;
+    size_t best_edge = SIZE_MAX;
+    const size_t n = outer.size();
+    for (size_t i = 0; i < n; ++i) {
+        const Vec2 a = outer[i].p, b = outer[(i + 1) % n].p;
+        if ((a.y > M.y) == (b.y > M.y) && a.y != M.y && b.y != M.y) continue;
+        if (a.y == b.y) {
+            if (a.y != M.y) continue;
+            const double x = std::min(a.x, b.x);
+            if (x >= M.x && x < best_x) best_x = x, best_edge = i;
+            continue;
+        }
+        const double t = (M.y - a.y) / (b.y - a.y);
+        if (t < 0 || t > 1) continue;
+        const double x = a.x + t * (b.x - a.x);
+        if (x >= M.x && x < best_x) best_x = x, best_edge = i;
+    }
+    size_t vi = 0;
+    if (best_edge == SIZE_MAX) {
+        // Should not happen for a hole inside the outer loop; fall back to the closest vertex.
+        double best = 1e300;
+        for (size_t i = 0; i < n; ++i) {
+            const double d = glm::length(outer[i].p - M);
+            if (d < best) best = d, vi = i;
+        }
+    } else {
+        const Vec2 I(best_x, M.y);
+        const size_t a = best_edge, b = (best_edge + 1) % n;
+        vi = outer[a].p.x > outer[b].p.x ? a : b;
+        if (outer[a].p == I) vi = a;
+        if (outer[b].p == I) vi = b;
+        if (outer[vi].p != I) {
+            // Reflex vertices inside triangle (M, I, P) may block the view; take the one closest in angle.
+            const Vec2 P = outer[vi].p;
+            double best_angle = 1e300, best_dist = 1e300;
+            for (size_t i = 0; i < n; ++i) {
+                const Vec2 prev = outer[(i + n - 1) % n].p, cur = outer[i].p, next = outer[(i + 1) % n].p;
+                if (cross3(prev, cur, next) > 0 || i == vi) continue;  // convex vertices cannot block
+                const bool inside =
+                    cur.x >= M.x && (cross3(M, I, P) >= 0 ? in_triangle(M, I, P, cur) : in_triangle(M, P, I, cur));
+                if (!inside) continue;
+                const Vec2 d = cur - M;
+                const double angle = std::atan2(std::abs(d.y), d.x), dist = glm::length(d);
+                if (angle < best_angle || (angle == best_angle && dist < best_dist))
+                    best_angle = angle, best_dist = dist, vi = i;
+            }
+        }
+    }
+    std::vector<Vert> merged;
+    merged.reserve(n + hole.size() + 2);
+    merged.insert(merged.end(), outer.begin(), outer.begin() + long(vi) + 1);
+    for (size_t k = 0; k <= hole.size(); ++k) merged.push_back(hole[(mi + k) % hole.size()]);
+    merged.push_back(outer[vi]);
+    merged.insert(merged.end(), outer.begin() + long(vi) + 1, outer.end());
+    outer = std::move(merged);
+}
+
+bool is_ear(const std::vector<Vert>& poly, const std::vector<uint32_t>& prev, const std::vector<uint32_t>& next,
+            uint32_t i, uint32_t count) {
+    const Vec2 a = poly[prev[i]].p, b = poly[i].p, c = poly[next[i]].p;
+    if (cross3(a, b, c) <= 0) return false;
+    uint32_t k = next[next[i]];
+    for (uint32_t s = 0; s + 3 < count; ++s, k = next[k]) {
+        const Vec2 p = poly[k].p;
+        if (p == a || p == b || p == c) continue;
+        if (in_triangle(a, b, c, p)) return false;
+    }
+    return true;
+}
+
+}  // namespace
+
+const char* cap_style_name(CapStyle style) {
+    switch (style) {
+        case CapStyle::Flat: return "flat";
+        case CapStyle::Dome: return "dome";
+        case CapStyle::None: return "none";
+    }
+    return "?";
+}
+
+Status triangulate_polygon_with_holes(std::span<const std::span<const Vec2>> loops, std::vector<uint32_t>& triangles) {
+    if (loops.empty() || loops[0].size() < 3) return input_error("cap: outer loop has fewer than 3 points");
+    uint32_t first = uint32_t(loops[0].size());
+    std::vector<Vert> poly = oriented_loop(loops[0], 0, true);
+    std::vector<std::vector<Vert>> holes;
+    for (size_t k = 1; k < loops.size(); ++k) {
+        holes.push_back(oriented_loop(loops[k], first, false));
+        first += uint32_t(loops[k].size());
+    }
+    std::sort(holes.begin(), holes.end(), [](const std::vector<Vert>& a, const std::vector<Vert>& b) {
+        auto mx = [](const std::vector<Vert>& h) {
+            double x = -1e300;
+            for (const Vert& v : h) x = std::max(x, v.p.x);
+            return x;
+        };
+        return mx(a) > mx(b);
+    });
+    for (const auto& h : holes) bridge_hole(poly, h);
+
+    const uint32_t n = uint32_t(poly.size());
+    std::vector<uint32_t> prev(n), next(n);
+    for (uint32_t i = 0; i < n; ++i) prev[i] = (i + n - 1) % n, next[i] = (i + 1) % n;
+    uint32_t count = n, i = 0, misses = 0;
+    while (count > 3) {
+        if (is_ear(poly, prev, next, i, count)) {
+            triangles.insert(triangles.end(), {poly[prev[i]].id, poly[i].id, poly[next[i]].id});
+            next[prev[i]] = next[i];
+            prev[next[i]] = prev[i];
+            --count;
+            i = prev[i];
+            misses = 0;
+            continue;
+        }
+        i = next[i];
+        if (++misses <= count) continue;
+        // No clean ear (numerical trouble): clip the most convex vertex.
+        uint32_t best = UINT32_MAX, k = i;
+        double best_cross = 0;
+        for (uint32_t s = 0; s < count; ++s, k = next[k]) {
+            const double c = cross3(poly[prev[k]].p, poly[k].p, poly[next[k]].p);
+            if (c > best_cross) best_cross = c, best = k;
+        }
+        if (best == UINT32_MAX) return input_error("cap: region has no convex vertex left (zero area?)");
+        triangles.insert(triangles.end(), {poly[prev[best]].id, poly[best].id, poly[next[best]].id});
+        next[prev[best]] = next[best];
+        prev[next[best]] = prev[best];
+        --count;
+        i = prev[best];
+        misses = 0;
+    }
+    if (cross3(poly[prev[i]].p, poly[i].p, poly[next[i]].p) <= 0)
+        return input_error("cap: last triangle is degenerate");
+    triangles.insert(triangles.end(), {poly[prev[i]].id, poly[i].id, poly[next[i]].id});
+    return ok_status();
+}
+
+Status build_cap(std::span<const std::span<const Vec2>> loops, std::span<const std::span<const uint32_t>> ids, double z,
+                 bool up, CapStyle style, double dome_height, std::vector<Vec3>& positions,
+                 std::vector<uint32_t>& triangles) {
+    if (style == CapStyle::None) return ok_status();
+    std::vector<uint32_t> local;
+    auto status = triangulate_polygon_with_holes(loops, local);
+    if (!status) return status;
+    std::vector<uint32_t> global;  // concatenated ids
+    std::vector<Vec2> flat;        // concatenated points
+    for (size_t k = 0; k < loops.size(); ++k) {
+        global.insert(global.end(), ids[k].begin(), ids[k].end());
+        flat.insert(flat.end(), loops[k].begin(), loops[k].end());
+    }
+    auto emit = [&](uint32_t a, uint32_t b, uint32_t c) {
+        if (up)
+            triangles.insert(triangles.end(), {a, b, c});
+        else
+            triangles.insert(triangles.end(), {a, c, b});
+    };
+    if (style == CapStyle::Flat) {
+        for (size_t t = 0; t < local.size(); t += 3) emit(global[local[t]], global[local[t + 1]], global[local[t + 2]]);
+        return ok_status();
+    }
+    // Dome: every triangle gets its centroid lifted by a height that grows with the
+    // centroid's distance to the boundary (a height field over the flat cap, so it
+    // cannot fold onto itself).
+    std::vector<double> dist(local.size() / 3, 0.0);
+    double dmax = 0;
+    for (size_t t = 0; t < local.size(); t += 3) {
+        const Vec2 c = (flat[local[t]] + flat[local[t + 1]] + flat[local[t + 2]]) / 3.0;
+        double d = 1e300;
+        for (const auto& loop : loops) {
+            for (size_t i = 0; i < loop.size(); ++i) {
+                const Vec2 a = loop[i], b = loop[(i + 1) % loop.size()], ab = b - a;
+                const double l2 = glm::dot(ab, ab);
+                const double s = l2 > 0 ? std::clamp(glm::dot(c - a, ab) / l2, 0.0, 1.0) : 0.0;
+                d = std::min(d, glm::length(a + ab * s - c));
+            }
+        }
+        dist[t / 3] = d;
+        dmax = std::max(dmax, d);
+    }
+    for (size_t t = 0; t < local.size(); t += 3) {
+        const Vec2 c = (flat[local[t]] + flat[local[t + 1]] + flat[local[t + 2]]) / 3.0;
+        const double h = dmax > 0 ? dome_height * std::sqrt(dist[t / 3] / dmax) : 0.0;
+        const uint32_t apex = uint32_t(positions.size());
+        positions.emplace_back(c.x, c.y, z + (up ? h : -h));
+        const uint32_t a = global[local[t]], b = global[local[t + 1]], cc = global[local[t + 2]];
+        emit(a, b, apex);
+        emit(b, cc, apex);
+        emit(cc, a, apex);
+    }
+    return ok_status();
+}
+
+}  // namespace body

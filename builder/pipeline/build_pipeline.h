@@ -1,0 +1,57 @@
+#pragma once
+// The whole contour-stack -> mesh pipeline, one structure at a time:
+//   validate & repair (contours/validate.h) -> group unlabelled contours into
+//   structures -> per structure: nesting (solid/hole), correspondence between
+//   adjacent slices (correspondence/), bands (tiling/), branches (branching/),
+//   caps (caps/) -> one closed mesh per structure with its statistics.
+//
+// Guarantees for valid input with the default options (partition branching,
+// flat or dome caps): every mesh is closed, consistently oriented outward and
+// vertex-manifold; the mesh passes through every input contour at its slice.
+// `--branching overlap` (thesis method) and `--caps none` leave open or
+// overlapping surfaces by design.
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "builder/branching/branching.h"
+#include "builder/caps/caps.h"
+#include "builder/contours/contour_stack.h"
+#include "builder/correspondence/correspondence.h"
+#include "builder/tiling/tiling.h"
+#include "shared/error.h"
+#include "shared/mesh.h"
+
+namespace body {
+
+struct BuildOptions {
+    CapStyle caps = CapStyle::Flat;
+    TilingMethod tiling = TilingMethod::Optimal;
+    CorrespondenceMethod correspondence = CorrespondenceMethod::Overlap;  // measured more accurate, see tests
+    BranchingMethod branching = BranchingMethod::Partition;
+    // Called after each slice pair of each structure: (done, total) slice pairs.
+    std::function<void(size_t done, size_t total)> progress;
+    // Receives repair warnings (duplicate points removed, keyholes split, ...).
+    std::function<void(const std::string& message)> warning;
+};
+
+struct StructureMesh {
+    Mesh mesh;            // name and colour from the stack's structure (or an automatic one)
+    std::string id;       // structure id ("auto_N" for unlabelled groups)
+    size_t contours = 0;  // input contours in this structure
+    size_t triangles = 0;
+    double volume = 0.0;  // signed, positive for outward orientation (units^3)
+    double area = 0.0;    // units^2
+    long genus = 0;       // sum over components; meaningful when closed_manifold
+    size_t components = 0;
+    bool closed_manifold = false;
+    double seconds = 0.0;  // wall time spent on this structure
+};
+
+// Builds one mesh per structure that has contours. Errors name `source_path`,
+// the slice/contour indices of the input file and the reason (exit code 2 for
+// bad input, 1 for a failure of the builder itself).
+Result<std::vector<StructureMesh>> build_structures(const ContourStack& stack, const BuildOptions& options,
+                                                    const std::string& source_path);
+
+}  // namespace body

@@ -1,0 +1,111 @@
+// `bodygen build` end to end: a good stack gives a closed OBJ and stats; each
+// bad-input case exits 2 with one line naming file, place and reason, and
+// leaves no output file behind.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "shared/obj_io.h"
+#include "tests/cli/cli_test.h"
+
+namespace body::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+class BuildCli : public ::testing::Test {
+protected:
+    fs::path dir;
+    void SetUp() override {
+        dir = fs::temp_directory_path() /
+              ("bodygen_build_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" +
+               std::to_string(::getpid()));
+        fs::remove_all(dir);
+        fs::create_directories(dir);
+    }
+    void TearDown() override { fs::remove_all(dir); }
+    std::string write(const std::string& name, const std::string& text) {
+        const fs::path p = dir / name;
+        std::ofstream(p) << text;
+        return p.string();
+    }
+};
+
+std::string stack_with(const std::string& second_slice_contours) {
+    return R"({"format": "bodygen.contours", "version": 1, "units": "mm", "slices": [
+      {"z": 0, "contours": [{"points": [[0,0],[10,0],[10,10],[0,10]]}]},
+      {"z": 2, "contours": [)" +
+           second_slice_contours + "]}]}";
+}
+
+TEST_F(BuildCli, BuildsClosedMeshesAndPrintsStats) {
+    const std::string in = write("two.contours.json", R"({"format": "bodygen.contours", "version": 1,
+      "structures": [{"id": "a", "name": "Left", "color": [1, 0, 0]}],
+      "slices": [
+        {"z": 0, "contours": [{"points": [[0,0],[10,0],[10,10],[0,10]], "structure": "a"},
+                              {"points": [[20,0],[30,0],[30,10],[20,10]]}]},
+        {"z": 1.5, "contours": [{"points": [[1,1],[9,1],[9,9],[1,9]], "structure": "a"},
+                                {"points": [[21,0],[31,0],[31,10],[21,10]]}]},
+        {"z": 4, "contours": [{"points": [[2,2],[8,2],[8,8],[2,8]], "structure": "a"}]}]})");
+    const std::string out = (dir / "out.obj").string();
+    RunResult r = run(bin("bodygen") + " build " + in + " -o " + out + " --json --caps dome --tiling multires");
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find("\"closed_manifold\": true"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("Left"), std::string::npos);
+    EXPECT_NE(r.output.find("genus"), std::string::npos);
+    auto meshes = read_obj(out);
+    ASSERT_TRUE(meshes.ok()) << meshes.error().message;
+    ASSERT_EQ(meshes->size(), 2u);
+    for (const Mesh& m : *meshes) {
+        // read_obj welds by index, so the topology check sees the written mesh.
+        EXPECT_TRUE(analyze_topology(m.positions, m.indices).closed_manifold()) << m.name;
+        EXPECT_GT(mesh_volume(m.positions, m.indices), 0.0);
+    }
+    RunResult quiet = run(bin("bodygen") + " build " + in + " -o " + out + " --quiet");
+    EXPECT_EQ(quiet.exit_code, 0);
+    EXPECT_EQ(quiet.output, "");
+}
+
+struct BadCase {
+    const char* name;
+    std::string json;
+    const char* expected;  // after "<file>: "
+};
+
+TEST_F(BuildCli, BadInputExitsTwoNamesThePlaceAndWritesNothing) {
+    const BadCase cases[] = {
+        {"few_points", stack_with(R"({"points": [[0,0],[1,1],[0,0]]})"),
+         "slice 1 contour 0: fewer than 3 distinct points"},
+        {"zero_area", stack_with(R"({"points": [[0,0],[1,1],[2,2],[3,3]]})"), "slice 1 contour 0: zero area"},
+        {"self_intersecting", stack_with(R"({"points": [[0,0],[4,4],[4,0],[0,4]]})"),
+         "slice 1 contour 0: self-intersects at (2, 2)"},
+        {"crossing", stack_with(R"({"points": [[0,0],[4,0],[4,4],[0,4]]}, {"points": [[2,1],[6,1],[6,3],[2,3]]})"),
+         "slice 1 contour 0: crosses slice 1 contour 1 at (4, "},
+        {"bad_json", "{\"format\": \"bodygen.contours\", \"version\": 1, \"slices\": [", "byte "},
+    };
+    for (const BadCase& c : cases) {
+        SCOPED_TRACE(c.name);
+        const std::string in = write(std::string(c.name) + ".contours.json", c.json);
+        const std::string out = (dir / (std::string(c.name) + ".obj")).string();
+        RunResult r = run(bin("bodygen") + " build " + in + " -o " + out);
+        EXPECT_EQ(r.exit_code, 2) << r.output;
+        EXPECT_NE(r.output.find("bodygen: " + in + ": " + c.expected), std::string::npos) << r.output;
+        EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+        EXPECT_FALSE(fs::exists(out));
+        for (const auto& entry : fs::directory_iterator(dir))
+            EXPECT_EQ(entry.path().string().find(".obj"), std::string::npos) << entry.path();
+    }
+}
+
+TEST_F(BuildCli, BadOptionsExitTwo) {
+    const std::string in = write("ok.contours.json", stack_with(R"({"points": [[0,0],[10,0],[10,10],[0,10]]})"));
+    RunResult r = run(bin("bodygen") + " build " + in + " -o " + (dir / "x.obj").string() + " --caps round");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.output.find("--caps must be flat|dome|none"), std::string::npos) << r.output;
+    EXPECT_EQ(run(bin("bodygen") + " build " + in).exit_code, 2);  // no -o
+    EXPECT_FALSE(fs::exists(dir / "x.obj"));
+}
+
+}  // namespace
+}  // namespace body::test
