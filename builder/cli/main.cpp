@@ -17,6 +17,7 @@ int report(const Error& error) {
 
 int run_contours_check(const Args& args);  // cmd_check.cpp
 int run_slice(const Args& args);           // cmd_slice.cpp
+int run_pack(const Args& args);            // cmd_pack.cpp
 int run_build(const Args& args);           // cmd_build.cpp
 int run_contours(const Args& args);        // cmd_contours.cpp
 int run_lod(const Args& args);             // cmd_lod.cpp
@@ -33,6 +34,7 @@ using body::cli::Command;
 const Command kCommands[] = {
     {"check", "validate a contour stack and print its slices and contours", body::cli::run_contours_check},
     {"slice", "slice a closed OBJ mesh with parallel planes into a contour stack", body::cli::run_slice},
+    {"pack", "validate a kiosk scene.json and write a self-contained bundle", body::cli::run_pack},
     {"build", "contour stack -> one closed mesh per structure (OBJ)", body::cli::run_build},
     {"contours", "extract contours from a NIfTI label volume or DICOM RT-STRUCT", body::cli::run_contours},
     {"lod", "build progressive meshes (.bpm) from an OBJ file", body::cli::run_lod},

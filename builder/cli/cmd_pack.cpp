@@ -1,0 +1,153 @@
+// bodygen pack scene.json -o BUNDLE/: validates a kiosk scene (schema in
+// shared/scene/SCENE.md), copies its models into BUNDLE/models/ and writes
+// BUNDLE/scene.json with the paths rewritten. The bundle appears atomically: it
+// is built in a temporary sibling directory and renamed into place (a previous
+// bundle there is replaced only after the new one is complete).
+#include <unistd.h>
+
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+
+#include "builder/cli/commands.h"
+#include "shared/atomic_file.h"
+#include "shared/cli_args.h"
+#include "shared/obj_io.h"
+#include "shared/scene/scene.h"
+
+namespace body::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// Checks that `m.path` is a readable model; the message names the manifest and JSON path.
+Status check_model(const scene::Scene& s, size_t index, size_t& triangles) {
+    const scene::Model& m = s.models[index];
+    const std::string where = s.source + ": models[" + std::to_string(index) + "].file: '" + m.file + "'";
+    std::error_code ec;
+    if (!fs::is_regular_file(m.path, ec)) return input_error(where + ": no such file (" + m.path + ")");
+    const std::string ext = fs::path(m.path).extension().string();
+    if (ext == ".obj") {
+        auto meshes = read_obj(m.path);
+        if (!meshes) return input_error(where + ": " + meshes.error().message);
+        triangles = 0;
+        for (const Mesh& mesh : *meshes) triangles += mesh.triangle_count();
+        if (triangles == 0) return input_error(where + ": no triangles");
+        return ok_status();
+    }
+    if (ext == ".bpm") {
+        std::ifstream in(m.path, std::ios::binary);
+        char magic[4] = {};
+        if (!in.read(magic, sizeof magic)) return input_error(where + ": byte 0: shorter than the .bpm header");
+        static constexpr char kMagic[4] = {'B', 'P', 'M', '\0'};
+        if (std::memcmp(magic, kMagic, sizeof magic) != 0) return input_error(where + ": byte 0: not a .bpm file");
+        triangles = 0;
+        return ok_status();
+    }
+    return input_error(where + ": not a model (expected .bpm or .obj)");
+}
+
+// Replaces `bundle` by the complete directory `staged`; an existing bundle is
+// moved aside first and removed last.
+Status swap_into_place(const fs::path& staged, const fs::path& bundle) {
+    std::error_code ec;
+    fs::path old;
+    if (fs::exists(bundle, ec)) {
+        const bool replaceable =
+            fs::is_directory(bundle, ec) && (fs::is_empty(bundle, ec) || fs::exists(bundle / "scene.json", ec));
+        if (!replaceable) {
+            return input_error(bundle.string() + ": exists and is not a bundle (no scene.json); not replacing it");
+        }
+        old = bundle;
+        old += ".old-" + std::to_string(::getpid());
+        fs::rename(bundle, old, ec);
+        if (ec) return runtime_error(bundle.string() + ": cannot move the old bundle aside: " + ec.message());
+    }
+    fs::rename(staged, bundle, ec);
+    if (ec) {
+        if (!old.empty()) fs::rename(old, bundle, ec);
+        return runtime_error(bundle.string() + ": cannot rename the new bundle into place: " + ec.message());
+    }
+    if (!old.empty()) fs::remove_all(old, ec);
+    return ok_status();
+}
+
+}  // namespace
+
+int run_pack(const Args& argv) {
+    auto args = CliArgs::parse(argv, {"o", "output"}, {"help"});
+    if (!args) return report(args.error());
+    if (args->has("help")) {
+        std::printf(
+            "usage: bodygen pack SCENE.json -o BUNDLE/\n"
+            "validates the scene (shared/scene/SCENE.md), copies its models into BUNDLE/models/ and\n"
+            "writes BUNDLE/scene.json; the bundle replaces BUNDLE/ atomically. Exit 2 on a bad reference.\n");
+        return kExitOk;
+    }
+    const auto out = args->has("o") ? args->get("o") : args->get("output");
+    if (args->positional().size() != 1 || !out)
+        return report(input_error("pack: usage: bodygen pack SCENE.json -o BUNDLE/"));
+    const std::string scene_path = args->positional()[0];
+    auto scene = scene::read_scene(scene_path);
+    if (!scene) return report(scene.error());
+    auto text = read_file(scene_path);
+    if (!text) return report(text.error());
+    nlohmann::json manifest = nlohmann::json::parse(*text, nullptr, false);  // valid: read_scene parsed it
+
+    // Validate every model and choose unique names inside models/.
+    std::vector<std::string> names;
+    std::set<std::string> used;
+    size_t triangles_total = 0;
+    for (size_t i = 0; i < scene->models.size(); ++i) {
+        size_t triangles = 0;
+        Status st = check_model(*scene, i, triangles);
+        if (!st) return report(st.error());
+        triangles_total += triangles;
+        const fs::path p(scene->models[i].path);
+        std::string name = p.filename().string();
+        for (int k = 2; used.count(name); ++k)
+            name = p.stem().string() + "-" + std::to_string(k) + p.extension().string();
+        used.insert(name);
+        names.push_back(name);
+        manifest["models"][i]["file"] = "models/" + name;
+    }
+
+    // Stage next to the destination so the final rename stays on one file system.
+    fs::path bundle = fs::path(*out).lexically_normal();
+    if (bundle.filename().empty()) bundle = bundle.parent_path();
+    fs::path staged = bundle;
+    staged += ".tmp-" + std::to_string(::getpid());
+    std::error_code ec;
+    fs::remove_all(staged, ec);
+    fs::create_directories(staged / "models", ec);
+    if (ec) return report(runtime_error(staged.string() + ": cannot create the bundle directory: " + ec.message()));
+    auto fail = [&](const Error& e) {
+        std::error_code ignored;
+        fs::remove_all(staged, ignored);
+        return report(e);
+    };
+    for (size_t i = 0; i < names.size(); ++i) {
+        fs::copy_file(scene->models[i].path, staged / "models" / names[i], ec);
+        if (ec) return fail(runtime_error(scene->models[i].path + ": cannot copy into the bundle: " + ec.message()));
+    }
+    const std::string json_text = manifest.dump(2) + "\n";
+    Status written = write_file_atomically(
+        (staged / "scene.json").string(),
+        std::span<const uint8_t>(reinterpret_cast<const uint8_t*>(json_text.data()), json_text.size()));
+    if (!written) return fail(written.error());
+    // The staged manifest must read back as the same scene.
+    auto check = scene::read_scene((staged / "scene.json").string());
+    if (!check) return fail(runtime_error("pack: the written manifest does not parse: " + check.error().message));
+    Status swapped = swap_into_place(staged, bundle);
+    if (!swapped) return fail(swapped.error());
+    std::printf("%s: %zu models, %zu groups%s -> %s\n", scene_path.c_str(), scene->models.size(), scene->groups.size(),
+                triangles_total ? (", " + std::to_string(triangles_total) + " OBJ triangles").c_str() : "",
+                bundle.string().c_str());
+    return kExitOk;
+}
+
+}  // namespace body::cli

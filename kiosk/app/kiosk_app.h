@@ -1,0 +1,148 @@
+#pragma once
+// The kiosk's state and behaviour, without GL: scene, camera, selection, styles,
+// LOD, UI controls and the unattended-kiosk timers. Feed it input events and
+// call update() once per frame; the renderer reads the state back. Everything
+// is a function of the events and the times passed in, so replays are exact.
+//
+// Kiosk behaviour:
+//   - attract mode after `kiosk.idle_seconds` without input: the camera turns
+//     slowly (kAttractRadiansPerSecond) around its target;
+//   - after `kiosk.reset_seconds` without input: camera, styles, LOD, group
+//     visibility, moved objects, selection and language return to the manifest's;
+//   - drift(): a few pixels of slow Lissajous motion of the whole image against
+//     burn-in, always on;
+//   - no visitor-reachable exit: exit_requested() turns true only after the
+//     admin gesture (taps in a corner, from the manifest).
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "kiosk/app/camera.h"
+#include "kiosk/app/gestures.h"
+#include "kiosk/app/input.h"
+#include "kiosk/app/lod_controller.h"
+#include "kiosk/app/ui.h"
+#include "shared/scene/scene.h"
+
+namespace body::kiosk {
+
+// What the app knows about a loaded model (in scene space, after its transform).
+struct ModelInfo {
+    bool loaded = false;  // false: failed to load (skipped, never drawn or picked)
+    glm::vec3 center{0.0f};
+    float radius = 1.0f;
+    size_t full_triangles = 0;
+    size_t base_triangles = 0;
+};
+
+struct ModelState {
+    scene::Style style = scene::Style::Smooth;
+    std::optional<float> manual_lod;  // nullopt: automatic
+    glm::vec3 offset{0.0f};           // moved with the manipulation sphere
+    size_t triangles = 0;             // current level (triangle count)
+    Geomorph morph;
+};
+
+struct GroupState {
+    bool visible = true;
+    std::optional<scene::Style> style;  // last style set for the whole group
+};
+
+enum class KioskMode { Interactive, Attract };
+
+class KioskApp {
+public:
+    static constexpr float kAttractRadiansPerSecond = 0.15f;
+    static constexpr float kDriftPx = 4.0f;
+    static constexpr float kSphereFraction = 0.2f;  // manipulation sphere radius / model radius
+
+    // Returns the ray distance to a model's surface, or nullopt. The default tests
+    // the model's bounding sphere; the integration replaces it with triangles.
+    using Picker = std::function<std::optional<float>(int model, const Ray& ray)>;
+
+    KioskApp(scene::Scene scene, std::vector<ModelInfo> models, int width, int height);
+
+    void set_picker(Picker picker) { picker_ = std::move(picker); }
+    void set_viewport(int width, int height);
+    void handle(const InputEvent& event);
+    // Advances timers and the camera to `now`, chooses LOD levels for the next frame.
+    void update(double now);
+    // The frame just drawn (measured or simulated), for the automatic LOD.
+    void report_frame(double frame_ms, size_t triangles_drawn) { lod_.report_frame(frame_ms, triangles_drawn); }
+
+    // State read back by the renderer and tests.
+    const scene::Scene& scene() const { return scene_; }
+    const OrbitCamera& camera() const { return camera_; }
+    OrbitCamera& camera() { return camera_; }
+    int selected() const { return selected_; }
+    const ModelState& model(int i) const { return models_[static_cast<size_t>(i)]; }
+    const ModelInfo& info(int i) const { return info_[static_cast<size_t>(i)]; }
+    int model_count() const { return static_cast<int>(models_.size()); }
+    const GroupState& group(int i) const { return groups_[static_cast<size_t>(i)]; }
+    bool visible(int model) const;
+    glm::vec3 model_center(int model) const;  // including the offset
+    KioskMode mode() const { return mode_; }
+    const std::string& language() const { return language_; }
+    bool exit_requested() const { return exit_requested_; }
+    int resets() const { return resets_; }
+    bool lod_auto() const;  // the selection's LOD (or every model's) is automatic
+    bool isolated() const { return isolated_; }
+    glm::vec2 drift(double now) const;
+    const std::vector<Control>& controls() const { return controls_; }
+    UiState ui_state() const;
+    const LodController& lod_controller() const { return lod_; }
+    size_t triangles_planned() const;
+    double last_input() const { return last_input_; }
+
+    // Actions (also reachable through the controls).
+    void select(int model);  // -1 deselects
+    void focus(int model, double now);
+    void set_model_style(int model, scene::Style style);
+    void set_group_style(int group, scene::Style style);
+    void set_model_lod(int model, std::optional<float> ratio);
+    void set_group_lod(int group, std::optional<float> ratio);
+    void set_group_visible(int group, bool visible);
+    void toggle_isolate();
+    void next_language();
+    void home(double now);
+    void reset();  // everything back to the manifest's, immediately
+    // The model under pixel (x, y), or -1.
+    int pick(float x, float y) const;
+
+private:
+    void apply_gesture(const Gesture& g);
+    void activate(const Control& c, double now);
+    void admin_tap(float x, float y, double now);
+    void plan_lod(double now);
+    void relayout();
+    int group_index(int model) const;
+
+    scene::Scene scene_;
+    std::vector<ModelInfo> info_;
+    std::vector<ModelState> models_;
+    std::vector<GroupState> groups_;
+    OrbitCamera camera_;
+    CameraPose home_pose_;
+    GestureRecognizer gestures_;
+    LodController lod_;
+    Picker picker_;
+    std::vector<Control> controls_;
+    std::vector<std::pair<int, ControlId>> ui_touches_;  // touch id -> control it went down on
+    int ui_touch_group_ = -1;
+    int selected_ = -1;
+    bool dragging_object_ = false;
+    KioskMode mode_ = KioskMode::Interactive;
+    std::string language_;
+    bool isolated_ = false;
+    std::vector<bool> visible_before_isolate_;
+    bool exit_requested_ = false;
+    double now_ = 0.0;  // latest time seen
+    double last_input_ = 0.0;
+    double last_update_ = 0.0;
+    bool reset_done_ = false;
+    int resets_ = 0;
+    std::vector<double> admin_taps_;
+};
+
+}  // namespace body::kiosk

@@ -1,0 +1,138 @@
+// Finger-sized controls: layout, hit testing and the few UI words per language.
+#include "kiosk/app/ui.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+namespace body::kiosk {
+
+namespace {
+
+struct Word {
+    const char* key;
+    const char* en;
+    const char* de;
+    const char* fr;
+    const char* es;
+};
+
+constexpr Word kWords[] = {
+    {"home", "Home", "Start", "Accueil", "Inicio"},  {"style", "Style", "Stil", "Style", "Estilo"},
+    {"group", "Group", "Gruppe", "Groupe", "Grupo"}, {"lod", "Detail", "Detail", "Détail", "Detalle"},
+    {"auto", "Auto", "Auto", "Auto", "Auto"},        {"isolate", "Isolate", "Isolieren", "Isoler", "Aislar"},
+};
+
+float button_size(const UiState& s) {
+    return std::max(kMinButtonPx, std::floor(static_cast<float>(std::min(s.width, s.height)) / 11.0f));
+}
+
+}  // namespace
+
+std::string ui_text(const std::string& key, const std::string& language) {
+    for (const Word& w : kWords) {
+        if (key != w.key) continue;
+        if (language == "de") return w.de;
+        if (language == "fr") return w.fr;
+        if (language == "es") return w.es;
+        return w.en;
+    }
+    return key;
+}
+
+std::vector<Control> layout_controls(const UiState& s) {
+    const float b = button_size(s);
+    const float gap = std::floor(b * 0.15f);
+    const float wide = b * 2.2f;
+    // Rows of the right-hand column; when they do not fit above the group row,
+    // they flow into further columns to the left.
+    const float top = gap + s.drift_y;
+    const float bottom = static_cast<float>(s.height) - b - 2.0f * gap + s.drift_y;
+    const int rows_per_column = std::max(1, static_cast<int>((bottom - top + gap) / (b + gap)));
+    int row = 0;
+    float x = 0.0f, y = 0.0f;
+    std::vector<Control> out;
+    auto place = [&] {
+        const int column = row / rows_per_column;
+        x = static_cast<float>(s.width) - static_cast<float>(column + 1) * (wide + gap) + s.drift_x;
+        y = top + static_cast<float>(row % rows_per_column) * (b + gap);
+        ++row;
+    };
+    auto add = [&](ControlId id, std::string text, bool enabled, bool active, float w = 0.0f) {
+        Control c;
+        c.id = id;
+        c.rect = Rect{x, y, w > 0 ? w : wide, b};
+        c.text = std::move(text);
+        c.enabled = enabled;
+        c.active = active;
+        out.push_back(std::move(c));
+    };
+    const std::string& L = s.language;
+    place();
+    add(ControlId::Home, ui_text("home", L), true, false);
+    place();
+    std::string lang = s.language;
+    std::transform(lang.begin(), lang.end(), lang.begin(), [](char c) { return static_cast<char>(std::toupper(c)); });
+    add(ControlId::Language, lang, true, false);
+    place();
+    add(ControlId::Style, ui_text("style", L) + ": " + s.style_name, s.has_selection, false);
+    place();
+    add(ControlId::GroupStyle, ui_text("group", L) + ": " + s.group_style_name, s.selection_has_group, false);
+    place();
+    const float half = (wide - gap) * 0.5f;
+    add(ControlId::LodDown, "−", !s.lod_auto || s.has_selection, false, half);
+    add(ControlId::LodUp, "+", !s.lod_auto || s.has_selection, false, half);
+    out.back().rect.x = x + half + gap;
+    place();
+    add(ControlId::LodAuto, ui_text("lod", L) + ": " + ui_text("auto", L), true, s.lod_auto);
+    place();
+    add(ControlId::Isolate, ui_text("isolate", L), s.selection_has_group || s.isolated, s.isolated);
+
+    // Group toggles along the bottom, left to right, leaving the right column free.
+    float gx = gap + s.drift_x;
+    const float gy = static_cast<float>(s.height) - b - gap + s.drift_y;
+    // As wide as 2.4 buttons, narrower when many groups share the row, never
+    // below a button; groups that still do not fit are left out.
+    const float n = static_cast<float>(std::max<size_t>(s.group_names.size(), 1));
+    const float gw = std::max(
+        kMinButtonPx, std::min(std::floor(b * 2.4f), std::floor((static_cast<float>(s.width) - gap) / n - gap)));
+    for (size_t i = 0; i < s.group_names.size(); ++i) {
+        if (gx + gw > static_cast<float>(s.width)) break;
+        Control c;
+        c.id = ControlId::GroupToggle;
+        c.group = static_cast<int>(i);
+        c.rect = Rect{gx, gy, gw, b};
+        c.text = s.group_names[i];
+        c.active = i < s.group_visible.size() && s.group_visible[i];
+        out.push_back(std::move(c));
+        gx += gw + gap;
+    }
+    return out;
+}
+
+const Control* hit_test(const std::vector<Control>& controls, float x, float y) {
+    const Control* best = nullptr;
+    float best_d = kTouchSlopPx;
+    for (const Control& c : controls) {
+        if (!c.enabled) continue;
+        const float dx = std::max({c.rect.x - x, 0.0f, x - (c.rect.x + c.rect.w)});
+        const float dy = std::max({c.rect.y - y, 0.0f, y - (c.rect.y + c.rect.h)});
+        const float d = std::hypot(dx, dy);
+        if (d == 0.0f) return &c;
+        if (d <= best_d) {
+            best = &c;
+            best_d = d;
+        }
+    }
+    return best;
+}
+
+Rect label_card_rect(const UiState& s) {
+    const float b = button_size(s);
+    const float gap = std::floor(b * 0.15f);
+    const float w = std::min(static_cast<float>(s.width) * 0.45f, 560.0f);
+    const float h = std::min(static_cast<float>(s.height) * 0.3f, 240.0f);
+    return Rect{gap + s.drift_x, static_cast<float>(s.height) - b - 2 * gap - h + s.drift_y, w, h};
+}
+
+}  // namespace body::kiosk

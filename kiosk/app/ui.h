@@ -1,0 +1,58 @@
+#pragma once
+// On-screen controls sized for fingers, as a layout and hit-testing model (no
+// GL): the renderer draws the rectangles and texts it returns; the app routes a
+// touch that lands on a control to it instead of to the gestures.
+//
+// Layout (pixels, origin top-left): a column of buttons along the right edge —
+// home, language, style of the selection, style of its group, LOD -, LOD +, LOD
+// auto, isolate group — and a row of group show/hide toggles along the bottom.
+// Buttons are at least kMinButtonPx (about 9 mm on a 24" 1080p panel) and grow
+// with the screen. Hit tests accept touches up to kTouchSlopPx outside a button
+// when no other button is closer.
+#include <string>
+#include <vector>
+
+namespace body::kiosk {
+
+struct Rect {
+    float x = 0, y = 0, w = 0, h = 0;
+    bool contains(float px, float py) const { return px >= x && py >= y && px < x + w && py < y + h; }
+};
+
+enum class ControlId { Home, Language, Style, GroupStyle, LodDown, LodUp, LodAuto, Isolate, GroupToggle };
+
+struct Control {
+    ControlId id = ControlId::Home;
+    int group = -1;  // GroupToggle: index into the scene's groups
+    Rect rect;
+    std::string text;  // UTF-8, in the current language
+    bool enabled = true;
+    bool active = false;  // toggles that are on (group visible, isolate on, LOD auto)
+};
+
+struct UiState {
+    int width = 1280, height = 800;
+    std::string language = "en";
+    bool has_selection = false;
+    bool selection_has_group = false;
+    bool lod_auto = true;
+    bool isolated = false;
+    std::string style_name;        // style of the selection (shown on the button)
+    std::string group_style_name;  // style of the selection's group
+    std::vector<std::string> group_names;
+    std::vector<bool> group_visible;
+    float drift_x = 0.0f, drift_y = 0.0f;  // anti burn-in offset, pixels
+};
+
+inline constexpr float kMinButtonPx = 64.0f;
+inline constexpr float kTouchSlopPx = 8.0f;
+
+std::vector<Control> layout_controls(const UiState& state);
+// The control at (x, y), or nullptr; disabled controls are never hit.
+const Control* hit_test(const std::vector<Control>& controls, float x, float y);
+// The label card's rectangle (bottom-left, above the group row).
+Rect label_card_rect(const UiState& state);
+// A UI word in `language` ("home", "language", "style", "group", "lod", "auto", "isolate"); English fallback.
+std::string ui_text(const std::string& key, const std::string& language);
+
+}  // namespace body::kiosk

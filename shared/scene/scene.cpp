@@ -1,0 +1,368 @@
+// scene.json parsing and validation (schema: shared/scene/SCENE.md).
+// Unknown keys are errors so that a typo never silently changes a kiosk.
+#include "shared/scene/scene.h"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <initializer_list>
+#include <nlohmann/json.hpp>
+#include <set>
+
+#include "shared/atomic_file.h"
+
+namespace body::scene {
+
+namespace {
+
+using nlohmann::json;
+
+std::string fmt(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%g", v);
+    return buf;
+}
+
+constexpr const char* kStyleNames[kStyleCount] = {"wireframe", "smooth", "lines", "hatching", "hatching-2tone"};
+
+// Carries the file name and the first error; each reader returns false after failing.
+struct Reader {
+    std::string source;
+    std::string message;
+
+    bool fail(const std::string& path, const std::string& reason) {
+        if (message.empty()) message = source + ": " + path + ": " + reason;
+        return false;
+    }
+
+    bool only_keys(const json& object, const std::string& path, std::initializer_list<const char*> keys) {
+        if (!object.is_object()) return fail(path, "expected an object");
+        for (const auto& [key, value] : object.items()) {
+            bool known = false;
+            for (const char* k : keys) known = known || key == k;
+            if (!known) return fail(path + "." + key, "unknown key");
+        }
+        return true;
+    }
+
+    bool number(const json& v, const std::string& path, float lo, float hi, float& out) {
+        if (!v.is_number()) return fail(path, "expected a number");
+        double d = v.get<double>();
+        if (!std::isfinite(d) || d < lo || d > hi) {
+            return fail(path, "expected a number in [" + fmt(lo) + ", " + fmt(hi) + "]");
+        }
+        out = static_cast<float>(d);
+        return true;
+    }
+
+    bool integer(const json& v, const std::string& path, int lo, int hi, int& out) {
+        if (!v.is_number_integer() || v.get<long>() < lo || v.get<long>() > hi) {
+            return fail(path, "expected an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+        }
+        out = static_cast<int>(v.get<long>());
+        return true;
+    }
+
+    bool string(const json& v, const std::string& path, std::string& out, bool allow_empty = false) {
+        if (!v.is_string()) return fail(path, "expected a string");
+        out = v.get<std::string>();
+        if (!allow_empty && out.empty()) return fail(path, "must not be empty");
+        return true;
+    }
+
+    bool boolean(const json& v, const std::string& path, bool& out) {
+        if (!v.is_boolean()) return fail(path, "expected true or false");
+        out = v.get<bool>();
+        return true;
+    }
+
+    bool vec3(const json& v, const std::string& path, float lo, float hi, std::array<float, 3>& out) {
+        if (!v.is_array() || v.size() != 3) return fail(path, "expected an array of 3 numbers");
+        for (size_t i = 0; i < 3; ++i) {
+            if (!number(v[i], path + "[" + std::to_string(i) + "]", lo, hi, out[i])) return false;
+        }
+        return true;
+    }
+
+    bool style(const json& v, const std::string& path, Style& out) {
+        std::string name;
+        if (!string(v, path, name)) return false;
+        auto s = parse_style(name);
+        if (!s) return fail(path, "unknown style '" + name + "' (wireframe, smooth, lines, hatching, hatching-2tone)");
+        out = *s;
+        return true;
+    }
+
+    bool lod(const json& v, const std::string& path, Lod& out) {
+        if (v.is_string() && v.get<std::string>() == "auto") {
+            out = Lod{};
+            return true;
+        }
+        if (!v.is_number()) return fail(path, "expected \"auto\" or a ratio in (0, 1]");
+        double d = v.get<double>();
+        if (!std::isfinite(d) || d <= 0.0 || d > 1.0) return fail(path, "expected \"auto\" or a ratio in (0, 1]");
+        out = Lod{false, static_cast<float>(d)};
+        return true;
+    }
+
+    bool transform(const json& v, const std::string& path, Transform& out) {
+        if (!only_keys(v, path, {"translate", "rotate_deg", "scale"})) return false;
+        if (v.contains("translate") && !vec3(v["translate"], path + ".translate", -1e6f, 1e6f, out.translate)) {
+            return false;
+        }
+        if (v.contains("rotate_deg") && !vec3(v["rotate_deg"], path + ".rotate_deg", -360, 360, out.rotate_deg)) {
+            return false;
+        }
+        if (v.contains("scale")) {
+            if (!number(v["scale"], path + ".scale", 1e-6f, 1e6f, out.scale)) return false;
+        }
+        return true;
+    }
+
+    bool labels(const json& v, const std::string& path, std::vector<LabelText>& out) {
+        if (!v.is_object() || v.empty()) {
+            return fail(path, "expected an object of languages, e.g. {\"en\": {\"title\": ...}}");
+        }
+        for (const auto& [language, entry] : v.items()) {
+            const std::string p = path + "." + language;
+            LabelText text;
+            text.language = language;
+            if (entry.is_string()) {
+                text.title = entry.get<std::string>();
+            } else {
+                if (!only_keys(entry, p, {"title", "description"})) return false;
+                if (!entry.contains("title")) return fail(p + ".title", "missing");
+                if (!string(entry["title"], p + ".title", text.title)) return false;
+                if (entry.contains("description") &&
+                    !string(entry["description"], p + ".description", text.description, true)) {
+                    return false;
+                }
+            }
+            out.push_back(std::move(text));
+        }
+        return true;
+    }
+};
+
+bool read_model(Reader& r, const json& v, const std::string& path, const std::string& base_dir, Model& m) {
+    if (!r.only_keys(v, path, {"name", "file", "group", "colour", "transform", "style", "lod", "label"})) return false;
+    if (!v.contains("name")) return r.fail(path + ".name", "missing");
+    if (!r.string(v["name"], path + ".name", m.name)) return false;
+    if (!v.contains("file")) return r.fail(path + ".file", "missing");
+    if (!r.string(v["file"], path + ".file", m.file)) return false;
+    std::filesystem::path file(m.file);
+    m.path = file.is_absolute() || base_dir.empty() ? file.string() : (std::filesystem::path(base_dir) / file).string();
+    if (v.contains("group") && !r.string(v["group"], path + ".group", m.group)) return false;
+    if (v.contains("colour") && !r.vec3(v["colour"], path + ".colour", 0, 1, m.colour)) return false;
+    if (v.contains("transform") && !r.transform(v["transform"], path + ".transform", m.transform)) return false;
+    if (v.contains("style") && !r.style(v["style"], path + ".style", m.style)) return false;
+    if (v.contains("lod") && !r.lod(v["lod"], path + ".lod", m.lod)) return false;
+    if (v.contains("label")) {
+        if (!r.labels(v["label"], path + ".label", m.labels)) return false;
+    } else {
+        m.labels.push_back(LabelText{"", m.name, ""});
+    }
+    return true;
+}
+
+bool read_group(Reader& r, const json& v, const std::string& path, Group& g) {
+    if (!r.only_keys(v, path, {"name", "style", "lod", "visible"})) return false;
+    if (!v.contains("name")) return r.fail(path + ".name", "missing");
+    if (!r.string(v["name"], path + ".name", g.name)) return false;
+    if (v.contains("style")) {
+        Style s{};
+        if (!r.style(v["style"], path + ".style", s)) return false;
+        g.style = s;
+    }
+    if (v.contains("lod")) {
+        Lod l;
+        if (!r.lod(v["lod"], path + ".lod", l)) return false;
+        g.lod = l;
+    }
+    if (v.contains("visible") && !r.boolean(v["visible"], path + ".visible", g.visible)) return false;
+    return true;
+}
+
+bool read_camera(Reader& r, const json& v, const std::string& path, HomeCamera& c) {
+    if (!r.only_keys(v, path, {"target", "azimuth_deg", "polar_deg", "distance", "fov_deg"})) return false;
+    if (v.contains("target") && !r.vec3(v["target"], path + ".target", -1e6f, 1e6f, c.target)) return false;
+    if (v.contains("azimuth_deg") && !r.number(v["azimuth_deg"], path + ".azimuth_deg", -360, 360, c.azimuth_deg)) {
+        return false;
+    }
+    if (v.contains("polar_deg") && !r.number(v["polar_deg"], path + ".polar_deg", 1, 179, c.polar_deg)) return false;
+    if (v.contains("distance") && !r.number(v["distance"], path + ".distance", 0, 1e7f, c.distance)) return false;
+    if (v.contains("fov_deg") && !r.number(v["fov_deg"], path + ".fov_deg", 5, 120, c.fov_deg)) return false;
+    return true;
+}
+
+bool read_kiosk(Reader& r, const json& v, const std::string& path, KioskSettings& k) {
+    if (!r.only_keys(v, path, {"idle_seconds", "reset_seconds", "languages", "admin_gesture", "frame_ms_target"})) {
+        return false;
+    }
+    if (v.contains("idle_seconds") && !r.number(v["idle_seconds"], path + ".idle_seconds", 1, 86400, k.idle_seconds)) {
+        return false;
+    }
+    if (v.contains("reset_seconds") &&
+        !r.number(v["reset_seconds"], path + ".reset_seconds", 1, 86400, k.reset_seconds)) {
+        return false;
+    }
+    if (k.reset_seconds < k.idle_seconds) {
+        return r.fail(path + ".reset_seconds", "must not be shorter than idle_seconds");
+    }
+    if (v.contains("frame_ms_target") &&
+        !r.number(v["frame_ms_target"], path + ".frame_ms_target", 1, 1000, k.frame_ms_target)) {
+        return false;
+    }
+    if (v.contains("languages")) {
+        const json& langs = v["languages"];
+        if (!langs.is_array() || langs.empty()) return r.fail(path + ".languages", "expected a non-empty array");
+        k.languages.clear();
+        std::set<std::string> seen;
+        for (size_t i = 0; i < langs.size(); ++i) {
+            std::string lang;
+            const std::string p = path + ".languages[" + std::to_string(i) + "]";
+            if (!r.string(langs[i], p, lang)) return false;
+            if (!seen.insert(lang).second) return r.fail(p, "duplicate language '" + lang + "'");
+            k.languages.push_back(lang);
+        }
+    }
+    if (v.contains("admin_gesture")) {
+        const json& a = v["admin_gesture"];
+        const std::string p = path + ".admin_gesture";
+        if (!r.only_keys(a, p, {"corner", "taps", "seconds", "corner_size"})) return false;
+        if (a.contains("corner")) {
+            std::string corner;
+            if (!r.string(a["corner"], p + ".corner", corner)) return false;
+            if (corner == "top-left") {
+                k.admin.corner = AdminGesture::Corner::TopLeft;
+            } else if (corner == "top-right") {
+                k.admin.corner = AdminGesture::Corner::TopRight;
+            } else if (corner == "bottom-left") {
+                k.admin.corner = AdminGesture::Corner::BottomLeft;
+            } else if (corner == "bottom-right") {
+                k.admin.corner = AdminGesture::Corner::BottomRight;
+            } else {
+                return r.fail(p + ".corner", "expected top-left, top-right, bottom-left or bottom-right");
+            }
+        }
+        if (a.contains("taps") && !r.integer(a["taps"], p + ".taps", 3, 20, k.admin.taps)) return false;
+        if (a.contains("seconds") && !r.number(a["seconds"], p + ".seconds", 0.5f, 30, k.admin.seconds)) return false;
+        if (a.contains("corner_size") &&
+            !r.number(a["corner_size"], p + ".corner_size", 0.02f, 0.5f, k.admin.corner_size)) {
+            return false;
+        }
+    }
+    return true;
+}
+
+// Cross-references: unique names, groups that exist, label languages that are declared.
+bool check_references(Reader& r, Scene& s) {
+    std::set<std::string> groups;
+    for (size_t i = 0; i < s.groups.size(); ++i) {
+        if (!groups.insert(s.groups[i].name).second) {
+            return r.fail("groups[" + std::to_string(i) + "].name", "duplicate group '" + s.groups[i].name + "'");
+        }
+    }
+    std::set<std::string> names;
+    const std::set<std::string> languages(s.kiosk.languages.begin(), s.kiosk.languages.end());
+    for (size_t i = 0; i < s.models.size(); ++i) {
+        Model& m = s.models[i];
+        const std::string p = "models[" + std::to_string(i) + "]";
+        if (!names.insert(m.name).second) return r.fail(p + ".name", "duplicate model '" + m.name + "'");
+        if (!m.group.empty() && !groups.count(m.group)) {
+            return r.fail(p + ".group", "no group named '" + m.group + "' in groups");
+        }
+        for (LabelText& t : m.labels) {
+            if (t.language.empty()) t.language = s.kiosk.languages.front();
+            if (!languages.count(t.language)) {
+                return r.fail(p + ".label." + t.language, "language not listed in kiosk.languages");
+            }
+        }
+    }
+    return true;
+}
+
+}  // namespace
+
+const char* style_name(Style style) { return kStyleNames[static_cast<int>(style)]; }
+
+std::optional<Style> parse_style(const std::string& name) {
+    for (int i = 0; i < kStyleCount; ++i) {
+        if (name == kStyleNames[i]) return static_cast<Style>(i);
+    }
+    return std::nullopt;
+}
+
+const Group* Scene::find_group(const std::string& name) const {
+    for (const Group& g : groups) {
+        if (g.name == name) return &g;
+    }
+    return nullptr;
+}
+
+int Scene::model_index(const std::string& name) const {
+    for (size_t i = 0; i < models.size(); ++i) {
+        if (models[i].name == name) return static_cast<int>(i);
+    }
+    return -1;
+}
+
+const LabelText& Scene::label(const Model& model, const std::string& language) const {
+    assert(!model.labels.empty());
+    for (const LabelText& t : model.labels) {
+        if (t.language == language) return t;
+    }
+    for (const LabelText& t : model.labels) {
+        if (t.language == kiosk.languages.front()) return t;
+    }
+    return model.labels.front();
+}
+
+Result<Scene> parse_scene(const std::string& text, const std::string& source, const std::string& base_dir) {
+    json root;
+    try {
+        root = json::parse(text);
+    } catch (const json::parse_error& e) {
+        return input_error(source + ": byte " + std::to_string(e.byte) + ": not valid JSON");
+    }
+    Reader r{source, {}};
+    Scene s;
+    s.source = source;
+    s.base_dir = base_dir;
+    if (!r.only_keys(root, "$", {"version", "models", "groups", "camera", "kiosk"})) return input_error(r.message);
+    if (root.contains("version")) {
+        int version = 0;
+        if (!r.integer(root["version"], "version", 1, 1, version)) return input_error(r.message);
+    }
+    if (root.contains("kiosk") && !read_kiosk(r, root["kiosk"], "kiosk", s.kiosk)) return input_error(r.message);
+    if (root.contains("groups")) {
+        const json& groups = root["groups"];
+        if (!groups.is_array()) return input_error(source + ": groups: expected an array");
+        for (size_t i = 0; i < groups.size(); ++i) {
+            Group g;
+            if (!read_group(r, groups[i], "groups[" + std::to_string(i) + "]", g)) return input_error(r.message);
+            s.groups.push_back(std::move(g));
+        }
+    }
+    if (!root.contains("models")) return input_error(source + ": models: missing");
+    const json& models = root["models"];
+    if (!models.is_array() || models.empty()) return input_error(source + ": models: expected a non-empty array");
+    for (size_t i = 0; i < models.size(); ++i) {
+        Model m;
+        if (!read_model(r, models[i], "models[" + std::to_string(i) + "]", base_dir, m)) {
+            return input_error(r.message);
+        }
+        s.models.push_back(std::move(m));
+    }
+    if (root.contains("camera") && !read_camera(r, root["camera"], "camera", s.camera)) return input_error(r.message);
+    if (!check_references(r, s)) return input_error(r.message);
+    return s;
+}
+
+Result<Scene> read_scene(const std::string& path) {
+    auto text = read_file(path);
+    if (!text) return text.error();
+    return parse_scene(*text, path, std::filesystem::path(path).parent_path().string());
+}
+
+}  // namespace body::scene

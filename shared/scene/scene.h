@@ -1,0 +1,111 @@
+#pragma once
+// The scene manifest `scene.json` (schema in shared/scene/SCENE.md): which models
+// a kiosk shows, how they are grouped, styled and labelled, where the camera
+// starts and how the kiosk behaves when nobody touches it.
+//
+// Contract: parse_scene() never throws; every error message reads
+// "<file>: <json path>: <reason>", e.g. "scene.json: models[2].colour: expected 3 numbers in [0,1]".
+// Model file paths are returned resolved against the manifest's directory
+// (`Model::path`) next to the text as written (`Model::file`).
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "shared/error.h"
+
+namespace body::scene {
+
+// The renderer's styles (issue 6), by their manifest names.
+enum class Style { Wireframe, Smooth, Lines, Hatching, Hatching2Tone };
+inline constexpr int kStyleCount = 5;
+const char* style_name(Style style);
+std::optional<Style> parse_style(const std::string& name);
+
+// Level of detail: a fixed ratio of the full triangle count in (0, 1], or automatic
+// (the kiosk's LOD controller decides).
+struct Lod {
+    bool automatic = true;
+    float ratio = 1.0f;
+    bool operator==(const Lod&) const = default;
+};
+
+struct Transform {
+    std::array<float, 3> translate{0, 0, 0};   // scene units (millimetres)
+    std::array<float, 3> rotate_deg{0, 0, 0};  // Euler angles, applied X then Y then Z
+    float scale = 1.0f;                        // uniform
+    bool operator==(const Transform&) const = default;
+};
+
+struct LabelText {
+    std::string language;  // e.g. "en"
+    std::string title;     // UTF-8
+    std::string description;
+};
+
+struct Model {
+    std::string name;   // unique in the scene
+    std::string file;   // as written in the manifest
+    std::string path;   // `file` resolved against the manifest directory
+    std::string group;  // empty: no group
+    std::array<float, 3> colour{0.8f, 0.8f, 0.8f};
+    Transform transform;
+    Style style = Style::Smooth;
+    Lod lod;
+    std::vector<LabelText> labels;  // at least one; languages from KioskSettings::languages
+};
+
+struct Group {
+    std::string name;
+    std::optional<Style> style;  // overrides the models' styles when set
+    std::optional<Lod> lod;      // overrides the models' LOD when set
+    bool visible = true;
+};
+
+struct HomeCamera {
+    std::array<float, 3> target{0, 0, 0};
+    float azimuth_deg = 0.0f;  // around +Y, 0 looks down -Z
+    float polar_deg = 90.0f;   // from +Y; 90 is the horizon
+    float distance = 0.0f;     // 0: fit the scene's bounds when loaded
+    float fov_deg = 40.0f;
+};
+
+// The one way out of the kiosk for staff: `taps` taps within `seconds` inside the
+// corner square of `corner_size` (fraction of the screen's shorter side).
+struct AdminGesture {
+    enum class Corner { TopLeft, TopRight, BottomLeft, BottomRight };
+    Corner corner = Corner::TopLeft;
+    int taps = 5;
+    float seconds = 3.0f;
+    float corner_size = 0.08f;
+};
+
+struct KioskSettings {
+    float idle_seconds = 30.0f;                // attract mode after this long without input
+    float reset_seconds = 120.0f;              // full reset after this long without input
+    std::vector<std::string> languages{"en"};  // first = default
+    AdminGesture admin;
+    float frame_ms_target = 16.7f;  // LOD controller target
+};
+
+struct Scene {
+    std::string source;  // manifest path as given
+    std::string base_dir;
+    std::vector<Model> models;
+    std::vector<Group> groups;
+    HomeCamera camera;
+    KioskSettings kiosk;
+
+    const Group* find_group(const std::string& name) const;
+    int model_index(const std::string& name) const;  // -1 when absent
+    // The label in `language`, else in the default language, else the first one.
+    const LabelText& label(const Model& model, const std::string& language) const;
+};
+
+// Parses manifest text; `source` names the file in messages and `base_dir`
+// resolves model paths ("" = current directory).
+Result<Scene> parse_scene(const std::string& text, const std::string& source, const std::string& base_dir);
+// Reads and parses a manifest file.
+Result<Scene> read_scene(const std::string& path);
+
+}  // namespace body::scene

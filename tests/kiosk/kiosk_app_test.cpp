@@ -1,0 +1,323 @@
+// Replay-driven kiosk behaviour: each test scripts touches or mouse input as a
+// replay, plays it at 60 Hz and asserts the resulting state.
+#include "kiosk/app/kiosk_app.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "kiosk_test_scene.h"
+
+namespace body::kiosk {
+namespace {
+
+using test::make_app;
+using test::replay;
+
+const Control& control(const KioskApp& app, ControlId id) {
+    for (const Control& c : app.controls()) {
+        if (c.id == id) return c;
+    }
+    ADD_FAILURE() << "no such control";
+    return app.controls().front();
+}
+
+std::string tap_on(const Control& c, double t, int id = 9) {
+    const float x = c.rect.x + c.rect.w / 2, y = c.rect.y + c.rect.h / 2;
+    return std::to_string(t) + " down " + std::to_string(id) + " " + std::to_string(x) + " " + std::to_string(y) +
+           "\n" + std::to_string(t + 0.05) + " up " + std::to_string(id) + " " + std::to_string(x) + " " +
+           std::to_string(y) + "\n";
+}
+
+TEST(KioskApp, StartsAtHomeFittingTheScene) {
+    KioskApp app = make_app();
+    app.update(0.0);
+    const CameraPose& p = app.camera().pose();
+    EXPECT_NEAR(p.azimuth, 0.0f, 1e-6f);
+    EXPECT_NEAR(p.polar, 1.5707964f, 1e-5f);
+    EXPECT_NEAR(p.target.x, 0.0f, 1e-4f);
+    // Every model projects inside the screen.
+    for (int i = 0; i < 3; ++i) {
+        const glm::vec4 c = app.camera().projection() * app.camera().view() * glm::vec4(app.model_center(i), 1.0f);
+        EXPECT_LT(std::abs(c.x / c.w), 0.9f);
+    }
+    EXPECT_EQ(app.selected(), -1);
+    EXPECT_EQ(app.mode(), KioskMode::Interactive);
+}
+
+TEST(KioskApp, OneFingerOrbitsWithThePolarAngleClamped) {
+    KioskApp app = make_app();
+    run_replay(app, replay("0.0 down 1 640 400\n0.05 move 1 660 400\n0.1 move 1 700 400\n0.15 move 1 740 400\n"
+                           "0.2 up 1 740 400\n"));
+    EXPECT_NEAR(app.camera().pose().azimuth, -1.0f, 1e-4f);  // 100 px at 0.01 rad/px
+    EXPECT_NEAR(app.camera().pose().polar, 1.5707964f, 1e-5f);
+    EXPECT_EQ(app.selected(), -1);  // a drag is not a tap
+
+    run_replay(app, replay("1.0 down 1 640 100\n1.1 move 1 640 790\n1.2 move 1 640 799\n1.3 up 1 640 799\n"), 60.0,
+               1.0);
+    EXPECT_FLOAT_EQ(app.camera().pose().polar, OrbitCamera::kMinPolar);
+}
+
+TEST(KioskApp, PinchZoomsByTheFingerRatioAndClamps) {
+    KioskApp app = make_app();
+    app.update(0.0);
+    const float home = app.camera().pose().distance;
+    run_replay(app, replay("0.0 down 1 540 400\n0.0 down 2 740 400\n0.1 move 1 490 400\n0.1 move 2 790 400\n"
+                           "0.2 move 1 440 400\n0.2 move 2 840 400\n0.3 up 1 440 400\n0.3 up 2 840 400\n"));
+    EXPECT_NEAR(app.camera().pose().distance, home / 2.0f, home * 1e-4f);
+    EXPECT_NEAR(app.camera().pose().azimuth, 0.0f, 1e-6f);  // no orbit from a pinch
+    EXPECT_EQ(app.selected(), -1);
+    run_replay(app,
+               replay("1.0 down 1 630 400\n1.0 down 2 650 400\n1.1 move 1 10 400\n1.1 move 2 1270 400\n"
+                      "1.2 up 1 10 400\n1.2 up 2 1270 400\n"),
+               60.0, 1.0);
+    EXPECT_FLOAT_EQ(app.camera().pose().distance, app.camera().min_distance());
+}
+
+TEST(KioskApp, TwoFingerPanFollowsTheFingers) {
+    KioskApp app = make_app();
+    app.update(0.0);
+    const float d = app.camera().pose().distance;
+    const float units_per_px = 2.0f * d * std::tan(app.camera().fov_y() / 2) / 800.0f;
+    run_replay(app, replay("0.0 down 1 540 400\n0.0 down 2 740 400\n0.1 move 1 590 400\n0.1 move 2 790 400\n"
+                           "0.2 move 1 640 400\n0.2 move 2 840 400\n0.3 up 1 640 400\n0.3 up 2 840 400\n"));
+    // Fingers moved 100 px right: the scene follows, so the target moved left.
+    EXPECT_NEAR(app.camera().pose().target.x, -100.0f * units_per_px, 0.01f);
+    EXPECT_NEAR(app.camera().pose().target.y, 0.0f, 1e-3f);
+    EXPECT_NEAR(app.camera().pose().distance, d, d * 1e-4f);
+}
+
+TEST(KioskApp, LiftingOneOfTwoFingersDoesNotOrbit) {
+    KioskApp app = make_app();
+    run_replay(app, replay("0.0 down 1 540 400\n0.0 down 2 740 400\n0.1 move 2 760 400\n0.2 up 2 760 400\n"
+                           "0.3 move 1 700 400\n0.4 up 1 700 400\n"));
+    EXPECT_NEAR(app.camera().pose().azimuth, 0.0f, 1e-6f);
+}
+
+TEST(KioskApp, TapSelectsAndTapOnEmptyDeselects) {
+    KioskApp app = make_app();
+    run_replay(app, replay("0.0 down 1 640 400\n0.1 up 1 641 401\n"));
+    EXPECT_EQ(app.selected(), 1);
+    EXPECT_EQ(app.scene().label(app.scene().models[1], app.language()).title, "Middle");
+    run_replay(app, replay("1.0 down 1 300 150\n1.1 up 1 300 150\n"), 60.0, 1.0);
+    EXPECT_EQ(app.selected(), -1);
+    // A long press is not a tap.
+    run_replay(app, replay("2.0 down 1 640 400\n3.0 up 1 640 400\n"), 60.0, 2.0);
+    EXPECT_EQ(app.selected(), -1);
+}
+
+TEST(KioskApp, DoubleTapFocusesOnTheModel) {
+    KioskApp app = make_app();
+    app.update(0.0);
+    const float home = app.camera().pose().distance;
+    // The right model: x = 100 projects right of centre.
+    const glm::vec4 c = app.camera().projection() * app.camera().view() * glm::vec4(100, 0, 0, 1);
+    const float px = (c.x / c.w * 0.5f + 0.5f) * 1280.0f;
+    const std::string x = std::to_string(px);
+    run_replay(app, replay("0.0 down 1 " + x + " 400\n0.08 up 1 " + x + " 400\n0.2 down 1 " + x + " 400\n0.28 up 1 " +
+                           x + " 400\n2.0 end\n"));
+    EXPECT_EQ(app.selected(), 2);
+    EXPECT_NEAR(app.camera().pose().target.x, 100.0f, 0.01f);
+    EXPECT_NEAR(app.camera().pose().distance, app.camera().fit_distance(40.0f), 0.01f);
+    EXPECT_LT(app.camera().pose().distance, home);
+}
+
+TEST(KioskApp, GroupStyleButtonRestylesTheSelectionsGroup) {
+    KioskApp app = make_app();
+    run_replay(app, replay("0.0 down 1 640 400\n0.1 up 1 640 400\n"));
+    ASSERT_EQ(app.selected(), 1);
+    run_replay(app, replay(tap_on(control(app, ControlId::GroupStyle), 0.5)), 60.0, 0.5);
+    EXPECT_EQ(app.model(0).style, scene::Style::Lines);
+    EXPECT_EQ(app.model(1).style, scene::Style::Lines);
+    EXPECT_EQ(app.model(2).style, scene::Style::Hatching);  // the other group is untouched
+    EXPECT_EQ(app.selected(), 1);                           // tapping a control does not deselect
+    run_replay(app, replay(tap_on(control(app, ControlId::Style), 1.0)), 60.0, 1.0);
+    EXPECT_EQ(app.model(1).style, scene::Style::Hatching);
+    EXPECT_EQ(app.model(0).style, scene::Style::Lines);
+}
+
+TEST(KioskApp, GroupToggleIsolateAndLanguage) {
+    KioskApp app = make_app();
+    app.update(0.0);
+    const Control* cortex = nullptr;
+    for (const Control& c : app.controls()) {
+        if (c.id == ControlId::GroupToggle && c.group == 1) cortex = &c;
+    }
+    ASSERT_NE(cortex, nullptr);
+    run_replay(app, replay(tap_on(*cortex, 0.0)));
+    EXPECT_FALSE(app.visible(2));
+    EXPECT_TRUE(app.visible(0));
+    run_replay(app, replay(tap_on(control(app, ControlId::Language), 0.5)), 60.0, 0.5);
+    EXPECT_EQ(app.language(), "de");
+    EXPECT_EQ(app.scene().label(app.scene().models[0], app.language()).title, "Links");
+    app.set_group_visible(1, true);
+    app.select(0);
+    app.toggle_isolate();
+    EXPECT_TRUE(app.visible(0));
+    EXPECT_FALSE(app.visible(2));
+    app.toggle_isolate();
+    EXPECT_TRUE(app.visible(2));
+}
+
+TEST(KioskApp, IdleAttractThenFullReset) {
+    KioskApp app = make_app();
+    run_replay(app, replay("0.0 down 1 640 400\n0.1 up 1 640 400\n"                         // select middle
+                           "0.5 down 1 300 150\n0.6 move 1 400 150\n0.7 up 1 400 150\n"));  // orbit
+    ASSERT_EQ(app.selected(), 1);
+    app.set_group_style(0, scene::Style::Wireframe);
+    app.next_language();
+    const float orbited = app.camera().pose().azimuth;
+    EXPECT_NEAR(orbited, -1.0f, 1e-4f);
+
+    // 4 s idle: still interactive, nothing moves.
+    run_replay(app, replay("4.6 end\n"), 60.0, 0.8);
+    EXPECT_EQ(app.mode(), KioskMode::Interactive);
+    EXPECT_NEAR(app.camera().pose().azimuth, orbited, 1e-5f);
+    // Past 5 s: attract mode turns the camera slowly.
+    run_replay(app, replay("7.7 end\n"), 60.0, 4.7);
+    EXPECT_EQ(app.mode(), KioskMode::Attract);
+    EXPECT_NEAR(app.camera().pose().azimuth - orbited, KioskApp::kAttractRadiansPerSecond * 2.0f, 0.02f);
+    EXPECT_EQ(app.selected(), 1);  // not reset yet
+    // Past 10 s: everything back to the manifest's.
+    run_replay(app, replay("10.8 end\n"), 60.0, 7.8);
+    EXPECT_EQ(app.resets(), 1);
+    EXPECT_EQ(app.selected(), -1);
+    EXPECT_EQ(app.model(0).style, scene::Style::Smooth);
+    EXPECT_EQ(app.model(2).style, scene::Style::Hatching);
+    EXPECT_EQ(app.language(), "en");
+    EXPECT_NEAR(app.camera().pose().azimuth, KioskApp::kAttractRadiansPerSecond * 0.1f, 0.02f);  // home + attract
+    // Still attracting, reset only once per idle period; a touch wakes it up.
+    run_replay(app, replay("14.0 end\n"), 60.0, 10.9);
+    EXPECT_EQ(app.resets(), 1);
+    run_replay(app, replay("14.1 down 1 300 150\n14.2 up 1 300 150\n"), 60.0, 14.1);
+    EXPECT_EQ(app.mode(), KioskMode::Interactive);
+}
+
+TEST(KioskApp, DriftIsSmallAndMoves) {
+    KioskApp app = make_app();
+    float max_abs = 0.0f;
+    for (double t = 0; t < 300; t += 0.5) {
+        const glm::vec2 d = app.drift(t);
+        max_abs = std::max({max_abs, std::abs(d.x), std::abs(d.y)});
+    }
+    EXPECT_LE(max_abs, KioskApp::kDriftPx);
+    EXPECT_GT(max_abs, 1.0f);
+    EXPECT_NE(app.drift(10.0), app.drift(40.0));
+}
+
+Control corner() {
+    Control c;
+    c.rect = Rect{0, 0, 40, 40};
+    return c;
+}
+
+TEST(KioskApp, OnlyTheAdminGestureExits) {
+    KioskApp app = make_app();
+    std::string taps;
+    for (int i = 0; i < 4; ++i) taps += tap_on(corner(), 0.3 * i);
+    run_replay(app, replay(taps));
+    EXPECT_FALSE(app.exit_requested());  // 4 of 5
+    run_replay(app, replay("5.0 key 256\n5.1 down 1 1270 790\n5.2 up 1 1270 790\n"), 60.0, 5.0);
+    EXPECT_FALSE(app.exit_requested());  // Escape and other corners do nothing
+    taps.clear();
+    for (int i = 0; i < 5; ++i) taps += tap_on(corner(), 6.0 + 0.3 * i);
+    run_replay(app, replay(taps), 60.0, 6.0);
+    EXPECT_TRUE(app.exit_requested());
+}
+
+TEST(KioskApp, ThesisMouseBindings) {
+    KioskApp app = make_app();
+    app.update(0.0);
+    const float home = app.camera().pose().distance;
+    // Left drag rotates.
+    run_replay(app, replay("0.0 mouse-down left 300 150\n0.1 mouse-move 350 150\n0.2 mouse-up left 350 150\n"));
+    EXPECT_NEAR(app.camera().pose().azimuth, -0.5f, 1e-4f);
+    // Right drag up zooms in.
+    run_replay(app, replay("1.0 mouse-down right 300 300\n1.1 mouse-move 300 200\n1.2 mouse-up right 300 200\n"), 60.0,
+               1.0);
+    EXPECT_NEAR(app.camera().pose().distance, home * std::exp(-0.5f), home * 1e-3f);
+    // Middle drag pans.
+    run_replay(app, replay("2.0 mouse-down middle 300 300\n2.1 mouse-move 300 350\n2.2 mouse-up middle 300 350\n"),
+               60.0, 2.0);
+    EXPECT_GT(glm::length(app.camera().pose().target), 1.0f);
+    // Shift+click selects; a plain click does not.
+    app.camera().set_pose(CameraPose{{0, 0, 0}, 0.0f, 1.5707964f, home});
+    run_replay(app, replay("3.0 mouse-down left 640 400\n3.05 mouse-up left 640 400\n"), 60.0, 3.0);
+    EXPECT_EQ(app.selected(), -1);
+    run_replay(app, replay("4.0 mouse-down left 640 400 shift\n4.05 mouse-up left 640 400 shift\n"), 60.0, 4.0);
+    EXPECT_EQ(app.selected(), 1);
+    // Shift+drag from the manipulation sphere (at the model's centre) moves it in X-Z.
+    run_replay(app,
+               replay("5.0 mouse-down left 640 400 shift\n5.1 mouse-move 700 400 shift\n"
+                      "5.2 mouse-up left 700 400 shift\n"),
+               60.0, 5.0);
+    EXPECT_GT(app.model(1).offset.x, 1.0f);
+    EXPECT_NEAR(app.model(1).offset.y, 0.0f, 1e-6f);
+    EXPECT_EQ(app.selected(), 1);
+    // Shift+drag elsewhere does not move it; Shift+click on empty deselects.
+    const glm::vec3 before = app.model(1).offset;
+    run_replay(app,
+               replay("6.0 mouse-down left 300 150 shift\n6.1 mouse-move 350 150 shift\n"
+                      "6.2 mouse-up left 350 150 shift\n7.0 mouse-down left 300 150 shift\n"
+                      "7.05 mouse-up left 300 150 shift\n"),
+               60.0, 6.0);
+    EXPECT_EQ(app.model(1).offset, before);
+    EXPECT_EQ(app.selected(), -1);
+}
+
+double simulated_cost(size_t triangles) { return 1.0 + 10.0 * static_cast<double>(triangles) * 1e-6; }
+
+TEST(KioskApp, AutomaticLodHoldsTheFrameTargetAndFavoursTheSelection) {
+    KioskApp app = make_app(1000000, 2000);  // full detail 3M triangles = 31 ms simulated
+    run_replay(app, replay("0.0 down 1 640 400\n0.1 up 1 640 400\n2.0 end\n"), 60.0, 0.0, simulated_cost);
+    ASSERT_EQ(app.selected(), 1);
+    const size_t total = app.triangles_planned();
+    EXPECT_LE(simulated_cost(total), 16.7);
+    EXPECT_GE(simulated_cost(total), 16.7 * 0.8);               // and does not waste the budget
+    EXPECT_EQ(app.model(1).triangles, 1000000u);                // the selected model keeps full detail
+    EXPECT_GT(app.model(0).triangles, app.model(2).triangles);  // then its group
+    EXPECT_GE(app.model(2).triangles, 2000u);                   // never below the base mesh
+}
+
+TEST(KioskApp, LodButtonsStepTheSelectionInTenths) {
+    KioskApp app = make_app();
+    run_replay(app, replay("0.0 down 1 640 400\n0.1 up 1 640 400\n"));
+    ASSERT_EQ(app.selected(), 1);
+    EXPECT_TRUE(app.lod_auto());
+    run_replay(app,
+               replay(tap_on(control(app, ControlId::LodDown), 0.5) + tap_on(control(app, ControlId::LodDown), 1.0)),
+               60.0, 0.5);
+    ASSERT_TRUE(app.model(1).manual_lod);
+    EXPECT_FLOAT_EQ(*app.model(1).manual_lod, 0.8f);
+    EXPECT_FALSE(app.model(0).manual_lod);
+    EXPECT_EQ(app.model(1).triangles, 80000u);
+    run_replay(app, replay(tap_on(control(app, ControlId::LodAuto), 1.5)), 60.0, 1.5);
+    EXPECT_FALSE(app.model(1).manual_lod);
+}
+
+TEST(KioskApp, LevelChangesGeomorph) {
+    KioskApp app = make_app();
+    app.update(0.0);
+    app.set_model_lod(0, 0.5f);
+    app.update(1.0);
+    EXPECT_EQ(app.model(0).triangles, 50000u);
+    EXPECT_TRUE(app.model(0).morph.active(1.05));
+    EXPECT_GT(app.model(0).morph.factor(1.05), 0.0f);
+    EXPECT_LT(app.model(0).morph.factor(1.05), 1.0f);
+    EXPECT_FLOAT_EQ(app.model(0).morph.factor(1.0 + Geomorph::kSeconds), 1.0f);
+    EXPECT_FALSE(app.model(0).morph.active(1.2));
+}
+
+TEST(KioskApp, ModelsThatFailedToLoadAreSkipped) {
+    auto scene = scene::parse_scene(test::kTestScene, "test.json", "");
+    std::vector<ModelInfo> info{
+        {true, {-100, 0, 0}, 40, 100, 10}, {false, {}, 1, 0, 0}, {true, {100, 0, 0}, 40, 100, 10}};
+    KioskApp app(std::move(scene).value(), std::move(info), 1280, 800);
+    app.update(0.0);
+    EXPECT_FALSE(app.visible(1));
+    EXPECT_EQ(app.pick(640, 400), -1);  // nothing where the missing model would be
+    EXPECT_EQ(app.model(1).triangles, 0u);
+}
+
+}  // namespace
+}  // namespace body::kiosk

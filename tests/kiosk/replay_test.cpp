@@ -1,0 +1,54 @@
+// Replay files: both spellings parse to the same events; mistakes name the line.
+#include "kiosk/app/replay.h"
+
+#include <gtest/gtest.h>
+
+namespace body::kiosk {
+namespace {
+
+TEST(Replay, TextAndJsonAgree) {
+    auto text = parse_replay(
+        "# a pinch\nsize 800 480\n0.0 down 1 10 20\n0.5 move 1 11.5 20\n0.6 mouse-down middle 5 6 shift ctrl\n"
+        "0.7 wheel 1 2 -1\n0.8 key 65\n1.0 up 1 11.5 20\n3.5 end\n",
+        "a.replay");
+    ASSERT_TRUE(text) << text.error().message;
+    auto json = parse_replay(
+        R"({"size": [800, 480], "events": [{"t": 0, "type": "down", "id": 1, "x": 10, "y": 20},
+        {"t": 0.5, "type": "move", "id": 1, "x": 11.5, "y": 20},
+        {"t": 0.6, "type": "mouse-down", "button": "middle", "x": 5, "y": 6, "shift": true, "ctrl": true},
+        {"t": 0.7, "type": "wheel", "x": 1, "y": 2, "wheel": -1}, {"t": 0.8, "type": "key", "key": 65},
+        {"t": 1.0, "type": "up", "id": 1, "x": 11.5, "y": 20}], "end": 3.5})",
+        "a.json");
+    ASSERT_TRUE(json) << json.error().message;
+    for (const Replay* r : {&text.value(), &json.value()}) {
+        EXPECT_EQ(r->width, 800);
+        EXPECT_EQ(r->height, 480);
+        EXPECT_DOUBLE_EQ(r->end_time, 3.5);
+        ASSERT_EQ(r->events.size(), 6u);
+        EXPECT_EQ(r->events[1].kind, InputKind::TouchMove);
+        EXPECT_FLOAT_EQ(r->events[1].x, 11.5f);
+        EXPECT_EQ(r->events[2].button, MouseButton::Middle);
+        EXPECT_EQ(r->events[2].modifiers, kModShift | kModCtrl);
+        EXPECT_FLOAT_EQ(r->events[3].wheel, -1.0f);
+        EXPECT_EQ(r->events[4].key, 65);
+        EXPECT_EQ(r->events[5].kind, InputKind::TouchUp);
+    }
+}
+
+TEST(Replay, ErrorsNameTheLine) {
+    auto bad = [](const std::string& text) {
+        auto r = parse_replay(text, "x.replay");
+        return r ? std::string("(parsed)") : r.error().message;
+    };
+    EXPECT_EQ(bad("0 down 1 2 3\n0.5 tap 1 2 3\n"), "x.replay: line 2: unknown event type 'tap'");
+    EXPECT_EQ(bad("1 down 1 2 3\n0.5 up 1 2 3\n"), "x.replay: line 2: time goes backwards");
+    EXPECT_EQ(bad("0 down 1 2\n"), "x.replay: line 1: bad arguments for 'down' (see kiosk/app/replay.h)");
+    EXPECT_EQ(bad("abc down 1 2 3\n"), "x.replay: line 1: expected a time in seconds");
+    EXPECT_EQ(bad("0 mouse-down left 1 2 meta\n"), "x.replay: line 1: unexpected 'meta'");
+    EXPECT_EQ(bad(R"({"events": [{"t": 0, "type": "down"}, {"t": -1, "type": "up"}]})"),
+              "x.replay: events[1].t: time goes backwards");
+    EXPECT_EQ(bad(R"({"events": 3})"), "x.replay: events: expected an array");
+}
+
+}  // namespace
+}  // namespace body::kiosk
