@@ -69,6 +69,46 @@ std::vector<Vec2> douglas_peucker_ring(const std::vector<Vec2>& ring, double tol
     return out;
 }
 
+// Small rings keep their shape: a few-voxel region simplified to a triangle
+// loses most of its area, and later stages (branch partitions) need vertices.
+// When Douglas-Peucker leaves fewer than min(n, kMinKeptVertices) vertices, the
+// dropped vertex farthest from its kept segment is restored, repeatedly.
+constexpr size_t kMinKeptVertices = 8;
+
+std::vector<Vec2> simplify_ring(const std::vector<Vec2>& ring, double tolerance) {
+    const size_t n = ring.size();
+    const size_t wanted = std::min(n, kMinKeptVertices);
+    std::vector<Vec2> out = douglas_peucker_ring(ring, tolerance);
+    if (out.size() >= wanted) return out;
+    std::vector<uint8_t> keep(n, 0);
+    for (size_t i = 0, j = 0; i < n && j < out.size(); ++i) {
+        if (ring[i] == out[j]) keep[i] = 1, ++j;
+    }
+    for (size_t kept = out.size(); kept < wanted; ++kept) {
+        size_t best = SIZE_MAX;
+        double best_d = -1.0;
+        size_t first = 0;
+        while (!keep[first]) ++first;
+        for (size_t s = 0; s < n; ++s) {  // spans between consecutive kept vertices
+            const size_t a = (first + s) % n;
+            if (!keep[a]) continue;
+            size_t b = (a + 1) % n;
+            while (!keep[b]) b = (b + 1) % n;
+            for (size_t k = (a + 1) % n; k != b; k = (k + 1) % n) {
+                const double d = point_segment_distance2(ring[k], ring[a], ring[b]);
+                if (d > best_d) best_d = d, best = k;
+            }
+        }
+        if (best == SIZE_MAX) break;
+        keep[best] = 1;
+    }
+    out.clear();
+    for (size_t i = 0; i < n; ++i) {
+        if (keep[i]) out.push_back(ring[i]);
+    }
+    return out;
+}
+
 int orient(const Vec2& a, const Vec2& b, const Vec2& c) {
     const double d = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
     return (d > 0.0) - (d < 0.0);
@@ -204,7 +244,7 @@ void simplify_rings(std::vector<std::vector<Vec2>>& rings, double tolerance) {
     const std::vector<std::vector<Vec2>> original = rings;
     // level[i]: 0 full tolerance, 1 half, 2 unsimplified. Levels only rise, so this ends.
     std::vector<int> level(rings.size(), 0);
-    for (size_t i = 0; i < rings.size(); ++i) rings[i] = douglas_peucker_ring(original[i], tolerance);
+    for (size_t i = 0; i < rings.size(); ++i) rings[i] = simplify_ring(original[i], tolerance);
     for (int round = 0; round < 3; ++round) {
         std::vector<uint8_t> bad(rings.size(), 0);
         flag_intersections(rings, bad);
@@ -214,7 +254,7 @@ void simplify_rings(std::vector<std::vector<Vec2>>& rings, double tolerance) {
             if (!bad[i] || level[i] == 2) continue;
             any = true;
             ++level[i];
-            rings[i] = level[i] == 1 ? douglas_peucker_ring(original[i], tolerance * 0.5) : original[i];
+            rings[i] = level[i] == 1 ? simplify_ring(original[i], tolerance * 0.5) : original[i];
         }
         if (!any) return;
     }

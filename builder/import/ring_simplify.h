@@ -11,7 +11,8 @@
 //   every dropped vertex lies within `tolerance` (pixel units) of the kept
 //   polyline. The result again has no touching or crossing segments, keeps
 //   each ring's orientation and the nesting of rings (which ring contains
-//   which), and every ring keeps at least 3 vertices. Rings where the
+//   which), and every ring keeps at least min(its size, 8) vertices (small
+//   rings are simplified with a smaller tolerance, or not at all). Rings where the
 //   simplified form would violate that are retried with half the tolerance,
 //   then left unsimplified.
 // - tolerance <= 0 leaves the rings unchanged.
