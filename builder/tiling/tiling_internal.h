@@ -8,10 +8,14 @@
 // Both are counter-clockwise seen from outside when both contours run
 // counter-clockwise seen from +z and upper lies above lower.
 //
-// Cost of a triangle: (folds, area), compared lexicographically, so that a
-// cost choice never trades a fold for area. A triangle folds when its normal
-// points against the outward direction of the opposite contour at the apex
-// (the edge runs backwards relative to the contour it is stitched to).
+// Cost of a tiling: (folds, area), compared lexicographically, so that a cost
+// choice never trades a fold for area. A fold is a corner of the path where
+// the band turns back on itself: a lower move followed by an upper move (or
+// the reverse) whose contour edges point in opposite directions (more than
+// 120 degrees apart). Every cross-section of the band between the two
+// contours then runs forward along one edge and back along the next, i.e. the
+// band folds over itself there. Turns within one contour are the contour's
+// own shape and cost nothing.
 #include <cmath>
 #include <cstdint>
 #include <span>
@@ -29,50 +33,43 @@ struct Cost {
     friend bool operator<(Cost a, Cost b) { return a.folds != b.folds ? a.folds < b.folds : a.area < b.area; }
 };
 
-// Triangles whose normal makes more than this angle's cosine with the opposite
-// contour's outward direction count as folded (cos 120 degrees).
+// Corners whose edge directions have a cosine below this fold (120 degrees).
 inline constexpr double kFoldCosine = -0.5;
 
-// The pair with per-vertex outward directions (unit, horizontal; zero where
-// the contour has no defined tangent).
+// The pair with its edge vectors: edge k runs from point k to point k+1.
 struct Band {
     std::span<const Vec3> lower, upper;
-    std::vector<Vec3> lower_out, upper_out;
+    std::vector<Vec3> lower_edge, upper_edge;
+    std::vector<double> lower_len, upper_len;
 
     Band(std::span<const Vec3> l, std::span<const Vec3> u) : lower(l), upper(u) {
-        lower_out = outward(l);
-        upper_out = outward(u);
+        edges(l, lower_edge, lower_len);
+        edges(u, upper_edge, upper_len);
     }
-
-    static std::vector<Vec3> outward(std::span<const Vec3> c) {
+    static void edges(std::span<const Vec3> c, std::vector<Vec3>& e, std::vector<double>& len) {
         const size_t n = c.size();
-        std::vector<Vec3> out(n);
+        e.resize(n);
+        len.resize(n);
         for (size_t k = 0; k < n; ++k) {
-            Vec3 t = c[(k + 1) % n] - c[(k + n - 1) % n];
-            Vec3 o(t.y, -t.x, 0.0);  // tangent x (+z)
-            double len = glm::length(o);
-            out[k] = len > 0.0 ? o / len : Vec3(0.0);
+            e[k] = c[k + 1 == n ? 0 : k + 1] - c[k];
+            len[k] = glm::length(e[k]);
         }
-        return out;
     }
 
     // Triangle (L_i, L_i+1, U_j); i in [0, m), j in [0, n).
-    Cost lower_cost(size_t i, size_t j) const {
-        const Vec3& a = lower[i];
-        const Vec3& b = lower[i + 1 == lower.size() ? 0 : i + 1];
-        const Vec3& c = upper[j];
-        Vec3 nrm = glm::cross(b - a, c - a);
-        double len = glm::length(nrm);
-        return {glm::dot(nrm, upper_out[j]) < kFoldCosine * len ? 1u : 0u, 0.5 * len};
+    double lower_area(size_t i, size_t j) const {
+        return 0.5 * glm::length(glm::cross(lower_edge[i], upper[j] - lower[i]));
     }
     // Triangle (L_i, U_j+1, U_j).
-    Cost upper_cost(size_t i, size_t j) const {
-        const Vec3& a = lower[i];
-        const Vec3& b = upper[j + 1 == upper.size() ? 0 : j + 1];
-        const Vec3& c = upper[j];
-        Vec3 nrm = glm::cross(b - a, c - a);
-        double len = glm::length(nrm);
-        return {glm::dot(nrm, lower_out[i]) < kFoldCosine * len ? 1u : 0u, 0.5 * len};
+    double upper_area(size_t i, size_t j) const {
+        const Vec3 a = upper[j] - lower[i];
+        return 0.5 * glm::length(glm::cross(a + upper_edge[j], a));
+    }
+    Cost lower_cost(size_t i, size_t j) const { return {0, lower_area(i, j)}; }
+    Cost upper_cost(size_t i, size_t j) const { return {0, upper_area(i, j)}; }
+    // Does the corner between lower edge i and upper edge j (in either order) fold?
+    uint32_t fold(size_t i, size_t j) const {
+        return glm::dot(lower_edge[i], upper_edge[j]) < kFoldCosine * lower_len[i] * upper_len[j] ? 1u : 0u;
     }
 };
 
@@ -130,6 +127,21 @@ struct CyclicTiling {
         return move == 0 ? band->lower_cost(i, j) : band->upper_cost(i, j);
     }
     Cost triangle(size_t p) const { return triangle(ei[p], ej[p], mv[p]); }
+    // Fold at the corner between a move of type t1 from edge (i1, j1) and one of
+    // type t2 from edge (i2, j2).
+    uint32_t corner(uint8_t t1, uint32_t i1, uint32_t j1, uint8_t t2, uint32_t i2, uint32_t j2) const {
+        if (t1 == t2) return 0;
+        return t1 == 0 ? band->fold(i1, j2) : band->fold(i2, j1);
+    }
+    uint32_t corner(size_t p) const {  // between moves prev(p) and p
+        size_t q = prev(p);
+        return corner(mv[q], ei[q], ej[q], mv[p], ei[p], ej[p]);
+    }
+    Cost total() const {
+        Cost c;
+        for (size_t p = 0; p < mv.size(); ++p) c = c + triangle(p) + Cost{corner(p), 0.0};
+        return c;
+    }
     bool flippable(size_t p) const { return mv[prev(p)] != mv[p]; }
     // The spanning edge p would become after a flip.
     void flipped_edge(size_t p, uint32_t& i, uint32_t& j) const {
@@ -141,13 +153,17 @@ struct CyclicTiling {
         else
             j = j + 1 == n ? 0 : j + 1;
     }
-    // Cost of triangles p-1 and p now, and after flipping edge p.
+    // Cost of triangles p-1 and p and of the three corners around them, now
+    // and after flipping edge p.
     void flip_costs(size_t p, Cost& before, Cost& after) const {
-        size_t q = prev(p);
-        before = triangle(q) + triangle(p);
+        size_t q = prev(p), o = prev(q), r = next(p);
+        before = triangle(q) + triangle(p) + Cost{corner(q) + corner(p) + corner(r), 0.0};
         uint32_t i, j;
         flipped_edge(p, i, j);
-        after = triangle(ei[q], ej[q], mv[p]) + triangle(i, j, mv[q]);
+        const uint8_t tq = mv[p], tp = mv[q];  // the swapped moves
+        uint32_t folds = corner(mv[o], ei[o], ej[o], tq, ei[q], ej[q]) + corner(tq, ei[q], ej[q], tp, i, j) +
+                         corner(tp, i, j, mv[r], ei[r], ej[r]);
+        after = triangle(ei[q], ej[q], tq) + triangle(i, j, tp) + Cost{folds, 0.0};
     }
     void flip(size_t p) {
         size_t q = prev(p);
@@ -186,6 +202,36 @@ struct CyclicTiling {
             flip_costs(next(end), b2, a2);
             Cost d1{a1.folds + b2.folds, a1.area + b2.area}, d2{a2.folds + b1.folds, a2.area + b1.area};
             flip(d1 < d2 ? start : next(end));
+        }
+    }
+
+    // Local optimisation (Meyers et al.): flip diagonals while that lowers the
+    // cost, never making a fan of a whole contour; ends when no flip helps.
+    void swap_until_stable() {
+        constexpr double kEpsilon = 1e-12;  // relative area change that counts, so flips terminate
+        const size_t count = size();
+        std::vector<uint32_t> stack;
+        std::vector<uint8_t> queued(count, 1);
+        stack.reserve(count);
+        for (size_t p = count; p-- > 0;) stack.push_back(uint32_t(p));
+        while (!stack.empty()) {
+            size_t p = stack.back();
+            stack.pop_back();
+            queued[p] = 0;
+            if (!flippable(p)) continue;
+            Cost before, after;
+            flip_costs(p, before, after);
+            bool better =
+                after.folds != before.folds ? after.folds < before.folds : after.area < before.area * (1.0 - kEpsilon);
+            if (!better) continue;
+            flip(p);
+            size_t q = prev(p);
+            if (run_length(q) > run_limit(mv[q]) || run_length(p) > run_limit(mv[p])) {
+                flip(p);  // flipping again restores the previous state
+                continue;
+            }
+            for (size_t r : {prev(q), q, next(p)})
+                if (!queued[r]) queued[r] = 1, stack.push_back(uint32_t(r));
         }
     }
 

@@ -34,9 +34,6 @@ using tiling_detail::CyclicTiling;
 // Contours longer than this are simplified before the optimal tiling.
 constexpr size_t kCoarseVertices = 48;
 
-// Areas within this relative margin count as equal, so swaps terminate.
-constexpr double kSwapEpsilon = 1e-12;
-
 // Phase 1: the filter-bank pyramid; levels[0] is the input.
 static std::vector<std::vector<Vec3>> analyse(std::span<const Vec3> contour) {
     std::vector<std::vector<Vec3>> levels;
@@ -85,37 +82,6 @@ static void refine_moves(const CyclicTiling& coarse, bool refine_lower, bool ref
     j0 = refine_upper ? 2 * coarse.ej[0] : coarse.ej[0];
 }
 
-// Phase 3b: local optimisation, swapping diagonals while that lowers the cost
-// and keeps every fan short of the whole other contour.
-static void swap_until_stable(CyclicTiling& tiling) {
-    const size_t count = tiling.size();
-    std::vector<uint32_t> stack;
-    std::vector<uint8_t> queued(count, 1);
-    stack.reserve(count);
-    for (size_t p = count; p-- > 0;) stack.push_back(uint32_t(p));
-    while (!stack.empty()) {
-        size_t p = stack.back();
-        stack.pop_back();
-        queued[p] = 0;
-        if (!tiling.flippable(p)) continue;
-        Cost before, after;
-        tiling.flip_costs(p, before, after);
-        bool better =
-            after.folds != before.folds ? after.folds < before.folds : after.area < before.area * (1.0 - kSwapEpsilon);
-        if (!better) continue;
-        tiling.flip(p);
-        size_t q = tiling.prev(p);
-        // Moving a move into the neighbouring run may make it a full fan.
-        if (tiling.run_length(q) > tiling.run_limit(tiling.mv[q]) ||
-            tiling.run_length(p) > tiling.run_limit(tiling.mv[p])) {
-            tiling.flip(p);  // flipping again restores the previous state
-            continue;
-        }
-        for (size_t r : {tiling.prev(q), q, tiling.next(p)})
-            if (!queued[r]) queued[r] = 1, stack.push_back(uint32_t(r));
-    }
-}
-
 }  // namespace
 
 void tile_multires(std::span<const Vec3> lower, std::span<const Vec3> upper, std::vector<uint32_t>& triangles) {
@@ -141,9 +107,9 @@ void tile_multires(std::span<const Vec3> lower, std::span<const Vec3> upper, std
         Band fine(lower_levels[ll], upper_levels[ul]);
         band = std::move(fine);
         tiling = CyclicTiling(band, i0, j0, moves);
-        swap_until_stable(tiling);
+        tiling.swap_until_stable();
     }
-    if (depth == 0) swap_until_stable(tiling);
+    if (depth == 0) tiling.swap_until_stable();
     tiling.split_full_fans();
     tiling.emit(triangles);
 }

@@ -1,5 +1,12 @@
 // Optimal tiling: the minimum-cost closed path on the toroidal graph of a
-// contour pair, cost = (folded triangles, area) compared lexicographically.
+// contour pair, cost = (folded corners, area) compared lexicographically
+// (tiling_internal.h). Corners are charged by keeping the last move in the
+// dynamic programme's state; the cyclic corner at the start is exact because
+// each start is solved once per closing state. Optimal paths for different
+// starts never cross when the cost is area alone, which makes the divide and
+// conquer exact; corner charges can break that exchange argument, so with
+// folds present the result is exact per start but the start search is FKU's
+// bound, followed by a local polish with diagonal flips.
 //
 // References:
 // - E. Keppel, "Approximating complex surfaces by triangulation of contour
@@ -17,6 +24,7 @@
 // vertex to the whole other contour (a non-manifold band) is repaired by the
 // cheapest local flip afterwards.
 #include <algorithm>
+#include <cassert>
 #include <cstdint>
 #include <limits>
 #include <vector>
@@ -37,87 +45,128 @@ struct Path {
     Cost cost;
 };
 
+constexpr Cost kInfinite{std::numeric_limits<uint32_t>::max() / 2, 0.0};
+
 struct Grid {
     const Band& band;
     bool a_is_lower;
     uint32_t rows, cols;  // |A|, |B|
-    // Reused scratch.
-    std::vector<Cost> prev, cur;
-    std::vector<uint64_t> from_b;  // one bit per region cell: reached by a B move
+    // Reused scratch: costs of the previous and current row for the two
+    // states (last move A / last move B), and two bits per region cell
+    // telling the predecessor's state of each.
+    std::vector<Cost> prev_a, prev_b, cur_a, cur_b;
+    std::vector<uint64_t> bits;
     std::vector<size_t> row_offset;
+
+    Grid(const Band& b, bool lower_rows, uint32_t r, uint32_t c) : band(b), a_is_lower(lower_rows), rows(r), cols(c) {}
 
     uint32_t wrap_b(uint32_t c) const { return c >= cols ? c - cols : c; }
     uint32_t wrap_a(uint32_t r) const { return r >= rows ? r - rows : r; }
-    // Cost of advancing A from cell (r, c), or B from it.
-    Cost cost_a(uint32_t r, uint32_t c) const {
-        return a_is_lower ? band.lower_cost(wrap_a(r), wrap_b(c)) : band.upper_cost(wrap_b(c), wrap_a(r));
+    // Area of advancing A from cell (r, c), or B from it.
+    double area_a(uint32_t r, uint32_t c) const {
+        return a_is_lower ? band.lower_area(wrap_a(r), wrap_b(c)) : band.upper_area(wrap_b(c), wrap_a(r));
     }
-    Cost cost_b(uint32_t r, uint32_t c) const {
-        return a_is_lower ? band.upper_cost(wrap_a(r), wrap_b(c)) : band.lower_cost(wrap_b(c), wrap_a(r));
+    double area_b(uint32_t r, uint32_t c) const {
+        return a_is_lower ? band.upper_area(wrap_a(r), wrap_b(c)) : band.lower_area(wrap_b(c), wrap_a(r));
     }
+    // Fold between A edge ea and B edge eb (indices may be one below zero: wrapped).
+    uint32_t fold(uint32_t ea, uint32_t eb) const {
+        ea = ea == uint32_t(-1) ? rows - 1 : wrap_a(ea);
+        eb = eb == uint32_t(-1) ? cols - 1 : wrap_b(eb);
+        return a_is_lower ? band.fold(ea, eb) : band.fold(eb, ea);
+    }
+    bool bit(size_t index) const { return (bits[index >> 6] >> (index & 63)) & 1; }
+    void set_bit(size_t index) { bits[index >> 6] |= uint64_t(1) << (index & 63); }
 };
 
 // Phase 1: shortest path for start k inside the region between the columns
-// lo_bound[r] and hi_bound[r] of each row (Keppel's dynamic programme).
-static void shortest_path(Grid& g, uint32_t k, std::span<const uint32_t> lo_bound, std::span<const uint32_t> hi_bound,
-                          Path& out) {
+// lo_bound[r] and hi_bound[r] of each row (Keppel's dynamic programme, with
+// the last move in the state so that corners can be charged). `first` is the
+// type of the path's last move, which precedes its first one cyclically: the
+// path starts and must end in that state.
+static void shortest_path(Grid& g, uint32_t k, uint8_t first, std::span<const uint32_t> lo_bound,
+                          std::span<const uint32_t> hi_bound, Path& out) {
     const uint32_t rows = g.rows, end = k + g.cols;
     auto left = [&](uint32_t r) { return std::max(lo_bound[r], k); };
     auto right = [&](uint32_t r) { return std::min(hi_bound[r], end); };
     g.row_offset.resize(rows + 2);
     size_t total = 0;
+    uint32_t width_max = 0;
     for (uint32_t r = 0; r <= rows; ++r) {
         g.row_offset[r] = total;
         total += right(r) - left(r) + 1;
+        width_max = std::max(width_max, right(r) - left(r) + 1);
     }
-    g.from_b.assign((total + 63) / 64, 0);
-    uint32_t width_max = 0;
-    for (uint32_t r = 0; r <= rows; ++r) width_max = std::max(width_max, right(r) - left(r) + 1);
-    g.prev.resize(width_max);
-    g.cur.resize(width_max);
+    g.bits.assign((2 * total + 63) / 64, 0);
+    for (auto* v : {&g.prev_a, &g.prev_b, &g.cur_a, &g.cur_b}) v->resize(width_max);
 
     for (uint32_t r = 0; r <= rows; ++r) {
         const uint32_t lo = left(r), hi = right(r);
         const uint32_t plo = r ? left(r - 1) : 0, phi = r ? right(r - 1) : 0;
-        const size_t base = g.row_offset[r];
+        const size_t base = 2 * g.row_offset[r];
         for (uint32_t c = lo; c <= hi; ++c) {
-            Cost best{std::numeric_limits<uint32_t>::max(), 0.0};
-            bool via_b = false;
-            if (r == 0 && c == k) best = Cost{};
-            if (r > 0 && c >= plo && c <= phi) best = g.prev[c - plo] + g.cost_a(r - 1, c);
-            if (c > lo) {
-                Cost h = g.cur[c - 1 - lo] + g.cost_b(r, c - 1);
-                if (h < best) best = h, via_b = true;
+            Cost in_a = kInfinite, in_b = kInfinite;
+            const size_t cell = base + 2 * (c - lo);
+            if (r == 0 && c == k) (first == 0 ? in_a : in_b) = Cost{};
+            if (r > 0 && c >= plo && c <= phi) {  // arrive by A from (r-1, c)
+                const double area = g.area_a(r - 1, c);
+                Cost via_a = g.prev_a[c - plo], via_b = g.prev_b[c - plo];
+                via_b.folds += g.fold(r - 1, c - 1);
+                if (via_b < via_a)
+                    in_a = via_b, g.set_bit(cell);
+                else
+                    in_a = via_a;
+                in_a.area += area;
             }
-            g.cur[c - lo] = best;
-            if (via_b) {
-                size_t bit = base + (c - lo);
-                g.from_b[bit >> 6] |= uint64_t(1) << (bit & 63);
+            if (c > lo) {  // arrive by B from (r, c-1)
+                const double area = g.area_b(r, c - 1);
+                Cost via_a = g.cur_a[c - 1 - lo], via_b = g.cur_b[c - 1 - lo];
+                via_a.folds += g.fold(r - 1, c - 1);
+                if (via_b < via_a)
+                    in_b = via_b, g.set_bit(cell + 1);
+                else
+                    in_b = via_a;
+                in_b.area += area;
             }
+            g.cur_a[c - lo] = in_a;
+            g.cur_b[c - lo] = in_b;
         }
-        std::swap(g.prev, g.cur);
+        std::swap(g.prev_a, g.cur_a);
+        std::swap(g.prev_b, g.cur_b);
     }
-    out.cost = g.prev[end - left(rows)];
+    out.cost = (first == 0 ? g.prev_a : g.prev_b)[end - left(rows)];
+    if (!(out.cost < kInfinite)) return;  // the region cannot end with this move type
 
     // Backtrack from (rows, end) to (0, k), recording the columns per row.
     out.lo.assign(rows + 1, std::numeric_limits<uint32_t>::max());
     out.hi.assign(rows + 1, 0);
     out.moves.clear();
     uint32_t r = rows, c = end;
+    uint8_t state = first;
     for (;;) {
         out.lo[r] = std::min(out.lo[r], c);
         out.hi[r] = std::max(out.hi[r], c);
         if (r == 0 && c == k) break;
-        size_t bit = g.row_offset[r] + (c - left(r));
-        if ((g.from_b[bit >> 6] >> (bit & 63)) & 1) {
-            out.moves.push_back(1);
-            --c;
-        } else {
-            out.moves.push_back(0);
+        const size_t cell = 2 * g.row_offset[r] + 2 * (c - left(r));
+        const uint8_t from = g.bit(cell + state) ? 1 : 0;
+        out.moves.push_back(state);
+        if (state == 0)
             --r;
-        }
+        else
+            --c;
+        state = from;
     }
     std::reverse(out.moves.begin(), out.moves.end());
+}
+
+// The better of the two closing states for start k.
+static void best_path(Grid& g, uint32_t k, std::span<const uint32_t> lo_bound, std::span<const uint32_t> hi_bound,
+                      Path& out) {
+    Path other;
+    shortest_path(g, k, 0, lo_bound, hi_bound, out);
+    shortest_path(g, k, 1, lo_bound, hi_bound, other);
+    if (other.cost < out.cost) out = std::move(other);
+    assert(out.cost < kInfinite);  // every region holds a path, ending with one move type or the other
 }
 
 struct Search {
@@ -137,7 +186,7 @@ struct Search {
         if (b - a < 2) return;
         uint32_t k = a + (b - a) / 2;
         Path pk;
-        shortest_path(grid, k, pa.lo, pb.hi, pk);
+        best_path(grid, k, pa.lo, pb.hi, pk);
         consider(pk, k);
         between(a, pa, k, pk);
         between(k, pk, b, pb);
@@ -149,19 +198,13 @@ struct Search {
 void tile_optimal(std::span<const Vec3> lower, std::span<const Vec3> upper, std::vector<uint32_t>& triangles) {
     Band band(lower, upper);
     const bool a_is_lower = lower.size() >= upper.size();
-    Grid grid{band,
-              a_is_lower,
-              uint32_t(a_is_lower ? lower.size() : upper.size()),
-              uint32_t(a_is_lower ? upper.size() : lower.size()),
-              {},
-              {},
-              {},
-              {}};
+    Grid grid(band, a_is_lower, uint32_t(a_is_lower ? lower.size() : upper.size()),
+              uint32_t(a_is_lower ? upper.size() : lower.size()));
     const uint32_t rows = grid.rows, cols = grid.cols;
 
     std::vector<uint32_t> lo0(rows + 1, 0), hi0(rows + 1, cols);
     Path first;
-    shortest_path(grid, 0, lo0, hi0, first);
+    best_path(grid, 0, lo0, hi0, first);
     Path last = first;  // the path for start |B| is the first one shifted by |B|
     for (uint32_t& v : last.lo) v += cols;
     for (uint32_t& v : last.hi) v += cols;
@@ -176,6 +219,7 @@ void tile_optimal(std::span<const Vec3> lower, std::span<const Vec3> upper, std:
     const size_t i0 = a_is_lower ? 0 : search.best_start, j0 = a_is_lower ? search.best_start : 0;
     tiling_detail::CyclicTiling tiling(band, uint32_t(i0), uint32_t(j0), moves);
     tiling.split_full_fans();
+    tiling.swap_until_stable();  // corners break FKU's non-crossing argument: polish locally
     tiling.emit(triangles);
 }
 
