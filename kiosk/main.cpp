@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "body/version.h"
+#include "kiosk/app/kiosk_run.h"
 #include "kiosk/render/benchmark.h"
 #include "kiosk/render/image.h"
 #include "kiosk/render/model_source.h"
@@ -50,6 +51,8 @@ void print_help(std::FILE* out) {
                  "  --ssaa N          headless: render N times larger and downsample the screenshot\n"
                  "  --screenshot PNG  render one frame, write it as PNG and exit\n"
                  "  --frames N        interactive: exit after N frames\n"
+                 "  --replay FILE     scene: play scripted touch/mouse input (kiosk/app/replay.h), then exit\n"
+                 "  --no-auto-lod     scene: keep the manifest's LOD (the automatic LOD controller off)\n"
                  "  --benchmark       time every style at LOD 100/40/10%% against a flat baseline\n"
                  "  --help            this text\n  --version         print the version\n\n"
                  "A model that cannot be loaded is skipped with a one-line error (nothing drawn).\n"
@@ -191,6 +194,16 @@ int run(const CliArgs& args) {
         auto s = render::run_benchmark(surf, bo);
         return s ? kExitOk : fail(s.error());
     }
+    // Kiosk mode (kiosk/app): a scene shown live with gestures, labels and automatic
+    // LOD, or driven by --replay; a plain --screenshot of a scene stays below.
+    if (scene && (args.has("replay") || !args.has("screenshot"))) {
+        kiosk::KioskRunOptions ko;
+        ko.replay = args.get_or("replay", "");
+        ko.screenshot = args.get_or("screenshot", "");
+        ko.frames = frames.value();
+        ko.auto_lod = !args.has("no-auto-lod");
+        return kiosk::run_kiosk(surf, *scene, ko);
+    }
     render::Renderer renderer;
     if (auto s = renderer.init(); !s) return fail(s.error());
 
@@ -254,11 +267,12 @@ int run(const CliArgs& args) {
         fo.height = surf.height();
         fo.framebuffer = surf.framebuffer();
         renderer.render(camera, lighting, fo);
-        if (auto s = surf.present(); !s) return fail(s.error());
+        // Read before presenting: after a swap the back buffer is undefined.
         render::Image img;
         img.width = fo.width;
         img.height = fo.height;
         img.rgba = platform::read_pixels_rgba(fo.framebuffer, fo.width, fo.height);
+        if (auto s = surf.present(); !s) return fail(s.error());
         img = render::downsample(img, static_cast<int>(ssaa.value()));
         if (auto s = render::write_png(*shot, img); !s) return fail(s.error());
         renderer.shutdown();
@@ -320,8 +334,8 @@ int main(int argc, char** argv) {
     }
     auto args = CliArgs::parse(argv_list,
                                {"platform", "size", "mode", "device", "model", "scene", "style", "lod", "select",
-                                "view", "line-width", "ssaa", "screenshot", "frames"},
-                               {"headless", "windowed", "xray", "benchmark"});
+                                "view", "line-width", "ssaa", "screenshot", "frames", "replay"},
+                               {"headless", "windowed", "xray", "benchmark", "no-auto-lod"});
     if (!args) return fail(args.error());
     return run(args.value());
 }

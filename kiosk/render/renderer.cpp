@@ -715,6 +715,25 @@ void Renderer::render(const Camera& camera, const Lighting& lighting, const Fram
         BODY_GL_CHECK(style_name(m.state.style));
     }
 
+    // ---- the white manipulation sphere of each selected model, opaque, at its
+    // centre (seen through the transparent purple)
+    if (o.manipulation_sphere && any_selected) {
+        Model& sphere = s.models[s.sphere];
+        glUseProgram(s.smooth.id);
+        set_lights(s.smooth, lighting);
+        glUniform4f(s.smooth.loc("u_color"), 0.95f, 0.95f, 0.95f, 1.0f);
+        for (auto& [id, m] : s.models) {
+            if (m.internal || !m.state.visible || !m.state.selected) continue;
+            Vec3f c;
+            float r = 0;
+            world_sphere(m, c, r);
+            sphere.state.transform = glm::scale(glm::translate(glm::mat4(1.0f), c), Vec3f(r * o.sphere_fraction));
+            set_matrices(s.smooth, f, sphere);
+            draw_triangles(sphere);
+            ++s.stats.draw_calls;
+        }
+    }
+
     // ---- transparent pass: back to front by view depth of the bounding sphere
     std::vector<std::pair<float, Model*>> order;
     for (Model* m : transparent) {
@@ -726,11 +745,12 @@ void Renderer::render(const Camera& camera, const Lighting& lighting, const Fram
     std::sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
     glEnable(GL_BLEND);
     glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-    auto draw_transparent = [&](Model& m, Program& p, Vec3f color, float alpha, bool lit) {
+    auto draw_transparent = [&](Model& m, Program& p, Vec3f color, float alpha, bool lit, Vec3f rim) {
         glUseProgram(p.id);
         set_matrices(p, f, m);
         if (lit) set_lights(p, lighting);
         glUniform4f(p.loc("u_color"), color.r, color.g, color.b, alpha);
+        glUniform3fv(p.loc("u_rim_color"), 1, glm::value_ptr(rim));
         // Depth pre-pass: only the nearest layer of this model blends.
         glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
         draw_triangles(m);
@@ -744,19 +764,10 @@ void Renderer::render(const Camera& camera, const Lighting& lighting, const Fram
     };
     for (auto& [z, m] : order) {
         if (m->state.selected)
-            draw_transparent(*m, s.smooth, o.selection_color, 0.45f, true);
-        else
-            draw_transparent(*m, s.xray, glm::mix(m->state.color, Vec3f(0.55f, 0.62f, 0.75f), 0.5f), 0.10f, false);
-    }
-    if (o.manipulation_sphere && any_selected) {
-        Model& sphere = s.models[s.sphere];
-        for (auto& [id, m] : s.models) {
-            if (m.internal || !m.state.visible || !m.state.selected) continue;
-            Vec3f c;
-            float r = 0;
-            world_sphere(m, c, r);
-            sphere.state.transform = glm::scale(glm::translate(glm::mat4(1.0f), c), Vec3f(r * 1.05f));
-            draw_transparent(sphere, s.xray, Vec3f(1.0f), 0.06f, false);
+            draw_transparent(*m, s.smooth, o.selection_color, 0.55f, true, Vec3f(0.0f));
+        else {
+            Vec3f c = glm::mix(m->state.color, Vec3f(0.55f, 0.62f, 0.75f), 0.5f);
+            draw_transparent(*m, s.xray, c, 0.10f, false, c * 0.8f);
         }
     }
     glDisable(GL_BLEND);

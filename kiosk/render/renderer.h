@@ -21,8 +21,8 @@
 //
 // Frame order: opaque models (any style), then transparent ones (selected =
 // purple, x-ray/faded unselected) sorted back to front, each with a depth
-// pre-pass so only its nearest layer blends, then the white manipulation
-// sphere of each selected model.
+// pre-pass so only its nearest layer blends. The white manipulation sphere of a
+// selected model sits at its centre (opaque, seen through the purple).
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -102,11 +102,12 @@ struct FrameOptions {
     Vec3f background{0.97f, 0.96f, 0.93f};
     Vec3f paper{1.0f, 1.0f, 0.99f};  // `lines` fill
     Vec3f ink{0.10f, 0.09f, 0.09f};  // `lines` edges
-    Vec3f selection_color{0.55f, 0.25f, 0.80f};
+    Vec3f selection_color{0.50f, 0.18f, 0.80f};
     float line_width_px = 2.0f;      // silhouettes; creases 0.7x, wireframe 1x
     float crease_angle_deg = 45.0f;  // dihedral angle above which an edge is a crease
     bool xray_unselected = false;    // fade everything not selected (when something is)
     bool manipulation_sphere = true;
+    float sphere_fraction = 0.2f;  // manipulation sphere radius / model bounding radius
 };
 
 struct FrameStats {

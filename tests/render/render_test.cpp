@@ -1,0 +1,432 @@
+// Renderer tests on llvmpipe (headless EGL): golden images with a tolerant
+// metric, property checks, bad input, LOD patching, GLFW under Xvfb, softpipe.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "kiosk/render/model_source.h"
+#include "shared/obj_io.h"
+#include "tests/render/render_fixture.h"
+
+using namespace body;
+using namespace body::render;
+using body::test::RenderFixture;
+
+namespace {
+
+const std::string kGoldenDir = BODY_GOLDEN_DIR;
+
+std::filesystem::path temp_dir() {
+    auto d = std::filesystem::temp_directory_path() / ("body_render_test_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(d);
+    return d;
+}
+
+#define REQUIRE_GL(fixture) \
+    if (!(fixture).ok()) GTEST_SKIP() << "no headless EGL/GLES 3 (Mesa libegl1/libgl1-mesa-dri): " << (fixture).why()
+
+// Sphere on the left, a turned cube on the right, in one style.
+std::vector<ModelId> two_shapes(Renderer& r, Style style) {
+    static const test::GenMesh sphere = test::icosphere(3);
+    static const test::GenMesh box = test::cube(0.8f);
+    auto a = r.add_model(sphere.data(), "sphere");
+    auto b = r.add_model(box.data(), "cube");
+    EXPECT_TRUE(a.ok() && b.ok());
+    r.state(a.value())->style = style;
+    r.state(a.value())->transform = glm::translate(glm::mat4(1.0f), Vec3f(-1.2f, 0, 0));
+    r.state(b.value())->style = style;
+    r.state(b.value())->color = Vec3f(0.45f, 0.6f, 0.85f);
+    r.state(b.value())->transform = glm::rotate(
+        glm::rotate(glm::translate(glm::mat4(1.0f), Vec3f(1.3f, 0, 0)), 0.6f, Vec3f(0, 1, 0)), 0.4f, Vec3f(1, 0, 0));
+    return {a.value(), b.value()};
+}
+
+Camera scene_camera(Renderer& r) {
+    Vec3f c;
+    float radius = 0;
+    r.scene_bounds(c, radius);
+    return Camera::framing(c, radius, Vec3f(0.0f, 0.2f, 1.0f));
+}
+
+// Compares with golden/<name>.png (BODY_UPDATE_GOLDENS=1 rewrites it).
+void expect_golden(const std::string& name, const Image& img) {
+    const std::string path = kGoldenDir + "/" + name + ".png";
+    if (std::getenv("BODY_UPDATE_GOLDENS")) {
+        ASSERT_TRUE(write_png(path, img).ok());
+        return;
+    }
+    auto golden = read_png(path);
+    ASSERT_TRUE(golden.ok()) << golden.error().message << " (regenerate with BODY_UPDATE_GOLDENS=1)";
+    auto d = test::compare(golden.value(), img);
+    if (d.bad_block_fraction > 0.01 || std::abs(d.mean_luma_delta) > 1.5) {
+        (void)write_png((temp_dir() / (name + ".actual.png")).string(), img);
+        ADD_FAILURE() << name << ": " << d.bad_block_fraction * 100 << "% blocks differ, mean luma delta "
+                      << d.mean_luma_delta << " (actual written to " << temp_dir().string() << ")";
+    }
+}
+
+}  // namespace
+
+class StyleGolden : public ::testing::TestWithParam<Style> {};
+
+TEST_P(StyleGolden, MatchesGolden) {
+    RenderFixture f;
+    REQUIRE_GL(f);
+    two_shapes(f.renderer(), GetParam());
+    Image img = f.draw(scene_camera(f.renderer()));
+    expect_golden(std::string("style_") + style_name(GetParam()), img);
+}
+
+INSTANTIATE_TEST_SUITE_P(AllStyles, StyleGolden,
+                         ::testing::Values(Style::Smooth, Style::Wireframe, Style::Lines, Style::Hatching,
+                                           Style::Hatching2Tone),
+                         [](const auto& info) {
+                             std::string n = style_name(info.param);
+                             std::erase(n, '-');
+                             return n;
+                         });
+
+namespace {
+void mixed_scene(Renderer& r) {
+    static const test::GenMesh sphere = test::icosphere(3);
+    static const test::GenMesh box = test::cube(0.7f);
+    static const test::GenMesh ring = test::torus(48, 24, 0.8f, 0.3f);
+    struct Item {
+        const test::GenMesh* mesh;
+        Style style;
+        Vec3f at;
+        Vec3f color;
+    };
+    for (Item it : {Item{&sphere, Style::Smooth, {-1.8f, 0.0f, 0.0f}, {0.85f, 0.45f, 0.4f}},
+                    Item{&box, Style::Lines, {0.0f, 0.0f, -0.5f}, {0.8f, 0.8f, 0.8f}},
+                    Item{&ring, Style::Hatching, {1.9f, 0.0f, 0.0f}, {0.9f, 0.85f, 0.7f}},
+                    Item{&sphere, Style::Hatching2Tone, {0.0f, 1.5f, 0.0f}, {0.9f, 0.9f, 0.9f}},
+                    Item{&sphere, Style::Wireframe, {0.0f, -1.5f, 0.0f}, {0.4f, 0.6f, 0.9f}}}) {
+        auto id = r.add_model(it.mesh->data(), "item");
+        ASSERT_TRUE(id.ok());
+        ModelState* s = r.state(id.value());
+        s->style = it.style;
+        s->color = it.color;
+        s->transform = glm::rotate(glm::translate(glm::mat4(1.0f), it.at), 0.5f, Vec3f(1, 1, 0));
+        if (it.style == Style::Wireframe) s->transform = glm::scale(s->transform, Vec3f(0.6f));
+    }
+}
+}  // namespace
+
+TEST(RenderGolden, MixedScene) {
+    RenderFixture f(400, 250);
+    REQUIRE_GL(f);
+    mixed_scene(f.renderer());
+    expect_golden("mixed_scene", f.draw(scene_camera(f.renderer())));
+}
+
+TEST(RenderGolden, SelectionAndXray) {
+    RenderFixture f(400, 250);
+    REQUIRE_GL(f);
+    mixed_scene(f.renderer());
+    auto ids = f.renderer().models();
+    f.renderer().state(ids[1])->selected = true;  // the lines cube
+    FrameOptions o = f.frame();
+    o.xray_unselected = true;
+    Image img = f.draw(scene_camera(f.renderer()), {}, o);
+    expect_golden("selection_xray", img);
+    // The selection is purple-dominant somewhere near the image centre.
+    size_t purple = 0;
+    for (int y = 0; y < img.height; ++y)
+        for (int x = 0; x < img.width; ++x) {
+            const uint8_t* p = img.at(x, y);
+            if (p[2] > p[1] + 40 && p[0] > p[1] + 20) ++purple;
+        }
+    EXPECT_GT(purple, 500u);
+}
+
+// The tolerance must not hide a missing line pass or a wrong hatching tone.
+TEST(RenderGolden, MetricCatchesAMissingLinePass) {
+    RenderFixture f;
+    REQUIRE_GL(f);
+    two_shapes(f.renderer(), Style::Lines);
+    Camera cam = scene_camera(f.renderer());
+    Image with = f.draw(cam);
+    FrameOptions o = f.frame();
+    o.ink = o.paper;  // edges drawn invisibly = no line pass
+    Image without = f.draw(cam, {}, o);
+    auto d = test::compare(with, without);
+    EXPECT_GT(d.bad_block_fraction, 0.01);
+    auto same = test::compare(with, f.draw(cam));
+    EXPECT_EQ(same.bad_block_fraction, 0.0);
+}
+
+TEST(RenderGolden, MetricCatchesAWrongTone) {
+    RenderFixture f;
+    REQUIRE_GL(f);
+    two_shapes(f.renderer(), Style::Hatching);
+    Camera cam = scene_camera(f.renderer());
+    Image right = f.draw(cam);
+    Lighting darker;
+    darker.key -= 0.15f;  // about one tone darker
+    auto d = test::compare(right, f.draw(cam, darker));
+    EXPECT_TRUE(d.bad_block_fraction > 0.01 || std::abs(d.mean_luma_delta) > 1.5)
+        << d.bad_block_fraction << " " << d.mean_luma_delta;
+}
+
+TEST(RenderProperty, SilhouettePixelsLieOnTheOutline) {
+    RenderFixture f(256, 256);
+    REQUIRE_GL(f);
+    test::GenMesh sphere = test::icosphere(4);
+    auto id = f.renderer().add_model(sphere.data(), "sphere");
+    ASSERT_TRUE(id.ok());
+    Camera cam = Camera::framing(Vec3f(0.0f), 1.3f, Vec3f(0.3f, 0.2f, 1.0f));
+    FrameOptions o = f.frame();
+    // The object's outline from a flat fill.
+    f.renderer().state(id.value())->style = Style::Baseline;
+    f.renderer().state(id.value())->color = Vec3f(0.0f, 0.0f, 1.0f);
+    Image fill = f.draw(cam, {}, o);
+    auto mask = test::foreground_mask(fill, o.background, 40);
+    const int w = fill.width, h = fill.height;
+    auto in = [&](int x, int y) { return x >= 0 && y >= 0 && x < w && y < h && mask[static_cast<size_t>(y * w + x)]; };
+    std::vector<std::pair<int, int>> outline;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            if (in(x, y) && (!in(x - 1, y) || !in(x + 1, y) || !in(x, y - 1) || !in(x, y + 1)))
+                outline.emplace_back(x, y);
+    ASSERT_GT(outline.size(), 200u);
+    // The same view in `lines`: every ink pixel near the outline, and the outline inked.
+    f.renderer().state(id.value())->style = Style::Lines;
+    Image lines = f.draw(cam, {}, o);
+    std::vector<bool> ink(static_cast<size_t>(w * h));
+    size_t ink_count = 0, far_from_outline = 0;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            if (test::luma(lines.at(x, y)) < 128) {
+                ink[static_cast<size_t>(y * w + x)] = true;
+                ++ink_count;
+                double best = 1e9;
+                for (auto [ox, oy] : outline) best = std::min(best, std::hypot(ox - x, oy - y));
+                if (best > 2.5) ++far_from_outline;
+            }
+    ASSERT_GT(ink_count, outline.size() / 2);
+    EXPECT_EQ(far_from_outline, 0u) << "ink pixels away from the silhouette";
+    size_t covered = 0;
+    for (auto [ox, oy] : outline) {
+        bool hit = false;
+        for (int dy = -2; dy <= 2 && !hit; ++dy)
+            for (int dx = -2; dx <= 2 && !hit; ++dx) {
+                int x = ox + dx, y = oy + dy;
+                hit = x >= 0 && y >= 0 && x < w && y < h && ink[static_cast<size_t>(y * w + x)];
+            }
+        covered += hit;
+    }
+    EXPECT_GT(static_cast<double>(covered) / static_cast<double>(outline.size()), 0.97);
+}
+
+TEST(RenderProperty, CubeCreasesAreDrawnInside) {
+    RenderFixture f(256, 256);
+    REQUIRE_GL(f);
+    test::GenMesh box = test::cube(1.0f);
+    auto id = f.renderer().add_model(box.data(), "cube");
+    ASSERT_TRUE(id.ok());
+    f.renderer().state(id.value())->style = Style::Lines;
+    // Looking at a corner: the three visible creases meet in the middle.
+    Image img = f.draw(Camera::framing(Vec3f(0.0f), 1.75f, Vec3f(1.0f, 1.0f, 1.0f)));
+    int dark_near_centre = 0;
+    for (int y = 120; y < 136; ++y)
+        for (int x = 120; x < 136; ++x) dark_near_centre += test::luma(img.at(x, y)) < 128;
+    EXPECT_GT(dark_near_centre, 6);
+    // With a 100 degree threshold the 90 degree creases disappear.
+    FrameOptions o = f.frame();
+    o.crease_angle_deg = 100.0f;
+    Image none = f.draw(Camera::framing(Vec3f(0.0f), 1.75f, Vec3f(1.0f, 1.0f, 1.0f)), {}, o);
+    int dark = 0;
+    for (int y = 120; y < 136; ++y)
+        for (int x = 120; x < 136; ++x) dark += test::luma(none.at(x, y)) < 128;
+    EXPECT_EQ(dark, 0);
+}
+
+TEST(RenderProperty, HatchingDarkensMonotonicallyAsTheLightMovesAway) {
+    for (Style style : {Style::Hatching, Style::Hatching2Tone}) {
+        RenderFixture f(200, 200);
+        REQUIRE_GL(f);
+        test::GenMesh sphere = test::icosphere(4);
+        auto id = f.renderer().add_model(sphere.data(), "sphere");
+        ASSERT_TRUE(id.ok());
+        f.renderer().state(id.value())->style = style;
+        f.renderer().state(id.value())->color = Vec3f(1.0f);
+        Camera cam = Camera::framing(Vec3f(0.0f), 1.2f, Vec3f(0.0f, 0.0f, 1.0f));
+        std::vector<double> darkness;
+        for (int deg = 0; deg <= 180; deg += 20) {
+            Lighting l;
+            float a = glm::radians(static_cast<float>(deg));
+            l.key_dir = Vec3f(std::sin(a), 0.0f, std::cos(a));  // view space: +Z is toward the eye
+            Image img = f.draw(cam, l);
+            auto mask = test::foreground_mask(img, f.frame().background, 3);
+            // The mask of a lit frame misses white paper; use the geometric disc instead.
+            double sum = 0;
+            size_t n = 0;
+            for (int y = 0; y < img.height; ++y)
+                for (int x = 0; x < img.width; ++x) {
+                    double dx = x - 99.5, dy = y - 99.5;
+                    if (dx * dx + dy * dy > 60.0 * 60.0) continue;
+                    sum += 255.0 - test::luma(img.at(x, y));
+                    ++n;
+                }
+            darkness.push_back(sum / static_cast<double>(n));
+        }
+        for (size_t i = 1; i < darkness.size(); ++i)
+            EXPECT_GE(darkness[i], darkness[i - 1] - 0.25) << style_name(style) << " at " << i * 20 << " degrees";
+        EXPECT_GT(darkness.back() - darkness.front(), 40.0) << style_name(style);
+    }
+}
+
+TEST(RenderInput, BadModelFilesAreErrorsNotCrashes) {
+    auto dir = temp_dir();
+    const std::string garbage_obj = (dir / "garbage.obj").string();
+    const std::string garbage_bpm = (dir / "garbage.bpm").string();
+    const std::string bad_index = (dir / "bad_index.obj").string();
+    std::ofstream(garbage_obj) << "\x01\x02 this is not an obj\nf 1 2\n";
+    std::ofstream(garbage_bpm) << "BPM\0 definitely truncated";
+    std::ofstream(bad_index) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n";
+    for (const std::string& p :
+         {garbage_obj, garbage_bpm, bad_index, (dir / "missing.obj").string(), (dir / "model.stl").string()}) {
+        auto r = load_model_file(p);
+        ASSERT_FALSE(r.ok()) << p;
+        EXPECT_NE(r.error().message.find(std::filesystem::path(p).filename().string()), std::string::npos)
+            << r.error().message;
+        EXPECT_EQ(r.error().message.find('\n'), std::string::npos);
+    }
+}
+
+TEST(RenderInput, RendererRejectsInconsistentMeshes) {
+    RenderFixture f;
+    REQUIRE_GL(f);
+    std::vector<Vec3f> p = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+    std::vector<uint32_t> bad = {0, 1, 7};
+    EXPECT_FALSE(f.renderer().add_model({p, {}, bad}, "bad").ok());
+    EXPECT_FALSE(f.renderer().add_model({{}, {}, {}}, "empty").ok());
+    std::vector<uint32_t> good = {0, 1, 2};
+    auto id = f.renderer().add_model({p, {}, good}, "tri");
+    ASSERT_TRUE(id.ok());
+    std::vector<Vec3f> more(10, Vec3f(0.0f));
+    EXPECT_FALSE(f.renderer().update_model(id.value(), {more, {}, good}, {0, 10, 0, 0}).ok());
+    EXPECT_FALSE(f.renderer().update_model(id.value() + 100, {p, {}, good}, {}).ok());
+    EXPECT_EQ(f.renderer().models().size(), 1u);
+}
+
+// Patching index ranges (as a progressive mesh does) gives the same frame as a fresh upload.
+TEST(RenderLod, DirtyRangeUpdatesMatchAFreshUpload) {
+    for (Style style : {Style::Smooth, Style::Lines, Style::Wireframe}) {
+        RenderFixture f(200, 200);
+        REQUIRE_GL(f);
+        test::GenMesh sphere = test::icosphere(2);
+        // Explicit normals: computed ones would differ between the full and the half mesh.
+        auto id = f.renderer().add_model({sphere.positions, sphere.positions, sphere.indices}, "full");
+        ASSERT_TRUE(id.ok());
+        f.renderer().state(id.value())->style = style;
+        Camera cam = Camera::framing(Vec3f(0.0f), 1.1f, Vec3f(0.2f, 0.3f, 1.0f));
+        (void)f.draw(cam);  // builds the lazily created data for the full mesh
+        // Drop the second half of the triangles and flip one triangle's corner in place.
+        std::vector<uint32_t> patched = sphere.indices;
+        std::swap(patched[1], patched[2]);
+        MeshData half{sphere.positions, sphere.positions, patched};
+        half.index_count = patched.size() / 2 - (patched.size() / 2) % 3;
+        ASSERT_TRUE(f.renderer().update_model(id.value(), half, {0, 0, 0, 3}).ok());
+        Image patched_img = f.draw(cam);
+
+        RenderFixture g(200, 200);
+        std::vector<uint32_t> prefix(patched.begin(), patched.begin() + static_cast<long>(half.index_count));
+        auto fresh = g.renderer().add_model({sphere.positions, sphere.positions, prefix}, "fresh");
+        ASSERT_TRUE(fresh.ok());
+        g.renderer().state(fresh.value())->style = style;
+        Image fresh_img = g.draw(cam);
+        auto d = test::compare(fresh_img, patched_img, 4);
+        EXPECT_EQ(d.bad_block_fraction, 0.0) << style_name(style);
+    }
+}
+
+TEST(RenderLod, ObjPreviewLodReducesTriangles) {
+    test::GenMesh sphere = test::icosphere(4);
+    ModelSource src("s", Vec3f(1.0f), sphere.positions, {}, sphere.indices);
+    const size_t full = src.triangles();
+    src.set_lod(0.25);
+    EXPECT_LT(src.triangles(), full / 2);
+    EXPECT_GT(src.triangles(), full / 10);
+    Dirty d = src.take_dirty();
+    EXPECT_EQ(d.index_end, src.mesh().indices.size());
+}
+
+namespace {
+std::string bodyview() { return std::string(BODY_BINARY_DIR) + "/bin/bodyview"; }
+
+// Writes the two test shapes as one OBJ and returns its path.
+std::string shapes_obj() {
+    auto dir = temp_dir();
+    std::string path = (dir / "shapes.obj").string();
+    test::GenMesh s = test::icosphere(3);
+    Mesh m;
+    m.name = "sphere";
+    for (auto& p : s.positions) m.positions.emplace_back(p);
+    m.indices = s.indices;
+    EXPECT_TRUE(write_obj(path, std::span<const Mesh>(&m, 1)).ok());
+    return path;
+}
+
+int run(const std::string& cmd) {
+    int rc = std::system(cmd.c_str());
+    return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
+}
+}  // namespace
+
+TEST(RenderCli, BadModelRendersNothingAndLogsOneLine) {
+    auto dir = temp_dir();
+    std::string bad = (dir / "broken.obj").string(), png = (dir / "broken.png").string(),
+                log = (dir / "broken.log").string();
+    std::ofstream(bad) << "v 0 0 0\nf 1 2 3\n";
+    int rc = run(bodyview() + " --headless --size 160x100 --model " + bad + " --screenshot " + png + " 2>" + log);
+    EXPECT_EQ(rc, 2);
+    auto img = read_png(png);
+    ASSERT_TRUE(img.ok()) << "no screenshot written";
+    auto mask = test::foreground_mask(img.value(), FrameOptions{}.background, 2);
+    EXPECT_EQ(std::count(mask.begin(), mask.end(), true), 0);
+    std::ifstream in(log);
+    std::string all((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_EQ(std::count(all.begin(), all.end(), '\n'), 1) << all;
+    EXPECT_NE(all.find("broken.obj"), std::string::npos) << all;
+}
+
+TEST(RenderCli, SoftpipeFrameMatchesLlvmpipe) {
+    auto dir = temp_dir();
+    std::string obj = shapes_obj();
+    std::string a = (dir / "llvmpipe.png").string(), b = (dir / "softpipe.png").string();
+    for (const char* style : {"smooth", "lines", "hatching"}) {
+        std::string args = std::string(" --headless --size 240x150 --style ") + style + " --model " + obj;
+        ASSERT_EQ(run(bodyview() + args + " --screenshot " + a), 0);
+        if (run("GALLIUM_DRIVER=softpipe " + bodyview() + args + " --screenshot " + b + " 2>/dev/null") != 0)
+            GTEST_SKIP() << "softpipe unavailable (Mesa libgl1-mesa-dri)";
+        auto ia = read_png(a), ib = read_png(b);
+        ASSERT_TRUE(ia.ok() && ib.ok());
+        auto d = test::compare(ia.value(), ib.value());
+        EXPECT_LE(d.bad_block_fraction, 0.01) << style;
+        EXPECT_LE(std::abs(d.mean_luma_delta), 1.5) << style;
+    }
+}
+
+TEST(RenderCli, GlfwUnderXvfbMatchesHeadless) {
+    if (run("command -v xvfb-run >/dev/null 2>&1") != 0) GTEST_SKIP() << "xvfb-run missing (Debian xvfb)";
+    auto dir = temp_dir();
+    std::string obj = shapes_obj();
+    std::string a = (dir / "headless.png").string(), b = (dir / "glfw.png").string();
+    std::string args = " --size 240x150 --style smooth --model " + obj;
+    ASSERT_EQ(run(bodyview() + " --headless" + args + " --screenshot " + a), 0);
+    int rc = run("timeout 60 xvfb-run -a -s '-screen 0 640x480x24' " + bodyview() + " --platform glfw --windowed" +
+                 args + " --screenshot " + b + " 2>" + (dir / "glfw.log").string());
+    ASSERT_EQ(rc, 0) << "see " << (dir / "glfw.log").string();
+    auto ia = read_png(a), ib = read_png(b);
+    ASSERT_TRUE(ia.ok() && ib.ok());
+    auto d = test::compare(ia.value(), ib.value());
+    EXPECT_LE(d.bad_block_fraction, 0.01);
+}
