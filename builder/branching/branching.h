@@ -2,11 +2,14 @@
 // Branching: one contour on a slice corresponding to several on the next.
 //
 // The default method keeps the surface a closed 2-manifold: the single contour
-// is partitioned among the branches (each vertex goes to the nearest branch;
-// runs are merged until every branch owns one arc), and the arcs are closed by
-// chords that meet at a centre point, lifted to `chord_z` (between the two
-// slices). Each piece is then tiled with its branch; neighbouring pieces share
-// their chord edges in opposite directions, so the bands glue into one surface.
+// is partitioned among the branches (each vertex goes to the nearest branch).
+// The largest branch is the main one; every other branch keeps one arc, which
+// is cut off by a straight chord lifted to `chord_z` (between the two slices);
+// the main piece is what remains, with each cut-off arc replaced by its chord.
+// Each piece is then tiled with its branch; a side piece and the main piece
+// share their chord edges in opposite directions, so the bands glue into one
+// surface. Cutting off local caps (instead of meeting at a common centre) keeps
+// each band near its branch.
 // The thesis method (`Overlap`) tiles every linked pair independently and
 // leaves overlapping open bands; it is kept for comparison only.
 #include <cstdint>

@@ -6,7 +6,8 @@
 //     contours at branches).
 //   D. Meyers, S. Skinner, K. Sloan, "Surfaces from contours", ACM TOG 11(3),
 //     1992 (splitting the pre-branch contour along the branches' bisector,
-//     here approximated by the nearest-branch partition and straight chords).
+//     here approximated by the nearest-branch partition and straight chords
+//     that cut each side branch's arc off the main branch's piece).
 //   BodyGen/BodyView thesis, section 2.6 (the overlapping method it replaces).
 #include <algorithm>
 #include <cmath>
@@ -61,44 +62,61 @@ std::vector<Run> runs_of(const std::vector<uint32_t>& owner) {
     return runs;
 }
 
-// Phase 2: merge runs until every branch owns at most one arc, then give an arc
-// to every branch that owns none (splitting the longest arc).
-Status settle_runs(std::vector<Run>& runs, uint32_t branch_count) {
-    for (;;) {
-        std::vector<uint32_t> count(branch_count, 0);
-        for (const Run& r : runs) ++count[r.owner];
-        size_t victim = SIZE_MAX;
-        for (size_t k = 0; k < runs.size(); ++k)
-            if (count[runs[k].owner] > 1 && (victim == SIZE_MAX || runs[k].length < runs[victim].length)) victim = k;
-        if (victim == SIZE_MAX) break;
-        const size_t n = runs.size(), prev = (victim + n - 1) % n, next = (victim + 1) % n;
-        runs[victim].owner = runs[runs[prev].length >= runs[next].length ? prev : next].owner;
-        // Coalesce neighbours with equal owners.
-        std::vector<Run> merged;
-        for (const Run& r : runs) {
-            if (!merged.empty() && merged.back().owner == r.owner)
-                merged.back().length += r.length;
-            else
-                merged.push_back(r);
-        }
-        if (merged.size() > 1 && merged.front().owner == merged.back().owner) {
-            merged.back().length += merged.front().length;
-            merged.erase(merged.begin());
-        }
-        runs = std::move(merged);
+// Per-vertex owners back from runs.
+std::vector<uint32_t> owners_of(const std::vector<Run>& runs, size_t n) {
+    std::vector<uint32_t> owner(n, 0);
+    for (const Run& r : runs)
+        for (size_t k = 0; k < r.length; ++k) owner[(r.start + k) % n] = r.owner;
+    return owner;
+}
+
+// Phase 2: every side branch (all but `main`) keeps only its longest arc, the
+// other arcs go to the main branch; a side branch without an arc gets the few
+// main-branch vertices nearest to it.
+Status settle_runs(std::vector<uint32_t>& owner, std::span<const uint32_t> single,
+                   std::span<const std::span<const Vec2>> branches, const std::vector<Vec3>& positions, uint32_t main,
+                   double step) {
+    const size_t n = owner.size();
+    std::vector<Run> runs = runs_of(owner);
+    std::vector<size_t> best(branches.size(), SIZE_MAX);
+    for (size_t r = 0; r < runs.size(); ++r) {
+        size_t& b = best[runs[r].owner];
+        if (b == SIZE_MAX || runs[r].length > runs[b].length) b = r;
     }
-    for (uint32_t b = 0; b < branch_count; ++b) {
-        if (std::any_of(runs.begin(), runs.end(), [&](const Run& r) { return r.owner == b; })) continue;
-        auto longest =
-            std::max_element(runs.begin(), runs.end(), [](const Run& x, const Run& y) { return x.length < y.length; });
-        if (longest->length < 2) return input_error("too few vertices to split between the branches");
-        Run tail = *longest;
-        tail.length = longest->length / 2;
-        longest->length -= tail.length;
-        tail.start = longest->start + longest->length;
-        tail.owner = b;
-        runs.insert(longest + 1, tail);
+    for (size_t r = 0; r < runs.size(); ++r)
+        if (runs[r].owner != main && best[runs[r].owner] != r) runs[r].owner = main;
+    owner = owners_of(runs, n);
+    for (uint32_t b = 0; b < branches.size(); ++b) {
+        if (b == main || std::find(owner.begin(), owner.end(), b) != owner.end()) continue;
+        size_t nearest = SIZE_MAX;
+        double best_d = 1e300;
+        for (size_t i = 0; i < n; ++i) {
+            if (owner[i] != main) continue;
+            const double d = distance_to_polygon(Vec2(positions[single[i]]), branches[b]);
+            if (d < best_d) best_d = d, nearest = i;
+        }
+        if (nearest == SIZE_MAX) return input_error("too few vertices to split between the branches");
+        double perimeter = 0;
+        for (size_t i = 0; i < branches[b].size(); ++i)
+            perimeter += glm::length(branches[b][(i + 1) % branches[b].size()] - branches[b][i]);
+        const long half = std::max(0L, std::lround(perimeter / 6.28318530718 / std::max(step, 1e-300)));
+        owner[nearest] = b;
+        for (long k = 1; k <= half; ++k) {
+            const size_t after = (nearest + size_t(k)) % n, before = (nearest + n - size_t(k) % n) % n;
+            if (owner[after] == main) owner[after] = b;
+            if (owner[before] == main) owner[before] = b;
+        }
+        // Keep the carved run contiguous.
+        std::vector<Run> carved = runs_of(owner);
+        size_t keep = SIZE_MAX;
+        for (size_t r = 0; r < carved.size(); ++r)
+            if (carved[r].owner == b && (keep == SIZE_MAX || carved[r].length > carved[keep].length)) keep = r;
+        for (size_t r = 0; r < carved.size(); ++r)
+            if (carved[r].owner == b && r != keep) carved[r].owner = main;
+        owner = owners_of(carved, n);
     }
+    if (std::find(owner.begin(), owner.end(), main) == owner.end())
+        return input_error("the main branch lost all its vertices");
     return ok_status();
 }
 
@@ -114,42 +132,56 @@ Result<std::vector<std::vector<uint32_t>>> partition_contour(std::span<const uin
     const size_t n = single.size();
     if (branches.size() < 2) return input_error("partition: needs at least two branches");
     if (n < branches.size() * 2) return input_error("partition: contour has too few vertices for its branches");
-    std::vector<Run> runs = runs_of(nearest_owner(single, branches, positions));
-    auto settled = settle_runs(runs, uint32_t(branches.size()));
-    if (!settled) return settled.error();
-
-    // Phase 3: chords from each split vertex (first vertex of a run) to the centre.
     double perimeter = 0;
     for (size_t i = 0; i < n; ++i) perimeter += glm::length(positions[single[(i + 1) % n]] - positions[single[i]]);
     const double step = perimeter / double(n);
-    Vec2 centre(0.0);
-    for (const Run& r : runs) centre += Vec2(positions[single[r.start % n]]);
-    centre /= double(runs.size());
-    const uint32_t centre_id = uint32_t(positions.size());
-    positions.emplace_back(centre.x, centre.y, chord_z);
-    std::vector<std::vector<uint32_t>> chords(runs.size());  // split vertex -> centre, excluding both ends
+    // The main branch (largest area) keeps what the side branches do not cut off.
+    uint32_t main = 0;
+    double main_area = -1;
+    for (uint32_t b = 0; b < branches.size(); ++b) {
+        const double a = std::abs(signed_area2(branches[b].data(), branches[b].size()));
+        if (a > main_area) main_area = a, main = b;
+    }
+    std::vector<uint32_t> owner = nearest_owner(single, branches, positions);
+    auto settled = settle_runs(owner, single, branches, positions, main, step);
+    if (!settled) return input_error("partition: " + settled.error().message);
+    const std::vector<Run> runs = runs_of(owner);
+
+    // Phase 3: each side arc is cut off by a straight chord from its end back to
+    // its start, lifted to chord_z (at least one interior vertex, so the cut
+    // leaves the slice plane).
+    std::vector<std::vector<uint32_t>> pieces(branches.size());
+    std::vector<std::vector<uint32_t>> chords(runs.size());  // arc end -> arc start, interior vertices
     for (size_t r = 0; r < runs.size(); ++r) {
-        const Vec2 s(positions[single[runs[r].start % n]]);
-        const double length = glm::length(centre - s);
-        const int k = std::max(1, int(std::lround(length / std::max(step, 1e-300))));
+        if (runs[r].owner == main) continue;
+        const Vec2 from(positions[single[(runs[r].start + runs[r].length) % n]]);
+        const Vec2 to(positions[single[runs[r].start % n]]);
+        const int k = std::max(2, int(std::lround(glm::length(to - from) / std::max(step, 1e-300))));
         for (int t = 1; t < k; ++t) {
-            const Vec2 p = s + (centre - s) * (double(t) / k);
+            const Vec2 p = from + (to - from) * (double(t) / k);
             chords[r].push_back(uint32_t(positions.size()));
             positions.emplace_back(p.x, p.y, chord_z);
         }
     }
 
-    // Phase 4: piece r = arc of run r up to the next run's first vertex, then the
-    // next chord towards the centre and this run's chord back.
-    std::vector<std::vector<uint32_t>> pieces(branches.size());
+    // Phase 4: side piece = its arc (up to the next run's first vertex) + its
+    // chord; the main piece = main arcs with every side arc replaced by its chord
+    // walked the other way.
+    std::vector<uint32_t>& main_piece = pieces[main];
     for (size_t r = 0; r < runs.size(); ++r) {
-        const size_t next = (r + 1) % runs.size();
-        std::vector<uint32_t>& piece = pieces[runs[r].owner];
-        for (size_t k = 0; k <= runs[r].length; ++k) piece.push_back(single[(runs[r].start + k) % n]);
-        piece.insert(piece.end(), chords[next].begin(), chords[next].end());
-        piece.push_back(centre_id);
-        piece.insert(piece.end(), chords[r].rbegin(), chords[r].rend());
+        const Run& run = runs[r];
+        if (run.owner == main) {
+            for (size_t k = 0; k < run.length; ++k) main_piece.push_back(single[(run.start + k) % n]);
+            continue;
+        }
+        std::vector<uint32_t>& piece = pieces[run.owner];
+        for (size_t k = 0; k <= run.length; ++k) piece.push_back(single[(run.start + k) % n]);
+        piece.insert(piece.end(), chords[r].begin(), chords[r].end());
+        main_piece.push_back(single[run.start % n]);
+        main_piece.insert(main_piece.end(), chords[r].rbegin(), chords[r].rend());
     }
+    for (const auto& piece : pieces)
+        if (piece.size() < 3) return input_error("partition: a branch piece has fewer than 3 vertices");
     return pieces;
 }
 

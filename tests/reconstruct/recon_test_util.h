@@ -12,6 +12,7 @@
 #include "builder/contours/contour_stack.h"
 #include "builder/pipeline/build_pipeline.h"
 #include "shared/mesh.h"
+#include "shared/mesh_intersect.h"
 
 namespace body::test {
 
@@ -221,6 +222,7 @@ inline void expect_good_structure(const StructureMesh& s, const ContourStack& st
     EXPECT_TRUE(topo.closed_manifold());
     EXPECT_GT(s.volume, 0.0);
     EXPECT_EQ(count_intersecting_pairs(s.mesh), 0u);
+    EXPECT_EQ(count_self_intersections(s.mesh.positions, s.mesh.indices, 0), 0u);
     if (!check_reslice) return;
     for (const Slice& slice : stack.slices) {
         std::vector<std::vector<Vec2>> contours;
