@@ -189,7 +189,9 @@ bool triangles_intersect(const Vec3& a0, const Vec3& a1, const Vec3& a2, const V
     return disjoint_intersect(pr, a0, a1, a2, b0, b1, b2);
 }
 
-size_t count_self_intersections(std::span<const Vec3> positions, std::span<const uint32_t> indices, size_t stop_after) {
+size_t count_self_intersections(std::span<const Vec3> positions, std::span<const uint32_t> indices, size_t stop_after,
+                                std::vector<std::pair<uint32_t, uint32_t>>* pairs) {
+    if (pairs) pairs->clear();
     const size_t tri_count = indices.size() / 3;
     if (tri_count < 2) return 0;
     Aabb all;
@@ -268,7 +270,9 @@ size_t count_self_intersections(std::span<const Vec3> positions, std::span<const
                 } else {
                     hit = true;  // the same triangle twice
                 }
-                if (hit && ++found == stop_after) return found;
+                if (!hit) continue;
+                if (pairs) pairs->push_back({std::min(t1, t2), std::max(t1, t2)});
+                if (++found == stop_after) return found;
             }
         begin = end;
     }

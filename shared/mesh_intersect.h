@@ -13,18 +13,21 @@
 //   different indices are not adjacent.
 // - Stops once `stop_after` pairs are found (0 = count them all), so the
 //   default answers "is there any?".
+// - `pairs`, when given, receives the triangle index pairs found (first < second).
 // - A uniform grid over the triangles' bounding boxes avoids the quadratic
 //   pair search; memory is O(triangles) for typical meshes.
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <utility>
+#include <vector>
 
 #include "shared/geometry.h"
 
 namespace body {
 
 size_t count_self_intersections(std::span<const Vec3> positions, std::span<const uint32_t> indices,
-                                size_t stop_after = 1);
+                                size_t stop_after = 1, std::vector<std::pair<uint32_t, uint32_t>>* pairs = nullptr);
 
 // The pair test on its own: do triangles (a0, a1, a2) and (b0, b1, b2), sharing
 // no vertex, intersect (touching included)?

@@ -13,13 +13,16 @@
 namespace body::cli {
 
 int run_slice(const Args& argv) {
-    auto args = CliArgs::parse(argv, {"planes", "axis", "o", "output", "structure"}, {"help", "quiet"});
+    auto args = CliArgs::parse(argv, {"planes", "axis", "o", "output", "structure"},
+                               {"help", "quiet", "avoid-self-intersections"});
     if (!args) return report(args.error());
     if (args->has("help")) {
         std::printf(
             "usage: bodygen slice IN.obj --planes N [--axis x|y|z] [--structure ID] -o OUT.contours.json\n"
             "  slices a closed mesh (all objects merged) with N planes evenly spaced strictly inside its\n"
-            "  extent along the axis (default z); contours are counter-clockwise around solid.\n");
+            "  extent along the axis (default z); contours are counter-clockwise around solid.\n"
+            "  --avoid-self-intersections  leave out the planes that cross triangles of the mesh that\n"
+            "                              intersect each other (their contours would cross)\n");
         return kExitOk;
     }
     if (args->positional().size() != 1) return report(input_error("slice: expected one input OBJ file"));
@@ -39,6 +42,14 @@ int run_slice(const Args& argv) {
     if (mesh->triangle_count() == 0) return report(input_error("slice: " + input + ": no triangles"));
     Aabb box = mesh_bounds(mesh->positions);
     std::vector<double> heights = evenly_spaced_planes(box.min[axis], box.max[axis], size_t(*planes));
+    if (args->has("avoid-self-intersections")) {
+        size_t dropped = drop_planes_through_self_intersections(mesh->positions, mesh->indices, axis, heights);
+        if (dropped && !args->has("quiet"))
+            std::fprintf(stderr, "%s: left out %zu of %ld planes that cross the mesh's self-intersections\n",
+                         input.c_str(), dropped, *planes);
+        if (heights.empty())
+            return report(input_error("slice: " + input + ": every plane crosses a self-intersection"));
+    }
     std::string structure = args->get_or("structure", std::filesystem::path(input).stem().string());
     auto stack = slice_mesh(mesh->positions, mesh->indices, axis, heights, structure);
     if (!stack) return report(input_error(input + ": " + stack.error().message));

@@ -12,6 +12,8 @@
 #include <cmath>
 #include <unordered_map>
 
+#include "shared/mesh_intersect.h"
+
 namespace body {
 
 namespace {
@@ -19,6 +21,8 @@ namespace {
 Vec3 permuted(const Vec3& p, int axis) {
     return axis == 0 ? Vec3(p.y, p.z, p.x) : (axis == 1 ? Vec3(p.z, p.x, p.y) : p);
 }
+
+constexpr double kMergeDistance = 1e-5;  // relative to the mesh's bounding-box diagonal
 
 uint64_t edge_key(uint32_t a, uint32_t b) { return a < b ? (uint64_t(a) << 32) | b : (uint64_t(b) << 32) | a; }
 
@@ -105,6 +109,30 @@ static bool clean_loop(std::vector<Vec2>& loop, double tolerance) {
 
 }  // namespace
 
+size_t drop_planes_through_self_intersections(std::span<const Vec3> positions, std::span<const uint32_t> indices,
+                                              int axis, std::vector<double>& planes) {
+    std::vector<std::pair<uint32_t, uint32_t>> pairs;
+    if (count_self_intersections(positions, indices, 0, &pairs) == 0) return 0;
+    std::vector<std::pair<double, double>> spans;  // extents along the axis of the triangles involved
+    for (auto [a, b] : pairs)
+        for (uint32_t t : {a, b}) {
+            double lo = 1e300, hi = -1e300;
+            for (int k = 0; k < 3; ++k) {
+                double h = positions[indices[3 * size_t(t) + k]][axis];
+                lo = std::min(lo, h);
+                hi = std::max(hi, h);
+            }
+            spans.push_back({lo, hi});
+        }
+    const size_t before = planes.size();
+    std::erase_if(planes, [&](double h) {
+        for (auto [lo, hi] : spans)
+            if (h >= lo && h <= hi) return true;
+        return false;
+    });
+    return before - planes.size();
+}
+
 std::vector<double> evenly_spaced_planes(double lo, double hi, size_t count) {
     std::vector<double> out(count);
     for (size_t k = 0; k < count; ++k) out[k] = lo + (double(k) + 0.5) * (hi - lo) / double(count);
@@ -124,7 +152,10 @@ Result<ContourStack> slice_mesh(std::span<const Vec3> positions, std::span<const
         pos[k] = permuted(positions[k], axis);
         box.extend(pos[k]);
     }
-    const double tolerance = 1e-12 * std::max(box.extent(), 1e-300);
+    // Points closer than this to the previous one merge: a mesh vertex a hair
+    // off the plane otherwise leaves a micro-zigzag that no band can follow
+    // without folding.
+    const double tolerance = kMergeDistance * std::max(box.extent(), 1e-300);
 
     std::vector<double> heights(planes.begin(), planes.end());
     std::sort(heights.begin(), heights.end());

@@ -15,7 +15,8 @@
 //   every triangle crossing a plane yields one segment and segments chain into
 //   closed loops through shared mesh edges. Loops are counter-clockwise seen
 //   from +axis around solid (outer walls) and clockwise around holes, as the
-//   mesh orientation dictates. Consecutive duplicate points are removed; loops
+//   mesh orientation dictates. Consecutive points closer than 1e-5 of the
+//   mesh's bounding-box diagonal are merged (the first is kept); loops
 //   with fewer than 3 points or zero area (a plane touching a vertex) are
 //   dropped; slices without contours are left out.
 // - Every contour gets `structure` (may be empty).
@@ -34,6 +35,12 @@ namespace body {
 
 Result<ContourStack> slice_mesh(std::span<const Vec3> positions, std::span<const uint32_t> indices, int axis,
                                 std::span<const double> planes, const std::string& structure = {});
+
+// Removes the planes that cross a triangle involved in a self-intersection of
+// the mesh (their slices would hold crossing contours, which a contour stack
+// rejects). Returns how many were removed.
+size_t drop_planes_through_self_intersections(std::span<const Vec3> positions, std::span<const uint32_t> indices,
+                                              int axis, std::vector<double>& planes);
 
 // `count` heights evenly spaced strictly inside (lo, hi): lo + (k + 0.5) (hi - lo) / count.
 std::vector<double> evenly_spaced_planes(double lo, double hi, size_t count);
