@@ -57,7 +57,11 @@ KioskApp::KioskApp(scene::Scene scene, std::vector<ModelInfo> models, int width,
     }
     const bool any = lo.x <= hi.x;
     const glm::vec3 center = any ? (lo + hi) * 0.5f : glm::vec3(0.0f);
-    const float radius = any ? glm::length(hi - lo) * 0.5f : 1.0f;
+    // The smallest sphere around `center` holding every model's sphere.
+    float radius = any ? 0.0f : 1.0f;
+    for (const ModelInfo& m : info_) {
+        if (m.loaded) radius = std::max(radius, glm::length(m.center - center) + m.radius);
+    }
     camera_.set_viewport(width, height);
     camera_.configure(scene_.camera.fov_deg, radius);
     const scene::HomeCamera& hc = scene_.camera;

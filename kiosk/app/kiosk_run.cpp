@@ -1,0 +1,381 @@
+// The kiosk loop over the renderer (contract in kiosk_run.h).
+#include "kiosk/app/kiosk_run.h"
+
+#include <GLES3/gl3.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "kiosk/app/kiosk_app.h"
+#include "kiosk/app/overlay.h"
+#include "kiosk/app/replay.h"
+#include "kiosk/render/image.h"
+#include "kiosk/render/model_source.h"
+#include "kiosk/render/renderer.h"
+#include "shared/pm/progressive_mesh.h"
+
+namespace body::kiosk {
+
+namespace {
+
+render::Style to_render(scene::Style s) {
+    switch (s) {
+        case scene::Style::Wireframe: return render::Style::Wireframe;
+        case scene::Style::Smooth: return render::Style::Smooth;
+        case scene::Style::Lines: return render::Style::Lines;
+        case scene::Style::Hatching: return render::Style::Hatching;
+        case scene::Style::Hatching2Tone: return render::Style::Hatching2Tone;
+    }
+    return render::Style::Smooth;
+}
+
+glm::mat4 to_matrix(const scene::Transform& t) {
+    glm::mat4 m = glm::translate(glm::mat4(1.0f), glm::vec3(t.translate[0], t.translate[1], t.translate[2]));
+    m = glm::rotate(m, glm::radians(t.rotate_deg[2]), glm::vec3(0, 0, 1));
+    m = glm::rotate(m, glm::radians(t.rotate_deg[1]), glm::vec3(0, 1, 0));
+    m = glm::rotate(m, glm::radians(t.rotate_deg[0]), glm::vec3(1, 0, 0));
+    return glm::scale(m, glm::vec3(t.scale));
+}
+
+// One structure of a scene model, uploaded.
+struct Part {
+    render::ModelSource source;
+    render::ModelId id = 0;
+    size_t base_triangles = 0;
+    size_t drawn = 0;  // triangles at the current level
+};
+
+// A scene model: its parts (a file may hold several structures).
+struct Loaded {
+    std::vector<Part> parts;
+    glm::mat4 transform{1.0f};
+};
+
+Result<std::vector<Part>> load_parts(render::Renderer& renderer, const scene::Model& m) {
+    std::vector<Part> parts;
+    const std::string ext = std::filesystem::path(m.path).extension().string();
+    if (ext == ".bpm") {
+        auto meshes = pm::read_bpm(m.path);
+        if (!meshes) return meshes.error();
+        for (auto& pm : meshes.value()) {
+            const size_t base = pm->base_triangle_count();
+            parts.push_back(Part{render::ModelSource(std::move(pm)), 0, base, 0});
+        }
+    } else {
+        auto sources = render::load_model_file(m.path);
+        if (!sources) return sources.error();
+        for (auto& s : sources.value()) {
+            const size_t full = s.full_triangles();
+            parts.push_back(Part{std::move(s), 0, full, 0});  // no LOD hierarchy: always full
+        }
+    }
+    for (Part& p : parts) {
+        auto id = renderer.add_model(p.source.mesh(), m.name);
+        if (!id) return id.error();
+        (void)p.source.take_dirty();
+        p.id = id.value();
+        p.drawn = p.source.triangles();
+    }
+    if (parts.empty()) return input_error(m.path + ": no structures");
+    return parts;
+}
+
+// Ray (world) against the current level of a part; distance along the ray.
+std::optional<float> pick_part(const Part& p, const glm::mat4& transform, const Ray& ray) {
+    const glm::mat4 inv = glm::inverse(transform);
+    const glm::vec3 o = glm::vec3(inv * glm::vec4(ray.origin, 1.0f));
+    const glm::vec3 d = glm::vec3(inv * glm::vec4(ray.direction, 0.0f));
+    const render::MeshData mesh = p.source.mesh();
+    const size_t n = std::min(mesh.index_count, mesh.indices.size());
+    float best = 1e30f;
+    bool hit = false;
+    for (size_t i = 0; i + 2 < n; i += 3) {
+        // Möller-Trumbore, both sides.
+        const glm::vec3 a = mesh.positions[mesh.indices[i]], b = mesh.positions[mesh.indices[i + 1]],
+                        c = mesh.positions[mesh.indices[i + 2]];
+        const glm::vec3 e1 = b - a, e2 = c - a, pv = glm::cross(d, e2);
+        const float det = glm::dot(e1, pv);
+        if (std::abs(det) < 1e-12f) continue;
+        const float inv_det = 1.0f / det;
+        const glm::vec3 tv = o - a;
+        const float u = glm::dot(tv, pv) * inv_det;
+        if (u < 0.0f || u > 1.0f) continue;
+        const glm::vec3 qv = glm::cross(tv, e1);
+        const float v = glm::dot(d, qv) * inv_det;
+        if (v < 0.0f || u + v > 1.0f) continue;
+        const float t = glm::dot(e2, qv) * inv_det;
+        if (t > 0.0f && t < best) {
+            best = t;
+            hit = true;
+        }
+    }
+    if (!hit) return std::nullopt;
+    // t is in object units along d; convert to world distance.
+    return best * glm::length(glm::vec3(transform * glm::vec4(d, 0.0f)));
+}
+
+InputEvent convert(const platform::InputEvent& e, uint32_t modifiers) {
+    using T = platform::InputEvent::Type;
+    InputEvent k;
+    k.time = e.time;
+    k.x = e.x;
+    k.y = e.y;
+    k.id = e.id;
+    k.modifiers = modifiers;
+    switch (e.type) {
+        case T::TouchDown: k.kind = InputKind::TouchDown; break;
+        case T::TouchMove: k.kind = InputKind::TouchMove; break;
+        case T::TouchUp: k.kind = InputKind::TouchUp; break;
+        case T::MouseDown: k.kind = InputKind::MouseDown; break;
+        case T::MouseUp: k.kind = InputKind::MouseUp; break;
+        case T::MouseMove: k.kind = InputKind::MouseMove; break;
+        case T::Scroll:
+            k.kind = InputKind::Wheel;
+            k.wheel = e.dy;
+            break;
+        default: k.kind = InputKind::Key; break;
+    }
+    if (e.type == T::MouseDown || e.type == T::MouseUp) {
+        k.button = e.id == 1 ? MouseButton::Right : e.id == 2 ? MouseButton::Middle : MouseButton::Left;
+    }
+    k.key = e.key;
+    return k;
+}
+
+}  // namespace
+
+int run_kiosk(platform::Surface& surface, const scene::Scene& scene, const KioskRunOptions& options) {
+    Replay replay;
+    if (!options.replay.empty()) {
+        auto r = read_replay(options.replay);
+        if (!r) {
+            std::fprintf(stderr, "bodyview: %s\n", r.error().message.c_str());
+            return r.error().exit_code;
+        }
+        replay = std::move(r).value();
+    }
+    render::Renderer renderer;
+    if (auto s = renderer.init(); !s) {
+        std::fprintf(stderr, "bodyview: %s\n", s.error().message.c_str());
+        return kExitRuntime;
+    }
+
+    // ---- load: a model that fails is skipped with its reason
+    const auto load_start = std::chrono::steady_clock::now();
+    std::vector<Loaded> loaded(scene.models.size());
+    std::vector<ModelInfo> info(scene.models.size());
+    std::string label_text;
+    size_t ok_models = 0;
+    for (size_t i = 0; i < scene.models.size(); ++i) {
+        const scene::Model& m = scene.models[i];
+        for (const auto& l : m.labels) label_text += l.title + l.description;
+        auto parts = load_parts(renderer, m);
+        if (!parts) {
+            std::fprintf(stderr, "bodyview: %s: skipped: %s\n", m.name.c_str(), parts.error().message.c_str());
+            continue;
+        }
+        loaded[i].parts = std::move(parts).value();
+        loaded[i].transform = to_matrix(m.transform);
+        // World bounding sphere over the parts.
+        glm::vec3 lo(1e30f), hi(-1e30f);
+        ModelInfo& mi = info[i];
+        for (const Part& p : loaded[i].parts) {
+            Vec3f c;
+            float r = 0.0f;
+            if (!renderer.bounds(p.id, c, r)) continue;
+            const glm::vec3 wc = glm::vec3(loaded[i].transform * glm::vec4(c, 1.0f));
+            const float wr = r * m.transform.scale;
+            lo = glm::min(lo, wc - glm::vec3(wr));
+            hi = glm::max(hi, wc + glm::vec3(wr));
+            mi.full_triangles += p.source.full_triangles();
+            mi.base_triangles += p.base_triangles;
+        }
+        mi.loaded = lo.x <= hi.x;
+        mi.center = (lo + hi) * 0.5f;
+        mi.radius = std::max(glm::length(hi - lo) * 0.5f / std::sqrt(3.0f), 1e-3f);
+        if (mi.loaded) ++ok_models;
+        const scene::Group* g = m.group.empty() ? nullptr : scene.find_group(m.group);
+        for (const Part& p : loaded[i].parts)
+            renderer.state(p.id)->color = Vec3f(m.colour[0], m.colour[1], m.colour[2]);
+        (void)g;
+    }
+    const double load_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - load_start).count();
+    if (ok_models == 0) {
+        std::fprintf(stderr, "bodyview: %s: no model could be loaded\n", scene.source.c_str());
+        renderer.shutdown();
+        return kExitBadInput;
+    }
+
+    const int width = replay.width > 0 ? replay.width : surface.width();
+    const int height = replay.height > 0 ? replay.height : surface.height();
+    KioskApp app(scene, info, surface.width(), surface.height());
+    // Replay coordinates refer to replay.width x height; scale them to the surface.
+    const float sx = static_cast<float>(surface.width()) / static_cast<float>(width);
+    const float sy = static_cast<float>(surface.height()) / static_cast<float>(height);
+    app.set_picker([&](int model, const Ray& ray) -> std::optional<float> {
+        std::optional<float> best;
+        const Loaded& l = loaded[static_cast<size_t>(model)];
+        glm::mat4 t = glm::translate(glm::mat4(1.0f), app.model(model).offset) * l.transform;
+        for (const Part& p : l.parts) {
+            auto hit = pick_part(p, t, ray);
+            if (hit && (!best || *hit < *best)) best = hit;
+        }
+        return best;
+    });
+
+    Overlay overlay;
+    const float ui_scale = std::max(1.0f, static_cast<float>(std::min(surface.width(), surface.height())) / 800.0f);
+    if (auto s = overlay.init(options.font.empty() ? default_font_file() : options.font, ui_scale, label_text); !s) {
+        std::fprintf(stderr, "bodyview: labels disabled: %s\n", s.error().message.c_str());
+    }
+
+    // ---- loop
+    render::Lighting lighting;
+    render::FrameOptions fo;
+    std::vector<platform::InputEvent> events;
+    size_t next_event = 0;
+    const bool replaying = !options.replay.empty();
+    const double step = 1.0 / 60.0;
+    double frame_ms_sum = 0.0;
+    long frames_counted = 0;
+    int exit_code = kExitOk;
+    const auto start = std::chrono::steady_clock::now();
+    double first_frame_ms = -1.0;
+    for (long frame = 0;; ++frame) {
+        const auto frame_start = std::chrono::steady_clock::now();
+        const double now = replaying ? static_cast<double>(frame) * step : surface.time();
+        events.clear();
+        bool keep = surface.poll_events(events);
+        if (replaying) {
+            while (next_event < replay.events.size() && replay.events[next_event].time <= now) {
+                InputEvent e = replay.events[next_event++];
+                e.x *= sx;
+                e.y *= sy;
+                app.handle(e);
+            }
+        } else {
+            for (const auto& e : events) {
+                if (e.type == platform::InputEvent::Type::Quit) keep = false;
+                if (e.type == platform::InputEvent::Type::Key || e.type == platform::InputEvent::Type::Quit) continue;
+                app.handle(convert(e, 0));
+            }
+        }
+        app.update(now);
+
+        // Apply the app's state to the renderer.
+        size_t triangles = 0;
+        for (int i = 0; i < app.model_count(); ++i) {
+            Loaded& l = loaded[static_cast<size_t>(i)];
+            if (l.parts.empty()) continue;
+            const ModelState& ms = app.model(i);
+            const ModelInfo& mi = app.info(i);
+            const bool vis = app.visible(i);
+            const glm::mat4 t = glm::translate(glm::mat4(1.0f), ms.offset) * l.transform;
+            const float ratio =
+                !options.auto_lod
+                    ? (ms.manual_lod ? *ms.manual_lod : 1.0f)
+                    : (mi.full_triangles ? static_cast<float>(ms.triangles) / static_cast<float>(mi.full_triangles)
+                                         : 1.0f);
+            for (Part& p : l.parts) {
+                render::ModelState* st = renderer.state(p.id);
+                st->style = to_render(ms.style);
+                st->visible = vis;
+                st->selected = i == app.selected();
+                st->transform = t;
+                if (p.source.progressive()) {
+                    const size_t want =
+                        static_cast<size_t>(std::lround(static_cast<double>(p.source.full_triangles()) * ratio));
+                    if (want != p.drawn) {
+                        p.source.set_lod(ratio);
+                        if (auto s = renderer.update_model(p.id, p.source.mesh(), p.source.take_dirty()); !s) {
+                            std::fprintf(stderr, "bodyview: %s\n", s.error().message.c_str());
+                        }
+                        p.drawn = want;
+                    }
+                }
+                if (vis) triangles += p.source.triangles();
+            }
+        }
+
+        // Camera, with the anti burn-in drift as a pan of a few pixels.
+        const OrbitCamera& cam = app.camera();
+        const glm::vec2 drift = app.drift(now);
+        const float units_per_px =
+            2.0f * cam.pose().distance * std::tan(cam.fov_y() * 0.5f) / static_cast<float>(surface.height());
+        const glm::mat4 view = cam.view();
+        const glm::vec3 right(view[0][0], view[1][0], view[2][0]), up(view[0][1], view[1][1], view[2][1]);
+        const glm::vec3 shift = (-drift.x * right + drift.y * up) * units_per_px;
+        render::Camera rc;
+        rc.eye = cam.eye() + shift;
+        rc.target = cam.pose().target + shift;
+        rc.fov_y_deg = glm::degrees(cam.fov_y());
+        Vec3f sc;
+        float sr = 0.0f;
+        renderer.scene_bounds(sc, sr);
+        const float dist = glm::length(rc.eye - sc);
+        rc.near_plane = std::max(dist - sr * 1.5f, cam.pose().distance * 0.01f);
+        rc.far_plane = dist + sr * 1.5f + cam.pose().distance;
+        fo.width = surface.width();
+        fo.height = surface.height();
+        fo.framebuffer = surface.framebuffer();
+        renderer.render(rc, lighting, fo);
+
+        LabelCard card;
+        if (app.selected() >= 0) {
+            const scene::Model& m = scene.models[static_cast<size_t>(app.selected())];
+            const scene::LabelText& t = scene.label(m, app.language());
+            card.visible = true;
+            card.rect = label_card_rect(app.ui_state());
+            card.title = t.title;
+            card.description = t.description;
+        }
+        overlay.draw(app.controls(), card, fo.framebuffer, fo.width, fo.height);
+
+        const bool last = app.exit_requested() || !keep ||
+                          (replaying && next_event >= replay.events.size() && now >= replay.end_time) ||
+                          (options.frames > 0 && frame + 1 >= options.frames);
+        if (last && !options.screenshot.empty()) {
+            render::Image img;
+            img.width = fo.width;
+            img.height = fo.height;
+            img.rgba = platform::read_pixels_rgba(fo.framebuffer, fo.width, fo.height);
+            if (auto s = render::write_png(options.screenshot, img); !s) {
+                std::fprintf(stderr, "bodyview: %s\n", s.error().message.c_str());
+                exit_code = kExitRuntime;
+            }
+        }
+        if (auto s = surface.present(); !s) {
+            std::fprintf(stderr, "bodyview: %s\n", s.error().message.c_str());
+            exit_code = kExitRuntime;
+            break;
+        }
+        const double frame_ms =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - frame_start).count();
+        if (first_frame_ms < 0.0) {
+            first_frame_ms =
+                std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+            if (options.verbose) {
+                std::fprintf(stderr, "bodyview: loaded %zu/%zu models in %.1f ms, first frame %.1f ms later\n",
+                             ok_models, scene.models.size(), load_ms, first_frame_ms);
+            }
+        }
+        if (!replaying || options.measure_frames_in_replay) app.report_frame(frame_ms, triangles);
+        frame_ms_sum += frame_ms;
+        ++frames_counted;
+        if (options.verbose && frames_counted % 60 == 0) {
+            std::fprintf(stderr, "bodyview: %.2f ms/frame, %zu triangles, budget %zu\n",
+                         frame_ms_sum / static_cast<double>(frames_counted), triangles, app.lod_controller().budget());
+        }
+        if (last) break;
+    }
+    if (app.exit_requested()) std::fprintf(stderr, "bodyview: admin exit\n");
+    overlay.shutdown();
+    renderer.shutdown();
+    return exit_code;
+}
+
+}  // namespace body::kiosk

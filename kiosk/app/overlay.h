@@ -1,0 +1,42 @@
+#pragma once
+// Draws the kiosk's 2-D layer over the rendered scene with GLES 3.0: the
+// finger-sized controls (ui.h) and the label card of the selected model, text
+// from GlyphAtlas textures. Needs a current GLES 3 context; one instance per
+// context. Pixels, origin top-left.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "kiosk/app/text.h"
+#include "kiosk/app/ui.h"
+#include "shared/error.h"
+
+namespace body::kiosk {
+
+struct LabelCard {
+    bool visible = false;
+    Rect rect;
+    std::string title;        // UTF-8
+    std::string description;  // UTF-8
+};
+
+class Overlay {
+public:
+    Overlay();
+    ~Overlay();
+    Overlay(const Overlay&) = delete;
+    Overlay& operator=(const Overlay&) = delete;
+
+    // Compiles the shader and uploads the two atlases (titles, body text); the
+    // label texts are passed so their glyphs are baked.
+    Status init(const std::string& font_file, float scale, const std::string& all_label_text);
+    void shutdown();
+    // Draws controls and card into `framebuffer` (width x height).
+    void draw(const std::vector<Control>& controls, const LabelCard& card, unsigned framebuffer, int width, int height);
+
+private:
+    struct State;
+    std::unique_ptr<State> s_;
+};
+
+}  // namespace body::kiosk

@@ -1,0 +1,114 @@
+// Headless replays through bodyview (llvmpipe): a tap on a model shows its label
+// card, a tap on empty space hides it, and a model that fails to load is skipped
+// while the others still show.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "../cli/cli_test.h"
+#include "kiosk/render/image.h"
+
+namespace body {
+namespace {
+
+namespace fs = std::filesystem;
+
+void write_sphere(const fs::path& path, float cx, float r) {
+    std::ofstream f(path);
+    const int n = 16;
+    for (int i = 0; i <= n; ++i) {
+        for (int j = 0; j < 2 * n; ++j) {
+            const double th = M_PI * i / n, ph = M_PI * j / n;
+            f << "v " << cx + r * std::sin(th) * std::cos(ph) << " " << r * std::cos(th) << " "
+              << r * std::sin(th) * std::sin(ph) << "\n";
+        }
+    }
+    for (int i = 0; i < n; ++i) {
+        for (int j = 0; j < 2 * n; ++j) {
+            const int a = i * 2 * n + j + 1, b = i * 2 * n + (j + 1) % (2 * n) + 1;
+            const int c = a + 2 * n, d = b + 2 * n;
+            if (i > 0) f << "f " << a << " " << b << " " << c << "\n";
+            if (i < n - 1) f << "f " << b << " " << d << " " << c << "\n";
+        }
+    }
+}
+
+class KioskReplay : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir_ = fs::temp_directory_path() / ("body_kiosk_replay_" + std::to_string(::getpid()) + "_" +
+                                            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        fs::create_directories(dir_);
+        write_sphere(dir_ / "a.obj", -1.5f, 0.8f);
+        write_sphere(dir_ / "b.obj", 1.5f, 0.8f);
+        std::ofstream(dir_ / "broken.bpm", std::ios::binary) << std::string("BPM\0xx", 6);
+        std::ofstream(dir_ / "scene.json") << R"({"models": [
+            {"name": "a", "file": "a.obj", "colour": [0.2, 0.5, 0.9], "label": {"en": {"title": "Alpha sphere",
+             "description": "The left one"}}},
+            {"name": "broken", "file": "broken.bpm"},
+            {"name": "b", "file": "b.obj", "colour": [0.9, 0.5, 0.2], "label": {"en": "Beta"}}],
+            "camera": {"polar_deg": 90}})";
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+
+    // Runs a replay and returns the screenshot.
+    render::Image play(const std::string& replay, test::RunResult* result = nullptr) {
+        std::ofstream(dir_ / "input.replay") << "size 1280 800\n" << replay;
+        auto r =
+            test::run(test::bin("bodyview") + " --headless --size 1280x800 --scene " + (dir_ / "scene.json").string() +
+                      " --replay " + (dir_ / "input.replay").string() + " --screenshot " + (dir_ / "out.png").string());
+        if (result) *result = r;
+        EXPECT_EQ(r.exit_code, 0) << r.output;
+        auto img = render::read_png((dir_ / "out.png").string());
+        EXPECT_TRUE(img) << r.output;
+        return img ? img.value() : render::Image{};
+    }
+    // Pixels close to the selection stripe's purple in a rectangle.
+    static size_t purple(const render::Image& img, int x0, int y0, int x1, int y1) {
+        size_t n = 0;
+        for (int y = y0; y < y1 && y < img.height; ++y) {
+            for (int x = x0; x < x1 && x < img.width; ++x) {
+                const uint8_t* p = img.at(x, y);
+                n += std::abs(p[0] - 140) < 30 && std::abs(p[1] - 64) < 30 && std::abs(p[2] - 204) < 30;
+            }
+        }
+        return n;
+    }
+    fs::path dir_;
+};
+
+TEST_F(KioskReplay, TapShowsTheLabelCardAndTapOnEmptyHidesIt) {
+    if (!fs::exists("/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf")) GTEST_SKIP() << "needs fonts-dejavu-core";
+    test::RunResult r;
+    // The left sphere is at (493, 400) at the home view: 1.5 units left of a
+    // scene of radius 2.3 framed to fill 60% of a 40-degree view.
+    const render::Image shown = play("0.2 down 1 493 400\n0.3 up 1 493 400\n1.0 end\n", &r);
+    EXPECT_NE(r.output.find("broken: skipped"), std::string::npos) << r.output;
+    ASSERT_EQ(shown.width, 1280);
+    // The card's purple stripe sits at the left edge of the lower half.
+    EXPECT_GT(purple(shown, 0, 400, 40, 800), 200u);
+    const render::Image hidden =
+        play("0.2 down 1 493 400\n0.3 up 1 493 400\n0.8 down 1 640 80\n0.9 up 1 640 80\n1.5 end\n");
+    EXPECT_LT(purple(hidden, 0, 400, 40, 800), 10u);
+}
+
+TEST_F(KioskReplay, ABrokenModelLeavesTheOthersOnScreen) {
+    const render::Image img = play("0.5 end\n");
+    // Both spheres drawn: bluish pixels on the left half, orange ones on the right.
+    size_t blue = 0, orange = 0;
+    for (int y = 0; y < img.height; ++y) {
+        for (int x = 0; x < img.width; ++x) {
+            const uint8_t* p = img.at(x, y);
+            if (x < 640 && p[2] > p[0] + 40) ++blue;
+            if (x >= 640 && p[0] > p[2] + 40) ++orange;
+        }
+    }
+    EXPECT_GT(blue, 500u);
+    EXPECT_GT(orange, 500u);
+}
+
+}  // namespace
+}  // namespace body
