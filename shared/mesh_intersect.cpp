@@ -21,132 +21,144 @@ namespace body {
 
 namespace {
 
-// Orientation predicates with a tolerance: values within eps count as zero.
-struct Predicates {
-    double eps3;  // for signed volumes (length^3)
-    double eps2;  // for 2-D cross products (length^2)
+// Exact predicates: coordinates are snapped to a grid of 2^-40 of the model's
+// largest dimension and held as integers, so signed volumes (< 2^125) and 2-D
+// cross products are exact in 128-bit arithmetic. Points closer than that grid
+// step count as touching.
+__extension__ typedef __int128 Wide;
+using IVec = std::array<int64_t, 3>;
+constexpr double kGridSteps = 1099511627776.0;  // 2^40
 
-    int sign3(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) const {
-        double v = glm::dot(glm::cross(b - a, c - a), d - a);
-        return v > eps3 ? 1 : (v < -eps3 ? -1 : 0);
+struct Snap {
+    Vec3 origin;
+    double scale = 1;  // grid steps per unit
+    IVec operator()(const Vec3& p) const {
+        IVec q;
+        for (int k = 0; k < 3; ++k) q[k] = int64_t(std::llround((p[k] - origin[k]) * scale));
+        return q;
     }
-    int sign2(const Vec2& a, const Vec2& b, const Vec2& c) const {
-        double v = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
-        return v > eps2 ? 1 : (v < -eps2 ? -1 : 0);
+    static Snap of(const Aabb& box) {
+        Snap s;
+        s.origin = box.min;
+        Vec3 size = box.size();
+        double largest = std::max({size.x, size.y, size.z});
+        s.scale = largest > 0 ? kGridSteps / largest : 1.0;
+        return s;
     }
 };
 
+std::array<Wide, 3> sub(const IVec& a, const IVec& b) {
+    return {Wide(a[0]) - b[0], Wide(a[1]) - b[1], Wide(a[2]) - b[2]};
+}
+std::array<Wide, 3> cross(const std::array<Wide, 3>& a, const std::array<Wide, 3>& b) {
+    return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+int sign(Wide v) { return v > 0 ? 1 : (v < 0 ? -1 : 0); }
+
+// Sign of the volume of (a, b, c, d): positive when d is above abc.
+// Coordinates lie in [0, 2^40]: differences < 2^41, cross products < 2^82,
+// each product n[k] e[k] < 2^123 and their sum < 2^125: no overflow.
+int orient3(const IVec& a, const IVec& b, const IVec& c, const IVec& d) {
+    auto n = cross(sub(b, a), sub(c, a));
+    auto e = sub(d, a);
+    Wide v = n[0] * e[0] + n[1] * e[1] + n[2] * e[2];
+    return sign(v);
+}
+
+using IVec2 = std::array<int64_t, 2>;
+int orient2(const IVec2& a, const IVec2& b, const IVec2& c) {
+    Wide v = (Wide(b[0]) - a[0]) * (Wide(c[1]) - a[1]) - (Wide(b[1]) - a[1]) * (Wide(c[0]) - a[0]);
+    return sign(v);
+}
+
 // Segment pq against triangle abc (p, q not both in its plane).
-static bool segment_crosses_triangle(const Predicates& pr, const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b,
-                                     const Vec3& c) {
-    int sp = pr.sign3(a, b, c, p), sq = pr.sign3(a, b, c, q);
-    if (sp == sq) return false;  // same side, or both in the plane (coplanar case elsewhere)
-    int s1 = pr.sign3(p, q, a, b), s2 = pr.sign3(p, q, b, c), s3 = pr.sign3(p, q, c, a);
+bool segment_crosses_triangle(const IVec& p, const IVec& q, const IVec& a, const IVec& b, const IVec& c) {
+    int sp = orient3(a, b, c, p), sq = orient3(a, b, c, q);
+    if (sp == sq) return false;  // same side, or both in the plane (the coplanar case is handled elsewhere)
+    int s1 = orient3(p, q, a, b), s2 = orient3(p, q, b, c), s3 = orient3(p, q, c, a);
     bool has_neg = s1 < 0 || s2 < 0 || s3<0, has_pos = s1> 0 || s2 > 0 || s3 > 0;
     return !(has_neg && has_pos);
 }
 
-static bool segments_cross_2d(const Predicates& pr, const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) {
-    int o1 = pr.sign2(a, b, c), o2 = pr.sign2(a, b, d), o3 = pr.sign2(c, d, a), o4 = pr.sign2(c, d, b);
+bool segments_cross_2d(const IVec2& a, const IVec2& b, const IVec2& c, const IVec2& d) {
+    int o1 = orient2(a, b, c), o2 = orient2(a, b, d), o3 = orient2(c, d, a), o4 = orient2(c, d, b);
     if (o1 * o2 < 0 && o3 * o4 < 0) return true;
-    auto on = [](const Vec2& p, const Vec2& q, const Vec2& r) {  // r on segment pq, given collinear
-        return std::min(p.x, q.x) <= r.x && r.x <= std::max(p.x, q.x) && std::min(p.y, q.y) <= r.y &&
-               r.y <= std::max(p.y, q.y);
+    auto on = [](const IVec2& p, const IVec2& q, const IVec2& r) {  // r on segment pq, given collinear
+        return std::min(p[0], q[0]) <= r[0] && r[0] <= std::max(p[0], q[0]) && std::min(p[1], q[1]) <= r[1] &&
+               r[1] <= std::max(p[1], q[1]);
     };
     return (o1 == 0 && on(a, b, c)) || (o2 == 0 && on(a, b, d)) || (o3 == 0 && on(c, d, a)) || (o4 == 0 && on(c, d, b));
 }
 
-static bool point_in_triangle_2d(const Predicates& pr, const Vec2& p, const Vec2& a, const Vec2& b, const Vec2& c) {
-    int s1 = pr.sign2(a, b, p), s2 = pr.sign2(b, c, p), s3 = pr.sign2(c, a, p);
+bool point_in_triangle_2d(const IVec2& p, const IVec2& a, const IVec2& b, const IVec2& c) {
+    int s1 = orient2(a, b, p), s2 = orient2(b, c, p), s3 = orient2(c, a, p);
     bool has_neg = s1 < 0 || s2 < 0 || s3<0, has_pos = s1> 0 || s2 > 0 || s3 > 0;
     return !(has_neg && has_pos);
 }
 
-// Drops the coordinate along the normal's largest component.
-static std::array<Vec2, 6> project(const Vec3& n, std::span<const Vec3, 6> v) {
-    Vec3 a = glm::abs(n);
-    int drop = a.x >= a.y && a.x >= a.z ? 0 : (a.y >= a.z ? 1 : 2);
-    std::array<Vec2, 6> out;
+// Drops the coordinate along the largest component of abc's normal.
+std::array<IVec2, 6> project(const IVec& a, const IVec& b, const IVec& c, std::span<const IVec, 6> v) {
+    auto n = cross(sub(b, a), sub(c, a));
+    Wide ax = n[0] < 0 ? -n[0] : n[0], ay = n[1] < 0 ? -n[1] : n[1], az = n[2] < 0 ? -n[2] : n[2];
+    int drop = ax >= ay && ax >= az ? 0 : (ay >= az ? 1 : 2);
+    std::array<IVec2, 6> out;
     for (int k = 0; k < 6; ++k)
-        out[k] = drop == 0 ? Vec2(v[k].y, v[k].z) : (drop == 1 ? Vec2(v[k].z, v[k].x) : Vec2(v[k].x, v[k].y));
+        out[k] = drop == 0 ? IVec2{v[k][1], v[k][2]} : (drop == 1 ? IVec2{v[k][2], v[k][0]} : IVec2{v[k][0], v[k][1]});
     return out;
 }
 
-static bool coplanar_overlap(const Predicates& pr, const Vec3& n, std::span<const Vec3, 6> v) {
-    auto p = project(n, v);
-    for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j)
-            if (segments_cross_2d(pr, p[i], p[(i + 1) % 3], p[3 + j], p[3 + (j + 1) % 3])) return true;
-    return point_in_triangle_2d(pr, p[0], p[3], p[4], p[5]) || point_in_triangle_2d(pr, p[3], p[0], p[1], p[2]);
+bool is_coplanar(const IVec& a0, const IVec& a1, const IVec& a2, const IVec& b0, const IVec& b1, const IVec& b2) {
+    return orient3(a0, a1, a2, b0) == 0 && orient3(a0, a1, a2, b1) == 0 && orient3(a0, a1, a2, b2) == 0;
 }
 
-static bool is_coplanar(const Predicates& pr, const Vec3& a0, const Vec3& a1, const Vec3& a2, const Vec3& b0,
-                        const Vec3& b1, const Vec3& b2) {
-    return pr.sign3(a0, a1, a2, b0) == 0 && pr.sign3(a0, a1, a2, b1) == 0 && pr.sign3(a0, a1, a2, b2) == 0;
-}
-
-static bool disjoint_intersect(const Predicates& pr, const Vec3& a0, const Vec3& a1, const Vec3& a2, const Vec3& b0,
-                               const Vec3& b1, const Vec3& b2) {
-    if (is_coplanar(pr, a0, a1, a2, b0, b1, b2)) {
-        const Vec3 v[6] = {a0, a1, a2, b0, b1, b2};
-        return coplanar_overlap(pr, glm::cross(a1 - a0, a2 - a0), std::span<const Vec3, 6>(v));
+bool disjoint_intersect(const IVec& a0, const IVec& a1, const IVec& a2, const IVec& b0, const IVec& b1,
+                        const IVec& b2) {
+    if (is_coplanar(a0, a1, a2, b0, b1, b2)) {
+        const IVec v[6] = {a0, a1, a2, b0, b1, b2};
+        auto p = project(a0, a1, a2, std::span<const IVec, 6>(v));
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j)
+                if (segments_cross_2d(p[i], p[(i + 1) % 3], p[3 + j], p[3 + (j + 1) % 3])) return true;
+        return point_in_triangle_2d(p[0], p[3], p[4], p[5]) || point_in_triangle_2d(p[3], p[0], p[1], p[2]);
     }
-    return segment_crosses_triangle(pr, a0, a1, b0, b1, b2) || segment_crosses_triangle(pr, a1, a2, b0, b1, b2) ||
-           segment_crosses_triangle(pr, a2, a0, b0, b1, b2) || segment_crosses_triangle(pr, b0, b1, a0, a1, a2) ||
-           segment_crosses_triangle(pr, b1, b2, a0, a1, a2) || segment_crosses_triangle(pr, b2, b0, a0, a1, a2);
+    return segment_crosses_triangle(a0, a1, b0, b1, b2) || segment_crosses_triangle(a1, a2, b0, b1, b2) ||
+           segment_crosses_triangle(a2, a0, b0, b1, b2) || segment_crosses_triangle(b0, b1, a0, a1, a2) ||
+           segment_crosses_triangle(b1, b2, a0, a1, a2) || segment_crosses_triangle(b2, b0, a0, a1, a2);
 }
 
 // Triangles (v, a, b) and (v, c, d) sharing vertex v: do they meet elsewhere?
-static bool vertex_adjacent_intersect(const Predicates& pr, const Vec3& v, const Vec3& a, const Vec3& b, const Vec3& c,
-                                      const Vec3& d) {
-    Vec3 n1 = glm::cross(a - v, b - v), n2 = glm::cross(c - v, d - v);
-    if (is_coplanar(pr, v, a, b, v, c, d)) {
+bool vertex_adjacent_intersect(const IVec& v, const IVec& a, const IVec& b, const IVec& c, const IVec& d) {
+    if (is_coplanar(v, a, b, v, c, d)) {
         // Both lie in their wedges at v; they overlap iff the wedges do.
-        const Vec3 pts[6] = {v, a, b, v, c, d};
-        auto p = project(n1, std::span<const Vec3, 6>(pts));
-        auto inside = [&](const Vec2& q, const Vec2& o, const Vec2& e1, const Vec2& e2) {  // strictly in wedge
-            int s = pr.sign2(o, e1, e2);
-            return pr.sign2(o, e1, q) == s && pr.sign2(o, q, e2) == s && s != 0;
+        const IVec pts[6] = {v, a, b, v, c, d};
+        auto p = project(v, a, b, std::span<const IVec, 6>(pts));
+        auto inside = [&](const IVec2& q, const IVec2& o, const IVec2& e1, const IVec2& e2) {  // strictly inside
+            int s = orient2(o, e1, e2);
+            return s != 0 && orient2(o, e1, q) == s && orient2(o, q, e2) == s;
         };
-        auto same_dir = [&](const Vec2& o, const Vec2& e, const Vec2& f) {
-            return pr.sign2(o, e, f) == 0 && glm::dot(e - o, f - o) > 0;
+        auto same_ray = [&](const IVec2& o, const IVec2& e, const IVec2& f) {
+            if (orient2(o, e, f) != 0) return false;
+            Wide dot = (Wide(e[0]) - o[0]) * (Wide(f[0]) - o[0]) + (Wide(e[1]) - o[1]) * (Wide(f[1]) - o[1]);
+            return dot > 0;
         };
         if (inside(p[4], p[0], p[1], p[2]) || inside(p[5], p[0], p[1], p[2]) || inside(p[1], p[0], p[4], p[5]) ||
             inside(p[2], p[0], p[4], p[5]))
             return true;
-        // Coincident wedges, or edges along the same ray (touching along an edge).
-        return same_dir(p[0], p[1], p[4]) || same_dir(p[0], p[1], p[5]) || same_dir(p[0], p[2], p[4]) ||
-               same_dir(p[0], p[2], p[5]);
+        return same_ray(p[0], p[1], p[4]) || same_ray(p[0], p[1], p[5]) || same_ray(p[0], p[2], p[4]) ||
+               same_ray(p[0], p[2], p[5]);
     }
-    // Each triangle meets the other's plane in a segment from v (or only in v);
-    // they meet elsewhere iff both segments leave v on the same side.
-    auto segment_end = [&](const Vec3& p, const Vec3& q, const Vec3& n, bool& ok) {
-        double dp = glm::dot(n, p - v), dq = glm::dot(n, q - v);
-        double tol = pr.eps3;
-        int sp = dp > tol ? 1 : (dp < -tol ? -1 : 0), sq = dq > tol ? 1 : (dq < -tol ? -1 : 0);
-        ok = !(sp == sq && sp != 0);
-        if (sp == 0 && sq == 0) return (p + q) * 0.5 - v;  // edge in the plane: any point of it
-        if (sp == 0) return p - v;
-        if (sq == 0) return q - v;
-        double t = dp / (dp - dq);
-        return p + t * (q - p) - v;
-    };
-    bool ok1, ok2;
-    Vec3 e1 = segment_end(a, b, n2, ok1), e2 = segment_end(c, d, n1, ok2);
-    if (!ok1 || !ok2) return false;
-    Vec3 line = glm::cross(n1, n2);
-    double s1 = glm::dot(e1, line), s2 = glm::dot(e2, line);
-    double tol = pr.eps3 * 1e-3 * glm::length(line);
-    return (s1 > tol && s2 > tol) || (s1 < -tol && s2 < -tol);
+    // The intersection is a segment from v along the planes' common line; its
+    // far end lies on the edge opposite v of one triangle, inside the other.
+    return segment_crosses_triangle(a, b, v, c, d) || segment_crosses_triangle(c, d, v, a, b);
 }
 
 // Triangles (u, v, a) and (v, u, b) sharing edge uv: they meet beyond it only
 // when coplanar with a and b on the same side (folded onto each other).
-static bool edge_adjacent_intersect(const Predicates& pr, const Vec3& u, const Vec3& v, const Vec3& a, const Vec3& b) {
-    if (pr.sign3(u, v, a, b) != 0) return false;
-    Vec3 n = glm::cross(v - u, a - u);
-    double sa = glm::dot(glm::cross(v - u, a - u), n), sb = glm::dot(glm::cross(v - u, b - u), n);
-    return sa * sb > 0;
+bool edge_adjacent_intersect(const IVec& u, const IVec& v, const IVec& a, const IVec& b) {
+    if (orient3(u, v, a, b) != 0) return false;
+    const IVec pts[6] = {u, v, a, u, v, b};
+    auto p = project(u, v, a, std::span<const IVec, 6>(pts));
+    return orient2(p[0], p[1], p[2]) * orient2(p[0], p[1], p[5]) > 0;
 }
 
 struct Grid {
@@ -184,9 +196,8 @@ bool triangles_intersect(const Vec3& a0, const Vec3& a1, const Vec3& a2, const V
                          const Vec3& b2) {
     Aabb box;
     for (const Vec3* p : {&a0, &a1, &a2, &b0, &b1, &b2}) box.extend(*p);
-    double scale = std::max(box.extent(), 1e-300);
-    Predicates pr{1e-12 * scale * scale * scale, 1e-12 * scale * scale};
-    return disjoint_intersect(pr, a0, a1, a2, b0, b1, b2);
+    Snap snap = Snap::of(box);
+    return disjoint_intersect(snap(a0), snap(a1), snap(a2), snap(b0), snap(b1), snap(b2));
 }
 
 size_t count_self_intersections(std::span<const Vec3> positions, std::span<const uint32_t> indices, size_t stop_after,
@@ -208,11 +219,14 @@ size_t count_self_intersections(std::span<const Vec3> positions, std::span<const
         all.extend(boxes[t].max);
         Vec3 s = boxes[t].size();
         extent_sum += std::max({s.x, s.y, s.z});
-        if (glm::length(glm::cross(b - a, c - a)) == 0.0) skip[t] = 1;
     }
-    const double scale = std::max(all.extent(), 1e-300);
-    // Tolerances relative to the model: near-touching within 1e-10 of its size.
-    const Predicates pr{1e-15 * scale * scale * scale, 1e-15 * scale * scale};
+    const Snap snap = Snap::of(all);
+    std::vector<IVec> q(positions.size());  // the snapped positions
+    for (size_t v = 0; v < positions.size(); ++v) q[v] = snap(positions[v]);
+    for (size_t t = 0; t < tri_count; ++t) {  // degenerate after snapping: skipped
+        auto n = cross(sub(q[indices[3 * t + 1]], q[indices[3 * t]]), sub(q[indices[3 * t + 2]], q[indices[3 * t]]));
+        if (n[0] == 0 && n[1] == 0 && n[2] == 0) skip[t] = 1;
+    }
     Grid grid = make_grid(all, extent_sum / double(tri_count), tri_count);
 
     // Phase 2: (cell, triangle) entries, sorted by cell.
@@ -254,19 +268,16 @@ size_t count_self_intersections(std::span<const Vec3> positions, std::span<const
                 for (int p = 0; p < 3; ++p) shared += ai[p] >= 0;
                 bool hit = false;
                 if (shared == 0) {
-                    hit = disjoint_intersect(pr, positions[A[0]], positions[A[1]], positions[A[2]], positions[B[0]],
-                                             positions[B[1]], positions[B[2]]);
+                    hit = disjoint_intersect(q[A[0]], q[A[1]], q[A[2]], q[B[0]], q[B[1]], q[B[2]]);
                 } else if (shared == 1) {
-                    int p = ai[0] >= 0 ? 0 : (ai[1] >= 0 ? 1 : 2), q = ai[p];
-                    hit = vertex_adjacent_intersect(pr, positions[A[p]], positions[A[(p + 1) % 3]],
-                                                    positions[A[(p + 2) % 3]], positions[B[(q + 1) % 3]],
-                                                    positions[B[(q + 2) % 3]]);
+                    int p = ai[0] >= 0 ? 0 : (ai[1] >= 0 ? 1 : 2), k = ai[p];
+                    hit = vertex_adjacent_intersect(q[A[p]], q[A[(p + 1) % 3]], q[A[(p + 2) % 3]], q[B[(k + 1) % 3]],
+                                                    q[B[(k + 2) % 3]]);
                 } else if (shared == 2) {
                     int p = ai[0] < 0 ? 0 : (ai[1] < 0 ? 1 : 2);  // A's vertex not shared
-                    int q = 0;
-                    while (q < 3 && (B[q] == A[(p + 1) % 3] || B[q] == A[(p + 2) % 3])) ++q;
-                    hit = edge_adjacent_intersect(pr, positions[A[(p + 1) % 3]], positions[A[(p + 2) % 3]],
-                                                  positions[A[p]], positions[B[q]]);
+                    int k = 0;
+                    while (k < 3 && (B[k] == A[(p + 1) % 3] || B[k] == A[(p + 2) % 3])) ++k;
+                    hit = edge_adjacent_intersect(q[A[(p + 1) % 3]], q[A[(p + 2) % 3]], q[A[p]], q[B[k]]);
                 } else {
                     hit = true;  // the same triangle twice
                 }

@@ -5,7 +5,9 @@
 // - `positions` are the vertices, `indices` three per triangle (any
 //   orientation); indices must be < positions.size().
 // - Returns the number of unordered pairs of triangles that intersect, counting
-//   touching as intersecting. Triangles that share one vertex index count only
+//   touching as intersecting. Predicates are exact on the positions snapped to
+//   a grid of 2^-40 of the mesh's largest dimension (points closer than that
+//   step touch). Triangles that share one vertex index count only
 //   if they also meet away from that vertex; triangles that share an edge count
 //   only if they are coplanar and overlap (a fold). Duplicate triangles (three
 //   shared indices) count as intersecting. Degenerate triangles (zero area)
