@@ -6,7 +6,6 @@
 #include <unistd.h>
 
 #include <cstdio>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -16,6 +15,7 @@
 #include "shared/atomic_file.h"
 #include "shared/cli_args.h"
 #include "shared/obj_io.h"
+#include "shared/pm/progressive_mesh.h"
 #include "shared/scene/scene.h"
 
 namespace body::cli {
@@ -24,7 +24,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Checks that `m.path` is a readable model; the message names the manifest and JSON path.
+// Checks that `m.path` is a readable model (an OBJ that parses, a .bpm the
+// progressive-mesh reader accepts); the message names the manifest and JSON path.
 Status check_model(const scene::Scene& s, size_t index, size_t& triangles) {
     const scene::Model& m = s.models[index];
     const std::string where = s.source + ": models[" + std::to_string(index) + "].file: '" + m.file + "'";
@@ -40,12 +41,12 @@ Status check_model(const scene::Scene& s, size_t index, size_t& triangles) {
         return ok_status();
     }
     if (ext == ".bpm") {
-        std::ifstream in(m.path, std::ios::binary);
-        char magic[4] = {};
-        if (!in.read(magic, sizeof magic)) return input_error(where + ": byte 0: shorter than the .bpm header");
-        static constexpr char kMagic[4] = {'B', 'P', 'M', '\0'};
-        if (std::memcmp(magic, kMagic, sizeof magic) != 0) return input_error(where + ": byte 0: not a .bpm file");
+        // The full reader: header, every section's CRC, decodable base and splits.
+        auto meshes = pm::read_bpm(m.path);
+        if (!meshes) return input_error(where + ": " + meshes.error().message);
         triangles = 0;
+        for (const auto& mesh : *meshes) triangles += mesh->max_triangle_count();
+        if (triangles == 0) return input_error(where + ": no triangles");
         return ok_status();
     }
     return input_error(where + ": not a model (expected .bpm or .obj)");
@@ -145,7 +146,7 @@ int run_pack(const Args& argv) {
     Status swapped = swap_into_place(staged, bundle);
     if (!swapped) return fail(swapped.error());
     std::printf("%s: %zu models, %zu groups%s -> %s\n", scene_path.c_str(), scene->models.size(), scene->groups.size(),
-                triangles_total ? (", " + std::to_string(triangles_total) + " OBJ triangles").c_str() : "",
+                (", " + std::to_string(triangles_total) + " triangles at full detail").c_str(),
                 bundle.string().c_str());
     return kExitOk;
 }

@@ -15,6 +15,7 @@
 #include "kiosk/render/image.h"
 #include "kiosk/render/model_source.h"
 #include "kiosk/render/renderer.h"
+#include "platform/evdev_input.h"
 #include "shared/pm/progressive_mesh.h"
 
 namespace body::kiosk {
@@ -116,6 +117,8 @@ std::optional<float> pick_part(const Part& p, const glm::mat4& transform, const 
     // t is in object units along d; convert to world distance.
     return best * glm::length(glm::vec3(transform * glm::vec4(d, 0.0f)));
 }
+
+bool replaying_requested(const KioskRunOptions& o) { return !o.replay.empty(); }
 
 InputEvent convert(const platform::InputEvent& e, uint32_t modifiers) {
     using T = platform::InputEvent::Type;
@@ -233,6 +236,18 @@ int run_kiosk(platform::Surface& surface, const scene::Scene& scene, const Kiosk
         std::fprintf(stderr, "bodyview: labels disabled: %s\n", s.error().message.c_str());
     }
 
+    // ---- touch on boards without a display server: evdev, hotplugged
+    std::unique_ptr<platform::EvdevInput> touch;
+    if (surface.backend() == platform::Backend::Drm && !replaying_requested(options)) {
+        auto t = platform::EvdevInput::open(
+            platform::EvdevOptions{"/dev/input", surface.width(), surface.height(), options.touch_rotation});
+        if (t) {
+            touch = std::move(t).value();
+        } else {
+            std::fprintf(stderr, "bodyview: no touch input: %s\n", t.error().message.c_str());
+        }
+    }
+
     // ---- loop
     render::Lighting lighting;
     render::FrameOptions fo;
@@ -250,6 +265,7 @@ int run_kiosk(platform::Surface& surface, const scene::Scene& scene, const Kiosk
         const double now = replaying ? static_cast<double>(frame) * step : surface.time();
         events.clear();
         bool keep = surface.poll_events(events);
+        if (touch) touch->poll(surface.time(), events);
         if (replaying) {
             while (next_event < replay.events.size() && replay.events[next_event].time <= now) {
                 InputEvent e = replay.events[next_event++];

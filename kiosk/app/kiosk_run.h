@@ -26,6 +26,9 @@ struct KioskRunOptions {
     // Report measured frame times to the LOD controller. Off for replays by default
     // so that a replay's screenshot does not depend on the machine's speed.
     bool measure_frames_in_replay = false;
+    // DRM backend: touch screens from /dev/input (platform/evdev_input.h), with the
+    // panel turned this many degrees clockwise relative to the picture.
+    int touch_rotation = 0;
 };
 
 // Returns a process exit code (0 ok, 1 runtime failure, 2 bad input).

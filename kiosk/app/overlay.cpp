@@ -169,20 +169,30 @@ void Overlay::draw(const std::vector<Control>& controls, const LabelCard& card, 
         text_centered(1, c.text, r, c.enabled ? ink : faded);
     }
     if (card.visible) {
-        const Rect& r = card.rect;
+        // Shrink the card to its text, keeping its bottom edge.
+        const float pad = 16.0f;
+        const auto title_lines = s.title.wrap(decode_utf8(card.title), card.rect.w - 2 * pad);
+        const auto body_lines = s.body.wrap(decode_utf8(card.description), card.rect.w - 2 * pad);
+        const bool has_body = !card.description.empty();
+        const float needed = 2 * pad + static_cast<float>(title_lines.size()) * s.title.line_height() +
+                             (has_body ? (static_cast<float>(body_lines.size()) + 0.3f) * s.body.line_height() : 0.0f);
+        Rect r = card.rect;
+        if (needed < r.h) {
+            r.y += r.h - needed;
+            r.h = needed;
+        }
         quad(s.solid, r.x, r.y, r.x + r.w, r.y + r.h, 0, 0, 0, 0, Colour{1.0f, 1.0f, 0.98f, 0.93f});
         quad(s.solid, r.x, r.y, r.x + 6, r.y + r.h, 0, 0, 0, 0, Colour{0.55f, 0.25f, 0.80f, 1.0f});
-        const float pad = 16.0f;
         float y = r.y + pad + s.title.ascent();
-        for (const TextLine& line : s.title.wrap(decode_utf8(card.title), r.w - 2 * pad)) {
+        for (const TextLine& line : title_lines) {
             if (y > r.y + r.h) break;
             for (const GlyphQuad& q : s.title.layout(line.text, r.x + pad, y)) {
                 quad(s.text[0], q.x0, q.y0, q.x1, q.y1, q.s0, q.t0, q.s1, q.t1, ink);
             }
             y += s.title.line_height();
         }
-        y += s.body.line_height() * 0.3f;
-        for (const TextLine& line : s.body.wrap(decode_utf8(card.description), r.w - 2 * pad)) {
+        y += s.body.line_height() * 0.3f - s.title.ascent() + s.body.ascent();
+        for (const TextLine& line : has_body ? body_lines : std::vector<TextLine>{}) {
             if (y > r.y + r.h - pad * 0.5f) break;
             for (const GlyphQuad& q : s.body.layout(line.text, r.x + pad, y)) {
                 quad(s.text[1], q.x0, q.y0, q.x1, q.y1, q.s0, q.t0, q.s1, q.t1, ink);

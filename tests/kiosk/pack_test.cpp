@@ -23,7 +23,13 @@ protected:
         fs::create_directories(dir_ / "src" / "b");
         write("src/a/part.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n");
         write("src/b/part.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
-        write("src/brain.bpm", std::string("BPM\0\1\0\0\0", 8) + "payload");
+        // A real progressive mesh from the tetrahedron, and the same cut short.
+        auto lod = test::run(test::bin("bodygen") + " lod " + (dir_ / "src/a/part.obj").string() + " -o " +
+                             (dir_ / "src/brain.bpm").string());
+        ASSERT_EQ(lod.exit_code, 0) << lod.output;
+        std::ifstream in(dir_ / "src/brain.bpm", std::ios::binary);
+        std::string bpm((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        write("src/cut.bpm", bpm.substr(0, bpm.size() / 2));
         write("src/bad.bpm", "OBJ? no");
         write("src/notes.txt", "hello");
     }
@@ -74,7 +80,9 @@ TEST_F(Pack, BadReferencesExitTwoAndWriteNothing) {
     for (const Case& c : {
              Case{R"({"name": "a", "file": "a/part.obj"}, {"name": "m", "file": "missing.obj"})",
                   "models[1].file: 'missing.obj': no such file"},
-             Case{R"({"name": "x", "file": "bad.bpm"})", "models[0].file: 'bad.bpm': byte 0: not a .bpm file"},
+             Case{R"({"name": "x", "file": "bad.bpm"})", "models[0].file: 'bad.bpm': "},
+             Case{R"({"name": "x", "file": "a/part.obj"}, {"name": "y", "file": "cut.bpm"})",
+                  "models[1].file: 'cut.bpm': "},
              Case{R"({"name": "x", "file": "notes.txt"})", "not a model (expected .bpm or .obj)"},
              Case{R"({"name": "x", "file": "a/part.obj", "group": "nope"})", "models[0].group: no group named"},
          }) {
