@@ -33,6 +33,36 @@ double distance_to_polygon(const Vec2& p, std::span<const Vec2> poly) {
     return best;
 }
 
+Vec2 closest_on_polygon(const Vec2& p, std::span<const Vec2> poly) {
+    double best = 1e300;
+    Vec2 out = poly[0];
+    for (size_t i = 0; i < poly.size(); ++i) {
+        const Vec2 a = poly[i], ab = poly[(i + 1) % poly.size()] - a;
+        const double l2 = glm::dot(ab, ab);
+        const double t = l2 > 0 ? std::clamp(glm::dot(p - a, ab) / l2, 0.0, 1.0) : 0.0;
+        const Vec2 q = a + ab * t;
+        const double d = glm::length(q - p);
+        if (d < best) best = d, out = q;
+    }
+    return out;
+}
+
+// Moves a chord point onto the bisector between two branches (equal distance
+// to both), so that a chord runs along the gap between them (Meyers' medial
+// axis, approximated point by point).
+Vec2 onto_bisector(Vec2 p, std::span<const Vec2> side, std::span<const Vec2> main) {
+    for (int iteration = 0; iteration < 16; ++iteration) {
+        const Vec2 qs = closest_on_polygon(p, side), qm = closest_on_polygon(p, main);
+        const double ds = glm::length(qs - p), dm = glm::length(qm - p);
+        const double gap = ds - dm;  // > 0: closer to the main branch, move towards the side branch
+        const Vec2 target = gap > 0 ? qs : qm;
+        const double len = glm::length(target - p);
+        if (len <= 0 || std::abs(gap) <= 1e-9 * (ds + dm)) break;
+        p += (target - p) * (0.5 * std::abs(gap) / len);
+    }
+    return p;
+}
+
 // Phase 1: each vertex goes to its nearest branch.
 std::vector<uint32_t> nearest_owner(std::span<const uint32_t> single, std::span<const std::span<const Vec2>> branches,
                                     const std::vector<Vec3>& positions) {
@@ -147,9 +177,10 @@ Result<std::vector<std::vector<uint32_t>>> partition_contour(std::span<const uin
     if (!settled) return input_error("partition: " + settled.error().message);
     const std::vector<Run> runs = runs_of(owner);
 
-    // Phase 3: each side arc is cut off by a straight chord from its end back to
-    // its start, lifted to chord_z (at least one interior vertex, so the cut
-    // leaves the slice plane).
+    // Phase 3: each side arc is cut off by a chord from its end back to its
+    // start, lifted to chord_z (at least one interior vertex, so the cut leaves
+    // the slice plane), its interior points moved onto the bisector between the
+    // side branch and the main branch.
     std::vector<std::vector<uint32_t>> pieces(branches.size());
     std::vector<std::vector<uint32_t>> chords(runs.size());  // arc end -> arc start, interior vertices
     for (size_t r = 0; r < runs.size(); ++r) {
@@ -158,7 +189,7 @@ Result<std::vector<std::vector<uint32_t>>> partition_contour(std::span<const uin
         const Vec2 to(positions[single[runs[r].start % n]]);
         const int k = std::max(2, int(std::lround(glm::length(to - from) / std::max(step, 1e-300))));
         for (int t = 1; t < k; ++t) {
-            const Vec2 p = from + (to - from) * (double(t) / k);
+            const Vec2 p = onto_bisector(from + (to - from) * (double(t) / k), branches[runs[r].owner], branches[main]);
             chords[r].push_back(uint32_t(positions.size()));
             positions.emplace_back(p.x, p.y, chord_z);
         }

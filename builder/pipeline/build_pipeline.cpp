@@ -261,8 +261,14 @@ private:
         const Loop& first_lower = loops_[s][gl[0]];
         if (gl.size() == 1 && gu.size() == 1) return band(first_lower.ids, loops_[s + 1][gu[0]].ids, first_lower);
         const double zl = z(s), zu = z(s + 1);
-        if (gl.size() == 1) return split(first_lower.ids, loops_[s + 1], gu, 0.5 * (zl + zu), true, first_lower);
-        if (gu.size() == 1) return split(loops_[s + 1][gu[0]].ids, loops_[s], gl, 0.5 * (zl + zu), false, first_lower);
+        if (gl.size() == 1) {
+            if (nested(s, gl[0], s + 1, gu)) return nested_branch(s, gl[0], s + 1, gu, hole);
+            return split(first_lower.ids, loops_[s + 1], gu, 0.5 * (zl + zu), true, first_lower);
+        }
+        if (gu.size() == 1) {
+            if (nested(s + 1, gu[0], s, gl)) return nested_branch(s + 1, gu[0], s, gl, hole);
+            return split(loops_[s + 1][gu[0]].ids, loops_[s], gl, 0.5 * (zl + zu), false, first_lower);
+        }
         // N:M: a mid-slice contour (convex hull of the group) takes N:1 below and 1:M above.
         std::vector<Vec2> pts;
         for (uint32_t k : gl) pts.insert(pts.end(), loops_[s][k].xy.begin(), loops_[s][k].xy.end());
@@ -274,6 +280,67 @@ private:
         auto status = split(mid, loops_[s], gl, 0.5 * (zl + zm), false, first_lower);
         if (!status) return status;
         return split(mid, loops_[s + 1], gu, 0.5 * (zm + zu), true, first_lower);
+    }
+
+    // Do the branches on slice `bs` lie strictly inside the single loop on slice
+    // `ss` (seen from above), with no other loop of the structure inside them or
+    // inside the single loop's region on its own slice?
+    bool nested(size_t ss, uint32_t single, size_t bs, const std::vector<uint32_t>& branches) const {
+        const Loop& outer = loops_[ss][single];
+        for (size_t k = 0; k < loops_[ss].size(); ++k)
+            if (loops_[ss][k].parent == int(single)) return false;
+        std::vector<std::span<const Vec2>> all{outer.xy};
+        for (uint32_t b : branches) {
+            for (size_t k = 0; k < loops_[bs].size(); ++k)
+                if (loops_[bs][k].parent == int(b)) return false;
+            for (const Vec2& p : loops_[bs][b].xy)
+                if (!point_in_polygon(p, outer.xy)) return false;
+            all.emplace_back(loops_[bs][b].xy);
+        }
+        return !find_crossing(all).found;
+    }
+
+    // Branches nested inside the single contour: the single contour rises as a
+    // vertical wall for a third of the spacing, the branches drop as vertical
+    // walls for a third, and the middle third is the planar region between them
+    // (single minus branches) triangulated and lifted linearly: a height field
+    // over a planar triangulation, so it cannot fold or cross itself.
+    Status nested_branch(size_t ss, uint32_t single, size_t bs, const std::vector<uint32_t>& branches, bool hole) {
+        const Loop& outer = loops_[ss][single];
+        const double z_single = z(ss), z_branch = z(bs);
+        const double z_a = z_single + (z_branch - z_single) / 3, z_b = z_single + 2 * (z_branch - z_single) / 3;
+        const bool single_below = z_single < z_branch;
+        std::vector<uint32_t> outer_copy = lifted_copy(outer.xy, z_a);
+        if (single_below)
+            prism(outer.ids, outer_copy);
+        else
+            prism(outer_copy, outer.ids);
+        std::vector<std::span<const Vec2>> region{outer.xy};
+        std::vector<uint32_t> ids(outer_copy);
+        for (uint32_t b : branches) {
+            const Loop& branch = loops_[bs][b];
+            std::vector<uint32_t> copy = lifted_copy(branch.xy, z_b);
+            if (single_below)
+                prism(copy, branch.ids);
+            else
+                prism(branch.ids, copy);
+            region.emplace_back(branch.xy);
+            ids.insert(ids.end(), copy.begin(), copy.end());
+        }
+        std::vector<uint32_t> local;
+        auto status = triangulate_polygon_with_holes(region, local);
+        if (!status) return input_error(where(path_, *outer.source) + ": branching: " + status.error().message);
+        // Triangles come out counter-clockwise from +z: right for the roof over a
+        // solid that narrows upwards; the floor (single above) and holes face the other way.
+        const bool face_up = single_below != hole;
+        for (size_t t = 0; t < local.size(); t += 3) {
+            const uint32_t a = ids[local[t]], b = ids[local[t + 1]], c = ids[local[t + 2]];
+            if (face_up)
+                triangles.insert(triangles.end(), {a, b, c});
+            else
+                triangles.insert(triangles.end(), {a, c, b});
+        }
+        return ok_status();
     }
 
     // One id loop against several branch loops: partition, then tile each piece.
