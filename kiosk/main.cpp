@@ -53,6 +53,7 @@ void print_help(std::FILE* out) {
                  "  --frames N        interactive: exit after N frames\n"
                  "  --replay FILE     scene: play scripted touch/mouse input (kiosk/app/replay.h), then exit\n"
                  "  --no-auto-lod     scene: keep the manifest's LOD (the automatic LOD controller off)\n"
+                 "  --kiosk-stats     scene: print time to first frame / full detail and frame times\n"
                  "  --benchmark       time every style at LOD 100/40/10%% against a flat baseline\n"
                  "  --help            this text\n  --version         print the version\n\n"
                  "A model that cannot be loaded is skipped with a one-line error (nothing drawn).\n"
@@ -202,6 +203,7 @@ int run(const CliArgs& args) {
         ko.screenshot = args.get_or("screenshot", "");
         ko.frames = frames.value();
         ko.auto_lod = !args.has("no-auto-lod");
+        ko.verbose = args.has("kiosk-stats");
         return kiosk::run_kiosk(surf, *scene, ko);
     }
     render::Renderer renderer;
@@ -249,14 +251,16 @@ int run(const CliArgs& args) {
     renderer.scene_bounds(center, radius);
     const float az = glm::radians(azimuth), po = glm::radians(polar);
     Vec3f dir(std::sin(po) * std::sin(az), std::cos(po), std::sin(po) * std::cos(az));
-    render::Camera camera = render::Camera::framing(center, radius > 0 ? radius : 1.0f, dir);
+    Vec3f lo(-1.0f), hi(1.0f);
+    if (renderer.scene_box(lo, hi)) radius = 0.5f * glm::length(hi - lo);
+    const float aspect = static_cast<float>(surf.width()) / static_cast<float>(std::max(1, surf.height()));
+    render::Camera camera = render::Camera::framing_box(lo, hi, dir, aspect, scene ? scene->camera.fov_deg : 35.0f);
     if (scene && scene->camera.distance > 0) {
         camera.target = Vec3f(scene->camera.target[0], scene->camera.target[1], scene->camera.target[2]);
         camera.eye = camera.target + dir * scene->camera.distance;
         camera.near_plane = scene->camera.distance * 0.01f;
         camera.far_plane = scene->camera.distance * 10.0f + radius * 2.0f;
     }
-    if (scene) camera.fov_y_deg = scene->camera.fov_deg;
     render::Lighting lighting;
     render::FrameOptions fo;
     fo.line_width_px = static_cast<float>(line_width.value()) * static_cast<float>(ssaa.value());
@@ -335,7 +339,7 @@ int main(int argc, char** argv) {
     auto args = CliArgs::parse(argv_list,
                                {"platform", "size", "mode", "device", "model", "scene", "style", "lod", "select",
                                 "view", "line-width", "ssaa", "screenshot", "frames", "replay"},
-                               {"headless", "windowed", "xray", "benchmark", "no-auto-lod"});
+                               {"headless", "windowed", "xray", "benchmark", "no-auto-lod", "kiosk-stats"});
     if (!args) return fail(args.error());
     return run(args.value());
 }

@@ -57,6 +57,7 @@ struct Model {
     size_t vertex_count = 0, index_count = 0;
     Vec3f center{0.0f};
     float radius = 0.0f;
+    Vec3f box_min{0.0f}, box_max{0.0f};  // object space
     // Lazily created for `lines` and `wireframe`.
     GLuint position_texture = 0, index_texture = 0;
     GLuint edge_vao = 0, edge_vbo = 0;
@@ -222,6 +223,29 @@ Camera Camera::framing(Vec3f center, float radius, Vec3f direction) {
     return c;
 }
 
+Camera Camera::framing_box(Vec3f lo, Vec3f hi, Vec3f direction, float aspect, float fov_y_deg) {
+    Camera c;
+    c.fov_y_deg = fov_y_deg;
+    c.target = (lo + hi) * 0.5f;
+    const Vec3f back = glm::normalize(direction);  // from target toward the eye
+    const Vec3f right = glm::normalize(glm::cross(c.up, back));
+    const Vec3f up = glm::cross(back, right);
+    const float ty = std::tan(glm::radians(fov_y_deg) * 0.5f), tx = ty * aspect;
+    float d = 1e-6f, reach = 0.0f;
+    for (int i = 0; i < 8; ++i) {
+        Vec3f corner(i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z);
+        Vec3f o = corner - c.target;
+        float toward = glm::dot(o, back);  // positive: nearer to the eye
+        d = std::max({d, toward + std::abs(glm::dot(o, right)) / tx, toward + std::abs(glm::dot(o, up)) / ty});
+        reach = std::max(reach, glm::length(o));
+    }
+    d *= 1.04f;
+    c.eye = c.target + back * d;
+    c.near_plane = std::max(d - reach * 1.05f, d * 0.01f);
+    c.far_plane = d + reach * 1.05f;
+    return c;
+}
+
 struct Renderer::State {
     bool ready = false;
     Program baseline, smooth, hatching, xray, edges, wireframe;
@@ -357,6 +381,8 @@ Result<ModelId> Renderer::add_model(const MeshData& mesh, const std::string& nam
     for (size_t i = 0; i < vcount; ++i) box.extend(Vec3(mesh.positions[i]));
     m.center = Vec3f((box.min + box.max) * 0.5);
     m.radius = static_cast<float>(box.extent() * 0.5);
+    m.box_min = Vec3f(box.min);
+    m.box_max = Vec3f(box.max);
 
     std::vector<Vec3f> computed;
     std::span<const Vec3f> normals = mesh.normals;
@@ -425,6 +451,8 @@ Status Renderer::update_model(ModelId id, const MeshData& mesh, const Dirty& dir
         for (size_t i = 0; i < vcount; ++i) box.extend(Vec3(mesh.positions[i]));
         m.center = Vec3f((box.min + box.max) * 0.5);
         m.radius = static_cast<float>(box.extent() * 0.5);
+        m.box_min = Vec3f(box.min);
+        m.box_max = Vec3f(box.max);
     }
     if (dirty.index_begin < dirty.index_end) {
         const size_t b = dirty.index_begin, n = dirty.index_end - dirty.index_begin;
@@ -507,6 +535,21 @@ void Renderer::scene_bounds(Vec3f& center, float& radius) const {
         }
         radius = r;
     }
+}
+
+bool Renderer::scene_box(Vec3f& lo, Vec3f& hi) const {
+    Aabb box;
+    for (const auto& [id, m] : s_->models) {
+        if (m.internal || !m.state.visible) continue;
+        for (int i = 0; i < 8; ++i) {
+            Vec3f corner(i & 1 ? m.box_max.x : m.box_min.x, i & 2 ? m.box_max.y : m.box_min.y,
+                         i & 4 ? m.box_max.z : m.box_min.z);
+            box.extend(Vec3(Vec3f(m.state.transform * glm::vec4(corner, 1.0f))));
+        }
+    }
+    lo = Vec3f(box.min);
+    hi = Vec3f(box.max);
+    return !box.empty();
 }
 
 void Renderer::set_group_style(int group, Style style) {

@@ -86,6 +86,9 @@ struct Camera {
     // A camera looking at the sphere (center, radius) from `direction` (world,
     // toward the eye) so that it fills the view; near/far hug the sphere.
     static Camera framing(Vec3f center, float radius, Vec3f direction = {0.35f, 0.25f, 1.0f});
+    // A camera looking at the box [lo, hi] from `direction` at the smallest
+    // distance where all eight corners fit the view of the given aspect.
+    static Camera framing_box(Vec3f lo, Vec3f hi, Vec3f direction, float aspect, float fov_y_deg = 35.0f);
 };
 
 // Lights are attached to the camera: directions in view space, toward the light.
@@ -141,6 +144,8 @@ public:
     bool bounds(ModelId id, Vec3f& center, float& radius) const;
     // World-space bounding sphere of all visible models (radius 0 when none).
     void scene_bounds(Vec3f& center, float& radius) const;
+    // World-space bounding box of all visible models; false when none.
+    bool scene_box(Vec3f& lo, Vec3f& hi) const;
 
     void set_group_style(int group, Style style);
     void set_group_visible(int group, bool visible);
