@@ -12,6 +12,7 @@
 #include "kiosk/app/kiosk_app.h"
 #include "kiosk/app/overlay.h"
 #include "kiosk/app/replay.h"
+#include "kiosk/app/stream_loader.h"
 #include "kiosk/render/image.h"
 #include "kiosk/render/model_source.h"
 #include "kiosk/render/renderer.h"
@@ -41,47 +42,120 @@ glm::mat4 to_matrix(const scene::Transform& t) {
     return glm::scale(m, glm::vec3(t.scale));
 }
 
-// One structure of a scene model, uploaded.
+// One structure of a scene model: an OBJ object (ModelSource) or a structure
+// of a .bpm being streamed (owned by the model's BpmStream).
 struct Part {
-    render::ModelSource source;
+    std::unique_ptr<render::ModelSource> source;
+    pm::ProgressiveMesh* pm = nullptr;
     render::ModelId id = 0;
     size_t base_triangles = 0;
-    size_t drawn = 0;  // triangles at the current level
+
+    size_t full_triangles() const { return pm ? pm->max_triangle_count() : source->full_triangles(); }
+    size_t triangles() const { return pm ? pm->triangle_count() : source->triangles(); }
+    render::MeshData mesh() const {
+        if (!pm) return source->mesh();
+        render::MeshData m;
+        m.positions = pm->positions();
+        m.normals = pm->normals();
+        m.indices = pm->indices();
+        m.vertex_count = pm->vertex_count();
+        m.index_count = 3 * pm->triangle_count();
+        return m;
+    }
+    render::Dirty take_dirty() {
+        const pm::DirtyRange v = pm->dirty_vertices(), i = pm->dirty_indices();
+        pm->clear_dirty();
+        return render::Dirty{v.begin, v.end, i.begin, i.end};
+    }
 };
 
-// A scene model: its parts (a file may hold several structures).
+// A scene model: its parts (a file may hold several structures) and, for a
+// .bpm, the stream still delivering its detail.
 struct Loaded {
     std::vector<Part> parts;
     glm::mat4 transform{1.0f};
+    std::unique_ptr<pm::BpmStream> stream;
+    std::unique_ptr<StreamLoader> loader;
+    bool streaming = false;
 };
 
-Result<std::vector<Part>> load_parts(render::Renderer& renderer, const scene::Model& m) {
-    std::vector<Part> parts;
+constexpr size_t kChunkBytes = 64 * 1024;
+
+// Feeds what the loader has to the stream; false (with the reason logged) when
+// the file turned out bad: what arrived before stays usable.
+bool pump_stream(Loaded& l, const std::string& name, size_t max_bytes) {
+    auto fed = l.loader->pump([&](std::span<const uint8_t> chunk) { return l.stream->feed(chunk); }, max_bytes);
+    if (!fed) {
+        std::fprintf(stderr, "bodyview: %s: %s (keeping what arrived)\n", name.c_str(), fed.error().message.c_str());
+        l.streaming = false;
+        return false;
+    }
+    if (l.loader->finished()) {
+        l.streaming = false;
+        if (auto st = l.stream->finish(); !st) {
+            std::fprintf(stderr, "bodyview: %s: %s (keeping what arrived)\n", name.c_str(), st.error().message.c_str());
+        }
+    }
+    return true;
+}
+
+// Loads a model: an OBJ at once; a .bpm until every structure's base mesh is in
+// (the rest streams during the frames). Uploads the parts.
+Status load_model(render::Renderer& renderer, const scene::Model& m, Loaded& l) {
     const std::string ext = std::filesystem::path(m.path).extension().string();
     if (ext == ".bpm") {
-        auto meshes = pm::read_bpm(m.path);
-        if (!meshes) return meshes.error();
-        for (auto& pm : meshes.value()) {
-            const size_t base = pm->base_triangle_count();
-            parts.push_back(Part{render::ModelSource(std::move(pm)), 0, base, 0});
+        l.stream = std::make_unique<pm::BpmStream>(m.path);
+        l.loader = std::make_unique<StreamLoader>(m.path, kChunkBytes);
+        l.streaming = true;
+        auto bases_ready = [&] {
+            if (l.stream->structure_count_declared() == 0 ||
+                l.stream->structure_count() < l.stream->structure_count_declared()) {
+                return false;
+            }
+            for (size_t i = 0; i < l.stream->structure_count(); ++i) {
+                if (!l.stream->structure(i).base_ready()) return false;
+            }
+            return true;
+        };
+        while (!bases_ready()) {
+            if (!l.streaming) break;
+            l.loader->wait_for_data();
+            auto fed = l.loader->pump([&](std::span<const uint8_t> chunk) { return l.stream->feed(chunk); });
+            if (!fed) return fed.error();
+            if (l.loader->finished()) {
+                l.streaming = false;
+                if (auto st = l.stream->finish(); !st) return st.error();
+            }
+        }
+        if (!bases_ready()) return input_error(m.path + ": ended before every base mesh arrived");
+        for (size_t i = 0; i < l.stream->structure_count(); ++i) {
+            Part p;
+            p.pm = &l.stream->structure(i);
+            p.base_triangles = p.pm->base_triangle_count();
+            l.parts.push_back(std::move(p));
         }
     } else {
         auto sources = render::load_model_file(m.path);
         if (!sources) return sources.error();
-        for (auto& s : sources.value()) {
-            const size_t full = s.full_triangles();
-            parts.push_back(Part{std::move(s), 0, full, 0});  // no LOD hierarchy: always full
+        for (auto& src : sources.value()) {
+            Part p;
+            p.base_triangles = src.full_triangles();  // no LOD hierarchy: always full
+            p.source = std::make_unique<render::ModelSource>(std::move(src));
+            l.parts.push_back(std::move(p));
         }
     }
-    for (Part& p : parts) {
-        auto id = renderer.add_model(p.source.mesh(), m.name);
+    if (l.parts.empty()) return input_error(m.path + ": no structures");
+    for (Part& p : l.parts) {
+        auto id = renderer.add_model(p.mesh(), m.name);
         if (!id) return id.error();
-        (void)p.source.take_dirty();
+        if (p.pm) {
+            p.pm->clear_dirty();
+        } else {
+            (void)p.source->take_dirty();
+        }
         p.id = id.value();
-        p.drawn = p.source.triangles();
     }
-    if (parts.empty()) return input_error(m.path + ": no structures");
-    return parts;
+    return ok_status();
 }
 
 // Ray (world) against the current level of a part; distance along the ray.
@@ -89,7 +163,7 @@ std::optional<float> pick_part(const Part& p, const glm::mat4& transform, const 
     const glm::mat4 inv = glm::inverse(transform);
     const glm::vec3 o = glm::vec3(inv * glm::vec4(ray.origin, 1.0f));
     const glm::vec3 d = glm::vec3(inv * glm::vec4(ray.direction, 0.0f));
-    const render::MeshData mesh = p.source.mesh();
+    const render::MeshData mesh = p.mesh();
     const size_t n = std::min(mesh.index_count, mesh.indices.size());
     float best = 1e30f;
     bool hit = false;
@@ -116,6 +190,13 @@ std::optional<float> pick_part(const Part& p, const glm::mat4& transform, const 
     if (!hit) return std::nullopt;
     // t is in object units along d; convert to world distance.
     return best * glm::length(glm::vec3(transform * glm::vec4(d, 0.0f)));
+}
+
+// The level `want` triangles would give once the whole file has arrived.
+size_t pm_level_wanted(const pm::ProgressiveMesh& m, size_t want) {
+    if (want >= m.max_triangle_count()) return m.max_level();
+    if (m.available_level() < m.max_level()) return m.max_level();  // unknown yet: assume it needs more
+    return m.level_for_triangles(want);
 }
 
 bool replaying_requested(const KioskRunOptions& o) { return !o.replay.empty(); }
@@ -175,35 +256,40 @@ int run_kiosk(platform::Surface& surface, const scene::Scene& scene, const Kiosk
     for (size_t i = 0; i < scene.models.size(); ++i) {
         const scene::Model& m = scene.models[i];
         for (const auto& l : m.labels) label_text += l.title + l.description;
-        auto parts = load_parts(renderer, m);
-        if (!parts) {
-            std::fprintf(stderr, "bodyview: %s: skipped: %s\n", m.name.c_str(), parts.error().message.c_str());
+        Status st = load_model(renderer, m, loaded[i]);
+        if (!st) {
+            std::fprintf(stderr, "bodyview: %s: skipped: %s\n", m.name.c_str(), st.error().message.c_str());
+            for (Part& p : loaded[i].parts) renderer.remove_model(p.id);
+            loaded[i] = Loaded{};
             continue;
         }
-        loaded[i].parts = std::move(parts).value();
         loaded[i].transform = to_matrix(m.transform);
-        // World bounding sphere over the parts.
+        // World bounding sphere over the parts (a streamed structure's box is in its INFO).
         glm::vec3 lo(1e30f), hi(-1e30f);
         ModelInfo& mi = info[i];
         for (const Part& p : loaded[i].parts) {
             Vec3f c;
             float r = 0.0f;
-            if (!renderer.bounds(p.id, c, r)) continue;
+            if (p.pm) {
+                c = (p.pm->bounds_min() + p.pm->bounds_max()) * 0.5f;
+                r = glm::length(p.pm->bounds_max() - p.pm->bounds_min()) * 0.5f;
+            } else if (!renderer.bounds(p.id, c, r)) {
+                continue;
+            }
             const glm::vec3 wc = glm::vec3(loaded[i].transform * glm::vec4(c, 1.0f));
             const float wr = r * m.transform.scale;
             lo = glm::min(lo, wc - glm::vec3(wr));
             hi = glm::max(hi, wc + glm::vec3(wr));
-            mi.full_triangles += p.source.full_triangles();
+            mi.full_triangles += p.full_triangles();
             mi.base_triangles += p.base_triangles;
         }
         mi.loaded = lo.x <= hi.x;
         mi.center = (lo + hi) * 0.5f;
         mi.radius = std::max(glm::length(hi - lo) * 0.5f / std::sqrt(3.0f), 1e-3f);
         if (mi.loaded) ++ok_models;
-        const scene::Group* g = m.group.empty() ? nullptr : scene.find_group(m.group);
-        for (const Part& p : loaded[i].parts)
+        for (const Part& p : loaded[i].parts) {
             renderer.state(p.id)->color = Vec3f(m.colour[0], m.colour[1], m.colour[2]);
-        (void)g;
+        }
     }
     const double load_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - load_start).count();
@@ -258,8 +344,7 @@ int run_kiosk(platform::Surface& surface, const scene::Scene& scene, const Kiosk
     double frame_ms_sum = 0.0;
     long frames_counted = 0;
     int exit_code = kExitOk;
-    const auto start = std::chrono::steady_clock::now();
-    double first_frame_ms = -1.0;
+    double first_frame_ms = -1.0, full_detail_ms = -1.0;
     for (long frame = 0;; ++frame) {
         const auto frame_start = std::chrono::steady_clock::now();
         const double now = replaying ? static_cast<double>(frame) * step : surface.time();
@@ -282,8 +367,18 @@ int run_kiosk(platform::Surface& surface, const scene::Scene& scene, const Kiosk
         }
         app.update(now);
 
+        // Detail still arriving: a bounded number of bytes per frame.
+        bool streaming = false;
+        for (size_t i = 0; i < loaded.size(); ++i) {
+            Loaded& l = loaded[i];
+            if (!l.streaming) continue;
+            pump_stream(l, scene.models[i].name, options.stream_bytes_per_frame);
+            streaming = streaming || l.streaming;
+        }
+
         // Apply the app's state to the renderer.
         size_t triangles = 0;
+        bool at_planned_detail = true;
         for (int i = 0; i < app.model_count(); ++i) {
             Loaded& l = loaded[static_cast<size_t>(i)];
             if (l.parts.empty()) continue;
@@ -291,29 +386,32 @@ int run_kiosk(platform::Surface& surface, const scene::Scene& scene, const Kiosk
             const ModelInfo& mi = app.info(i);
             const bool vis = app.visible(i);
             const glm::mat4 t = glm::translate(glm::mat4(1.0f), ms.offset) * l.transform;
-            const float ratio =
+            const double ratio =
                 !options.auto_lod
-                    ? (ms.manual_lod ? *ms.manual_lod : 1.0f)
-                    : (mi.full_triangles ? static_cast<float>(ms.triangles) / static_cast<float>(mi.full_triangles)
-                                         : 1.0f);
+                    ? (ms.manual_lod ? *ms.manual_lod : 1.0)
+                    : (mi.full_triangles ? static_cast<double>(ms.triangles) / static_cast<double>(mi.full_triangles)
+                                         : 1.0);
             for (Part& p : l.parts) {
                 render::ModelState* st = renderer.state(p.id);
                 st->style = to_render(ms.style);
                 st->visible = vis;
                 st->selected = i == app.selected();
                 st->transform = t;
-                if (p.source.progressive()) {
-                    const size_t want =
-                        static_cast<size_t>(std::lround(static_cast<double>(p.source.full_triangles()) * ratio));
-                    if (want != p.drawn) {
-                        p.source.set_lod(ratio);
-                        if (auto s = renderer.update_model(p.id, p.source.mesh(), p.source.take_dirty()); !s) {
+                if (p.pm) {
+                    // The level the app wants, as far as the stream has delivered it.
+                    const auto want =
+                        static_cast<size_t>(std::llround(static_cast<double>(p.full_triangles()) * ratio));
+                    const size_t level = p.pm->level_for_triangles(std::max<size_t>(want, 1));
+                    const size_t wanted_full = pm_level_wanted(*p.pm, want);
+                    if (level < wanted_full) at_planned_detail = false;
+                    if (level != p.pm->level()) {
+                        p.pm->set_level(level);
+                        if (auto s = renderer.update_model(p.id, p.mesh(), p.take_dirty()); !s) {
                             std::fprintf(stderr, "bodyview: %s\n", s.error().message.c_str());
                         }
-                        p.drawn = want;
                     }
                 }
-                if (vis) triangles += p.source.triangles();
+                if (vis) triangles += p.triangles();
             }
         }
 
@@ -371,12 +469,20 @@ int run_kiosk(platform::Surface& surface, const scene::Scene& scene, const Kiosk
         }
         const double frame_ms =
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - frame_start).count();
+        const double since_start =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - load_start).count();
         if (first_frame_ms < 0.0) {
-            first_frame_ms =
-                std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+            first_frame_ms = since_start;
             if (options.verbose) {
-                std::fprintf(stderr, "bodyview: loaded %zu/%zu models in %.1f ms, first frame %.1f ms later\n",
-                             ok_models, scene.models.size(), load_ms, first_frame_ms);
+                std::fprintf(stderr, "bodyview: first frame %.1f ms after start (%zu/%zu models, bases in %.1f ms)\n",
+                             first_frame_ms, ok_models, scene.models.size(), load_ms);
+            }
+        }
+        if (full_detail_ms < 0.0 && !streaming && at_planned_detail) {
+            full_detail_ms = since_start;
+            if (options.verbose) {
+                std::fprintf(stderr, "bodyview: full detail %.1f ms after start (%zu triangles drawn)\n",
+                             full_detail_ms, triangles);
             }
         }
         if (!replaying || options.measure_frames_in_replay) app.report_frame(frame_ms, triangles);
@@ -389,6 +495,11 @@ int run_kiosk(platform::Surface& surface, const scene::Scene& scene, const Kiosk
         if (last) break;
     }
     if (app.exit_requested()) std::fprintf(stderr, "bodyview: admin exit\n");
+    if (options.verbose && frames_counted > 0) {
+        std::fprintf(stderr, "bodyview: %ld frames, %.2f ms/frame mean, LOD controller %s, budget %zu triangles\n",
+                     frames_counted, frame_ms_sum / static_cast<double>(frames_counted),
+                     options.auto_lod ? "on" : "off", app.lod_controller().budget());
+    }
     overlay.shutdown();
     renderer.shutdown();
     return exit_code;

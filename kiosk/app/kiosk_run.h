@@ -22,13 +22,15 @@ struct KioskRunOptions {
     long frames = 0;         // > 0: stop after this many frames
     bool auto_lod = true;    // false: every model at its manifest LOD (benchmarks: controller off)
     std::string font = {};   // empty: the build's BODY_FONT_FILE
-    bool verbose = false;    // per-second frame statistics on stderr
+    bool verbose = false;    // time to first frame / full detail and frame statistics on stderr
     // Report measured frame times to the LOD controller. Off for replays by default
     // so that a replay's screenshot does not depend on the machine's speed.
     bool measure_frames_in_replay = false;
     // DRM backend: touch screens from /dev/input (platform/evdev_input.h), with the
     // panel turned this many degrees clockwise relative to the picture.
     int touch_rotation = 0;
+    // Streaming: bytes of .bpm data decoded per frame at most (the rest waits).
+    size_t stream_bytes_per_frame = 4 * 1024 * 1024;
 };
 
 // Returns a process exit code (0 ok, 1 runtime failure, 2 bad input).

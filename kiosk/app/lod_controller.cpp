@@ -78,8 +78,8 @@ void LodController::report_frame(double frame_ms, size_t triangles_drawn) {
 
 size_t LodController::budget() const {
     const double ms = settings_.target_ms * settings_.headroom - overhead_ms_;
-    if (ms <= 0.0) return 0;
-    return static_cast<size_t>(ms / ms_per_mtri_ * 1e6);
+    const double triangles = ms > 0.0 ? ms / ms_per_mtri_ * 1e6 : 0.0;
+    return std::max(static_cast<size_t>(triangles), settings_.min_triangles);
 }
 
 std::vector<size_t> LodController::allocate(std::span<const LodModelInput> models) const {

@@ -5,7 +5,7 @@
 // Each frame the caller reports the frame time it measured (or, in tests, a
 // simulated one) and the triangles it drew. The controller estimates the cost per
 // triangle and a fixed overhead, sets the budget so the predicted frame time is
-// `headroom` x the target, and spends it:
+// `headroom` x the target (never below `min_triangles`), and spends it:
 //   1. every visible model gets its base mesh (the coarsest level, always drawn);
 //      models with a manual LOD (per model or per group) get exactly that;
 //   2. the rest goes tier by tier — the selected model, then the rest of its group,
@@ -33,6 +33,10 @@ struct LodSettings {
     double headroom = 0.9;              // aim at this fraction of the target
     double smoothing = 0.5;             // weight of the newest cost estimate
     double initial_ms_per_mtri = 10.0;  // prior before the first report
+    // Floor of the budget: when the overhead alone exceeds the target (a slow GPU,
+    // a software renderer), dropping every model to its base mesh would cost the
+    // picture without buying the frame time back.
+    size_t min_triangles = 50000;
 };
 
 class LodController {

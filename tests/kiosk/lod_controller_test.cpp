@@ -54,7 +54,7 @@ TEST(LodController, LightScenesGetFullDetail) {
 }
 
 TEST(LodController, SpendsBySelectionThenGroupThenScreenArea) {
-    LodController lod(LodSettings{16.7, 0.9, 0.5, 10.0});  // budget (15.03 ms / 10) = 1,503,000
+    LodController lod(LodSettings{16.7, 0.9, 0.5, 10.0, 50000});  // budget (15.03 ms / 10) = 1,503,000
     ASSERT_EQ(lod.budget(), 1503000u);
     std::vector<LodModelInput> m(5);
     for (auto& x : m) {
@@ -83,7 +83,7 @@ TEST(LodController, SpendsBySelectionThenGroupThenScreenArea) {
 }
 
 TEST(LodController, ManualLevelsAreKeptAndCountAgainstTheBudget) {
-    LodController lod(LodSettings{16.7, 0.9, 0.5, 10.0});
+    LodController lod(LodSettings{16.7, 0.9, 0.5, 10.0, 50000});
     std::vector<LodModelInput> m(2);
     for (auto& x : m) {
         x.full_triangles = 1000000;
@@ -98,6 +98,23 @@ TEST(LodController, ManualLevelsAreKeptAndCountAgainstTheBudget) {
     const auto d = lod.allocate(m);
     EXPECT_EQ(d[0], 1000000u);
     EXPECT_EQ(d[1], 503000u);
+}
+
+TEST(LodController, KeepsAFloorWhenTheOverheadAloneMissesTheTarget) {
+    LodController lod;
+    // A software renderer: 20 ms of fill before any triangle, then 1 ms per 10k.
+    auto slow = [](size_t triangles) { return 20.0 + 100.0 * static_cast<double>(triangles) * 1e-6; };
+    std::vector<LodModelInput> models(1);
+    models[0].full_triangles = 1000000;
+    models[0].base_triangles = 4;
+    models[0].screen_radius_px = 200;
+    std::vector<size_t> counts;
+    for (int frame = 0; frame < 20; ++frame) {
+        counts = lod.allocate(models);
+        lod.report_frame(slow(counts[0]), counts[0]);
+    }
+    EXPECT_EQ(lod.budget(), lod.settings().min_triangles);
+    EXPECT_EQ(counts[0], 50000u);
 }
 
 TEST(LodController, TenPercentSteps) {
