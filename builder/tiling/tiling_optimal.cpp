@@ -45,6 +45,7 @@ struct Path {
     Cost cost;
 };
 
+constexpr uint8_t kFreeStart = 2;
 constexpr Cost kInfinite{std::numeric_limits<uint32_t>::max() / 2, 0.0};
 
 struct Grid {
@@ -83,7 +84,8 @@ struct Grid {
 // lo_bound[r] and hi_bound[r] of each row (Keppel's dynamic programme, with
 // the last move in the state so that corners can be charged). `first` is the
 // type of the path's last move, which precedes its first one cyclically: the
-// path starts and must end in that state.
+// path starts and must end in that state; kFreeStart leaves the corner at the
+// start uncharged.
 static void shortest_path(Grid& g, uint32_t k, uint8_t first, std::span<const uint32_t> lo_bound,
                           std::span<const uint32_t> hi_bound, Path& out) {
     const uint32_t rows = g.rows, end = k + g.cols;
@@ -107,7 +109,10 @@ static void shortest_path(Grid& g, uint32_t k, uint8_t first, std::span<const ui
         for (uint32_t c = lo; c <= hi; ++c) {
             Cost in_a = kInfinite, in_b = kInfinite;
             const size_t cell = base + 2 * (c - lo);
-            if (r == 0 && c == k) (first == 0 ? in_a : in_b) = Cost{};
+            if (r == 0 && c == k) {
+                if (first != 1) in_a = Cost{};
+                if (first != 0) in_b = Cost{};
+            }
             if (r > 0 && c >= plo && c <= phi) {  // arrive by A from (r-1, c)
                 const double area = g.area_a(r - 1, c);
                 Cost via_a = g.prev_a[c - plo], via_b = g.prev_b[c - plo];
@@ -134,7 +139,10 @@ static void shortest_path(Grid& g, uint32_t k, uint8_t first, std::span<const ui
         std::swap(g.prev_a, g.cur_a);
         std::swap(g.prev_b, g.cur_b);
     }
-    out.cost = (first == 0 ? g.prev_a : g.prev_b)[end - left(rows)];
+    const Cost end_a = g.prev_a[end - left(rows)], end_b = g.prev_b[end - left(rows)];
+    uint8_t state = first;
+    if (first == kFreeStart) state = end_b < end_a ? 1 : 0;
+    out.cost = state == 0 ? end_a : end_b;
     if (!(out.cost < kInfinite)) return;  // the region cannot end with this move type
 
     // Backtrack from (rows, end) to (0, k), recording the columns per row.
@@ -142,7 +150,6 @@ static void shortest_path(Grid& g, uint32_t k, uint8_t first, std::span<const ui
     out.hi.assign(rows + 1, 0);
     out.moves.clear();
     uint32_t r = rows, c = end;
-    uint8_t state = first;
     for (;;) {
         out.lo[r] = std::min(out.lo[r], c);
         out.hi[r] = std::max(out.hi[r], c);
@@ -159,9 +166,17 @@ static void shortest_path(Grid& g, uint32_t k, uint8_t first, std::span<const ui
     std::reverse(out.moves.begin(), out.moves.end());
 }
 
-// The better of the two closing states for start k.
+// The optimal path for start k, with the corner at the start charged.
 static void best_path(Grid& g, uint32_t k, std::span<const uint32_t> lo_bound, std::span<const uint32_t> hi_bound,
                       Path& out) {
+    // Leaving the corner at the start uncharged gives a lower bound; a path
+    // whose start corner does not fold attains it and is optimal. Otherwise
+    // solve once per closing state.
+    shortest_path(g, k, kFreeStart, lo_bound, hi_bound, out);
+    const uint8_t last = out.moves.back(), head = out.moves.front();
+    if (last == head) return;
+    const uint32_t fold = last == 0 ? g.fold(g.rows - 1, k) : g.fold(0, k - 1);
+    if (!fold) return;
     Path other;
     shortest_path(g, k, 0, lo_bound, hi_bound, out);
     shortest_path(g, k, 1, lo_bound, hi_bound, other);
