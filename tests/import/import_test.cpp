@@ -21,15 +21,7 @@
 namespace body {
 namespace {
 
-// Removes the test's temporary files at the end of the run.
-class TempCleanup : public ::testing::Environment {
-public:
-    void TearDown() override {
-        std::error_code ec;
-        std::filesystem::remove_all(test::temp_dir(), ec);
-    }
-};
-[[maybe_unused]] ::testing::Environment* const kCleanup = ::testing::AddGlobalTestEnvironment(new TempCleanup);
+[[maybe_unused]] ::testing::Environment* const kCleanup = ::testing::AddGlobalTestEnvironment(new test::TempCleanup);
 
 double area(const std::vector<Vec2>& r) { return 0.5 * signed_area2(r.data(), r.size()); }
 

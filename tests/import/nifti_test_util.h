@@ -1,5 +1,6 @@
 #pragma once
 // Writes synthetic label volumes with niftilib for the import tests.
+#include <gtest/gtest.h>
 #include <nifti1_io.h>
 #include <unistd.h>
 
@@ -25,6 +26,16 @@ inline std::string temp_path(const std::string& name) {
     std::filesystem::create_directories(temp_dir());
     return (temp_dir() / name).string();
 }
+
+// Removes the test's temporary files at the end of the run; register once per
+// test binary with ::testing::AddGlobalTestEnvironment(new TempCleanup).
+class TempCleanup : public ::testing::Environment {
+public:
+    void TearDown() override {
+        std::error_code ec;
+        std::filesystem::remove_all(temp_dir(), ec);
+    }
+};
 
 // Writes `data` (nx * ny * nz values, x fastest) as a NIfTI-1 file with an
 // sform of diagonal `spacing` and translation `origin`.

@@ -1,0 +1,125 @@
+// Label volume -> contours -> meshes: the synthetic shapes of import_test.cpp
+// through the reconstruction pipeline.
+//
+// Volume convention (see builder/import/import.h): in-plane the surface lies on
+// the voxel faces (marching squares, half-voxel vertices); along the slice axis
+// the mesh runs from the plane through the voxel centres of the first slice to
+// that of the last, closed by flat caps there. So the reference volume of a
+// label is its voxel volume less half of the voxels of its first and last
+// slice (the trapezoidal rule over the slices). Meshes must be within 2% of it;
+// round shapes, whose end slices are small, also within 2% of the plain voxel
+// volume.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "builder/import/import.h"
+#include "builder/pipeline/build_pipeline.h"
+#include "shared/mesh.h"
+#include "tests/import/nifti_test_util.h"
+
+namespace body {
+namespace {
+
+[[maybe_unused]] ::testing::Environment* const kCleanup = ::testing::AddGlobalTestEnvironment(new test::TempCleanup);
+
+struct Shape {
+    const char* name;
+    int n;
+    double spacing[3];
+    bool (*inside)(double x, double y, double z);  // voxel-centre coordinates relative to the grid centre, in mm
+};
+
+// Builds the shape and checks topology and volume.
+void build_and_compare(const Shape& shape, size_t expected_components, long expected_genus, bool plain_too) {
+    test::VolumeSpec spec;
+    spec.nx = spec.ny = spec.nz = shape.n;
+    for (int i = 0; i < 3; ++i) spec.spacing[i] = shape.spacing[i], spec.origin[i] = 3.0 * i;
+    std::vector<int16_t> data(static_cast<size_t>(shape.n) * shape.n * shape.n, 0);
+    size_t voxels = 0;
+    const double c = (shape.n - 1) / 2.0;
+    auto in = [&](int x, int y, int z) {
+        if (z < 0 || z >= shape.n) return false;
+        return shape.inside((x - c) * spec.spacing[0], (y - c) * spec.spacing[1], (z - c) * spec.spacing[2]);
+    };
+    std::vector<size_t> per_slice;
+    for (int z = 0; z < shape.n; ++z) {
+        size_t n = 0;
+        for (int y = 0; y < shape.n; ++y)
+            for (int x = 0; x < shape.n; ++x)
+                if (in(x, y, z)) {
+                    data[(static_cast<size_t>(z) * shape.n + y) * shape.n + x] = 9;
+                    ++n;
+                }
+        if (n > 0) per_slice.push_back(n);
+        voxels += n;
+    }
+    ASSERT_GE(per_slice.size(), 2u);
+    const double convention_voxels =
+        static_cast<double>(voxels) - 0.5 * static_cast<double>(per_slice.front() + per_slice.back());
+    const std::string path = test::temp_path(std::string(shape.name) + ".nii.gz");
+    test::write_nifti(path, spec, data, DT_INT16);
+    auto stack = load_any_contour_source(path, {});
+    ASSERT_TRUE(stack.ok()) << stack.error().message;
+    auto built = build_structures(*stack, {}, path);
+    ASSERT_TRUE(built.ok()) << built.error().message;
+    ASSERT_EQ(built->size(), 1u);
+    const StructureMesh& m = built->front();
+    EXPECT_TRUE(m.closed_manifold) << shape.name;
+    EXPECT_EQ(m.components, expected_components) << shape.name;
+    EXPECT_EQ(m.genus, expected_genus) << shape.name;
+    const double voxel = spec.spacing[0] * spec.spacing[1] * spec.spacing[2];
+    const double convention_volume = convention_voxels * voxel;
+    EXPECT_NEAR(m.volume, convention_volume, 0.02 * convention_volume)
+        << shape.name << ": mesh " << m.volume << " mm^3, " << voxels << " voxels";
+    if (plain_too) {
+        const double voxel_volume = static_cast<double>(voxels) * voxel;
+        EXPECT_NEAR(m.volume, voxel_volume, 0.02 * voxel_volume) << shape.name << ": mesh " << m.volume << " mm^3";
+    }
+    std::filesystem::remove(path);
+}
+
+TEST(ImportBuild, SphereVolumeMatchesItsVoxels) {
+    build_and_compare({"sphere",
+                       26,
+                       {1.0, 1.0, 1.0},
+                       [](double x, double y, double z) { return std::sqrt(x * x + y * y + z * z) <= 10.0; }},
+                      1, 0, true);
+}
+
+TEST(ImportBuild, AnisotropicEllipsoidVolumeMatchesItsVoxels) {
+    build_and_compare({"ellipsoid",
+                       26,
+                       {0.9, 1.1, 1.5},
+                       [](double x, double y, double z) { return std::hypot(x / 10.0, y / 8.0, z / 15.0) <= 1.0; }},
+                      1, 0, true);
+}
+
+TEST(ImportBuild, HollowSphereKeepsItsCavity) {
+    // One closed surface outside, one (inward-facing) around the cavity.
+    build_and_compare({"hollow",
+                       26,
+                       {1.0, 1.0, 1.0},
+                       [](double x, double y, double z) {
+                           const double r = std::sqrt(x * x + y * y + z * z);
+                           return r <= 11.0 && r > 6.0;
+                       }},
+                      2, 0, true);
+}
+
+TEST(ImportBuild, BranchingLabelIsOneClosedSolid) {
+    // A trunk splitting into two arms (a "Y" along z).
+    build_and_compare({"branch",
+                       28,
+                       {1.0, 1.0, 1.0},
+                       [](double x, double y, double z) {
+                           if (z < -12.0 || z > 12.0) return false;
+                           if (z < 0.0) return std::hypot(x, y) <= 8.0;
+                           return std::hypot(x - 6.0, y) <= 4.5 || std::hypot(x + 6.0, y) <= 4.5;
+                       }},
+                      1, 0, false);
+}
+
+}  // namespace
+}  // namespace body

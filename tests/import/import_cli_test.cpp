@@ -1,0 +1,149 @@
+// End-to-end: `bodygen contours` on synthetic, real and malformed inputs, and the
+// real AAL atlas (Debian mricron-data) through import and the pipeline.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <set>
+
+#include "builder/contours/validate.h"
+#include "builder/import/import.h"
+#include "builder/import/label_table.h"
+#include "builder/pipeline/build_pipeline.h"
+#include "tests/cli/cli_test.h"
+#include "tests/import/nifti_test_util.h"
+
+namespace body {
+namespace {
+
+const char* kAal = "/usr/share/mricron/templates/aal.nii.gz";
+const char* kAalNames = "/usr/share/mricron/templates/aal.nii.txt";
+const char* kRtStruct = "/usr/lib/python3/dist-packages/pydicom/data/test_files/rtstruct.dcm";
+
+[[maybe_unused]] ::testing::Environment* const kCleanup = ::testing::AddGlobalTestEnvironment(new test::TempCleanup);
+
+std::string bodygen() { return test::bin("bodygen"); }
+
+std::string write_ball(const std::string& name) {
+    test::VolumeSpec spec;
+    spec.nx = spec.ny = spec.nz = 12;
+    std::vector<uint8_t> data(12 * 12 * 12, 0);
+    for (int z = 0; z < 12; ++z)
+        for (int y = 0; y < 12; ++y)
+            for (int x = 0; x < 12; ++x)
+                if (std::hypot(x - 5.5, y - 5.5, z - 5.5) < 4.5) data[(z * 12 + y) * 12 + x] = x < 6 ? 1 : 2;
+    const std::string path = test::temp_path(name);
+    test::write_nifti(path, spec, data, DT_UINT8);
+    return path;
+}
+
+TEST(ContoursCli, LabelVolumeToContourStack) {
+    const std::string in = write_ball("ball.nii.gz"), out = test::temp_path("ball.contours.json");
+    auto r = test::run(bodygen() + " contours " + in + " --jobs 2 --step 2 -o " + out);
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find("2 structures"), std::string::npos) << r.output;
+    auto stack = read_contour_stack(out);
+    ASSERT_TRUE(stack.ok()) << stack.error().message;
+    EXPECT_EQ(stack->structures.size(), 2u);
+    std::vector<std::string> warnings;
+    EXPECT_TRUE(validate_contour_stack(*stack, out, warnings).ok());
+    r = test::run(bodygen() + " check " + out);
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+}
+
+TEST(ContoursCli, BadInputsExitTwoWithAReasonAndWriteNothing) {
+    const std::string good = write_ball("ball2.nii.gz");
+    const std::string out = test::temp_path("never.contours.json");
+    std::string bytes;
+    {
+        std::ifstream in(good, std::ios::binary);
+        bytes.assign(std::istreambuf_iterator<char>(in), {});
+    }
+    const std::string truncated = test::temp_path("cut.nii.gz");
+    std::ofstream(truncated, std::ios::binary).write(bytes.data(), static_cast<std::streamsize>(bytes.size() / 2));
+    struct Case {
+        std::string args, reason;
+    };
+    const std::vector<Case> cases = {
+        {truncated, "truncated"},
+        {good + " --axis w", "--axis"},
+        {good + " --step 0", "--step"},
+        {good + " --only 9", "label 9"},
+        {good + " --labels /nonexistent/table.txt", "table.txt"},
+        {test::temp_path("missing.nii"), "no such file"},
+        {good + " --tolerance -1", "--tolerance"},
+        {good, "-o"},  // no output named
+    };
+    for (const Case& c : cases) {
+        const bool has_output = c.reason != "-o";
+        auto r = test::run(bodygen() + " contours " + c.args + (has_output ? " -o " + out : ""));
+        EXPECT_EQ(r.exit_code, 2) << c.args << "\n" << r.output;
+        EXPECT_NE(r.output.find(c.reason), std::string::npos) << c.args << "\n" << r.output;
+        EXPECT_FALSE(std::filesystem::exists(out)) << c.args;
+    }
+}
+
+TEST(ContoursCli, RtStructToContourStack) {
+    if (!std::filesystem::exists(kRtStruct)) GTEST_SKIP() << "needs Debian package python3-pydicom";
+    const std::string out = test::temp_path("rt.contours.json");
+    auto r = test::run(bodygen() + " contours " + kRtStruct + " -o " + out);
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find("POINT"), std::string::npos) << r.output;  // the isocentres, reported and skipped
+    auto stack = read_contour_stack(out);
+    ASSERT_TRUE(stack.ok());
+    ASSERT_EQ(stack->structures.size(), 1u);
+    EXPECT_EQ(stack->structures[0].name, "patient");
+    EXPECT_EQ(stack->slices.size(), 3u);
+}
+
+// The real atlas: every one of the 116 regions named in aal.nii.txt comes out,
+// named, with contours that pass the pipeline's validation.
+TEST(AalAtlas, All116RegionsExtractAndValidate) {
+    if (!std::filesystem::exists(kAal) || !std::filesystem::exists(kAalNames)) {
+        GTEST_SKIP() << "needs Debian package mricron-data";
+    }
+    auto table = read_label_table(kAalNames);
+    ASSERT_TRUE(table.ok()) << table.error().message;
+    ASSERT_EQ(table->entries.size(), 116u);
+    ImportOptions o;
+    o.jobs = 2;
+    auto stack = import_nifti_labels(kAal, o);
+    ASSERT_TRUE(stack.ok()) << stack.error().message;
+    ASSERT_EQ(stack->structures.size(), 116u);
+    std::set<std::string> names;
+    for (const StructureInfo& s : stack->structures) names.insert(s.name);
+    for (const auto& [index, entry] : table->entries) EXPECT_TRUE(names.count(entry.name)) << entry.name;
+    std::map<std::string, size_t> contours;
+    for (const Slice& s : stack->slices)
+        for (const Contour& c : s.contours) ++contours[c.structure];
+    for (const StructureInfo& s : stack->structures) EXPECT_GT(contours[s.id], 3u) << s.id;
+    // MNI space, 1 mm: the atlas spans z = -71 ... +109 mm at most.
+    EXPECT_GE(stack->slices.front().z, -71.0);
+    EXPECT_LE(stack->slices.back().z, 109.0);
+    std::vector<std::string> warnings;
+    ContourStack copy = *stack;
+    auto valid = validate_contour_stack(copy, kAal, warnings);
+    EXPECT_TRUE(valid.ok()) << valid.error().message;
+}
+
+// Every region through the pipeline: a closed 2-manifold, volume close to its
+// voxels (flat caps at the end slices, see import_build_test.cpp).
+// DISABLED until the pipeline handles all regions: at a34b3d1 the tiling
+// crashes on simple slice pairs of these stacks (SIGSEGV in tile_optimal) and
+// partition branching rejects small contours with many branches
+// ("contour has too few vertices for its branches": regions 40, 52, 79, 93).
+TEST(AalAtlas, DISABLED_All116RegionsBuildAsClosedManifolds) {
+    if (!std::filesystem::exists(kAal)) GTEST_SKIP() << "needs Debian package mricron-data";
+    auto stack = import_nifti_labels(kAal, {});
+    ASSERT_TRUE(stack.ok()) << stack.error().message;
+    auto built = build_structures(*stack, {}, kAal);
+    ASSERT_TRUE(built.ok()) << built.error().message;
+    ASSERT_EQ(built->size(), 116u);
+    for (const StructureMesh& m : *built) {
+        EXPECT_TRUE(m.closed_manifold) << m.id;
+        EXPECT_GT(m.volume, 0.0) << m.id;
+    }
+}
+
+}  // namespace
+}  // namespace body
