@@ -196,7 +196,7 @@ TEST(TilingOptimal, MatchesBruteForceWithoutFolds) {
     std::mt19937 rng(5);
     int repaired = 0, compared = 0;
     for (int trial = 0; trial < 30; ++trial) {
-        size_t m = 3 + rng() % 6, n = 3 + rng() % 6;
+        size_t m = 3 + rng() % 5, n = 3 + rng() % 5;
         auto lower = smooth_contour(rng, m, 0), upper = smooth_contour(rng, n, 1 + 0.5 * (rng() % 3));
         auto expected = brute_force(lower, upper, true), unconstrained = brute_force(lower, upper, false);
         if (expected.folds != 0) continue;
@@ -222,7 +222,7 @@ TEST(TilingOptimal, MatchesBruteForceWithoutFolds) {
 TEST(TilingOptimal, JaggedAgainstBruteForce) {
     std::mt19937 rng(7);
     for (int trial = 0; trial < 40; ++trial) {
-        size_t m = 3 + rng() % 6, n = 3 + rng() % 6;
+        size_t m = 3 + rng() % 5, n = 3 + rng() % 5;
         auto lower = random_contour(rng, m, 0), upper = random_contour(rng, n, 1 + 0.5 * (rng() % 3));
         auto expected = brute_force(lower, upper, true);
         for (auto method : {TilingMethod::Optimal, TilingMethod::Multires}) {
@@ -238,7 +238,7 @@ TEST(TilingOptimal, JaggedAgainstBruteForce) {
 TEST(TilingMultires, NearOptimalArea) {
     std::mt19937 rng(11);
     for (int trial = 0; trial < 6; ++trial) {
-        auto lower = smooth_contour(rng, 150 + rng() % 200, 0), upper = smooth_contour(rng, 100 + rng() % 200, 1.5);
+        auto lower = smooth_contour(rng, 100 + rng() % 100, 0), upper = smooth_contour(rng, 60 + rng() % 100, 1.5);
         auto opt = check_band(lower, upper, TilingMethod::Optimal);
         auto multi = check_band(lower, upper, TilingMethod::Multires);
         EXPECT_LE(multi.folds, opt.folds) << "trial " << trial;
