@@ -123,6 +123,8 @@ struct Loop {
     std::vector<uint32_t> ids;   // mesh vertices at the slice's z
     int parent = -1, depth = 0;  // nesting within the structure on this slice
     bool linked_up = false, linked_down = false;
+    bool flat_caps = false;  // detached from a branch: a dome could reach into the neighbouring band
+    int detached = 0;        // +1: the band below was refused (keep below clear), -1: the band above
     bool hole() const { return depth % 2 == 1; }
 };
 
@@ -263,11 +265,15 @@ private:
         const double zl = z(s), zu = z(s + 1);
         if (gl.size() == 1) {
             if (nested(s, gl[0], s + 1, gu)) return nested_branch(s, gl[0], s + 1, gu, hole);
-            return split(first_lower.ids, loops_[s + 1], gu, 0.5 * (zl + zu), true, first_lower);
+            const std::vector<uint32_t> kept = detach_interior(s, gl[0], s + 1, gu);
+            if (kept.size() == 1) return band(first_lower.ids, loops_[s + 1][kept[0]].ids, first_lower);
+            return split(first_lower.ids, loops_[s + 1], kept, 0.5 * (zl + zu), true, first_lower);
         }
         if (gu.size() == 1) {
             if (nested(s + 1, gu[0], s, gl)) return nested_branch(s + 1, gu[0], s, gl, hole);
-            return split(loops_[s + 1][gu[0]].ids, loops_[s], gl, 0.5 * (zl + zu), false, first_lower);
+            const std::vector<uint32_t> kept = detach_interior(s + 1, gu[0], s, gl);
+            if (kept.size() == 1) return band(loops_[s][kept[0]].ids, loops_[s + 1][gu[0]].ids, first_lower);
+            return split(loops_[s + 1][gu[0]].ids, loops_[s], kept, 0.5 * (zl + zu), false, first_lower);
         }
         // N:M: a mid-slice contour (convex hull of the group) takes N:1 below and 1:M above.
         std::vector<Vec2> pts;
@@ -285,19 +291,48 @@ private:
     // Do the branches on slice `bs` lie strictly inside the single loop on slice
     // `ss` (seen from above), with no other loop of the structure inside them or
     // inside the single loop's region on its own slice?
-    bool nested(size_t ss, uint32_t single, size_t bs, const std::vector<uint32_t>& branches) const {
+    // (`holes_matter` false: only the containment is asked.)
+    bool nested(size_t ss, uint32_t single, size_t bs, const std::vector<uint32_t>& branches,
+                bool holes_matter = true) const {
         const Loop& outer = loops_[ss][single];
-        for (size_t k = 0; k < loops_[ss].size(); ++k)
+        for (size_t k = 0; k < loops_[ss].size() && holes_matter; ++k)
             if (loops_[ss][k].parent == int(single)) return false;
         std::vector<std::span<const Vec2>> all{outer.xy};
         for (uint32_t b : branches) {
-            for (size_t k = 0; k < loops_[bs].size(); ++k)
+            for (size_t k = 0; k < loops_[bs].size() && holes_matter; ++k)
                 if (loops_[bs][k].parent == int(b)) return false;
             for (const Vec2& p : loops_[bs][b].xy)
                 if (!point_in_polygon(p, outer.xy)) return false;
             all.emplace_back(loops_[bs][b].xy);
         }
         return !find_crossing(all).found;
+    }
+
+    // When some branches reach outside the single contour (so the nested method
+    // does not apply), side branches lying wholly inside it would get a far-away
+    // arc of it and a band sweeping across the others; they are detached instead
+    // and closed by their own flat cap at their slice (the band towards the
+    // other branches stays below that plane there, so nothing crosses). The
+    // largest branch is never detached. Returns the branches that stay linked.
+    std::vector<uint32_t> detach_interior(size_t ss, uint32_t single, size_t bs,
+                                          const std::vector<uint32_t>& branches) {
+        uint32_t main = branches[0];
+        for (uint32_t b : branches)
+            if (std::abs(signed_area2(loops_[bs][b].xy.data(), loops_[bs][b].xy.size())) >
+                std::abs(signed_area2(loops_[bs][main].xy.data(), loops_[bs][main].xy.size())))
+                main = b;
+        std::vector<uint32_t> kept;
+        for (uint32_t b : branches) {
+            if (b != main && nested(ss, single, bs, {b}, false)) {
+                Loop& loop = loops_[bs][b];
+                (bs > ss ? loop.linked_down : loop.linked_up) = false;
+                loop.flat_caps = true;
+                loop.detached = bs > ss ? 1 : -1;
+                continue;
+            }
+            kept.push_back(b);
+        }
+        return kept;
     }
 
     // Branches nested inside the single contour: the single contour rises as a
@@ -408,10 +443,19 @@ private:
             for (size_t k = 0; k < loops.size(); ++k) {
                 Loop& l = loops[k];
                 if (l.linked_up || l.linked_down) continue;
-                bottom[k] = lifted_copy(l.xy, z(s) - 0.25 * thick);
-                top[k] = lifted_copy(l.xy, z(s) + 0.25 * thick);
-                prism(bottom[k], l.ids);
-                prism(l.ids, top[k]);
+                // A detached branch grows away from the band it was refused (one-sided slab).
+                if (l.detached <= 0) {
+                    bottom[k] = lifted_copy(l.xy, z(s) - (l.detached ? 0.5 : 0.25) * thick);
+                    prism(bottom[k], l.ids);
+                } else {
+                    bottom[k] = l.ids;
+                }
+                if (l.detached >= 0) {
+                    top[k] = lifted_copy(l.xy, z(s) + (l.detached ? 0.5 : 0.25) * thick);
+                    prism(l.ids, top[k]);
+                } else {
+                    top[k] = l.ids;
+                }
             }
             for (int up = 0; up < 2; ++up) {
                 // Rings ending in this direction: own rings at z(s), slab rings apart.
@@ -435,7 +479,9 @@ private:
                             }
                         // A region whose outer loop is a hole faces the other way.
                         const bool face_up = bool(up) != loops[k].hole();
-                        auto status = build_cap(region, ids, at, face_up, options_.caps, dome, positions, triangles);
+                        const CapStyle style =
+                            loops[k].flat_caps && options_.caps == CapStyle::Dome ? CapStyle::Flat : options_.caps;
+                        auto status = build_cap(region, ids, at, face_up, style, dome, positions, triangles);
                         if (!status) return input_error(where(path_, *loops[k].source) + ": " + status.error().message);
                     }
                 }
