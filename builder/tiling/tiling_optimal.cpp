@@ -36,17 +36,16 @@ namespace body {
 namespace {
 
 using tiling_detail::Band;
-using tiling_detail::Cost;
 
 // One start's optimal path: the columns it visits in each row and its moves.
 struct Path {
     std::vector<uint32_t> lo, hi;  // per row r in [0, rows]
     std::vector<uint8_t> moves;    // 0 = advance A (row), 1 = advance B (column)
-    Cost cost;
+    double cost = 0;               // folds * fold_weight + area
 };
 
 constexpr uint8_t kFreeStart = 2;
-constexpr Cost kInfinite{std::numeric_limits<uint32_t>::max() / 2, 0.0};
+constexpr double kInfinite = std::numeric_limits<double>::infinity();
 
 struct Grid {
     const Band& band;
@@ -55,29 +54,54 @@ struct Grid {
     // Reused scratch: costs of the previous and current row for the two
     // states (last move A / last move B), and two bits per region cell
     // telling the predecessor's state of each.
-    std::vector<Cost> prev_a, prev_b, cur_a, cur_b;
+    std::vector<double> prev_a, prev_b, cur_a, cur_b;
+    // The cost (folds, area) is folded into one number, folds * fold_weight +
+    // area, with fold_weight above any band's total area: the same order, and
+    // a branch-free inner loop.
+    double fold_weight = 1;
     std::vector<uint64_t> bits;
     std::vector<size_t> row_offset;
 
-    Grid(const Band& b, bool lower_rows, uint32_t r, uint32_t c) : band(b), a_is_lower(lower_rows), rows(r), cols(c) {}
+    // A and B unrolled with an offset of one (index x + 1 holds point x, x
+    // from -1): points, edge vectors and unit edge directions. The triangle
+    // of a move is the same whichever contour is lower, so the inner loop
+    // needs no wrapping and no branch on it.
+    std::vector<Vec3> ap, ae, ad, bp, be, bd;
 
-    uint32_t wrap_b(uint32_t c) const { return c >= cols ? c - cols : c; }
-    uint32_t wrap_a(uint32_t r) const { return r >= rows ? r - rows : r; }
-    // Area of advancing A from cell (r, c), or B from it.
+    Grid(const Band& b, bool lower_rows, uint32_t r, uint32_t c) : band(b), a_is_lower(lower_rows), rows(r), cols(c) {
+        std::span<const Vec3> a_pts = a_is_lower ? band.lower : band.upper,
+                              b_pts = a_is_lower ? band.upper : band.lower;
+        unroll(a_pts, rows + 2, ap, ae, ad);
+        unroll(b_pts, 2 * cols + 2, bp, be, bd);
+    }
+    static void unroll(std::span<const Vec3> c, size_t count, std::vector<Vec3>& p, std::vector<Vec3>& e,
+                       std::vector<Vec3>& d) {
+        const size_t n = c.size();
+        p.resize(count);
+        e.resize(count);
+        d.resize(count);
+        for (size_t x = 0; x < count; ++x) {
+            size_t i = (x + n - 1) % n;  // point x - 1
+            p[x] = c[i];
+            e[x] = c[(i + 1) % n] - c[i];
+            double len = glm::length(e[x]);
+            d[x] = len > 0 ? e[x] / len : Vec3(0.0);
+        }
+    }
+
+    // Area of advancing A from cell (r, c): triangle (A_r, A_r+1, B_c); of
+    // advancing B: triangle (B_c, B_c+1, A_r).
     double area_a(uint32_t r, uint32_t c) const {
-        return a_is_lower ? band.lower_area(wrap_a(r), wrap_b(c)) : band.upper_area(wrap_b(c), wrap_a(r));
+        return 0.5 * glm::length(glm::cross(ae[r + 1], bp[c + 1] - ap[r + 1]));
     }
     double area_b(uint32_t r, uint32_t c) const {
-        return a_is_lower ? band.upper_area(wrap_a(r), wrap_b(c)) : band.lower_area(wrap_b(c), wrap_a(r));
+        return 0.5 * glm::length(glm::cross(be[c + 1], ap[r + 1] - bp[c + 1]));
     }
-    // Fold between A edge ea and B edge eb (indices may be one below zero: wrapped).
+    // Fold between A edge ea and B edge eb (either may be -1 as uint32_t: wrapped).
     uint32_t fold(uint32_t ea, uint32_t eb) const {
-        ea = ea == uint32_t(-1) ? rows - 1 : wrap_a(ea);
-        eb = eb == uint32_t(-1) ? cols - 1 : wrap_b(eb);
-        return a_is_lower ? band.fold(ea, eb) : band.fold(eb, ea);
+        return glm::dot(ad[ea + 1u], bd[eb + 1u]) < tiling_detail::kFoldCosine ? 1u : 0u;
     }
     bool bit(size_t index) const { return (bits[index >> 6] >> (index & 63)) & 1; }
-    void set_bit(size_t index) { bits[index >> 6] |= uint64_t(1) << (index & 63); }
 };
 
 // Phase 1: shortest path for start k inside the region between the columns
@@ -106,32 +130,23 @@ static void shortest_path(Grid& g, uint32_t k, uint8_t first, std::span<const ui
         const uint32_t lo = left(r), hi = right(r);
         const uint32_t plo = r ? left(r - 1) : 0, phi = r ? right(r - 1) : 0;
         const size_t base = 2 * g.row_offset[r];
+        const double start_a = first != 1 ? 0.0 : kInfinite, start_b = first != 0 ? 0.0 : kInfinite;
         for (uint32_t c = lo; c <= hi; ++c) {
-            Cost in_a = kInfinite, in_b = kInfinite;
+            double in_a = kInfinite, in_b = kInfinite;
             const size_t cell = base + 2 * (c - lo);
-            if (r == 0 && c == k) {
-                if (first != 1) in_a = Cost{};
-                if (first != 0) in_b = Cost{};
-            }
-            if (r > 0 && c >= plo && c <= phi) {  // arrive by A from (r-1, c)
-                const double area = g.area_a(r - 1, c);
-                Cost via_a = g.prev_a[c - plo], via_b = g.prev_b[c - plo];
-                via_b.folds += g.fold(r - 1, c - 1);
-                if (via_b < via_a)
-                    in_a = via_b, g.set_bit(cell);
-                else
-                    in_a = via_a;
-                in_a.area += area;
+            if (r == 0 && c == k) in_a = start_a, in_b = start_b;
+            const double corner = g.fold(r - 1, c - 1) ? g.fold_weight : 0.0;  // between A edge r-1 and B edge c-1
+            if (r > 0 && c >= plo && c <= phi) {                               // arrive by A from (r-1, c)
+                const double via_a = g.prev_a[c - plo], via_b = g.prev_b[c - plo] + corner;
+                const bool from_b = via_b < via_a;
+                in_a = (from_b ? via_b : via_a) + g.area_a(r - 1, c);
+                g.bits[cell >> 6] |= uint64_t(from_b) << (cell & 63);
             }
             if (c > lo) {  // arrive by B from (r, c-1)
-                const double area = g.area_b(r, c - 1);
-                Cost via_a = g.cur_a[c - 1 - lo], via_b = g.cur_b[c - 1 - lo];
-                via_a.folds += g.fold(r - 1, c - 1);
-                if (via_b < via_a)
-                    in_b = via_b, g.set_bit(cell + 1);
-                else
-                    in_b = via_a;
-                in_b.area += area;
+                const double via_a = g.cur_a[c - 1 - lo] + corner, via_b = g.cur_b[c - 1 - lo];
+                const bool from_b = via_b < via_a;
+                in_b = (from_b ? via_b : via_a) + g.area_b(r, c - 1);
+                g.bits[(cell + 1) >> 6] |= uint64_t(from_b) << ((cell + 1) & 63);
             }
             g.cur_a[c - lo] = in_a;
             g.cur_b[c - lo] = in_b;
@@ -139,7 +154,7 @@ static void shortest_path(Grid& g, uint32_t k, uint8_t first, std::span<const ui
         std::swap(g.prev_a, g.cur_a);
         std::swap(g.prev_b, g.cur_b);
     }
-    const Cost end_a = g.prev_a[end - left(rows)], end_b = g.prev_b[end - left(rows)];
+    const double end_a = g.prev_a[end - left(rows)], end_b = g.prev_b[end - left(rows)];
     uint8_t state = first;
     if (first == kFreeStart) state = end_b < end_a ? 1 : 0;
     out.cost = state == 0 ? end_a : end_b;
@@ -216,6 +231,11 @@ void tile_optimal(std::span<const Vec3> lower, std::span<const Vec3> upper, std:
     Grid grid(band, a_is_lower, uint32_t(a_is_lower ? lower.size() : upper.size()),
               uint32_t(a_is_lower ? upper.size() : lower.size()));
     const uint32_t rows = grid.rows, cols = grid.cols;
+    Aabb box;
+    for (const Vec3& p : lower) box.extend(p);
+    for (const Vec3& p : upper) box.extend(p);
+    // Every triangle's area is below extent^2 / 2: the weight exceeds any band's area.
+    grid.fold_weight = double(rows + cols) * box.extent() * box.extent() + 1.0;
 
     std::vector<uint32_t> lo0(rows + 1, 0), hi0(rows + 1, cols);
     Path first;
