@@ -82,7 +82,7 @@ public:
             if (r.error_occurred || r.run_type != Run::RT_Iteration) continue;
             std::string name = r.run_name.function_name;
             long n = std::stol(r.run_name.args);
-            double per_iter = r.real_accumulated_time / double(r.iterations);
+            double per_iter = r.cpu_accumulated_time / double(r.iterations);  // CPU: the machine may be shared
             double vertices = double(n + (n - n / 7));
             seconds_per_vertex[name][n] = per_iter / vertices;
         }
@@ -90,7 +90,7 @@ public:
 
     void summary() const {
         auto base = seconds_per_vertex.find("BM_Baseline_Perimeter");
-        std::printf("\nsummary (pair of n and n - n/7 vertices; growth = time(10n) / time(n))\n");
+        std::printf("\nsummary (CPU time; pair of n and n - n/7 vertices; growth = time(10n) / time(n))\n");
         std::printf("%-18s %8s %16s %18s %8s\n", "method", "n", "vertices/s", "x baseline/vertex", "growth");
         for (const auto& [name, by_n] : seconds_per_vertex) {
             double prev_time = 0;
