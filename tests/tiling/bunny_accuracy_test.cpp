@@ -135,9 +135,10 @@ void check(size_t planes, body::TilingMethod tiling) {
 
 // No self-intersection: the guarantee. Disabled (and so listed as
 // disabled on every run) while the pipeline's branching still crosses itself:
-// on 2026-11-21 the 40-plane rebuild had 312 crossing pairs and the 100-plane
-// one 172, nearly all at mid-slice branch contours; the bands alone are clean
-// (tested in tiling_test.cpp). Run with --gtest_also_run_disabled_tests.
+// with the pipeline of 2026-11-21 14:20 the 40-plane rebuild had 86 crossing
+// pairs and the 100-plane one 116, every one involving a vertex off the input
+// slices (mid-slice branch contours); the bands between input slices are
+// clean. Run with --gtest_also_run_disabled_tests.
 void check_no_crossing(size_t planes, body::TilingMethod tiling) {
     if (!std::filesystem::exists(kBunny)) GTEST_SKIP() << kBunny << " is absent (Debian package glmark2-data)";
     Rebuilt r = rebuild(planes, tiling);
