@@ -83,19 +83,25 @@ constexpr size_t kChunkBytes = 64 * 1024;
 
 // Feeds what the loader has to the stream; false (with the reason logged) when
 // the file turned out bad: what arrived before stays usable.
-bool pump_stream(Loaded& l, const std::string& name, size_t max_bytes) {
-    auto fed = l.loader->pump([&](std::span<const uint8_t> chunk) { return l.stream->feed(chunk); }, max_bytes);
-    if (!fed) {
-        std::fprintf(stderr, "bodyview: %s: %s (keeping what arrived)\n", name.c_str(), fed.error().message.c_str());
-        l.streaming = false;
-        return false;
-    }
-    if (l.loader->finished()) {
-        l.streaming = false;
-        if (auto st = l.stream->finish(); !st) {
-            std::fprintf(stderr, "bodyview: %s: %s (keeping what arrived)\n", name.c_str(), st.error().message.c_str());
+bool pump_stream(Loaded& l, const std::string& name, std::chrono::steady_clock::time_point deadline) {
+    do {
+        auto fed = l.loader->pump([&](std::span<const uint8_t> chunk) { return l.stream->feed(chunk); }, kChunkBytes);
+        if (!fed) {
+            std::fprintf(stderr, "bodyview: %s: %s (keeping what arrived)\n", name.c_str(),
+                         fed.error().message.c_str());
+            l.streaming = false;
+            return false;
         }
-    }
+        if (l.loader->finished()) {
+            l.streaming = false;
+            if (auto st = l.stream->finish(); !st) {
+                std::fprintf(stderr, "bodyview: %s: %s (keeping what arrived)\n", name.c_str(),
+                             st.error().message.c_str());
+            }
+            return true;
+        }
+        if (*fed == 0) return true;  // nothing waiting: the reader is behind
+    } while (std::chrono::steady_clock::now() < deadline);
     return true;
 }
 
@@ -120,7 +126,9 @@ Status load_model(render::Renderer& renderer, const scene::Model& m, Loaded& l) 
         while (!bases_ready()) {
             if (!l.streaming) break;
             l.loader->wait_for_data();
-            auto fed = l.loader->pump([&](std::span<const uint8_t> chunk) { return l.stream->feed(chunk); });
+            // One chunk at a time: stop decoding as soon as the bases are in.
+            auto fed =
+                l.loader->pump([&](std::span<const uint8_t> chunk) { return l.stream->feed(chunk); }, kChunkBytes);
             if (!fed) return fed.error();
             if (l.loader->finished()) {
                 l.streaming = false;
@@ -369,10 +377,12 @@ int run_kiosk(platform::Surface& surface, const scene::Scene& scene, const Kiosk
 
         // Detail still arriving: a bounded number of bytes per frame.
         bool streaming = false;
+        const auto deadline =
+            frame_start + std::chrono::microseconds(static_cast<long>(options.stream_ms_per_frame * 1000.0));
         for (size_t i = 0; i < loaded.size(); ++i) {
             Loaded& l = loaded[i];
             if (!l.streaming) continue;
-            pump_stream(l, scene.models[i].name, options.stream_bytes_per_frame);
+            pump_stream(l, scene.models[i].name, deadline);
             streaming = streaming || l.streaming;
         }
 

@@ -29,8 +29,9 @@ struct KioskRunOptions {
     // DRM backend: touch screens from /dev/input (platform/evdev_input.h), with the
     // panel turned this many degrees clockwise relative to the picture.
     int touch_rotation = 0;
-    // Streaming: bytes of .bpm data decoded per frame at most (the rest waits).
-    size_t stream_bytes_per_frame = 4 * 1024 * 1024;
+    // Streaming: milliseconds per frame spent decoding arrived .bpm chunks (at
+    // least one 64 KiB chunk per frame while data is waiting).
+    double stream_ms_per_frame = 8.0;
 };
 
 // Returns a process exit code (0 ok, 1 runtime failure, 2 bad input).
