@@ -444,14 +444,19 @@ private:
                 Loop& l = loops[k];
                 if (l.linked_up || l.linked_down) continue;
                 // A detached branch grows away from the band it was refused (one-sided slab).
+                // A loop nested in a continuing one (a hole seen on one slice) stays
+                // thin: the bands of its parent pass close by above and below.
+                const bool inside_continuing =
+                    l.parent >= 0 && (loops[size_t(l.parent)].linked_up || loops[size_t(l.parent)].linked_down);
+                const double half = inside_continuing ? 0.05 : 0.25;
                 if (l.detached <= 0) {
-                    bottom[k] = lifted_copy(l.xy, z(s) - (l.detached ? 0.5 : 0.25) * thick);
+                    bottom[k] = lifted_copy(l.xy, z(s) - (l.detached ? 2 * half : half) * thick);
                     prism(bottom[k], l.ids);
                 } else {
                     bottom[k] = l.ids;
                 }
                 if (l.detached >= 0) {
-                    top[k] = lifted_copy(l.xy, z(s) + (l.detached ? 0.5 : 0.25) * thick);
+                    top[k] = lifted_copy(l.xy, z(s) + (l.detached ? 2 * half : half) * thick);
                     prism(l.ids, top[k]);
                 } else {
                     top[k] = l.ids;
@@ -466,12 +471,12 @@ private:
                         const bool isolated = !l.linked_up && !l.linked_down;
                         in[k] = slab ? isolated : (!isolated && !(up ? l.linked_up : l.linked_down));
                     }
-                    const double at = slab ? z(s) + (up ? 0.25 : -0.25) * thick : z(s);
-                    const double dome = slab ? 0.2 * thick : 0.45 * spacing(s, bool(up));
                     for (size_t k = 0; k < loops.size(); ++k) {
                         if (!in[k] || (loops[k].parent >= 0 && in[size_t(loops[k].parent)])) continue;
                         std::vector<std::span<const Vec2>> region{loops[k].xy};
                         std::vector<std::span<const uint32_t>> ids{slab ? (up ? top[k] : bottom[k]) : loops[k].ids};
+                        const double at = positions[ids[0][0]].z;
+                        const double dome = slab ? 0.8 * std::abs(at - z(s)) : 0.45 * spacing(s, bool(up));
                         for (size_t c = 0; c < loops.size(); ++c)
                             if (in[c] && loops[c].parent == int(k)) {
                                 region.emplace_back(loops[c].xy);

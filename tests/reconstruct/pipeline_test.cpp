@@ -127,6 +127,24 @@ TEST_P(Pipeline, OneToThreeUnevenBranches) {
     check_all(b.stack, 1);
 }
 
+TEST_P(Pipeline, InteriorSideBranchNextToAMainBranchReachingOutside) {
+    StackBuilder b;
+    for (int k = 0; k < 2; ++k) b.slice(k, {circle(0, 0, 10, 48)});
+    for (int k = 2; k < 4; ++k) b.slice(k, {ellipse(3, 0, 8, 10.5, 0, 40), circle(-7, 0, 1.2, 12)});
+    check_all(b.stack, 1);
+}
+
+TEST_P(Pipeline, HoleOnASingleSlice) {
+    StackBuilder b;
+    for (int k = 0; k < 5; ++k) {
+        if (k == 2)
+            b.slice(k, {circle(0, 0, 10 - 0.5 * k), circle(1, 0, 3, 16)});
+        else
+            b.slice(k, {circle(0, 0, 10 - 0.5 * k)});
+    }
+    check_all(b.stack, 1);
+}
+
 TEST_P(Pipeline, OneToThreeBranch) {
     StackBuilder b;
     for (int k = 0; k < 3; ++k) b.slice(k, {circle(0, 0, 12, 48)});
