@@ -10,6 +10,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "kiosk/app/kiosk_app.h"
+#include "kiosk/app/lod_controller.h"
 #include "kiosk/app/overlay.h"
 #include "kiosk/app/replay.h"
 #include "kiosk/app/stream_loader.h"
@@ -49,23 +50,68 @@ struct Part {
     pm::ProgressiveMesh* pm = nullptr;
     render::ModelId id = 0;
     size_t base_triangles = 0;
+    // Geomorph (pm parts): the positions uploaded to the GPU. Vertices added by
+    // the last refinement, [morph_begin, morph_end), move from their parents'
+    // positions to their own over Geomorph::kSeconds instead of popping in.
+    std::vector<Vec3f> shown;
+    Geomorph morph;
+    size_t morph_begin = 0, morph_end = 0;
 
     size_t full_triangles() const { return pm ? pm->max_triangle_count() : source->full_triangles(); }
     size_t triangles() const { return pm ? pm->triangle_count() : source->triangles(); }
     render::MeshData mesh() const {
         if (!pm) return source->mesh();
         render::MeshData m;
-        m.positions = pm->positions();
+        m.positions = shown.empty() ? pm->positions() : std::span<const Vec3f>(shown);
         m.normals = pm->normals();
         m.indices = pm->indices();
         m.vertex_count = pm->vertex_count();
         m.index_count = 3 * pm->triangle_count();
         return m;
     }
+    // The pm's changes since the last upload, copied into `shown`.
     render::Dirty take_dirty() {
         const pm::DirtyRange v = pm->dirty_vertices(), i = pm->dirty_indices();
         pm->clear_dirty();
+        const auto src = pm->positions();
+        for (size_t k = v.begin; k < v.end && k < shown.size(); ++k) shown[k] = src[k];
         return render::Dirty{v.begin, v.end, i.begin, i.end};
+    }
+    // Moves the morphing vertices to their blend at `now`; returns the range to upload.
+    render::Dirty step_morph(double now) {
+        const float f = morph.factor(now);
+        const auto target = pm->morph_targets();
+        const auto final_pos = pm->positions();
+        for (size_t k = morph_begin; k < morph_end; ++k) shown[k] = glm::mix(target[k], final_pos[k], f);
+        render::Dirty d{morph_begin, morph_end, 0, 0};
+        if (f >= 1.0f) morph_begin = morph_end = 0;
+        return d;
+    }
+    // Goes to `level`; a refinement starts a geomorph of the new vertices.
+    render::Dirty set_level(size_t level, double now) {
+        const size_t before = pm->vertex_count();
+        if (morph_end > morph_begin) {  // finish a running morph at once
+            for (size_t k = morph_begin; k < morph_end && k < shown.size(); ++k) shown[k] = pm->positions()[k];
+        }
+        render::Dirty finished{morph_begin, morph_end, 0, 0};
+        morph_begin = morph_end = 0;
+        pm->set_level(level);
+        render::Dirty d = take_dirty();
+        const size_t after = pm->vertex_count();
+        if (after > before) {
+            morph.start(now, before, after);
+            morph_begin = before;
+            morph_end = after;
+            (void)step_morph(now);
+            d.vertex_begin = std::min(d.vertex_begin < d.vertex_end ? d.vertex_begin : before, before);
+            d.vertex_end = std::max(d.vertex_end, after);
+        }
+        if (finished.vertex_end > finished.vertex_begin) {
+            d.vertex_begin =
+                d.vertex_end > d.vertex_begin ? std::min(d.vertex_begin, finished.vertex_begin) : finished.vertex_begin;
+            d.vertex_end = std::max(d.vertex_end, finished.vertex_end);
+        }
+        return d;
     }
 };
 
@@ -158,6 +204,7 @@ Status load_model(render::Renderer& renderer, const scene::Model& m, Loaded& l) 
         if (!id) return id.error();
         if (p.pm) {
             p.pm->clear_dirty();
+            p.shown.assign(p.pm->positions().begin(), p.pm->positions().end());
         } else {
             (void)p.source->take_dirty();
         }
@@ -415,8 +462,13 @@ int run_kiosk(platform::Surface& surface, const scene::Scene& scene, const Kiosk
                     const size_t wanted_full = pm_level_wanted(*p.pm, want);
                     if (level < wanted_full) at_planned_detail = false;
                     if (level != p.pm->level()) {
-                        p.pm->set_level(level);
-                        if (auto s = renderer.update_model(p.id, p.mesh(), p.take_dirty()); !s) {
+                        const render::Dirty d = p.set_level(level, now);
+                        if (auto s = renderer.update_model(p.id, p.mesh(), d); !s) {
+                            std::fprintf(stderr, "bodyview: %s\n", s.error().message.c_str());
+                        }
+                    } else if (p.morph_end > p.morph_begin) {
+                        const render::Dirty d = p.step_morph(now);
+                        if (auto s = renderer.update_model(p.id, p.mesh(), d); !s) {
                             std::fprintf(stderr, "bodyview: %s\n", s.error().message.c_str());
                         }
                     }
