@@ -46,10 +46,11 @@ protected:
         write_sphere(dir_ / "b.obj", 1.5f, 0.8f);
         std::ofstream(dir_ / "broken.bpm", std::ios::binary) << std::string("BPM\0xx", 6);
         std::ofstream(dir_ / "scene.json") << R"({"models": [
-            {"name": "a", "file": "a.obj", "colour": [0.2, 0.5, 0.9], "label": {"en": {"title": "Alpha sphere",
+            {"name": "a", "file": "a.obj", "group": "left", "colour": [0.2, 0.5, 0.9], "label": {"en": {"title": "Alpha sphere",
              "description": "The left one"}}},
             {"name": "broken", "file": "broken.bpm"},
-            {"name": "b", "file": "b.obj", "colour": [0.9, 0.5, 0.2], "label": {"en": "Beta"}}],
+            {"name": "b", "file": "b.obj", "group": "right", "colour": [0.9, 0.5, 0.2], "label": {"en": "Beta"}}],
+            "groups": [{"name": "left"}, {"name": "right"}],
             "camera": {"polar_deg": 90}})";
     }
     void TearDown() override { fs::remove_all(dir_); }
@@ -108,6 +109,50 @@ TEST_F(KioskReplay, ABrokenModelLeavesTheOthersOnScreen) {
     }
     EXPECT_GT(blue, 500u);
     EXPECT_GT(orange, 500u);
+}
+
+// Bluish and near-black pixels in a box.
+void count(const render::Image& img, int x0, int y0, int x1, int y1, size_t& blue, size_t& ink) {
+    blue = ink = 0;
+    for (int y = y0; y < y1; ++y) {
+        for (int x = x0; x < x1; ++x) {
+            const uint8_t* p = img.at(x, y);
+            blue += p[2] > p[0] + 40;
+            ink += p[0] < 80 && p[1] < 80 && p[2] < 80;
+        }
+    }
+}
+
+TEST_F(KioskReplay, GroupStyleButtonTurnsTheSelectedGroupToLines) {
+    // Select the left sphere, press the "Group" style button (fourth in the right
+    // column at 1280x800: 72-pixel buttons, 10-pixel gaps; smooth -> lines), then
+    // tap empty space to deselect (a selection is drawn purple in any style).
+    const std::string select = "0.2 down 1 493 400\n0.3 up 1 493 400\n";
+    const std::string deselect = "0.8 down 1 640 80\n0.9 up 1 640 80\n1.0 end\n";
+    const render::Image before = play(select + deselect);
+    const render::Image after = play(select + "0.5 down 2 1190 292\n0.55 up 2 1190 292\n" + deselect);
+    size_t blue_before, ink_before, blue_after, ink_after;
+    count(before, 430, 330, 560, 470, blue_before, ink_before);
+    count(after, 430, 330, 560, 470, blue_after, ink_after);
+    EXPECT_GT(blue_before, 1000u);
+    EXPECT_LT(blue_after, blue_before / 10);  // paper-white fill
+    EXPECT_GT(ink_after, 100u);               // with a dark outline
+    // The other group keeps its smooth orange.
+    size_t orange = 0;
+    for (int y = 340; y < 460; ++y) {
+        for (int x = 720; x < 850; ++x) orange += after.at(x, y)[0] > after.at(x, y)[2] + 40;
+    }
+    EXPECT_GT(orange, 1000u);
+}
+
+TEST_F(KioskReplay, AdminCornerTapsAreTheWayOut) {
+    test::RunResult r;
+    // Five taps in the top-left corner within 3 s; without them the replay would run to 60 s.
+    (void)play(
+        "0.2 down 1 10 10\n0.3 up 1 10 10\n0.5 down 1 10 10\n0.6 up 1 10 10\n0.8 down 1 10 10\n"
+        "0.9 up 1 10 10\n1.1 down 1 10 10\n1.2 up 1 10 10\n1.4 down 1 10 10\n1.5 up 1 10 10\n60 end\n",
+        &r);
+    EXPECT_NE(r.output.find("admin exit"), std::string::npos) << r.output;
 }
 
 }  // namespace
