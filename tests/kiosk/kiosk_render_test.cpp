@@ -145,6 +145,35 @@ TEST_F(KioskReplay, GroupStyleButtonTurnsTheSelectedGroupToLines) {
     EXPECT_GT(orange, 1000u);
 }
 
+size_t colour_pixels(const render::Image& img, bool blue) {
+    size_t n = 0;
+    for (int y = 0; y < img.height; ++y) {
+        for (int x = 0; x < 1100; ++x) {  // left of the control column
+            const uint8_t* p = img.at(x, y);
+            n += blue ? p[2] > p[0] + 40 : p[0] > p[2] + 40;
+        }
+    }
+    return n;
+}
+
+TEST_F(KioskReplay, OrbitPutsOneSphereBehindTheOtherAndPinchEnlargesThem) {
+    const render::Image home = play("0.3 end\n");
+    // Drag 157 px left to right: the camera turns 1.57 rad to look along +x, so
+    // the blue sphere at x = -1.5 hides the orange one at x = +1.5.
+    const render::Image orbited =
+        play("0.1 down 1 300 150\n0.2 move 1 380 150\n0.3 move 1 457 150\n0.4 up 1 457 150\n0.6 end\n");
+    EXPECT_GT(colour_pixels(home, false), 1000u);
+    EXPECT_LT(colour_pixels(orbited, false), colour_pixels(home, false) / 10);
+    EXPECT_GT(colour_pixels(orbited, true), colour_pixels(home, true));  // closer to the eye
+    // Pinch the fingers twice as far apart: the spheres cover about four times the pixels.
+    const render::Image pinched = play(
+        "0.1 down 1 540 200\n0.1 down 2 740 200\n0.2 move 1 440 200\n0.2 move 2 840 200\n"
+        "0.3 up 1 440 200\n0.3 up 2 840 200\n0.5 end\n");
+    const double ratio = static_cast<double>(colour_pixels(pinched, false)) / colour_pixels(home, false);
+    EXPECT_GT(ratio, 3.0);
+    EXPECT_LT(ratio, 5.0);
+}
+
 TEST_F(KioskReplay, AdminCornerTapsAreTheWayOut) {
     test::RunResult r;
     // Five taps in the top-left corner within 3 s; without them the replay would run to 60 s.
