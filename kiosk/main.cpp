@@ -55,6 +55,7 @@ void print_help(std::FILE* out) {
                  "  --no-auto-lod     scene: keep the manifest's LOD (the automatic LOD controller off)\n"
                  "  --kiosk-stats     scene: print time to first frame / full detail and frame times\n"
                  "  --benchmark       time every style at LOD 100/40/10%% against a flat baseline\n"
+                 "  --bench-triangles N  size of the generated benchmark model (default 1000000)\n"
                  "  --help            this text\n  --version         print the version\n\n"
                  "A model that cannot be loaded is skipped with a one-line error (nothing drawn).\n"
                  "exit codes: 0 ok, 1 runtime failure, 2 bad usage or bad input\n");
@@ -192,6 +193,10 @@ int run(const CliArgs& args) {
     if (benchmark) {
         render::BenchmarkOptions bo;
         bo.model = model_path;
+        auto tris = args.get_long("bench-triangles", 1000000);
+        if (!tris) return fail(tris.error());
+        if (tris.value() < 1000) return fail(input_error("--bench-triangles must be at least 1000"));
+        bo.target_triangles = static_cast<size_t>(tris.value());
         auto s = render::run_benchmark(surf, bo);
         return s ? kExitOk : fail(s.error());
     }
@@ -338,7 +343,7 @@ int main(int argc, char** argv) {
     }
     auto args = CliArgs::parse(argv_list,
                                {"platform", "size", "mode", "device", "model", "scene", "style", "lod", "select",
-                                "view", "line-width", "ssaa", "screenshot", "frames", "replay"},
+                                "view", "line-width", "ssaa", "screenshot", "frames", "replay", "bench-triangles"},
                                {"headless", "windowed", "xray", "benchmark", "no-auto-lod", "kiosk-stats"});
     if (!args) return fail(args.error());
     return run(args.value());

@@ -12,7 +12,7 @@ namespace body::render {
 struct BenchmarkOptions {
     std::string model;                  // .bpm/.obj; empty: a generated ~1M-triangle model
     size_t target_triangles = 1000000;  // for the generated model
-    int frames = 15;                    // timed frames per measurement (after 3 warm-up frames)
+    int frames = 9;                     // timed style/baseline frame pairs per measurement (after 2 warm-up pairs)
 };
 
 // Prints the table to stdout. The surface's context must be current.

@@ -19,6 +19,14 @@ struct EdgeRecord {
     uint32_t v0, v1, a, b;
 };
 
+// What the GPU gets per edge: the two vertices (positions fetched from a
+// texture) and the two unit face normals packed as signed 10:10:10:2 (a zero
+// second normal marks a boundary), 16 bytes.
+struct GpuEdge {
+    uint32_t v0, v1;
+    uint32_t n0, n1;
+};
+
 // `indices`: triangles (three per face); degenerate faces are skipped.
 // Deterministic order (sorted by vertex pair) so frames are stable.
 std::vector<EdgeRecord> build_edge_list(std::span<const uint32_t> indices);

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdio>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
@@ -463,7 +464,10 @@ Status Renderer::update_model(ModelId id, const MeshData& mesh, const Dirty& dir
             texture_rows(m.index_texture, b, dirty.index_end, GL_RED_INTEGER, GL_UNSIGNED_INT,
                          reinterpret_cast<const uint8_t*>(mesh.indices.data()), 4);
     }
-    if (icount - icount % 3 != m.index_count || dirty.index_begin < dirty.index_end) m.edges_stale = true;
+    // The edge list holds face normals, so any change rebuilds it (lazily, when drawn in `lines`).
+    if (icount - icount % 3 != m.index_count || dirty.index_begin < dirty.index_end ||
+        dirty.vertex_begin < dirty.vertex_end)
+        m.edges_stale = true;
     m.vertex_count = vcount;
     m.index_count = icount - icount % 3;
     BODY_GL_CHECK("update_model");
@@ -563,6 +567,19 @@ void Renderer::set_group_visible(int group, bool visible) {
 
 const FrameStats& Renderer::last_frame_stats() const { return s_->stats; }
 
+size_t Renderer::gpu_bytes() const {
+    size_t total = 0;
+    constexpr size_t w = kTextureWidth;
+    for (const auto& [id, m] : s_->models) {
+        total += m.vertex_capacity * (sizeof(Vec3f) + 4) + m.index_capacity * 4;
+        if (m.position_texture) total += (m.vertex_capacity + w - 1) / w * w * sizeof(Vec3f);
+        if (m.index_texture) total += (m.index_capacity + w - 1) / w * w * 4;
+        if (m.edge_vbo) total += m.edge_count * sizeof(GpuEdge);
+    }
+    if (s_->tam) total += 256 * 256 * 6 * 4 / 3;  // R8 layers with mip chains
+    return total;
+}
+
 namespace {
 
 struct Frame {
@@ -606,7 +623,24 @@ static void ensure_edges(Model& m, GLuint corner_vbo) {
     ensure_position_texture(m);
     if (!m.edges_stale && m.edge_vao) return;
     auto indices = read_buffer<uint32_t>(GL_ELEMENT_ARRAY_BUFFER, m.ebo, m.index_count);
-    std::vector<EdgeRecord> edges = build_edge_list(indices);
+    std::vector<GpuEdge> edges;
+    {
+        auto positions = read_buffer<Vec3f>(GL_ARRAY_BUFFER, m.vbo_position, m.vertex_capacity);
+        std::vector<EdgeRecord> records = build_edge_list(indices);
+        edges.resize(records.size());
+        auto face_normal = [&](uint32_t a, uint32_t b, uint32_t c) {
+            Vec3f n = glm::cross(positions[b] - positions[a], positions[c] - positions[a]);
+            float l = glm::length(n);
+            return l > 0.0f ? n / l : Vec3f(0.0f, 0.0f, 1e-3f);  // degenerate: not zero (zero = boundary)
+        };
+        for (size_t i = 0; i < records.size(); ++i) {
+            const EdgeRecord& e = records[i];
+            edges[i].v0 = e.v0;
+            edges[i].v1 = e.v1;
+            edges[i].n0 = pack_normal(face_normal(e.v0, e.v1, e.a));
+            edges[i].n1 = e.b == kNoVertex ? 0u : pack_normal(face_normal(e.v1, e.v0, e.b));
+        }
+    }
     m.edge_count = edges.size();
     if (!m.edge_vao) {
         glGenVertexArrays(1, &m.edge_vao);
@@ -617,11 +651,17 @@ static void ensure_edges(Model& m, GLuint corner_vbo) {
     glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 8, nullptr);
     glEnableVertexAttribArray(0);
     glBindBuffer(GL_ARRAY_BUFFER, m.edge_vbo);
-    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(edges.size() * sizeof(EdgeRecord)), edges.data(),
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(edges.size() * sizeof(GpuEdge)), edges.data(),
                  GL_DYNAMIC_DRAW);
-    glVertexAttribIPointer(1, 4, GL_UNSIGNED_INT, sizeof(EdgeRecord), nullptr);
-    glVertexAttribDivisor(1, 1);
-    glEnableVertexAttribArray(1);
+    glVertexAttribIPointer(1, 2, GL_UNSIGNED_INT, sizeof(GpuEdge), nullptr);
+    glVertexAttribPointer(2, 4, GL_INT_2_10_10_10_REV, GL_TRUE, sizeof(GpuEdge),
+                          reinterpret_cast<const void*>(offsetof(GpuEdge, n0)));
+    glVertexAttribPointer(3, 4, GL_INT_2_10_10_10_REV, GL_TRUE, sizeof(GpuEdge),
+                          reinterpret_cast<const void*>(offsetof(GpuEdge, n1)));
+    for (GLuint a = 1; a <= 3; ++a) {
+        glVertexAttribDivisor(a, 1);
+        glEnableVertexAttribArray(a);
+    }
     glBindVertexArray(0);
     m.edges_stale = false;
 }

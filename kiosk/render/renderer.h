@@ -153,6 +153,9 @@ public:
     // Draws one frame into options.framebuffer.
     void render(const Camera& camera, const Lighting& lighting, const FrameOptions& options);
     const FrameStats& last_frame_stats() const;
+    // Bytes of GL buffers and textures this renderer created (models, lazily
+    // built edge lists and data textures, the tonal art map).
+    size_t gpu_bytes() const;
 
     struct State;  // defined in renderer.cpp
 

@@ -1,9 +1,10 @@
 #version 300 es
 // `lines`: silhouette, boundary and crease edges as screen-space quads of
 // constant pixel width (McGuire & Hughes 2004, without geometry shaders).
-// One instance per mesh edge: (v0, v1, a, b) with faces (v0, v1, a) and
-// (v1, v0, b); b = 0xffffffff on a boundary. Positions come from a float
-// texture so the edge list depends on topology only. An edge is drawn when
+// One instance per mesh edge: its vertices v0, v1 (positions fetched from a
+// float texture) and the unit normals of its two faces (packed 10:10:10:2,
+// the second zero on a boundary), precomputed when the edge list is built
+// so each quad corner needs two fetches and no cross products. An edge is drawn when
 // one face looks at the eye and the other away (Zhang's silhouette test, as
 // in the thesis), on boundaries, and where the dihedral angle exceeds the
 // crease threshold (Raskar & Cohen); otherwise the quad is moved off screen.
@@ -11,7 +12,9 @@ precision highp float;
 precision highp int;
 precision highp sampler2D;
 layout(location = 0) in vec2 a_corner;  // x: endpoint 0/1, y: side -1/+1
-layout(location = 1) in uvec4 a_edge;
+layout(location = 1) in uvec2 a_vertices;
+layout(location = 2) in vec4 a_normal0;  // normalized 2_10_10_10
+layout(location = 3) in vec4 a_normal1;
 
 uniform sampler2D u_positions;  // RGB32F, u_texture_width texels per row
 uniform int u_texture_width;
@@ -27,21 +30,19 @@ vec3 fetch(uint i) {
 }
 
 void main() {
-    vec3 p0 = fetch(a_edge.x);
-    vec3 p1 = fetch(a_edge.y);
-    vec3 pa = fetch(a_edge.z);
-    vec3 n0 = cross(p1 - p0, pa - p0);
-    bool front0 = dot(n0, u_eye_object - p0) > 0.0;
+    vec3 p0 = fetch(a_vertices.x);
+    vec3 p1 = fetch(a_vertices.y);
+    vec3 n0 = a_normal0.xyz;
+    vec3 n1 = a_normal1.xyz;
+    vec3 to_eye = u_eye_object - p0;
+    bool front0 = dot(n0, to_eye) > 0.0;
     bool draw;
     float width = u_width_px;
-    if (a_edge.w == 0xffffffffu) {
-        draw = true;
+    if (dot(n1, n1) < 0.25) {
+        draw = true;  // boundary
     } else {
-        vec3 pb = fetch(a_edge.w);
-        vec3 n1 = cross(p0 - p1, pb - p1);
-        bool front1 = dot(n1, u_eye_object - p0) > 0.0;
-        float l = length(n0) * length(n1);
-        bool crease = l > 0.0 && dot(n0, n1) < u_cos_crease * l;
+        bool front1 = dot(n1, to_eye) > 0.0;
+        bool crease = dot(n0, n1) < u_cos_crease;
         draw = front0 != front1 || (crease && (front0 || front1));
         if (front0 == front1) width *= 0.7;
     }

@@ -18,10 +18,21 @@ uniform int u_two_tone;
 #include "lighting.glsl"
 out vec4 o_color;
 
-float tam(vec3 w, vec3 p, float layer) {
+// Triplanar TAM lookup; planes with negligible weight are skipped (the
+// weights are sharpened so most fragments read one plane), which needs
+// explicit gradients since the branches are not uniform.
+vec3 g_weights;
+vec3 g_p;
+vec4 g_dx, g_dy;   // screen derivatives of (p.yz, p.zx)
+vec2 g_dxz, g_dyz;  // screen derivatives of p.xy
+
+float tam(float layer) {
     if (layer < 0.0) return 1.0;
-    return w.x * texture(u_tam, vec3(p.yz, layer)).r + w.y * texture(u_tam, vec3(p.zx, layer)).r +
-           w.z * texture(u_tam, vec3(p.xy, layer)).r;
+    float s = 0.0;
+    if (g_weights.x > 0.02) s += g_weights.x * textureGrad(u_tam, vec3(g_p.yz, layer), g_dx.xy, g_dy.xy).r;
+    if (g_weights.y > 0.02) s += g_weights.y * textureGrad(u_tam, vec3(g_p.zx, layer), g_dx.zw, g_dy.zw).r;
+    if (g_weights.z > 0.02) s += g_weights.z * textureGrad(u_tam, vec3(g_p.xy, layer), g_dxz, g_dyz).r;
+    return s;
 }
 
 void main() {
@@ -29,18 +40,26 @@ void main() {
     float light = u_light_levels.x * max(dot(n, normalize(u_key_dir)), 0.0) + u_light_levels.w;
     light = clamp(light, 0.0, 1.0);
     vec3 w = abs(normalize(v_object_normal));
-    w = pow(w, vec3(4.0));
-    w /= (w.x + w.y + w.z);
-    vec3 p = v_object_pos * u_hatch_scale;
+    w = pow(w, vec3(8.0));
+    w *= step(0.02 * (w.x + w.y + w.z), w);  // drop negligible planes, renormalize
+    g_weights = w / (w.x + w.y + w.z);
+    g_p = v_object_pos * u_hatch_scale;
+    vec3 px = dFdx(g_p), py = dFdy(g_p);
+    g_dx = vec4(px.yz, px.zx);
+    g_dy = vec4(py.yz, py.zx);
+    g_dxz = px.xy;
+    g_dyz = py.xy;
     float ink;
     if (u_two_tone != 0) {
         float t = smoothstep(0.47, 0.53, light);
-        ink = mix(tam(w, p, 4.0), tam(w, p, 1.0), t);
+        ink = t <= 0.0 ? tam(4.0) : t >= 1.0 ? tam(1.0) : mix(tam(4.0), tam(1.0), t);
     } else {
         float s = (1.0 - light) * 6.0;  // 0: white paper, 6: the darkest tone
         float i = floor(s);
         float f = s - i;
-        ink = mix(tam(w, p, i - 1.0), tam(w, p, min(i, 5.0)), f);
+        float lighter = f > 0.99 ? 0.0 : tam(i - 1.0);
+        float darker = f < 0.01 ? 0.0 : tam(min(i, 5.0));
+        ink = mix(lighter, darker, f);
     }
     o_color = vec4(mix(vec3(0.12, 0.11, 0.10), u_color.rgb, ink), 1.0);
 }
