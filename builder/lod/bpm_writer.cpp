@@ -1,14 +1,17 @@
 // The .bpm writer: progressive meshes -> sections (shared/pm/FORMAT.md).
 //
 // Phases: quantize (16-bit positions in a float bounding box, 8-bit octahedral
-// normals), encode the base chunk, encode split chunks (meshoptimizer vertex and
-// index codecs; index patches as bit masks over the parent's corners, computed
-// by replaying the decoder's SplitReplay), frame sections with CRCs.
+// normals), encode the base chunk (meshoptimizer vertex and index codecs), encode
+// split chunks (per-split records through the meshoptimizer vertex codec; new faces
+// as ranks in the parent's ring and index patches as bit masks over the parent's
+// corners, both computed by replaying the decoder's SplitReplay), frame sections
+// with CRCs.
 #include <meshoptimizer.h>
 
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #include "builder/lod/simplify.h"
@@ -37,6 +40,50 @@ float round_up(double x) {
     return double(f) < x ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
 }
 
+// Rounds a non-negative error up to 8 significant bits (the low 16 bits of the
+// binary32 become zero and cost nothing after the vertex codec); still an upper
+// bound, still monotonic.
+float round_up_coarse(double x) {
+    const float f = round_up(x);
+    uint32_t u;
+    std::memcpy(&u, &f, 4);
+    if (u & 0xffffu) u = (u | 0xffffu) + 1;
+    float r;
+    std::memcpy(&r, &u, 4);
+    return r;
+}
+
+// q = round((x - lo) / (hi - lo) * 65535): at most half a step from x.
+uint16_t quantize16(double x, float lo, float hi) {
+    const double range = double(hi) - double(lo);
+    if (!(range > 0.0)) return 0;
+    const double t = std::nearbyint((x - double(lo)) / range * 65535.0);
+    return uint16_t(std::clamp(t, 0.0, 65535.0));
+}
+
+double sign_not_zero(double v) { return v < 0.0 ? -1.0 : 1.0; }
+uint8_t unorm8(double v) { return uint8_t(std::clamp(std::nearbyint((v * 0.5 + 0.5) * 255.0), 0.0, 255.0)); }
+
+// Octahedral encoding of a unit vector, 8 bits per component (Meyer et al. 2010).
+void oct_encode8(double x, double y, double z, uint8_t out[2]) {
+    const double l1 = std::fabs(x) + std::fabs(y) + std::fabs(z);
+    if (!(l1 > 0.0)) {
+        out[0] = out[1] = 128;
+        return;
+    }
+    x /= l1;
+    y /= l1;
+    z /= l1;
+    if (z < 0.0) {
+        const double ox = (1.0 - std::fabs(y)) * sign_not_zero(x);
+        const double oy = (1.0 - std::fabs(x)) * sign_not_zero(y);
+        x = ox;
+        y = oy;
+    }
+    out[0] = unorm8(x);
+    out[1] = unorm8(y);
+}
+
 Quantized quantize(const ProgressiveBuild& pm, bool normals) {
     Quantized z;
     Aabb box = mesh_bounds(pm.positions);
@@ -48,8 +95,8 @@ Quantized quantize(const ProgressiveBuild& pm, bool normals) {
     z.q.resize(n * 3);
     z.oct.assign(n * 2, 0);
     for (size_t v = 0; v < n; ++v) {
-        for (int k = 0; k < 3; ++k) z.q[v * 3 + k] = pm::quantize16(pm.positions[v][k], z.lo[k], z.hi[k]);
-        if (normals) pm::oct_encode8(pm.normals[v].x, pm.normals[v].y, pm.normals[v].z, &z.oct[v * 2]);
+        for (int k = 0; k < 3; ++k) z.q[v * 3 + k] = quantize16(pm.positions[v][k], z.lo[k], z.hi[k]);
+        if (normals) oct_encode8(pm.normals[v].x, pm.normals[v].y, pm.normals[v].z, &z.oct[v * 2]);
     }
     return z;
 }
@@ -84,6 +131,17 @@ std::vector<uint32_t> put_index_codec(std::vector<uint8_t>& out, const std::vect
     [[maybe_unused]] int rc = meshopt_decodeIndexBuffer(decoded.data(), decoded.size(), 4, buf.data(), buf.size());
     assert(rc == 0);
     return decoded;
+}
+
+// Bit i: the i-th corner (ascending) of the split's parent belongs to a face the
+// split patches.
+uint64_t mask_of(const pm::SplitReplay& replay, const ProgressiveBuild& pm, size_t j, std::vector<uint32_t>& corners) {
+    replay.corners_of(pm.splits[j].parent, corners);
+    uint64_t mask = 0;
+    const auto b = pm.patch_faces.begin() + pm.patch_begin[j], e = pm.patch_faces.begin() + pm.patch_begin[j + 1];
+    for (size_t i = 0; i < corners.size() && i < 64; ++i)
+        if (std::find(b, e, corners[i] / 3) != e) mask |= uint64_t(1) << i;
+    return mask;
 }
 
 struct StructureSections {
@@ -125,50 +183,56 @@ Result<StructureSections> encode_structure(const Mesh& mesh, const ProgressiveBu
         const size_t count = std::min(chunk, ns - first);
         size_t chunk_faces = 0;
         for (size_t j = first; j < first + count; ++j) chunk_faces += pm.splits[j].face_count;
-        std::vector<uint32_t> idx(pm.indices.begin() + ptrdiff_t(face * 3),
-                                  pm.indices.begin() + ptrdiff_t((face + chunk_faces) * 3));
-        std::vector<uint8_t> payload, vpart, ipart, topo;
-        const std::vector<uint32_t> decoded = put_index_codec(ipart, idx, nv);
+        std::vector<uint8_t> payload, vpart, topo;
         std::vector<pm::SplitVertex> recs(count);
-        size_t cursor = 0;
+        std::vector<uint32_t> ring, faces;
         for (size_t j = first; j < first + count; ++j) {
             const VertexSplit& sp = pm.splits[j];
             const uint32_t child = uint32_t(pm.base_vertices + j), parent = sp.parent;
-            // Bit i: the i-th corner of the parent (ascending) belongs to a patched face.
-            replay.corners_of(parent, scratch);
-            uint64_t mask = 0;
-            for (size_t i = 0; i < scratch.size(); ++i) {
-                const uint32_t f = scratch[i] / 3;
-                auto b = pm.patch_faces.begin() + pm.patch_begin[j], e = pm.patch_faces.begin() + pm.patch_begin[j + 1];
-                if (std::find(b, e, f) != e) {
-                    if (i >= 64)
-                        return runtime_error("lod: '" + mesh.name + "': parent fan too large at split " +
-                                             std::to_string(j));
-                    mask |= uint64_t(1) << i;
-                }
+            // New faces are (child, parent, a) or (child, a, parent), a a neighbour of the
+            // parent before the split: sent as 2 * (a's rank in the parent's ring) + winding.
+            replay.ring_of(parent, ring);
+            const uint64_t mask = mask_of(replay, pm, j, scratch);
+            pm::put_varint(topo, (mask << 2) | sp.face_count);
+            faces.clear();
+            for (uint32_t f = 0; f < sp.face_count; ++f) {
+                const uint32_t* t = &pm.indices[(face + f) * 3];
+                int k = 0;
+                while (k < 3 && t[k] != child) ++k;
+                const uint32_t b = t[(k + 1) % 3], a = t[(k + 2) % 3];
+                const bool flipped = b != parent;  // (child, a, parent)
+                const uint32_t third = flipped ? b : a;
+                if (k == 3 || (flipped && a != parent))
+                    return runtime_error("lod: '" + mesh.name + "': split " + std::to_string(j) +
+                                         " adds a face without its parent and child");
+                const auto it = std::lower_bound(ring.begin(), ring.end(), third);
+                if (it == ring.end() || *it != third)
+                    return runtime_error("lod: '" + mesh.name + "': split " + std::to_string(j) +
+                                         " adds a face outside the parent's ring");
+                pm::put_varint(topo, uint64_t(it - ring.begin()) * 2 + (flipped ? 1 : 0));
+                if (flipped)
+                    faces.insert(faces.end(), {child, third, parent});
+                else
+                    faces.insert(faces.end(), {child, parent, third});
             }
             replay.apply_mask(parent, child, mask, scratch, moved);
             if (moved.size() != pm.patch_begin[j + 1] - pm.patch_begin[j])
                 return runtime_error("lod: '" + mesh.name + "': index patches of split " + std::to_string(j) +
                                      " do not replay");
-            replay.add_faces(face, {decoded.data() + cursor * 3, sp.face_count * 3});
+            replay.add_faces(face, faces);
             face += sp.face_count;
-            cursor += sp.face_count;
-            pm::put_varint(topo, sp.face_count);
-            pm::put_varint(topo, mask);
             pm::SplitVertex& r = recs[j - first];
             for (int k = 0; k < 3; ++k) r.dq[k] = pm::zigzag16(z.q[size_t(child) * 3 + k], z.q[size_t(parent) * 3 + k]);
             for (int k = 0; k < 2; ++k)
                 r.doct[k] = pm::zigzag8(z.oct[size_t(child) * 2 + k], z.oct[size_t(parent) * 2 + k]);
             r.parent_delta = child - parent;
-            r.error = round_up(sp.error);
+            r.error = round_up_coarse(sp.error);
         }
         put_vertex_codec(vpart, recs);
         put_u32(payload, uint32_t(first));
         put_u32(payload, uint32_t(count));
         put_u32(payload, uint32_t(chunk_faces));
         payload.insert(payload.end(), vpart.begin(), vpart.end());
-        payload.insert(payload.end(), ipart.begin(), ipart.end());
         put_u32(payload, uint32_t(topo.size()));
         payload.insert(payload.end(), topo.begin(), topo.end());
         out.chunks.push_back(std::move(payload));

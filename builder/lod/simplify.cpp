@@ -11,12 +11,13 @@
 //   build_adjacency  per-vertex corner lists (singly linked through corners), boundary/non-manifold flags
 //   init_quadrics    area-weighted plane quadrics + boundary penalty planes (ordering) and unit-weight
 //                    quadrics (the stored object-space error)
-//   collapse_loop    binary heap of directed half-edge collapses with lazy invalidation
+//   collapse_loop    indexed binary heap of vertices keyed by their cheapest outgoing collapse
 //   emit_order       vertices and faces in refinement order, index patches per split
 #include "builder/lod/simplify.h"
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "shared/pm/bpm_format.h"
 
@@ -71,18 +72,77 @@ struct Quadric {
     }
 };
 
-struct HeapEntry {
-    double cost;
-    uint32_t from, to;
-    uint32_t stamp_from, stamp_to;
-};
-// Min-heap order with a total tie-break so the sequence never depends on the platform.
-struct HeapAfter {
-    bool operator()(const HeapEntry& a, const HeapEntry& b) const {
-        if (a.cost != b.cost) return a.cost > b.cost;
-        if (a.from != b.from) return a.from > b.from;
-        return a.to > b.to;
+// Indexed binary min-heap of vertices keyed by the cost of their cheapest outgoing
+// half-edge collapse; ties broken by vertex number so the order is the same everywhere.
+class VertexHeap {
+public:
+    void reset(size_t n) {
+        pos_.assign(n, kNone);
+        key_.assign(n, 0.0);
+        items_.clear();
     }
+    bool empty() const { return items_.empty(); }
+    bool contains(uint32_t v) const { return pos_[v] != kNone; }
+    uint32_t top() const { return items_[0]; }
+    double key(uint32_t v) const { return key_[v]; }
+    // The smallest key other than the top's (infinity when there is none).
+    double second_key() const {
+        double k = std::numeric_limits<double>::infinity();
+        for (size_t c = 1; c <= 2 && c < items_.size(); ++c) k = std::min(k, key_[items_[c]]);
+        return k;
+    }
+    void set(uint32_t v, double key) {
+        key_[v] = key;
+        if (pos_[v] == kNone) {
+            pos_[v] = uint32_t(items_.size());
+            items_.push_back(v);
+        }
+        sift_up(pos_[v]);
+        sift_down(pos_[v]);
+    }
+    void erase(uint32_t v) {
+        const uint32_t i = pos_[v];
+        if (i == kNone) return;
+        const uint32_t last = items_.back();
+        items_.pop_back();
+        pos_[v] = kNone;
+        if (last == v) return;
+        items_[i] = last;
+        pos_[last] = i;
+        sift_up(i);
+        sift_down(pos_[last]);
+    }
+
+private:
+    bool before(uint32_t a, uint32_t b) const { return key_[a] < key_[b] || (key_[a] == key_[b] && a < b); }
+    void place(size_t i, uint32_t v) {
+        items_[i] = v;
+        pos_[v] = uint32_t(i);
+    }
+    void sift_up(size_t i) {
+        const uint32_t v = items_[i];
+        while (i > 0) {
+            const size_t parent = (i - 1) / 2;
+            if (!before(v, items_[parent])) break;
+            place(i, items_[parent]);
+            i = parent;
+        }
+        place(i, v);
+    }
+    void sift_down(size_t i) {
+        const uint32_t v = items_[i];
+        for (;;) {
+            size_t c = 2 * i + 1;
+            if (c >= items_.size()) break;
+            if (c + 1 < items_.size() && before(items_[c + 1], items_[c])) ++c;
+            if (!before(items_[c], v)) break;
+            place(i, items_[c]);
+            i = c;
+        }
+        place(i, v);
+    }
+    std::vector<uint32_t> pos_, items_;
+    std::vector<double> key_;
 };
 
 struct Collapse {
@@ -101,15 +161,16 @@ struct State {
     std::vector<uint32_t> head, next;    // corner lists
     std::vector<uint32_t> fcount;        // live faces per vertex
     std::vector<uint8_t> boundary, locked, alive;
-    std::vector<uint32_t> stamp;
     std::vector<Quadric> q, e;  // ordering quadric, error quadric
-    std::vector<HeapEntry> heap;
+    VertexHeap heap;
+    std::vector<uint32_t> best_target;  // per vertex: the target of its heap key
     std::vector<Collapse> collapses;
     std::vector<uint32_t> patch_faces;
     size_t live_faces = 0;
     double running_error = 0.0;
     // scratch
-    std::vector<uint32_t> cu, ring_u, ring_v;
+    std::vector<uint32_t> cu, ring_u, ring_v, touched;
+    std::vector<Vec3> fan_old, fan_new;
 };
 
 // ---------------------------------------------------------------- phases
@@ -174,7 +235,6 @@ void build_adjacency(State& s) {
         i = j;
     }
     s.alive.assign(n, 1);
-    s.stamp.assign(n, 0);
 }
 
 void init_quadrics(State& s, double boundary_weight) {
@@ -230,30 +290,72 @@ void live_corners(State& s, uint32_t v, std::vector<uint32_t>& out) {
 
 void ring_of(State& s, uint32_t v, std::vector<uint32_t>& ring) {
     ring.clear();
-    for (uint32_t c = s.head[v]; c != kNone; c = s.next[c]) {
-        if (!s.face_alive[c / 3]) continue;
+    uint32_t* link = &s.head[v];
+    while (*link != kNone) {
+        const uint32_t c = *link;
+        if (!s.face_alive[c / 3]) {
+            *link = s.next[c];  // drop corners of removed faces on the way
+            continue;
+        }
         const uint32_t f = c / 3 * 3;
         for (int k = 0; k < 3; ++k)
             if (s.idx[f + k] != v) ring.push_back(s.idx[f + k]);
+        link = &s.next[c];
     }
     std::sort(ring.begin(), ring.end());
     ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
 }
 
-void push_candidate(State& s, uint32_t from, uint32_t to) {
-    if (s.locked[from] || !s.alive[from] || !s.alive[to]) return;
-    const double cost = s.q[from].eval_sum(s.q[to], s.pos[to]);
-    s.heap.push_back({std::max(cost, 0.0), from, to, s.stamp[from], s.stamp[to]});
-    std::push_heap(s.heap.begin(), s.heap.end(), HeapAfter{});
+double collapse_cost(const State& s, uint32_t from, uint32_t to) {
+    const Vec3& p = s.pos[to];
+    return std::max(s.q[from].eval(p) + s.q[to].eval(p), 0.0);
 }
 
-void push_all_candidates(State& s) {
-    s.heap.clear();
-    for (size_t c = 0; c < s.idx.size(); ++c) {
-        if (!s.face_alive[c / 3]) continue;
-        const uint32_t a = s.idx[c], b = s.idx[c - c % 3 + (c + 1) % 3];
-        push_candidate(s, a, b);
-        if (s.edge_boundary[c]) push_candidate(s, b, a);
+// Re-keys `u` by its cheapest outgoing collapse (or drops it when it has none).
+void update_vertex(State& s, uint32_t u) {
+    if (!s.alive[u] || s.locked[u]) {
+        s.heap.erase(u);
+        return;
+    }
+    // Walk u's faces (each neighbour comes up once or twice); the minimum with ties
+    // broken by vertex number does not depend on the walk order.
+    double best = std::numeric_limits<double>::infinity();
+    uint32_t target = kNone;
+    uint32_t* link = &s.head[u];
+    while (*link != kNone) {
+        const uint32_t c = *link;
+        if (!s.face_alive[c / 3]) {
+            *link = s.next[c];
+            continue;
+        }
+        const uint32_t f = c / 3 * 3;
+        for (uint32_t k = 0; k < 3; ++k) {
+            const uint32_t x = s.idx[f + k];
+            if (x == u) continue;
+            const double cost = collapse_cost(s, u, x);
+            if (cost < best || (cost == best && x < target)) best = cost, target = x;
+        }
+        link = &s.next[c];
+    }
+    s.best_target[u] = target;
+    if (target == kNone)
+        s.heap.erase(u);
+    else
+        s.heap.set(u, best);
+}
+
+// After u collapsed onto v, neighbour x of v only gained or changed its edge to v;
+// a full update is needed only when its cheapest collapse went to u or v.
+void update_neighbour(State& s, uint32_t x, uint32_t u, uint32_t v) {
+    if (!s.heap.contains(x) || s.best_target[x] == u || s.best_target[x] == v || s.best_target[x] == kNone) {
+        update_vertex(s, x);
+        return;
+    }
+    if (!s.alive[x] || s.locked[x]) return;
+    const double c = collapse_cost(s, x, v);
+    if (c < s.heap.key(x)) {
+        s.best_target[x] = v;
+        s.heap.set(x, c);
     }
 }
 
@@ -348,19 +450,35 @@ bool collapse_allowed(State& s, uint32_t u, uint32_t v, uint32_t shared[2], uint
                                     glm::dot(r[0] - r[2], r[0] - r[2])});
         if (glm::dot(n1, n1) <= 1e-12 * l2 * l2) return false;
     }
-    // Fold guard: a moved face must not end up (nearly) back to back with a neighbour
-    // unless it already was.
+    // Fold guard: a moved face must not end up (nearly) back to back with a
+    // neighbour unless it already was. Neighbours across u's fan edges are other
+    // faces of u; across the edge opposite u, one lookup.
+    auto& fan_old = s.fan_old;
+    auto& fan_new = s.fan_new;
+    fan_old.clear();
+    fan_new.clear();
     for (uint32_t c : s.cu) {
         const uint32_t f = c / 3;
-        if (f == shared[0] || (shared_count == 2 && f == shared[1])) continue;
-        const uint32_t* t = &s.idx[f * 3];
-        const Vec3 n_old = face_normal(s, f, u, s.pos[u]), n_new = face_normal(s, f, u, target);
-        for (int k = 0; k < 3; ++k) {
-            const uint32_t a = t[k], b = t[(k + 1) % 3];
-            const uint32_t g = face_across(s, a, b);
-            if (g == kNone || g == shared[0] || (shared_count == 2 && g == shared[1])) continue;
-            const double before = glm::dot(n_old, face_normal(s, g, u, s.pos[u]));
-            const double after = glm::dot(n_new, face_normal(s, g, u, target));
+        const bool removed = f == shared[0] || (shared_count == 2 && f == shared[1]);
+        fan_old.push_back(removed ? Vec3(0.0) : face_normal(s, f, u, s.pos[u]));
+        fan_new.push_back(removed ? Vec3(0.0) : face_normal(s, f, u, target));
+    }
+    for (size_t i = 0; i < s.cu.size(); ++i) {
+        const uint32_t f = s.cu[i] / 3, k = s.cu[i] % 3;
+        if (fan_new[i] == Vec3(0.0)) continue;
+        const uint32_t x = s.idx[f * 3 + (k + 1) % 3], y = s.idx[f * 3 + (k + 2) % 3];
+        const uint32_t g = face_across(s, x, y);
+        if (g != kNone && g != shared[0] && !(shared_count == 2 && g == shared[1])) {
+            const Vec3 ng = face_normal(s, g, u, target);
+            const double after = glm::dot(fan_new[i], ng), before = glm::dot(fan_old[i], ng);
+            if (after < kFoldCos && after < before) return false;
+        }
+        for (size_t j = i + 1; j < s.cu.size(); ++j) {
+            if (fan_new[j] == Vec3(0.0)) continue;
+            const uint32_t g2 = s.cu[j] / 3;
+            const uint32_t* t = &s.idx[g2 * 3];
+            if (t[0] != x && t[1] != x && t[2] != x && t[0] != y && t[1] != y && t[2] != y) continue;
+            const double after = glm::dot(fan_new[i], fan_new[j]), before = glm::dot(fan_old[i], fan_old[j]);
             if (after < kFoldCos && after < before) return false;
         }
     }
@@ -384,6 +502,12 @@ void apply_collapse(State& s, uint32_t u, uint32_t v, const uint32_t shared[2], 
         for (int k = 0; k < 3; ++k) --s.fcount[s.idx[f * 3 + k]];
         --s.live_faces;
     }
+    // Keep the opposite vertices' corner lists free of the removed faces.
+    for (uint32_t i = 0; i < shared_count; ++i)
+        for (int k = 0; k < 3; ++k) {
+            const uint32_t a = s.idx[shared[i] * 3 + k];
+            if (a != u && a != v) live_corners(s, a, s.ring_u);
+        }
     // Move u's surviving corners onto v (s.cu holds u's live corners from the check).
     for (uint32_t c : s.cu) {
         if (!s.face_alive[c / 3]) continue;
@@ -400,34 +524,66 @@ void apply_collapse(State& s, uint32_t u, uint32_t v, const uint32_t shared[2], 
     s.collapses.push_back(rec);
     s.q[v].add(s.q[u]);
     s.e[v].add(s.e[u]);
-    ++s.stamp[v];
-    // Every collapse touching v changed cost; re-queue both directions of each edge of v.
-    ring_of(s, v, s.ring_v);
-    for (uint32_t x : s.ring_v) {
-        push_candidate(s, x, v);
-        push_candidate(s, v, x);
+    // The costs of collapses from v and from its neighbours (towards v) changed.
+    s.heap.erase(u);
+    ring_of(s, v, s.touched);
+    update_vertex(s, v);
+    for (uint32_t x : s.touched) update_neighbour(s, x, u, v);
+}
+
+// Greedy: take the vertex with the cheapest outgoing collapse; try its collapses in
+// cost order while they stay no dearer than the next vertex; the first legal one
+// is applied. A vertex without a legal collapse waits until its neighbourhood changes.
+void collapse_loop(State& s, size_t target_faces) {
+    const uint32_t n = uint32_t(s.pos.size());
+    std::vector<std::pair<double, uint32_t>> options;
+    for (int pass = 0; pass < 16 && s.live_faces > target_faces; ++pass) {
+        s.heap.reset(n);
+        s.best_target.assign(n, kNone);
+        for (uint32_t v = 0; v < n; ++v) update_vertex(s, v);
+        size_t done = 0;
+        while (!s.heap.empty() && s.live_faces > target_faces) {
+            const uint32_t u = s.heap.top();
+            const double limit = s.heap.second_key();
+            ring_of(s, u, s.ring_u);
+            options.clear();
+            for (uint32_t x : s.ring_u) options.push_back({collapse_cost(s, u, x), x});
+            std::sort(options.begin(), options.end());
+            bool handled = false;
+            for (const auto& [cost, v] : options) {
+                if (cost > limit) {
+                    s.best_target[u] = v;
+                    s.heap.set(u, cost);  // cheaper work elsewhere first
+                    handled = true;
+                    break;
+                }
+                uint32_t shared[2], shared_count = 0;
+                if (!collapse_allowed(s, u, v, shared, shared_count)) continue;
+                apply_collapse(s, u, v, shared, shared_count);
+                ++done;
+                handled = true;
+                break;
+            }
+            if (!handled) s.heap.erase(u);
+        }
+        // Collapses rejected earlier may have become legal as their neighbourhoods changed.
+        if (done == 0) break;
     }
 }
 
-void collapse_loop(State& s, size_t target_faces) {
-    push_all_candidates(s);
-    for (int pass = 0; pass < 16; ++pass) {
-        size_t done = 0;
-        while (!s.heap.empty() && s.live_faces > target_faces) {
-            std::pop_heap(s.heap.begin(), s.heap.end(), HeapAfter{});
-            const HeapEntry e = s.heap.back();
-            s.heap.pop_back();
-            if (!s.alive[e.from] || !s.alive[e.to] || s.stamp[e.from] != e.stamp_from || s.stamp[e.to] != e.stamp_to)
-                continue;
-            uint32_t shared[2], shared_count = 0;
-            if (!collapse_allowed(s, e.from, e.to, shared, shared_count)) continue;
-            apply_collapse(s, e.from, e.to, shared, shared_count);
-            ++done;
-        }
-        // Collapses rejected earlier may have become legal as their neighbourhoods changed.
-        if (done == 0 || s.live_faces <= target_faces) break;
-        push_all_candidates(s);
+// Area-weighted vertex normals, here rather than shared/mesh.h so that they are
+// computed without floating-point contraction (same bytes on every platform).
+std::vector<Vec3> area_weighted_normals(const std::vector<Vec3>& pos, const std::vector<uint32_t>& idx) {
+    std::vector<Vec3> n(pos.size(), Vec3(0.0));
+    for (size_t f = 0; f + 2 < idx.size(); f += 3) {
+        const Vec3 c = glm::cross(pos[idx[f + 1]] - pos[idx[f]], pos[idx[f + 2]] - pos[idx[f]]);
+        for (int k = 0; k < 3; ++k) n[idx[f + k]] += c;
     }
+    for (Vec3& v : n) {
+        const double l = glm::length(v);
+        v = l > 0.0 ? v / l : Vec3(0.0, 0.0, 1.0);
+    }
+    return n;
 }
 
 ProgressiveBuild emit_order(const State& s, const std::vector<Vec3>& normals) {
@@ -484,7 +640,7 @@ Result<ProgressiveBuild> build_progressive_mesh(const Mesh& mesh, const LodOptio
             normals[i] = l > 0.0 ? mesh.normals[kept[i]] / l : Vec3(0, 0, 1);
         }
     } else {
-        normals = vertex_normals(s.pos, s.idx);
+        normals = area_weighted_normals(s.pos, s.idx);
     }
     build_adjacency(s);
     init_quadrics(s, options.boundary_weight);

@@ -6,12 +6,6 @@
 #include <cmath>
 #include <cstring>
 
-// The writer quantizes with these functions: keep the results identical on every
-// platform (GCC in ISO C++ mode does not contract; tell clang not to either).
-#if defined(__clang__)
-#pragma clang fp contract(off)
-#endif
-
 namespace body::pm {
 
 std::string tag_name(uint32_t tag) {
@@ -101,39 +95,13 @@ bool ByteReader::bytes(size_t n, std::span<const uint8_t>& out) {
     return true;
 }
 
-uint16_t quantize16(double x, float lo, float hi) {
-    double range = double(hi) - double(lo);
-    if (!(range > 0.0)) return 0;
-    double t = std::nearbyint((x - double(lo)) / range * 65535.0);
-    return uint16_t(std::clamp(t, 0.0, 65535.0));
-}
 float dequantize16(uint16_t q, float lo, float hi) {
     return float(double(lo) + double(q) * ((double(hi) - double(lo)) / 65535.0));
 }
 
 namespace {
 double sign_not_zero(double v) { return v < 0.0 ? -1.0 : 1.0; }
-uint8_t unorm8(double v) { return uint8_t(std::clamp(std::nearbyint((v * 0.5 + 0.5) * 255.0), 0.0, 255.0)); }
 }  // namespace
-
-void oct_encode8(double x, double y, double z, uint8_t out[2]) {
-    double l1 = std::fabs(x) + std::fabs(y) + std::fabs(z);
-    if (!(l1 > 0.0)) {
-        out[0] = out[1] = 128;
-        return;
-    }
-    x /= l1;
-    y /= l1;
-    z /= l1;
-    if (z < 0.0) {
-        double ox = (1.0 - std::fabs(y)) * sign_not_zero(x);
-        double oy = (1.0 - std::fabs(x)) * sign_not_zero(y);
-        x = ox;
-        y = oy;
-    }
-    out[0] = unorm8(x);
-    out[1] = unorm8(y);
-}
 
 void oct_decode8(const uint8_t in[2], float out[3]) {
     double x = in[0] / 255.0 * 2.0 - 1.0, y = in[1] / 255.0 * 2.0 - 1.0;
@@ -169,6 +137,17 @@ void SplitReplay::corners_of(uint32_t v, std::vector<uint32_t>& out) const {
     out.clear();
     for (uint32_t c = head_[v]; c != kNone; c = next_[c]) out.push_back(c);
     std::sort(out.begin(), out.end());
+}
+
+void SplitReplay::ring_of(uint32_t v, std::vector<uint32_t>& out) const {
+    out.clear();
+    for (uint32_t c = head_[v]; c != kNone; c = next_[c]) {
+        const uint32_t f = c / 3 * 3;
+        for (uint32_t k = 0; k < 3; ++k)
+            if (f + k != c) out.push_back(indices_[f + k]);
+    }
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
 }
 
 bool SplitReplay::apply_mask(uint32_t parent, uint32_t child, uint64_t mask, std::vector<uint32_t>& scratch,

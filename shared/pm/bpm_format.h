@@ -18,7 +18,7 @@ inline constexpr uint16_t kVersion = 1;
 inline constexpr size_t kFileHeaderSize = 16;     // magic, version, flags, structure count, header crc
 inline constexpr size_t kSectionHeaderSize = 12;  // tag, structure, reserved, payload length
 inline constexpr size_t kSectionTrailerSize = 4;  // crc32 over header + payload
-inline constexpr uint32_t kMaxPatchFan = 63;      // a split's parent has at most this many faces
+inline constexpr uint32_t kMaxPatchFan = 60;      // a split's parent has at most this many faces
 
 // Section tags, four ASCII bytes read as a little-endian uint32.
 constexpr uint32_t make_tag(const char (&s)[5]) {
@@ -58,13 +58,10 @@ private:
     size_t pos_ = 0;
 };
 
-// 16-bit quantization of a coordinate inside [lo, hi]; dequantize(quantize(x))
-// differs from x by at most (hi - lo) / 65535 / 2 plus float rounding.
-uint16_t quantize16(double x, float lo, float hi);
+// Dequantization of 16-bit coordinates in [lo, hi] and decoding of 8-bit
+// octahedral normals. The encoders live with the writer (builder/lod/bpm_writer.cpp),
+// compiled without floating-point contraction so the bytes match on every platform.
 float dequantize16(uint16_t q, float lo, float hi);
-
-// Octahedral unit-vector encoding with 8 bits per component.
-void oct_encode8(double x, double y, double z, uint8_t out[2]);
 void oct_decode8(const uint8_t in[2], float out[3]);
 
 // Zig-zag mapping of the wrap-around difference of two 16/8-bit codes.
@@ -118,6 +115,8 @@ public:
     // to `child`, writing them to `moved`. False if the mask names a missing corner.
     bool apply_mask(uint32_t parent, uint32_t child, uint64_t mask, std::vector<uint32_t>& scratch,
                     std::vector<uint32_t>& moved);
+    // The neighbours of `v` (vertices sharing a face with it), ascending, into `out`.
+    void ring_of(uint32_t v, std::vector<uint32_t>& out) const;
     uint32_t index(size_t corner) const { return indices_[corner]; }
 
 private:

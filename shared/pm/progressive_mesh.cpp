@@ -257,10 +257,10 @@ Status BpmStream::parse_base(ProgressiveMesh& m, std::span<const uint8_t> payloa
 
 Status BpmStream::parse_splits(ProgressiveMesh& m, std::span<const uint8_t> payload, const std::string& where) {
     ByteReader r(payload);
-    uint32_t first = 0, count = 0, new_faces = 0, vbytes = 0, ibytes = 0, tbytes = 0;
-    std::span<const uint8_t> vbuf, ibuf, tbuf;
+    uint32_t first = 0, count = 0, new_faces = 0, vbytes = 0, tbytes = 0;
+    std::span<const uint8_t> vbuf, tbuf;
     if (!r.u32(first) || !r.u32(count) || !r.u32(new_faces) || !r.u32(vbytes) || !r.bytes(vbytes, vbuf) ||
-        !r.u32(ibytes) || !r.bytes(ibytes, ibuf) || !r.u32(tbytes) || !r.bytes(tbytes, tbuf) || r.left() != 0)
+        !r.u32(tbytes) || !r.bytes(tbytes, tbuf) || r.left() != 0)
         return input_error(where + ": SPLT payload sizes do not add up");
     if (first != m.decoded_splits_ || count == 0 || count > m.split_count_ - m.decoded_splits_ ||
         new_faces > m.face_count_ - m.decoded_faces_)
@@ -269,9 +269,6 @@ Status BpmStream::parse_splits(ProgressiveMesh& m, std::span<const uint8_t> payl
     std::vector<SplitVertex> recs(count);
     if (meshopt_decodeVertexBuffer(recs.data(), count, sizeof(SplitVertex), vbuf.data(), vbuf.size()) != 0)
         return input_error(where + ": split records do not decode");
-    decoded_indices_.resize(size_t(new_faces) * 3);
-    if (meshopt_decodeIndexBuffer(decoded_indices_.data(), decoded_indices_.size(), 4, ibuf.data(), ibuf.size()) != 0)
-        return input_error(where + ": split faces do not decode");
     ByteReader topo(tbuf);
     size_t face_cursor = 0;  // into decoded_indices_ (faces)
     float previous_error = first == 0 ? INFINITY : m.split_error_[first - 1];
@@ -284,15 +281,27 @@ Status BpmStream::parse_splits(ProgressiveMesh& m, std::span<const uint8_t> payl
         const uint32_t parent = child - rec.parent_delta;
         if (!(rec.error >= 0.0f) || rec.error > previous_error) return input_error(at + ": error not monotonic");
         previous_error = rec.error;
-        uint64_t faces = 0, mask = 0;
-        if (!topo.varint(faces) || !topo.varint(mask) || faces == 0 || faces > 3 || face_cursor + faces > new_faces)
-            return input_error(at + ": topology record malformed");
+        uint64_t head = 0;
+        if (!topo.varint(head)) return input_error(at + ": topology record truncated");
+        const uint64_t faces = head & 3, mask = head >> 2;
+        if (faces == 0 || face_cursor + faces > new_faces) return input_error(at + ": face count out of range");
+        // New faces name their third vertex by rank in the parent's ring before the split.
+        m.replay_.ring_of(parent, ring_);
+        decoded_indices_.clear();
+        for (uint64_t f = 0; f < faces; ++f) {
+            uint64_t code = 0;
+            if (!topo.varint(code) || (code >> 1) >= ring_.size())
+                return input_error(at + ": face " + std::to_string(f) + " names a missing neighbour");
+            const uint32_t third = ring_[code >> 1];
+            if (code & 1)
+                decoded_indices_.insert(decoded_indices_.end(), {child, third, parent});
+            else
+                decoded_indices_.insert(decoded_indices_.end(), {child, parent, third});
+        }
         // Index patches first (on the level before the split), then the new faces.
         if (!m.replay_.apply_mask(parent, child, mask, scratch_, moved_))
             return input_error(at + ": patch mask names a missing corner");
-        std::span<const uint32_t> fi(decoded_indices_.data() + face_cursor * 3, faces * 3);
-        for (uint32_t v : fi)
-            if (v > child) return input_error(at + ": face index " + std::to_string(v) + " out of range");
+        std::span<const uint32_t> fi(decoded_indices_);
         m.replay_.add_faces(m.decoded_faces_, fi);
         std::copy(fi.begin(), fi.end(), m.indices_.begin() + ptrdiff_t(m.decoded_faces_ * 3));
         m.dirty_indices_.add(m.decoded_faces_ * 3, (m.decoded_faces_ + faces) * 3);

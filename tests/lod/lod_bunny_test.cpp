@@ -41,8 +41,10 @@ TEST_F(LodBunny, EveryLevelIsAClosedManifoldWithinItsStoredError) {
     EXPECT_LE(m.base_triangle_count(), bunny_.triangle_count() / 100);
     std::printf("bunny: %zu bytes, %zu splits, %.2f bytes/split, base %zu triangles\n", bytes->size(), m.max_level(),
                 double(bytes->size()) / double(m.max_level()), m.base_triangle_count());
-    // The scan itself has a few back-to-back neighbours; no level may be worse.
-    const double input_fold = std::min(-0.95, test::min_adjacent_normal_cosine(bunny_.positions, bunny_.indices));
+    // The scan itself has a few back-to-back neighbours; no level may be worse (0.01:
+    // quantization turns those near-degenerate normals a little).
+    const double input_fold =
+        std::min(-0.95, test::min_adjacent_normal_cosine(bunny_.positions, bunny_.indices) - 0.01);
     int levels = 0;
     double worst_ratio = 0.0;
     for (int i = 0; i < 22; ++i) {

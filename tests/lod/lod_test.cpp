@@ -246,8 +246,11 @@ TEST(Lod, ManyStructuresWithNamesColoursAndBounds) {
 TEST(Lod, DeterministicBytes) {
     lod::LodOptions options;
     options.chunk_splits = 256;
-    auto a = encode({test::icosphere(3), test::bumpy_torus(32, 16)}, options);
-    auto b = encode({test::icosphere(3), test::bumpy_torus(32, 16)}, options);
+    // Inputs from basic IEEE operations only (no libm transcendental functions),
+    // so that they are the same on every platform too.
+    const std::vector<Mesh> in = {test::icosphere(3), test::icosphere(2, 4.0, Vec3(30.0, 0.0, 0.0))};
+    auto a = encode(in, options);
+    auto b = encode(in, options);
     ASSERT_EQ(a, b);
     // Same bytes on every platform: the aarch64 cross run checks this value too.
     const uint32_t crc = pm::crc32(a);

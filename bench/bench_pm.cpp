@@ -1,0 +1,246 @@
+// Progressive meshes side by side with meshoptimizer (and VTK through
+// bench/pm_vs_vtk.sh), on the bunny (glmark2-data) and the bunny subdivided
+// twice (~1.1M triangles). Every figure is printed with its ratio against a
+// baseline measured in the same run:
+//   1. full PM build (simplify to the end + encode .bpm) vs meshopt_simplify making
+//      a 10-level chain (100% -> 1%, each level from the previous)       goal <= 1.0
+//   2. symmetric sampled Hausdorff at 10% and 2% of the triangles, ours vs the better
+//      of meshopt_simplify and vtkQuadricDecimation                      goal <= 1.0
+//   3. runtime: vertex splits per second, full coarse -> fine sweep time (vs one
+//      memcpy of the full index array), bytes per vertex split (goal <= 10 B)
+//
+// usage: bench_pm [--obj FILE] [--vtk-dir DIR] [--write-dir DIR] [--no-big]
+//   --write-dir writes the inputs (bunny.obj, bunny_sub.obj) for the VTK script;
+//   --vtk-dir reads DIR/<name>_vtk_<percent>.obj written by vtkQuadricDecimation.
+#include <benchmark/benchmark.h>
+#include <meshoptimizer.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "builder/lod/hausdorff.h"
+#include "builder/lod/simplify.h"
+#include "shared/obj_io.h"
+#include "shared/pm/progressive_mesh.h"
+
+namespace {
+
+using namespace body;
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+template <typename F>
+double best_time(int reps, F&& f) {
+    double best = 1e300;
+    for (int i = 0; i < reps; ++i) {
+        auto t0 = Clock::now();
+        f();
+        best = std::min(best, seconds_since(t0));
+    }
+    return best;
+}
+
+Mesh subdivide(const Mesh& in) {
+    Mesh out;
+    out.name = in.name + "_sub";
+    out.positions = in.positions;
+    std::map<std::pair<uint32_t, uint32_t>, uint32_t> mid;
+    auto midpoint = [&](uint32_t a, uint32_t b) {
+        auto key = std::minmax(a, b);
+        auto [it, inserted] = mid.emplace(key, uint32_t(out.positions.size()));
+        if (inserted) out.positions.push_back((in.positions[a] + in.positions[b]) * 0.5);
+        return it->second;
+    };
+    for (size_t f = 0; f < in.indices.size(); f += 3) {
+        uint32_t a = in.indices[f], b = in.indices[f + 1], c = in.indices[f + 2];
+        uint32_t ab = midpoint(a, b), bc = midpoint(b, c), ca = midpoint(c, a);
+        out.indices.insert(out.indices.end(), {a, ab, ca, b, bc, ab, c, ca, bc, ab, bc, ca});
+    }
+    return out;
+}
+
+std::vector<float> float_positions(const Mesh& m) {
+    std::vector<float> p;
+    for (const Vec3& v : m.positions) p.insert(p.end(), {float(v.x), float(v.y), float(v.z)});
+    return p;
+}
+
+// meshopt_simplify from the full mesh to `target` triangles, no error limit.
+std::vector<uint32_t> meshopt_level(const Mesh& m, const std::vector<float>& fp, size_t target) {
+    std::vector<uint32_t> out(m.indices.size());
+    out.resize(meshopt_simplify(out.data(), m.indices.data(), m.indices.size(), fp.data(), m.positions.size(), 12,
+                                target * 3, 1.0f, 0, nullptr));
+    return out;
+}
+
+void meshopt_chain(const Mesh& m, const std::vector<float>& fp) {
+    std::vector<uint32_t> cur = m.indices, next(m.indices.size());
+    for (int level = 1; level <= 10; ++level) {
+        const double ratio = std::pow(0.01, level / 10.0);
+        const size_t target = size_t(double(m.indices.size() / 3) * ratio) * 3;
+        next.resize(cur.size());
+        next.resize(meshopt_simplify(next.data(), cur.data(), cur.size(), fp.data(), m.positions.size(), 12, target,
+                                     1.0f, 0, nullptr));
+        cur.swap(next);
+    }
+}
+
+struct SectionBytes {
+    size_t base = 0, splits = 0, other = 0;
+};
+SectionBytes section_bytes(const std::vector<uint8_t>& b) {
+    SectionBytes s;
+    size_t pos = pm::kFileHeaderSize;
+    s.other += pos;
+    while (pos + pm::kSectionHeaderSize <= b.size()) {
+        const uint32_t tag = pm::get_u32(&b[pos]), len = pm::get_u32(&b[pos + 8]);
+        const size_t total = pm::kSectionHeaderSize + len + pm::kSectionTrailerSize;
+        (tag == pm::kTagSplits ? s.splits : tag == pm::kTagBase ? s.base : s.other) += total;
+        pos += total;
+    }
+    return s;
+}
+
+void row(const char* what, double ours, const char* base_name, double base) {
+    std::printf("  %-44s %12.6g   %-30s %12.6g   ratio %7.3f\n", what, ours, base_name, base, ours / base);
+}
+
+void run(const Mesh& mesh, const std::string& label, const std::string& vtk_dir, int reps) {
+    const size_t tris = mesh.triangle_count();
+    std::printf("\n== %s: %zu vertices, %zu triangles\n", label.c_str(), mesh.positions.size(), tris);
+    const std::vector<float> fp = float_positions(mesh);
+    const std::vector<Mesh> one{mesh};
+
+    // 1. build time
+    std::vector<uint8_t> bytes;
+    lod::LodOptions options;
+    const double t_pm = best_time(reps, [&] { bytes = *lod::encode_bpm(one, options); });
+    const double t_simplify = best_time(reps, [&] { (void)lod::build_progressive_mesh(mesh, options); });
+    const double t_chain = best_time(reps, [&] { meshopt_chain(mesh, fp); });
+    std::printf(" build\n");
+    row("PM build + encode (s)", t_pm, "meshopt 10-level chain (s)", t_chain);
+    row("  of which simplification (s)", t_simplify, "meshopt 10-level chain (s)", t_chain);
+
+    auto pms = pm::read_bpm_bytes(bytes, label);
+    if (!pms) {
+        std::printf("read failed: %s\n", pms.error().message.c_str());
+        return;
+    }
+    pm::ProgressiveMesh& m = *(*pms)[0];
+    std::printf("  levels: %zu splits, base %zu triangles (%.3f%%)\n", m.max_level(), m.base_triangle_count(),
+                100.0 * double(m.base_triangle_count()) / double(tris));
+
+    // 2. accuracy
+    std::printf(" accuracy (symmetric sampled Hausdorff, object units; bbox diagonal %g)\n",
+                mesh_bounds(mesh.positions).extent());
+    lod::SurfaceDistance full(mesh.positions, mesh.indices);
+    for (double pct : {10.0, 2.0}) {
+        const size_t target = size_t(double(tris) * pct / 100.0);
+        m.set_level(m.level_for_triangles(target));
+        std::vector<Vec3> pos;
+        for (size_t v = 0; v < m.vertex_count(); ++v) pos.push_back(Vec3(m.positions()[v]));
+        std::vector<uint32_t> idx(m.indices().begin(), m.indices().begin() + ptrdiff_t(m.triangle_count() * 3));
+        const double ours =
+            std::max(lod::one_sided_hausdorff(pos, idx, full),
+                     lod::one_sided_hausdorff(mesh.positions, mesh.indices, lod::SurfaceDistance(pos, idx)));
+        const std::vector<uint32_t> mo = meshopt_level(mesh, fp, target);
+        const double mopt =
+            std::max(lod::one_sided_hausdorff(mesh.positions, mo, full),
+                     lod::one_sided_hausdorff(mesh.positions, mesh.indices, lod::SurfaceDistance(mesh.positions, mo)));
+        double vtk = -1.0;
+        size_t vtk_tris = 0;
+        const std::string vtk_file = vtk_dir + "/" + label + "_vtk_" + std::to_string(int(pct)) + ".obj";
+        if (!vtk_dir.empty() && std::filesystem::exists(vtk_file)) {
+            if (auto v = read_obj_merged(vtk_file)) {
+                vtk_tris = v->triangle_count();
+                vtk = std::max(lod::one_sided_hausdorff(v->positions, v->indices, full),
+                               lod::one_sided_hausdorff(mesh.positions, mesh.indices,
+                                                        lod::SurfaceDistance(v->positions, v->indices)));
+            }
+        }
+        std::printf("  at %g%%: ours %zu tris, meshopt %zu tris, vtk %s\n", pct, m.triangle_count(), mo.size() / 3,
+                    vtk < 0 ? "not run (bench/pm_vs_vtk.sh)" : (std::to_string(vtk_tris) + " tris").c_str());
+        row("ours Hausdorff", ours, "meshopt_simplify", mopt);
+        if (vtk >= 0) row("ours Hausdorff", ours, "vtkQuadricDecimation", vtk);
+        const double best = vtk >= 0 ? std::min(mopt, vtk) : mopt;
+        row("ours Hausdorff", ours, vtk >= 0 ? "better of meshopt/vtk" : "meshopt (no vtk)", best);
+        std::printf("  %-44s %12.6g   (stored error bound; measured/stored %.3f)\n", "ours stored error",
+                    double(m.error_at(m.level())), ours / double(m.error_at(m.level())));
+    }
+
+    // 3. runtime
+    std::printf(" runtime\n");
+    const size_t n = m.max_level();
+    // Each direction timed on its own, best of several sweeps.
+    double t_up = 1e300, t_down = 1e300;
+    for (int i = 0; i < reps * 3; ++i) {
+        auto t0 = Clock::now();
+        m.refine_to(n);
+        t_up = std::min(t_up, seconds_since(t0));
+        t0 = Clock::now();
+        m.coarsen_to(0);
+        t_down = std::min(t_down, seconds_since(t0));
+    }
+    std::vector<uint32_t> copy(m.indices().size());
+    const double t_memcpy = best_time(reps * 3, [&] {
+        std::memcpy(copy.data(), m.indices().data(), copy.size() * 4);
+        benchmark::DoNotOptimize(copy.data());
+        benchmark::ClobberMemory();
+    });
+    row("splits/s refining (M)", double(n) / t_up / 1e6, "splits/s coarsening (M)", double(n) / t_down / 1e6);
+    row("full coarse->fine sweep (ms)", t_up * 1e3, "memcpy of full index array (ms)", t_memcpy * 1e3);
+    const SectionBytes sb = section_bytes(bytes);
+    row("bytes per vertex split (SPLT sections)", double(sb.splits) / double(n), "goal", 10.0);
+    row("bytes per vertex split (whole file)", double(bytes.size()) / double(n), "goal", 10.0);
+    const double raw = double(n) * (6 + 2 + 4 + 4) + double(m.max_triangle_count() - m.base_triangle_count()) * 12 +
+                       4.0 * 4 * double(n);
+    row("SPLT bytes", double(sb.splits), "uncompressed records", raw);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    std::string obj = "/usr/share/glmark2/models/bunny.obj", vtk_dir, write_dir;
+    bool big = true;
+    for (int i = 1; i < argc; ++i) {
+        std::string a = argv[i];
+        if (a == "--obj" && i + 1 < argc)
+            obj = argv[++i];
+        else if (a == "--vtk-dir" && i + 1 < argc)
+            vtk_dir = argv[++i];
+        else if (a == "--write-dir" && i + 1 < argc)
+            write_dir = argv[++i];
+        else if (a == "--no-big")
+            big = false;
+        else {
+            std::fprintf(stderr, "usage: bench_pm [--obj FILE] [--vtk-dir DIR] [--write-dir DIR] [--no-big]\n");
+            return 2;
+        }
+    }
+    auto mesh = body::read_obj_merged(obj);
+    if (!mesh) {
+        std::fprintf(stderr, "bench_pm: %s (Debian package glmark2-data)\n", mesh.error().message.c_str());
+        return 1;
+    }
+    mesh->name = "bunny";
+    body::Mesh sub = subdivide(subdivide(*mesh));
+    sub.name = "bunny_sub";
+    if (!write_dir.empty()) {
+        (void)body::write_obj(write_dir + "/bunny.obj", std::vector<body::Mesh>{*mesh});
+        if (big) (void)body::write_obj(write_dir + "/bunny_sub.obj", std::vector<body::Mesh>{sub});
+        std::printf("wrote inputs to %s\n", write_dir.c_str());
+        return 0;
+    }
+    std::printf("bench_pm: ratios are ours / baseline, same run, same machine\n");
+    run(*mesh, "bunny", vtk_dir, 3);
+    if (big) run(sub, "bunny_sub", vtk_dir, 1);
+    return 0;
+}

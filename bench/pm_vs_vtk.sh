@@ -1,0 +1,57 @@
+#!/usr/bin/env bash
+# Side by side: our progressive meshes vs meshopt_simplify vs VTK's
+# vtkQuadricDecimation (Garland-Heckbert with optimal placement) on the bunny and
+# the bunny subdivided twice. Prints bench_pm's table (ratios ours / baseline).
+#
+# usage: bench/pm_vs_vtk.sh [BUILD_DIR] [--no-big]     (default BUILD_DIR: build)
+# Needs Debian python3-vtk9 (installed with apt-get when missing and run as root).
+set -euo pipefail
+build=${1:-build}
+big=${2:-}
+bench="$build/bin/bench_pm"
+[ -x "$bench" ] || { echo "pm_vs_vtk: build bench_pm first ($bench missing)" >&2; exit 1; }
+py=/usr/bin/python3
+if ! "$py" -c 'import vtk' 2>/dev/null; then
+  if [ "$(id -u)" = 0 ]; then
+    apt-get install -y --no-install-recommends python3-vtk9 >/dev/null
+  else
+    echo "pm_vs_vtk: python3-vtk9 missing (sudo apt-get install python3-vtk9)" >&2
+    exit 1
+  fi
+fi
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+"$bench" --write-dir "$work" $big >/dev/null
+names=bunny
+[ -z "$big" ] && names="bunny bunny_sub"
+for name in $names; do
+  "$py" - "$work" "$name" <<'PY'
+import sys, time, vtk
+work, name = sys.argv[1], sys.argv[2]
+reader = vtk.vtkOBJReader()
+reader.SetFileName(f"{work}/{name}.obj")
+reader.Update()
+tri = vtk.vtkTriangleFilter()
+tri.SetInputConnection(reader.GetOutputPort())
+tri.Update()
+clean = vtk.vtkCleanPolyData()  # weld the OBJ's per-face vertices
+clean.SetInputConnection(tri.GetOutputPort())
+clean.Update()
+full = clean.GetOutput().GetNumberOfPolys()
+for pct in (10, 2):
+    dec = vtk.vtkQuadricDecimation()
+    dec.SetInputData(clean.GetOutput())
+    dec.SetTargetReduction(1.0 - pct / 100.0)
+    t0 = time.perf_counter()
+    dec.Update()
+    dt = time.perf_counter() - t0
+    out = dec.GetOutput()
+    w = vtk.vtkOBJWriter()
+    w.SetFileName(f"{work}/{name}_vtk_{pct}.obj")
+    w.SetInputData(out)
+    w.Write()
+    print(f"vtkQuadricDecimation {name} {pct}%: {out.GetNumberOfPolys()} of {full} triangles in {dt:.3f} s",
+          file=sys.stderr)
+PY
+done
+"$bench" --vtk-dir "$work" $big
