@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Builds the product's sample anatomy: the AAL brain atlas (Debian mricron-data,
 # 116 regions) -> contour stack -> one closed mesh per region -> progressive
-# meshes -> a kiosk scene grouped by lobe and side (builder/import/aal_groups.tsv).
+# meshes -> a kiosk scene grouped by lobe and side (builder/import/aal_groups.tsv)
+# -> a kiosk bundle (build/sample/bundle). Regions the pipeline rejects are
+# reported and left out of the scene.
 # Nothing derived from the atlas is committed; everything lands in build/sample/.
 #
 #   scripts/build-sample.sh [BODYGEN] [OUT_DIR]
@@ -37,10 +39,34 @@ if ! "$BODYGEN" --help | grep -q '^  build '; then
   echo "build-sample: this bodygen has no 'build' command yet; stopping after contours" >&2
   exit 0
 fi
-echo "build-sample: meshes"
-"$BODYGEN" build "$OUT/aal.contours.json" -o "$OUT/aal.obj" --json > "$OUT/aal.build.json"
+echo "build-sample: meshes, one per region ($JOBS at a time)"
+rm -rf "$OUT/regions"
+mkdir -p "$OUT/regions"
+# One stack per region, so a region the pipeline rejects is reported, not fatal.
+python3 - "$OUT" <<'PY'
+import json, os, sys
+out = sys.argv[1]
+stack = json.load(open(os.path.join(out, "aal.contours.json")))
+for s in stack["structures"]:
+    part = dict(stack, structures=[s])
+    part["slices"] = [{"z": sl["z"], "contours": [c for c in sl["contours"] if c["structure"] == s["id"]]}
+                      for sl in stack["slices"]]
+    part["slices"] = [sl for sl in part["slices"] if sl["contours"]]
+    json.dump(part, open(os.path.join(out, "regions", s["id"] + ".contours.json"), "w"))
+PY
+ls "$OUT"/regions/*.contours.json | xargs -P "$JOBS" -I{} sh -c \
+  'f={}; "$0" build "$f" -o "${f%.contours.json}.obj" --quiet 2> "${f%.contours.json}.err" || true' "$BODYGEN"
+failed=0
+for err in "$OUT"/regions/*.err; do
+  if [ -s "$err" ] && [ ! -f "${err%.err}.obj" ]; then
+    echo "build-sample: skipped: $(cat "$err")" >&2
+    failed=$((failed + 1))
+  fi
+  rm -f "$err"
+done
+rm -f "$OUT"/regions/*.contours.json
 
-# One OBJ per region, the scene manifest with groups, and the region table.
+# The scene manifest with groups, and the region table.
 python3 - "$OUT" "$GROUPS_TABLE" <<'PY'
 import fnmatch, json, os, sys
 out, table = sys.argv[1], sys.argv[2]
@@ -61,49 +87,41 @@ def group_of(name):
 def side_of(name):
     return "left" if name.endswith("_L") else "right" if name.endswith("_R") else "midline"
 
+# One hue per lobe group, the right side a shade darker, so the groups read at a glance.
+PALETTE = {"frontal": (0.86, 0.45, 0.40), "temporal": (0.42, 0.68, 0.86), "parietal": (0.55, 0.80, 0.45),
+           "occipital": (0.92, 0.76, 0.36), "limbic-insula": (0.78, 0.50, 0.82), "central": (0.96, 0.60, 0.30),
+           "cerebellum": (0.62, 0.66, 0.78), "other": (0.8, 0.8, 0.8)}
+
+def colour_of(group, side):
+    k = 0.82 if side == "right" else 1.0
+    return [round(c * k, 3) for c in PALETTE[group]]
+
 stack = json.load(open(os.path.join(out, "aal.contours.json")))
-info = {s["id"]: s for s in stack["structures"]}
-os.makedirs(os.path.join(out, "regions"), exist_ok=True)
-# Split the multi-object OBJ (global vertex indices) into one file per object.
-objects, current, verts = {}, None, []
-for line in open(os.path.join(out, "aal.obj")):
-    if line.startswith("o "):
-        current = line[2:].strip()
-        objects[current] = []
-    elif line.startswith("v "):
-        verts.append(line)
-    elif line.startswith("f ") and current is not None:
-        objects[current].append([int(t.split("/")[0]) for t in line.split()[1:]])
 models, groups, rows = [], set(), []
-for name, faces in objects.items():
-    used = sorted({i for f in faces for i in f})
-    remap = {old: new + 1 for new, old in enumerate(used)}
-    sid = name if name in info else next((k for k, v in info.items() if v["name"] == name), name)
-    fname = os.path.join("regions", sid + ".obj")
-    with open(os.path.join(out, fname), "w") as f:
-        f.write("o %s\n" % name)
-        for i in used:
-            f.write(verts[i - 1])
-        for face in faces:
-            f.write("f " + " ".join(str(remap[i]) for i in face) + "\n")
-    group, side = group_of(info.get(sid, {"name": name})["name"]), side_of(name)
+for s in stack["structures"]:
+    fname = os.path.join("regions", s["id"] + ".obj")
+    if not os.path.exists(os.path.join(out, fname)):
+        continue
+    name = s["name"]
+    group, side = group_of(name), side_of(name)
     gname = group if side == "midline" else "%s-%s" % (group, side)
     groups.add(gname)
-    title = name[:-2] if side != "midline" else name
-    title = title.replace("_", " ") + ("" if side == "midline" else " (%s)" % side)
-    colour = info.get(sid, {}).get("color", [0.8, 0.8, 0.8])
-    models.append({"name": sid, "file": fname, "group": gname, "colour": colour,
-                   "label": {"en": {"title": title, "description": "%s lobe group, %s" % (group, side)}}})
-    rows.append((sid, group, side, len(faces)))
+    title = (name[:-2] if side != "midline" else name).replace("_", " ")
+    if side != "midline":
+        title += " (%s)" % side
+    models.append({"name": s["id"], "file": fname, "group": gname, "colour": colour_of(group, side),
+                   "label": {"en": {"title": title, "description": "%s, %s" % (group, side)}}})
+    rows.append((s["id"], group, side))
 scene = {"version": 1, "models": models,
          "groups": [{"name": g, "visible": True} for g in sorted(groups)],
          "kiosk": {"languages": ["en"]}}
 json.dump(scene, open(os.path.join(out, "scene.json"), "w"), indent=1)
 with open(os.path.join(out, "regions.tsv"), "w") as f:
-    f.write("id\tgroup\tside\ttriangles\n")
+    f.write("id\tgroup\tside\n")
     for r in rows:
-        f.write("%s\t%s\t%s\t%d\n" % r)
-print("build-sample: %d regions in %d groups -> %s/scene.json" % (len(models), len(groups), out))
+        f.write("%s\t%s\t%s\n" % r)
+print("build-sample: %d of %d regions in %d groups -> %s/scene.json" % (len(models), len(stack["structures"]),
+                                                                      len(groups), out))
 PY
 
 if "$BODYGEN" --help | grep -q '^  lod '; then
@@ -113,4 +131,9 @@ if "$BODYGEN" --help | grep -q '^  lod '; then
   done
   sed -i 's/"regions\/\([^"]*\)\.obj"/"regions\/\1.bpm"/' "$OUT/scene.json"
 fi
-echo "build-sample: done: $OUT/scene.json"
+if "$BODYGEN" --help | grep -q '^  pack '; then
+  "$BODYGEN" pack "$OUT/scene.json" -o "$OUT/bundle"
+  echo "build-sample: done: open it with: bodyview $OUT/bundle"
+else
+  echo "build-sample: done: $OUT/scene.json"
+fi
