@@ -34,11 +34,50 @@ double cross2(const Vec2& a, const Vec2& b) { return a.x * b.y - a.y * b.x; }
 // Vertex k of `p` traversed counter-clockwise.
 Vec2 ccw_vertex(PolygonSpan p, bool reversed, size_t k) { return reversed ? p[p.size() - 1 - k] : p[k]; }
 
+// b's edges bucketed by the horizontal rows their y-range (padded by tol)
+// touches, so that crossings and the even-odd ray only visit nearby edges.
+struct EdgeRows {
+    double y0 = 0, inv_h = 0;
+    size_t count = 1;
+    std::vector<uint32_t> start, edges;  // CSR: row r holds edges[start[r] .. start[r+1])
+
+    size_t row(double y) const {
+        const double r = (y - y0) * inv_h;
+        return r <= 0 ? 0 : std::min(count - 1, size_t(r));
+    }
+
+    EdgeRows(PolygonSpan b, const Box& box, double tol) {
+        const size_t m = b.size();
+        count = std::max<size_t>(1, m / 2);
+        y0 = box.lo.y - tol;
+        const double h = (box.hi.y + tol - y0) / double(count);
+        inv_h = h > 0 ? 1 / h : 0;
+        start.assign(count + 1, 0);
+        for (int pass = 0; pass < 2; ++pass) {
+            std::vector<uint32_t> fill(start.begin(), start.end() - 1);
+            for (uint32_t j = 0; j < m; ++j) {
+                const double ya = b[j].y, yb = b[(j + 1) % m].y;
+                for (size_t r = row(std::min(ya, yb) - tol), last = row(std::max(ya, yb) + tol); r <= last; ++r) {
+                    if (pass == 0)
+                        ++start[r + 1];
+                    else
+                        edges[fill[r]++] = j;
+                }
+            }
+            if (pass == 0) {
+                for (size_t r = 0; r < count; ++r) start[r + 1] += start[r];
+                edges.resize(start[count]);
+            }
+        }
+    }
+};
+
 // Twice the integral of x dy - y dx over the part of ∂a (taken counter-clockwise)
 // inside b. Boundary shared with b counts only when `count_shared` and both run the same way.
 double boundary_inside(PolygonSpan a, bool a_rev, PolygonSpan b, bool b_rev, const Box& bbox, double tol,
                        bool count_shared) {
     const size_t n = a.size(), m = b.size();
+    const EdgeRows rows(b, bbox, tol);
     std::vector<double> ts;
     double sum = 0.0;
     for (size_t i = 0; i < n; ++i) {
@@ -50,29 +89,34 @@ double boundary_inside(PolygonSpan a, bool a_rev, PolygonSpan b, bool b_rev, con
         const double len2 = glm::dot(pq, pq);
         if (len2 == 0) continue;
         ts.assign({0.0, 1.0});
-        for (size_t j = 0; j < m; ++j) {
-            const Vec2 c = b[j], d = b[(j + 1) % m];
-            if (std::max(c.x, d.x) < lo.x - tol || std::min(c.x, d.x) > hi.x + tol || std::max(c.y, d.y) < lo.y - tol ||
-                std::min(c.y, d.y) > hi.y + tol)
-                continue;
-            const Vec2 cd = d - c;
-            const double den = cross2(pq, cd);
-            if (den != 0) {
-                const double t = cross2(c - p, cd) / den, u = cross2(c - p, pq) / den;
-                if (t > 0 && t < 1 && u >= 0 && u <= 1) ts.push_back(t);
+        for (size_t r = rows.row(lo.y - tol), last = rows.row(hi.y + tol); r <= last; ++r)
+            for (uint32_t e = rows.start[r]; e < rows.start[r + 1]; ++e) {
+                const uint32_t j = rows.edges[e];
+                const Vec2 c = b[j], d = b[(j + 1) % m];
+                if (std::max(c.x, d.x) < lo.x - tol || std::min(c.x, d.x) > hi.x + tol ||
+                    std::max(c.y, d.y) < lo.y - tol || std::min(c.y, d.y) > hi.y + tol)
+                    continue;
+                const Vec2 cd = d - c;
+                const double den = cross2(pq, cd);
+                if (den != 0) {
+                    const double t = cross2(c - p, cd) / den, u = cross2(c - p, pq) / den;
+                    if (t > 0 && t < 1 && u >= 0 && u <= 1) ts.push_back(t);
+                }
+                // b's vertices lying on pq (touching or collinear overlap).
+                const double tc = glm::dot(c - p, pq) / len2;
+                if (tc > 0 && tc < 1 && glm::length(p + pq * tc - c) <= tol) ts.push_back(tc);
             }
-            // b's vertices lying on pq (touching or collinear overlap).
-            const double tc = glm::dot(c - p, pq) / len2;
-            if (tc > 0 && tc < 1 && glm::length(p + pq * tc - c) <= tol) ts.push_back(tc);
-        }
         std::sort(ts.begin(), ts.end());
         for (size_t k = 0; k + 1 < ts.size(); ++k) {
             if (ts[k + 1] - ts[k] <= 1e-14) continue;
             const Vec2 s0 = p + pq * ts[k], s1 = p + pq * ts[k + 1], mid = (s0 + s1) * 0.5;
-            // Classify mid against b: inside (even-odd), or on b's boundary.
+            // Classify mid against b: inside (even-odd), or on b's boundary. Every
+            // edge spanning mid.y (and every edge within tol of mid) is in mid's row.
             bool inside = false, on = false, same_way = false;
-            for (size_t j = 0, h = m - 1; j < m; h = j++) {
-                const Vec2 &u = b[j], &v = b[h];
+            const size_t r = rows.row(mid.y);
+            for (uint32_t e = rows.start[r]; e < rows.start[r + 1]; ++e) {
+                const uint32_t j = rows.edges[e];
+                const Vec2 &u = b[(j + 1) % m], &v = b[j];
                 if ((u.y > mid.y) != (v.y > mid.y) && mid.x < (v.x - u.x) * (mid.y - u.y) / (v.y - u.y) + u.x)
                     inside = !inside;
                 const Vec2 uv = v - u;
@@ -80,7 +124,7 @@ double boundary_inside(PolygonSpan a, bool a_rev, PolygonSpan b, bool b_rev, con
                 const double t = l2 > 0 ? std::clamp(glm::dot(mid - u, uv) / l2, 0.0, 1.0) : 0.0;
                 if (!on && glm::length(u + uv * t - mid) <= tol) {
                     on = true;
-                    // b's edge h -> j runs u <- v in storage order; counter-clockwise direction:
+                    // b's edge j -> j+1 runs v -> u in storage order; counter-clockwise direction:
                     const Vec2 dir = b_rev ? (v - u) : (u - v);
                     same_way = glm::dot(dir, pq) > 0;
                 }
