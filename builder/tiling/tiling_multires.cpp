@@ -34,6 +34,10 @@ using tiling_detail::CyclicTiling;
 // Contours longer than this are simplified before the optimal tiling.
 constexpr size_t kCoarseVertices = 48;
 
+// Pairs with at most this many vertex pairs get the optimal tiling when the
+// multiresolution one is left with a fold (a 2000 x 2000 pair: about 0.5 s).
+constexpr double kOptimalFallbackCells = 4e6;
+
 // Phase 1: the filter-bank pyramid; levels[0] is the input.
 static std::vector<std::vector<Vec3>> analyse(std::span<const Vec3> contour) {
     std::vector<std::vector<Vec3>> levels;
@@ -111,6 +115,20 @@ void tile_multires(std::span<const Vec3> lower, std::span<const Vec3> upper, std
     }
     if (depth == 0) tiling.swap_until_stable();
     tiling.split_full_fans();
+    // Local swaps cannot undo a fold the coarse levels committed to; where one
+    // is left and the pair is small enough, the optimal tiling decides.
+    if (tiling.total().folds > 0 && depth > 0 && double(lower.size()) * double(upper.size()) <= kOptimalFallbackCells) {
+        std::vector<uint32_t> optimal;
+        tile_optimal(lower, upper, optimal);
+        std::vector<uint8_t> optimal_moves;
+        const uint32_t m = uint32_t(lower.size());
+        for (size_t t = 0; t < optimal.size(); t += 3) optimal_moves.push_back(optimal[t + 1] < m ? 0 : 1);
+        CyclicTiling other(band, optimal[0], optimal[2] - m, optimal_moves);
+        if (other.total() < tiling.total()) {
+            triangles.insert(triangles.end(), optimal.begin(), optimal.end());
+            return;
+        }
+    }
     tiling.emit(triangles);
 }
 

@@ -248,6 +248,18 @@ TEST(TilingMultires, NearOptimalArea) {
     }
 }
 
+// Jagged pairs large enough to be simplified: multires never ends with more
+// folds than the optimal tiling (it falls back to it when a fold is left).
+TEST(TilingMultires, JaggedNoMoreFoldsThanOptimal) {
+    std::mt19937 rng(13);
+    for (int trial = 0; trial < 4; ++trial) {
+        auto lower = random_contour(rng, 90 + rng() % 40, 0), upper = random_contour(rng, 70 + rng() % 40, 1.0);
+        auto opt = check_band(lower, upper, TilingMethod::Optimal);
+        auto multi = check_band(lower, upper, TilingMethod::Multires);
+        EXPECT_LE(multi.folds, opt.folds) << "trial " << trial;
+    }
+}
+
 INSTANTIATE_TEST_SUITE_P(Both, TilingMethods, ::testing::Values(TilingMethod::Optimal, TilingMethod::Multires),
                          [](const auto& info) { return std::string(body::tiling_method_name(info.param)); });
 
