@@ -50,7 +50,10 @@ Vec2 closest_on_polygon(const Vec2& p, std::span<const Vec2> poly) {
 // Moves a chord point onto the bisector between two branches (equal distance
 // to both), so that a chord runs along the gap between them (Meyers' medial
 // axis, approximated point by point).
-Vec2 onto_bisector(Vec2 p, std::span<const Vec2> side, std::span<const Vec2> main) {
+// Points only move across the straight chord (along `normal`), so the chord
+// stays a graph over its straight line: its points keep their order and cannot
+// collapse onto each other.
+Vec2 onto_bisector(Vec2 p, const Vec2& normal, std::span<const Vec2> side, std::span<const Vec2> main) {
     for (int iteration = 0; iteration < 16; ++iteration) {
         const Vec2 qs = closest_on_polygon(p, side), qm = closest_on_polygon(p, main);
         const double ds = glm::length(qs - p), dm = glm::length(qm - p);
@@ -58,7 +61,8 @@ Vec2 onto_bisector(Vec2 p, std::span<const Vec2> side, std::span<const Vec2> mai
         const Vec2 target = gap > 0 ? qs : qm;
         const double len = glm::length(target - p);
         if (len <= 0 || std::abs(gap) <= 1e-9 * (ds + dm)) break;
-        p += (target - p) * (0.5 * std::abs(gap) / len);
+        const Vec2 move = (target - p) * (0.5 * std::abs(gap) / len);
+        p += normal * glm::dot(move, normal);
     }
     return p;
 }
@@ -188,8 +192,12 @@ Result<std::vector<std::vector<uint32_t>>> partition_contour(std::span<const uin
         const Vec2 from(positions[single[(runs[r].start + runs[r].length) % n]]);
         const Vec2 to(positions[single[runs[r].start % n]]);
         const int k = std::max(2, int(std::lround(glm::length(to - from) / std::max(step, 1e-300))));
+        const Vec2 along = to - from;
+        const double along_len = glm::length(along);
+        const Vec2 normal = along_len > 0 ? Vec2(-along.y, along.x) / along_len : Vec2(0.0);
         for (int t = 1; t < k; ++t) {
-            const Vec2 p = onto_bisector(from + (to - from) * (double(t) / k), branches[runs[r].owner], branches[main]);
+            const Vec2 p =
+                onto_bisector(from + along * (double(t) / k), normal, branches[runs[r].owner], branches[main]);
             chords[r].push_back(uint32_t(positions.size()));
             positions.emplace_back(p.x, p.y, chord_z);
         }
