@@ -250,9 +250,9 @@ Camera Camera::framing_box(Vec3f lo, Vec3f hi, Vec3f direction, float aspect, fl
 struct Renderer::State {
     bool ready = false;
     Program baseline, smooth, hatching, xray, edges, wireframe;
-    GLuint tam = 0;
-    GLuint corner_vbo = 0;  // the 4 corners of an edge quad
-    GLuint empty_vao = 0;   // wireframe draws without attributes
+    GLuint tam[2] = {0, 0};  // tonal art map: tones 0-2, 3-5
+    GLuint corner_vbo = 0;   // the 4 corners of an edge quad
+    GLuint empty_vao = 0;    // wireframe draws without attributes
     std::map<ModelId, Model> models;
     ModelId next_id = 1;
     ModelId sphere = 0;
@@ -282,23 +282,29 @@ Status Renderer::init() {
     }
     glBindAttribLocation(s_->edges.id, 0, "a_corner");
 
-    // Tonal art map: a 2D array texture, one layer per tone, our own mip chain.
+    // Tonal art map: tones 0-2 and 3-5 packed into the RGB of two textures
+    // (Praun et al. 2001), our own mip chain (tone matched per level).
     TonalArtMap tam = make_tonal_art_map(256, 6);
-    glGenTextures(1, &s_->tam);
-    glBindTexture(GL_TEXTURE_2D_ARRAY, s_->tam);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     const auto levels = static_cast<GLsizei>(tam.levels.size());
-    glTexStorage3D(GL_TEXTURE_2D_ARRAY, levels, GL_R8, tam.size, tam.size, tam.tones);
-    for (GLsizei l = 0; l < levels; ++l) {
-        int s = std::max(1, tam.size >> l);
-        for (int t = 0; t < tam.tones; ++t)
-            glTexSubImage3D(GL_TEXTURE_2D_ARRAY, l, 0, 0, t, s, s, 1, GL_RED, GL_UNSIGNED_BYTE,
-                            tam.levels[static_cast<size_t>(l)][static_cast<size_t>(t)].data());
+    for (int half = 0; half < 2; ++half) {
+        GLuint& tex = s_->tam[half];
+        glGenTextures(1, &tex);
+        glBindTexture(GL_TEXTURE_2D, tex);
+        glTexStorage2D(GL_TEXTURE_2D, levels, GL_RGB8, tam.size, tam.size);
+        for (GLsizei l = 0; l < levels; ++l) {
+            const int size = std::max(1, tam.size >> l);
+            const auto& tones = tam.levels[static_cast<size_t>(l)];
+            std::vector<uint8_t> rgb(static_cast<size_t>(size) * static_cast<size_t>(size) * 3);
+            for (size_t i = 0; i < rgb.size() / 3; ++i)
+                for (size_t c = 0; c < 3; ++c) rgb[i * 3 + c] = tones[static_cast<size_t>(half) * 3 + c][i];
+            glTexSubImage2D(GL_TEXTURE_2D, l, 0, 0, size, size, GL_RGB, GL_UNSIGNED_BYTE, rgb.data());
+        }
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
     }
-    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, GL_REPEAT);
-    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_T, GL_REPEAT);
 
     const float corners[] = {0, -1, 0, 1, 1, -1, 1, 1};
     glGenBuffers(1, &s_->corner_vbo);
@@ -348,10 +354,10 @@ void Renderer::shutdown() {
         if (p->id) glDeleteProgram(p->id);
         *p = Program{};
     }
-    if (s_->tam) glDeleteTextures(1, &s_->tam);
+    glDeleteTextures(2, s_->tam);
     if (s_->corner_vbo) glDeleteBuffers(1, &s_->corner_vbo);
     if (s_->empty_vao) glDeleteVertexArrays(1, &s_->empty_vao);
-    s_->tam = s_->corner_vbo = s_->empty_vao = 0;
+    s_->tam[0] = s_->tam[1] = s_->corner_vbo = s_->empty_vao = 0;
     s_->ready = false;
 }
 
@@ -576,7 +582,7 @@ size_t Renderer::gpu_bytes() const {
         if (m.index_texture) total += (m.index_capacity + w - 1) / w * w * 4;
         if (m.edge_vbo) total += m.edge_count * sizeof(GpuEdge);
     }
-    if (s_->tam) total += 256 * 256 * 6 * 4 / 3;  // R8 layers with mip chains
+    if (s_->tam[0]) total += 2 * 256 * 256 * 3 * 4 / 3;  // two RGB8 textures with mip chains
     return total;
 }
 
@@ -596,10 +602,13 @@ void set_matrices(Program& p, const Frame& f, const Model& m) {
     glUniformMatrix3fv(p.loc("u_normal_matrix"), 1, GL_FALSE, glm::value_ptr(nm));
 }
 
+// Directions are normalized here once, not per fragment.
 void set_lights(Program& p, const Lighting& l) {
-    glUniform3fv(p.loc("u_key_dir"), 1, glm::value_ptr(l.key_dir));
-    glUniform3fv(p.loc("u_fill_dir"), 1, glm::value_ptr(l.fill_dir));
-    glUniform3fv(p.loc("u_rim_dir"), 1, glm::value_ptr(l.rim_dir));
+    auto unit = [](Vec3f v) { return glm::length(v) > 0.0f ? glm::normalize(v) : Vec3f(0.0f, 0.0f, 1.0f); };
+    const Vec3f key = unit(l.key_dir), fill = unit(l.fill_dir), rim = unit(l.rim_dir);
+    glUniform3fv(p.loc("u_key_dir"), 1, glm::value_ptr(key));
+    glUniform3fv(p.loc("u_fill_dir"), 1, glm::value_ptr(fill));
+    glUniform3fv(p.loc("u_rim_dir"), 1, glm::value_ptr(rim));
     glUniform4f(p.loc("u_light_levels"), l.key, l.fill, l.rim, l.ambient);
 }
 
@@ -736,8 +745,12 @@ void Renderer::render(const Camera& camera, const Lighting& lighting, const Fram
                 Vec3f paper = glm::mix(o.paper, col, 0.25f);
                 glUniform4f(p.loc("u_color"), paper.r, paper.g, paper.b, 1.0f);
                 glActiveTexture(GL_TEXTURE0);
-                glBindTexture(GL_TEXTURE_2D_ARRAY, s.tam);
-                glUniform1i(p.loc("u_tam"), 0);
+                glBindTexture(GL_TEXTURE_2D, s.tam[0]);
+                glActiveTexture(GL_TEXTURE1);
+                glBindTexture(GL_TEXTURE_2D, s.tam[1]);
+                glActiveTexture(GL_TEXTURE0);
+                glUniform1i(p.loc("u_tam_light"), 0);
+                glUniform1i(p.loc("u_tam_dark"), 1);
                 glUniform1f(p.loc("u_hatch_scale"), 1.6f / std::max(m.radius, 1e-6f));
                 glUniform1i(p.loc("u_two_tone"), m.state.style == Style::Hatching2Tone ? 1 : 0);
                 draw_triangles(m);

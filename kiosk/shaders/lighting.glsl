@@ -1,4 +1,5 @@
-// Key/fill/rim lights in view space (directions point toward the light).
+// Key/fill/rim lights in view space: unit directions toward the light
+// (normalized on the CPU).
 uniform vec3 u_key_dir;
 uniform vec3 u_fill_dir;
 uniform vec3 u_rim_dir;

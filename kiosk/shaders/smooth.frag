@@ -13,13 +13,12 @@ out vec4 o_color;
 void main() {
     vec3 n = facing_normal(v_view_normal, v_view_pos);
     vec3 v = normalize(-v_view_pos);
-    vec3 key = normalize(u_key_dir);
-    float diffuse = u_light_levels.x * max(dot(n, key), 0.0) +
-                    u_light_levels.y * max(dot(n, normalize(u_fill_dir)), 0.0) + u_light_levels.w;
-    vec3 h = normalize(key + v);
+    float diffuse = u_light_levels.x * max(dot(n, u_key_dir), 0.0) + u_light_levels.y * max(dot(n, u_fill_dir), 0.0) +
+                    u_light_levels.w;
+    vec3 h = normalize(u_key_dir + v);
     float specular = 0.25 * u_light_levels.x * pow(max(dot(n, h), 0.0), 40.0);
-    float rim = u_light_levels.z * pow(1.0 - max(dot(n, v), 0.0), 3.0) *
-                (0.5 + 0.5 * max(dot(n, normalize(u_rim_dir)), 0.0));
+    float f = 1.0 - max(dot(n, v), 0.0);
+    float rim = u_light_levels.z * f * f * f * (0.5 + 0.5 * max(dot(n, u_rim_dir), 0.0));
     vec3 c = u_color.rgb * diffuse + vec3(specular + rim);
     o_color = vec4(min(c, vec3(1.0)), u_color.a);
 }

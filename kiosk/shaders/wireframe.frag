@@ -11,7 +11,7 @@ out vec4 o_color;
 
 void main() {
     vec3 n = normalize(cross(dFdx(v_view_pos), dFdy(v_view_pos)));
-    float light = 0.55 + 0.45 * abs(dot(n, normalize(u_key_dir)));
+    float light = 0.55 + 0.45 * abs(dot(n, u_key_dir));
     vec3 d = v_barycentric / max(fwidth(v_barycentric), vec3(1e-6));
     float px = min(min(d.x, d.y), d.z);
     float edge = 1.0 - smoothstep(0.5 * u_width_px - 0.5, 0.5 * u_width_px + 0.5, px);
