@@ -5,9 +5,20 @@
 //   adjacent slices (correspondence/), bands (tiling/), branches (branching/),
 //   caps (caps/) -> one closed mesh per structure with its statistics.
 //
+// Branches (1:N, N:1): when every branch lies inside the single contour the
+// region between them is triangulated as a lifted planar height field between
+// two short vertical walls; otherwise side branches lying wholly inside are
+// detached (closed by their own flat cap) and the rest is split by nearest-
+// branch partition with bisector chords (branching/). N:M goes through a
+// mid-slice convex hull (N:1 below it, 1:M above). Contours linked to nothing
+// become thin slabs around their plane.
+//
 // Guarantees for valid input with the default options (partition branching,
 // flat or dome caps): every mesh is closed, consistently oriented outward and
-// vertex-manifold; the mesh passes through every input contour at its slice.
+// vertex- and edge-manifold, without degenerate triangles; re-slicing just
+// above or below each input plane gives back its contours. Bands come from
+// tiling/ and are only as fold-free as it makes them; branch geometry is built
+// to avoid crossings but not proven free of them for every input.
 // `--branching overlap` (thesis method) and `--caps none` leave open or
 // overlapping surfaces by design.
 #include <functional>
