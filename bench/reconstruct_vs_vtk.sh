@@ -3,7 +3,8 @@
 # planes), rebuilt by bodygen (both tiling methods) and by VTK's
 # vtkVoxelContoursToSurfaceFilter from the same stack; prints for each the
 # build time, the symmetric Hausdorff distance to the original surface within
-# the slab the slices span, and the bodygen/VTK ratios.
+# the slab the slices span, and the bodygen/VTK ratios. Times are CPU seconds
+# (bodygen: the whole build process; VTK: the filter's Update()).
 #
 # usage: bench/reconstruct_vs_vtk.sh [BUILD_DIR] [--resolution N]
 #   BUILD_DIR defaults to build; needs BUILD_DIR/bin/bodygen.
@@ -31,17 +32,17 @@ fi
 
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-now() { date +%s.%N; }
 
 for planes in 40 100; do
   stack=$work/bunny$planes.contours.json
   "$bodygen" slice "$bunny" --planes "$planes" --avoid-self-intersections -o "$stack"
   for tiling in multires optimal; do
     out=$work/bunny${planes}_$tiling.obj
-    t0=$(now)
-    "$bodygen" build "$stack" -o "$out" --tiling "$tiling" --quiet
-    t1=$(now)
-    seconds=$($py -c "print($t1 - $t0)")
+    # CPU seconds (user + system) of the build: the machine may be shared, so wall time is not comparable.
+    seconds=$($py -c 'import resource, subprocess, sys
+subprocess.run(sys.argv[1:], check=True)
+r = resource.getrusage(resource.RUSAGE_CHILDREN)
+print(r.ru_utime + r.ru_stime)' "$bodygen" build "$stack" -o "$out" --tiling "$tiling" --quiet)
     echo "== bunny, $planes planes, bodygen --tiling $tiling vs VTK (voxel resolution $resolution)"
     $py bench/reconstruct_vs_vtk.py "$stack" "$bunny" "$out" --resolution "$resolution" \
       --bodygen-seconds "$seconds" --label "bodygen $tiling"
