@@ -632,7 +632,9 @@ Result<ProgressiveBuild> build_progressive_mesh(const Mesh& mesh, const LodOptio
     std::vector<uint32_t> kept;
     clean_input(mesh, s, kept);
     if (s.idx.empty()) return input_error("lod: mesh '" + mesh.name + "' has no non-degenerate triangles");
-    if (s.pos.size() >= (1u << 28)) return input_error("lod: mesh '" + mesh.name + "' is too large");
+    if (s.pos.size() > pm::kMaxVertices || s.idx.size() / 3 > pm::kMaxFaces)
+        return input_error("lod: mesh '" + mesh.name + "' has more than " + std::to_string(pm::kMaxVertices) +
+                           " vertices or " + std::to_string(pm::kMaxFaces) + " triangles");
     std::vector<Vec3> normals(s.pos.size());
     if (mesh.normals.size() == mesh.positions.size()) {
         for (size_t i = 0; i < kept.size(); ++i) {

@@ -15,10 +15,12 @@ namespace body::pm {
 
 inline constexpr char kMagic[4] = {'B', 'P', 'M', '\0'};
 inline constexpr uint16_t kVersion = 1;
-inline constexpr size_t kFileHeaderSize = 16;     // magic, version, flags, structure count, header crc
-inline constexpr size_t kSectionHeaderSize = 12;  // tag, structure, reserved, payload length
-inline constexpr size_t kSectionTrailerSize = 4;  // crc32 over header + payload
-inline constexpr uint32_t kMaxPatchFan = 60;      // a split's parent has at most this many faces
+inline constexpr size_t kFileHeaderSize = 16;       // magic, version, flags, structure count, header crc
+inline constexpr size_t kSectionHeaderSize = 12;    // tag, structure, reserved, payload length
+inline constexpr size_t kSectionTrailerSize = 4;    // crc32 over header + payload
+inline constexpr uint32_t kMaxPatchFan = 60;        // a split's parent has at most this many faces
+inline constexpr uint32_t kMaxVertices = 1u << 22;  // per structure (bounds what a corrupt INFO can allocate)
+inline constexpr uint32_t kMaxFaces = 1u << 23;     // per structure
 
 // Section tags, four ASCII bytes read as a little-endian uint32.
 constexpr uint32_t make_tag(const char (&s)[5]) {

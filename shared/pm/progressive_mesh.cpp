@@ -183,7 +183,7 @@ Status BpmStream::parse_info(std::span<const uint8_t> payload, const std::string
     for (float x : f)
         if (!std::isfinite(x)) return input_error(where + ": non-finite colour or bounds");
     const uint64_t vertices = uint64_t(bv) + splits;
-    if (bv == 0 || bf == 0 || faces < bf || vertices > (1u << 28) || faces > (1u << 28) || chunk == 0 ||
+    if (bv == 0 || bf == 0 || faces < bf || vertices > kMaxVertices || faces > kMaxFaces || chunk == 0 ||
         uint64_t(faces - bf) > 3ull * splits)
         return input_error(where + ": inconsistent counts");
     m->name_.assign(name.begin(), name.end());
