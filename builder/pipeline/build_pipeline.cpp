@@ -280,8 +280,23 @@ private:
         for (uint32_t k : gl) pts.insert(pts.end(), loops_[s][k].xy.begin(), loops_[s][k].xy.end());
         for (uint32_t k : gu) pts.insert(pts.end(), loops_[s + 1][k].xy.begin(), loops_[s + 1][k].xy.end());
         std::vector<Vec2> hull = convex_hull(pts);
-        if (hole) std::reverse(hull.begin(), hull.end());
+        if (hole) std::reverse(hull.begin(), hull.end());  // rings run clockwise around voids
         const double zm = 0.5 * (zl + zu);
+        if (without_children(s, gl) && without_children(s + 1, gu)) {
+            // The hull grown by 1% around its centre holds every contour strictly
+            // inside: a nested region below it and another above.
+            Vec2 centre(0.0);
+            for (const Vec2& p : hull) centre += p;
+            centre /= double(hull.size());
+            for (Vec2& p : hull) p = centre + (p - centre) * 1.01;
+            const std::vector<uint32_t> mid = lifted_copy(hull, zm);
+            std::vector<const Loop*> below, above;
+            for (uint32_t k : gl) below.push_back(&loops_[s][k]);
+            for (uint32_t k : gu) above.push_back(&loops_[s + 1][k]);
+            auto status = nested_region(hull, mid, zm, below, zl, hole, first_lower);
+            if (!status) return status;
+            return nested_region(hull, mid, zm, above, zu, hole, first_lower);
+        }
         std::vector<uint32_t> mid = lifted_copy(hull, zm);
         auto status = split(mid, loops_[s], gl, 0.5 * (zl + zm), false, first_lower);
         if (!status) return status;
@@ -342,32 +357,39 @@ private:
     // over a planar triangulation, so it cannot fold or cross itself.
     Status nested_branch(size_t ss, uint32_t single, size_t bs, const std::vector<uint32_t>& branches, bool hole) {
         const Loop& outer = loops_[ss][single];
-        const double z_single = z(ss), z_branch = z(bs);
-        const double z_a = z_single + (z_branch - z_single) / 3, z_b = z_single + 2 * (z_branch - z_single) / 3;
-        const bool single_below = z_single < z_branch;
-        std::vector<uint32_t> outer_copy = lifted_copy(outer.xy, z_a);
-        if (single_below)
-            prism(outer.ids, outer_copy);
+        std::vector<const Loop*> inner;
+        for (uint32_t b : branches) inner.push_back(&loops_[bs][b]);
+        return nested_region(outer.xy, outer.ids, z(ss), inner, z(bs), hole, outer);
+    }
+
+    // The construction above for any outer ring (`outer_xy`/`outer_ids` at
+    // `z_outer`) and inner loops at `z_inner`.
+    Status nested_region(const std::vector<Vec2>& outer_xy, const std::vector<uint32_t>& outer_ids, double z_outer,
+                         const std::vector<const Loop*>& inner, double z_inner, bool hole, const Loop& blame) {
+        const double z_a = z_outer + (z_inner - z_outer) / 3, z_b = z_outer + 2 * (z_inner - z_outer) / 3;
+        const bool outer_below = z_outer < z_inner;
+        std::vector<uint32_t> outer_copy = lifted_copy(outer_xy, z_a);
+        if (outer_below)
+            prism(outer_ids, outer_copy);
         else
-            prism(outer_copy, outer.ids);
-        std::vector<std::span<const Vec2>> region{outer.xy};
+            prism(outer_copy, outer_ids);
+        std::vector<std::span<const Vec2>> region{outer_xy};
         std::vector<uint32_t> ids(outer_copy);
-        for (uint32_t b : branches) {
-            const Loop& branch = loops_[bs][b];
-            std::vector<uint32_t> copy = lifted_copy(branch.xy, z_b);
-            if (single_below)
-                prism(copy, branch.ids);
+        for (const Loop* branch : inner) {
+            std::vector<uint32_t> copy = lifted_copy(branch->xy, z_b);
+            if (outer_below)
+                prism(copy, branch->ids);
             else
-                prism(branch.ids, copy);
-            region.emplace_back(branch.xy);
+                prism(branch->ids, copy);
+            region.emplace_back(branch->xy);
             ids.insert(ids.end(), copy.begin(), copy.end());
         }
         std::vector<uint32_t> local;
         auto status = triangulate_polygon_with_holes(region, local);
-        if (!status) return input_error(where(path_, *outer.source) + ": branching: " + status.error().message);
+        if (!status) return input_error(where(path_, *blame.source) + ": branching: " + status.error().message);
         // Triangles come out counter-clockwise from +z: right for the roof over a
-        // solid that narrows upwards; the floor (single above) and holes face the other way.
-        const bool face_up = single_below != hole;
+        // solid that narrows upwards; the floor (outer above) and holes face the other way.
+        const bool face_up = outer_below != hole;
         for (size_t t = 0; t < local.size(); t += 3) {
             const uint32_t a = ids[local[t]], b = ids[local[t + 1]], c = ids[local[t + 2]];
             if (face_up)
@@ -376,6 +398,14 @@ private:
                 triangles.insert(triangles.end(), {a, c, b});
         }
         return ok_status();
+    }
+
+    // No loop of the structure nested inside any of `members` on slice s.
+    bool without_children(size_t s, const std::vector<uint32_t>& members) const {
+        for (const Loop& l : loops_[s])
+            for (uint32_t m : members)
+                if (l.parent == int(m)) return false;
+        return true;
     }
 
     // One id loop against several branch loops: partition, then tile each piece.

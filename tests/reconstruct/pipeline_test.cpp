@@ -172,6 +172,20 @@ TEST_P(Pipeline, TwoToTwoBranch) {
     check_all(b.stack, 1);
 }
 
+TEST_P(Pipeline, TwoToTwoBranchOfHoles) {
+    // Two tunnels through a block swap into two others: holes branch N:M too.
+    StackBuilder b;
+    for (int k = 0; k < 3; ++k)
+        b.slice(k, {circle(0, 0, 20, 48), ellipse(-5, 0, 4.5, 3, 0, 28), ellipse(5, 0, 4.5, 3, 0, 28)});
+    for (int k = 3; k < 6; ++k)
+        b.slice(k, {circle(0, 0, 20, 48), ellipse(0, -4, 3.5, 3.5, 0, 28), ellipse(0, 4, 3.5, 3.5, 0, 28)});
+    if (GetParam().correspondence == CorrespondenceMethod::Ellipse) {
+        for (const auto& m : build(b.stack)) EXPECT_TRUE(m.closed_manifold);
+        return;
+    }
+    check_all(b.stack, 1, 3);  // one tunnel network with four mouths: genus 3
+}
+
 TEST_P(Pipeline, TwoStructuresSideBySide) {
     StackBuilder b;
     b.stack.structures = {{"l", "Left", {1, 0, 0}}, {"r", "Right", {0, 0, 1}}};
