@@ -61,7 +61,8 @@ struct Model {
     Vec3f box_min{0.0f}, box_max{0.0f};  // object space
     // Lazily created for `lines` and `wireframe`.
     GLuint position_texture = 0, index_texture = 0;
-    GLuint edge_vao = 0, edge_vbo = 0;
+    GLuint edge_texture = 0;  // RGBA32UI, one GpuEdge per texel
+    size_t edge_capacity = 0;
     size_t edge_count = 0;
     bool edges_stale = true;
     bool internal = false;  // the manipulation sphere
@@ -251,7 +252,6 @@ struct Renderer::State {
     bool ready = false;
     Program baseline, smooth, hatching, xray, edges, wireframe;
     GLuint tam[2] = {0, 0};  // tonal art map: tones 0-2, 3-5
-    GLuint corner_vbo = 0;   // the 4 corners of an edge quad
     GLuint empty_vao = 0;    // wireframe draws without attributes
     std::map<ModelId, Model> models;
     ModelId next_id = 1;
@@ -280,7 +280,6 @@ Status Renderer::init() {
         }
         *w.p = std::move(p.value());
     }
-    glBindAttribLocation(s_->edges.id, 0, "a_corner");
 
     // Tonal art map: tones 0-2 and 3-5 packed into the RGB of two textures
     // (Praun et al. 2001), our own mip chain (tone matched per level).
@@ -306,10 +305,6 @@ Status Renderer::init() {
         glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
     }
 
-    const float corners[] = {0, -1, 0, 1, 1, -1, 1, 1};
-    glGenBuffers(1, &s_->corner_vbo);
-    glBindBuffer(GL_ARRAY_BUFFER, s_->corner_vbo);
-    glBufferData(GL_ARRAY_BUFFER, sizeof(corners), corners, GL_STATIC_DRAW);
     glGenVertexArrays(1, &s_->empty_vao);
     s_->ready = true;
 
@@ -338,12 +333,11 @@ Status Renderer::init() {
 
 namespace {
 void free_model(Model& m) {
-    GLuint buffers[] = {m.vbo_position, m.vbo_normal, m.ebo, m.edge_vbo};
-    glDeleteBuffers(4, buffers);
-    GLuint vaos[] = {m.vao, m.edge_vao};
-    glDeleteVertexArrays(2, vaos);
-    GLuint textures[] = {m.position_texture, m.index_texture};
-    glDeleteTextures(2, textures);
+    GLuint buffers[] = {m.vbo_position, m.vbo_normal, m.ebo};
+    glDeleteBuffers(3, buffers);
+    glDeleteVertexArrays(1, &m.vao);
+    GLuint textures[] = {m.position_texture, m.index_texture, m.edge_texture};
+    glDeleteTextures(3, textures);
 }
 }  // namespace
 
@@ -355,9 +349,8 @@ void Renderer::shutdown() {
         *p = Program{};
     }
     glDeleteTextures(2, s_->tam);
-    if (s_->corner_vbo) glDeleteBuffers(1, &s_->corner_vbo);
     if (s_->empty_vao) glDeleteVertexArrays(1, &s_->empty_vao);
-    s_->tam[0] = s_->tam[1] = s_->corner_vbo = s_->empty_vao = 0;
+    s_->tam[0] = s_->tam[1] = s_->empty_vao = 0;
     s_->ready = false;
 }
 
@@ -580,7 +573,7 @@ size_t Renderer::gpu_bytes() const {
         total += m.vertex_capacity * (sizeof(Vec3f) + 4) + m.index_capacity * 4;
         if (m.position_texture) total += (m.vertex_capacity + w - 1) / w * w * sizeof(Vec3f);
         if (m.index_texture) total += (m.index_capacity + w - 1) / w * w * 4;
-        if (m.edge_vbo) total += m.edge_count * sizeof(GpuEdge);
+        if (m.edge_texture) total += (m.edge_capacity + w - 1) / w * w * sizeof(GpuEdge);
     }
     if (s_->tam[0]) total += 2 * 256 * 256 * 3 * 4 / 3;  // two RGB8 textures with mip chains
     return total;
@@ -612,6 +605,19 @@ void set_lights(Program& p, const Lighting& l) {
     glUniform4f(p.loc("u_light_levels"), l.key, l.fill, l.rim, l.ambient);
 }
 
+// Attribute-less draws index their data with gl_VertexID. They are issued in
+// chunks with the offset as a uniform: softpipe (Mesa's reference driver, the
+// aarch64 cross smoke's) restarts gl_VertexID in the pieces it splits long
+// draws into, which drops most of a large model.
+constexpr size_t kVertexIdChunk = 3 * 1024;
+void draw_vertex_id_chunks(Program& p, size_t vertices) {
+    const GLint base = p.loc("u_vertex_base");
+    for (size_t first = 0; first < vertices; first += kVertexIdChunk) {
+        glUniform1i(base, static_cast<GLint>(first));
+        glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(std::min(kVertexIdChunk, vertices - first)));
+    }
+}
+
 void draw_triangles(const Model& m) {
     glBindVertexArray(m.vao);
     glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(m.index_count), GL_UNSIGNED_INT, nullptr);
@@ -628,9 +634,9 @@ static void ensure_position_texture(Model& m) {
                  reinterpret_cast<const uint8_t*>(positions.data()), sizeof(Vec3f));
 }
 
-static void ensure_edges(Model& m, GLuint corner_vbo) {
+static void ensure_edges(Model& m) {
     ensure_position_texture(m);
-    if (!m.edges_stale && m.edge_vao) return;
+    if (!m.edges_stale && m.edge_texture) return;
     auto indices = read_buffer<uint32_t>(GL_ELEMENT_ARRAY_BUFFER, m.ebo, m.index_count);
     std::vector<GpuEdge> edges;
     {
@@ -651,27 +657,13 @@ static void ensure_edges(Model& m, GLuint corner_vbo) {
         }
     }
     m.edge_count = edges.size();
-    if (!m.edge_vao) {
-        glGenVertexArrays(1, &m.edge_vao);
-        glGenBuffers(1, &m.edge_vbo);
+    if (edges.size() > m.edge_capacity || !m.edge_texture) {
+        if (m.edge_texture) glDeleteTextures(1, &m.edge_texture);
+        m.edge_capacity = std::max<size_t>(edges.size(), 1);
+        m.edge_texture = make_data_texture(GL_RGBA32UI, m.edge_capacity);
     }
-    glBindVertexArray(m.edge_vao);
-    glBindBuffer(GL_ARRAY_BUFFER, corner_vbo);
-    glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 8, nullptr);
-    glEnableVertexAttribArray(0);
-    glBindBuffer(GL_ARRAY_BUFFER, m.edge_vbo);
-    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(edges.size() * sizeof(GpuEdge)), edges.data(),
-                 GL_DYNAMIC_DRAW);
-    glVertexAttribIPointer(1, 2, GL_UNSIGNED_INT, sizeof(GpuEdge), nullptr);
-    glVertexAttribPointer(2, 4, GL_INT_2_10_10_10_REV, GL_TRUE, sizeof(GpuEdge),
-                          reinterpret_cast<const void*>(offsetof(GpuEdge, n0)));
-    glVertexAttribPointer(3, 4, GL_INT_2_10_10_10_REV, GL_TRUE, sizeof(GpuEdge),
-                          reinterpret_cast<const void*>(offsetof(GpuEdge, n1)));
-    for (GLuint a = 1; a <= 3; ++a) {
-        glVertexAttribDivisor(a, 1);
-        glEnableVertexAttribArray(a);
-    }
-    glBindVertexArray(0);
+    texture_rows(m.edge_texture, 0, edges.size(), GL_RGBA_INTEGER, GL_UNSIGNED_INT,
+                 reinterpret_cast<const uint8_t*>(edges.data()), sizeof(GpuEdge));
     m.edges_stale = false;
 }
 
@@ -764,7 +756,7 @@ void Renderer::render(const Camera& camera, const Lighting& lighting, const Fram
                 glPolygonOffset(1.0f, 1.0f);
                 draw_triangles(m);
                 glDisable(GL_POLYGON_OFFSET_FILL);
-                ensure_edges(m, s.corner_vbo);
+                ensure_edges(m);
                 Program& p = s.edges;
                 glUseProgram(p.id);
                 glm::mat4 mvp = f.projection * f.view * m.state.transform;
@@ -779,9 +771,15 @@ void Renderer::render(const Camera& camera, const Lighting& lighting, const Fram
                 glActiveTexture(GL_TEXTURE0);
                 glBindTexture(GL_TEXTURE_2D, m.position_texture);
                 glUniform1i(p.loc("u_positions"), 0);
+                glActiveTexture(GL_TEXTURE1);
+                glBindTexture(GL_TEXTURE_2D, m.edge_texture);
+                glUniform1i(p.loc("u_edges"), 1);
+                glActiveTexture(GL_TEXTURE0);
                 glDisable(GL_CULL_FACE);
-                glBindVertexArray(m.edge_vao);
-                glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, static_cast<GLsizei>(m.edge_count));
+                // Six vertices (two triangles) per edge from gl_VertexID: no
+                // instancing, which software rasterizers run instance by instance.
+                glBindVertexArray(s.empty_vao);
+                draw_vertex_id_chunks(p, m.edge_count * 6);
                 glEnable(GL_CULL_FACE);
                 s.stats.edges += m.edge_count;
                 ++s.stats.draw_calls;
@@ -804,7 +802,7 @@ void Renderer::render(const Camera& camera, const Lighting& lighting, const Fram
                 glUniform1i(p.loc("u_indices"), 1);
                 glActiveTexture(GL_TEXTURE0);
                 glBindVertexArray(s.empty_vao);
-                glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(m.index_count));
+                draw_vertex_id_chunks(p, m.index_count);
                 break;
             }
         }
