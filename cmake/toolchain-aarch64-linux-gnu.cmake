@@ -17,5 +17,9 @@ set(CMAKE_FIND_ROOT_PATH_MODE_PACKAGE BOTH)
 set(ENV{PKG_CONFIG_LIBDIR} /usr/lib/aarch64-linux-gnu/pkgconfig:/usr/share/pkgconfig)
 set(ENV{PKG_CONFIG_PATH} "")
 
-set(CMAKE_CROSSCOMPILING_EMULATOR qemu-aarch64;-L;/usr/aarch64-linux-gnu)
+# `-L /`, not `-L /usr/aarch64-linux-gnu`: the loader must come from the same
+# glibc build as the multiarch libc6:arm64 it loads. The cross package's
+# ld-linux (2.36-8cross1) with multiarch libc.so (2.36-9+deb12u*) hangs in the
+# first pthread_create.
+set(CMAKE_CROSSCOMPILING_EMULATOR qemu-aarch64;-L;/)
 set(CPACK_DEBIAN_PACKAGE_ARCHITECTURE arm64)

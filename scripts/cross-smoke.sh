@@ -9,7 +9,7 @@ ROOT=$(cd "$(dirname "$0")/.." && pwd)
 NATIVE=${1:-$ROOT/build}
 CROSS=${CROSS_BUILD_DIR:-$ROOT/build-arm64}
 JOBS=${JOBS:-$(nproc)}
-QEMU=(qemu-aarch64 -L /usr/aarch64-linux-gnu)
+QEMU=(qemu-aarch64 -L /)  # loader from libc6:arm64, see cmake/toolchain-aarch64-linux-gnu.cmake
 WORK=$(mktemp -d)
 trap 'rm -rf "$WORK"' EXIT
 
