@@ -15,6 +15,7 @@
 #include <numeric>
 
 #include "builder/contours/validate.h"
+#include "shared/mesh_intersect.h"
 
 namespace body {
 namespace {
@@ -262,6 +263,26 @@ private:
     Status connect_group(size_t s, const std::vector<uint32_t>& gl, const std::vector<uint32_t>& gu, bool hole) {
         const Loop& first_lower = loops_[s][gl[0]];
         if (gl.size() == 1 && gu.size() == 1) return band(first_lower.ids, loops_[s + 1][gu[0]].ids, first_lower);
+        if (gl.size() > 1 && gu.size() > 1) return connect_hull(s, gl, gu, hole);
+        // 1:N or N:1: the faithful constructions first; if their triangles cross
+        // each other (or the partition fails), fall back to the nested regions
+        // around the grown hull, which cannot cross (no holes involved).
+        const size_t tri0 = triangles.size(), pos0 = positions.size();
+        const std::vector<Loop> saved_lower = loops_[s], saved_upper = loops_[s + 1];
+        Status status = connect_branch(s, gl, gu, hole);
+        const bool can_fall_back = without_children(s, gl) && without_children(s + 1, gu);
+        if (!can_fall_back) return status;
+        if (status && count_self_intersections(positions, std::span<const uint32_t>(triangles).subspan(tri0)) == 0)
+            return status;
+        triangles.resize(tri0);
+        positions.resize(pos0);
+        loops_[s] = saved_lower;
+        loops_[s + 1] = saved_upper;
+        return connect_hull(s, gl, gu, hole);
+    }
+
+    Status connect_branch(size_t s, const std::vector<uint32_t>& gl, const std::vector<uint32_t>& gu, bool hole) {
+        const Loop& first_lower = loops_[s][gl[0]];
         const double zl = z(s), zu = z(s + 1);
         if (gl.size() == 1) {
             if (nested(s, gl[0], s + 1, gu)) return nested_branch(s, gl[0], s + 1, gu, hole);
@@ -275,7 +296,13 @@ private:
             if (kept.size() == 1) return band(loops_[s][kept[0]].ids, loops_[s + 1][gu[0]].ids, first_lower);
             return split(loops_[s + 1][gu[0]].ids, loops_[s], kept, 0.5 * (zl + zu), false, first_lower);
         }
-        // N:M: a mid-slice contour (convex hull of the group) takes N:1 below and 1:M above.
+        return connect_hull(s, gl, gu, hole);
+    }
+
+    // A mid-slice contour (convex hull of the group) takes N:1 below and 1:M above.
+    Status connect_hull(size_t s, const std::vector<uint32_t>& gl, const std::vector<uint32_t>& gu, bool hole) {
+        const Loop& first_lower = loops_[s][gl[0]];
+        const double zl = z(s), zu = z(s + 1);
         std::vector<Vec2> pts;
         for (uint32_t k : gl) pts.insert(pts.end(), loops_[s][k].xy.begin(), loops_[s][k].xy.end());
         for (uint32_t k : gu) pts.insert(pts.end(), loops_[s + 1][k].xy.begin(), loops_[s + 1][k].xy.end());
