@@ -28,9 +28,18 @@ bool in_triangle(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& p) {
 }
 
 // Loop k as vertices in the wanted orientation (ccw for the outer boundary, cw for holes).
+// Traced outlines (voxel boundaries above all) are full of equal coordinates,
+// which make the bridging ray pass exactly through vertices. The triangulation
+// only depends on orientation tests, so it works on a copy turned by an odd
+// angle where such ties are gone.
+Vec2 turned(const Vec2& p) {
+    const double c = 0.9952793830, s = 0.0970473905;  // cos/sin of about 5.57 degrees
+    return {c * p.x - s * p.y, s * p.x + c * p.y};
+}
+
 std::vector<Vert> oriented_loop(std::span<const Vec2> loop, uint32_t first_id, bool ccw) {
     std::vector<Vert> out(loop.size());
-    for (size_t i = 0; i < loop.size(); ++i) out[i] = {loop[i], first_id + uint32_t(i)};
+    for (size_t i = 0; i < loop.size(); ++i) out[i] = {turned(loop[i]), first_id + uint32_t(i)};
     if ((signed_area2(loop.data(), loop.size()) > 0) != ccw) std::reverse(out.begin(), out.end());
     return out;
 }
@@ -88,6 +97,18 @@ void bridge_hole(std::vector<Vert>& outer, const std::vector<Vert>& hole) {
                 if (angle < best_angle || (angle == best_angle && dist < best_dist))
                     best_angle = angle, best_dist = dist, vi = i;
             }
+        }
+    }
+    // A vertex already used by an earlier bridge appears twice: take the copy
+    // whose interior wedge holds M, or the new bridge would cross the old one.
+    for (size_t k = 0; k < n; ++k) {
+        if (outer[k].p != outer[vi].p) continue;
+        const Vec2 prev = outer[(k + n - 1) % n].p, cur = outer[k].p, next = outer[(k + 1) % n].p;
+        const bool convex = cross3(prev, cur, next) > 0;
+        const bool left_in = cross3(prev, cur, M) >= 0, left_out = cross3(cur, next, M) >= 0;
+        if (convex ? (left_in && left_out) : (left_in || left_out)) {
+            vi = k;
+            break;
         }
     }
     std::vector<Vert> merged;
