@@ -169,19 +169,26 @@ Status load_model(render::Renderer& renderer, const scene::Model& m, Loaded& l) 
             }
             return true;
         };
-        while (!bases_ready()) {
-            if (!l.streaming) break;
+        Status failure = ok_status();
+        while (!bases_ready() && l.streaming) {
             l.loader->wait_for_data();
             // One chunk at a time: stop decoding as soon as the bases are in.
             auto fed =
                 l.loader->pump([&](std::span<const uint8_t> chunk) { return l.stream->feed(chunk); }, kChunkBytes);
-            if (!fed) return fed.error();
-            if (l.loader->finished()) {
+            if (!fed) {
+                failure = fed.error();
                 l.streaming = false;
-                if (auto st = l.stream->finish(); !st) return st.error();
+            } else if (l.loader->finished()) {
+                l.streaming = false;
+                if (auto st = l.stream->finish(); !st) failure = st.error();
             }
         }
-        if (!bases_ready()) return input_error(m.path + ": ended before every base mesh arrived");
+        if (!bases_ready()) return failure ? input_error(m.path + ": ended before every base mesh arrived") : failure;
+        if (!failure) {
+            // The bases are in: show them, without the detail that failed.
+            std::fprintf(stderr, "bodyview: %s: %s (keeping what arrived)\n", m.name.c_str(),
+                         failure.error().message.c_str());
+        }
         for (size_t i = 0; i < l.stream->structure_count(); ++i) {
             Part p;
             p.pm = &l.stream->structure(i);
@@ -372,10 +379,13 @@ int run_kiosk(platform::Surface& surface, const scene::Scene& scene, const Kiosk
     });
 
     Overlay overlay;
+    const auto ui_start = std::chrono::steady_clock::now();
     const float ui_scale = std::max(1.0f, static_cast<float>(std::min(surface.width(), surface.height())) / 800.0f);
     if (auto s = overlay.init(options.font.empty() ? default_font_file() : options.font, ui_scale, label_text); !s) {
         std::fprintf(stderr, "bodyview: labels disabled: %s\n", s.error().message.c_str());
     }
+
+    const double ui_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - ui_start).count();
 
     // ---- touch on boards without a display server: evdev, hotplugged
     std::unique_ptr<platform::EvdevInput> touch;
@@ -460,8 +470,9 @@ int run_kiosk(platform::Surface& surface, const scene::Scene& scene, const Kiosk
                         static_cast<size_t>(std::llround(static_cast<double>(p.full_triangles()) * ratio));
                     const size_t level = p.pm->level_for_triangles(std::max<size_t>(want, 1));
                     const size_t wanted_full = pm_level_wanted(*p.pm, want);
-                    if (level < wanted_full) at_planned_detail = false;
-                    if (level != p.pm->level()) {
+                    if (level < wanted_full || frame == 0) at_planned_detail = false;
+                    // The first frame shows the base meshes: on screen as soon as possible.
+                    if (frame > 0 && level != p.pm->level()) {
                         const render::Dirty d = p.set_level(level, now);
                         if (auto s = renderer.update_model(p.id, p.mesh(), d); !s) {
                             std::fprintf(stderr, "bodyview: %s\n", s.error().message.c_str());
@@ -536,8 +547,10 @@ int run_kiosk(platform::Surface& surface, const scene::Scene& scene, const Kiosk
         if (first_frame_ms < 0.0) {
             first_frame_ms = since_start;
             if (options.verbose) {
-                std::fprintf(stderr, "bodyview: first frame %.1f ms after start (%zu/%zu models, bases in %.1f ms)\n",
-                             first_frame_ms, ok_models, scene.models.size(), load_ms);
+                std::fprintf(stderr,
+                             "bodyview: first frame %.1f ms after start (%zu/%zu models, base meshes in %.1f ms, "
+                             "label atlases %.1f ms)\n",
+                             first_frame_ms, ok_models, scene.models.size(), load_ms, ui_ms);
             }
         }
         if (full_detail_ms < 0.0 && !streaming && at_planned_detail) {
