@@ -23,6 +23,12 @@ double cross3(const Vec2& a, const Vec2& b, const Vec2& c) {
     return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
 }
 
+// A strictly convex corner: collinear points (which the turned copy leaves a
+// rounding error away from zero) never make an ear, so no triangle is flat.
+bool strictly_convex(const Vec2& a, const Vec2& b, const Vec2& c) {
+    return cross3(a, b, c) > 1e-10 * glm::length(b - a) * glm::length(c - b);
+}
+
 bool in_triangle(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& p) {
     return cross3(a, b, p) >= 0 && cross3(b, c, p) >= 0 && cross3(c, a, p) >= 0;
 }
@@ -123,7 +129,7 @@ void bridge_hole(std::vector<Vert>& outer, const std::vector<Vert>& hole) {
 bool is_ear(const std::vector<Vert>& poly, const std::vector<uint32_t>& prev, const std::vector<uint32_t>& next,
             uint32_t i, uint32_t count) {
     const Vec2 a = poly[prev[i]].p, b = poly[i].p, c = poly[next[i]].p;
-    if (cross3(a, b, c) <= 0) return false;
+    if (!strictly_convex(a, b, c)) return false;
     uint32_t k = next[next[i]];
     for (uint32_t s = 0; s + 3 < count; ++s, k = next[k]) {
         const Vec2 p = poly[k].p;
@@ -131,6 +137,53 @@ bool is_ear(const std::vector<Vert>& poly, const std::vector<uint32_t>& prev, co
         if (in_triangle(a, b, c, p)) return false;
     }
     return true;
+}
+
+bool flat(const Vec2& a, const Vec2& b, const Vec2& c) {
+    const double scale = std::max({glm::length(b - a), glm::length(c - b), glm::length(a - c)});
+    return std::abs(cross3(a, b, c)) <= 1e-10 * scale * scale;
+}
+
+// Collinear points left at the end of ear clipping make a flat triangle
+// (u, w, m) with m between u and w. The triangle (w, u, x) across its long
+// edge is replaced, together with it, by (w, m, x) and (m, u, x): the same
+// area, the same boundary, nothing flat (Lawson-style edge flip).
+Status flip_flat_triangles(const std::vector<Vec2>& at, std::vector<uint32_t>& tris, size_t begin) {
+    for (int round = 0; round < 64; ++round) {
+        bool changed = false, any_flat = false;
+        for (size_t t = begin; t < tris.size(); t += 3) {
+            const uint32_t* v = &tris[t];
+            if (!flat(at[v[0]], at[v[1]], at[v[2]])) continue;
+            any_flat = true;
+            // m: the vertex between the other two (the long edge is opposite it).
+            int mk = 0;
+            double longest = -1;
+            for (int k = 0; k < 3; ++k) {
+                const double len = glm::length(at[v[(k + 1) % 3]] - at[v[(k + 2) % 3]]);
+                if (len > longest) longest = len, mk = k;
+            }
+            const uint32_t m = v[mk], u = v[(mk + 1) % 3], w = v[(mk + 2) % 3];
+            for (size_t o = begin; o < tris.size(); o += 3) {
+                if (o == t) continue;
+                const uint32_t* q = &tris[o];
+                for (int k = 0; k < 3; ++k) {
+                    if (q[k] != w || q[(k + 1) % 3] != u) continue;
+                    const uint32_t x = q[(k + 2) % 3];
+                    if (flat(at[w], at[m], at[x]) || flat(at[m], at[u], at[x])) continue;
+                    tris[t] = w, tris[t + 1] = m, tris[t + 2] = x;
+                    tris[o] = m, tris[o + 1] = u, tris[o + 2] = x;
+                    changed = true;
+                    break;
+                }
+                if (changed) break;
+            }
+            if (changed) break;
+        }
+        if (!any_flat || !changed) break;
+    }
+    // A flat triangle that no flip removes (its long edge on the boundary: a
+    // vertex touching another loop) stays; the cap is still closed.
+    return ok_status();
 }
 
 }  // namespace
@@ -146,6 +199,7 @@ const char* cap_style_name(CapStyle style) {
 
 Status triangulate_polygon_with_holes(std::span<const std::span<const Vec2>> loops, std::vector<uint32_t>& triangles) {
     if (loops.empty() || loops[0].size() < 3) return input_error("cap: outer loop has fewer than 3 points");
+    const size_t triangles_begin = triangles.size();
     uint32_t first = uint32_t(loops[0].size());
     std::vector<Vert> poly = oriented_loop(loops[0], 0, true);
     std::vector<std::vector<Vert>> holes;
@@ -184,9 +238,21 @@ Status triangulate_polygon_with_holes(std::span<const std::span<const Vec2>> loo
         double best_cross = 0;
         for (uint32_t s = 0; s < count; ++s, k = next[k]) {
             const double c = cross3(poly[prev[k]].p, poly[k].p, poly[next[k]].p);
-            if (c > best_cross) best_cross = c, best = k;
+            if (c > best_cross && strictly_convex(poly[prev[k]].p, poly[k].p, poly[next[k]].p))
+                best_cross = c, best = k;
         }
-        if (best == UINT32_MAX) return input_error("cap: region has no convex vertex left (zero area?)");
+        if (best == UINT32_MAX) {
+            // Only collinear or reflex corners left: clip the flattest one; the
+            // flat triangle is flipped away below.
+            double flattest = -1e300;
+            for (uint32_t s2 = 0; s2 < count; ++s2, k = next[k]) {
+                const double c = cross3(poly[prev[k]].p, poly[k].p, poly[next[k]].p);
+                if (c > flattest) flattest = c, best = k;
+            }
+            if (!(flattest >= -1e-10 * glm::length(poly[best].p - poly[prev[best]].p) *
+                                  glm::length(poly[next[best]].p - poly[best].p)))
+                return input_error("cap: region has no convex vertex left (zero area?)");
+        }
         triangles.insert(triangles.end(), {poly[prev[best]].id, poly[best].id, poly[next[best]].id});
         next[prev[best]] = next[best];
         prev[next[best]] = prev[best];
@@ -194,10 +260,10 @@ Status triangulate_polygon_with_holes(std::span<const std::span<const Vec2>> loo
         i = prev[best];
         misses = 0;
     }
-    if (cross3(poly[prev[i]].p, poly[i].p, poly[next[i]].p) <= 0)
-        return input_error("cap: last triangle is degenerate");
     triangles.insert(triangles.end(), {poly[prev[i]].id, poly[i].id, poly[next[i]].id});
-    return ok_status();
+    std::vector<Vec2> at(first);
+    for (const Vert& v : poly) at[v.id] = v.p;
+    return flip_flat_triangles(at, triangles, triangles_begin);
 }
 
 Status build_cap(std::span<const std::span<const Vec2>> loops, std::span<const std::span<const uint32_t>> ids, double z,

@@ -263,40 +263,57 @@ private:
     Status connect_group(size_t s, const std::vector<uint32_t>& gl, const std::vector<uint32_t>& gu, bool hole) {
         const Loop& first_lower = loops_[s][gl[0]];
         if (gl.size() == 1 && gu.size() == 1) return band(first_lower.ids, loops_[s + 1][gu[0]].ids, first_lower);
-        if (gl.size() > 1 && gu.size() > 1) return connect_hull(s, gl, gu, hole);
-        // 1:N or N:1: the faithful constructions first; if their triangles cross
-        // each other (or the partition fails), fall back to the nested regions
-        // around the grown hull, which cannot cross (no holes involved).
+        // Constructions in order of faithfulness: the nested region (when it
+        // applies), the partition, the regions around the grown hull. The first
+        // whose triangles do not cross each other is kept; failing that, the
+        // first that could be built at all (still closed, but crossing).
+        const bool one_side = gl.size() == 1 || gu.size() == 1;
         const size_t tri0 = triangles.size(), pos0 = positions.size();
         const std::vector<Loop> saved_lower = loops_[s], saved_upper = loops_[s + 1];
-        Status status = connect_branch(s, gl, gu, hole);
-        const bool can_fall_back = without_children(s, gl) && without_children(s + 1, gu);
-        if (!can_fall_back) return status;
-        if (status && count_self_intersections(positions, std::span<const uint32_t>(triangles).subspan(tri0)) == 0)
-            return status;
-        triangles.resize(tri0);
-        positions.resize(pos0);
-        loops_[s] = saved_lower;
-        loops_[s + 1] = saved_upper;
-        return connect_hull(s, gl, gu, hole);
+        auto roll_back = [&] {
+            triangles.resize(tri0);
+            positions.resize(pos0);
+            loops_[s] = saved_lower;
+            loops_[s + 1] = saved_upper;
+        };
+        int first_built = -1;
+        Status first_error = ok_status();
+        for (int attempt = 0; attempt < 3; ++attempt) {
+            if (!one_side && attempt < 2) continue;
+            Status status = attempt == 0   ? connect_nested(s, gl, gu, hole)
+                            : attempt == 1 ? connect_partition(s, gl, gu)
+                                           : connect_hull(s, gl, gu, hole);
+            if (status && count_self_intersections(positions, std::span<const uint32_t>(triangles).subspan(tri0)) == 0)
+                return status;
+            if (status && first_built < 0) first_built = attempt;
+            if (!status && first_error) first_error = status;
+            roll_back();
+        }
+        if (first_built < 0)
+            return first_error.ok() ? input_error(where(path_, *first_lower.source) + ": branching failed")
+                                    : first_error;
+        return first_built == 0   ? connect_nested(s, gl, gu, hole)
+               : first_built == 1 ? connect_partition(s, gl, gu)
+                                  : connect_hull(s, gl, gu, hole);
     }
 
-    Status connect_branch(size_t s, const std::vector<uint32_t>& gl, const std::vector<uint32_t>& gu, bool hole) {
+    Status connect_nested(size_t s, const std::vector<uint32_t>& gl, const std::vector<uint32_t>& gu, bool hole) {
+        if (gl.size() == 1 && nested(s, gl[0], s + 1, gu)) return nested_branch(s, gl[0], s + 1, gu, hole);
+        if (gu.size() == 1 && nested(s + 1, gu[0], s, gl)) return nested_branch(s + 1, gu[0], s, gl, hole);
+        return input_error("not nested");
+    }
+
+    Status connect_partition(size_t s, const std::vector<uint32_t>& gl, const std::vector<uint32_t>& gu) {
         const Loop& first_lower = loops_[s][gl[0]];
         const double zl = z(s), zu = z(s + 1);
         if (gl.size() == 1) {
-            if (nested(s, gl[0], s + 1, gu)) return nested_branch(s, gl[0], s + 1, gu, hole);
             const std::vector<uint32_t> kept = detach_interior(s, gl[0], s + 1, gu);
             if (kept.size() == 1) return band(first_lower.ids, loops_[s + 1][kept[0]].ids, first_lower);
             return split(first_lower.ids, loops_[s + 1], kept, 0.5 * (zl + zu), true, first_lower);
         }
-        if (gu.size() == 1) {
-            if (nested(s + 1, gu[0], s, gl)) return nested_branch(s + 1, gu[0], s, gl, hole);
-            const std::vector<uint32_t> kept = detach_interior(s + 1, gu[0], s, gl);
-            if (kept.size() == 1) return band(loops_[s][kept[0]].ids, loops_[s + 1][gu[0]].ids, first_lower);
-            return split(loops_[s + 1][gu[0]].ids, loops_[s], kept, 0.5 * (zl + zu), false, first_lower);
-        }
-        return connect_hull(s, gl, gu, hole);
+        const std::vector<uint32_t> kept = detach_interior(s + 1, gu[0], s, gl);
+        if (kept.size() == 1) return band(loops_[s][kept[0]].ids, loops_[s + 1][gu[0]].ids, first_lower);
+        return split(loops_[s + 1][gu[0]].ids, loops_[s], kept, 0.5 * (zl + zu), false, first_lower);
     }
 
     // A mid-slice contour (convex hull of the group) takes N:1 below and 1:M above.
