@@ -1,6 +1,9 @@
 // evdev multitouch protocol B fed fabricated kernel events: slots, tracking ids,
 // SYN_DROPPED resync, device removal, and the rotation mapping.
 #include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cstdio>
 
 #include "platform/evdev_input.h"
 
@@ -174,6 +177,17 @@ TEST(EvdevInput, OpensADirectoryWithoutTouchscreens) {
     std::vector<InputEvent> out;
     (*input)->poll(0.0, out);
     EXPECT_EQ((*input)->device_count(), 0u);
+    EXPECT_TRUE(out.empty());
+    // A node appearing later goes through the inotify path; one that is not an
+    // evdev touch screen (here a plain file) is ignored, and so is its removal.
+    const std::string node = std::string(dir) + "/event7";
+    std::FILE* f = std::fopen(node.c_str(), "w");
+    ASSERT_NE(f, nullptr);
+    std::fclose(f);
+    (*input)->poll(1.0, out);
+    EXPECT_EQ((*input)->device_count(), 0u);
+    ::unlink(node.c_str());
+    (*input)->poll(2.0, out);
     EXPECT_TRUE(out.empty());
     ::rmdir(dir);
     EXPECT_FALSE(EvdevInput::open(EvdevOptions{"/nonexistent/input", 800, 480, 0}));
