@@ -100,7 +100,8 @@ EglContext::~EglContext() {
     eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
     if (surface_ != EGL_NO_SURFACE) eglDestroySurface(display_, surface_);
     if (context_ != EGL_NO_CONTEXT) eglDestroyContext(display_, context_);
-    eglTerminate(display_);
+    // No eglTerminate: the EGLDisplay is shared by every context on the same
+    // platform in this process, and terminating it would kill the others.
 }
 
 Status EglContext::create_window_surface(void* native_window) {

@@ -94,6 +94,7 @@ render::Image RenderFixture::draw(const render::Camera& camera, const render::Li
 
 render::Image RenderFixture::draw(const render::Camera& camera, const render::Lighting& lighting,
                                   const render::FrameOptions& o) {
+    surface_->make_current();  // another fixture may have been current
     renderer_.render(camera, lighting, o);
     render::Image img;
     img.width = o.width;
