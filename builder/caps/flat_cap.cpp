@@ -23,8 +23,8 @@ double cross3(const Vec2& a, const Vec2& b, const Vec2& c) {
     return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
 }
 
-// A strictly convex corner: collinear points (which the turned copy leaves a
-// rounding error away from zero) never make an ear, so no triangle is flat.
+// A strictly convex corner: collinear points (traced outlines are full of
+// them) never make an ear, so no triangle is flat.
 bool strictly_convex(const Vec2& a, const Vec2& b, const Vec2& c) {
     return cross3(a, b, c) > 1e-10 * glm::length(b - a) * glm::length(c - b);
 }
@@ -34,18 +34,9 @@ bool in_triangle(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& p) {
 }
 
 // Loop k as vertices in the wanted orientation (ccw for the outer boundary, cw for holes).
-// Traced outlines (voxel boundaries above all) are full of equal coordinates,
-// which make the bridging ray pass exactly through vertices. The triangulation
-// only depends on orientation tests, so it works on a copy turned by an odd
-// angle where such ties are gone.
-Vec2 turned(const Vec2& p) {
-    const double c = 0.9952793830, s = 0.0970473905;  // cos/sin of about 5.57 degrees
-    return {c * p.x - s * p.y, s * p.x + c * p.y};
-}
-
 std::vector<Vert> oriented_loop(std::span<const Vec2> loop, uint32_t first_id, bool ccw) {
     std::vector<Vert> out(loop.size());
-    for (size_t i = 0; i < loop.size(); ++i) out[i] = {turned(loop[i]), first_id + uint32_t(i)};
+    for (size_t i = 0; i < loop.size(); ++i) out[i] = {loop[i], first_id + uint32_t(i)};
     if ((signed_area2(loop.data(), loop.size()) > 0) != ccw) std::reverse(out.begin(), out.end());
     return out;
 }
