@@ -45,17 +45,34 @@ glm::mat4 to_matrix(const scene::Transform& t) {
 
 // One structure of a scene model: an OBJ object (ModelSource) or a structure
 // of a .bpm being streamed (owned by the model's BpmStream).
+void merge(render::Dirty& into, const render::Dirty& d) {
+    if (d.vertex_end > d.vertex_begin) {
+        into.vertex_begin =
+            into.vertex_end > into.vertex_begin ? std::min(into.vertex_begin, d.vertex_begin) : d.vertex_begin;
+        into.vertex_end = std::max(into.vertex_end, d.vertex_end);
+    }
+    if (d.index_end > d.index_begin) {
+        into.index_begin =
+            into.index_end > into.index_begin ? std::min(into.index_begin, d.index_begin) : d.index_begin;
+        into.index_end = std::max(into.index_end, d.index_end);
+    }
+}
+
 struct Part {
     std::unique_ptr<render::ModelSource> source;
     pm::ProgressiveMesh* pm = nullptr;
     render::ModelId id = 0;
     size_t base_triangles = 0;
-    // Geomorph (pm parts): the positions uploaded to the GPU. Vertices added by
-    // the last refinement, [morph_begin, morph_end), move from their parents'
-    // positions to their own over Geomorph::kSeconds instead of popping in.
+    // Geomorphs (pm parts), over Geomorph::kSeconds, on the CPU: `shown` holds the
+    // positions uploaded to the GPU. After a refinement the vertices it added,
+    // [morph_begin, morph_end), glide from their parents' positions to their own;
+    // before a coarsening the vertices it will remove glide to their parents and
+    // the level drops when they arrive (`collapsing`, towards `pending_level`).
     std::vector<Vec3f> shown;
     Geomorph morph;
     size_t morph_begin = 0, morph_end = 0;
+    bool collapsing = false;
+    size_t pending_level = 0;
 
     size_t full_triangles() const { return pm ? pm->max_triangle_count() : source->full_triangles(); }
     size_t triangles() const { return pm ? pm->triangle_count() : source->triangles(); }
@@ -77,39 +94,57 @@ struct Part {
         for (size_t k = v.begin; k < v.end && k < shown.size(); ++k) shown[k] = src[k];
         return render::Dirty{v.begin, v.end, i.begin, i.end};
     }
-    // Moves the morphing vertices to their blend at `now`; returns the range to upload.
+    bool morphing() const { return morph_end > morph_begin; }
+    // Puts the morphing vertices back on their own positions and stops.
+    render::Dirty stop_morph() {
+        for (size_t k = morph_begin; k < morph_end && k < shown.size(); ++k) shown[k] = pm->positions()[k];
+        render::Dirty d{morph_begin, morph_end, 0, 0};
+        morph_begin = morph_end = 0;
+        collapsing = false;
+        return d;
+    }
+    // Moves the morphing vertices to their blend at `now`; a finished collapse
+    // drops the level. Returns what to upload.
     render::Dirty step_morph(double now) {
         const float f = morph.factor(now);
         const auto target = pm->morph_targets();
-        const auto final_pos = pm->positions();
-        for (size_t k = morph_begin; k < morph_end; ++k) shown[k] = glm::mix(target[k], final_pos[k], f);
+        const auto own = pm->positions();
+        for (size_t k = morph_begin; k < morph_end; ++k) {
+            shown[k] = collapsing ? glm::mix(own[k], target[k], f) : glm::mix(target[k], own[k], f);
+        }
         render::Dirty d{morph_begin, morph_end, 0, 0};
-        if (f >= 1.0f) morph_begin = morph_end = 0;
+        if (f >= 1.0f) {
+            const bool drop = collapsing;
+            morph_begin = morph_end = 0;
+            collapsing = false;
+            if (drop) {
+                pm->set_level(pending_level);
+                merge(d, take_dirty());
+            }
+        }
         return d;
     }
-    // Goes to `level`; a refinement starts a geomorph of the new vertices.
-    render::Dirty set_level(size_t level, double now) {
-        const size_t before = pm->vertex_count();
-        if (morph_end > morph_begin) {  // finish a running morph at once
-            for (size_t k = morph_begin; k < morph_end && k < shown.size(); ++k) shown[k] = pm->positions()[k];
-        }
-        render::Dirty finished{morph_begin, morph_end, 0, 0};
-        morph_begin = morph_end = 0;
-        pm->set_level(level);
-        render::Dirty d = take_dirty();
-        const size_t after = pm->vertex_count();
-        if (after > before) {
-            morph.start(now, before, after);
+    // Heads for `level`; returns what to upload (possibly nothing).
+    render::Dirty update(size_t level, double now) {
+        render::Dirty d{};
+        if (collapsing && level == pending_level) return step_morph(now);
+        if (morphing()) merge(d, stop_morph());  // a new target: land the old morph at once
+        const size_t current = pm->level();
+        if (level > current) {
+            const size_t before = pm->vertex_count();
+            pm->set_level(level);
+            merge(d, take_dirty());
+            morph.start(now, before, pm->vertex_count());
             morph_begin = before;
-            morph_end = after;
-            (void)step_morph(now);
-            d.vertex_begin = std::min(d.vertex_begin < d.vertex_end ? d.vertex_begin : before, before);
-            d.vertex_end = std::max(d.vertex_end, after);
-        }
-        if (finished.vertex_end > finished.vertex_begin) {
-            d.vertex_begin =
-                d.vertex_end > d.vertex_begin ? std::min(d.vertex_begin, finished.vertex_begin) : finished.vertex_begin;
-            d.vertex_end = std::max(d.vertex_end, finished.vertex_end);
+            morph_end = pm->vertex_count();
+            merge(d, step_morph(now));
+        } else if (level < current) {
+            morph.start(now, pm->vertex_count(), pm->vertex_count() - (current - level));
+            morph_begin = pm->vertex_count() - (current - level);  // one vertex per split
+            morph_end = pm->vertex_count();
+            collapsing = true;
+            pending_level = level;
+            merge(d, step_morph(now));
         }
         return d;
     }
@@ -472,15 +507,12 @@ int run_kiosk(platform::Surface& surface, const scene::Scene& scene, const Kiosk
                     const size_t wanted_full = pm_level_wanted(*p.pm, want);
                     if (level < wanted_full || frame == 0) at_planned_detail = false;
                     // The first frame shows the base meshes: on screen as soon as possible.
-                    if (frame > 0 && level != p.pm->level()) {
-                        const render::Dirty d = p.set_level(level, now);
-                        if (auto s = renderer.update_model(p.id, p.mesh(), d); !s) {
-                            std::fprintf(stderr, "bodyview: %s\n", s.error().message.c_str());
-                        }
-                    } else if (p.morph_end > p.morph_begin) {
-                        const render::Dirty d = p.step_morph(now);
-                        if (auto s = renderer.update_model(p.id, p.mesh(), d); !s) {
-                            std::fprintf(stderr, "bodyview: %s\n", s.error().message.c_str());
+                    if (frame > 0 && (level != p.pm->level() || p.morphing())) {
+                        const render::Dirty d = p.update(level, now);
+                        if (d.vertex_end > d.vertex_begin || d.index_end > d.index_begin) {
+                            if (auto s = renderer.update_model(p.id, p.mesh(), d); !s) {
+                                std::fprintf(stderr, "bodyview: %s\n", s.error().message.c_str());
+                            }
                         }
                     }
                 }
