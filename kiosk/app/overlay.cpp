@@ -153,11 +153,15 @@ void Overlay::draw(const std::vector<Control>& controls, const LabelCard& card, 
         const GlyphAtlas& a = which == 0 ? s.title : s.body;
         const std::u32string t = decode_utf8(utf8);
         const float w = a.measure(t);
-        const float x = r.x + std::max(4.0f, (r.w - w) * 0.5f);
-        const float y = r.y + (r.h + a.ascent() * 0.75f) * 0.5f;
-        for (const GlyphQuad& q : a.layout(t, x, y)) {
-            if (q.x1 > r.x + r.w) break;
-            quad(s.text[which], q.x0, q.y0, q.x1, q.y1, q.s0, q.t0, q.s1, q.t1, c);
+        // Too wide for the button: shrink it (down to 60%), then clip.
+        const float room = r.w - 8.0f;
+        const float k = w > room ? std::max(0.6f, room / w) : 1.0f;
+        const float x = r.x + std::max(4.0f, (r.w - w * k) * 0.5f);
+        const float y = r.y + (r.h + a.ascent() * 0.75f * k) * 0.5f;
+        for (const GlyphQuad& q : a.layout(t, 0.0f, 0.0f)) {
+            const float x0 = x + q.x0 * k, x1 = x + q.x1 * k;
+            if (x1 > r.x + r.w - 2.0f) break;
+            quad(s.text[which], x0, y + q.y0 * k, x1, y + q.y1 * k, q.s0, q.t0, q.s1, q.t1, c);
         }
     };
     for (const Control& c : controls) {
