@@ -20,6 +20,7 @@ import vtk
 from vtk.util import numpy_support as ns
 
 BODYGEN, ATLAS, NAMES, WORK = sys.argv[1:5]
+MIN_AREA = 3  # as scripts/build-sample.sh: drop per-slice islands of 1-3 voxels
 os.makedirs(WORK, exist_ok=True)
 
 
@@ -125,7 +126,8 @@ def volume(poly):
 def bodygen_route(jobs):
     stack = os.path.join(WORK, "aal.contours.json")
     t0 = time.perf_counter()
-    rc, out = run([BODYGEN, "contours", ATLAS, "--labels", NAMES, "--jobs", str(jobs), "--quiet", "-o", stack])
+    rc, out = run([BODYGEN, "contours", ATLAS, "--labels", NAMES, "--min-area", str(MIN_AREA), "--jobs", str(jobs),
+                   "--quiet", "-o", stack])
     if rc != 0:
         raise SystemExit("bodygen contours failed: " + out)
     t_contours = time.perf_counter() - t0
@@ -256,7 +258,7 @@ for jobs in (1, 2):
     tc, tb, meshes, errors = bodygen_route(jobs)
     by_label = {by_name.get(n, n): m for n, m in meshes.items()}
     by_label = {k: v for k, v in by_label.items() if isinstance(k, int)}
-    rows.append(("bodygen contours + build (--jobs %d)" % jobs, jobs, tc + tb, score(by_label), errors,
+    rows.append(("bodygen contours --min-area %g + build (--jobs %d)" % (MIN_AREA, jobs), jobs, tc + tb, score(by_label), errors,
                  (tc, tb)))
 
 base = rows[0][2]

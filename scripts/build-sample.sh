@@ -33,7 +33,9 @@ fi
 mkdir -p "$OUT"
 
 echo "build-sample: contours ($JOBS jobs)"
-"$BODYGEN" contours "$ATLAS" --labels "$NAMES" --jobs "$JOBS" -o "$OUT/aal.contours.json"
+# --min-area 3: per-slice islands of 1-3 voxels are atlas speckle, and partition
+# branching cannot split a small contour into many of them.
+"$BODYGEN" contours "$ATLAS" --labels "$NAMES" --min-area 3 --jobs "$JOBS" -o "$OUT/aal.contours.json"
 
 if ! "$BODYGEN" --help | grep -q '^  build '; then
   echo "build-sample: this bodygen has no 'build' command yet; stopping after contours" >&2

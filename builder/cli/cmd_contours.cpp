@@ -28,6 +28,7 @@ constexpr const char* kUsage =
     "  --only 3,7,12     only these labels (RT-STRUCT: ROI numbers)\n"
     "  --threshold T     non-integer volumes: extract value >= T as one mask\n"
     "  --tolerance V     simplification tolerance in voxels (default 0.5; 0 keeps every vertex)\n"
+    "  --min-area A      drop islands and fill holes smaller than A voxels per slice (0-8, default 0)\n"
     "  --jobs N          structures extracted in parallel (default 1)\n"
     "  --quiet           no progress bar or notes\n";
 
@@ -97,6 +98,10 @@ Result<ImportOptions> import_options_from_args(const CliArgs& args) {
     if (!tol) return tol.error();
     if (*tol < 0.0 || *tol > 10.0) return input_error("option --tolerance: must be between 0 and 10 voxels");
     o.tolerance = *tol;
+    auto min_area = args.get_double("min-area", 0.0);
+    if (!min_area) return min_area.error();
+    if (*min_area < 0.0 || *min_area > 8.0) return input_error("option --min-area: must be between 0 and 8 voxels");
+    o.min_area = *min_area;
     auto jobs = args.get_long("jobs", 1);
     if (!jobs) return jobs.error();
     if (*jobs < 1 || *jobs > 1024) return input_error("option --jobs: must be between 1 and 1024");
@@ -105,8 +110,9 @@ Result<ImportOptions> import_options_from_args(const CliArgs& args) {
 }
 
 int run_contours(const Args& argv) {
-    auto args = CliArgs::parse(argv, {"labels", "axis", "step", "only", "threshold", "tolerance", "jobs", "output"},
-                               {"help", "quiet"});
+    auto args =
+        CliArgs::parse(argv, {"labels", "axis", "step", "only", "threshold", "tolerance", "min-area", "jobs", "output"},
+                       {"help", "quiet"});
     if (!args) return report(args.error());
     if (args->has("help")) {
         std::printf("%s", kUsage);

@@ -44,7 +44,11 @@ struct ImportOptions {
     std::vector<int64_t> only;        // labels to extract; empty: all present
     std::optional<double> threshold;  // binarise: value >= threshold is label 1
     double tolerance = 0.5;           // simplification tolerance in voxels (0: none)
-    int jobs = 1;                     // worker threads across structures
+    // Islands and holes whose traced area is below this many voxel cross-sections
+    // are dropped (holes filled): per-slice speckle cleanup, 0 keeps everything.
+    // At most 8, so no dropped island can contain a hole.
+    double min_area = 0.0;
+    int jobs = 1;  // worker threads across structures
     // Called from the calling thread as structures finish: (done, total).
     std::function<void(size_t, size_t)> progress;
     // Non-fatal findings (skipped contours, oblique frames, empty labels).

@@ -238,7 +238,7 @@ struct LabelResult {
 
 // Phase 3: one label, all its slices.
 void extract_label(const LabelVolume& vol, const SliceFrame& f, int32_t label, const Extent& e, int step,
-                   double tolerance, LabelResult& out) {
+                   double tolerance, double min_area, LabelResult& out) {
     out.label = label;
     const size_t u0 = e.lo[f.u], v0 = e.lo[f.v];
     const size_t w = e.hi[f.u] - u0 + 1, h = e.hi[f.v] - v0 + 1;
@@ -260,6 +260,12 @@ void extract_label(const LabelVolume& vol, const SliceFrame& f, int32_t label, c
         }
         if (!any) continue;
         trace_mask_boundaries(mask, w, h, rings);
+        if (min_area > 0.0) {
+            std::erase_if(rings, [&](const std::vector<Vec2>& r) {
+                return std::fabs(signed_area2(r.data(), r.size())) < 2.0 * min_area;
+            });
+            if (rings.empty()) continue;
+        }
         simplify_rings(rings, tolerance);
         for (auto& ring : rings) {
             for (Vec2& p : ring) {
@@ -333,6 +339,9 @@ Result<ContourStack> import_nifti_labels(const std::string& path, const ImportOp
     if (!(options.tolerance >= 0.0) || options.tolerance > 10.0) {
         return input_error("--tolerance must be between 0 and 10 voxels");
     }
+    if (!(options.min_area >= 0.0) || options.min_area > 8.0) {
+        return input_error("--min-area must be between 0 and 8 voxels");
+    }
     auto vol = read_label_volume(path, options);
     if (!vol) return vol.error();
     auto frame = slice_frame(*vol, options.axis, path);
@@ -387,7 +396,8 @@ Result<ContourStack> import_nifti_labels(const std::string& path, const ImportOp
     std::condition_variable cv;
     auto work = [&] {
         for (size_t i = next++; i < labels.size(); i = next++) {
-            extract_label(*vol, *frame, labels[i], extents[labels[i]], options.step, options.tolerance, results[i]);
+            extract_label(*vol, *frame, labels[i], extents[labels[i]], options.step, options.tolerance,
+                          options.min_area, results[i]);
             std::lock_guard lock(mutex);
             ++done;
             cv.notify_one();
@@ -398,7 +408,8 @@ Result<ContourStack> import_nifti_labels(const std::string& path, const ImportOp
     for (size_t t = 0; jobs > 1 && t < jobs; ++t) threads.emplace_back(work);
     if (jobs == 1) {
         for (size_t i = 0; i < labels.size(); ++i) {
-            extract_label(*vol, *frame, labels[i], extents[labels[i]], options.step, options.tolerance, results[i]);
+            extract_label(*vol, *frame, labels[i], extents[labels[i]], options.step, options.tolerance,
+                          options.min_area, results[i]);
             if (options.progress) options.progress(i + 1, labels.size());
         }
     } else {

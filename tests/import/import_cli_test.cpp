@@ -126,24 +126,42 @@ TEST(AalAtlas, All116RegionsExtractAndValidate) {
     EXPECT_TRUE(valid.ok()) << valid.error().message;
 }
 
-// Every region through the pipeline: a closed 2-manifold with positive volume.
-// DISABLED until the pipeline handles every region: partition branching
-// rejects a contour with fewer than two vertices per branch ("contour has too
-// few vertices for its branches"), which 4 AAL regions hit where several
-// one-voxel islands merge into a small contour (ParaHippocampal_R,
-// Occipital_Mid_R, Heschl_L, Cerebelum_Crus2_L at a86a168). The other 112
-// build; bench/import_vs_vtk.sh reports them.
-TEST(AalAtlas, DISABLED_All116RegionsBuildAsClosedManifolds) {
+// Every region through the pipeline, with one- to three-voxel islands per slice
+// dropped (--min-area 3): partition branching needs two vertices per branch on
+// the contour the islands merge into, which tiny diamonds next to a small
+// contour cannot give (without the cleanup 4 regions fail).
+TEST(AalAtlas, All116RegionsBuildWithSpeckleCleanup) {
     if (!std::filesystem::exists(kAal)) GTEST_SKIP() << "needs Debian package mricron-data";
-    auto stack = import_nifti_labels(kAal, {});
+    ImportOptions o;
+    o.min_area = 3.0;
+    o.jobs = 2;
+    auto stack = import_nifti_labels(kAal, o);
     ASSERT_TRUE(stack.ok()) << stack.error().message;
     auto built = build_structures(*stack, {}, kAal);
     ASSERT_TRUE(built.ok()) << built.error().message;
     ASSERT_EQ(built->size(), 116u);
+    double mesh_volume = 0.0;
     for (const StructureMesh& m : *built) {
-        EXPECT_TRUE(m.closed_manifold) << m.id;
         EXPECT_GT(m.volume, 0.0) << m.id;
+        mesh_volume += m.volume;
     }
+    // 1 mm voxels; 1 437 409 labelled voxels in aal.nii.gz (mricron-data 1.2.20211006).
+    EXPECT_NEAR(mesh_volume, 1437409.0, 0.03 * 1437409.0);
+}
+
+// DISABLED until the pipeline guarantees it on this input: at c4fca7e 46 of the
+// 116 meshes fail Mesh's closed_manifold() (bench/import_vs_vtk.sh's
+// vtkFeatureEdges check finds no boundary or non-manifold edges on them, so
+// the defects are vertex-manifold or orientation ones).
+TEST(AalAtlas, DISABLED_All116RegionsAreClosedManifolds) {
+    if (!std::filesystem::exists(kAal)) GTEST_SKIP() << "needs Debian package mricron-data";
+    ImportOptions o;
+    o.min_area = 3.0;
+    auto stack = import_nifti_labels(kAal, o);
+    ASSERT_TRUE(stack.ok()) << stack.error().message;
+    auto built = build_structures(*stack, {}, kAal);
+    ASSERT_TRUE(built.ok()) << built.error().message;
+    for (const StructureMesh& m : *built) EXPECT_TRUE(m.closed_manifold) << m.id;
 }
 
 }  // namespace

@@ -376,6 +376,24 @@ TEST(NiftiImport, AxisStepAndOnlyOptions) {
     EXPECT_NE(missing.error().message.find("label 4"), std::string::npos);
 }
 
+TEST(NiftiImport, MinAreaDropsSpeckleAndFillsPinholes) {
+    Grid g(16, 16, 3);
+    g.fill(1, [](int x, int y, int) { return x >= 2 && x < 10 && y >= 2 && y < 10 && !(x == 5 && y == 5); });
+    g.fill(1, [](int x, int y, int) { return x == 13 && y == 13; });  // a one-voxel island
+    const std::string path = g.write("speckle.nii");
+    auto all = import_nifti_labels(path, {});
+    ASSERT_TRUE(all.ok()) << all.error().message;
+    EXPECT_EQ(all->slices[0].contours.size(), 3u);  // block, pinhole, island
+    ImportOptions o;
+    o.min_area = 3.0;
+    auto clean = import_nifti_labels(path, o);
+    ASSERT_TRUE(clean.ok()) << clean.error().message;
+    ASSERT_EQ(clean->slices[0].contours.size(), 1u);
+    EXPECT_NEAR(area(clean->slices[0].contours[0].points), 64.0 - 0.5, 1e-9);
+    o.min_area = 9.0;
+    EXPECT_FALSE(import_nifti_labels(path, o).ok());
+}
+
 // ---------------------------------------------------------------- malformed inputs
 
 TEST(NiftiImport, MalformedInputsAreBadInputWithAReason) {
