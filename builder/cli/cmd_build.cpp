@@ -1,21 +1,39 @@
-// bodygen build STACK.contours.json -o OUT.obj [--caps flat|dome|none]
+// bodygen build INPUT -o OUT [--caps flat|dome|none]
 //   [--tiling optimal|multires] [--correspondence overlap|ellipse]
-//   [--branching partition|overlap] [--normals] [--quiet] [--json]
-// Contour stack -> one closed mesh per structure, written as OBJ (atomically).
+//   [--branching partition|overlap] [--normals] [--quiet] [--json] [--jobs N]
+// INPUT: a contour stack (*.contours.json), or, with import support, a NIfTI
+// label volume or a DICOM RT-STRUCT (imported with the `contours` defaults).
+// OUT: OUT.obj (one `o NAME` per structure), OUT.bpm (progressive meshes), or
+// a directory OUT/ (one OBJ per structure). Every file is written atomically.
 // A per-structure summary goes to stderr (or JSON stats to stdout with --json);
 // a progress bar is drawn when stderr is a terminal.
 #include <unistd.h>
 
+#include <atomic>
+#include <cctype>
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
+#include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
+#include <thread>
 
 #include "builder/cli/commands.h"
+#include "builder/lod/simplify.h"
 #include "builder/pipeline/build_pipeline.h"
+#ifdef BODY_WITH_IMPORT
+#include "builder/import/import.h"
+#endif
 #include "shared/cli_args.h"
 #include "shared/obj_io.h"
 
 namespace body::cli {
+
+#ifdef BODY_WITH_IMPORT
+Result<ImportOptions> import_options_from_args(const CliArgs& args);  // cmd_contours.cpp
+#endif
+
 namespace {
 
 template <typename E>
@@ -40,15 +58,123 @@ void draw_progress(size_t done, size_t total) {
     std::fflush(stderr);
 }
 
+enum class OutputKind { Obj, Bpm, Directory };
+
+OutputKind output_kind(const std::string& path) {
+    if (path.ends_with("/") || std::filesystem::is_directory(path)) return OutputKind::Directory;
+    if (path.ends_with(".bpm")) return OutputKind::Bpm;
+    return OutputKind::Obj;
+}
+
+Result<ContourStack> load_input(const std::string& path, const CliArgs& args, bool quiet) {
+#ifdef BODY_WITH_IMPORT
+    auto import = import_options_from_args(args);  // same options as `bodygen contours`
+    if (!import) return import.error();
+    if (!quiet) import->note = [](const std::string& m) { std::fprintf(stderr, "bodygen: note: %s\n", m.c_str());
+};
+return load_any_contour_source(path, *import);
+#else
+    (void)args;
+    (void)quiet;
+    return read_contour_stack(path);
+#endif
 }  // namespace
 
+// A file name for a structure: its id with anything but [A-Za-z0-9._-] replaced.
+std::string file_stem(const StructureMesh& s) {
+    std::string stem = s.id.empty() ? s.mesh.name : s.id;
+    for (char& c : stem)
+        if (!std::isalnum(static_cast<unsigned char>(c)) && c != '.' && c != '_' && c != '-') c = '_';
+    return stem.empty() ? std::string("structure") : stem;
+}
+
+Status write_output(const std::string& output, const std::vector<StructureMesh>& built, bool normals) {
+    std::vector<Mesh> meshes;
+    for (const StructureMesh& s : built) meshes.push_back(s.mesh);
+    ObjWriteOptions obj;
+    obj.normals = normals;
+    switch (output_kind(output)) {
+        case OutputKind::Obj: return write_obj(output, meshes, obj);
+        case OutputKind::Bpm: return lod::write_bpm_from_meshes(output, meshes);
+        case OutputKind::Directory: {
+            std::error_code ec;
+            std::filesystem::create_directories(output, ec);
+            if (ec) return runtime_error(output + ": cannot create directory: " + ec.message());
+            std::map<std::string, int> used;
+            for (const StructureMesh& s : built) {
+                std::string stem = file_stem(s);
+                if (int n = used[stem]++) stem.append(1, '_').append(std::to_string(n));
+                std::span<const Mesh> one(&s.mesh, 1);
+                Status st = write_obj((std::filesystem::path(output) / (stem + ".obj")).string(), one, obj);
+                if (!st) return st;
+            }
+            return ok_status();
+        }
+    }
+    return ok_status();
+}
+
+// Structures are independent once every contour carries a label: split the
+// stack per structure and build them on `jobs` threads. Unlabelled stacks
+// need correspondence across all contours first, so they build in one piece.
+Result<std::vector<StructureMesh>> build_in_parallel(const ContourStack& stack, const BuildOptions& options,
+                                                     const std::string& input, int jobs) {
+    bool all_labelled = !stack.structures.empty();
+    for (const Slice& s : stack.slices)
+        for (const Contour& c : s.contours) all_labelled = all_labelled && !c.structure.empty();
+    if (jobs <= 1 || !all_labelled || stack.structures.size() < 2) return build_structures(stack, options, input);
+
+    const size_t n = stack.structures.size();
+    std::vector<std::optional<Result<std::vector<StructureMesh>>>> results(n);
+    std::atomic<size_t> next{0};
+    BuildOptions quiet = options;
+    quiet.progress = nullptr;  // per-structure progress from several threads would interleave
+    auto worker = [&] {
+        for (size_t i = next++; i < n; i = next++) {
+            ContourStack part;
+            part.units = stack.units;
+            part.structures = {stack.structures[i]};
+            for (const Slice& s : stack.slices) {
+                Slice mine{s.z, {}, s.source_index};
+                for (const Contour& c : s.contours)
+                    if (c.structure == stack.structures[i].id) mine.contours.push_back(c);
+                if (!mine.contours.empty()) part.slices.push_back(std::move(mine));
+            }
+            results[i] = part.slices.empty() ? Result<std::vector<StructureMesh>>(std::vector<StructureMesh>{})
+                                             : build_structures(part, quiet, input);
+        }
+    };
+    std::vector<std::thread> threads;
+    for (int t = 0; t < jobs; ++t) threads.emplace_back(worker);
+    for (auto& t : threads) t.join();
+    std::vector<StructureMesh> all;
+    for (auto& r : results) {
+        if (!r->ok()) return r->error();
+        for (auto& m : r->value()) all.push_back(std::move(m));
+    }
+    return all;
+}
+
+}  // namespace body::cli
+
 int run_build(const Args& argv) {
-    auto args = CliArgs::parse(argv, {"output", "caps", "tiling", "correspondence", "branching"},
+    auto args = CliArgs::parse(argv,
+                               {"output", "caps", "tiling", "correspondence", "branching", "jobs",
+#ifdef BODY_WITH_IMPORT
+                                "labels", "axis", "step", "only", "threshold", "tolerance", "min-area"
+#endif
+                               },
                                {"help", "quiet", "json", "normals"});
     if (!args) return report(args.error());
     if (args->has("help")) {
         std::printf(
-            "usage: bodygen build STACK.contours.json -o OUT.obj [options]\n"
+            "usage: bodygen build INPUT -o OUT [options]\n"
+            "  INPUT: STACK.contours.json"
+#ifdef BODY_WITH_IMPORT
+            ", a NIfTI label volume (.nii/.nii.gz) or a DICOM RT-STRUCT (.dcm)"
+#endif
+            "\n  OUT:   OUT.obj (one object per structure), OUT.bpm (progressive meshes)\n"
+            "         or OUT/ (a directory: one OBJ per structure)\n"
             "  --caps flat|dome|none              closing the ends (default flat)\n"
             "  --tiling optimal|multires          band tiling (default optimal)\n"
             "  --correspondence overlap|ellipse   matching contours across slices (default overlap)\n"
@@ -56,11 +182,20 @@ int run_build(const Args& argv) {
             "                                     overlapping bands for comparison (default partition)\n"
             "  --normals                          write vertex normals\n"
             "  --quiet                            no progress bar and no summary\n"
-            "  --json                             statistics as JSON on stdout\n");
+            "  --json                             statistics as JSON on stdout\n"
+            "  --jobs N                           structures built on N threads (default 1)\n"
+#ifdef BODY_WITH_IMPORT
+            "  --labels, --axis, --step, --only, --threshold, --tolerance, --min-area\n"
+            "                                     import options for label volumes (see bodygen contours --help)\n"
+#endif
+        );
         return kExitOk;
     }
     if (args->positional().size() != 1) return report(input_error("build: expected one contour stack file"));
-    if (!args->has("output")) return report(input_error("build: missing -o OUT.obj"));
+    if (!args->has("output")) return report(input_error("build: missing -o OUT.obj|OUT.bpm|OUT/"));
+    auto jobs = args->get_long("jobs", 1);
+    if (!jobs) return report(jobs.error());
+    if (*jobs < 1 || *jobs > 256) return report(input_error("build: --jobs must be between 1 and 256"));
     BuildOptions options;
     auto caps = pick<CapStyle>(
         *args, "caps", {{"flat", CapStyle::Flat}, {"dome", CapStyle::Dome}, {"none", CapStyle::None}}, CapStyle::Flat);
@@ -89,15 +224,11 @@ int run_build(const Args& argv) {
     if (!quiet && isatty(STDERR_FILENO)) options.progress = draw_progress;
 
     const auto start = std::chrono::steady_clock::now();
-    auto stack = read_contour_stack(input);
+    auto stack = load_input(input, *args, quiet);
     if (!stack) return report(stack.error());
-    auto built = build_structures(*stack, options, input);
+    auto built = build_in_parallel(*stack, options, input, int(*jobs));
     if (!built) return report(built.error());
-    std::vector<Mesh> meshes;
-    for (const StructureMesh& s : *built) meshes.push_back(s.mesh);
-    ObjWriteOptions obj;
-    obj.normals = args->has("normals");
-    Status written = write_obj(output, meshes, obj);
+    Status written = write_output(output, *built, args->has("normals"));
     if (!written) return report(written.error());
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 

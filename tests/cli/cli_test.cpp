@@ -45,3 +45,36 @@ TEST(Cli, BadContourFileIsOneLineNamingThePlace) {
 
 }  // namespace
 }  // namespace body::test
+
+namespace body::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+TEST(CliBuild, WritesObjBpmAndOneObjPerStructureIntoADirectory) {
+    const std::string stack = std::string(BODY_SOURCE_DIR) + "/tests/data/stacks/small.contours.json";
+    const fs::path dir = fs::temp_directory_path() / ("body_cli_build_" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+
+    RunResult bpm = run(bin("bodygen") + " build " + stack + " -o " + (dir / "lobe.bpm").string() + " --quiet");
+    ASSERT_EQ(bpm.exit_code, 0) << bpm.output;
+    RunResult info = run(bin("bodygen") + " info " + (dir / "lobe.bpm").string());
+    ASSERT_EQ(info.exit_code, 0) << info.output;
+    EXPECT_NE(info.output.find("'Branching lobe'"), std::string::npos) << info.output;
+
+    RunResult out = run(bin("bodygen") + " build " + stack + " -o " + (dir / "meshes").string() + "/ --quiet --jobs 2");
+    ASSERT_EQ(out.exit_code, 0) << out.output;
+    EXPECT_TRUE(fs::is_regular_file(dir / "meshes" / "lobe.obj"));
+    size_t files = 0;
+    for (const auto& entry : fs::directory_iterator(dir / "meshes")) files += entry.is_regular_file();
+    EXPECT_EQ(files, 1u);  // no temporary left behind
+
+    RunResult bad = run(bin("bodygen") + " build " + stack + " -o " + (dir / "x.obj").string() + " --jobs 0");
+    EXPECT_EQ(bad.exit_code, 2);
+    EXPECT_FALSE(fs::exists(dir / "x.obj"));
+    fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace body::test
