@@ -19,10 +19,10 @@ int run_contours_check(const Args& args);  // cmd_check.cpp
 int run_slice(const Args& args);           // cmd_slice.cpp
 int run_pack(const Args& args);            // cmd_pack.cpp
 int run_build(const Args& args);           // cmd_build.cpp
-int run_contours(const Args& args);        // cmd_contours.cpp
 int run_lod(const Args& args);             // cmd_lod.cpp
 int run_extract(const Args& args);         // cmd_extract.cpp
 int run_info(const Args& args);            // cmd_info.cpp
+int run_contours(const Args& args);        // cmd_contours.cpp
 
 }  // namespace body::cli
 
@@ -32,14 +32,15 @@ using body::cli::Command;
 
 // The subcommand table; each entry lives in builder/cli/cmd_<name>.cpp.
 const Command kCommands[] = {
+    {"contours", "extract contours from a NIfTI label volume or DICOM RT-STRUCT", body::cli::run_contours},
     {"check", "validate a contour stack and print its slices and contours", body::cli::run_contours_check},
     {"slice", "slice a closed OBJ mesh with parallel planes into a contour stack", body::cli::run_slice},
-    {"pack", "validate a kiosk scene.json and write a self-contained bundle", body::cli::run_pack},
-    {"build", "contour stack -> one closed mesh per structure (OBJ)", body::cli::run_build},
-    {"contours", "extract contours from a NIfTI label volume or DICOM RT-STRUCT", body::cli::run_contours},
+    {"build", "contours, label volume or RT-STRUCT -> one closed mesh per structure (OBJ, .bpm or OUT/)",
+     body::cli::run_build},
     {"lod", "build progressive meshes (.bpm) from an OBJ file", body::cli::run_lod},
     {"extract", "write one level of a .bpm file as OBJ", body::cli::run_extract},
     {"info", "print the structures, levels, sizes and error curve of a .bpm file", body::cli::run_info},
+    {"pack", "validate a kiosk scene.json and write a self-contained bundle", body::cli::run_pack},
 };
 
 void print_help(std::FILE* out) {
@@ -47,7 +48,7 @@ void print_help(std::FILE* out) {
                  "bodygen %s - turns anatomy traced on image slices into watertight progressive meshes\n\n"
                  "usage: bodygen <command> [options]\n\ncommands:\n",
                  BODY_VERSION_STRING);
-    for (const Command& c : kCommands) std::fprintf(out, "  %-10s %s\n", c.name, c.summary);
+    for (const Command& c : kCommands) std::fprintf(out, "  %-9s %s\n", c.name, c.summary);
     std::fprintf(out,
                  "\noptions:\n  --help     this text (also: bodygen <command> --help)\n"
                  "  --version  print the version\n\nexit codes: 0 ok, 1 runtime failure, 2 bad usage or bad input\n");
