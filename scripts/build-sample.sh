@@ -111,10 +111,13 @@ for s in stack["structures"]:
     title = (name[:-2] if side != "midline" else name).replace("_", " ")
     if side != "midline":
         title += " (%s)" % side
+    # The atlas is in RAS scanner space (z up); the kiosk's up is +Y: turn -90 degrees about X.
     models.append({"name": s["id"], "file": fname, "group": gname, "colour": colour_of(group, side),
+                   "transform": {"rotate_deg": [-90, 0, 0]},
                    "label": {"en": {"title": title, "description": "%s, %s" % (group, side)}}})
     rows.append((s["id"], group, side))
 scene = {"version": 1, "models": models,
+         "camera": {"azimuth_deg": -110, "polar_deg": 72},  # a left-anterior three-quarter view
          "groups": [{"name": g, "visible": True} for g in sorted(groups)],
          "kiosk": {"languages": ["en"]}}
 json.dump(scene, open(os.path.join(out, "scene.json"), "w"), indent=1)
