@@ -175,7 +175,7 @@ int run_build(const Args& argv) {
 #endif
             "\n  OUT:   OUT.obj (one object per structure), OUT.bpm (progressive meshes)\n"
             "         or OUT/ (a directory: one OBJ per structure)\n"
-            "  --caps flat|dome|none              closing the ends (default flat)\n"
+            "  --caps flat|dome|none              closing the ends (default dome)\n"
             "  --tiling optimal|multires          band tiling (default optimal)\n"
             "  --correspondence overlap|ellipse   matching contours across slices (default overlap)\n"
             "  --branching partition|overlap      branches: closed manifold, or the thesis'\n"
@@ -198,7 +198,7 @@ int run_build(const Args& argv) {
     if (*jobs < 1 || *jobs > 256) return report(input_error("build: --jobs must be between 1 and 256"));
     BuildOptions options;
     auto caps = pick<CapStyle>(
-        *args, "caps", {{"flat", CapStyle::Flat}, {"dome", CapStyle::Dome}, {"none", CapStyle::None}}, CapStyle::Flat);
+        *args, "caps", {{"flat", CapStyle::Flat}, {"dome", CapStyle::Dome}, {"none", CapStyle::None}}, CapStyle::Dome);
     if (!caps) return report(caps.error());
     auto tiling =
         pick<TilingMethod>(*args, "tiling", {{"optimal", TilingMethod::Optimal}, {"multires", TilingMethod::Multires}},

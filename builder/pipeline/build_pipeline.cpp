@@ -39,6 +39,130 @@ std::string where(const std::string& path, const Contour& c) {
 const Vec3 kPalette[] = {{0.85, 0.33, 0.31}, {0.36, 0.62, 0.83}, {0.45, 0.75, 0.40}, {0.93, 0.70, 0.25},
                          {0.65, 0.45, 0.80}, {0.30, 0.75, 0.72}, {0.90, 0.55, 0.70}, {0.60, 0.60, 0.60}};
 
+// Boundary of the union of `loops` (xy), grown by one to two cells of a grid
+// of spacing `cell` and with its holes filled: a simple counter-clockwise ring
+// holding every loop strictly inside (at least half a cell away). Marching
+// squares over the cell centres of the grown, hole-free, saddle-free mask; runs
+// of collinear steps are merged. Empty when the union is not one piece.
+std::vector<Vec2> union_ring(const std::vector<std::span<const Vec2>>& loops, double cell) {
+    Aabb box;
+    for (const auto& l : loops)
+        for (const Vec2& p : l) box.extend(Vec3(p, 0.0));
+    if (box.empty() || !(cell > 0)) return {};
+    const Vec2 lo(box.min), hi(box.max);
+    while ((hi.x - lo.x) / cell * ((hi.y - lo.y) / cell) > 4e6) cell *= 1.5;
+    const Vec2 origin = lo - Vec2(4 * cell);
+    const long nx = long(std::ceil((hi.x - lo.x) / cell)) + 8, ny = long(std::ceil((hi.y - lo.y) / cell)) + 8;
+    std::vector<uint8_t> mask(size_t(nx * ny), 0);
+    auto at = [&](long i, long j) -> uint8_t& { return mask[size_t(j * nx + i)]; };
+    // Interiors by scanlines through the cell centres (even-odd per loop).
+    std::vector<double> xs;
+    for (long j = 0; j < ny; ++j) {
+        const double y = origin.y + (double(j) + 0.5) * cell;
+        for (const auto& l : loops) {
+            xs.clear();
+            for (size_t k = 0; k < l.size(); ++k) {
+                const Vec2 a = l[k], b = l[(k + 1) % l.size()];
+                if ((a.y <= y) != (b.y <= y)) xs.push_back(a.x + (y - a.y) / (b.y - a.y) * (b.x - a.x));
+            }
+            std::sort(xs.begin(), xs.end());
+            for (size_t k = 0; k + 1 < xs.size(); k += 2) {
+                const long i0 = std::max(0L, long(std::ceil((xs[k] - origin.x) / cell - 0.5)));
+                const long i1 = std::min(nx - 1, long(std::floor((xs[k + 1] - origin.x) / cell - 0.5)));
+                for (long i = i0; i <= i1; ++i) at(i, j) = 1;
+            }
+        }
+    }
+    // Cells the loops pass through (thin parts have no cell centre inside).
+    for (const auto& l : loops)
+        for (size_t k = 0; k < l.size(); ++k) {
+            const Vec2 a = l[k], b = l[(k + 1) % l.size()];
+            const int steps = 1 + int(std::ceil(4 * glm::length(b - a) / cell));
+            for (int t = 0; t <= steps; ++t) {
+                const Vec2 p = a + (b - a) * (double(t) / steps);
+                at(long((p.x - origin.x) / cell), long((p.y - origin.y) / cell)) = 1;
+            }
+        }
+    // Grow by one cell (8-neighbourhood).
+    std::vector<uint8_t> grown(mask.size(), 0);
+    for (long j = 1; j + 1 < ny; ++j)
+        for (long i = 1; i + 1 < nx; ++i)
+            for (long dj = -1; dj <= 1; ++dj)
+                for (long di = -1; di <= 1; ++di)
+                    if (at(i + di, j + dj)) grown[size_t(j * nx + i)] = 1;
+    mask.swap(grown);
+    // Fill holes and diagonal-only contacts until neither is left.
+    for (bool changed = true; changed;) {
+        changed = false;
+        std::vector<uint8_t> outside(mask.size(), 0);
+        std::vector<long> stack{0};
+        outside[0] = 1;
+        while (!stack.empty()) {
+            const long c = stack.back();
+            stack.pop_back();
+            const long i = c % nx, j = c / nx;
+            const long next[4][2] = {{i - 1, j}, {i + 1, j}, {i, j - 1}, {i, j + 1}};
+            for (const auto& q : next) {
+                if (q[0] < 0 || q[1] < 0 || q[0] >= nx || q[1] >= ny) continue;
+                const long d = q[1] * nx + q[0];
+                if (!mask[size_t(d)] && !outside[size_t(d)]) outside[size_t(d)] = 1, stack.push_back(d);
+            }
+        }
+        for (size_t c = 0; c < mask.size(); ++c)
+            if (!mask[c] && !outside[c]) mask[c] = 1, changed = true;
+        for (long j = 0; j + 1 < ny; ++j)
+            for (long i = 0; i + 1 < nx; ++i) {
+                const int a = at(i, j), b = at(i + 1, j), c = at(i + 1, j + 1), d = at(i, j + 1);
+                if (a == c && b == d && a != b)
+                    at(i, j) = at(i + 1, j) = at(i + 1, j + 1) = at(i, j + 1) = 1, changed = true;
+            }
+    }
+    // Marching squares: per block one directed step, from the side where the
+    // counter-clockwise walk round the block leaves the mask to where it enters.
+    // Nodes on doubled integer coordinates: horizontal side (i,j)-(i+1,j) at
+    // (2i+2, 2j+1), vertical side (i,j)-(i,j+1) at (2i+1, 2j+2).
+    auto h_side = [&](long i, long j) { return 2 * (j * nx + i); };
+    auto v_side = [&](long i, long j) { return 2 * (j * nx + i) + 1; };
+    std::map<long, long> next;
+    for (long j = 0; j + 1 < ny; ++j)
+        for (long i = 0; i + 1 < nx; ++i) {
+            const int v[4] = {at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)};
+            const long side[4] = {h_side(i, j), v_side(i + 1, j), h_side(i, j + 1), v_side(i, j)};
+            long exit = -1, entry = -1;
+            for (int k = 0; k < 4; ++k) {
+                if (v[k] && !v[(k + 1) % 4]) exit = side[k];
+                if (!v[k] && v[(k + 1) % 4]) entry = side[k];
+            }
+            if (exit >= 0 && entry >= 0) next[exit] = entry;
+        }
+    if (next.empty()) return {};
+    auto node = [&](long key) {
+        const long c = key / 2, i = c % nx, j = c / nx;
+        return key % 2 == 0 ? std::pair<long, long>{2 * i + 2, 2 * j + 1} : std::pair<long, long>{2 * i + 1, 2 * j + 2};
+    };
+    std::vector<std::pair<long, long>> ring;
+    const long start = next.begin()->first;
+    for (long key = start;;) {
+        ring.push_back(node(key));
+        auto it = next.find(key);
+        if (it == next.end()) return {};
+        key = it->second;
+        if (key == start) break;
+        if (ring.size() > next.size()) return {};
+    }
+    if (ring.size() != next.size()) return {};  // more than one piece
+    std::vector<Vec2> out;
+    const size_t n = ring.size();
+    for (size_t k = 0; k < n; ++k) {
+        const auto& p = ring[(k + n - 1) % n];
+        const auto& q = ring[k];
+        const auto& r = ring[(k + 1) % n];
+        if ((q.first - p.first) * (r.second - q.second) == (q.second - p.second) * (r.first - q.first)) continue;
+        out.push_back(origin + Vec2(double(q.first), double(q.second)) * (0.5 * cell));
+    }
+    return out;
+}
+
 // ------------------------------------------------- stage 2: structures
 
 struct Ref {
@@ -262,7 +386,13 @@ private:
 
     Status connect_group(size_t s, const std::vector<uint32_t>& gl, const std::vector<uint32_t>& gu, bool hole) {
         const Loop& first_lower = loops_[s][gl[0]];
-        if (gl.size() == 1 && gu.size() == 1) return band(first_lower.ids, loops_[s + 1][gu[0]].ids, first_lower);
+        if (gl.size() == 1 && gu.size() == 1) {
+            if (!hole) {
+                auto status = connect_open_holes(s, gl[0], gu[0]);
+                if (!status || *status) return status ? ok_status() : Status(status.error());
+            }
+            return band(first_lower.ids, loops_[s + 1][gu[0]].ids, first_lower);
+        }
         // Constructions in order of faithfulness: the nested region (when it
         // applies), the partition, the regions around the grown hull. The first
         // whose triangles do not cross each other is kept; failing that, the
@@ -276,25 +406,93 @@ private:
             loops_[s] = saved_lower;
             loops_[s + 1] = saved_upper;
         };
+        auto construct = [&](int method) {
+            switch (method) {
+                case 0: return connect_nested(s, gl, gu, hole);
+                case 1: return connect_partition(s, gl, gu, true);
+                case 4: return connect_partition(s, gl, gu, false);
+                case 2: return connect_union(s, gl, gu, hole);
+                default: return connect_hull(s, gl, gu, hole);
+            }
+        };
+        // nested, partition keeping every branch, union ring, partition with
+        // interior branches detached, convex hull.
+        const std::string order = "04213";
         int first_built = -1;
         Status first_error = ok_status();
-        for (int attempt = 0; attempt < 3; ++attempt) {
-            if (!one_side && attempt < 2) continue;
-            Status status = attempt == 0   ? connect_nested(s, gl, gu, hole)
-                            : attempt == 1 ? connect_partition(s, gl, gu)
-                                           : connect_hull(s, gl, gu, hole);
+        for (char c : order) {
+            const int method = c - '0';
+            if (!one_side && (method < 2 || method == 4)) continue;
+            Status status = construct(method);
             if (status && count_self_intersections(positions, std::span<const uint32_t>(triangles).subspan(tri0)) == 0)
                 return status;
-            if (status && first_built < 0) first_built = attempt;
+            if (status && first_built < 0) first_built = method;
             if (!status && first_error) first_error = status;
             roll_back();
         }
         if (first_built < 0)
             return first_error.ok() ? input_error(where(path_, *first_lower.source) + ": branching failed")
                                     : first_error;
-        return first_built == 0   ? connect_nested(s, gl, gu, hole)
-               : first_built == 1 ? connect_partition(s, gl, gu)
-                                  : connect_hull(s, gl, gu, hole);
+        return construct(first_built);
+    }
+
+    // Holes of `parent` (slice `ps`) that end towards slice `os` (no hole there
+    // links to them) and lie partly outside `other` there: the hole opens into
+    // a notch of `other`.
+    std::vector<uint32_t> open_holes(size_t ps, uint32_t parent, size_t os, uint32_t other) const {
+        std::vector<uint32_t> holes_here, holes_there;
+        for (uint32_t k = 0; k < loops_[ps].size(); ++k)
+            if (loops_[ps][k].hole()) holes_here.push_back(k);
+        for (uint32_t k = 0; k < loops_[os].size(); ++k)
+            if (loops_[os][k].hole()) holes_there.push_back(k);
+        std::vector<bool> linked(holes_here.size(), false);
+        if (!holes_there.empty() && !holes_here.empty()) {
+            std::vector<PolygonSpan> here, there;
+            for (uint32_t k : holes_here) here.emplace_back(loops_[ps][k].xy);
+            for (uint32_t k : holes_there) there.emplace_back(loops_[os][k].xy);
+            const bool up = os > ps;
+            for (const ContourLink& l :
+                 correspond_contours(up ? std::span<const PolygonSpan>(here) : there,
+                                     up ? std::span<const PolygonSpan>(there) : here, options_.correspondence))
+                linked[up ? l.lower : l.upper] = true;
+        }
+        std::vector<uint32_t> open;
+        for (size_t h = 0; h < holes_here.size(); ++h) {
+            const Loop& loop = loops_[ps][holes_here[h]];
+            if (linked[h] || loop.parent != int(parent)) continue;
+            size_t outside = 0;
+            for (const Vec2& p : loop.xy) outside += !point_in_polygon(p, loops_[os][other].xy);
+            if (4 * outside >= loop.xy.size()) open.push_back(holes_here[h]);
+        }
+        return open;
+    }
+
+    // A 1:1 pair where a hole on one slice opens into a notch of the other
+    // slice's contour: the contour without holes is split between the solid
+    // contour and its open holes (nearest-branch partition, chords at mid-slice),
+    // so the notch's walls run down to the hole instead of a band sweeping
+    // across the solid. Returns false (nothing built) when no hole opens or the
+    // construction would cross itself.
+    Result<bool> connect_open_holes(size_t s, uint32_t lower, uint32_t upper) {
+        for (int side = 0; side < 2; ++side) {
+            const size_t ps = side == 0 ? s : s + 1, os = side == 0 ? s + 1 : s;
+            const uint32_t parent = side == 0 ? lower : upper, other = side == 0 ? upper : lower;
+            std::vector<uint32_t> branches = open_holes(ps, parent, os, other);
+            if (branches.empty()) continue;
+            branches.insert(branches.begin(), parent);
+            const size_t tri0 = triangles.size(), pos0 = positions.size();
+            auto status = split(loops_[os][other].ids, loops_[ps], branches, 0.5 * (z(s) + z(s + 1)), side == 1,
+                                loops_[ps][parent]);
+            if (status &&
+                count_self_intersections(positions, std::span<const uint32_t>(triangles).subspan(tri0)) == 0) {
+                for (size_t b = 1; b < branches.size(); ++b)
+                    (side == 0 ? loops_[ps][branches[b]].linked_up : loops_[ps][branches[b]].linked_down) = true;
+                return true;
+            }
+            triangles.resize(tri0);
+            positions.resize(pos0);
+        }
+        return false;
     }
 
     Status connect_nested(size_t s, const std::vector<uint32_t>& gl, const std::vector<uint32_t>& gu, bool hole) {
@@ -303,17 +501,54 @@ private:
         return input_error("not nested");
     }
 
-    Status connect_partition(size_t s, const std::vector<uint32_t>& gl, const std::vector<uint32_t>& gu) {
+    Status connect_partition(size_t s, const std::vector<uint32_t>& gl, const std::vector<uint32_t>& gu, bool detach) {
         const Loop& first_lower = loops_[s][gl[0]];
         const double zl = z(s), zu = z(s + 1);
         if (gl.size() == 1) {
-            const std::vector<uint32_t> kept = detach_interior(s, gl[0], s + 1, gu);
+            const std::vector<uint32_t> kept = detach ? detach_interior(s, gl[0], s + 1, gu) : gu;
             if (kept.size() == 1) return band(first_lower.ids, loops_[s + 1][kept[0]].ids, first_lower);
             return split(first_lower.ids, loops_[s + 1], kept, 0.5 * (zl + zu), true, first_lower);
         }
-        const std::vector<uint32_t> kept = detach_interior(s + 1, gu[0], s, gl);
+        const std::vector<uint32_t> kept = detach ? detach_interior(s + 1, gu[0], s, gl) : gl;
         if (kept.size() == 1) return band(loops_[s][kept[0]].ids, loops_[s + 1][gu[0]].ids, first_lower);
         return split(loops_[s + 1][gu[0]].ids, loops_[s], kept, 0.5 * (zl + zu), false, first_lower);
+    }
+
+    // A mid-slice ring around the union of the group's regions (grown by a
+    // small fraction of their size) takes N:1 below and 1:M above, each as a
+    // nested region: the branch geometry stays inside the slab and within a
+    // few grid cells of the union of the two slices' regions.
+    Status connect_union(size_t s, const std::vector<uint32_t>& gl, const std::vector<uint32_t>& gu, bool hole) {
+        const Loop& first_lower = loops_[s][gl[0]];
+        const double zl = z(s), zu = z(s + 1), zm = 0.5 * (zl + zu);
+        std::vector<std::span<const Vec2>> all;
+        double perimeter = 0;
+        size_t points = 0;
+        for (uint32_t k : gl) all.emplace_back(loops_[s][k].xy);
+        for (uint32_t k : gu) all.emplace_back(loops_[s + 1][k].xy);
+        Aabb box;
+        for (const auto& l : all)
+            for (size_t i = 0; i < l.size(); ++i) {
+                perimeter += glm::length(l[(i + 1) % l.size()] - l[i]);
+                box.extend(Vec3(l[i], 0.0));
+            }
+        for (const auto& l : all) points += l.size();
+        const double cell = std::clamp(0.5 * perimeter / double(points), box.extent() / 4000, box.extent() / 100);
+        std::vector<Vec2> ring = union_ring(all, cell);
+        if (ring.size() < 3) return input_error("no union ring");
+        if (hole) std::reverse(ring.begin(), ring.end());
+        for (const auto& l : all)
+            for (const Vec2& p : l)
+                if (!point_in_polygon(p, ring)) return input_error("union ring misses a contour");
+        const std::vector<uint32_t> mid = lifted_copy(ring, zm);
+        std::vector<const Loop*> below, above;
+        for (uint32_t k : gl) below.push_back(&loops_[s][k]);
+        for (uint32_t k : gu) above.push_back(&loops_[s + 1][k]);
+        // Short walls at the ring (a tenth of the half spacing): the ring is the
+        // widest outline of the pair, and the sheets reach the contours sooner.
+        auto status = nested_region(ring, mid, zm, below, zl, hole, first_lower, 0.1);
+        if (!status) return status;
+        return nested_region(ring, mid, zm, above, zu, hole, first_lower, 0.1);
     }
 
     // A mid-slice contour (convex hull of the group) takes N:1 below and 1:M above.
@@ -409,8 +644,9 @@ private:
     // The construction above for any outer ring (`outer_xy`/`outer_ids` at
     // `z_outer`) and inner loops at `z_inner`.
     Status nested_region(const std::vector<Vec2>& outer_xy, const std::vector<uint32_t>& outer_ids, double z_outer,
-                         const std::vector<const Loop*>& inner, double z_inner, bool hole, const Loop& blame) {
-        const double z_a = z_outer + (z_inner - z_outer) / 3, z_b = z_outer + 2 * (z_inner - z_outer) / 3;
+                         const std::vector<const Loop*>& inner, double z_inner, bool hole, const Loop& blame,
+                         double wall_outer = 1.0 / 3, double wall_inner = 1.0 / 3) {
+        const double z_a = z_outer + (z_inner - z_outer) * wall_outer, z_b = z_inner - (z_inner - z_outer) * wall_inner;
         const bool outer_below = z_outer < z_inner;
         std::vector<uint32_t> outer_copy = lifted_copy(outer_xy, z_a);
         if (outer_below)

@@ -7,14 +7,18 @@
 //
 // Branches (1:N, N:1): when every branch lies inside the single contour the
 // region between them is triangulated as a lifted planar height field between
-// two short vertical walls; otherwise side branches lying wholly inside are
-// detached (closed by their own flat cap) and the rest is split by nearest-
-// branch partition with bisector chords (branching/). N:M goes through a
-// mid-slice convex hull (N:1 below it, 1:M above). Contours linked to nothing
-// become thin slabs around their plane.
+// two short vertical walls; otherwise the single contour is split by nearest-
+// branch partition with bisector chords (branching/); failing that (the
+// construction would cross itself), a mid-slice ring around the union of the
+// group's regions takes N:1 below and 1:M above as such height fields; then the
+// partition with interior side branches detached (closed by their own caps);
+// last the convex hull instead of the union ring. N:M goes through the union
+// ring (or the hull). A 1:1 pair where a hole on one slice opens into a notch
+// of the other slice's contour splits that contour between the solid and the
+// hole. Contours linked to nothing become thin slabs around their plane.
 //
 // Guarantees for valid input with the default options (partition branching,
-// flat or dome caps): every mesh is closed, consistently oriented outward and
+// dome or flat caps): every mesh is closed, consistently oriented outward and
 // vertex- and edge-manifold, without degenerate triangles; re-slicing just
 // above or below each input plane gives back its contours. Bands come from
 // tiling/ and are only as fold-free as it makes them; branch geometry is built
@@ -36,7 +40,7 @@
 namespace body {
 
 struct BuildOptions {
-    CapStyle caps = CapStyle::Flat;
+    CapStyle caps = CapStyle::Dome;  // measured closer to the original than flat (bench/reconstruct_vs_vtk.sh)
     TilingMethod tiling = TilingMethod::Optimal;
     CorrespondenceMethod correspondence = CorrespondenceMethod::Overlap;  // measured more accurate, see tests
     BranchingMethod branching = BranchingMethod::Partition;
