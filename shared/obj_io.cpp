@@ -68,7 +68,8 @@ Result<std::vector<Mesh>> read_obj(const std::string& path) {
     std::vector<Mesh> meshes;
     for (const auto& shape : reader.GetShapes()) {
         Mesh mesh;
-        mesh.name = shape.name;
+        // Unnamed objects (plain scanner/CAD exports) are named after the file.
+        mesh.name = shape.name.empty() ? std::filesystem::path(path).stem().string() : shape.name;
         std::unordered_map<int, uint32_t> remap;
         for (const auto& idx : shape.mesh.indices) {
             if (idx.vertex_index < 0 || size_t(idx.vertex_index) >= vertex_total)

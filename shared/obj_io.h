@@ -18,6 +18,7 @@ struct ObjWriteOptions {
 Status write_obj(const std::string& path, std::span<const Mesh> meshes, const ObjWriteOptions& options = {});
 
 // Reads all objects; polygons are fan-triangulated, vertices welded by index.
+// An object without a name takes the file's stem ("bunny" for bunny.obj).
 Result<std::vector<Mesh>> read_obj(const std::string& path);
 
 // Reads all objects and merges them into one mesh (welding identical positions).

@@ -45,3 +45,19 @@ TEST(ObjIo, MissingAndEmptyFilesAreInputErrors) {
 
 }  // namespace
 }  // namespace body
+
+namespace body {
+namespace {
+
+TEST(ObjIo, UnnamedObjectTakesTheFileStem) {
+    std::string path =
+        (std::filesystem::temp_directory_path() / ("body_stem_" + std::to_string(::getpid()) + ".obj")).string();
+    { std::ofstream(path) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"; }
+    auto m = read_obj(path);
+    ASSERT_TRUE(m.ok()) << m.error().message;
+    EXPECT_EQ((*m)[0].name, "body_stem_" + std::to_string(::getpid()));
+    std::filesystem::remove(path);
+}
+
+}  // namespace
+}  // namespace body
