@@ -480,17 +480,21 @@ private:
             std::vector<uint32_t> branches = open_holes(ps, parent, os, other);
             if (branches.empty()) continue;
             branches.insert(branches.begin(), parent);
-            const size_t tri0 = triangles.size(), pos0 = positions.size();
-            auto status = split(loops_[os][other].ids, loops_[ps], branches, 0.5 * (z(s) + z(s + 1)), side == 1,
-                                loops_[ps][parent]);
-            if (status &&
-                count_self_intersections(positions, std::span<const uint32_t>(triangles).subspan(tri0)) == 0) {
-                for (size_t b = 1; b < branches.size(); ++b)
-                    (side == 0 ? loops_[ps][branches[b]].linked_up : loops_[ps][branches[b]].linked_down) = true;
-                return true;
+            // Chords at mid-slice, else close to the notched contour (the hole's
+            // band then has room to climb before it meets the chords).
+            for (const double w : {0.5, 0.9}) {
+                const size_t tri0 = triangles.size(), pos0 = positions.size();
+                auto status = split(loops_[os][other].ids, loops_[ps], branches, w * z(os) + (1 - w) * z(ps), side == 1,
+                                    loops_[ps][parent]);
+                if (status &&
+                    count_self_intersections(positions, std::span<const uint32_t>(triangles).subspan(tri0)) == 0) {
+                    for (size_t b = 1; b < branches.size(); ++b)
+                        (side == 0 ? loops_[ps][branches[b]].linked_up : loops_[ps][branches[b]].linked_down) = true;
+                    return true;
+                }
+                triangles.resize(tri0);
+                positions.resize(pos0);
             }
-            triangles.resize(tri0);
-            positions.resize(pos0);
         }
         return false;
     }
