@@ -363,7 +363,11 @@ Result<ModelId> Renderer::add_model(const MeshData& mesh, const std::string& nam
     if (vcount > mesh.positions.size() || icount > mesh.indices.size() ||
         (!mesh.normals.empty() && mesh.normals.size() < mesh.positions.size()))
         return input_error(name + ": counts exceed the arrays");
-    for (size_t i = 0; i < mesh.indices.size(); ++i)
+    // prefix_only: capacity past the counts may be unwritten (a progressive mesh
+    // still streaming); it arrives through update_model.
+    const size_t vupload = mesh.prefix_only ? vcount : mesh.positions.size();
+    const size_t iupload = mesh.prefix_only ? icount : mesh.indices.size();
+    for (size_t i = 0; i < iupload; ++i)
         if (mesh.indices[i] >= mesh.positions.size())
             return input_error(name + ": index " + std::to_string(i) + " refers to vertex " +
                                std::to_string(mesh.indices[i]) + " of " + std::to_string(mesh.positions.size()));
@@ -390,26 +394,28 @@ Result<ModelId> Renderer::add_model(const MeshData& mesh, const std::string& nam
         computed = area_normals(mesh.positions, mesh.indices.first(m.index_count), mesh.positions.size());
         normals = computed;
     }
-    std::vector<uint32_t> packed(normals.size());
-    for (size_t i = 0; i < normals.size(); ++i) packed[i] = pack_normal(normals[i]);
+    std::vector<uint32_t> packed(vupload);
+    for (size_t i = 0; i < vupload; ++i) packed[i] = pack_normal(normals[i]);
 
     glGenVertexArrays(1, &m.vao);
     glBindVertexArray(m.vao);
     glGenBuffers(1, &m.vbo_position);
     glBindBuffer(GL_ARRAY_BUFFER, m.vbo_position);
-    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(m.vertex_capacity * sizeof(Vec3f)), mesh.positions.data(),
-                 GL_DYNAMIC_DRAW);
+    // Buffers at full capacity, filled up to the counts only.
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(m.vertex_capacity * sizeof(Vec3f)), nullptr, GL_DYNAMIC_DRAW);
+    glBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(vupload * sizeof(Vec3f)), mesh.positions.data());
     glVertexAttribPointer(kPosition, 3, GL_FLOAT, GL_FALSE, sizeof(Vec3f), nullptr);
     glEnableVertexAttribArray(kPosition);
     glGenBuffers(1, &m.vbo_normal);
     glBindBuffer(GL_ARRAY_BUFFER, m.vbo_normal);
-    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(packed.size() * 4), packed.data(), GL_DYNAMIC_DRAW);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(m.vertex_capacity * 4), nullptr, GL_DYNAMIC_DRAW);
+    glBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(vupload * 4), packed.data());
     glVertexAttribPointer(kNormal, 4, GL_INT_2_10_10_10_REV, GL_TRUE, 4, nullptr);
     glEnableVertexAttribArray(kNormal);
     glGenBuffers(1, &m.ebo);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m.ebo);
-    glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(m.index_capacity * 4), mesh.indices.data(),
-                 GL_DYNAMIC_DRAW);
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(m.index_capacity * 4), nullptr, GL_DYNAMIC_DRAW);
+    glBufferSubData(GL_ELEMENT_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(iupload * 4), mesh.indices.data());
     glBindVertexArray(0);
     BODY_GL_CHECK("add_model");
 

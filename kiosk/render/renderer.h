@@ -57,6 +57,11 @@ struct MeshData {
     std::span<const uint32_t> indices;
     size_t vertex_count = SIZE_MAX;  // SIZE_MAX: positions.size()
     size_t index_count = SIZE_MAX;   // SIZE_MAX: indices.size()
+    // add_model only: the arrays are written up to vertex_count/index_count and
+    // the rest is capacity for later update_model calls (a progressive mesh
+    // still streaming). Buffers are sized to the arrays but only the counted
+    // prefix is read and uploaded. False: the whole arrays are uploaded.
+    bool prefix_only = false;
 };
 
 // Half-open element ranges changed since the last upload (vertices: positions

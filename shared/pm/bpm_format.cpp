@@ -120,8 +120,11 @@ void oct_decode8(const uint8_t in[2], float out[3]) {
 
 void SplitReplay::reset(size_t vertex_capacity, size_t face_capacity) {
     head_.assign(vertex_capacity, kNone);
-    next_.assign(face_capacity * 3, kNone);
-    indices_.assign(face_capacity * 3, 0);
+    // Corners are written by add_faces before anything reads them.
+    next_.clear();
+    next_.resize(face_capacity * 3);
+    indices_.clear();
+    indices_.resize(face_capacity * 3);
 }
 
 void SplitReplay::add_faces(size_t first_face, std::span<const uint32_t> indices) {

@@ -7,11 +7,35 @@
 // writer produces the same bytes on x86-64 and aarch64.
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace body::pm {
+
+// An allocator whose value-less construct() default-initialises: resize() of a
+// vector of trivial elements leaves them indeterminate instead of zeroing them,
+// so capacity reserved for detail that has not arrived costs no page faults.
+template <class T>
+struct UninitAllocator : std::allocator<T> {
+    using std::allocator<T>::allocator;
+    template <class U>
+    struct rebind {
+        using other = UninitAllocator<U>;
+    };
+    template <class U, class... Args>
+    void construct(U* p, Args&&... args) {
+        if constexpr (sizeof...(Args) == 0)
+            ::new (static_cast<void*>(p)) U;
+        else
+            ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+    }
+};
+// Elements past what was written are indeterminate: write before reading.
+template <class T>
+using UninitVector = std::vector<T, UninitAllocator<T>>;
 
 inline constexpr char kMagic[4] = {'B', 'P', 'M', '\0'};
 inline constexpr uint16_t kVersion = 1;
@@ -123,9 +147,9 @@ public:
 
 private:
     static constexpr uint32_t kNone = 0xffffffffu;
-    std::vector<uint32_t> head_;     // per vertex: first corner or kNone
-    std::vector<uint32_t> next_;     // per corner: next corner of the same vertex
-    std::vector<uint32_t> indices_;  // per corner: the vertex at the replayed level
+    std::vector<uint32_t> head_;      // per vertex: first corner or kNone
+    UninitVector<uint32_t> next_;     // per corner: next corner of the same vertex (set by add_faces)
+    UninitVector<uint32_t> indices_;  // per corner: the vertex at the replayed level (set by add_faces)
 };
 
 }  // namespace body::pm

@@ -196,17 +196,23 @@ Status BpmStream::parse_info(std::span<const uint8_t> payload, const std::string
     m->split_count_ = splits;
     m->face_count_ = faces;
     m->chunk_splits_ = chunk;
-    m->positions_.assign(vertices, Vec3f(0.0f));
-    m->normals_.assign(vertices, Vec3f(0.0f, 0.0f, 1.0f));
-    m->morph_targets_.assign(vertices, Vec3f(0.0f));
-    m->parents_.assign(vertices, 0);
-    m->indices_.assign(size_t(faces) * 3, 0);
-    m->face_end_.assign(splits, 0);
-    m->split_error_.assign(splits, 0.0f);
-    m->patch_begin_.assign(size_t(splits) + 1, 0);
+    // Full capacity, uninitialised: each entry is written when its section
+    // arrives, and only decoded entries are read (no page faults for the rest).
+    m->positions_.resize(vertices);
+    if (m->has_normals_)
+        m->normals_.resize(vertices);
+    else
+        m->normals_.assign(vertices, Vec3f(0.0f, 0.0f, 1.0f));
+    m->morph_targets_.resize(vertices);
+    m->parents_.resize(vertices);
+    m->indices_.resize(size_t(faces) * 3);
+    m->face_end_.resize(splits);
+    m->split_error_.resize(splits);
+    m->patch_begin_.resize(size_t(splits) + 1);
+    m->patch_begin_[0] = 0;
     m->patch_corners_.clear();
-    m->qpos_.assign(vertices * 3, 0);
-    m->qoct_.assign(vertices * 2, 0);
+    m->qpos_.resize(vertices * 3);
+    m->qoct_.resize(vertices * 2);
     m->replay_.reset(vertices, faces);
     meshes_.push_back(std::move(m));
     return ok_status();

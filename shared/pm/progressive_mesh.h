@@ -110,17 +110,19 @@ private:
     size_t base_vertices_ = 0, base_faces_ = 0, face_count_ = 0, split_count_ = 0, chunk_splits_ = 0;
     size_t decoded_splits_ = 0, decoded_faces_ = 0, level_ = 0;
 
-    std::vector<Vec3f> positions_, normals_, morph_targets_;
-    std::vector<uint32_t> parents_, indices_;
-    std::vector<uint32_t> face_end_;       // per split: triangle count after it
-    std::vector<float> split_error_;       // per split: error of the level before it
-    std::vector<uint32_t> patch_begin_;    // per split + 1: range into patch_corners_
+    // Sized to full capacity by INFO but written only as sections arrive: entries
+    // past the decoded vertices, faces and splits are indeterminate.
+    UninitVector<Vec3f> positions_, normals_, morph_targets_;
+    UninitVector<uint32_t> parents_, indices_;
+    UninitVector<uint32_t> face_end_;      // per split: triangle count after it
+    UninitVector<float> split_error_;      // per split: error of the level before it
+    UninitVector<uint32_t> patch_begin_;   // per split + 1: range into patch_corners_
     std::vector<uint32_t> patch_corners_;  // index entries set to the child on refine, parent on coarsen
     DirtyRange dirty_vertices_, dirty_indices_;
     // Decoding state, released when the structure is complete.
     SplitReplay replay_;
-    std::vector<uint16_t> qpos_;  // 3 per vertex: quantized positions (children are coded against parents)
-    std::vector<uint8_t> qoct_;   // 2 per vertex: octahedral normals
+    UninitVector<uint16_t> qpos_;  // 3 per vertex: quantized positions (children are coded against parents)
+    UninitVector<uint8_t> qoct_;   // 2 per vertex: octahedral normals
 };
 
 // Reads a .bpm file from byte chunks as they arrive (network, disk, a test).

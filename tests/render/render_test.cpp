@@ -434,6 +434,44 @@ TEST(RenderCli, GlfwUnderXvfbMatchesHeadless) {
 // The progressive-mesh path: a .bpm made by bodygen, uploaded once at full size,
 // then moved between levels with the runtime's dirty ranges, must draw what a
 // fresh upload of that level draws (refining and coarsening).
+// A streaming model is added with only its first part written (prefix_only):
+// the unwritten capacity (here: out-of-range indices) is
+// neither validated nor uploaded, the prefix draws, and the rest arriving
+// through update_model gives the same frame as a fresh upload of the whole.
+TEST(RenderLod, PrefixOnlyAddLeavesCapacityForLaterUpdates) {
+    RenderFixture f(200, 200);
+    REQUIRE_GL(f);
+    test::GenMesh sphere = test::icosphere(2);
+    const size_t half = sphere.indices.size() / 2 - (sphere.indices.size() / 2) % 3;
+    std::vector<Vec3f> positions = sphere.positions;
+    std::vector<uint32_t> indices = sphere.indices;
+    for (size_t i = half; i < indices.size(); ++i) indices[i] = 0xdeadbeefu;  // not written yet
+    MeshData partial{positions, sphere.positions, indices};
+    partial.index_count = half;
+    EXPECT_FALSE(f.renderer().add_model(partial, "unwritten capacity").ok());  // whole arrays: invalid
+    partial.prefix_only = true;
+    auto id = f.renderer().add_model(partial, "streaming");
+    ASSERT_TRUE(id.ok()) << id.error().message;
+    const Camera cam = Camera::framing(Vec3f(0.0f), 1.1f, Vec3f(0.2f, 0.3f, 1.0f));
+    Image first = f.draw(cam);
+    // The rest arrives (while f's context is current).
+    std::copy(sphere.indices.begin(), sphere.indices.end(), indices.begin());
+    MeshData whole{positions, sphere.positions, indices};
+    ASSERT_TRUE(f.renderer().update_model(id.value(), whole, {0, 0, half, indices.size()}).ok());
+    Image full = f.draw(cam);
+
+    RenderFixture g(200, 200);
+    std::vector<uint32_t> prefix(sphere.indices.begin(), sphere.indices.begin() + static_cast<long>(half));
+    auto fresh_half = g.renderer().add_model({sphere.positions, sphere.positions, prefix}, "fresh half");
+    ASSERT_TRUE(fresh_half.ok());
+    EXPECT_EQ(test::compare(g.draw(cam), first, 4).bad_block_fraction, 0.0);
+    RenderFixture h(200, 200);
+    auto fresh = h.renderer().add_model({sphere.positions, sphere.positions, sphere.indices}, "fresh");
+    ASSERT_TRUE(fresh.ok());
+    EXPECT_EQ(test::compare(h.draw(cam), full, 4).bad_block_fraction, 0.0);
+    EXPECT_GT(test::compare(first, full, 4).bad_block_fraction, 0.0);  // the second half did show up
+}
+
 TEST(RenderLod, ProgressiveMeshPatchesMatchFreshUploads) {
     const std::string bodygen = std::string(BODY_BINARY_DIR) + "/bin/bodygen";
     const std::string bunny = "/usr/share/glmark2/models/bunny.obj";
