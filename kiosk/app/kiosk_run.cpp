@@ -158,6 +158,7 @@ struct Loaded {
     std::unique_ptr<pm::BpmStream> stream;
     std::unique_ptr<StreamLoader> loader;
     bool streaming = false;
+    std::vector<uint8_t> held;  // bytes after the bases, taken before the first frame, not decoded yet
 };
 
 constexpr size_t kChunkBytes = 64 * 1024;
@@ -165,6 +166,15 @@ constexpr size_t kChunkBytes = 64 * 1024;
 // Feeds what the loader has to the stream; false (with the reason logged) when
 // the file turned out bad: what arrived before stays usable.
 bool pump_stream(Loaded& l, const std::string& name, std::chrono::steady_clock::time_point deadline) {
+    if (!l.held.empty()) {
+        std::vector<uint8_t> held = std::move(l.held);
+        l.held.clear();
+        if (auto st = l.stream->feed(held); !st) {
+            std::fprintf(stderr, "bodyview: %s: %s (keeping what arrived)\n", name.c_str(), st.error().message.c_str());
+            l.streaming = false;
+            return false;
+        }
+    }
     do {
         auto fed = l.loader->pump([&](std::span<const uint8_t> chunk) { return l.stream->feed(chunk); }, kChunkBytes);
         if (!fed) {
@@ -192,7 +202,7 @@ Status load_model(render::Renderer& renderer, const scene::Model& m, Loaded& l) 
     const std::string ext = std::filesystem::path(m.path).extension().string();
     if (ext == ".bpm") {
         l.stream = std::make_unique<pm::BpmStream>(m.path);
-        l.loader = std::make_unique<StreamLoader>(m.path, kChunkBytes);
+        if (!l.loader) l.loader = std::make_unique<StreamLoader>(m.path, kChunkBytes);
         l.streaming = true;
         auto bases_ready = [&] {
             if (l.stream->structure_count_declared() == 0 ||
@@ -207,13 +217,27 @@ Status load_model(render::Renderer& renderer, const scene::Model& m, Loaded& l) 
         Status failure = ok_status();
         while (!bases_ready() && l.streaming) {
             l.loader->wait_for_data();
-            // One chunk at a time: stop decoding as soon as the bases are in.
-            auto fed =
-                l.loader->pump([&](std::span<const uint8_t> chunk) { return l.stream->feed(chunk); }, kChunkBytes);
+            // One chunk at a time, fed in slices: stop decoding as soon as the
+            // bases are in and hold the rest for the frames (a small file's
+            // chunk would otherwise decode all its detail before the first frame).
+            auto fed = l.loader->pump(
+                [&](std::span<const uint8_t> chunk) -> Status {
+                    constexpr size_t kSlice = 4096;
+                    for (size_t off = 0; off < chunk.size(); off += kSlice) {
+                        if (bases_ready()) {
+                            l.held.assign(chunk.begin() + static_cast<std::ptrdiff_t>(off), chunk.end());
+                            return ok_status();
+                        }
+                        if (auto st = l.stream->feed(chunk.subspan(off, std::min(kSlice, chunk.size() - off))); !st)
+                            return st;
+                    }
+                    return ok_status();
+                },
+                kChunkBytes);
             if (!fed) {
                 failure = fed.error();
                 l.streaming = false;
-            } else if (l.loader->finished()) {
+            } else if (l.loader->finished() && l.held.empty()) {
                 l.streaming = false;
                 if (auto st = l.stream->finish(); !st) failure = st.error();
             }
@@ -361,6 +385,12 @@ int run_kiosk(platform::Surface& surface, const scene::Scene& scene, const Kiosk
     std::vector<ModelInfo> info(scene.models.size());
     std::string label_text;
     size_t ok_models = 0;
+    // Every .bpm starts reading at once: its first chunks are queued by the time
+    // load_model gets to it.
+    for (size_t i = 0; i < scene.models.size(); ++i) {
+        if (std::filesystem::path(scene.models[i].path).extension() == ".bpm")
+            loaded[i].loader = std::make_unique<StreamLoader>(scene.models[i].path, kChunkBytes);
+    }
     for (size_t i = 0; i < scene.models.size(); ++i) {
         const scene::Model& m = scene.models[i];
         for (const auto& l : m.labels) label_text += l.title + l.description;
