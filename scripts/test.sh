@@ -57,7 +57,8 @@ check_debs() {
 step "format check" scripts/format.sh --check
 step "release build" configure_and_build build -DCMAKE_BUILD_TYPE=Release -DBODY_BUILD_BENCH=ON
 step "release tests (unit, cli, render)" run_ctest build 'unit|cli|render'
-step "cross smoke (aarch64 under qemu)" run_ctest build 'cross'
+# -V: the log shows the `file` line of every arm64 binary and each comparison.
+step "cross smoke (aarch64 under qemu)" ctest --test-dir build -L cross -V --no-tests=error
 step "sanitizer build (clang, ASan+UBSan, libFuzzer)" configure_and_build build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DBODY_SANITIZE=ON -DBODY_FUZZ=ON -DBODY_BUILD_BENCH=OFF
 step "sanitizer tests (unit, fuzz)" env ASAN_OPTIONS=detect_leaks=1:abort_on_error=0 UBSAN_OPTIONS=print_stacktrace=1 \
