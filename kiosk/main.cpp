@@ -71,25 +71,6 @@ struct Placed {
     render::ModelId id = 0;
 };
 
-render::Style to_render_style(scene::Style s) {
-    switch (s) {
-        case scene::Style::Wireframe: return render::Style::Wireframe;
-        case scene::Style::Smooth: return render::Style::Smooth;
-        case scene::Style::Lines: return render::Style::Lines;
-        case scene::Style::Hatching: return render::Style::Hatching;
-        case scene::Style::Hatching2Tone: return render::Style::Hatching2Tone;
-    }
-    return render::Style::Smooth;
-}
-
-glm::mat4 to_matrix(const scene::Transform& t) {
-    glm::mat4 m = glm::translate(glm::mat4(1.0f), glm::vec3(t.translate[0], t.translate[1], t.translate[2]));
-    m = glm::rotate(m, glm::radians(t.rotate_deg[2]), glm::vec3(0, 0, 1));
-    m = glm::rotate(m, glm::radians(t.rotate_deg[1]), glm::vec3(0, 1, 0));
-    m = glm::rotate(m, glm::radians(t.rotate_deg[0]), glm::vec3(1, 0, 0));
-    return glm::scale(m, glm::vec3(t.scale));
-}
-
 // Uploads every structure of one file; a failure is logged and skipped.
 // Returns false when the file could not be used.
 bool load_into(render::Renderer& renderer, const std::string& path, double lod, std::vector<Placed>& out,
@@ -229,8 +210,8 @@ int run(const CliArgs& args) {
             for (size_t i = first; i < placed.size(); ++i) {
                 render::ModelState* st = renderer.state(placed[i].id);
                 st->color = Vec3f(m.colour[0], m.colour[1], m.colour[2]);
-                st->transform = to_matrix(m.transform);
-                st->style = to_render_style(g && g->style ? *g->style : m.style);
+                st->transform = kiosk::to_model_matrix(m.transform);
+                st->style = kiosk::to_render_style(g && g->style ? *g->style : m.style);
                 if (style_override) st->style = *style_override;
                 st->visible = g ? g->visible : true;
                 st->selected = args.get("select") == m.name;

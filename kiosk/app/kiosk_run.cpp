@@ -22,9 +22,7 @@
 
 namespace body::kiosk {
 
-namespace {
-
-render::Style to_render(scene::Style s) {
+render::Style to_render_style(scene::Style s) {
     switch (s) {
         case scene::Style::Wireframe: return render::Style::Wireframe;
         case scene::Style::Smooth: return render::Style::Smooth;
@@ -35,13 +33,15 @@ render::Style to_render(scene::Style s) {
     return render::Style::Smooth;
 }
 
-glm::mat4 to_matrix(const scene::Transform& t) {
+glm::mat4 to_model_matrix(const scene::Transform& t) {
     glm::mat4 m = glm::translate(glm::mat4(1.0f), glm::vec3(t.translate[0], t.translate[1], t.translate[2]));
     m = glm::rotate(m, glm::radians(t.rotate_deg[2]), glm::vec3(0, 0, 1));
     m = glm::rotate(m, glm::radians(t.rotate_deg[1]), glm::vec3(0, 1, 0));
     m = glm::rotate(m, glm::radians(t.rotate_deg[0]), glm::vec3(1, 0, 0));
     return glm::scale(m, glm::vec3(t.scale));
 }
+
+namespace {
 
 // One structure of a scene model: an OBJ object (ModelSource) or a structure
 // of a .bpm being streamed (owned by the model's BpmStream).
@@ -401,7 +401,7 @@ int run_kiosk(platform::Surface& surface, const scene::Scene& scene, const Kiosk
             loaded[i] = Loaded{};
             continue;
         }
-        loaded[i].transform = to_matrix(m.transform);
+        loaded[i].transform = to_model_matrix(m.transform);
         // World bounding sphere over the parts (a streamed structure's box is in its INFO).
         glm::vec3 lo(1e30f), hi(-1e30f);
         ModelInfo& mi = info[i];
@@ -543,7 +543,7 @@ int run_kiosk(platform::Surface& surface, const scene::Scene& scene, const Kiosk
                                          : 1.0);
             for (Part& p : l.parts) {
                 render::ModelState* st = renderer.state(p.id);
-                st->style = to_render(ms.style);
+                st->style = to_render_style(ms.style);
                 st->visible = vis;
                 st->selected = i == app.selected();
                 st->transform = t;

@@ -9,8 +9,10 @@
 //
 // Exit: the admin gesture, the platform's quit (SIGTERM, window closed), the
 // end of a replay, or `frames`. Visitors have no other way out.
+#include <glm/glm.hpp>
 #include <string>
 
+#include "kiosk/render/renderer.h"
 #include "platform/platform.h"
 #include "shared/scene/scene.h"
 
@@ -33,6 +35,11 @@ struct KioskRunOptions {
     // least one 64 KiB chunk per frame while data is waiting).
     double stream_ms_per_frame = 8.0;
 };
+
+// A scene style as the renderer's style, and a scene transform as a model matrix
+// (translate * Rz * Ry * Rx * scale: Euler X first, as SCENE.md says).
+render::Style to_render_style(scene::Style style);
+glm::mat4 to_model_matrix(const scene::Transform& transform);
 
 // Returns a process exit code (0 ok, 1 runtime failure, 2 bad input).
 int run_kiosk(platform::Surface& surface, const scene::Scene& scene, const KioskRunOptions& options);
