@@ -8,6 +8,7 @@
 
 #include "builder/slicing/mesh_slicer.h"
 #include "shared/mesh.h"
+#include "tests/common/test_meshes.h"
 
 namespace {
 
@@ -39,27 +40,6 @@ body::Mesh torus(int rings, int segments, double big, double small) {
     return m;
 }
 
-body::Mesh sphere(int rings, int segments) {
-    body::Mesh m;
-    m.positions.push_back({0, 0, 1});
-    for (int r = 1; r < rings; ++r)
-        for (int s = 0; s < segments; ++s) {
-            double t = M_PI * r / rings, p = 2 * M_PI * s / segments;
-            m.positions.push_back({std::sin(t) * std::cos(p), std::sin(t) * std::sin(p), std::cos(t)});
-        }
-    m.positions.push_back({0, 0, -1});
-    auto ring = [&](int r, int s) { return uint32_t(1 + (r - 1) * segments + (s % segments)); };
-    for (int s = 0; s < segments; ++s) m.indices.insert(m.indices.end(), {0, ring(1, s), ring(1, s + 1)});
-    for (int r = 1; r + 1 < rings; ++r)
-        for (int s = 0; s < segments; ++s)
-            m.indices.insert(m.indices.end(), {ring(r, s), ring(r + 1, s), ring(r + 1, s + 1), ring(r, s),
-                                               ring(r + 1, s + 1), ring(r, s + 1)});
-    uint32_t south = uint32_t(m.positions.size() - 1);
-    for (int s = 0; s < segments; ++s)
-        m.indices.insert(m.indices.end(), {south, ring(rings - 1, s + 1), ring(rings - 1, s)});
-    return m;
-}
-
 double area(const std::vector<Vec2>& c) { return 0.5 * body::signed_area2(c.data(), c.size()); }
 
 TEST(Slicer, CubeGivesOneSquarePerPlane) {
@@ -86,7 +66,7 @@ TEST(Slicer, CubeGivesOneSquarePerPlane) {
 
 TEST(Slicer, SpherePlanesThroughVerticesStillClose) {
     const int rings = 16;
-    auto m = sphere(rings, 32);
+    auto m = body::test::uv_sphere(rings, 32);
     std::vector<double> planes;
     for (int r = 1; r < rings; ++r) planes.push_back(std::cos(M_PI * r / rings));  // exactly the vertex rings
     planes.push_back(1.0);                                                         // touching the pole only
