@@ -48,8 +48,10 @@ Stroke make_stroke(Lcg& rng, bool vertical) {
     return s;
 }
 
-// Draws a one-texel-wide antialiased stroke into `d` (darkness, size x size), wrapping.
-void draw_stroke(std::vector<float>& d, int size, const Stroke& s) {
+// Draws a one-texel-wide antialiased stroke into `d` (darkness, size x size),
+// wrapping; returns the darkness it added (sum over the texels it touched).
+double draw_stroke(std::vector<float>& d, int size, const Stroke& s) {
+    double added = 0;
     const float n = static_cast<float>(size);
     const int steps = std::max(2, static_cast<int>(s.length * n));
     for (int i = 0; i < steps; ++i) {
@@ -69,9 +71,12 @@ void draw_stroke(std::vector<float>& d, int size, const Stroke& s) {
             int x = s.vertical ? row : col;
             int y = s.vertical ? col : row;
             float& px = d[static_cast<size_t>(y) * static_cast<size_t>(size) + static_cast<size_t>(x)];
+            const float before = px;
             px = px + a * w * (1.0f - px);
+            added += static_cast<double>(px - before);
         }
     }
+    return added;
 }
 
 double mean(const std::vector<float>& d) {
@@ -88,18 +93,28 @@ std::vector<uint8_t> to_bytes(const std::vector<float>& d) {
 }
 
 // One level: all tones, drawn with the shared stroke sequence until each target.
+// The mean darkness is tracked incrementally (a full pass over the level per
+// stroke made the 256-texel map cost most of the kiosk's start-up); the exact
+// mean is taken only near the target, so the strokes drawn are the same.
 std::vector<std::vector<uint8_t>> draw_level(int size, int tones) {
     std::vector<std::vector<uint8_t>> out;
     std::vector<float> d(static_cast<size_t>(size) * static_cast<size_t>(size), 0.0f);
+    const double texels = static_cast<double>(d.size());
+    double running = 0;  // sum of d, up to rounding
     Lcg horizontal(12345u), vertical(67890u);
     for (int tone = 0; tone < tones; ++tone) {
         const double target = target_darkness(tone, tones);
         const bool cross = tone >= tones / 2;
         int guard = 0;
-        while (mean(d) < target && guard++ < 100000) {
+        auto below_target = [&] {
+            if (running / texels < target - 1e-4) return true;
+            running = mean(d) * texels;  // resynchronise near the target
+            return running / texels < target;
+        };
+        while (below_target() && guard++ < 100000) {
             // Past the middle, alternate cross strokes with more parallel ones.
             bool v = cross && (guard % 2 == 0);
-            draw_stroke(d, size, make_stroke(v ? vertical : horizontal, v));
+            running += draw_stroke(d, size, make_stroke(v ? vertical : horizontal, v));
         }
         out.push_back(to_bytes(d));
     }
