@@ -121,7 +121,10 @@ public:
     }
     bool poll_events(std::vector<InputEvent>& out) override {
         if (g_quit_requested) {
-            out.push_back({InputEvent::Type::Quit, 0, 0, 0, 0, 0, 0, false, time()});
+            InputEvent quit;
+            quit.type = InputEvent::Type::Quit;
+            quit.time = time();
+            out.push_back(quit);
             return false;
         }
         return true;  // touch comes from the evdev input layer

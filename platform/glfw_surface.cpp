@@ -1,12 +1,19 @@
 // GLFW backend: a desktop window (or fullscreen on the primary monitor) with an
 // OpenGL ES 3.0 context created through EGL (GLFW_EGL_CONTEXT_API), so the same
 // GLES code runs on desktops, under Xvfb and on boards. Mouse events map to
-// MouseDown/Move/Up/Scroll, Escape and printable keys to Key.
+// MouseDown/Move/Up/Scroll, Escape and printable keys to Key, each with the
+// Shift/Ctrl/Alt modifiers held. GLFW 3.3 has no touch API: touchscreens are
+// read through the evdev layer (platform/evdev_input.h, hot-plugged) when
+// /dev/input is readable and mapped into the window (platform/evdev_window.h);
+// otherwise one line is logged and input is mouse only.
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
 #include <csignal>
+#include <cstdio>
 
+#include "platform/evdev_input.h"
+#include "platform/evdev_window.h"
 #include "platform/platform.h"
 
 namespace body::platform {
@@ -14,6 +21,38 @@ namespace {
 
 volatile std::sig_atomic_t g_glfw_quit = 0;
 void on_glfw_signal(int) { g_glfw_quit = 1; }
+
+uint32_t modifiers_from_glfw(int mods) {
+    return ((mods & GLFW_MOD_SHIFT) ? kModShift : 0u) | ((mods & GLFW_MOD_CONTROL) ? kModCtrl : 0u) |
+           ((mods & GLFW_MOD_ALT) ? kModAlt : 0u);
+}
+
+// The modifiers held now (cursor and scroll callbacks carry none).
+uint32_t modifiers_held(GLFWwindow* win) {
+    auto down = [win](int a, int b) { return glfwGetKey(win, a) == GLFW_PRESS || glfwGetKey(win, b) == GLFW_PRESS; };
+    return (down(GLFW_KEY_LEFT_SHIFT, GLFW_KEY_RIGHT_SHIFT) ? kModShift : 0u) |
+           (down(GLFW_KEY_LEFT_CONTROL, GLFW_KEY_RIGHT_CONTROL) ? kModCtrl : 0u) |
+           (down(GLFW_KEY_LEFT_ALT, GLFW_KEY_RIGHT_ALT) ? kModAlt : 0u);
+}
+
+// The monitor a window is on: its own when fullscreen, else the one holding the
+// window's centre, else the primary.
+GLFWmonitor* monitor_of(GLFWwindow* win) {
+    if (GLFWmonitor* m = glfwGetWindowMonitor(win)) return m;
+    int x = 0, y = 0, w = 0, h = 0, count = 0;
+    glfwGetWindowPos(win, &x, &y);
+    glfwGetWindowSize(win, &w, &h);
+    GLFWmonitor** monitors = glfwGetMonitors(&count);
+    for (int i = 0; i < count; ++i) {
+        int mx = 0, my = 0;
+        glfwGetMonitorPos(monitors[i], &mx, &my);
+        const GLFWvidmode* mode = glfwGetVideoMode(monitors[i]);
+        if (!mode) continue;
+        const int cx = x + w / 2, cy = y + h / 2;
+        if (cx >= mx && cy >= my && cx < mx + mode->width && cy < my + mode->height) return monitors[i];
+    }
+    return glfwGetPrimaryMonitor();
+}
 
 class GlfwSurface final : public Surface {
 public:
@@ -49,18 +88,20 @@ public:
         glfwSetWindowUserPointer(window_, this);
         glfwMakeContextCurrent(window_);
         glfwSwapInterval(1);
-        glfwSetMouseButtonCallback(window_, [](GLFWwindow* win, int button, int action, int) {
+        glfwSetMouseButtonCallback(window_, [](GLFWwindow* win, int button, int action, int mods) {
             auto* self = static_cast<GlfwSurface*>(glfwGetWindowUserPointer(win));
             double x = 0, y = 0;
             glfwGetCursorPos(win, &x, &y);
             InputEvent e;
             e.type = action == GLFW_PRESS ? InputEvent::Type::MouseDown : InputEvent::Type::MouseUp;
             e.id = button == GLFW_MOUSE_BUTTON_LEFT ? 0 : button == GLFW_MOUSE_BUTTON_RIGHT ? 1 : 2;
+            e.modifiers = modifiers_from_glfw(mods);
             self->push(e, x, y);
         });
         glfwSetCursorPosCallback(window_, [](GLFWwindow* win, double x, double y) {
             InputEvent e;
             e.type = InputEvent::Type::MouseMove;
+            e.modifiers = modifiers_held(win);
             static_cast<GlfwSurface*>(glfwGetWindowUserPointer(win))->push(e, x, y);
         });
         glfwSetScrollCallback(window_, [](GLFWwindow* win, double dx, double dy) {
@@ -68,20 +109,23 @@ public:
             e.type = InputEvent::Type::Scroll;
             e.dx = static_cast<float>(dx);
             e.dy = static_cast<float>(dy);
+            e.modifiers = modifiers_held(win);
             double x = 0, y = 0;
             glfwGetCursorPos(win, &x, &y);
             static_cast<GlfwSurface*>(glfwGetWindowUserPointer(win))->push(e, x, y);
         });
-        glfwSetKeyCallback(window_, [](GLFWwindow* win, int key, int, int action, int) {
+        glfwSetKeyCallback(window_, [](GLFWwindow* win, int key, int, int action, int mods) {
             if (action == GLFW_REPEAT) return;
             InputEvent e;
             e.type = InputEvent::Type::Key;
             e.key = key == GLFW_KEY_ESCAPE ? kKeyEscape : (key >= 32 && key < 127 ? key : -1);
             e.pressed = action == GLFW_PRESS;
+            e.modifiers = modifiers_from_glfw(mods);
             if (e.key >= 0) static_cast<GlfwSurface*>(glfwGetWindowUserPointer(win))->push(e, 0, 0);
         });
         std::signal(SIGINT, on_glfw_signal);
         std::signal(SIGTERM, on_glfw_signal);
+        open_touch(options);
         return ok_status();
     }
 
@@ -105,8 +149,14 @@ public:
     double time() const override { return glfwGetTime(); }
     bool poll_events(std::vector<InputEvent>& out) override {
         glfwPollEvents();
+        const size_t first = out.size();
         out.insert(out.end(), pending_.begin(), pending_.end());
         pending_.clear();
+        if (touch_) {
+            touch_->poll(time(), out);
+            touch_filter_.set_placement(placement());
+            touch_filter_.apply(out, first);
+        }
         if (glfwWindowShouldClose(window_) || g_glfw_quit) {
             InputEvent q;
             q.type = InputEvent::Type::Quit;
@@ -118,6 +168,39 @@ public:
     }
 
 private:
+    // Touchscreens through evdev, mapped to the monitor the window is on. Absent
+    // or unreadable devices are not an error: one line, then mouse only.
+    void open_touch(const SurfaceOptions& options) {
+        const GLFWvidmode* mode = glfwGetVideoMode(monitor_of(window_));
+        EvdevOptions eo;
+        eo.directory = options.touch_directory;
+        eo.width = mode ? mode->width : width();
+        eo.height = mode ? mode->height : height();
+        eo.rotation = options.touch_rotation;
+        auto input = EvdevInput::open(eo);
+        if (!input) {
+            std::fprintf(stderr, "bodyview: glfw: no touch input (%s); mouse only\n", input.error().message.c_str());
+            return;
+        }
+        touch_ = std::move(input).value();
+        if (touch_->device_count() == 0) {
+            std::fprintf(stderr, "bodyview: glfw: no readable touchscreen in %s; mouse only until one is plugged in\n",
+                         eo.directory.c_str());
+        }
+    }
+
+    WindowPlacement placement() const {
+        WindowPlacement p;
+        int mx = 0, my = 0;
+        glfwGetMonitorPos(monitor_of(window_), &mx, &my);
+        glfwGetWindowPos(window_, &p.x, &p.y);
+        p.x -= mx;
+        p.y -= my;
+        glfwGetWindowSize(window_, &p.width, &p.height);
+        glfwGetFramebufferSize(window_, &p.framebuffer_width, &p.framebuffer_height);
+        return p;
+    }
+
     void push(InputEvent e, double x, double y) {
         // Window coordinates to framebuffer pixels (they differ on HiDPI screens).
         int ww = 1, wh = 1;
@@ -130,6 +213,8 @@ private:
 
     GLFWwindow* window_ = nullptr;
     std::vector<InputEvent> pending_;
+    std::unique_ptr<EvdevInput> touch_;
+    WindowTouchFilter touch_filter_;
 };
 
 }  // namespace

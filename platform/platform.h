@@ -23,6 +23,9 @@ std::vector<Backend> compiled_backends();
 const char* backend_name(Backend backend);
 Result<Backend> parse_backend(const std::string& name);
 
+// Keyboard modifiers held when an input event happened (InputEvent::modifiers).
+enum Modifier : uint32_t { kModShift = 1, kModCtrl = 2, kModAlt = 4 };
+
 // One input event in surface pixels (origin top-left). Backends and the evdev
 // touch layer (platform/evdev_*) produce these; the kiosk app consumes them.
 struct InputEvent {
@@ -38,12 +41,13 @@ struct InputEvent {
         Quit,  // window closed, SIGINT/SIGTERM
     };
     Type type = Type::MouseMove;
-    int id = 0;            // touch slot/tracking id; mouse button (0 left, 1 right, 2 middle)
-    float x = 0, y = 0;    // position in pixels (touch, mouse)
-    float dx = 0, dy = 0;  // scroll offsets (Scroll)
-    int key = 0;           // key code (Key): ASCII for printable keys, 256 Escape
-    bool pressed = false;  // Key: down (true) or up
-    double time = 0;       // seconds, the same clock as Surface::time()
+    int id = 0;              // touch slot/tracking id; mouse button (0 left, 1 right, 2 middle)
+    float x = 0, y = 0;      // position in pixels (touch, mouse)
+    float dx = 0, dy = 0;    // scroll offsets (Scroll)
+    int key = 0;             // key code (Key): ASCII for printable keys, 256 Escape
+    bool pressed = false;    // Key: down (true) or up
+    double time = 0;         // seconds, the same clock as Surface::time()
+    uint32_t modifiers = 0;  // kMod* bits held (glfw: mouse, scroll, key); 0 for touch and headless
 };
 inline constexpr int kKeyEscape = 256;
 
@@ -54,6 +58,12 @@ struct SurfaceOptions {
     std::string mode;           // drm: "WxH" or "WxH@Hz"; empty for the preferred mode
     std::string drm_device;     // drm: e.g. /dev/dri/card0; empty to try card0..card9
     std::string title = "bodyview";
+    // glfw: touchscreens are read from here (evdev, platform/evdev_window.h) and
+    // mapped into the window; `touch_rotation` is the panel's rotation (0, 90,
+    // 180, 270) as in platform/evdev_input.h. (drm leaves touch to the caller's
+    // EvdevInput.)
+    std::string touch_directory = "/dev/input";
+    int touch_rotation = 0;
 };
 
 class Surface {
