@@ -174,7 +174,9 @@ void GestureRecognizer::mouse(const InputEvent& e, std::vector<Gesture>& out) {
             g.button = mouse_button_;
             out.push_back(g);
         } else if (!mouse_dragging_ && mouse_shift_ && mouse_button_ != MouseButton::Right) {
-            out.push_back(Gesture{GestureKind::Tap, e.time, mouse_start_x_, mouse_start_y_});
+            Gesture g{GestureKind::Tap, e.time, mouse_start_x_, mouse_start_y_};
+            g.button = mouse_button_;
+            out.push_back(g);
         }
         mouse_dragging_ = false;
     }

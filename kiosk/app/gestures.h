@@ -10,8 +10,9 @@
 // remaining finger's reference is reset.
 //
 // Mouse (BodyView's desktop bindings, thesis appendix B.2): left drag rotates,
-// middle drag pans, right drag zooms (up = closer), the wheel zooms; Shift+left
-// click selects (a tap); Shift+drag with the left or middle button is an object
+// middle drag pans, right drag zooms (up = closer), the wheel zooms; a plain
+// click (no drag) does nothing; Shift+left or Shift+middle click is a Tap with
+// its button (the app selects or deselects); Shift+drag with the left or middle button is an object
 // drag, which the app turns into moving the selected object when it started on
 // the manipulation sphere (left: the X-Z plane, middle: the Y-Z plane).
 #include <map>
@@ -25,7 +26,7 @@ enum class GestureKind : uint8_t {
     Orbit,      // dx, dy pixels
     Zoom,       // factor (>1 closer)
     Pan,        // dx, dy pixels
-    Tap,        // x, y
+    Tap,        // x, y, button (Left for touch; Shift+left or Shift+middle click)
     DoubleTap,  // x, y (follows the Tap of the second touch)
     DragStart,  // x, y, button: Shift+drag began at (x, y)
     Drag,       // dx, dy, button

@@ -210,7 +210,14 @@ void KioskApp::apply_gesture(const Gesture& g) {
         case GestureKind::Orbit: camera_.orbit(g.dx, g.dy); break;
         case GestureKind::Zoom: camera_.zoom(g.factor); break;
         case GestureKind::Pan: camera_.pan(g.dx, g.dy); break;
-        case GestureKind::Tap: select(pick(g.x, g.y)); break;
+        case GestureKind::Tap: {
+            // Thesis B.2: Shift+left click selects what it hits; Shift+left or
+            // middle click away from every object deselects; a middle click on
+            // an object changes nothing. Touch taps act like left clicks.
+            const int m = pick(g.x, g.y);
+            if (g.button != MouseButton::Middle || m < 0) select(m);
+            break;
+        }
         case GestureKind::DoubleTap: {
             const int m = pick(g.x, g.y);
             if (m >= 0) focus(m, g.time);

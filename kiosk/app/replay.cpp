@@ -2,7 +2,9 @@
 // fixed-step driver that plays them into a KioskApp.
 #include "kiosk/app/replay.h"
 
+#include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -12,6 +14,10 @@
 namespace body::kiosk {
 
 namespace {
+
+// Modifier words: trailing words on a text line, boolean members in JSON.
+constexpr std::pair<const char*, uint32_t> kModifierNames[] = {
+    {"shift", kModShift}, {"ctrl", kModCtrl}, {"alt", kModAlt}};
 
 bool parse_button(const std::string& s, MouseButton& b) {
     if (s == "left")
@@ -93,14 +99,12 @@ Result<Replay> parse_text(const std::string& text, const std::string& source) {
         if (!ok) return input_error(where + "bad arguments for '" + word + "' (see kiosk/app/replay.h)");
         std::string mod;
         while (ls >> mod) {
-            if (mod == "shift")
-                e.modifiers |= kModShift;
-            else if (mod == "ctrl")
-                e.modifiers |= kModCtrl;
-            else if (mod == "alt")
-                e.modifiers |= kModAlt;
-            else
-                return input_error(where + "unexpected '" + mod + "'");
+            const auto* it = std::find_if(std::begin(kModifierNames), std::end(kModifierNames),
+                                          [&](const auto& m) { return mod == m.first; });
+            if (it == std::end(kModifierNames)) {
+                return input_error(where + "unexpected '" + mod + "' (modifiers: shift, ctrl, alt)");
+            }
+            e.modifiers |= it->second;
         }
         r.events.push_back(e);
         r.end_time = std::max(r.end_time, t);
@@ -164,9 +168,11 @@ Result<Replay> parse_json(const std::string& text, const std::string& source) {
             (!v["button"].is_string() || !parse_button(v["button"].get<std::string>(), e.button))) {
             return input_error(where + ".button: expected left, middle or right");
         }
-        if (v.value("shift", false)) e.modifiers |= kModShift;
-        if (v.value("ctrl", false)) e.modifiers |= kModCtrl;
-        if (v.value("alt", false)) e.modifiers |= kModAlt;
+        for (const auto& [name, bit] : kModifierNames) {
+            if (!v.contains(name)) continue;
+            if (!v[name].is_boolean()) return input_error(where + "." + name + ": expected true or false");
+            if (v[name].get<bool>()) e.modifiers |= bit;
+        }
         r.events.push_back(e);
         r.end_time = std::max(r.end_time, e.time);
     }

@@ -17,6 +17,9 @@
 // JSON: {"size": [1280, 800], "events": [{"t": 0.0, "type": "down", "id": 1, "x": 640, "y": 400},
 //        {"t": 0.5, "type": "mouse-down", "button": "left", "x": 100, "y": 80, "shift": true}, ...],
 //        "end": 9.0}
+// Modifiers (shift, ctrl, alt; the keys held, as the glfw backend reports them)
+// may follow any event's arguments in text and are boolean members in JSON; files
+// without them stay valid and mean no modifier held.
 // Events must be in non-decreasing time order. Errors name the file and line (or event index).
 #include <string>
 #include <vector>

@@ -265,6 +265,38 @@ TEST(KioskApp, ThesisMouseBindings) {
     EXPECT_EQ(app.selected(), -1);
 }
 
+TEST(KioskApp, ThesisShiftMiddleButtonMovesInYZAndOnlyDeselects) {
+    KioskApp app = make_app();
+    app.update(0.0);
+    // Shift+middle click on an object does not select it (thesis B.2: only the left button selects).
+    run_replay(app, replay("0.0 mouse-down middle 640 400 shift\n0.05 mouse-up middle 640 400 shift\n"));
+    EXPECT_EQ(app.selected(), -1);
+    run_replay(app, replay("1.0 mouse-down left 640 400 shift\n1.05 mouse-up left 640 400 shift\n"), 60.0, 1.0);
+    ASSERT_EQ(app.selected(), 1);
+    // A plain click (no Shift) anywhere leaves the selection alone.
+    run_replay(app, replay("2.0 mouse-down left 300 150\n2.05 mouse-up left 300 150\n"), 60.0, 2.0);
+    EXPECT_EQ(app.selected(), 1);
+    // Shift+middle drag from the manipulation sphere moves the selection in the Y-Z plane:
+    // right is +z, down is -y, x stays.
+    run_replay(app,
+               replay("3.0 mouse-down middle 640 400 shift\n3.1 mouse-move 700 460 shift\n"
+                      "3.2 mouse-up middle 700 460 shift\n"),
+               60.0, 3.0);
+    EXPECT_GT(app.model(1).offset.z, 1.0f);
+    EXPECT_LT(app.model(1).offset.y, -1.0f);
+    EXPECT_FLOAT_EQ(app.model(1).offset.x, 0.0f);
+    EXPECT_EQ(app.model(0).offset, glm::vec3(0.0f));
+    // Shift+middle click on another object keeps the selection; away from every object it deselects.
+    const glm::vec4 c = app.camera().projection() * app.camera().view() * glm::vec4(100, 0, 0, 1);
+    const std::string right = std::to_string((c.x / c.w * 0.5f + 0.5f) * 1280.0f) + " 400";
+    ASSERT_EQ(app.pick((c.x / c.w * 0.5f + 0.5f) * 1280.0f, 400.0f), 2);
+    run_replay(app, replay("4.0 mouse-down middle " + right + " shift\n4.05 mouse-up middle " + right + " shift\n"),
+               60.0, 4.0);
+    EXPECT_EQ(app.selected(), 1);
+    run_replay(app, replay("5.0 mouse-down middle 300 150 shift\n5.05 mouse-up middle 300 150 shift\n"), 60.0, 5.0);
+    EXPECT_EQ(app.selected(), -1);
+}
+
 double simulated_cost(size_t triangles) { return 1.0 + 10.0 * static_cast<double>(triangles) * 1e-6; }
 
 TEST(KioskApp, AutomaticLodHoldsTheFrameTargetAndFavoursTheSelection) {

@@ -35,6 +35,28 @@ TEST(Replay, TextAndJsonAgree) {
     }
 }
 
+TEST(Replay, ModifiersAreOptionalAndFollowAnyEvent) {
+    // A replay written before modifiers existed: every event has none.
+    auto old = parse_replay("0.0 mouse-down left 1 2\n0.1 mouse-move 3 4\n0.2 mouse-up left 3 4\n0.3 wheel 1 2 1\n",
+                            "old.replay");
+    ASSERT_TRUE(old) << old.error().message;
+    ASSERT_EQ(old->events.size(), 4u);
+    for (const InputEvent& e : old->events) EXPECT_EQ(e.modifiers, 0u);
+    // Any order, any event kind; JSON false means not held.
+    auto text = parse_replay("0.0 mouse-move 3 4 alt shift\n0.1 wheel 1 2 -1 ctrl\n0.2 down 1 5 6 shift\n", "m.replay");
+    auto json = parse_replay(R"({"events": [{"t": 0, "type": "mouse-move", "x": 3, "y": 4, "alt": true, "shift": true},
+        {"t": 0.1, "type": "wheel", "x": 1, "y": 2, "wheel": -1, "ctrl": true, "shift": false},
+        {"t": 0.2, "type": "down", "id": 1, "x": 5, "y": 6, "shift": true}]})",
+                             "m.json");
+    for (const auto* r : {&text, &json}) {
+        ASSERT_TRUE(*r) << r->error().message;
+        ASSERT_EQ((*r)->events.size(), 3u);
+        EXPECT_EQ((*r)->events[0].modifiers, kModShift | kModAlt);
+        EXPECT_EQ((*r)->events[1].modifiers, static_cast<uint32_t>(kModCtrl));
+        EXPECT_EQ((*r)->events[2].modifiers, static_cast<uint32_t>(kModShift));
+    }
+}
+
 TEST(Replay, ErrorsNameTheLine) {
     auto bad = [](const std::string& text) {
         auto r = parse_replay(text, "x.replay");
@@ -44,7 +66,9 @@ TEST(Replay, ErrorsNameTheLine) {
     EXPECT_EQ(bad("1 down 1 2 3\n0.5 up 1 2 3\n"), "x.replay: line 2: time goes backwards");
     EXPECT_EQ(bad("0 down 1 2\n"), "x.replay: line 1: bad arguments for 'down' (see kiosk/app/replay.h)");
     EXPECT_EQ(bad("abc down 1 2 3\n"), "x.replay: line 1: expected a time in seconds");
-    EXPECT_EQ(bad("0 mouse-down left 1 2 meta\n"), "x.replay: line 1: unexpected 'meta'");
+    EXPECT_EQ(bad("0 mouse-down left 1 2 meta\n"), "x.replay: line 1: unexpected 'meta' (modifiers: shift, ctrl, alt)");
+    EXPECT_EQ(bad(R"({"events": [{"t": 0, "type": "mouse-down", "button": "left", "shift": 1}]})"),
+              "x.replay: events[0].shift: expected true or false");
     EXPECT_EQ(bad(R"({"events": [{"t": 0, "type": "down"}, {"t": -1, "type": "up"}]})"),
               "x.replay: events[1].t: time goes backwards");
     EXPECT_EQ(bad(R"({"events": 3})"), "x.replay: events: expected an array");
