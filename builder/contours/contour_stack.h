@@ -44,9 +44,21 @@ struct ContourStack {
     std::vector<Slice> slices;  // sorted by increasing z after reading
 };
 
-// Parses a contour stack. Errors name `path`, the slice/contour index in the
-// file and the reason. Slices are merged (|dz| < tolerance) and sorted by z;
-// contours keep their source indices. Structure references must exist.
+// Parses a contour stack. Errors (exit code 2) are one line naming `path`, the
+// place in the file and the reason: "PATH: slice S contour C: point K must be
+// [x, y]"; a number too large for a double (1e999) as "PATH: slice S contour C:
+// point K is not finite (number overflow at byte B: '1e999')"; a syntax error or
+// truncation as "PATH: byte B: invalid JSON at slice S contour C point K: why".
+// B counts bytes read, as nlohmann does: the 1-based index of the offending
+// token's last byte, or one past the end of a file that stops early. With
+// several problems the reported one is: syntax, format, version, units,
+// structures, then the first bad slice/contour/point in file order.
+// Slices are merged (|dz| < tolerance) and sorted by z; contours keep their
+// source indices. Structure references must exist. Members may come in any
+// order; unknown members are ignored.
+// Parsing streams (SAX, no document tree): memory is the stack itself plus
+// the longest token; read_contour_stack reads the file through a 1 MiB buffer
+// instead of loading it.
 Result<ContourStack> parse_contour_stack(const std::string& json_text, const std::string& path);
 Result<ContourStack> read_contour_stack(const std::string& path);
 
