@@ -48,22 +48,13 @@ TEST(FlatCap, NonConvexComb) {
     EXPECT_NEAR(triangles_area(comb, tris), signed_area2(comb.data(), comb.size()) / 2, 1e-12);
 }
 
-TEST(Partition, EveryEdgeOnceChordsTwiceOpposite) {
-    auto single = ellipse(0, 0, 14, 6, 0, 40);
-    std::vector<Vec3> positions;
-    std::vector<uint32_t> ids;
-    for (const Vec2& p : single) {
-        ids.push_back(uint32_t(positions.size()));
-        positions.emplace_back(p.x, p.y, 0.0);
-    }
-    auto l = circle(-7, 0, 4.5), r = circle(7, 0, 4.5), t = circle(0, 8, 2);
-    std::vector<std::span<const Vec2>> branches{l, r, t};
-    auto pieces = partition_contour(ids, branches, 0.5, positions);
-    ASSERT_TRUE(pieces.ok()) << pieces.error().message;
-    ASSERT_EQ(pieces->size(), 3u);
+// The pieces glue into one surface with the slab's other side: every contour
+// edge in exactly one piece (same direction), every other edge in two pieces,
+// traversed in opposite directions; every piece at least a triangle.
+void expect_pieces_glue(const std::vector<uint32_t>& ids, const std::vector<std::vector<uint32_t>>& pieces) {
     std::map<std::pair<uint32_t, uint32_t>, int> directed;
-    for (const auto& piece : *pieces) {
-        ASSERT_GE(piece.size(), 3u);
+    for (const auto& piece : pieces) {
+        EXPECT_GE(piece.size(), 3u);
         for (size_t i = 0; i < piece.size(); ++i) directed[{piece[i], piece[(i + 1) % piece.size()]}]++;
     }
     for (size_t i = 0; i < ids.size(); ++i) EXPECT_EQ((directed[{ids[i], ids[(i + 1) % ids.size()]}]), 1);
@@ -73,6 +64,125 @@ TEST(Partition, EveryEdgeOnceChordsTwiceOpposite) {
         if (!contour_edge) {
             EXPECT_EQ((directed.count({edge.second, edge.first})), 1u);
         }
+    }
+}
+
+std::vector<uint32_t> contour_ids(const std::vector<Vec2>& single, std::vector<Vec3>& positions, double z = 0.0) {
+    std::vector<uint32_t> ids;
+    for (const Vec2& p : single) {
+        ids.push_back(uint32_t(positions.size()));
+        positions.emplace_back(p.x, p.y, z);
+    }
+    return ids;
+}
+
+std::vector<Vec2> square(double cx, double cy, double half) {
+    return {{cx - half, cy}, {cx, cy - half}, {cx + half, cy}, {cx, cy + half}};
+}
+
+TEST(Partition, EveryEdgeOnceChordsTwiceOpposite) {
+    auto single = ellipse(0, 0, 14, 6, 0, 40);
+    std::vector<Vec3> positions;
+    const std::vector<uint32_t> ids = contour_ids(single, positions);
+    auto l = circle(-7, 0, 4.5), r = circle(7, 0, 4.5), t = circle(0, 8, 2);
+    std::vector<std::span<const Vec2>> branches{l, r, t};
+    auto pieces = partition_contour(ids, branches, 0.5, positions);
+    ASSERT_TRUE(pieces.ok()) << pieces.error().message;
+    ASSERT_EQ(pieces->size(), 3u);
+    expect_pieces_glue(ids, *pieces);
+}
+
+// A contour with fewer vertices than its branches need (a one-voxel diamond
+// over five islands, a triangle over two, a square over eight) still splits:
+// branches without an arc bud off a chord, tiny regions are never an error.
+TEST(Partition, TooFewVerticesForTheBranchesStillGlue) {
+    struct Case {
+        std::vector<Vec2> single;
+        std::vector<std::vector<Vec2>> branches;
+    };
+    std::vector<Case> cases;
+    cases.push_back(
+        {square(0, 0, 0.5),
+         {square(0, 0, 0.5), square(1, 0, 0.5), square(-1, 0, 0.5), square(0, 1, 0.5), square(0, -1, 0.5)}});
+    cases.push_back({{{0, 0}, {1, 0}, {0, 1}}, {square(0, 0, 0.5), square(1, 1, 0.5)}});
+    cases.push_back({{{0, 0}, {1, 0}, {0, 1}}, {square(2, 0, 0.5), square(0, 2, 0.5)}});  // both beside it
+    Case ring{{{-1, -1}, {1, -1}, {1, 1}, {-1, 1}}, {}};
+    for (int k = 0; k < 8; ++k)
+        ring.branches.push_back(square(2 * std::cos(k * kPi / 4), 2 * std::sin(k * kPi / 4), 0.4));
+    cases.push_back(ring);
+    for (size_t c = 0; c < cases.size(); ++c) {
+        SCOPED_TRACE(c);
+        for (const bool clockwise : {false, true}) {
+            std::vector<Vec3> positions;
+            const std::vector<uint32_t> ids =
+                contour_ids(clockwise ? reversed(cases[c].single) : cases[c].single, positions);
+            std::vector<std::vector<Vec2>> owned;
+            for (const auto& b : cases[c].branches) owned.push_back(clockwise ? reversed(b) : b);
+            std::vector<std::span<const Vec2>> branches(owned.begin(), owned.end());
+            auto pieces = partition_contour(ids, branches, 0.5, positions);
+            ASSERT_TRUE(pieces.ok()) << pieces.error().message;
+            ASSERT_EQ(pieces->size(), branches.size());
+            expect_pieces_glue(ids, *pieces);
+            // New vertices lie between the slices; no piece winds against the
+            // contour (a chord on the contour's own edge leaves a vertical piece).
+            for (size_t v = ids.size(); v < positions.size(); ++v) EXPECT_EQ(positions[v].z, 0.5);
+            for (const auto& piece : *pieces) {
+                std::vector<Vec2> xy;
+                for (uint32_t v : piece) xy.emplace_back(positions[v]);
+                EXPECT_GE((clockwise ? -1 : 1) * signed_area2(xy.data(), xy.size()), -1e-12);
+            }
+        }
+    }
+}
+
+// A box of voxels as marching squares outlines it after simplification: edges
+// on the half-voxel lines, corners cut.
+std::vector<Vec2> voxel_box(double x0, double y0, double x1, double y1) {
+    return {{x0 + .5, y0}, {x1 - .5, y0}, {x1, y0 + .5}, {x1, y1 - .5},
+            {x1 - .5, y1}, {x0 + .5, y1}, {x0, y1 - .5}, {x0, y0 + .5}};
+}
+
+// On voxel grids a chord vertex can land exactly between its contour end and a
+// branch vertex (AAL Cerebelum_Crus1_R gave one flat triangle that way): the
+// vertex next to each chord end must not lie on a segment from that end to a
+// branch vertex, or the band can make a zero-area triangle of the three.
+// (Each of these boxes had such a vertex before the chords were kept off.)
+TEST(Partition, ChordEndsOffTheFanSegmentsOnVoxelGrids) {
+    const double boxes[][12] = {
+        {1.5, 2.5, 8.5, 10.5, 0.5, 5.5, 1.5, 9.5, -0.5, -0.5, 2.5, 4.5},
+        {0.5, 0.5, 8.5, 7.5, 3.5, 3.5, 4.5, 4.5, 5.5, 3.5, 9.5, 4.5},
+        {1.5, 0.5, 9.5, 2.5, 3.5, 0.5, 8.5, 2.5, 3.5, 2.5, 7.5, 4.5},
+        {2.5, 2.5, 8.5, 9.5, 2.5, 3.5, 7.5, 4.5, 4.5, 5.5, 5.5, 6.5},
+        {2.5, 0.5, 4.5, 6.5, 6.5, 3.5, 7.5, 4.5, 1.5, 2.5, 6.5, 7.5},
+    };
+    for (const auto& box : boxes) {
+        SCOPED_TRACE(box[0]);
+        const std::vector<Vec2> single = voxel_box(box[0], box[1], box[2], box[3]);
+        const std::vector<Vec2> a = voxel_box(box[4], box[5], box[6], box[7]),
+                                b = voxel_box(box[8], box[9], box[10], box[11]);
+        std::vector<Vec3> positions;
+        const std::vector<uint32_t> ids = contour_ids(single, positions, 1.0);
+        std::vector<std::span<const Vec2>> branches{a, b};
+        auto pieces = partition_contour(ids, branches, 0.5, positions);
+        ASSERT_TRUE(pieces.ok()) << pieces.error().message;
+        expect_pieces_glue(ids, *pieces);
+        size_t chord_ends = 0;
+        for (const auto& piece : *pieces)
+            for (size_t i = 0; i < piece.size(); ++i) {
+                const uint32_t u = piece[i], v = piece[(i + 1) % piece.size()];
+                if ((u < ids.size()) == (v < ids.size())) continue;  // not a chord end
+                ++chord_ends;
+                const Vec2 s(positions[std::min(u, v)]), c(positions[std::max(u, v)]);
+                for (const auto& branch : branches)
+                    for (const Vec2& p : branch) {
+                        const Vec2 d = p - s, e = c - s;
+                        const bool between = glm::dot(e, d) > 0 && glm::dot(e, d) < glm::dot(d, d);
+                        EXPECT_FALSE(between && std::abs(d.x * e.y - d.y * e.x) < 1e-9)
+                            << "chord vertex (" << c.x << ", " << c.y << ") between (" << s.x << ", " << s.y
+                            << ") and (" << p.x << ", " << p.y << ")";
+                    }
+            }
+        EXPECT_GE(chord_ends, 4u);
     }
 }
 
