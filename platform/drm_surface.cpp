@@ -247,9 +247,7 @@ private:
 }  // namespace
 
 Result<std::unique_ptr<Surface>> create_drm_surface(const SurfaceOptions& options) {
-    auto surface = std::make_unique<DrmSurface>();
-    if (auto s = surface->init(options); !s) return s.error();
-    return std::unique_ptr<Surface>(std::move(surface));
+    return init_surface<DrmSurface>(options);
 }
 
 }  // namespace body::platform

@@ -220,9 +220,7 @@ private:
 }  // namespace
 
 Result<std::unique_ptr<Surface>> create_glfw_surface(const SurfaceOptions& options) {
-    auto surface = std::make_unique<GlfwSurface>();
-    if (auto s = surface->init(options); !s) return s.error();
-    return std::unique_ptr<Surface>(std::move(surface));
+    return init_surface<GlfwSurface>(options);
 }
 
 }  // namespace body::platform

@@ -79,9 +79,7 @@ private:
 }  // namespace
 
 Result<std::unique_ptr<Surface>> create_headless_surface(const SurfaceOptions& options) {
-    auto surface = std::make_unique<HeadlessSurface>();
-    if (auto s = surface->init(options); !s) return s.error();
-    return std::unique_ptr<Surface>(std::move(surface));
+    return init_surface<HeadlessSurface>(options);
 }
 
 }  // namespace body::platform

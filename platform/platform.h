@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "shared/error.h"
@@ -93,6 +94,14 @@ Result<std::unique_ptr<Surface>> create_surface(const SurfaceOptions& options);
 Result<std::unique_ptr<Surface>> create_headless_surface(const SurfaceOptions& options);
 Result<std::unique_ptr<Surface>> create_glfw_surface(const SurfaceOptions& options);
 Result<std::unique_ptr<Surface>> create_drm_surface(const SurfaceOptions& options);
+
+// For the backend constructors: a new S after its `Status init(const SurfaceOptions&)`.
+template <class S>
+Result<std::unique_ptr<Surface>> init_surface(const SurfaceOptions& options) {
+    auto surface = std::make_unique<S>();
+    if (auto s = surface->init(options); !s) return s.error();
+    return std::unique_ptr<Surface>(std::move(surface));
+}
 
 // Reads the RGBA8 pixels of the current read framebuffer, top row first.
 std::vector<uint8_t> read_pixels_rgba(unsigned framebuffer, int width, int height);

@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "platform/evdev_input.h"
+#include "tests/platform/input_events.h"
 
 namespace body::platform {
 namespace {
@@ -20,6 +21,7 @@ input_event ev(uint16_t type, uint16_t code, int32_t value) {
 input_event syn() { return ev(EV_SYN, SYN_REPORT, 0); }
 
 using T = InputEvent::Type;
+using test::expect_events;
 
 struct Fixture {
     MtProtocolB mt{10, 0};
@@ -45,25 +47,14 @@ TEST(MtProtocolB, TwoFingersDownMoveUp) {
             ev(EV_ABS, ABS_MT_POSITION_X, 300), ev(EV_ABS, ABS_MT_POSITION_Y, 400)});
     EXPECT_TRUE(f.out.empty());  // nothing before SYN_REPORT
     f.feed({syn()});
-    ASSERT_EQ(f.out.size(), 2u);
-    EXPECT_EQ(f.out[0].type, T::TouchDown);
-    EXPECT_EQ(f.out[0].id, 45);
-    EXPECT_FLOAT_EQ(f.out[0].x, 100.0f);
-    EXPECT_FLOAT_EQ(f.out[0].y, 200.0f);
-    EXPECT_EQ(f.out[1].id, 46);
+    expect_events(f.out, {{T::TouchDown, 45, 100.0f, 200.0f}, {T::TouchDown, 46, 300.0f, 400.0f}});
     f.out.clear();
     // Slot 1 is still selected: only X of slot 1 changes; then slot 0 lifts.
     f.feed({ev(EV_ABS, ABS_MT_POSITION_X, 310), syn()});
-    ASSERT_EQ(f.out.size(), 1u);
-    EXPECT_EQ(f.out[0].type, T::TouchMove);
-    EXPECT_EQ(f.out[0].id, 46);
-    EXPECT_FLOAT_EQ(f.out[0].x, 310.0f);
-    EXPECT_FLOAT_EQ(f.out[0].y, 400.0f);
+    expect_events(f.out, {{T::TouchMove, 46, 310.0f, 400.0f}});
     f.out.clear();
     f.feed({ev(EV_ABS, ABS_MT_SLOT, 0), ev(EV_ABS, ABS_MT_TRACKING_ID, -1), syn()});
-    ASSERT_EQ(f.out.size(), 1u);
-    EXPECT_EQ(f.out[0].type, T::TouchUp);
-    EXPECT_EQ(f.out[0].id, 45);
+    expect_events(f.out, {{T::TouchUp, 45}});
     EXPECT_EQ(f.mt.active_contacts(), 1);
 }
 
@@ -73,12 +64,7 @@ TEST(MtProtocolB, ANewContactInAReusedSlotWithinOneFrameIsUpThenDown) {
         {ev(EV_ABS, ABS_MT_TRACKING_ID, 7), ev(EV_ABS, ABS_MT_POSITION_X, 1), ev(EV_ABS, ABS_MT_POSITION_Y, 1), syn()});
     f.out.clear();
     f.feed({ev(EV_ABS, ABS_MT_TRACKING_ID, 8), ev(EV_ABS, ABS_MT_POSITION_X, 500), syn()});
-    ASSERT_EQ(f.out.size(), 2u);
-    EXPECT_EQ(f.out[0].type, T::TouchUp);
-    EXPECT_EQ(f.out[0].id, 7);
-    EXPECT_EQ(f.out[1].type, T::TouchDown);
-    EXPECT_EQ(f.out[1].id, 8);
-    EXPECT_FLOAT_EQ(f.out[1].x, 500.0f);
+    expect_events(f.out, {{T::TouchUp, 7}, {T::TouchDown, 8, 500.0f}});
 }
 
 TEST(MtProtocolB, SynDroppedIgnoresTheRestOfTheFrameAndResyncsFromTheDeviceState) {
@@ -101,22 +87,12 @@ TEST(MtProtocolB, SynDroppedIgnoresTheRestOfTheFrameAndResyncsFromTheDeviceState
     now[1] = MtSlot{2, 25, 20};
     now[2] = MtSlot{3, 70, 80};
     f.mt.resync(now, 2.0, f.out);
-    ASSERT_EQ(f.out.size(), 3u);
-    EXPECT_EQ(f.out[0].type, T::TouchUp);
-    EXPECT_EQ(f.out[0].id, 1);
-    EXPECT_EQ(f.out[1].type, T::TouchMove);
-    EXPECT_EQ(f.out[1].id, 2);
-    EXPECT_FLOAT_EQ(f.out[1].x, 25.0f);
-    EXPECT_EQ(f.out[2].type, T::TouchDown);
-    EXPECT_EQ(f.out[2].id, 3);
+    expect_events(f.out, {{T::TouchUp, 1}, {T::TouchMove, 2, 25.0f}, {T::TouchDown, 3, 70.0f, 80.0f}});
     EXPECT_FALSE(f.mt.needs_resync());
     f.out.clear();
     // Back to normal: the next frame is relative to the resynced state.
     f.feed({ev(EV_ABS, ABS_MT_SLOT, 2), ev(EV_ABS, ABS_MT_POSITION_Y, 90), syn()});
-    ASSERT_EQ(f.out.size(), 1u);
-    EXPECT_EQ(f.out[0].type, T::TouchMove);
-    EXPECT_EQ(f.out[0].id, 3);
-    EXPECT_FLOAT_EQ(f.out[0].y, 90.0f);
+    expect_events(f.out, {{T::TouchMove, 3, 70.0f, 90.0f}});
 }
 
 TEST(MtProtocolB, RemovedDeviceLiftsEveryFingerAndIdsDifferPerDevice) {
@@ -127,13 +103,10 @@ TEST(MtProtocolB, RemovedDeviceLiftsEveryFingerAndIdsDifferPerDevice) {
                                  ev(EV_ABS, ABS_MT_TRACKING_ID, 7), syn()}) {
         second.feed(e, 0.0, out);
     }
-    ASSERT_EQ(out.size(), 2u);
-    EXPECT_EQ(out[0].id, 65536 + 5);
+    expect_events(out, {{T::TouchDown, 65536 + 5}, {T::TouchDown, 65536 + 6}});
     out.clear();
     second.release_all(1.0, out);
-    ASSERT_EQ(out.size(), 2u);
-    EXPECT_EQ(out[0].type, T::TouchUp);
-    EXPECT_EQ(out[1].type, T::TouchUp);
+    expect_events(out, {{T::TouchUp, 65536 + 5}, {T::TouchUp, 65536 + 6}});
     EXPECT_EQ(second.active_contacts(), 0);
 }
 

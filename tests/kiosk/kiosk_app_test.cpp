@@ -29,6 +29,28 @@ std::string tap_on(const Control& c, double t, int id = 9) {
            std::to_string(y) + "\n";
 }
 
+// Mouse input as replay text: a click (down, up 50 ms later) and a drag (down,
+// move, up 100 ms apart); `mods` as in the replay format (e.g. "shift").
+std::string mouse_line(double t, const std::string& what, float x, float y, const std::string& mods) {
+    return std::to_string(t) + " " + what + " " + std::to_string(x) + " " + std::to_string(y) + " " + mods + "\n";
+}
+std::string click(double t, const std::string& button, float x, float y, const std::string& mods = "") {
+    return mouse_line(t, "mouse-down " + button, x, y, mods) + mouse_line(t + 0.05, "mouse-up " + button, x, y, mods);
+}
+std::string drag(double t, const std::string& button, float x0, float y0, float x1, float y1,
+                 const std::string& mods = "") {
+    return mouse_line(t, "mouse-down " + button, x0, y0, mods) + mouse_line(t + 0.1, "mouse-move", x1, y1, mods) +
+           mouse_line(t + 0.2, "mouse-up " + button, x1, y1, mods);
+}
+// Plays replay text that starts at `t`.
+void play(KioskApp& app, double t, const std::string& text) { run_replay(app, replay(text), 60.0, t); }
+
+// Where a scene point appears horizontally on the 1280-pixel-wide screen.
+float screen_x(const KioskApp& app, const glm::vec3& p) {
+    const glm::vec4 c = app.camera().projection() * app.camera().view() * glm::vec4(p, 1.0f);
+    return (c.x / c.w * 0.5f + 0.5f) * 1280.0f;
+}
+
 TEST(KioskApp, StartsAtHomeFittingTheScene) {
     KioskApp app = make_app();
     app.update(0.0);
@@ -111,9 +133,7 @@ TEST(KioskApp, DoubleTapFocusesOnTheModel) {
     app.update(0.0);
     const float home = app.camera().pose().distance;
     // The right model: x = 100 projects right of centre.
-    const glm::vec4 c = app.camera().projection() * app.camera().view() * glm::vec4(100, 0, 0, 1);
-    const float px = (c.x / c.w * 0.5f + 0.5f) * 1280.0f;
-    const std::string x = std::to_string(px);
+    const std::string x = std::to_string(screen_x(app, {100, 0, 0}));
     run_replay(app, replay("0.0 down 1 " + x + " 400\n0.08 up 1 " + x + " 400\n0.2 down 1 " + x + " 400\n0.28 up 1 " +
                            x + " 400\n2.0 end\n"));
     EXPECT_EQ(app.selected(), 2);
@@ -230,37 +250,28 @@ TEST(KioskApp, ThesisMouseBindings) {
     app.update(0.0);
     const float home = app.camera().pose().distance;
     // Left drag rotates.
-    run_replay(app, replay("0.0 mouse-down left 300 150\n0.1 mouse-move 350 150\n0.2 mouse-up left 350 150\n"));
+    play(app, 0.0, drag(0.0, "left", 300, 150, 350, 150));
     EXPECT_NEAR(app.camera().pose().azimuth, -0.5f, 1e-4f);
     // Right drag up zooms in.
-    run_replay(app, replay("1.0 mouse-down right 300 300\n1.1 mouse-move 300 200\n1.2 mouse-up right 300 200\n"), 60.0,
-               1.0);
+    play(app, 1.0, drag(1.0, "right", 300, 300, 300, 200));
     EXPECT_NEAR(app.camera().pose().distance, home * std::exp(-0.5f), home * 1e-3f);
     // Middle drag pans.
-    run_replay(app, replay("2.0 mouse-down middle 300 300\n2.1 mouse-move 300 350\n2.2 mouse-up middle 300 350\n"),
-               60.0, 2.0);
+    play(app, 2.0, drag(2.0, "middle", 300, 300, 300, 350));
     EXPECT_GT(glm::length(app.camera().pose().target), 1.0f);
     // Shift+click selects; a plain click does not.
     app.camera().set_pose(CameraPose{{0, 0, 0}, 0.0f, 1.5707964f, home});
-    run_replay(app, replay("3.0 mouse-down left 640 400\n3.05 mouse-up left 640 400\n"), 60.0, 3.0);
+    play(app, 3.0, click(3.0, "left", 640, 400));
     EXPECT_EQ(app.selected(), -1);
-    run_replay(app, replay("4.0 mouse-down left 640 400 shift\n4.05 mouse-up left 640 400 shift\n"), 60.0, 4.0);
+    play(app, 4.0, click(4.0, "left", 640, 400, "shift"));
     EXPECT_EQ(app.selected(), 1);
     // Shift+drag from the manipulation sphere (at the model's centre) moves it in X-Z.
-    run_replay(app,
-               replay("5.0 mouse-down left 640 400 shift\n5.1 mouse-move 700 400 shift\n"
-                      "5.2 mouse-up left 700 400 shift\n"),
-               60.0, 5.0);
+    play(app, 5.0, drag(5.0, "left", 640, 400, 700, 400, "shift"));
     EXPECT_GT(app.model(1).offset.x, 1.0f);
     EXPECT_NEAR(app.model(1).offset.y, 0.0f, 1e-6f);
     EXPECT_EQ(app.selected(), 1);
     // Shift+drag elsewhere does not move it; Shift+click on empty deselects.
     const glm::vec3 before = app.model(1).offset;
-    run_replay(app,
-               replay("6.0 mouse-down left 300 150 shift\n6.1 mouse-move 350 150 shift\n"
-                      "6.2 mouse-up left 350 150 shift\n7.0 mouse-down left 300 150 shift\n"
-                      "7.05 mouse-up left 300 150 shift\n"),
-               60.0, 6.0);
+    play(app, 6.0, drag(6.0, "left", 300, 150, 350, 150, "shift") + click(7.0, "left", 300, 150, "shift"));
     EXPECT_EQ(app.model(1).offset, before);
     EXPECT_EQ(app.selected(), -1);
 }
@@ -269,31 +280,26 @@ TEST(KioskApp, ThesisShiftMiddleButtonMovesInYZAndOnlyDeselects) {
     KioskApp app = make_app();
     app.update(0.0);
     // Shift+middle click on an object does not select it (thesis B.2: only the left button selects).
-    run_replay(app, replay("0.0 mouse-down middle 640 400 shift\n0.05 mouse-up middle 640 400 shift\n"));
+    play(app, 0.0, click(0.0, "middle", 640, 400, "shift"));
     EXPECT_EQ(app.selected(), -1);
-    run_replay(app, replay("1.0 mouse-down left 640 400 shift\n1.05 mouse-up left 640 400 shift\n"), 60.0, 1.0);
+    play(app, 1.0, click(1.0, "left", 640, 400, "shift"));
     ASSERT_EQ(app.selected(), 1);
-    // A plain click (no Shift) anywhere leaves the selection alone.
-    run_replay(app, replay("2.0 mouse-down left 300 150\n2.05 mouse-up left 300 150\n"), 60.0, 2.0);
+    // A plain click (no Shift) away from every object leaves the selection alone.
+    play(app, 2.0, click(2.0, "left", 300, 150));
     EXPECT_EQ(app.selected(), 1);
     // Shift+middle drag from the manipulation sphere moves the selection in the Y-Z plane:
     // right is +z, down is -y, x stays.
-    run_replay(app,
-               replay("3.0 mouse-down middle 640 400 shift\n3.1 mouse-move 700 460 shift\n"
-                      "3.2 mouse-up middle 700 460 shift\n"),
-               60.0, 3.0);
+    play(app, 3.0, drag(3.0, "middle", 640, 400, 700, 460, "shift"));
     EXPECT_GT(app.model(1).offset.z, 1.0f);
     EXPECT_LT(app.model(1).offset.y, -1.0f);
     EXPECT_FLOAT_EQ(app.model(1).offset.x, 0.0f);
     EXPECT_EQ(app.model(0).offset, glm::vec3(0.0f));
     // Shift+middle click on another object keeps the selection; away from every object it deselects.
-    const glm::vec4 c = app.camera().projection() * app.camera().view() * glm::vec4(100, 0, 0, 1);
-    const std::string right = std::to_string((c.x / c.w * 0.5f + 0.5f) * 1280.0f) + " 400";
-    ASSERT_EQ(app.pick((c.x / c.w * 0.5f + 0.5f) * 1280.0f, 400.0f), 2);
-    run_replay(app, replay("4.0 mouse-down middle " + right + " shift\n4.05 mouse-up middle " + right + " shift\n"),
-               60.0, 4.0);
+    const float right = screen_x(app, {100, 0, 0});
+    ASSERT_EQ(app.pick(right, 400.0f), 2);
+    play(app, 4.0, click(4.0, "middle", right, 400, "shift"));
     EXPECT_EQ(app.selected(), 1);
-    run_replay(app, replay("5.0 mouse-down middle 300 150 shift\n5.05 mouse-up middle 300 150 shift\n"), 60.0, 5.0);
+    play(app, 5.0, click(5.0, "middle", 300, 150, "shift"));
     EXPECT_EQ(app.selected(), -1);
 }
 

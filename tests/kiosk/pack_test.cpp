@@ -7,6 +7,7 @@
 
 #include "../cli/cli_test.h"
 #include "shared/scene/scene.h"
+#include "test_dir.h"
 
 namespace body {
 namespace {
@@ -16,9 +17,7 @@ namespace fs = std::filesystem;
 class Pack : public ::testing::Test {
 protected:
     void SetUp() override {
-        dir_ = fs::temp_directory_path() / ("body_pack_" + std::to_string(::getpid()) + "_" +
-                                            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(dir_);
+        dir_ = test::fresh_test_dir("body_pack");
         fs::create_directories(dir_ / "src" / "a");
         fs::create_directories(dir_ / "src" / "b");
         write("src/a/part.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n");

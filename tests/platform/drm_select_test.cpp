@@ -25,40 +25,38 @@ const std::vector<DrmMode> kModes = {{1920, 1080, 60, false},
                                      {3840, 2160, 30, true},
                                      {1280, 720, 75, false}};
 
+// The selection for `list`, which must succeed.
+DrmSelection selected(const std::vector<DrmConnector>& list, const ModeRequest& request = {}) {
+    auto sel = select_drm_output(list, request);
+    EXPECT_TRUE(sel.ok()) << (sel.ok() ? std::string() : sel.error().message);
+    return sel.ok() ? *sel : DrmSelection{};
+}
+
 }  // namespace
 
 TEST(DrmSelect, PicksTheFirstConnectedConnectorWithModes) {
     std::vector<DrmConnector> list = {hdmi(false, kModes), hdmi(true, {}), hdmi(true, kModes)};
     list[2].name = "DSI-1";
-    auto sel = select_drm_output(list, {});
-    ASSERT_TRUE(sel.ok()) << sel.error().message;
-    EXPECT_EQ(sel->connector, 2u);
+    EXPECT_EQ(selected(list).connector, 2u);
 }
 
 TEST(DrmSelect, PreferredModeByDefault) {
     std::vector<DrmConnector> list = {hdmi(true, kModes)};
-    auto sel = select_drm_output(list, {});
-    ASSERT_TRUE(sel.ok());
-    EXPECT_EQ(list[0].modes[sel->mode].width, 3840);
-    EXPECT_EQ(list[0].modes[sel->mode].refresh_hz, 30);
+    const DrmMode& mode = list[0].modes[selected(list).mode];
+    EXPECT_EQ(mode.width, 3840);
+    EXPECT_EQ(mode.refresh_hz, 30);
 }
 
 TEST(DrmSelect, WithoutAPreferredFlagTakesTheLargestThenFastest) {
     std::vector<DrmMode> modes = {{1280, 720, 60, false}, {1920, 1080, 50, false}, {1920, 1080, 60, false}};
     std::vector<DrmConnector> list = {hdmi(true, modes)};
-    auto sel = select_drm_output(list, {});
-    ASSERT_TRUE(sel.ok());
-    EXPECT_EQ(sel->mode, 2u);
+    EXPECT_EQ(selected(list).mode, 2u);
 }
 
 TEST(DrmSelect, RequestedSizePicksTheHighestRefreshAtThatSize) {
     std::vector<DrmConnector> list = {hdmi(true, kModes)};
-    auto sel = select_drm_output(list, {1280, 720, 0});
-    ASSERT_TRUE(sel.ok());
-    EXPECT_EQ(sel->mode, 4u);
-    auto exact = select_drm_output(list, {1920, 1080, 50});
-    ASSERT_TRUE(exact.ok());
-    EXPECT_EQ(exact->mode, 2u);
+    EXPECT_EQ(selected(list, {1280, 720, 0}).mode, 4u);
+    EXPECT_EQ(selected(list, {1920, 1080, 50}).mode, 2u);
 }
 
 TEST(DrmSelect, MissingRequestedModeNamesWhatExists) {
@@ -73,13 +71,9 @@ TEST(DrmSelect, MissingRequestedModeNamesWhatExists) {
 
 TEST(DrmSelect, KeepsTheCrtcAlreadyDrivingTheConnector) {
     std::vector<DrmConnector> list = {hdmi(true, kModes, 42)};
-    auto sel = select_drm_output(list, {});
-    ASSERT_TRUE(sel.ok());
-    EXPECT_EQ(sel->crtc, 42u);
+    EXPECT_EQ(selected(list).crtc, 42u);
     list[0].current_crtc = 0;
-    auto first = select_drm_output(list, {});
-    ASSERT_TRUE(first.ok());
-    EXPECT_EQ(first->crtc, 41u);
+    EXPECT_EQ(selected(list).crtc, 41u);
 }
 
 TEST(DrmSelect, FailsClearlyWithoutDisplayOrCrtc) {

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/platform/input_events.h"
+
 namespace body::platform {
 namespace {
 
@@ -54,18 +56,11 @@ TEST(EvdevWindow, PointsOutsideTheWindowAreReported) {
     EXPECT_FALSE(monitor_to_window(window(), 99.5f, 300.0f, x, y));
 }
 
-InputEvent event(InputEvent::Type type, int id, float x, float y, double time) {
-    InputEvent e;
-    e.type = type;
-    e.id = id;
-    e.x = x;
-    e.y = y;
-    e.time = time;
-    return e;
-}
+using T = InputEvent::Type;
+using test::expect_events;
+InputEvent event(T type, int id, float x, float y, double time) { return test::input_event(type, id, x, y, time); }
 
 TEST(EvdevWindow, FilterKeepsContactsThatStartInsideAndMapsThem) {
-    using T = InputEvent::Type;
     WindowTouchFilter filter;
     filter.set_placement(window());
     std::vector<InputEvent> events = {event(T::Key, 0, 0, 0, 0.0),             // before `from`: untouched
@@ -75,43 +70,31 @@ TEST(EvdevWindow, FilterKeepsContactsThatStartInsideAndMapsThem) {
                                       event(T::TouchMove, 2, 420, 290, 1.1),   // moves in: still dropped
                                       event(T::TouchMove, 7, 420, 290, 1.1)};  // never went down: dropped
     filter.apply(events, 1);
-    ASSERT_EQ(events.size(), 3u);
-    EXPECT_EQ(events[0].type, T::Key);
-    EXPECT_EQ(events[1].type, T::TouchDown);
-    EXPECT_EQ(events[1].id, 1);
-    EXPECT_FLOAT_EQ(events[1].x, 320.0f);
-    EXPECT_FLOAT_EQ(events[1].y, 240.0f);
-    EXPECT_EQ(events[2].type, T::TouchMove);
-    EXPECT_FLOAT_EQ(events[2].x, 900.0f);
+    expect_events(events, {{T::Key, 0, 0.0f, 0.0f}, {T::TouchDown, 1, 320.0f, 240.0f}, {T::TouchMove, 1, 900.0f}});
     EXPECT_EQ(filter.contacts(), 1);
 
     events = {event(T::TouchUp, 2, 420, 290, 1.2), event(T::TouchUp, 1, 420, 290, 1.2)};
     filter.apply(events, 0);
-    ASSERT_EQ(events.size(), 1u);
-    EXPECT_EQ(events[0].id, 1);
+    expect_events(events, {{T::TouchUp, 1, 320.0f, 240.0f}});
     EXPECT_EQ(filter.contacts(), 0);
     // The ids are free again: a new contact 2 inside is delivered.
     events = {event(T::TouchDown, 2, 420, 290, 3.0)};
     filter.apply(events, 0);
-    ASSERT_EQ(events.size(), 1u);
+    expect_events(events, {{T::TouchDown, 2}});
 }
 
 TEST(EvdevWindow, FilterDropsPointerEmulationAroundTouches) {
-    using T = InputEvent::Type;
     WindowTouchFilter filter;
     filter.set_placement(window());
     // The display server's emulated press arrives in the same poll as the touch.
     std::vector<InputEvent> events = {event(T::MouseDown, 0, 320, 240, 1.0), event(T::TouchDown, 1, 420, 290, 1.0)};
     filter.apply(events, 0);
-    ASSERT_EQ(events.size(), 1u);
-    EXPECT_EQ(events[0].type, T::TouchDown);
+    expect_events(events, {{T::TouchDown, 1}});
     // While the finger is down: moves dropped, a release always passes.
     events = {event(T::MouseMove, 0, 330, 240, 1.1), event(T::MouseUp, 0, 330, 240, 1.1),
               event(T::TouchUp, 1, 430, 290, 1.1)};
     filter.apply(events, 0);
-    ASSERT_EQ(events.size(), 2u);
-    EXPECT_EQ(events[0].type, T::MouseUp);
-    EXPECT_EQ(events[1].type, T::TouchUp);
+    expect_events(events, {{T::MouseUp, 0, 330.0f, 240.0f}, {T::TouchUp, 1, 330.0f, 240.0f}});
     // Shortly after the lift: still emulation; later: the real mouse.
     events = {event(T::Scroll, 0, 0, 0, 1.1 + WindowTouchFilter::kEmulationGraceSeconds * 0.5)};
     filter.apply(events, 0);
