@@ -154,8 +154,10 @@ public:
         pending_.clear();
         if (touch_) {
             touch_->poll(time(), out);
-            touch_filter_.set_placement(placement());
-            touch_filter_.apply(out, first);
+            if (out.size() > first) {  // where the window is now, only when there is something to map or filter
+                touch_filter_.set_placement(placement());
+                touch_filter_.apply(out, first);
+            }
         }
         if (glfwWindowShouldClose(window_) || g_glfw_quit) {
             InputEvent q;
