@@ -63,14 +63,17 @@ struct Part {
     pm::ProgressiveMesh* pm = nullptr;
     render::ModelId id = 0;
     size_t base_triangles = 0;
-    // Geomorphs (pm parts), over Geomorph::kSeconds, on the CPU: `shown` holds the
-    // positions uploaded to the GPU. After a refinement the vertices it added,
-    // [morph_begin, morph_end), glide from their parents' positions to their own;
-    // before a coarsening the vertices it will remove glide to their parents and
-    // the level drops when they arrive (`collapsing`, towards `pending_level`).
-    std::vector<Vec3f> shown;
+    // Geomorphs (pm parts), over Geomorph::kSeconds, in the vertex shader: the
+    // GPU holds each vertex's position and its parent's (morph_targets(), sent
+    // with the dirty ranges), and the renderer draws vertices [morph_begin,
+    // vertex_count) at mix(parent, own, morph_factor). After a refinement the
+    // vertices it added glide from their parents to their own positions; before
+    // a coarsening the vertices it will remove glide to their parents and the
+    // level drops when they arrive (`collapsing`, towards `pending_level`). The
+    // CPU only starts and stops a morph; nothing is re-uploaded per frame.
     Geomorph morph;
     size_t morph_begin = 0, morph_end = 0;
+    float morph_factor = 1.0f;
     bool collapsing = false;
     size_t pending_level = 0;
 
@@ -79,56 +82,49 @@ struct Part {
     render::MeshData mesh() const {
         if (!pm) return source->mesh();
         render::MeshData m;
-        m.positions = shown.empty() ? pm->positions() : std::span<const Vec3f>(shown);
+        m.positions = pm->positions();
         m.normals = pm->normals();
         m.indices = pm->indices();
+        m.morph_sources = pm->morph_targets();
         m.vertex_count = pm->vertex_count();
         m.index_count = 3 * pm->triangle_count();
         return m;
     }
-    // The pm's changes since the last upload, copied into `shown`.
+    // The pm's changes since the last upload.
     render::Dirty take_dirty() {
         const pm::DirtyRange v = pm->dirty_vertices(), i = pm->dirty_indices();
         pm->clear_dirty();
-        const auto src = pm->positions();
-        for (size_t k = v.begin; k < v.end && k < shown.size(); ++k) shown[k] = src[k];
         return render::Dirty{v.begin, v.end, i.begin, i.end};
     }
     bool morphing() const { return morph_end > morph_begin; }
-    // Puts the morphing vertices back on their own positions and stops.
-    render::Dirty stop_morph() {
-        for (size_t k = morph_begin; k < morph_end && k < shown.size(); ++k) shown[k] = pm->positions()[k];
-        render::Dirty d{morph_begin, morph_end, 0, 0};
-        morph_begin = morph_end = 0;
-        collapsing = false;
-        return d;
+    // The renderer's morph state for this part.
+    void apply_morph(render::ModelState& st) const {
+        st.morph_begin = morphing() ? morph_begin : SIZE_MAX;
+        st.morph = morphing() ? morph_factor : 1.0f;
     }
-    // Moves the morphing vertices to their blend at `now`; a finished collapse
-    // drops the level. Returns what to upload.
+    // Stops a morph where it is meant to end: every vertex on its own position.
+    void stop_morph() {
+        morph_begin = morph_end = 0;
+        morph_factor = 1.0f;
+        collapsing = false;
+    }
+    // The blend at `now`; a finished collapse drops the level. Returns what to
+    // upload (only the index patches of a dropped level).
     render::Dirty step_morph(double now) {
         const float f = morph.factor(now);
-        const auto target = pm->morph_targets();
-        const auto own = pm->positions();
-        for (size_t k = morph_begin; k < morph_end; ++k) {
-            shown[k] = collapsing ? glm::mix(own[k], target[k], f) : glm::mix(target[k], own[k], f);
-        }
-        render::Dirty d{morph_begin, morph_end, 0, 0};
-        if (f >= 1.0f) {
-            const bool drop = collapsing;
-            morph_begin = morph_end = 0;
-            collapsing = false;
-            if (drop) {
-                pm->set_level(pending_level);
-                merge(d, take_dirty());
-            }
-        }
-        return d;
+        morph_factor = collapsing ? 1.0f - f : f;
+        if (f < 1.0f) return {};
+        const bool drop = collapsing;
+        stop_morph();
+        if (!drop) return {};
+        pm->set_level(pending_level);
+        return take_dirty();
     }
     // Heads for `level`; returns what to upload (possibly nothing).
     render::Dirty update(size_t level, double now) {
         render::Dirty d{};
         if (collapsing && level == pending_level) return step_morph(now);
-        if (morphing()) merge(d, stop_morph());  // a new target: land the old morph at once
+        if (morphing()) stop_morph();  // a new target: land the old morph at once
         const size_t current = pm->level();
         if (level > current) {
             const size_t before = pm->vertex_count();
@@ -273,7 +269,6 @@ Status load_model(render::Renderer& renderer, const scene::Model& m, Loaded& l) 
         if (p.pm) {
             // add_model uploaded the base level only; splits decoded along with
             // the base go up now (what arrives later is uploaded as it is used).
-            p.shown.assign(p.pm->positions().begin(), p.pm->positions().end());
             const pm::DirtyRange v = p.pm->dirty_vertices(), ix = p.pm->dirty_indices();
             p.pm->clear_dirty();
             if (v.end > v.begin || ix.end > ix.begin) {
@@ -373,14 +368,17 @@ int run_kiosk(platform::Surface& surface, const scene::Scene& scene, const Kiosk
         }
         replay = std::move(r).value();
     }
+    // Start-up is timed from here: renderer init (shaders, tonal art map) included.
+    const auto load_start = std::chrono::steady_clock::now();
     render::Renderer renderer;
     if (auto s = renderer.init(); !s) {
         std::fprintf(stderr, "bodyview: %s\n", s.error().message.c_str());
         return kExitRuntime;
     }
+    const double init_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - load_start).count();
 
     // ---- load: a model that fails is skipped with its reason
-    const auto load_start = std::chrono::steady_clock::now();
     std::vector<Loaded> loaded(scene.models.size());
     std::vector<ModelInfo> info(scene.models.size());
     std::string label_text;
@@ -563,6 +561,7 @@ int run_kiosk(platform::Surface& surface, const scene::Scene& scene, const Kiosk
                             }
                         }
                     }
+                    p.apply_morph(*st);
                 }
                 if (vis) triangles += p.triangles();
             }
@@ -628,9 +627,10 @@ int run_kiosk(platform::Surface& surface, const scene::Scene& scene, const Kiosk
             first_frame_ms = since_start;
             if (options.verbose) {
                 std::fprintf(stderr,
-                             "bodyview: first frame %.1f ms after start (%zu/%zu models, base meshes in %.1f ms, "
+                             "bodyview: first frame %.1f ms after start (renderer init %.1f ms, %zu/%zu models, "
+                             "base meshes in %.1f ms, "
                              "label atlases %.1f ms)\n",
-                             first_frame_ms, ok_models, scene.models.size(), load_ms, ui_ms);
+                             first_frame_ms, init_ms, ok_models, scene.models.size(), load_ms - init_ms, ui_ms);
             }
         }
         if (full_detail_ms < 0.0 && !streaming && at_planned_detail) {

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <cstdio>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
@@ -36,7 +37,7 @@ namespace body::render {
 namespace {
 
 constexpr int kTextureWidth = 2048;  // texels per row of the position/index textures (GLES 3.0 minimum)
-constexpr GLuint kPosition = 0, kNormal = 1;
+constexpr GLuint kPosition = 0, kNormal = 1, kMorph = 2;
 
 struct Program {
     GLuint id = 0;
@@ -54,6 +55,7 @@ struct Model {
     std::string name;
     ModelState state;
     GLuint vao = 0, vbo_position = 0, vbo_normal = 0, ebo = 0;
+    GLuint vbo_morph = 0;  // geomorph sources (progressive meshes only)
     size_t vertex_capacity = 0, index_capacity = 0;
     size_t vertex_count = 0, index_count = 0;
     Vec3f center{0.0f};
@@ -126,6 +128,7 @@ Result<Program> link(const std::string& vert, const std::string& frag) {
     glAttachShader(p.id, fs.value());
     glBindAttribLocation(p.id, kPosition, "a_position");
     glBindAttribLocation(p.id, kNormal, "a_normal");
+    glBindAttribLocation(p.id, kMorph, "a_morph");
     glLinkProgram(p.id);
     glDeleteShader(vs.value());
     glDeleteShader(fs.value());
@@ -333,8 +336,8 @@ Status Renderer::init() {
 
 namespace {
 void free_model(Model& m) {
-    GLuint buffers[] = {m.vbo_position, m.vbo_normal, m.ebo};
-    glDeleteBuffers(3, buffers);
+    GLuint buffers[] = {m.vbo_position, m.vbo_normal, m.ebo, m.vbo_morph};
+    glDeleteBuffers(4, buffers);
     glDeleteVertexArrays(1, &m.vao);
     GLuint textures[] = {m.position_texture, m.index_texture, m.edge_texture};
     glDeleteTextures(3, textures);
@@ -412,6 +415,16 @@ Result<ModelId> Renderer::add_model(const MeshData& mesh, const std::string& nam
     glBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(vupload * 4), packed.data());
     glVertexAttribPointer(kNormal, 4, GL_INT_2_10_10_10_REV, GL_TRUE, 4, nullptr);
     glEnableVertexAttribArray(kNormal);
+    if (mesh.morph_sources.size() >= mesh.positions.size()) {
+        glGenBuffers(1, &m.vbo_morph);
+        glBindBuffer(GL_ARRAY_BUFFER, m.vbo_morph);
+        glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(m.vertex_capacity * sizeof(Vec3f)), nullptr,
+                     GL_DYNAMIC_DRAW);
+        glBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(vupload * sizeof(Vec3f)),
+                        mesh.morph_sources.data());
+        glVertexAttribPointer(kMorph, 3, GL_FLOAT, GL_FALSE, sizeof(Vec3f), nullptr);
+        glEnableVertexAttribArray(kMorph);
+    }
     glGenBuffers(1, &m.ebo);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m.ebo);
     glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(m.index_capacity * 4), nullptr, GL_DYNAMIC_DRAW);
@@ -442,6 +455,11 @@ Status Renderer::update_model(ModelId id, const MeshData& mesh, const Dirty& dir
         glBindBuffer(GL_ARRAY_BUFFER, m.vbo_position);
         glBufferSubData(GL_ARRAY_BUFFER, static_cast<GLintptr>(b * sizeof(Vec3f)),
                         static_cast<GLsizeiptr>(n * sizeof(Vec3f)), mesh.positions.data() + b);
+        if (m.vbo_morph && mesh.morph_sources.size() >= dirty.vertex_end) {
+            glBindBuffer(GL_ARRAY_BUFFER, m.vbo_morph);
+            glBufferSubData(GL_ARRAY_BUFFER, static_cast<GLintptr>(b * sizeof(Vec3f)),
+                            static_cast<GLsizeiptr>(n * sizeof(Vec3f)), mesh.morph_sources.data() + b);
+        }
         std::vector<uint32_t> packed(n);
         std::vector<Vec3f> computed;
         if (mesh.normals.empty())
@@ -577,6 +595,7 @@ size_t Renderer::gpu_bytes() const {
     constexpr size_t w = kTextureWidth;
     for (const auto& [id, m] : s_->models) {
         total += m.vertex_capacity * (sizeof(Vec3f) + 4) + m.index_capacity * 4;
+        if (m.vbo_morph) total += m.vertex_capacity * sizeof(Vec3f);
         if (m.position_texture) total += (m.vertex_capacity + w - 1) / w * w * sizeof(Vec3f);
         if (m.index_texture) total += (m.index_capacity + w - 1) / w * w * 4;
         if (m.edge_texture) total += (m.edge_capacity + w - 1) / w * w * sizeof(GpuEdge);
@@ -589,6 +608,7 @@ namespace {
 
 struct Frame {
     glm::mat4 view, projection;
+    glm::vec4 view_ray;  // gl_FragCoord -> view ray (lighting.glsl)
     const Lighting* lighting;
     const FrameOptions* options;
 };
@@ -599,6 +619,10 @@ void set_matrices(Program& p, const Frame& f, const Model& m) {
     glUniformMatrix4fv(p.loc("u_model_view"), 1, GL_FALSE, glm::value_ptr(mv));
     glUniformMatrix4fv(p.loc("u_projection"), 1, GL_FALSE, glm::value_ptr(f.projection));
     glUniformMatrix3fv(p.loc("u_normal_matrix"), 1, GL_FALSE, glm::value_ptr(nm));
+    glUniform4fv(p.loc("u_view_ray"), 1, glm::value_ptr(f.view_ray));
+    const bool morphing = m.vbo_morph && m.state.morph < 1.0f && m.state.morph_begin < m.vertex_count;
+    glUniform1f(p.loc("u_morph"), morphing ? std::max(m.state.morph, 0.0f) : 1.0f);
+    glUniform1i(p.loc("u_morph_begin"), morphing ? static_cast<GLint>(m.state.morph_begin) : INT32_MAX);
 }
 
 // Directions are normalized here once, not per fragment.
@@ -622,6 +646,17 @@ void draw_vertex_id_chunks(Program& p, size_t vertices) {
         glUniform1i(base, static_cast<GLint>(first));
         glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(std::min(kVertexIdChunk, vertices - first)));
     }
+}
+
+// Two textures on units 0 and 1, named by their sampler uniforms.
+void bind_textures(Program& p, const char* name0, GLuint tex0, const char* name1, GLuint tex1) {
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, tex0);
+    glUniform1i(p.loc(name0), 0);
+    glActiveTexture(GL_TEXTURE1);
+    glBindTexture(GL_TEXTURE_2D, tex1);
+    glUniform1i(p.loc(name1), 1);
+    glActiveTexture(GL_TEXTURE0);
 }
 
 void draw_triangles(const Model& m) {
@@ -699,8 +734,15 @@ void Renderer::render(const Camera& camera, const Lighting& lighting, const Fram
     glCullFace(GL_BACK);
     glDisable(GL_BLEND);
 
-    Frame f{camera.view(), camera.projection(static_cast<float>(o.width) / static_cast<float>(o.height)), &lighting,
+    Frame f{camera.view(),
+            camera.projection(static_cast<float>(o.width) / static_cast<float>(o.height)),
+            {},
+            &lighting,
             &o};
+    // View ray through pixel (x, y): ((2x/w - 1) / P00, (2y/h - 1) / P11, -1) for a symmetric perspective.
+    f.view_ray = glm::vec4(2.0f / (static_cast<float>(o.width) * f.projection[0][0]),
+                           2.0f / (static_cast<float>(o.height) * f.projection[1][1]), -1.0f / f.projection[0][0],
+                           -1.0f / f.projection[1][1]);
     bool any_selected = false;
     for (auto& [id, m] : s.models) any_selected |= !m.internal && m.state.visible && m.state.selected;
     const bool fade_rest = o.xray_unselected && any_selected;
@@ -742,13 +784,7 @@ void Renderer::render(const Camera& camera, const Lighting& lighting, const Fram
                 // Hatch paper tinted lightly by the structure colour.
                 Vec3f paper = glm::mix(o.paper, col, 0.25f);
                 glUniform4f(p.loc("u_color"), paper.r, paper.g, paper.b, 1.0f);
-                glActiveTexture(GL_TEXTURE0);
-                glBindTexture(GL_TEXTURE_2D, s.tam[0]);
-                glActiveTexture(GL_TEXTURE1);
-                glBindTexture(GL_TEXTURE_2D, s.tam[1]);
-                glActiveTexture(GL_TEXTURE0);
-                glUniform1i(p.loc("u_tam_light"), 0);
-                glUniform1i(p.loc("u_tam_dark"), 1);
+                bind_textures(p, "u_tam_light", s.tam[0], "u_tam_dark", s.tam[1]);
                 glUniform1f(p.loc("u_hatch_scale"), 1.6f / std::max(m.radius, 1e-6f));
                 glUniform1i(p.loc("u_two_tone"), m.state.style == Style::Hatching2Tone ? 1 : 0);
                 draw_triangles(m);
@@ -774,13 +810,7 @@ void Renderer::render(const Camera& camera, const Lighting& lighting, const Fram
                 glUniform1f(p.loc("u_width_px"), o.line_width_px);
                 glUniform1i(p.loc("u_texture_width"), kTextureWidth);
                 glUniform4f(p.loc("u_color"), o.ink.r, o.ink.g, o.ink.b, 1.0f);
-                glActiveTexture(GL_TEXTURE0);
-                glBindTexture(GL_TEXTURE_2D, m.position_texture);
-                glUniform1i(p.loc("u_positions"), 0);
-                glActiveTexture(GL_TEXTURE1);
-                glBindTexture(GL_TEXTURE_2D, m.edge_texture);
-                glUniform1i(p.loc("u_edges"), 1);
-                glActiveTexture(GL_TEXTURE0);
+                bind_textures(p, "u_positions", m.position_texture, "u_edges", m.edge_texture);
                 glDisable(GL_CULL_FACE);
                 // Six vertices (two triangles) per edge from gl_VertexID: no
                 // instancing, which software rasterizers run instance by instance.
@@ -800,13 +830,7 @@ void Renderer::render(const Camera& camera, const Lighting& lighting, const Fram
                 glUniform4f(p.loc("u_color"), col.r, col.g, col.b, 1.0f);
                 glUniform1f(p.loc("u_width_px"), o.line_width_px * 0.75f);
                 glUniform1i(p.loc("u_texture_width"), kTextureWidth);
-                glActiveTexture(GL_TEXTURE0);
-                glBindTexture(GL_TEXTURE_2D, m.position_texture);
-                glUniform1i(p.loc("u_positions"), 0);
-                glActiveTexture(GL_TEXTURE1);
-                glBindTexture(GL_TEXTURE_2D, m.index_texture);
-                glUniform1i(p.loc("u_indices"), 1);
-                glActiveTexture(GL_TEXTURE0);
+                bind_textures(p, "u_positions", m.position_texture, "u_indices", m.index_texture);
                 glBindVertexArray(s.empty_vao);
                 draw_vertex_id_chunks(p, m.index_count);
                 break;

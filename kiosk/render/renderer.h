@@ -55,6 +55,10 @@ struct MeshData {
     std::span<const Vec3f> positions;
     std::span<const Vec3f> normals;
     std::span<const uint32_t> indices;
+    // Optional geomorph sources, one per position (a progressive mesh's
+    // morph_targets(): each vertex's parent position), uploaded with the same
+    // dirty vertex ranges; see ModelState::morph.
+    std::span<const Vec3f> morph_sources = {};
     size_t vertex_count = SIZE_MAX;  // SIZE_MAX: positions.size()
     size_t index_count = SIZE_MAX;   // SIZE_MAX: indices.size()
     // add_model only: the arrays are written up to vertex_count/index_count and
@@ -80,6 +84,12 @@ struct ModelState {
     bool visible = true;
     bool selected = false;  // transparent purple + the white manipulation sphere
     int group = 0;          // for set_group_* (e.g. "organs", "skeleton")
+    // Geomorph, done in the vertex shader: vertices [morph_begin, vertex_count)
+    // are drawn at mix(morph source, position, morph); the others (and models
+    // uploaded without morph sources) at their positions. morph = 1: no morph.
+    // The `lines` and `wireframe` styles draw the positions as they are.
+    size_t morph_begin = SIZE_MAX;
+    float morph = 1.0f;
 };
 
 struct Camera {

@@ -8,10 +8,10 @@
 // two texture reads; tone is preserved across mip levels, so the coarser
 // samples at plane seams keep the right tone). u_two_tone selects the thesis'
 // threshold variant after Lake et al. 2000: a light (tone 1) and a dark
-// (tone 4) hatch texture switched at N.L = 0.5.
+// (tone 4) hatch texture switched at N.L = 0.5. Two varyings: the view normal
+// is the object normal through u_normal_matrix, the view direction comes from
+// gl_FragCoord.
 precision highp float;
-in vec3 v_view_pos;
-in vec3 v_view_normal;
 in vec3 v_object_pos;
 in vec3 v_object_normal;
 uniform vec4 u_color;
@@ -19,11 +19,12 @@ uniform mediump sampler2D u_tam_light;  // tones 0, 1, 2 in r, g, b
 uniform mediump sampler2D u_tam_dark;   // tones 3, 4, 5 in r, g, b
 uniform float u_hatch_scale;            // texture repeats per object-space unit
 uniform int u_two_tone;
+uniform mat3 u_normal_matrix;
 #include "lighting.glsl"
 out vec4 o_color;
 
 void main() {
-    vec3 n = facing_normal(v_view_normal, v_view_pos);
+    vec3 n = facing_normal(u_normal_matrix * v_object_normal, view_ray());
     float light = clamp(u_light_levels.x * max(dot(n, u_key_dir), 0.0) + u_light_levels.w, 0.0, 1.0);
     vec3 a = abs(v_object_normal);
     vec3 p = v_object_pos * u_hatch_scale;

@@ -4,9 +4,16 @@ uniform vec3 u_key_dir;
 uniform vec3 u_fill_dir;
 uniform vec3 u_rim_dir;
 uniform vec4 u_light_levels;  // key, fill, rim, ambient
+// The view ray through this pixel from gl_FragCoord (no view-position varying:
+// on a software rasterizer every varying costs per-triangle setup, and a
+// million-triangle model has more triangles than covered pixels):
+// ray = (fragcoord.xy * u_view_ray.xy + u_view_ray.zw, -1), eye toward the surface.
+uniform vec4 u_view_ray;
 
-vec3 facing_normal(vec3 n, vec3 view_pos) {
+vec3 view_ray() { return vec3(gl_FragCoord.xy * u_view_ray.xy + u_view_ray.zw, -1.0); }
+
+vec3 facing_normal(vec3 n, vec3 ray) {
     n = normalize(n);
     // Back faces (open meshes, clipped views) are lit as seen.
-    return dot(n, -view_pos) < 0.0 ? -n : n;
+    return dot(n, ray) > 0.0 ? -n : n;
 }

@@ -1,24 +1,32 @@
 #version 300 es
 // Shared vertex stage for the triangle styles (baseline, smooth, hatching,
-// paper fill, selection, x-ray): view-space position/normal for lighting and
-// object-space position/normal for the triplanar hatching coordinates.
+// paper fill, selection, x-ray): the view-space normal for lighting and the
+// object-space position/normal for the triplanar hatching coordinates; each
+// program keeps only the outputs its fragment stage reads (the view direction
+// comes from gl_FragCoord, see lighting.glsl).
+//
+// Geomorph (progressive meshes): vertices with index >= u_morph_begin are drawn
+// at mix(a_morph, a_position, u_morph), a_morph being the parent's position
+// (pm::ProgressiveMesh::morph_targets()); u_morph = 1 draws every vertex at its
+// own position. gl_VertexID is the index value in an indexed draw.
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
+layout(location = 2) in vec3 a_morph;
 
 uniform mat4 u_model_view;
 uniform mat4 u_projection;
 uniform mat3 u_normal_matrix;
+uniform float u_morph;     // 0: at the parents .. 1: at their own positions
+uniform int u_morph_begin;  // first morphing vertex
 
-out vec3 v_view_pos;
 out vec3 v_view_normal;
 out vec3 v_object_pos;
 out vec3 v_object_normal;
 
 void main() {
-    vec4 view = u_model_view * vec4(a_position, 1.0);
-    v_view_pos = view.xyz;
+    vec3 p = gl_VertexID >= u_morph_begin ? mix(a_morph, a_position, u_morph) : a_position;
     v_view_normal = u_normal_matrix * a_normal;
-    v_object_pos = a_position;
+    v_object_pos = p;
     v_object_normal = a_normal;
-    gl_Position = u_projection * view;
+    gl_Position = u_projection * (u_model_view * vec4(p, 1.0));
 }

@@ -1,18 +1,17 @@
 #version 300 es
 // `smooth`: per-pixel Blinn-Phong with a soft key/fill/rim setup; also the
-// transparent purple of a selected model (u_color.a < 1).
+// transparent purple of a selected model (u_color.a < 1). One varying (the
+// normal); the view direction comes from gl_FragCoord.
 precision highp float;
-in vec3 v_view_pos;
 in vec3 v_view_normal;
-in vec3 v_object_pos;
-in vec3 v_object_normal;
 uniform vec4 u_color;
 #include "lighting.glsl"
 out vec4 o_color;
 
 void main() {
-    vec3 n = facing_normal(v_view_normal, v_view_pos);
-    vec3 v = normalize(-v_view_pos);
+    vec3 ray = view_ray();
+    vec3 n = facing_normal(v_view_normal, ray);
+    vec3 v = -normalize(ray);
     float diffuse = u_light_levels.x * max(dot(n, u_key_dir), 0.0) + u_light_levels.y * max(dot(n, u_fill_dir), 0.0) +
                     u_light_levels.w;
     vec3 h = normalize(u_key_dir + v);

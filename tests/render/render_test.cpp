@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -522,4 +523,49 @@ TEST(RenderLod, ProgressiveMeshPatchesMatchFreshUploads) {
         EXPECT_EQ(d.bad_block_fraction, 0.0) << style_name(l.style) << " at LOD " << l.lod;
         g.renderer().remove_model(fresh.value());
     }
+}
+
+// Geomorphs run in the vertex shader: vertices from morph_begin on are drawn at
+// mix(morph source, position, morph). A square whose right side grows a spike
+// (vertex 4, morph source on the square's edge): mid-morph the picture lies
+// between the coarse and the fine one, nested, with the area in between.
+TEST(RenderGeomorph, MidMorphLiesBetweenCoarseAndFine) {
+    RenderFixture f(200, 200);
+    REQUIRE_GL(f);
+    const std::vector<Vec3f> positions = {
+        {-0.5f, -0.5f, 0}, {0.5f, -0.5f, 0}, {0.5f, 0.5f, 0}, {-0.5f, 0.5f, 0}, {1.1f, 0.0f, 0}};
+    const std::vector<Vec3f> sources = {positions[0], positions[1], positions[2], positions[3], {0.5f, 0.0f, 0}};
+    const std::vector<Vec3f> normals(5, Vec3f(0, 0, 1));
+    const std::vector<uint32_t> indices = {0, 1, 4, 0, 4, 2, 0, 2, 3};
+    MeshData mesh{positions, normals, indices};
+    mesh.morph_sources = sources;
+    auto id = f.renderer().add_model(mesh, "spike");
+    ASSERT_TRUE(id.ok()) << id.error().message;
+    ModelState& st = *f.renderer().state(id.value());
+    st.style = Style::Baseline;
+    const Camera cam = Camera::framing(Vec3f(0.3f, 0, 0), 0.9f, Vec3f(0, 0, 1));
+    const FrameOptions o = f.frame();
+    auto mask_at = [&](float morph, size_t begin) {
+        st.morph = morph;
+        st.morph_begin = begin;
+        return test::foreground_mask(f.draw(cam, {}, o), o.background);
+    };
+    auto area = [](const std::vector<bool>& m) { return static_cast<double>(std::count(m.begin(), m.end(), true)); };
+    const auto coarse = mask_at(0.0f, 4), mid = mask_at(0.5f, 4), fine = mask_at(1.0f, 4);
+    // Coarse: the square only; fine: with the spike; mid: half the spike's area.
+    EXPECT_GT(area(fine), area(coarse) * 1.2);
+    EXPECT_NEAR(area(mid) - area(coarse), 0.5 * (area(fine) - area(coarse)), 0.1 * (area(fine) - area(coarse)));
+    size_t outside = 0;
+    for (size_t i = 0; i < mid.size(); ++i) outside += (coarse[i] && !mid[i]) + (mid[i] && !fine[i]);
+    EXPECT_LE(outside, 10u) << "mid-morph pixels outside the fine shape or coarse pixels missing";
+    // Vertices before morph_begin do not move; a model without morph sources ignores the factor.
+    EXPECT_EQ(mask_at(0.0f, 5), fine);
+    MeshData plain{positions, normals, indices};
+    auto plain_id = f.renderer().add_model(plain, "plain");
+    ASSERT_TRUE(plain_id.ok());
+    f.renderer().state(id.value())->visible = false;
+    f.renderer().state(plain_id.value())->style = Style::Baseline;
+    f.renderer().state(plain_id.value())->morph = 0.0f;
+    f.renderer().state(plain_id.value())->morph_begin = 4;
+    EXPECT_EQ(test::foreground_mask(f.draw(cam, {}, o), o.background), fine);
 }
