@@ -56,6 +56,7 @@ void print_help(std::FILE* out) {
                  "  --kiosk-stats     scene: print time to first frame / full detail and frame times\n"
                  "  --benchmark       time every style at LOD 100/40/10%% against a flat baseline\n"
                  "  --bench-triangles N  size of the generated benchmark model (default 1000000)\n"
+                 "  --bench-frames N  timed frame pairs per style and LOD (default 9)\n"
                  "  --help            this text\n  --version         print the version\n\n"
                  "A model that cannot be loaded is skipped with a one-line error (nothing drawn).\n"
                  "exit codes: 0 ok, 1 runtime failure, 2 bad usage or bad input\n");
@@ -178,6 +179,10 @@ int run(const CliArgs& args) {
         if (!tris) return fail(tris.error());
         if (tris.value() < 1000) return fail(input_error("--bench-triangles must be at least 1000"));
         bo.target_triangles = static_cast<size_t>(tris.value());
+        auto bench_frames = args.get_long("bench-frames", bo.frames);
+        if (!bench_frames) return fail(bench_frames.error());
+        if (bench_frames.value() < 1) return fail(input_error("--bench-frames must be at least 1"));
+        bo.frames = static_cast<int>(bench_frames.value());
         auto s = render::run_benchmark(surf, bo);
         return s ? kExitOk : fail(s.error());
     }
@@ -322,10 +327,11 @@ int main(int argc, char** argv) {
         print_help(stderr);
         return kExitBadInput;
     }
-    auto args = CliArgs::parse(argv_list,
-                               {"platform", "size", "mode", "device", "model", "scene", "style", "lod", "select",
-                                "view", "line-width", "ssaa", "screenshot", "frames", "replay", "bench-triangles"},
-                               {"headless", "windowed", "xray", "benchmark", "no-auto-lod", "kiosk-stats"});
+    auto args =
+        CliArgs::parse(argv_list,
+                       {"platform", "size", "mode", "device", "model", "scene", "style", "lod", "select", "view",
+                        "line-width", "ssaa", "screenshot", "frames", "replay", "bench-triangles", "bench-frames"},
+                       {"headless", "windowed", "xray", "benchmark", "no-auto-lod", "kiosk-stats"});
     if (!args) return fail(args.error());
     return run(args.value());
 }

@@ -120,11 +120,23 @@ Status run_benchmark(platform::Surface& surface, const BenchmarkOptions& options
         return a.full_triangles() < b.full_triangles();
     });
 
+    // Where the memory goes: current and peak RSS above the empty context after each step.
+    std::string steps;
+    const auto step = [&](const char* what) {
+        char line[160];
+        std::snprintf(line, sizeof(line), "  %-34s current %7.1f  peak %7.1f MiB\n", what,
+                      static_cast<double>(current_rss_kib() - empty_rss) / 1024.0,
+                      static_cast<double>(peak_rss_kib() - empty_rss) / 1024.0);
+        steps += line;
+    };
+    step("model CPU arrays");
     Renderer renderer;
     if (auto s = renderer.init(); !s) return s;
+    step("renderer init");
     auto id = renderer.add_model(source->mesh(), source->name());
     if (!id) return id.error();
     (void)source->take_dirty();
+    step("model uploaded");
     Vec3f center;
     float radius = 0;
     renderer.bounds(id.value(), center, radius);
@@ -165,18 +177,21 @@ Status run_benchmark(platform::Surface& surface, const BenchmarkOptions& options
         source->set_lod(lod);
         if (auto s = renderer.update_model(id.value(), source->mesh(), source->take_dirty()); !s) return s;
         if (lod == 1.0) {
+            step("LOD 100% patched in");
             // Memory of the model drawn with the simplest shader: CPU arrays, GL buffers, driver working set.
             renderer.state(id.value())->style = Style::Baseline;
             renderer.render(camera, lighting, frame);
             glFinish();
             after_baseline = peak_rss_kib();
+            step("drawn in baseline");
         }
         // Build the lazily created edge list / textures outside the timed frames.
         for (Style s : kAllStyles) {
             renderer.state(id.value())->style = s;
             renderer.render(camera, lighting, frame);
+            glFinish();
+            if (lod == 1.0) step((std::string("first frame in ") + style_name(s)).c_str());
         }
-        glFinish();
         for (Style s : kAllStyles) {
             double ms = 0, base = 0;
             time_pair(s, ms, base);
@@ -189,6 +204,8 @@ Status run_benchmark(platform::Surface& surface, const BenchmarkOptions& options
             std::fflush(stdout);
         }
     }
+    step("after every style and LOD");
+    std::printf("RSS above the empty context, step by step:\n%s", steps.c_str());
     const long peak = peak_rss_kib();
     const auto mib = [](long kib) { return static_cast<double>(kib) / 1024.0; };
     std::printf(
