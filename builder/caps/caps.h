@@ -30,8 +30,11 @@ Status triangulate_polygon_with_holes(std::span<const std::span<const Vec2>> loo
 
 // Builds a cap over a region at height `z`. `ids[k][i]` is the mesh vertex of
 // loops[k][i]. Triangles face +z when `up`, -z otherwise. A dome adds vertices
-// to `positions` at most `dome_height` away from the plane, on the side the
-// cap faces. Triangles (global ids) are appended to `triangles`.
+// to `positions` at most |dome_height| away from the plane: on the side the cap
+// faces when `dome_height` > 0 (a solid going on past its last slice), on the
+// other side when < 0 (a hole whose void goes on past it: the cap faces into
+// the void, the dome bulges into the solid). Triangles (global ids) are
+// appended to `triangles`.
 Status build_cap(std::span<const std::span<const Vec2>> loops, std::span<const std::span<const uint32_t>> ids, double z,
                  bool up, CapStyle style, double dome_height, std::vector<Vec3>& positions,
                  std::vector<uint32_t>& triangles);

@@ -800,7 +800,11 @@ private:
                         const bool face_up = bool(up) != loops[k].hole();
                         const CapStyle style =
                             loops[k].flat_caps && options_.caps == CapStyle::Dome ? CapStyle::Flat : options_.caps;
-                        auto status = build_cap(region, ids, at, face_up, style, dome, positions, triangles);
+                        // A hole's void goes on past the slice where its band ends: its
+                        // dome bulges away from the faces, into the solid (a dome towards
+                        // the faces would stretch across the void the hole's band bounds).
+                        const double height = loops[k].hole() && !slab ? -dome : dome;
+                        auto status = build_cap(region, ids, at, face_up, style, height, positions, triangles);
                         if (!status) return input_error(where(path_, *loops[k].source) + ": " + status.error().message);
                     }
                 }

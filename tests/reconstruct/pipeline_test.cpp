@@ -235,6 +235,35 @@ INSTANTIATE_TEST_SUITE_P(
                correspondence_method_name(info.param.correspondence);
     });
 
+// Where a hole ends, its dome bulges into the solid past the slice (where the
+// void goes on), never back across the void its own band bounds.
+TEST(PipelineOptions, HoleDomesBulgeIntoTheSolid) {
+    StackBuilder b;
+    for (int k = 0; k < 7; ++k) {
+        if (k >= 2 && k <= 4)
+            b.slice(k, {circle(0, 0, 10, 48), circle(0, 0, 4, 24)});
+        else
+            b.slice(k, {circle(0, 0, 10, 48)});
+    }
+    BuildOptions o;
+    o.caps = CapStyle::Dome;
+    auto r = build_structures(b.stack, o, "t");
+    ASSERT_TRUE(r.ok()) << r.error().message;
+    ASSERT_EQ(r->size(), 1u);
+    expect_good_structure((*r)[0], b.stack, "");
+    // The hole's band is the prism of radius 4 between z = 2 and z = 4: inside
+    // it (radius < 3.5) only the two domes may have vertices, below 2 and above 4.
+    size_t below = 0, above = 0;
+    for (const Vec3& p : (*r)[0].mesh.positions) {
+        if (glm::length(Vec2(p.x, p.y)) >= 3.5) continue;
+        EXPECT_FALSE(p.z > 2.0 + 1e-9 && p.z < 4.0 - 1e-9) << "a dome vertex inside the void at z " << p.z;
+        below += p.z < 2.0 - 1e-9 && p.z > 1.0;
+        above += p.z > 4.0 + 1e-9 && p.z < 5.0;
+    }
+    EXPECT_GT(below, 0u);
+    EXPECT_GT(above, 0u);
+}
+
 TEST(PipelineOptions, CapsNoneLeavesOpenEnds) {
     StackBuilder b;
     for (int k = 0; k < 3; ++k) b.slice(k, {circle(0, 0, 10)});
