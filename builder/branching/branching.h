@@ -10,6 +10,13 @@
 // share their chord edges in opposite directions, so the bands glue into one
 // surface. Cutting off local caps (instead of meeting at a common centre) keeps
 // each band near its branch.
+// Any contour of 3 or more vertices splits among any number of branches: the
+// main branch always keeps a vertex, a side branch nearest no vertex takes the
+// main vertices nearest it, and when the contour has too few vertices for all
+// branches the rest bud off a chord (a new vertex at `chord_z` on a chord edge
+// of the main piece; the bud's piece is that triangle). Vertices the partition
+// adds never lie, seen from above, on a segment from their contour neighbour to
+// a branch vertex, so tiling a piece with its branch makes no flat triangle.
 // The thesis method (`Overlap`) tiles every linked pair independently and
 // leaves overlapping open bands; it is kept for comparison only.
 #include <cstdint>
@@ -33,7 +40,8 @@ const char* branching_method_name(BranchingMethod method);
 // returns one closed id loop per branch (same orientation as `single`), made of
 // an arc of `single` and chord vertices appended to `positions` at `chord_z`.
 // Every edge of `single` lies in exactly one piece; every chord edge in two
-// pieces, traversed in opposite directions.
+// pieces, traversed in opposite directions. Errors only for fewer than two
+// branches or a contour or branch of fewer than 3 vertices.
 Result<std::vector<std::vector<uint32_t>>> partition_contour(std::span<const uint32_t> single,
                                                              std::span<const std::span<const Vec2>> branches,
                                                              double chord_z, std::vector<Vec3>& positions);

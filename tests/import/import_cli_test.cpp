@@ -10,6 +10,7 @@
 #include "builder/import/import.h"
 #include "builder/import/label_table.h"
 #include "builder/pipeline/build_pipeline.h"
+#include "shared/mesh.h"
 #include "tests/cli/cli_test.h"
 #include "tests/import/nifti_test_util.h"
 
@@ -126,14 +127,16 @@ TEST(AalAtlas, All116RegionsExtractAndValidate) {
     EXPECT_TRUE(valid.ok()) << valid.error().message;
 }
 
-// Every region through the pipeline, with one- to three-voxel islands per slice
-// dropped (--min-area 3): partition branching needs two vertices per branch on
-// the contour the islands merge into, which tiny diamonds next to a small
-// contour cannot give (without the cleanup 4 regions fail).
-TEST(AalAtlas, All116RegionsBuildWithSpeckleCleanup) {
-    if (!std::filesystem::exists(kAal)) GTEST_SKIP() << "needs Debian package mricron-data";
+// Every region through import and the pipeline: 116 meshes, each a closed,
+// edge- and vertex-manifold, consistently and outward oriented surface with no
+// flat triangle, and the summed volume within 3% of the labelled voxels (1 mm
+// voxels; 1 437 409 of them in aal.nii.gz, mricron-data 1.2.20211006).
+// `min_area` 3 is what scripts/build-sample.sh uses; 0 (the default) keeps
+// every one-voxel island, so partition branching must split small contours
+// into many branches (it adds vertices where the contour has too few).
+void expect_every_region_closed(double min_area) {
     ImportOptions o;
-    o.min_area = 3.0;
+    o.min_area = min_area;
     o.jobs = 2;
     auto stack = import_nifti_labels(kAal, o);
     ASSERT_TRUE(stack.ok()) << stack.error().message;
@@ -141,27 +144,30 @@ TEST(AalAtlas, All116RegionsBuildWithSpeckleCleanup) {
     ASSERT_TRUE(built.ok()) << built.error().message;
     ASSERT_EQ(built->size(), 116u);
     double mesh_volume = 0.0;
+    size_t closed = 0;
     for (const StructureMesh& m : *built) {
-        EXPECT_GT(m.volume, 0.0) << m.id;
+        const MeshTopology t = analyze_topology(m.mesh.positions, m.mesh.indices);
+        EXPECT_TRUE(t.closed_manifold()) << m.id << ": " << t.boundary_edges << " boundary, " << t.nonmanifold_edges
+                                         << " non-manifold, " << t.misoriented_edges << " misoriented edges, "
+                                         << t.nonmanifold_vertices << " non-manifold vertices, "
+                                         << t.degenerate_triangles << " degenerate triangles";
+        EXPECT_EQ(m.closed_manifold, t.closed_manifold()) << m.id;
+        EXPECT_GT(m.volume, 0.0) << m.id;  // outward
+        closed += t.closed_manifold();
         mesh_volume += m.volume;
     }
-    // 1 mm voxels; 1 437 409 labelled voxels in aal.nii.gz (mricron-data 1.2.20211006).
+    EXPECT_EQ(closed, 116u);
     EXPECT_NEAR(mesh_volume, 1437409.0, 0.03 * 1437409.0);
 }
 
-// DISABLED until the pipeline guarantees it on this input: at c4fca7e 46 of the
-// 116 meshes fail Mesh's closed_manifold() (bench/import_vs_vtk.sh's
-// vtkFeatureEdges check finds no boundary or non-manifold edges on them, so
-// the defects are vertex-manifold or orientation ones).
-TEST(AalAtlas, DISABLED_All116RegionsAreClosedManifolds) {
+TEST(AalAtlas, All116RegionsAreClosedManifoldsWithTheSampleOptions) {
     if (!std::filesystem::exists(kAal)) GTEST_SKIP() << "needs Debian package mricron-data";
-    ImportOptions o;
-    o.min_area = 3.0;
-    auto stack = import_nifti_labels(kAal, o);
-    ASSERT_TRUE(stack.ok()) << stack.error().message;
-    auto built = build_structures(*stack, {}, kAal);
-    ASSERT_TRUE(built.ok()) << built.error().message;
-    for (const StructureMesh& m : *built) EXPECT_TRUE(m.closed_manifold) << m.id;
+    expect_every_region_closed(3.0);
+}
+
+TEST(AalAtlas, All116RegionsAreClosedManifoldsWithDefaults) {
+    if (!std::filesystem::exists(kAal)) GTEST_SKIP() << "needs Debian package mricron-data";
+    expect_every_region_closed(0.0);
 }
 
 }  // namespace
