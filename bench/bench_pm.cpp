@@ -9,7 +9,8 @@
 //   3. runtime: vertex splits per second, full coarse -> fine sweep time (vs one
 //      memcpy of the full index array), bytes per vertex split (goal <= 10 B)
 //
-// usage: bench_pm [--obj FILE] [--vtk-dir DIR] [--write-dir DIR] [--no-big]
+// usage: bench_pm [--obj FILE] [--vtk-dir DIR] [--write-dir DIR] [--no-big] [--decode FILE.bpm]
+//   --decode times reading one .bpm (nothing else);
 //   --write-dir writes the inputs (bunny.obj, bunny_sub.obj) for the VTK script;
 //   --vtk-dir reads DIR/<name>_vtk_<percent>.obj written by vtkQuadricDecimation.
 #include <benchmark/benchmark.h>
@@ -27,6 +28,7 @@
 
 #include "builder/lod/hausdorff.h"
 #include "builder/lod/simplify.h"
+#include "shared/atomic_file.h"
 #include "shared/obj_io.h"
 #include "shared/pm/progressive_mesh.h"
 
@@ -204,6 +206,29 @@ void run(const Mesh& mesh, const std::string& label, const std::string& vtk_dir,
     });
     row("splits/s refining (M)", double(n) / t_up / 1e6, "splits/s coarsening (M)", double(n) / t_down / 1e6);
     row("full coarse->fine sweep (ms)", t_up * 1e3, "memcpy of full index array (ms)", t_memcpy * 1e3);
+    // Decoding the whole file (what the kiosk does while the detail streams in) vs
+    // decoding the full mesh sent as one meshopt vertex + index buffer (same codecs,
+    // no progressive structure): the price of the vertex-split replay.
+    double t_decode = best_time(reps * 2, [&] {
+        auto again = pm::read_bpm_bytes(bytes, label);
+        benchmark::DoNotOptimize(again);
+    });
+    std::vector<pm::BaseVertex> flat_v(m.max_vertex_count());
+    std::vector<uint32_t> flat_i(m.indices().begin(), m.indices().end());
+    for (size_t v = 0; v < flat_v.size(); ++v) flat_v[v] = {{uint16_t(v), uint16_t(v >> 16), 0}, {0, 0}};
+    std::vector<uint8_t> enc_v(meshopt_encodeVertexBufferBound(flat_v.size(), sizeof(pm::BaseVertex)));
+    enc_v.resize(
+        meshopt_encodeVertexBuffer(enc_v.data(), enc_v.size(), flat_v.data(), flat_v.size(), sizeof(pm::BaseVertex)));
+    std::vector<uint8_t> enc_i(meshopt_encodeIndexBufferBound(flat_i.size(), flat_v.size()));
+    enc_i.resize(meshopt_encodeIndexBuffer(enc_i.data(), enc_i.size(), flat_i.data(), flat_i.size()));
+    const double t_flat = best_time(reps * 2, [&] {
+        (void)meshopt_decodeVertexBuffer(flat_v.data(), flat_v.size(), sizeof(pm::BaseVertex), enc_v.data(),
+                                         enc_v.size());
+        (void)meshopt_decodeIndexBuffer(flat_i.data(), flat_i.size(), 4, enc_i.data(), enc_i.size());
+        benchmark::DoNotOptimize(flat_i.data());
+    });
+    row("decode whole .bpm (ms)", t_decode * 1e3, "meshopt decode of full mesh (ms)", t_flat * 1e3);
+    std::printf("  %-44s %12.6g\n", "splits decoded/s (M)", double(n) / t_decode / 1e6);
     const SectionBytes sb = section_bytes(bytes);
     row("bytes per vertex split (SPLT sections)", double(sb.splits) / double(n), "goal", 10.0);
     row("bytes per vertex split (whole file)", double(bytes.size()) / double(n), "goal", 10.0);
@@ -212,10 +237,30 @@ void run(const Mesh& mesh, const std::string& label, const std::string& vtk_dir,
     row("SPLT bytes", double(sb.splits), "uncompressed records", raw);
 }
 
+// --decode: CPU time of reading one file (best of 5), split by phase.
+int decode_only(const std::string& path) {
+    auto data = read_file(path);
+    if (!data) {
+        std::fprintf(stderr, "bench_pm: %s\n", data.error().message.c_str());
+        return 1;
+    }
+    const std::span<const uint8_t> bytes(reinterpret_cast<const uint8_t*>(data->data()), data->size());
+    size_t splits = 0;
+    const double t = best_time(5, [&] {
+        auto pms = pm::read_bpm_bytes(bytes, path);
+        splits = 0;
+        if (pms)
+            for (auto& m : *pms) splits += m->max_level();
+    });
+    std::printf("%s: %zu bytes, %zu splits decoded in %.1f ms (%.2f M splits/s)\n", path.c_str(), bytes.size(), splits,
+                t * 1e3, double(splits) / t / 1e6);
+    return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-    std::string obj = "/usr/share/glmark2/models/bunny.obj", vtk_dir, write_dir;
+    std::string obj = "/usr/share/glmark2/models/bunny.obj", vtk_dir, write_dir, decode;
     bool big = true;
     for (int i = 1; i < argc; ++i) {
         std::string a = argv[i];
@@ -225,13 +270,18 @@ int main(int argc, char** argv) {
             vtk_dir = argv[++i];
         else if (a == "--write-dir" && i + 1 < argc)
             write_dir = argv[++i];
+        else if (a == "--decode" && i + 1 < argc)
+            decode = argv[++i];
         else if (a == "--no-big")
             big = false;
         else {
-            std::fprintf(stderr, "usage: bench_pm [--obj FILE] [--vtk-dir DIR] [--write-dir DIR] [--no-big]\n");
+            std::fprintf(
+                stderr,
+                "usage: bench_pm [--obj FILE] [--vtk-dir DIR] [--write-dir DIR] [--no-big] [--decode FILE.bpm]\n");
             return 2;
         }
     }
+    if (!decode.empty()) return decode_only(decode);
     auto mesh = body::read_obj_merged(obj);
     if (!mesh) {
         std::fprintf(stderr, "bench_pm: %s (Debian package glmark2-data)\n", mesh.error().message.c_str());

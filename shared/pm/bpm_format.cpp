@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstring>
 
@@ -118,59 +119,140 @@ void oct_decode8(const uint8_t in[2], float out[3]) {
     out[2] = float(z / l);
 }
 
+namespace {
+constexpr uint32_t kMinRegion = 8;  // corners: a typical vertex (valence 6) fits with room to grow
+}  // namespace
+
 void SplitReplay::reset(size_t vertex_capacity, size_t face_capacity) {
-    head_.assign(vertex_capacity, kNone);
-    // Corners are written by add_faces before anything reads them.
-    next_.clear();
-    next_.resize(face_capacity * 3);
+    regions_.assign(vertex_capacity, Region{});
+    pool_.clear();
+    // Every corner once plus the slack of each region; address space only until used.
+    pool_.reserve(face_capacity * 3 + vertex_capacity * (kMinRegion + 2));
     indices_.clear();
-    indices_.resize(face_capacity * 3);
+    indices_.resize(face_capacity * 3);  // written by add_faces before anything reads them
+}
+
+uint32_t* SplitReplay::make_room(uint32_t v, size_t count) {
+    Region& r = regions_[v];
+    if (count > r.capacity) {
+        const size_t capacity = std::max<size_t>({kMinRegion, 2 * size_t(r.capacity), count});
+        const size_t offset = pool_.size();
+        pool_.resize(offset + capacity);
+        std::copy_n(pool_.begin() + r.offset, r.count, pool_.begin() + ptrdiff_t(offset));
+        r.offset = uint32_t(offset);
+        r.capacity = uint32_t(capacity);
+    }
+    return pool_.data() + r.offset;
 }
 
 void SplitReplay::add_faces(size_t first_face, std::span<const uint32_t> indices) {
     for (size_t i = 0; i < indices.size(); ++i) {
-        uint32_t c = uint32_t(first_face * 3 + i), v = indices[i];
+        const uint32_t c = uint32_t(first_face * 3 + i), v = indices[i];
         indices_[c] = v;
-        next_[c] = head_[v];
-        head_[v] = c;
+        const uint32_t n = regions_[v].count;
+        make_room(v, n + 1)[n] = c;  // the highest corner so far: stays ascending
+        regions_[v].count = n + 1;
     }
+}
+
+size_t SplitReplay::corners_of(uint32_t v, uint32_t* out, size_t capacity) const {
+    const Region r = regions_[v];
+    if (r.count > capacity) return SIZE_MAX;
+    std::copy_n(pool_.data() + r.offset, r.count, out);
+    return r.count;
 }
 
 void SplitReplay::corners_of(uint32_t v, std::vector<uint32_t>& out) const {
-    out.clear();
-    for (uint32_t c = head_[v]; c != kNone; c = next_[c]) out.push_back(c);
-    std::sort(out.begin(), out.end());
+    const Region r = regions_[v];
+    out.assign(pool_.data() + r.offset, pool_.data() + r.offset + r.count);
+}
+
+size_t SplitReplay::ring_of(const uint32_t* corners, size_t count, uint32_t* out) const {
+    // Insertion into a sorted run: a ring has a handful of entries.
+    size_t n = 0;
+    for (size_t i = 0; i < count; ++i) {
+        const uint32_t c = corners[i], f = c / 3 * 3;
+        for (uint32_t k = 0; k < 3; ++k) {
+            if (f + k == c) continue;
+            const uint32_t x = indices_[f + k];
+            size_t at = n;
+            while (at > 0 && out[at - 1] > x) --at;
+            if (at > 0 && out[at - 1] == x) continue;
+            for (size_t m = n; m > at; --m) out[m] = out[m - 1];
+            out[at] = x;
+            ++n;
+        }
+    }
+    return n;
 }
 
 void SplitReplay::ring_of(uint32_t v, std::vector<uint32_t>& out) const {
-    out.clear();
-    for (uint32_t c = head_[v]; c != kNone; c = next_[c]) {
-        const uint32_t f = c / 3 * 3;
-        for (uint32_t k = 0; k < 3; ++k)
-            if (f + k != c) out.push_back(indices_[f + k]);
+    std::vector<uint32_t> corners;
+    corners_of(v, corners);
+    out.resize(2 * corners.size());
+    out.resize(ring_of(corners.data(), corners.size(), out.data()));
+}
+
+bool SplitReplay::apply_mask(uint32_t parent, uint32_t child, uint64_t mask, const uint32_t* corners, size_t count,
+                             uint32_t* moved) {
+    if (count < 64 && (mask >> count) != 0) return false;
+    const size_t moving = size_t(std::popcount(mask));
+    uint32_t* to = make_room(child, regions_[child].count + moving + 2);  // + the split's new faces
+    uint32_t* from = pool_.data() + regions_[parent].offset;              // after make_room: the pool may have moved
+    uint32_t kept = 0, m = regions_[child].count;
+    for (size_t i = 0; i < count; ++i) {
+        const uint32_t c = corners[i];
+        if (i < 64 && (mask >> i) & 1) {
+            indices_[c] = child;
+            to[m++] = c;
+        } else {
+            from[kept++] = c;
+        }
     }
-    std::sort(out.begin(), out.end());
-    out.erase(std::unique(out.begin(), out.end()), out.end());
+    std::copy_n(to + regions_[child].count, moving, moved);
+    regions_[child].count = m;
+    regions_[parent].count = kept;
+    return true;
 }
 
 bool SplitReplay::apply_mask(uint32_t parent, uint32_t child, uint64_t mask, std::vector<uint32_t>& scratch,
                              std::vector<uint32_t>& moved) {
     corners_of(parent, scratch);
-    moved.clear();
-    if (scratch.size() < 64 && (mask >> scratch.size()) != 0) return false;
-    head_[parent] = kNone;
-    for (size_t i = scratch.size(); i-- > 0;) {
-        uint32_t c = scratch[i];
-        uint32_t& list = (i < 64 && (mask >> i) & 1) ? head_[child] : head_[parent];
-        if (i < 64 && (mask >> i) & 1) {
-            indices_[c] = child;
-            moved.push_back(c);
-        }
-        next_[c] = list;
-        list = c;
+    moved.resize(scratch.size());
+    if (!apply_mask(parent, child, mask, scratch.data(), scratch.size(), moved.data())) {
+        moved.clear();
+        return false;
     }
-    std::reverse(moved.begin(), moved.end());
+    moved.resize(size_t(std::popcount(mask)));
     return true;
+}
+
+void SplitReplay::prefetch(uint32_t v, int stage) const {
+#if defined(__GNUC__)
+    if (stage == 0) {
+        __builtin_prefetch(&regions_[v]);
+        return;
+    }
+    const Region r = regions_[v];
+    if (stage == 1) {
+        __builtin_prefetch(pool_.data() + r.offset);
+        if (r.count > 12) __builtin_prefetch(pool_.data() + r.offset + 16);
+        return;
+    }
+    const uint32_t* c = pool_.data() + r.offset;
+    if (stage == 2) {
+        for (uint32_t i = 0; i < r.count && i < 16; ++i) __builtin_prefetch(&indices_[c[i] / 3 * 3]);
+        return;
+    }
+    // Stage 3: the neighbours' regions (a new face adds a corner to one of them).
+    for (uint32_t i = 0; i < r.count && i < 16; ++i) {
+        const uint32_t* t = &indices_[c[i] / 3 * 3];
+        for (int k = 0; k < 3; ++k) __builtin_prefetch(&regions_[t[k]]);
+    }
+#else
+    (void)v;
+    (void)stage;
+#endif
 }
 
 }  // namespace body::pm

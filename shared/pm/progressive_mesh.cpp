@@ -7,6 +7,7 @@
 #include <meshoptimizer.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstring>
 
@@ -272,56 +273,79 @@ Status BpmStream::parse_splits(ProgressiveMesh& m, std::span<const uint8_t> payl
         new_faces > m.face_count_ - m.decoded_faces_)
         return input_error(where + ": split range " + std::to_string(first) + "+" + std::to_string(count) +
                            " does not follow split " + std::to_string(m.decoded_splits_));
-    std::vector<SplitVertex> recs(count);
-    if (meshopt_decodeVertexBuffer(recs.data(), count, sizeof(SplitVertex), vbuf.data(), vbuf.size()) != 0)
+    split_records_.resize(count);
+    if (meshopt_decodeVertexBuffer(split_records_.data(), count, sizeof(SplitVertex), vbuf.data(), vbuf.size()) != 0)
         return input_error(where + ": split records do not decode");
+    // Everything below runs per split: no allocation (the message is built on failure only).
+    m.patch_corners_.reserve(m.patch_corners_.size() + size_t(count) * 4);
     ByteReader topo(tbuf);
-    size_t face_cursor = 0;  // into decoded_indices_ (faces)
+    size_t face_cursor = 0;
     float previous_error = first == 0 ? INFINITY : m.split_error_[first - 1];
+    const Vec3f lo = m.bbox_min_, hi = m.bbox_max_;
+    uint32_t corners[64], moved[64], ring[128], faces_at[9];
+    // The replay is bound by memory latency (a parent is anywhere in the mesh):
+    // pull the data of the splits a few steps ahead into the cache in stages.
+    auto parent_of = [&](uint32_t i) {
+        const uint32_t child = uint32_t(m.base_vertices_ + first + i), delta = split_records_[i].parent_delta;
+        return delta != 0 && delta <= child ? child - delta : child;
+    };
+    constexpr uint32_t kAhead0 = 32, kAhead1 = 20, kAhead2 = 10, kAhead3 = 4;
     for (uint32_t i = 0; i < count; ++i) {
+        if (i + kAhead0 < count) m.replay_.prefetch(parent_of(i + kAhead0), 0);
+        if (i + kAhead1 < count) {
+            const uint32_t p = parent_of(i + kAhead1);
+            m.replay_.prefetch(p, 1);
+#if defined(__GNUC__)
+            __builtin_prefetch(&m.qpos_[size_t(p) * 3]);
+            __builtin_prefetch(&m.positions_[p]);
+            __builtin_prefetch(&m.qoct_[size_t(p) * 2]);
+#endif
+        }
+        if (i + kAhead2 < count) m.replay_.prefetch(parent_of(i + kAhead2), 2);
+        if (i + kAhead3 < count) m.replay_.prefetch(parent_of(i + kAhead3), 3);
         const size_t j = first + i;
         const uint32_t child = uint32_t(m.base_vertices_ + j);
-        const SplitVertex& rec = recs[i];
-        const std::string at = where + ": split " + std::to_string(j);
-        if (rec.parent_delta == 0 || rec.parent_delta > child) return input_error(at + ": parent out of range");
+        const SplitVertex& rec = split_records_[i];
+        auto fail = [&](const char* what) { return input_error(where + ": split " + std::to_string(j) + ": " + what); };
+        if (rec.parent_delta == 0 || rec.parent_delta > child) return fail("parent out of range");
         const uint32_t parent = child - rec.parent_delta;
-        if (!(rec.error >= 0.0f) || rec.error > previous_error) return input_error(at + ": error not monotonic");
+        if (!(rec.error >= 0.0f) || rec.error > previous_error) return fail("error not monotonic");
         previous_error = rec.error;
         uint64_t head = 0;
-        if (!topo.varint(head)) return input_error(at + ": topology record truncated");
-        const uint64_t faces = head & 3, mask = head >> 2;
-        if (faces == 0 || face_cursor + faces > new_faces) return input_error(at + ": face count out of range");
+        if (!topo.varint(head)) return fail("topology record truncated");
+        const uint32_t faces = uint32_t(head & 3);
+        const uint64_t mask = head >> 2;
+        if (faces == 0 || face_cursor + faces > new_faces) return fail("face count out of range");
+        const size_t corner_count = m.replay_.corners_of(parent, corners, 64);
+        if (corner_count == SIZE_MAX) return fail("parent has more than 64 corners");
         // New faces name their third vertex by rank in the parent's ring before the split.
-        m.replay_.ring_of(parent, ring_);
-        decoded_indices_.clear();
-        for (uint64_t f = 0; f < faces; ++f) {
+        const size_t ring_size = m.replay_.ring_of(corners, corner_count, ring);
+        for (uint32_t f = 0; f < faces; ++f) {
             uint64_t code = 0;
-            if (!topo.varint(code) || (code >> 1) >= ring_.size())
-                return input_error(at + ": face " + std::to_string(f) + " names a missing neighbour");
-            const uint32_t third = ring_[code >> 1];
-            if (code & 1)
-                decoded_indices_.insert(decoded_indices_.end(), {child, third, parent});
-            else
-                decoded_indices_.insert(decoded_indices_.end(), {child, parent, third});
+            if (!topo.varint(code) || (code >> 1) >= ring_size) return fail("a new face names a missing neighbour");
+            const uint32_t third = ring[code >> 1];
+            uint32_t* t = faces_at + 3 * f;
+            t[0] = child;
+            t[1] = (code & 1) ? third : parent;
+            t[2] = (code & 1) ? parent : third;
         }
         // Index patches first (on the level before the split), then the new faces.
-        if (!m.replay_.apply_mask(parent, child, mask, scratch_, moved_))
-            return input_error(at + ": patch mask names a missing corner");
-        std::span<const uint32_t> fi(decoded_indices_);
+        if (!m.replay_.apply_mask(parent, child, mask, corners, corner_count, moved))
+            return fail("patch mask names a missing corner");
+        const std::span<const uint32_t> fi(faces_at, faces * 3);
         m.replay_.add_faces(m.decoded_faces_, fi);
         std::copy(fi.begin(), fi.end(), m.indices_.begin() + ptrdiff_t(m.decoded_faces_ * 3));
-        m.dirty_indices_.add(m.decoded_faces_ * 3, (m.decoded_faces_ + faces) * 3);
         m.decoded_faces_ += faces;
         face_cursor += faces;
         m.face_end_[j] = uint32_t(m.decoded_faces_);
         m.split_error_[j] = rec.error;
-        m.patch_corners_.insert(m.patch_corners_.end(), moved_.begin(), moved_.end());
+        m.patch_corners_.insert(m.patch_corners_.end(), moved, moved + std::popcount(mask));
         m.patch_begin_[j + 1] = uint32_t(m.patch_corners_.size());
         // The child's vertex data, coded against its parent.
         for (int k = 0; k < 3; ++k) {
-            uint16_t q = unzigzag16(rec.dq[k], m.qpos_[parent * 3 + k]);
+            const uint16_t q = unzigzag16(rec.dq[k], m.qpos_[parent * 3 + k]);
             m.qpos_[size_t(child) * 3 + k] = q;
-            m.positions_[child][k] = dequantize16(q, m.bbox_min_[k], m.bbox_max_[k]);
+            m.positions_[child][k] = dequantize16(q, lo[k], hi[k]);
         }
         for (int k = 0; k < 2; ++k) m.qoct_[size_t(child) * 2 + k] = unzigzag8(rec.doct[k], m.qoct_[parent * 2 + k]);
         if (m.has_normals_) {
@@ -331,7 +355,11 @@ Status BpmStream::parse_splits(ProgressiveMesh& m, std::span<const uint8_t> payl
         }
         m.parents_[child] = parent;
         m.morph_targets_[child] = m.positions_[parent];
-        m.dirty_vertices_.add(child, child + 1);
+    }
+    if (count > 0) {
+        const size_t first_child = m.base_vertices_ + first;
+        m.dirty_vertices_.add(first_child, first_child + count);
+        m.dirty_indices_.add((m.decoded_faces_ - face_cursor) * 3, m.decoded_faces_ * 3);
     }
     if (face_cursor != new_faces || topo.left() != 0)
         return input_error(where + ": split face count does not match its records");
