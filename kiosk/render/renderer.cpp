@@ -13,6 +13,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 #include <map>
@@ -38,6 +39,14 @@ namespace {
 
 constexpr int kTextureWidth = 2048;  // texels per row of the position/index textures (GLES 3.0 minimum)
 constexpr GLuint kPosition = 0, kNormal = 1, kMorph = 2;
+
+// Software rasterizers (llvmpipe) bin every triangle of a frame before
+// rasterizing it, about 130 bytes per covered triangle plus 48 per varying, and
+// keep that memory: a million-triangle model held ~75 MiB of bins. Flushing
+// after every kFlushTriangles bounds it to a few scenes of that size (tilers on
+// real GPUs would pay a tile resolve per flush, so only software drivers do it).
+constexpr size_t kFlushTriangles = 96 * 1024;
+bool g_flush_large_draws = false;  // set by init() from GL_RENDERER
 
 struct Program {
     GLuint id = 0;
@@ -309,6 +318,8 @@ Status Renderer::init() {
     }
 
     glGenVertexArrays(1, &s_->empty_vao);
+    const char* gl_renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+    g_flush_large_draws = gl_renderer && (std::strstr(gl_renderer, "llvmpipe") || std::strstr(gl_renderer, "softpipe"));
     s_->ready = true;
 
     // The manipulation sphere: a UV sphere of radius 1.
@@ -642,9 +653,15 @@ void set_lights(Program& p, const Lighting& l) {
 constexpr size_t kVertexIdChunk = 3 * 1024;
 void draw_vertex_id_chunks(Program& p, size_t vertices) {
     const GLint base = p.loc("u_vertex_base");
+    size_t since_flush = 0;
     for (size_t first = 0; first < vertices; first += kVertexIdChunk) {
         glUniform1i(base, static_cast<GLint>(first));
         glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(std::min(kVertexIdChunk, vertices - first)));
+        since_flush += kVertexIdChunk / 3;
+        if (g_flush_large_draws && since_flush >= kFlushTriangles) {
+            glFlush();  // bounds the software rasterizer's bins (see kFlushTriangles)
+            since_flush = 0;
+        }
     }
 }
 
@@ -661,7 +678,16 @@ void bind_textures(Program& p, const char* name0, GLuint tex0, const char* name1
 
 void draw_triangles(const Model& m) {
     glBindVertexArray(m.vao);
-    glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(m.index_count), GL_UNSIGNED_INT, nullptr);
+    const size_t chunk = 3 * kFlushTriangles;
+    if (!g_flush_large_draws || m.index_count <= chunk) {
+        glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(m.index_count), GL_UNSIGNED_INT, nullptr);
+        return;
+    }
+    for (size_t first = 0; first < m.index_count; first += chunk) {
+        glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(std::min(chunk, m.index_count - first)), GL_UNSIGNED_INT,
+                       reinterpret_cast<const void*>(first * sizeof(uint32_t)));
+        glFlush();
+    }
 }
 
 }  // namespace
