@@ -19,12 +19,13 @@ struct EdgeRecord {
     uint32_t v0, v1, a, b;
 };
 
-// What the GPU gets per edge: the two vertices (positions fetched from a
-// texture) and the two unit face normals packed as signed 10:10:10:2 (a zero
-// second normal marks a boundary), 16 bytes.
+// What the GPU gets per edge, one RGBA32UI texel (16 bytes, no position
+// texture to fetch from): both endpoints as 16-bit codes in a box (x0 y0 | z0 x1
+// | y1 z1, low half first) and the two unit face normals as 8:8 octahedral
+// codes (n0 low, n1 high; a boundary edge carries -n0 as n1). See edges.vert.
 struct GpuEdge {
-    uint32_t v0, v1;
-    uint32_t n0, n1;
+    uint32_t xy0, z0x1, y1z1;
+    uint32_t normals;
 };
 
 // `indices`: triangles (three per face); degenerate faces are skipped.

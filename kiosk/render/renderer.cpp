@@ -46,7 +46,8 @@ constexpr GLuint kPosition = 0, kNormal = 1, kMorph = 2;
 // after every kFlushTriangles bounds it to a few scenes of that size (tilers on
 // real GPUs would pay a tile resolve per flush, so only software drivers do it).
 constexpr size_t kFlushTriangles = 96 * 1024;
-bool g_flush_large_draws = false;  // set by init() from GL_RENDERER
+bool g_flush_large_draws = false;    // set by init() from GL_RENDERER
+constexpr size_t kQuadEdges = 4096;  // edges per draw of the `lines` style (16-bit indices)
 
 struct Program {
     GLuint id = 0;
@@ -72,7 +73,8 @@ struct Model {
     Vec3f box_min{0.0f}, box_max{0.0f};  // object space
     // Lazily created for `lines` and `wireframe`.
     GLuint position_texture = 0, index_texture = 0;
-    GLuint edge_texture = 0;  // RGBA32UI, one GpuEdge per texel
+    GLuint edge_texture = 0;                    // RGBA32UI, one GpuEdge per texel
+    Vec3f edge_origin{0.0f}, edge_scale{0.0f};  // dequantization of the GpuEdge endpoints
     size_t edge_capacity = 0;
     size_t edge_count = 0;
     bool edges_stale = true;
@@ -85,6 +87,21 @@ uint32_t pack_normal(const Vec3f& n) {
         return static_cast<uint32_t>(i) & 0x3ffu;
     };
     return q(n.x) | (q(n.y) << 10) | (q(n.z) << 20);
+}
+
+// Unit vector -> 8:8 signed octahedral code, x in the low byte (Meyer et al.
+// 2010, "On floating-point normal vectors").
+uint32_t pack_octahedral(const Vec3f& n) {
+    const float l1 = std::abs(n.x) + std::abs(n.y) + std::abs(n.z);
+    glm::vec2 p = l1 > 0.0f ? glm::vec2(n.x, n.y) / l1 : glm::vec2(0.0f);
+    if (n.z < 0.0f) {
+        const glm::vec2 s(p.x >= 0.0f ? 1.0f : -1.0f, p.y >= 0.0f ? 1.0f : -1.0f);
+        p = (1.0f - glm::abs(glm::vec2(p.y, p.x))) * s;
+    }
+    auto q = [](float v) {
+        return static_cast<uint32_t>(static_cast<int>(std::lround(std::clamp(v, -1.0f, 1.0f) * 127.0f))) & 0xffu;
+    };
+    return q(p.x) | (q(p.y) << 8);
 }
 
 std::vector<Vec3f> area_normals(std::span<const Vec3f> p, std::span<const uint32_t> idx, size_t vertex_count) {
@@ -263,8 +280,9 @@ Camera Camera::framing_box(Vec3f lo, Vec3f hi, Vec3f direction, float aspect, fl
 struct Renderer::State {
     bool ready = false;
     Program baseline, smooth, hatching, xray, edges, wireframe;
-    GLuint tam[2] = {0, 0};  // tonal art map: tones 0-2, 3-5
-    GLuint empty_vao = 0;    // wireframe draws without attributes
+    GLuint tam[2] = {0, 0};             // tonal art map: tones 0-2, 3-5
+    GLuint empty_vao = 0;               // wireframe draws without attributes
+    GLuint quad_vao = 0, quad_ebo = 0;  // `lines`: the shared edge-quad index buffer
     std::map<ModelId, Model> models;
     ModelId next_id = 1;
     ModelId sphere = 0;
@@ -318,6 +336,23 @@ Status Renderer::init() {
     }
 
     glGenVertexArrays(1, &s_->empty_vao);
+    {
+        std::vector<uint16_t> quads;
+        quads.reserve(kQuadEdges * 6);
+        for (size_t e = 0; e < kQuadEdges; ++e) {
+            const auto c = static_cast<uint16_t>(e * 4);
+            quads.insert(quads.end(),
+                         {c, static_cast<uint16_t>(c + 1), static_cast<uint16_t>(c + 2), static_cast<uint16_t>(c + 2),
+                          static_cast<uint16_t>(c + 1), static_cast<uint16_t>(c + 3)});
+        }
+        glGenVertexArrays(1, &s_->quad_vao);
+        glBindVertexArray(s_->quad_vao);
+        glGenBuffers(1, &s_->quad_ebo);
+        glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, s_->quad_ebo);
+        glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(quads.size() * sizeof(uint16_t)), quads.data(),
+                     GL_STATIC_DRAW);
+        glBindVertexArray(0);
+    }
     const char* gl_renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
     g_flush_large_draws = gl_renderer && (std::strstr(gl_renderer, "llvmpipe") || std::strstr(gl_renderer, "softpipe"));
     s_->ready = true;
@@ -364,7 +399,9 @@ void Renderer::shutdown() {
     }
     glDeleteTextures(2, s_->tam);
     if (s_->empty_vao) glDeleteVertexArrays(1, &s_->empty_vao);
-    s_->tam[0] = s_->tam[1] = s_->empty_vao = 0;
+    if (s_->quad_vao) glDeleteVertexArrays(1, &s_->quad_vao);
+    if (s_->quad_ebo) glDeleteBuffers(1, &s_->quad_ebo);
+    s_->tam[0] = s_->tam[1] = s_->empty_vao = s_->quad_vao = s_->quad_ebo = 0;
     s_->ready = false;
 }
 
@@ -676,6 +713,25 @@ void bind_textures(Program& p, const char* name0, GLuint tex0, const char* name1
     glActiveTexture(GL_TEXTURE0);
 }
 
+// Edge quads: four corners per edge, gl_VertexID = u_vertex_base + the index,
+// drawn in chunks of kQuadEdges through one shared 16-bit index buffer (two
+// triangles per edge) so that each corner is shaded once.
+void draw_edge_quads(Program& p, GLuint quad_vao, size_t edges) {
+    glBindVertexArray(quad_vao);
+    const GLint base = p.loc("u_vertex_base");
+    size_t since_flush = 0;
+    for (size_t first = 0; first < edges; first += kQuadEdges) {
+        const size_t n = std::min(kQuadEdges, edges - first);
+        glUniform1i(base, static_cast<GLint>(first * 4));
+        glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(n * 6), GL_UNSIGNED_SHORT, nullptr);
+        since_flush += 2 * n;
+        if (g_flush_large_draws && since_flush >= kFlushTriangles) {
+            glFlush();  // bounds the software rasterizer's bins (see kFlushTriangles)
+            since_flush = 0;
+        }
+    }
+}
+
 void draw_triangles(const Model& m) {
     glBindVertexArray(m.vao);
     const size_t chunk = 3 * kFlushTriangles;
@@ -701,36 +757,52 @@ static void ensure_position_texture(Model& m) {
                  reinterpret_cast<const uint8_t*>(positions.data()), sizeof(Vec3f));
 }
 
+// The edge texture of the `lines` style, rebuilt when the mesh changed. The
+// records are turned into GpuEdges in place (same size), so the transient CPU
+// memory is the read-back indices and positions plus one 16-byte record per edge.
 static void ensure_edges(Model& m) {
-    ensure_position_texture(m);
     if (!m.edges_stale && m.edge_texture) return;
-    auto indices = read_buffer<uint32_t>(GL_ELEMENT_ARRAY_BUFFER, m.ebo, m.index_count);
-    std::vector<GpuEdge> edges;
+    static_assert(sizeof(EdgeRecord) == sizeof(GpuEdge));
+    std::vector<EdgeRecord> records;
     {
-        auto positions = read_buffer<Vec3f>(GL_ARRAY_BUFFER, m.vbo_position, m.vertex_capacity);
-        std::vector<EdgeRecord> records = build_edge_list(indices);
-        edges.resize(records.size());
-        auto face_normal = [&](uint32_t a, uint32_t b, uint32_t c) {
-            Vec3f n = glm::cross(positions[b] - positions[a], positions[c] - positions[a]);
-            float l = glm::length(n);
-            return l > 0.0f ? n / l : Vec3f(0.0f, 0.0f, 1e-3f);  // degenerate: not zero (zero = boundary)
-        };
-        for (size_t i = 0; i < records.size(); ++i) {
-            const EdgeRecord& e = records[i];
-            edges[i].v0 = e.v0;
-            edges[i].v1 = e.v1;
-            edges[i].n0 = pack_normal(face_normal(e.v0, e.v1, e.a));
-            edges[i].n1 = e.b == kNoVertex ? 0u : pack_normal(face_normal(e.v1, e.v0, e.b));
-        }
+        auto indices = read_buffer<uint32_t>(GL_ELEMENT_ARRAY_BUFFER, m.ebo, m.index_count);
+        records = build_edge_list(indices);
     }
-    m.edge_count = edges.size();
-    if (edges.size() > m.edge_capacity || !m.edge_texture) {
+    auto positions = read_buffer<Vec3f>(GL_ARRAY_BUFFER, m.vbo_position, m.vertex_count);
+    Aabb box;
+    for (const Vec3f& p : positions) box.extend(Vec3(p));
+    m.edge_origin = box.empty() ? Vec3f(0.0f) : Vec3f(box.min);
+    const Vec3f extent = box.empty() ? Vec3f(0.0f) : Vec3f(box.max - box.min);
+    m.edge_scale = extent / 65535.0f;
+    auto code = [&](const Vec3f& p) {
+        glm::uvec3 c(0u);
+        for (int k = 0; k < 3; ++k)
+            if (extent[k] > 0.0f)
+                c[k] = static_cast<uint32_t>(
+                    std::lround(std::clamp((p[k] - m.edge_origin[k]) / extent[k], 0.0f, 1.0f) * 65535.0f));
+        return c;
+    };
+    auto face_normal = [&](uint32_t a, uint32_t b, uint32_t c) {
+        Vec3f n = glm::cross(positions[b] - positions[a], positions[c] - positions[a]);
+        float l = glm::length(n);
+        return l > 0.0f ? n / l : Vec3f(0.0f, 0.0f, 1.0f);
+    };
+    for (EdgeRecord& e : records) {
+        const glm::uvec3 c0 = code(positions[e.v0]), c1 = code(positions[e.v1]);
+        const Vec3f n0 = face_normal(e.v0, e.v1, e.a);
+        const Vec3f n1 = e.b == kNoVertex ? -n0 : face_normal(e.v1, e.v0, e.b);
+        const GpuEdge g{c0.x | (c0.y << 16), c0.z | (c1.x << 16), c1.y | (c1.z << 16),
+                        pack_octahedral(n0) | (pack_octahedral(n1) << 16)};
+        std::memcpy(&e, &g, sizeof(g));
+    }
+    m.edge_count = records.size();
+    if (records.size() > m.edge_capacity || !m.edge_texture) {
         if (m.edge_texture) glDeleteTextures(1, &m.edge_texture);
-        m.edge_capacity = std::max<size_t>(edges.size(), 1);
+        m.edge_capacity = std::max<size_t>(records.size(), 1);
         m.edge_texture = make_data_texture(GL_RGBA32UI, m.edge_capacity);
     }
-    texture_rows(m.edge_texture, 0, edges.size(), GL_RGBA_INTEGER, GL_UNSIGNED_INT,
-                 reinterpret_cast<const uint8_t*>(edges.data()), sizeof(GpuEdge));
+    texture_rows(m.edge_texture, 0, records.size(), GL_RGBA_INTEGER, GL_UNSIGNED_INT,
+                 reinterpret_cast<const uint8_t*>(records.data()), sizeof(GpuEdge));
     m.edges_stale = false;
 }
 
@@ -836,12 +908,13 @@ void Renderer::render(const Camera& camera, const Lighting& lighting, const Fram
                 glUniform1f(p.loc("u_width_px"), o.line_width_px);
                 glUniform1i(p.loc("u_texture_width"), kTextureWidth);
                 glUniform4f(p.loc("u_color"), o.ink.r, o.ink.g, o.ink.b, 1.0f);
-                bind_textures(p, "u_positions", m.position_texture, "u_edges", m.edge_texture);
+                glUniform3fv(p.loc("u_quant_origin"), 1, glm::value_ptr(m.edge_origin));
+                glUniform3fv(p.loc("u_quant_scale"), 1, glm::value_ptr(m.edge_scale));
+                glActiveTexture(GL_TEXTURE0);
+                glBindTexture(GL_TEXTURE_2D, m.edge_texture);
+                glUniform1i(p.loc("u_edges"), 0);
                 glDisable(GL_CULL_FACE);
-                // Six vertices (two triangles) per edge from gl_VertexID: no
-                // instancing, which software rasterizers run instance by instance.
-                glBindVertexArray(s.empty_vao);
-                draw_vertex_id_chunks(p, m.edge_count * 6);
+                draw_edge_quads(p, s.quad_vao, m.edge_count);
                 glEnable(GL_CULL_FACE);
                 s.stats.edges += m.edge_count;
                 ++s.stats.draw_calls;

@@ -1,66 +1,61 @@
 #version 300 es
 // `lines`: silhouette, boundary and crease edges as screen-space quads of
 // constant pixel width (McGuire & Hughes 2004, without geometry shaders).
-// Six vertices per mesh edge, found from gl_VertexID (no instancing, which
-// software rasterizers run instance by instance; no vertex attributes): the
-// edge record (vertices v0, v1 and the unit normals of its two faces packed
-// 10:10:10:2, the second zero on a boundary) comes from an integer texture,
-// positions from a float texture. An edge is drawn when
-// one face looks at the eye and the other away (Zhang's silhouette test, as
-// in the thesis), on boundaries, and where the dihedral angle exceeds the
-// crease threshold (Raskar & Cohen); otherwise the quad is moved off screen.
+// Four vertices per mesh edge (an indexed quad, so the vertex cache shades each
+// corner once), found from gl_VertexID (no instancing, which software
+// rasterizers run instance by instance; no vertex attributes). One texel per
+// edge (RGBA32UI, 16 bytes) holds all it needs: both endpoints quantized to
+// 16 bits in the model's edge box and the unit normals of its two faces as
+// 8:8 octahedral codes; a boundary edge carries the negated first normal as its
+// second. An edge is drawn when one face looks at the eye and the other away
+// (Zhang's silhouette test, as in the thesis), on boundaries, and where the
+// dihedral angle exceeds the crease threshold (Raskar & Cohen); otherwise the
+// quad is moved off screen.
 precision highp float;
 precision highp int;
-precision highp sampler2D;
 precision highp usampler2D;
 
-uniform sampler2D u_positions;  // RGB32F, u_texture_width texels per row
-uniform usampler2D u_edges;     // RGBA32UI: v0, v1, packed n0, packed n1
+uniform usampler2D u_edges;  // RGBA32UI, one edge per texel
 uniform int u_texture_width;
-uniform int u_vertex_base;       // the draw is split in chunks; gl_VertexID counts within one
+uniform int u_vertex_base;  // the draw is split in chunks; gl_VertexID counts within one
+uniform vec3 u_quant_origin;  // object space of code 0
+uniform vec3 u_quant_scale;   // object units per code step
 uniform mat4 u_model_view_projection;
-uniform vec3 u_eye_object;       // eye in object space (perspective)
-uniform float u_cos_crease;      // cosine of the crease threshold
-uniform vec2 u_viewport;         // pixels
-uniform float u_width_px;        // silhouette width; creases 0.7 of it
+uniform vec3 u_eye_object;   // eye in object space (perspective)
+uniform float u_cos_crease;  // cosine of the crease threshold
+uniform vec2 u_viewport;     // pixels
+uniform float u_width_px;    // silhouette width; creases 0.7 of it
 
-// Signed normalized 10:10:10 (the w bits unused) to a vector, in unsigned
-// arithmetic only.
+// 8:8 signed octahedral code (x low byte) to a unit vector (Meyer et al. 2010).
 vec3 unpack_normal(uint bits) {
-    vec3 v = vec3(uvec3(bits, bits >> 10u, bits >> 20u) & uvec3(1023u));
-    v -= step(512.0, v) * 1024.0;
-    return max(v / 511.0, vec3(-1.0));
-}
-
-vec3 fetch(uint i) {
-    int k = int(i);
-    return texelFetch(u_positions, ivec2(k % u_texture_width, k / u_texture_width), 0).xyz;
+    vec2 e = vec2(uvec2(bits, bits >> 8u) & uvec2(255u));
+    e -= step(128.0, e) * 256.0;
+    e = max(e / 127.0, vec2(-1.0));
+    vec3 n = vec3(e, 1.0 - abs(e.x) - abs(e.y));
+    if (n.z < 0.0) n.xy = (1.0 - abs(n.yx)) * vec2(n.x >= 0.0 ? 1.0 : -1.0, n.y >= 0.0 ? 1.0 : -1.0);
+    return normalize(n);
 }
 
 void main() {
     int vid = u_vertex_base + gl_VertexID;
-    int edge = vid / 6;
-    // Corners of the quad's two triangles (0,-) (0,+) (1,-) | (1,-) (0,+) (1,+):
-    // x = endpoint 0/1, y = side -1/+1.
-    int k = vid - edge * 6;
-    vec2 a_corner = vec2(k == 2 || k == 3 || k == 5 ? 1.0 : 0.0, k == 1 || k == 4 || k == 5 ? 1.0 : -1.0);
-    uvec4 record = texelFetch(u_edges, ivec2(edge % u_texture_width, edge / u_texture_width), 0);
-    vec3 p0 = fetch(record.x);
-    vec3 p1 = fetch(record.y);
-    vec3 n0 = unpack_normal(record.z);
-    vec3 n1 = unpack_normal(record.w);
+    int edge = vid >> 2;
+    // Corner k of the quad: x = endpoint k >> 1, y = side -1/+1 from k & 1.
+    int k = vid & 3;
+    vec2 a_corner = vec2(float(k >> 1), (k & 1) == 1 ? 1.0 : -1.0);
+    uvec4 r = texelFetch(u_edges, ivec2(edge % u_texture_width, edge / u_texture_width), 0);
+    const uint lo = 0xffffu;
+    vec3 p0 = u_quant_origin + u_quant_scale * vec3(uvec3(r.x & lo, r.x >> 16u, r.y & lo));
+    vec3 p1 = u_quant_origin + u_quant_scale * vec3(uvec3(r.y >> 16u, r.z & lo, r.z >> 16u));
+    vec3 n0 = unpack_normal(r.w & lo);
+    vec3 n1 = unpack_normal(r.w >> 16u);
     vec3 to_eye = u_eye_object - p0;
     bool front0 = dot(n0, to_eye) > 0.0;
-    bool draw;
-    float width = u_width_px;
-    if (dot(n1, n1) < 0.25) {
-        draw = true;  // boundary
-    } else {
-        bool front1 = dot(n1, to_eye) > 0.0;
-        bool crease = dot(n0, n1) < u_cos_crease;
-        draw = front0 != front1 || (crease && (front0 || front1));
-        if (front0 == front1) width *= 0.7;
-    }
+    bool front1 = dot(n1, to_eye) > 0.0;
+    float n01 = dot(n0, n1);
+    bool boundary = n01 < -0.98;
+    bool crease = n01 < u_cos_crease;
+    bool draw = boundary || front0 != front1 || (crease && (front0 || front1));
+    float width = boundary || front0 != front1 ? u_width_px : 0.7 * u_width_px;
     vec4 c0 = u_model_view_projection * vec4(p0, 1.0);
     vec4 c1 = u_model_view_projection * vec4(p1, 1.0);
     if (!draw || c0.w <= 0.0 || c1.w <= 0.0) {
