@@ -329,7 +329,7 @@ Status Renderer::init() {
                 for (size_t c = 0; c < 3; ++c) rgb[i * 3 + c] = tones[static_cast<size_t>(half) * 3 + c][i];
             glTexSubImage2D(GL_TEXTURE_2D, l, 0, 0, size, size, GL_RGB, GL_UNSIGNED_BYTE, rgb.data());
         }
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_NEAREST);
         glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
         glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
         glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
