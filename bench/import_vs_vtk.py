@@ -20,7 +20,7 @@ import vtk
 from vtk.util import numpy_support as ns
 
 BODYGEN, ATLAS, NAMES, WORK = sys.argv[1:5]
-MIN_AREA = 3  # as scripts/build-sample.sh: drop per-slice islands of 1-3 voxels
+MIN_AREA = 3  # scripts/build-sample.sh drops per-slice islands of 1-3 voxels
 os.makedirs(WORK, exist_ok=True)
 
 
@@ -102,15 +102,59 @@ def distances(points, surface):
     return out
 
 
+def triangles_of(poly):
+    """(points n x 3, triangles m x 3) of a vtkPolyData of triangles (others triangulated)."""
+    tri = vtk.vtkTriangleFilter()
+    tri.SetInputData(poly)
+    tri.PassVertsOff()
+    tri.PassLinesOff()
+    tri.Update()
+    out = tri.GetOutput()
+    pts = ns.vtk_to_numpy(out.GetPoints().GetData()).astype(float)
+    conn = ns.vtk_to_numpy(out.GetPolys().GetConnectivityArray()).astype(np.int64)
+    return pts, conn.reshape(-1, 3)
+
+
 def is_closed_manifold(poly):
-    fe = vtk.vtkFeatureEdges()
-    fe.SetInputData(poly)
-    fe.BoundaryEdgesOn()
-    fe.NonManifoldEdgesOn()
-    fe.FeatureEdgesOff()
-    fe.ManifoldEdgesOff()
-    fe.Update()
-    return fe.GetOutput().GetNumberOfCells() == 0
+    """What bodygen's Mesh::closed_manifold() asks (shared/mesh.h), for either
+    side: every edge in exactly two triangles traversed in opposite directions,
+    every vertex's fan one disc, no triangle with a repeated vertex or zero area.
+    (vtkFeatureEdges alone sees only boundary and non-manifold edges.)"""
+    pts, tris = triangles_of(poly)
+    if len(tris) == 0:
+        return False
+    if np.any((tris[:, 0] == tris[:, 1]) | (tris[:, 1] == tris[:, 2]) | (tris[:, 0] == tris[:, 2])):
+        return False
+    a, b, c = pts[tris[:, 0]], pts[tris[:, 1]], pts[tris[:, 2]]
+    if np.any(np.linalg.norm(np.cross(b - a, c - a), axis=1) == 0.0):
+        return False
+    directed = np.concatenate([tris[:, [0, 1]], tris[:, [1, 2]], tris[:, [2, 0]]])
+    n = int(tris.max()) + 1
+    key = directed[:, 0] * n + directed[:, 1]
+    if len(np.unique(key)) != len(key):  # an edge twice the same way: misoriented or non-manifold
+        return False
+    if not np.all(np.isin(directed[:, 1] * n + directed[:, 0], key)):  # an edge without its twin: boundary
+        return False
+    # Vertex fans: around each vertex, the opposite edges (b, c) of its triangles
+    # must chain into one cycle: with paired edges, each vertex's fan is a union
+    # of cycles, one cycle iff (fan edges) == (distinct fan vertices) and connected.
+    corner = np.concatenate([tris[:, [0, 1, 2]], tris[:, [1, 2, 0]], tris[:, [2, 0, 1]]])
+    order = np.argsort(corner[:, 0], kind="stable")
+    corner = corner[order]
+    starts = np.flatnonzero(np.r_[True, corner[1:, 0] != corner[:-1, 0]])
+    ends = np.r_[starts[1:], len(corner)]
+    for s0, e0 in zip(starts, ends):
+        nxt = dict(zip(corner[s0:e0, 1].tolist(), corner[s0:e0, 2].tolist()))
+        if len(nxt) != e0 - s0:
+            return False
+        v0 = corner[s0, 1]
+        v, steps = nxt[v0], 1
+        while v != v0 and steps <= len(nxt):
+            v = nxt.get(v, v0)
+            steps += 1
+        if steps != len(nxt):
+            return False
+    return True
 
 
 def volume(poly):
@@ -123,16 +167,22 @@ def volume(poly):
 
 
 # ---------------------------------------------------------------- bodygen
-def bodygen_route(jobs):
+def bodygen_route(jobs, min_area):
+    """`bodygen contours` then one `bodygen build` of the whole stack, both with
+    --jobs; if that build fails, each region on its own says which ones fail."""
     stack = os.path.join(WORK, "aal.contours.json")
+    obj = os.path.join(WORK, "aal.obj")
     t0 = time.perf_counter()
-    rc, out = run([BODYGEN, "contours", ATLAS, "--labels", NAMES, "--min-area", str(MIN_AREA), "--jobs", str(jobs),
+    rc, out = run([BODYGEN, "contours", ATLAS, "--labels", NAMES, "--min-area", str(min_area), "--jobs", str(jobs),
                    "--quiet", "-o", stack])
     if rc != 0:
         raise SystemExit("bodygen contours failed: " + out)
     t_contours = time.perf_counter() - t0
-    # Structures are independent: one `bodygen build` per structure, `jobs` at a
-    # time, so one structure the pipeline rejects does not hide the others.
+    t1 = time.perf_counter()
+    rc, out = run([BODYGEN, "build", stack, "--jobs", str(jobs), "--quiet", "-o", obj])
+    t_build = time.perf_counter() - t1
+    if rc == 0:
+        return t_contours, t_build, read_obj(obj), []
     data = json.load(open(stack))
     tasks = []
     for s in data["structures"]:
@@ -150,10 +200,8 @@ def bodygen_route(jobs):
         rc, out = run([BODYGEN, "build", p, "-o", o, "--quiet"])
         return sid, o, rc, out
 
-    t1 = time.perf_counter()
     with concurrent.futures.ThreadPoolExecutor(jobs) as pool:
         results = list(pool.map(build, tasks))
-    t_build = time.perf_counter() - t1
     errors = ["%s: %s" % (sid, out.strip()) for sid, _, rc, out in results if rc != 0]
     meshes = {}
     for sid, o, rc, _ in results:
@@ -253,26 +301,33 @@ def score(meshes_by_label):
 
 rows = []
 t_vtk, vtk_meshes = vtk_route()
-rows.append(("VTK discrete flying edges + windowed sinc", 1, t_vtk, score(vtk_meshes), []))
-for jobs in (1, 2):
-    tc, tb, meshes, errors = bodygen_route(jobs)
-    by_label = {by_name.get(n, n): m for n, m in meshes.items()}
-    by_label = {k: v for k, v in by_label.items() if isinstance(k, int)}
-    rows.append(("bodygen contours --min-area %g + build (--jobs %d)" % (MIN_AREA, jobs), jobs, tc + tb, score(by_label), errors,
-                 (tc, tb)))
+rows.append(("VTK discrete flying edges + windowed sinc", 1, t_vtk, score(vtk_meshes), [], None))
+# --min-area 3 as scripts/build-sample.sh (per-slice islands of 1-3 voxels
+# dropped), and plain defaults (every island kept).
+for min_area in (MIN_AREA, 0):
+    for jobs in (1, 2):
+        tc, tb, meshes, errors = bodygen_route(jobs, min_area)
+        by_label = {by_name.get(n, n): m for n, m in meshes.items()}
+        by_label = {k: v for k, v in by_label.items() if isinstance(k, int)}
+        label = "bodygen contours%s + build, --jobs %d" % (" --min-area %g" % min_area if min_area else "", jobs)
+        rows.append((label, jobs, tc + tb, score(by_label), errors, (tc, tb)))
 
 base = rows[0][2]
 print("AAL atlas %s: %d regions, %s voxels of %.3g mm^3\n" % (ATLAS, len(present), "x".join(map(str, dims)),
                                                                voxel_volume))
-print("| route | wall s | vs VTK | regions built | closed 2-manifolds | triangles | volume err median / max %"
+print("| route | wall s | vs VTK | regions built | closed 2-manifolds | triangles | vs VTK | volume err median / max %"
       " | mesh->voxels mm | voxels->mesh mm | 95% Hausdorff mm |")
-print("|---|---|---|---|---|---|---|---|---|---|")
-for row in rows:
-    name, jobs, t, s, errors = row[:5]
-    extra = " (contours %.2f + meshes %.2f)" % row[5] if len(row) > 5 else ""
-    print("| %s | %.2f%s | %.2fx | %d/%d | %d | %d | %+.1f / %.1f | %.3f | %.3f | %.3f |" % (
-        name, t, extra, t / base, s["regions"], len(present), s["closed"], s["triangles"], s["vol_err_median"],
-        s["vol_err_abs_max"], s["mesh_to_voxels_mean"], s["voxels_to_mesh_mean"], s["hausdorff95"]))
-print("\nbodygen: one `bodygen build` process per region, `jobs` at a time; regions the pipeline rejected:")
-for e in rows[1][4]:
-    print("- " + e[:200])
+print("|---|---|---|---|---|---|---|---|---|---|---|")
+for name, jobs, t, s, errors, split in rows:
+    extra = " (contours %.2f + meshes %.2f)" % split if split else ""
+    print("| %s | %.2f%s | %.2fx | %d/%d | %d | %d | %.2fx | %+.1f / %.1f | %.3f | %.3f | %.3f |" % (
+        name, t, extra, t / base, s["regions"], len(present), s["closed"], s["triangles"],
+        s["triangles"] / rows[0][3]["triangles"], s["vol_err_median"], s["vol_err_abs_max"], s["mesh_to_voxels_mean"],
+        s["voxels_to_mesh_mean"], s["hausdorff95"]))
+print("\nclosed 2-manifolds: every edge in two triangles, opposite ways; every vertex fan one disc; no zero-area"
+      " triangle (bodygen's Mesh::closed_manifold, applied to both sides).")
+for name, _, _, _, errors, _ in rows[1:]:
+    if errors:
+        print("\n%s: regions the pipeline rejected:" % name)
+        for e in errors:
+            print("- " + e[:200])

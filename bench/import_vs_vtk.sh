@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Whole AAL atlas -> one mesh per region: bodygen (contours + build, 1 and 2
-# jobs) against VTK's discrete flying edges + windowed-sinc smoothing (the 3D
-# Slicer route) in the same run: wall time, triangles, closed manifolds, volume
-# vs voxel count and boundary fidelity, as a markdown table.
+# jobs, with the sample's --min-area 3 and with defaults) against VTK's discrete
+# flying edges + windowed-sinc smoothing (the 3D Slicer route) in the same run:
+# wall time, triangles, closed manifolds (strict, both sides), volume vs voxel
+# count and boundary fidelity, as a markdown table.
 #   bench/import_vs_vtk.sh [BODYGEN]   (default build/bin/bodygen)
 set -euo pipefail
 cd "$(dirname "$0")/.."

@@ -70,7 +70,8 @@ std::vector<Vec2> douglas_peucker_ring(const std::vector<Vec2>& ring, double tol
 }
 
 // Small rings keep their shape: a few-voxel region simplified to a triangle
-// loses most of its area, and later stages (branch partitions) need vertices.
+// loses most of its area (branch partitions no longer need the vertices: they
+// add their own where a contour has too few for its branches).
 // When Douglas-Peucker leaves fewer than min(n, kMinKeptVertices) vertices, the
 // dropped vertex farthest from its kept segment is restored, repeatedly.
 constexpr size_t kMinKeptVertices = 8;
