@@ -121,5 +121,45 @@ TEST(ImportBuild, BranchingLabelIsOneClosedSolid) {
                       1, 0, false);
 }
 
+// Speckle next to small regions, with the default options (no --min-area): a
+// 5x5 block (8 contour vertices) between two layers of nine one-voxel islands,
+// a voxel over four islands, a voxel over two. Partition branching gets fewer
+// contour vertices than its branches need and must add its own; tiny regions
+// are never an error.
+TEST(ImportBuild, SpeckleOverTinyRegionsBuildsClosed) {
+    test::VolumeSpec spec;
+    spec.nx = spec.ny = spec.nz = 12;
+    std::vector<uint8_t> data(12 * 12 * 12, 0);
+    auto set = [&](int x, int y, int z) { data[(static_cast<size_t>(z) * 12 + y) * 12 + x] = 4; };
+    auto islands = [&](int z) {
+        for (int y : {3, 5, 7})
+            for (int x : {3, 5, 7}) set(x, y, z);
+    };
+    islands(2);
+    for (int y = 3; y <= 7; ++y)
+        for (int x = 3; x <= 7; ++x) set(x, y, 3);
+    islands(4);
+    set(5, 5, 5);
+    for (int y : {4, 6})
+        for (int x : {4, 6}) set(x, y, 6);
+    set(5, 5, 7);
+    set(4, 5, 8), set(6, 5, 8);
+    const std::string path = test::temp_path("speckle.nii.gz");
+    test::write_nifti(path, spec, data, DT_UINT8);
+    auto stack = load_any_contour_source(path, {});
+    ASSERT_TRUE(stack.ok()) << stack.error().message;
+    auto built = build_structures(*stack, {}, path);
+    ASSERT_TRUE(built.ok()) << built.error().message;
+    ASSERT_EQ(built->size(), 1u);
+    const StructureMesh& m = built->front();
+    const MeshTopology t = analyze_topology(m.mesh.positions, m.mesh.indices);
+    EXPECT_TRUE(t.closed_manifold()) << t.boundary_edges << " boundary, " << t.nonmanifold_edges << " non-manifold, "
+                                     << t.misoriented_edges << " misoriented edges, " << t.nonmanifold_vertices
+                                     << " non-manifold vertices, " << t.degenerate_triangles << " degenerate triangles";
+    EXPECT_GT(m.volume, 0.0);
+    EXPECT_LT(m.volume, 52.0);  // 50 voxels of 1 mm^3
+    std::filesystem::remove(path);
+}
+
 }  // namespace
 }  // namespace body
