@@ -19,7 +19,9 @@ ModelSource::ModelSource(std::string name, Vec3f color, std::vector<Vec3f> posit
       positions_(std::move(positions)),
       normals_(std::move(normals)),
       full_indices_(std::move(indices)) {
-    indices_ = full_indices_;
+    positions_.shrink_to_fit();
+    normals_.shrink_to_fit();
+    full_indices_.shrink_to_fit();
 }
 
 ModelSource::ModelSource(std::unique_ptr<pm::ProgressiveMesh> pm) : pm_(std::move(pm)) {
@@ -29,7 +31,7 @@ ModelSource::ModelSource(std::unique_ptr<pm::ProgressiveMesh> pm) : pm_(std::mov
 }
 
 size_t ModelSource::full_triangles() const { return pm_ ? pm_->max_triangle_count() : full_indices_.size() / 3; }
-size_t ModelSource::triangles() const { return pm_ ? pm_->triangle_count() : indices_.size() / 3; }
+size_t ModelSource::triangles() const { return pm_ ? pm_->triangle_count() : current_indices().size() / 3; }
 
 void ModelSource::set_lod(double ratio) {
     ratio = std::clamp(ratio, 0.0, 1.0);
@@ -38,19 +40,23 @@ void ModelSource::set_lod(double ratio) {
         pm_->set_level(pm_->level_for_triangles(std::max<size_t>(target, 1)));
         return;
     }
-    const size_t old_size = indices_.size();
+    const size_t old_size = current_indices().size();
     if (target >= full_indices_.size() / 3) {
-        indices_ = full_indices_;
+        indices_ = {};  // the full level draws full_indices_: no second copy
+        simplified_ = false;
     } else {
         std::vector<uint32_t> out(full_indices_.size());
         size_t n =
             meshopt_simplify(out.data(), full_indices_.data(), full_indices_.size(), &positions_[0].x,
                              positions_.size(), sizeof(Vec3f), std::max<size_t>(target, 1) * 3, 1e-1f, 0, nullptr);
         out.resize(n);
+        out.shrink_to_fit();
         indices_ = std::move(out);
+        simplified_ = true;
     }
+    const size_t size = current_indices().size();
     pending_.index_begin = 0;
-    pending_.index_end = std::max(pending_.index_end, std::min(indices_.size(), std::max(old_size, indices_.size())));
+    pending_.index_end = std::max(pending_.index_end, std::min(size, std::max(old_size, size)));
 }
 
 MeshData ModelSource::mesh() const {
@@ -65,7 +71,7 @@ MeshData ModelSource::mesh() const {
     }
     m.positions = positions_;
     m.normals = normals_;
-    m.indices = indices_;
+    m.indices = current_indices();
     return m;
 }
 
@@ -80,8 +86,8 @@ Dirty ModelSource::take_dirty() {
         }
         pm_->clear_dirty();
     } else {
-        d = first_ ? Dirty{0, positions_.size(), 0, indices_.size()} : pending_;
-        d.index_end = std::min(d.index_end, indices_.size());
+        d = first_ ? Dirty{0, positions_.size(), 0, current_indices().size()} : pending_;
+        d.index_end = std::min(d.index_end, current_indices().size());
     }
     first_ = false;
     pending_ = Dirty{};

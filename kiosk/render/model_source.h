@@ -47,7 +47,9 @@ private:
     Vec3f color_{0.8f};
     std::unique_ptr<pm::ProgressiveMesh> pm_;
     std::vector<Vec3f> positions_, normals_;
-    std::vector<uint32_t> full_indices_, indices_;  // OBJ: full and current (simplified) indices
+    std::vector<uint32_t> full_indices_, indices_;  // OBJ: full and (when simplified_) current indices
+    bool simplified_ = false;
+    std::span<const uint32_t> current_indices() const { return simplified_ ? indices_ : full_indices_; }
     bool first_ = true;
     Dirty pending_;
 };

@@ -45,7 +45,7 @@ constexpr GLuint kPosition = 0, kNormal = 1, kMorph = 2;
 // keep that memory: a million-triangle model held ~75 MiB of bins. Flushing
 // after every kFlushTriangles bounds it to a few scenes of that size (tilers on
 // real GPUs would pay a tile resolve per flush, so only software drivers do it).
-constexpr size_t kFlushTriangles = 96 * 1024;
+constexpr size_t kFlushTriangles = 32 * 1024;
 bool g_flush_large_draws = false;    // set by init() from GL_RENDERER
 constexpr size_t kQuadEdges = 4096;  // edges per draw of the `lines` style (16-bit indices)
 
