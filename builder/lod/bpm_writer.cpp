@@ -86,7 +86,13 @@ void oct_encode8(double x, double y, double z, uint8_t out[2]) {
 
 Quantized quantize(const ProgressiveBuild& pm, bool normals) {
     Quantized z;
+    // Every position a vertex takes at some level: where it appears, and where the
+    // splits move parents.
     Aabb box = mesh_bounds(pm.positions);
+    for (const VertexSplit& sp : pm.splits) {
+        box.extend(sp.parent_from);
+        box.extend(sp.parent_to);
+    }
     for (int k = 0; k < 3; ++k) {
         z.lo[k] = round_down(box.min[k]);
         z.hi[k] = round_up(box.max[k]);
@@ -179,6 +185,8 @@ Result<StructureSections> encode_structure(const Mesh& mesh, const ProgressiveBu
     // SPLT chunks
     std::vector<uint32_t> scratch, moved;
     size_t face = pm.base_faces;
+    // Quantized positions at the level being encoded (the reader tracks the same).
+    std::vector<uint16_t> cur = z.q;
     for (size_t first = 0; first < ns; first += chunk) {
         const size_t count = std::min(chunk, ns - first);
         size_t chunk_faces = 0;
@@ -222,7 +230,17 @@ Result<StructureSections> encode_structure(const Mesh& mesh, const ProgressiveBu
             replay.add_faces(face, faces);
             face += sp.face_count;
             pm::SplitVertex& r = recs[j - first];
-            for (int k = 0; k < 3; ++k) r.dq[k] = pm::zigzag16(z.q[size_t(child) * 3 + k], z.q[size_t(parent) * 3 + k]);
+            r = pm::SplitVertex{};
+            for (int k = 0; k < 3; ++k) {
+                uint16_t& qp = cur[size_t(parent) * 3 + k];
+                if (qp != quantize16(sp.parent_from[k], z.lo[k], z.hi[k]))
+                    return runtime_error("lod: '" + mesh.name + "': split " + std::to_string(j) +
+                                         " moves its parent from elsewhere than it is");
+                const uint16_t to = quantize16(sp.parent_to[k], z.lo[k], z.hi[k]);
+                r.dq[k] = pm::zigzag16(z.q[size_t(child) * 3 + k], qp);
+                r.pdq[k] = pm::zigzag16(to, qp);
+                qp = to;
+            }
             for (int k = 0; k < 2; ++k)
                 r.doct[k] = pm::zigzag8(z.oct[size_t(child) * 2 + k], z.oct[size_t(parent) * 2 + k]);
             r.parent_delta = child - parent;

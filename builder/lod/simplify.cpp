@@ -11,6 +11,7 @@
 //   build_adjacency  per-vertex corner lists (singly linked through corners), boundary/non-manifold flags
 //   init_quadrics    area-weighted plane quadrics + boundary penalty planes (ordering) and unit-weight
 //                    quadrics (the stored object-space error)
+//   placement        optimal (quadric minimiser) or fallback position of a collapse
 //   collapse_loop    indexed binary heap of vertices keyed by their cheapest outgoing collapse
 //   emit_order       vertices and faces in refinement order, index patches per split
 #include "builder/lod/simplify.h"
@@ -18,6 +19,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <tuple>
 
 #include "shared/pm/bpm_format.h"
 
@@ -64,6 +66,17 @@ struct Quadric {
         const double ay = a01 * x + a11 * y + a12 * z;
         const double az = a02 * x + a12 * y + a22 * z;
         return x * ax + y * ay + z * az + 2.0 * (b0 * x + b1 * y + b2 * z) + c;
+    }
+    // The minimiser of this quadric, when the 3x3 system is well conditioned
+    // (det >= 1e-6 trace^3: the smallest eigenvalue is not negligible).
+    bool minimiser(Vec3& p) const {
+        const double c00 = a11 * a22 - a12 * a12, c01 = a02 * a12 - a01 * a22, c02 = a01 * a12 - a02 * a11;
+        const double c11 = a00 * a22 - a02 * a02, c12 = a01 * a02 - a00 * a12, c22 = a00 * a11 - a01 * a01;
+        const double det = a00 * c00 + a01 * c01 + a02 * c02, tr = a00 + a11 + a22;
+        if (!(tr > 0.0) || !(det > 1e-6 * tr * tr * tr)) return false;
+        p = Vec3(-(c00 * b0 + c01 * b1 + c02 * b2) / det, -(c01 * b0 + c11 * b1 + c12 * b2) / det,
+                 -(c02 * b0 + c12 * b1 + c22 * b2) / det);
+        return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
     }
     double eval_sum(const Quadric& o, const Vec3& p) const {
         Quadric s = *this;
@@ -151,6 +164,7 @@ struct Collapse {
     uint32_t removed_count;
     uint32_t patch_begin, patch_end;
     double error;
+    Vec3 to_before, to_after;  // v's position before and after the collapse
 };
 
 struct State {
@@ -168,8 +182,10 @@ struct State {
     std::vector<uint32_t> patch_faces;
     size_t live_faces = 0;
     double running_error = 0.0;
+    bool optimal = true;              // LodOptions::optimal_placement
+    Vec3 box_min{0.0}, box_max{0.0};  // the input's bounds: placements stay inside
     // scratch
-    std::vector<uint32_t> cu, ring_u, ring_v, touched;
+    std::vector<uint32_t> cu, cv, fan, ring_u, ring_v, touched;
     std::vector<Vec3> fan_old, fan_new;
 };
 
@@ -306,9 +322,37 @@ void ring_of(State& s, uint32_t v, std::vector<uint32_t>& ring) {
     ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
 }
 
+// Where the collapse from -> to puts the merged vertex (see simplify.h), and its
+// ordering cost there.
+Vec3 placement(const State& s, uint32_t from, uint32_t to, double& cost) {
+    const Vec3& pv = s.pos[to];
+    cost = std::max(s.q[from].eval(pv) + s.q[to].eval(pv), 0.0);
+    if (!s.optimal || s.boundary[from] || s.boundary[to] || s.locked[to]) return pv;
+    Quadric sum = s.q[from];
+    sum.add(s.q[to]);
+    const Vec3& pu = s.pos[from];
+    const Vec3 mid = (pu + pv) * 0.5;
+    Vec3 p;
+    if (sum.minimiser(p)) {
+        p = glm::clamp(p, s.box_min, s.box_max);
+        const Vec3 d = p - mid, e = pv - pu;
+        if (glm::dot(d, d) <= glm::dot(e, e)) {  // within an edge length of the midpoint
+            cost = std::max(sum.eval(p), 0.0);
+            return p;
+        }
+    }
+    Vec3 best = pv;
+    for (const Vec3& c : {pu, mid}) {
+        const double k = std::max(sum.eval(c), 0.0);
+        if (k < cost) cost = k, best = c;
+    }
+    return best;
+}
+
 double collapse_cost(const State& s, uint32_t from, uint32_t to) {
-    const Vec3& p = s.pos[to];
-    return std::max(s.q[from].eval(p) + s.q[to].eval(p), 0.0);
+    double cost = 0.0;
+    (void)placement(s, from, to, cost);
+    return cost;
 }
 
 // Re-keys `u` by its cheapest outgoing collapse (or drops it when it has none).
@@ -371,11 +415,11 @@ bool third_vertex(const State& s, uint32_t face, uint32_t u, uint32_t v, uint32_
     return has_v;
 }
 
-// Unit normal of face f with vertex u placed at p.
-Vec3 face_normal(const State& s, uint32_t f, uint32_t u, const Vec3& p) {
+// Unit normal of face f with vertices u and v placed at p.
+Vec3 face_normal(const State& s, uint32_t f, uint32_t u, uint32_t v, const Vec3& p) {
     const uint32_t* t = &s.idx[f * 3];
     Vec3 r[3];
-    for (int k = 0; k < 3; ++k) r[k] = t[k] == u ? p : s.pos[t[k]];
+    for (int k = 0; k < 3; ++k) r[k] = t[k] == u || t[k] == v ? p : s.pos[t[k]];
     const Vec3 n = glm::cross(r[1] - r[0], r[2] - r[0]);
     const double l = glm::length(n);
     return l > 0.0 ? n / l : Vec3(0.0);
@@ -391,9 +435,9 @@ uint32_t face_across(const State& s, uint32_t a, uint32_t b) {
     return kNone;
 }
 
-// Checks topology and geometry of the half-edge collapse u -> v (u disappears).
-// Fills s.cu with u's live corners; `shared` gets the faces removed.
-bool collapse_allowed(State& s, uint32_t u, uint32_t v, uint32_t shared[2], uint32_t& shared_count) {
+// Checks topology of the collapse u -> v (u disappears). Fills s.cu with u's live
+// corners; `shared` gets the faces removed.
+bool topology_allowed(State& s, uint32_t u, uint32_t v, uint32_t shared[2], uint32_t& shared_count) {
     live_corners(s, u, s.cu);
     shared_count = 0;
     uint32_t opposite[2] = {kNone, kNone};
@@ -431,16 +475,28 @@ bool collapse_allowed(State& s, uint32_t u, uint32_t v, uint32_t shared[2], uint
     }
     const uint32_t merged = s.fcount[u] + s.fcount[v] - 2 * shared_count;
     if (merged > pm::kMaxPatchFan || merged < (s.boundary[v] ? 1u : 3u)) return false;
-    // Geometry: no face of u may flip or become a sliver when u moves onto v.
-    const Vec3& target = s.pos[v];
-    for (uint32_t c : s.cu) {
+    return true;
+}
+
+// Checks geometry of the collapse u -> v with the merged vertex at `target`: no
+// face of u's fan (nor of v's, when v moves) may flip, fold or become a sliver.
+bool geometry_allowed(State& s, uint32_t u, uint32_t v, const Vec3& target, const uint32_t shared[2],
+                      uint32_t shared_count) {
+    auto& fan = s.fan;
+    fan = s.cu;
+    if (target != s.pos[v]) {
+        live_corners(s, v, s.cv);
+        fan.insert(fan.end(), s.cv.begin(), s.cv.end());
+    }
+    auto removed = [&](uint32_t f) { return f == shared[0] || (shared_count == 2 && f == shared[1]); };
+    for (uint32_t c : fan) {
         const uint32_t f = c / 3;
-        if (f == shared[0] || (shared_count == 2 && f == shared[1])) continue;
+        if (removed(f)) continue;
         const uint32_t* t = &s.idx[f * 3];
         Vec3 p[3], r[3];
         for (int k = 0; k < 3; ++k) {
             p[k] = s.pos[t[k]];
-            r[k] = t[k] == u ? target : p[k];
+            r[k] = t[k] == u || t[k] == v ? target : p[k];
         }
         const Vec3 n0 = glm::cross(p[1] - p[0], p[2] - p[0]);
         const Vec3 n1 = glm::cross(r[1] - r[0], r[2] - r[0]);
@@ -451,31 +507,30 @@ bool collapse_allowed(State& s, uint32_t u, uint32_t v, uint32_t shared[2], uint
         if (glm::dot(n1, n1) <= 1e-12 * l2 * l2) return false;
     }
     // Fold guard: a moved face must not end up (nearly) back to back with a
-    // neighbour unless it already was. Neighbours across u's fan edges are other
-    // faces of u; across the edge opposite u, one lookup.
+    // neighbour unless it already was. Neighbours across the fan edges are other
+    // faces of the fan; across the edge opposite the moving vertex, one lookup.
     auto& fan_old = s.fan_old;
     auto& fan_new = s.fan_new;
     fan_old.clear();
     fan_new.clear();
-    for (uint32_t c : s.cu) {
+    for (uint32_t c : fan) {
         const uint32_t f = c / 3;
-        const bool removed = f == shared[0] || (shared_count == 2 && f == shared[1]);
-        fan_old.push_back(removed ? Vec3(0.0) : face_normal(s, f, u, s.pos[u]));
-        fan_new.push_back(removed ? Vec3(0.0) : face_normal(s, f, u, target));
+        fan_old.push_back(removed(f) ? Vec3(0.0) : face_normal(s, f, kNone, kNone, target));
+        fan_new.push_back(removed(f) ? Vec3(0.0) : face_normal(s, f, u, v, target));
     }
-    for (size_t i = 0; i < s.cu.size(); ++i) {
-        const uint32_t f = s.cu[i] / 3, k = s.cu[i] % 3;
+    for (size_t i = 0; i < fan.size(); ++i) {
+        const uint32_t f = fan[i] / 3, k = fan[i] % 3;
         if (fan_new[i] == Vec3(0.0)) continue;
         const uint32_t x = s.idx[f * 3 + (k + 1) % 3], y = s.idx[f * 3 + (k + 2) % 3];
         const uint32_t g = face_across(s, x, y);
-        if (g != kNone && g != shared[0] && !(shared_count == 2 && g == shared[1])) {
-            const Vec3 ng = face_normal(s, g, u, target);
+        if (g != kNone && !removed(g)) {
+            const Vec3 ng = face_normal(s, g, u, v, target);
             const double after = glm::dot(fan_new[i], ng), before = glm::dot(fan_old[i], ng);
             if (after < kFoldCos && after < before) return false;
         }
-        for (size_t j = i + 1; j < s.cu.size(); ++j) {
+        for (size_t j = i + 1; j < fan.size(); ++j) {
             if (fan_new[j] == Vec3(0.0)) continue;
-            const uint32_t g2 = s.cu[j] / 3;
+            const uint32_t g2 = fan[j] / 3;
             const uint32_t* t = &s.idx[g2 * 3];
             if (t[0] != x && t[1] != x && t[2] != x && t[0] != y && t[1] != y && t[2] != y) continue;
             const double after = glm::dot(fan_new[i], fan_new[j]), before = glm::dot(fan_old[i], fan_old[j]);
@@ -485,7 +540,8 @@ bool collapse_allowed(State& s, uint32_t u, uint32_t v, uint32_t shared[2], uint
     return true;
 }
 
-void apply_collapse(State& s, uint32_t u, uint32_t v, const uint32_t shared[2], uint32_t shared_count) {
+void apply_collapse(State& s, uint32_t u, uint32_t v, const Vec3& target, const uint32_t shared[2],
+                    uint32_t shared_count) {
     Collapse rec{};
     rec.from = u;
     rec.to = v;
@@ -493,7 +549,10 @@ void apply_collapse(State& s, uint32_t u, uint32_t v, const uint32_t shared[2], 
     rec.removed[0] = shared[0];
     rec.removed[1] = shared_count == 2 ? shared[1] : kNone;
     rec.patch_begin = uint32_t(s.patch_faces.size());
-    const double err = std::sqrt(std::max(0.0, s.e[u].eval_sum(s.e[v], s.pos[v])));
+    const double err = std::sqrt(std::max(0.0, s.e[u].eval_sum(s.e[v], target)));
+    rec.to_before = s.pos[v];
+    rec.to_after = target;
+    s.pos[v] = target;
     s.running_error = std::max(s.running_error, err);
     rec.error = s.running_error;
     for (uint32_t i = 0; i < shared_count; ++i) {
@@ -536,7 +595,9 @@ void apply_collapse(State& s, uint32_t u, uint32_t v, const uint32_t shared[2], 
 // is applied. A vertex without a legal collapse waits until its neighbourhood changes.
 void collapse_loop(State& s, size_t target_faces) {
     const uint32_t n = uint32_t(s.pos.size());
-    std::vector<std::pair<double, uint32_t>> options;
+    // (cost, target, half-edge only): a placement rejected by the geometry checks
+    // comes back as the half-edge collapse at its own cost, re-ranked.
+    std::vector<std::tuple<double, uint32_t, bool>> options;
     for (int pass = 0; pass < 16 && s.live_faces > target_faces; ++pass) {
         s.heap.reset(n);
         s.best_target.assign(n, kNone);
@@ -547,10 +608,11 @@ void collapse_loop(State& s, size_t target_faces) {
             const double limit = s.heap.second_key();
             ring_of(s, u, s.ring_u);
             options.clear();
-            for (uint32_t x : s.ring_u) options.push_back({collapse_cost(s, u, x), x});
+            for (uint32_t x : s.ring_u) options.push_back({collapse_cost(s, u, x), x, false});
             std::sort(options.begin(), options.end());
             bool handled = false;
-            for (const auto& [cost, v] : options) {
+            for (size_t i = 0; i < options.size();) {
+                const auto [cost, v, half_edge] = options[i];
                 if (cost > limit) {
                     s.best_target[u] = v;
                     s.heap.set(u, cost);  // cheaper work elsewhere first
@@ -558,11 +620,26 @@ void collapse_loop(State& s, size_t target_faces) {
                     break;
                 }
                 uint32_t shared[2], shared_count = 0;
-                if (!collapse_allowed(s, u, v, shared, shared_count)) continue;
-                apply_collapse(s, u, v, shared, shared_count);
-                ++done;
-                handled = true;
-                break;
+                if (!topology_allowed(s, u, v, shared, shared_count)) {
+                    ++i;
+                    continue;
+                }
+                double unused = 0.0;
+                const Vec3 target = half_edge ? s.pos[v] : placement(s, u, v, unused);
+                if (geometry_allowed(s, u, v, target, shared, shared_count)) {
+                    apply_collapse(s, u, v, target, shared, shared_count);
+                    ++done;
+                    handled = true;
+                    break;
+                }
+                if (half_edge || target == s.pos[v]) {
+                    ++i;
+                    continue;
+                }
+                // The safe fallback: the half-edge collapse (v where it is), at its cost.
+                const Vec3& pv = s.pos[v];
+                options[i] = {std::max(s.q[u].eval(pv) + s.q[v].eval(pv), 0.0), v, true};
+                std::sort(options.begin() + ptrdiff_t(i), options.end());
             }
             if (!handled) s.heap.erase(u);
         }
@@ -618,7 +695,7 @@ ProgressiveBuild emit_order(const State& s, const std::vector<Vec3>& normals) {
     pm.patch_begin.assign(splits + 1, 0);
     for (size_t j = 0; j < splits; ++j) {
         const Collapse& c = s.collapses[splits - 1 - j];
-        pm.splits[j] = {vid[c.to], c.removed_count, c.error};
+        pm.splits[j] = {vid[c.to], c.removed_count, c.error, c.to_after, c.to_before};
         for (uint32_t i = c.patch_begin; i < c.patch_end; ++i) pm.patch_faces.push_back(fid[s.patch_faces[i]]);
         pm.patch_begin[j + 1] = uint32_t(pm.patch_faces.size());
     }
@@ -646,6 +723,10 @@ Result<ProgressiveBuild> build_progressive_mesh(const Mesh& mesh, const LodOptio
     }
     build_adjacency(s);
     init_quadrics(s, options.boundary_weight);
+    s.optimal = options.optimal_placement;
+    const Aabb box = mesh_bounds(s.pos);
+    s.box_min = box.min;
+    s.box_max = box.max;
     collapse_loop(s, std::max<size_t>(options.min_triangles, 1));
     return emit_order(s, normals);
 }
@@ -665,6 +746,7 @@ Mesh extract_level(const ProgressiveBuild& pm, size_t level) {
             for (int k = 0; k < 3; ++k)
                 if (t[k] == parent) t[k] = child;
         }
+        m.positions[parent] = pm.splits[j].parent_to;
     }
     return m;
 }

@@ -2,11 +2,16 @@
 // Progressive-mesh construction: quadric-error edge collapses (Garland & Heckbert
 // 1997) recorded as vertex splits (Hoppe 1996), and the .bpm writer.
 //
-// Placement: every collapse is a half-edge collapse (the removed vertex moves onto
-// the surviving one, which keeps its input position). Of the two directions the
-// quadric-cheaper one is taken. This is what makes every level "a prefix of the
-// vertex array + a prefix of the face array + index patches": vertex data never
-// changes between levels, so nothing but indices is rewritten at run time.
+// Placement (Garland-Heckbert "optimal placement with a safe fallback"): an edge
+// u -> v between two interior vertices puts the merged vertex v at the minimiser
+// of Q_u + Q_v when that 3x3 system is well conditioned and the point lies near
+// the edge; otherwise at the best (least quadric cost) of u's position, v's
+// position and the midpoint. A placement that would flip or fold a face of either
+// fan falls back to the half-edge collapse (v keeps its position), which is the
+// only placement for boundary or non-manifold ends. So a split may move its parent
+// back: each split records the parent's position before and after it, and a level
+// is "a prefix of the vertex array + a prefix of the face array + index patches +
+// the positions of the parents moved so far".
 //
 // Ordering: a binary heap of directed edge collapses keyed by (quadric cost, from,
 // to) with lazy invalidation through per-vertex stamps; deterministic (no hash
@@ -32,6 +37,7 @@ struct LodOptions {
     double boundary_weight = 100.0;  // weight of the boundary-preserving plane quadrics (x edge length^2)
     size_t chunk_splits = 4096;      // vertex splits per SPLT section (streaming granularity)
     bool normals = true;             // store octahedral normals (from the mesh, else area-weighted)
+    bool optimal_placement = true;   // false: half-edge collapses only (the parent never moves)
 };
 
 // A progressive mesh in refinement order, in the builder's precision.
@@ -41,10 +47,12 @@ struct VertexSplit {
     uint32_t parent = 0;
     uint32_t face_count = 0;  // faces this split adds (1 on a boundary edge, else 2)
     double error = 0.0;       // object-space error of the level before this split (non-increasing in j)
+    Vec3 parent_from{0.0};    // the parent's position at the level before this split
+    Vec3 parent_to{0.0};      // ... and after it (equal for a half-edge collapse)
 };
 
 struct ProgressiveBuild {
-    std::vector<Vec3> positions;    // all vertices in PM order
+    std::vector<Vec3> positions;    // all vertices in PM order, each where it appears (base: coarsest)
     std::vector<Vec3> normals;      // one per vertex
     std::vector<uint32_t> indices;  // all faces in PM order, as they are when each face appears
     size_t base_vertices = 0, base_faces = 0;

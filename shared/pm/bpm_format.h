@@ -38,7 +38,7 @@ template <class T>
 using UninitVector = std::vector<T, UninitAllocator<T>>;
 
 inline constexpr char kMagic[4] = {'B', 'P', 'M', '\0'};
-inline constexpr uint16_t kVersion = 1;
+inline constexpr uint16_t kVersion = 2;             // 2: splits move their parents (optimal placement)
 inline constexpr size_t kFileHeaderSize = 16;       // magic, version, flags, structure count, header crc
 inline constexpr size_t kSectionHeaderSize = 12;    // tag, structure, reserved, payload length
 inline constexpr size_t kSectionTrailerSize = 4;    // crc32 over header + payload
@@ -115,16 +115,20 @@ struct BaseVertex {
 };
 static_assert(sizeof(BaseVertex) == 8);
 
-// Packed record of a vertex split (meshopt vertex codec, stride 16): the child's
-// quantized position and normal as zig-zag differences from its parent's, the
-// distance child - parent in the vertex order, and the level error.
+// Packed record of a vertex split (meshopt vertex codec, stride 24): the child's
+// quantized position and normal as zig-zag differences from its parent's (the
+// parent's position before the split), the parent's move (its position after
+// the split minus before; 0 for a half-edge collapse), the distance child -
+// parent in the vertex order, and the level error.
 struct SplitVertex {
     uint16_t dq[3];
     uint8_t doct[2];
+    uint16_t pdq[3];
+    uint16_t reserved;  // 0
     uint32_t parent_delta;
     float error;
 };
-static_assert(sizeof(SplitVertex) == 16);
+static_assert(sizeof(SplitVertex) == 24);
 
 // The connectivity replay shared by writer and reader. It tracks, for the most
 // refined level decoded so far, which corners (face * 3 + k) reference each

@@ -49,6 +49,12 @@ size_t ProgressiveMesh::refine_to(size_t level) {
             indices_[c] = child;
             dirty_indices_.add(c, c + 1);
         }
+        if (parent_to_[j] != parent_from_[j]) {
+            const uint32_t parent = parents_[child];
+            positions_[parent] = parent_to_[j];
+            morph_targets_[parent] = parent_from_[j];
+            dirty_vertices_.add(parent, parent + 1);
+        }
     }
     if (level > level_) level_ = level;
     return level_;
@@ -62,6 +68,11 @@ size_t ProgressiveMesh::coarsen_to(size_t level) {
             uint32_t c = patch_corners_[i];
             indices_[c] = parent;
             dirty_indices_.add(c, c + 1);
+        }
+        if (parent_to_[j] != parent_from_[j]) {
+            positions_[parent] = parent_from_[j];
+            morph_targets_[parent] = parent_morph_[j];
+            dirty_vertices_.add(parent, parent + 1);
         }
     }
     if (level < level_) level_ = level;
@@ -209,6 +220,10 @@ Status BpmStream::parse_info(std::span<const uint8_t> payload, const std::string
     m->indices_.resize(size_t(faces) * 3);
     m->face_end_.resize(splits);
     m->split_error_.resize(splits);
+    m->parent_from_.resize(splits);
+    m->parent_to_.resize(splits);
+    m->parent_morph_.resize(splits);
+    m->decoded_morph_.resize(vertices);
     m->patch_begin_.resize(size_t(splits) + 1);
     m->patch_begin_[0] = 0;
     m->patch_corners_.clear();
@@ -246,6 +261,7 @@ Status BpmStream::parse_base(ProgressiveMesh& m, std::span<const uint8_t> payloa
             m.normals_[v] = Vec3f(n[0], n[1], n[2]);
         }
         m.morph_targets_[v] = m.positions_[v];
+        m.decoded_morph_[v] = m.positions_[v];
         m.parents_[v] = uint32_t(v);
     }
     std::copy(decoded_indices_.begin(), decoded_indices_.end(), m.indices_.begin());
@@ -258,6 +274,7 @@ Status BpmStream::parse_base(ProgressiveMesh& m, std::span<const uint8_t> payloa
         m.replay_ = SplitReplay{};
         m.qpos_ = {};
         m.qoct_ = {};
+        m.decoded_morph_ = {};
     }
     return ok_status();
 }
@@ -297,7 +314,7 @@ Status BpmStream::parse_splits(ProgressiveMesh& m, std::span<const uint8_t> payl
             m.replay_.prefetch(p, 1);
 #if defined(__GNUC__)
             __builtin_prefetch(&m.qpos_[size_t(p) * 3]);
-            __builtin_prefetch(&m.positions_[p]);
+            __builtin_prefetch(&m.decoded_morph_[p]);
             __builtin_prefetch(&m.qoct_[size_t(p) * 2]);
 #endif
         }
@@ -310,6 +327,7 @@ Status BpmStream::parse_splits(ProgressiveMesh& m, std::span<const uint8_t> payl
         if (rec.parent_delta == 0 || rec.parent_delta > child) return fail("parent out of range");
         const uint32_t parent = child - rec.parent_delta;
         if (!(rec.error >= 0.0f) || rec.error > previous_error) return fail("error not monotonic");
+        if (rec.reserved != 0) return fail("reserved field not 0");
         previous_error = rec.error;
         uint64_t head = 0;
         if (!topo.varint(head)) return fail("topology record truncated");
@@ -341,12 +359,23 @@ Status BpmStream::parse_splits(ProgressiveMesh& m, std::span<const uint8_t> payl
         m.split_error_[j] = rec.error;
         m.patch_corners_.insert(m.patch_corners_.end(), moved, moved + std::popcount(mask));
         m.patch_begin_[j + 1] = uint32_t(m.patch_corners_.size());
-        // The child's vertex data, coded against its parent.
+        // The child's vertex data, coded against its parent before the split, and
+        // the parent's move.
+        Vec3f from, to;
         for (int k = 0; k < 3; ++k) {
-            const uint16_t q = unzigzag16(rec.dq[k], m.qpos_[parent * 3 + k]);
+            const uint16_t qf = m.qpos_[parent * 3 + k];
+            const uint16_t q = unzigzag16(rec.dq[k], qf), qt = unzigzag16(rec.pdq[k], qf);
             m.qpos_[size_t(child) * 3 + k] = q;
+            m.qpos_[parent * 3 + k] = qt;
             m.positions_[child][k] = dequantize16(q, lo[k], hi[k]);
+            from[k] = dequantize16(qf, lo[k], hi[k]);
+            to[k] = qt == qf ? from[k] : dequantize16(qt, lo[k], hi[k]);
         }
+        m.parent_from_[j] = from;
+        m.parent_to_[j] = to;
+        m.parent_morph_[j] = m.decoded_morph_[parent];
+        if (to != from) m.decoded_morph_[parent] = from;
+        m.decoded_morph_[child] = from;
         for (int k = 0; k < 2; ++k) m.qoct_[size_t(child) * 2 + k] = unzigzag8(rec.doct[k], m.qoct_[parent * 2 + k]);
         if (m.has_normals_) {
             float n[3];
@@ -354,7 +383,7 @@ Status BpmStream::parse_splits(ProgressiveMesh& m, std::span<const uint8_t> payl
             m.normals_[child] = Vec3f(n[0], n[1], n[2]);
         }
         m.parents_[child] = parent;
-        m.morph_targets_[child] = m.positions_[parent];
+        m.morph_targets_[child] = from;
     }
     if (count > 0) {
         const size_t first_child = m.base_vertices_ + first;
@@ -369,6 +398,7 @@ Status BpmStream::parse_splits(ProgressiveMesh& m, std::span<const uint8_t> payl
         m.replay_ = SplitReplay{};
         m.qpos_ = {};
         m.qoct_ = {};
+        m.decoded_morph_ = {};
     }
     return ok_status();
 }

@@ -4,13 +4,15 @@
 //
 // A level is "k vertex splits applied on top of the base mesh". At level k the
 // mesh is exactly
-//   vertices  positions()[0 .. vertex_count())     (a prefix, never rewritten)
+//   vertices  positions()[0 .. vertex_count())     (a prefix)
 //   triangles indices()[0 .. 3 * triangle_count())  (a prefix, three per triangle,
 //                                                    counter-clockwise from outside)
 // and moving between levels only rewrites a few entries of indices() (the index
-// patches of each split) and changes the two counts. So the renderer can size its
-// GL buffers once at max_vertex_count()/max_triangle_count(), upload what
-// dirty_vertices()/dirty_indices() say after each change, and draw the prefixes.
+// patches of each split), the position of each split's parent (a collapse with
+// optimal placement moved it; a split moves it back, 0 to 1 vertex per split)
+// and changes the two counts. So the renderer can size its GL buffers once at
+// max_vertex_count()/max_triangle_count(), upload what dirty_vertices()/
+// dirty_indices() say after each change, and draw the prefixes.
 //
 // Units are object space (millimetres for anatomy). Positions are dequantized
 // from 16 bits per axis in the structure's bounding box, so they differ from the
@@ -89,9 +91,11 @@ public:
     // the current prefix are valid once decoded but are not part of this level.
     std::span<const Vec3f> positions() const { return positions_; }
     std::span<const Vec3f> normals() const { return normals_; }  // unit; (0,0,1) when the file has none
-    // Geomorph source: the position of each vertex's parent (the vertex it splits
-    // from; itself for base vertices). Draw mix(morph_targets, positions, t) for
-    // the vertices added since the previous level, t going 0 -> 1.
+    // Geomorph source, for the current level: where each vertex was before the
+    // last split that created or moved it (a new vertex: its parent's position
+    // before the split; a moved parent: its own; a base vertex never moved: itself).
+    // Draw mix(morph_targets, positions, t) for the vertices added or moved since
+    // the previous level (dirty_vertices() covers both), t going 0 -> 1.
     std::span<const Vec3f> morph_targets() const { return morph_targets_; }
     std::span<const uint32_t> parents() const { return parents_; }
     std::span<const uint32_t> indices() const { return indices_; }
@@ -114,15 +118,19 @@ private:
     // past the decoded vertices, faces and splits are indeterminate.
     UninitVector<Vec3f> positions_, normals_, morph_targets_;
     UninitVector<uint32_t> parents_, indices_;
-    UninitVector<uint32_t> face_end_;      // per split: triangle count after it
-    UninitVector<float> split_error_;      // per split: error of the level before it
-    UninitVector<uint32_t> patch_begin_;   // per split + 1: range into patch_corners_
+    UninitVector<uint32_t> face_end_;     // per split: triangle count after it
+    UninitVector<float> split_error_;     // per split: error of the level before it
+    UninitVector<uint32_t> patch_begin_;  // per split + 1: range into patch_corners_
+    // Per split: the parent's position before and after it and its geomorph
+    // source before it (only read for splits that move the parent).
+    UninitVector<Vec3f> parent_from_, parent_to_, parent_morph_;
     std::vector<uint32_t> patch_corners_;  // index entries set to the child on refine, parent on coarsen
     DirtyRange dirty_vertices_, dirty_indices_;
     // Decoding state, released when the structure is complete.
     SplitReplay replay_;
-    UninitVector<uint16_t> qpos_;  // 3 per vertex: quantized positions (children are coded against parents)
-    UninitVector<uint8_t> qoct_;   // 2 per vertex: octahedral normals
+    UninitVector<uint16_t> qpos_;        // 3 per vertex: quantized positions (children are coded against parents)
+    UninitVector<uint8_t> qoct_;         // 2 per vertex: octahedral normals
+    UninitVector<Vec3f> decoded_morph_;  // per vertex: morph_targets() at the last decoded level
 };
 
 // Reads a .bpm file from byte chunks as they arrive (network, disk, a test).

@@ -131,10 +131,14 @@ TEST(Lod, RefineCoarsenRoundTripsAreExact) {
     auto pms = decode(encode({test::icosphere(3)}));
     ProgressiveMesh& m = *pms[0];
     const auto base = indices_of(m);
+    const auto base_pos = positions_of(m);
+    // Levels are indices plus positions (splits move their parents).
     std::vector<std::vector<uint32_t>> snapshots(m.max_level() + 1);
+    std::vector<std::vector<Vec3>> pos_snapshots(m.max_level() + 1);
     for (size_t k = 0; k <= m.max_level(); k += 7) {
         m.refine_to(k);
         snapshots[k] = indices_of(m);
+        pos_snapshots[k] = positions_of(m);
     }
     m.refine_to(m.max_level());
     const auto full = std::vector<uint32_t>(m.indices().begin(), m.indices().end());
@@ -146,10 +150,12 @@ TEST(Lod, RefineCoarsenRoundTripsAreExact) {
         m.set_level(k);
         ASSERT_EQ(m.level(), k);
         ASSERT_EQ(indices_of(m), snapshots[k]) << "level " << k;
+        ASSERT_EQ(positions_of(m), pos_snapshots[k]) << "level " << k;
         ASSERT_EQ(m.vertex_count(), m.base_vertex_count() + k);
     }
     m.coarsen_to(0);
     EXPECT_EQ(indices_of(m), base);
+    EXPECT_EQ(positions_of(m), base_pos);
     m.refine_to(m.max_level());
     EXPECT_EQ(std::vector<uint32_t>(m.indices().begin(), m.indices().end()), full);
 }
@@ -175,6 +181,11 @@ TEST(Lod, RuntimeMatchesBuilderLevels) {
         for (size_t f = 0; f < ref.triangle_count(); ++f) a.insert(canon(&ref.indices[f * 3]));
         for (size_t f = 0; f < m.triangle_count(); ++f) b.insert(canon(&m.indices()[f * 3]));
         EXPECT_EQ(a, b) << "level " << k;
+        // Same positions (moved parents included) up to quantization.
+        ASSERT_EQ(ref.positions.size(), m.vertex_count());
+        for (size_t v = 0; v < m.vertex_count(); ++v)
+            ASSERT_LE(glm::length(ref.positions[v] - Vec3(m.positions()[v])), m.quantization_bound())
+                << "level " << k << " vertex " << v;
     }
 }
 
@@ -346,11 +357,36 @@ TEST(Lod, LevelSelectionAndDirtyRanges) {
     const size_t ke = m.level_for_error(e);
     EXPECT_LE(m.error_at(ke), e);
     EXPECT_TRUE(ke == 0 || m.error_at(ke - 1) > e);
-    // Geomorph sources: each split vertex starts at its parent.
-    for (size_t v = m.base_vertex_count(); v < m.max_vertex_count(); ++v) {
-        ASSERT_LT(m.parents()[v], v);
-        ASSERT_EQ(m.morph_targets()[v], m.positions()[m.parents()[v]]);
+    // Geomorph sources: each split's child starts where its parent was before
+    // the split; a parent the split moves starts from where it was, and coarsening
+    // gives it back its previous source.
+    m.coarsen_to(0);
+    const std::vector<Vec3f> base_targets(m.morph_targets().begin(), m.morph_targets().end());
+    size_t moved = 0;
+    for (size_t j = 0; j < m.max_level(); ++j) {
+        const size_t child = m.base_vertex_count() + j;
+        const uint32_t parent = m.parents()[child];
+        ASSERT_LT(parent, child);
+        const Vec3f before = m.positions()[parent], target_before = m.morph_targets()[parent];
+        m.clear_dirty();
+        m.refine_to(j + 1);
+        ASSERT_EQ(m.morph_targets()[child], before) << "split " << j;
+        if (m.positions()[parent] != before) {
+            ++moved;
+            ASSERT_EQ(m.morph_targets()[parent], before) << "split " << j;
+            ASSERT_LE(m.dirty_vertices().begin, parent);
+            ASSERT_GT(m.dirty_vertices().end, parent);
+            m.coarsen_to(j);
+            ASSERT_EQ(m.positions()[parent], before);
+            ASSERT_EQ(m.morph_targets()[parent], target_before);
+            m.refine_to(j + 1);
+        }
     }
+    EXPECT_GT(moved, 0u);  // optimal placement moved some parents
+    m.coarsen_to(0);
+    EXPECT_EQ(
+        std::vector<Vec3f>(m.morph_targets().begin(), m.morph_targets().begin() + ptrdiff_t(m.base_vertex_count())),
+        std::vector<Vec3f>(base_targets.begin(), base_targets.begin() + ptrdiff_t(m.base_vertex_count())));
     for (size_t v = 0; v < m.max_vertex_count(); ++v) ASSERT_NEAR(glm::length(m.normals()[v]), 1.0f, 1e-4f);
 }
 
