@@ -4,6 +4,9 @@
 #include "kiosk/render/benchmark.h"
 
 #include <GLES3/gl3.h>
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
 
 #include <algorithm>
 #include <chrono>
@@ -184,6 +187,9 @@ Status run_benchmark(platform::Surface& surface, const BenchmarkOptions& options
             // the renderer's: reported apart, and the peak restarts after it.
             render_peak = std::max(render_peak, peak_rss_kib());
             source->set_lod(lod);
+#ifdef __GLIBC__
+            malloc_trim(0);  // hand the simplifier's freed scratch back before the peak restarts
+#endif
             step(("LOD " + std::to_string(static_cast<int>(lod * 100)) + "% chosen").c_str());
             lod_peak = std::max(lod_peak, peak_rss_kib());
             reset_peak_rss();

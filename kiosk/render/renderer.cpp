@@ -7,6 +7,9 @@
 #include "kiosk/render/renderer.h"
 
 #include <GLES3/gl3.h>
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
 
 #include <algorithm>
 #include <cmath>
@@ -804,6 +807,11 @@ static void ensure_edges(Model& m) {
     texture_rows(m.edge_texture, 0, records.size(), GL_RGBA_INTEGER, GL_UNSIGNED_INT,
                  reinterpret_cast<const uint8_t*>(records.data()), sizeof(GpuEdge));
     m.edges_stale = false;
+    records = {};
+    positions = {};
+#ifdef __GLIBC__
+    malloc_trim(0);  // the build's scratch (tens of MiB for a big model) back to the system
+#endif
 }
 
 static void ensure_index_texture(Model& m) {
