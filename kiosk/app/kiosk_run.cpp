@@ -12,6 +12,7 @@
 #include "kiosk/app/kiosk_app.h"
 #include "kiosk/app/lod_controller.h"
 #include "kiosk/app/overlay.h"
+#include "kiosk/app/platform_input.h"
 #include "kiosk/app/replay.h"
 #include "kiosk/app/stream_loader.h"
 #include "kiosk/render/image.h"
@@ -328,34 +329,6 @@ size_t pm_level_wanted(const pm::ProgressiveMesh& m, size_t want) {
 
 bool replaying_requested(const KioskRunOptions& o) { return !o.replay.empty(); }
 
-InputEvent convert(const platform::InputEvent& e, uint32_t modifiers) {
-    using T = platform::InputEvent::Type;
-    InputEvent k;
-    k.time = e.time;
-    k.x = e.x;
-    k.y = e.y;
-    k.id = e.id;
-    k.modifiers = modifiers;
-    switch (e.type) {
-        case T::TouchDown: k.kind = InputKind::TouchDown; break;
-        case T::TouchMove: k.kind = InputKind::TouchMove; break;
-        case T::TouchUp: k.kind = InputKind::TouchUp; break;
-        case T::MouseDown: k.kind = InputKind::MouseDown; break;
-        case T::MouseUp: k.kind = InputKind::MouseUp; break;
-        case T::MouseMove: k.kind = InputKind::MouseMove; break;
-        case T::Scroll:
-            k.kind = InputKind::Wheel;
-            k.wheel = e.dy;
-            break;
-        default: k.kind = InputKind::Key; break;
-    }
-    if (e.type == T::MouseDown || e.type == T::MouseUp) {
-        k.button = e.id == 1 ? MouseButton::Right : e.id == 2 ? MouseButton::Middle : MouseButton::Left;
-    }
-    k.key = e.key;
-    return k;
-}
-
 }  // namespace
 
 int run_kiosk(platform::Surface& surface, const scene::Scene& scene, const KioskRunOptions& options) {
@@ -501,8 +474,8 @@ int run_kiosk(platform::Surface& surface, const scene::Scene& scene, const Kiosk
         } else {
             for (const auto& e : events) {
                 if (e.type == platform::InputEvent::Type::Quit) keep = false;
-                if (e.type == platform::InputEvent::Type::Key || e.type == platform::InputEvent::Type::Quit) continue;
-                app.handle(convert(e, 0));
+                // Modifiers included (Shift+click selects, thesis B.2); keys as in a replay.
+                if (auto k = from_platform(e)) app.handle(*k);
             }
         }
         app.update(now);

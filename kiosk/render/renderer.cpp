@@ -124,6 +124,16 @@ std::vector<Vec3f> area_normals(std::span<const Vec3f> p, std::span<const uint32
     return n;
 }
 
+// Object-space box and bounding sphere of the drawn vertices.
+void set_bounds(Model& m, std::span<const Vec3f> positions) {
+    Aabb box;
+    for (const Vec3f& p : positions) box.extend(Vec3(p));
+    m.center = Vec3f((box.min + box.max) * 0.5);
+    m.radius = static_cast<float>(box.extent() * 0.5);
+    m.box_min = Vec3f(box.min);
+    m.box_max = Vec3f(box.max);
+}
+
 Result<GLuint> compile(GLenum type, const std::string& name) {
     const char* src = shader_source(name);
     if (!src) return runtime_error("shader " + name + ": not embedded in this build");
@@ -435,12 +445,7 @@ Result<ModelId> Renderer::add_model(const MeshData& mesh, const std::string& nam
     m.index_capacity = mesh.indices.size();
     m.vertex_count = vcount;
     m.index_count = icount - icount % 3;
-    Aabb box;
-    for (size_t i = 0; i < vcount; ++i) box.extend(Vec3(mesh.positions[i]));
-    m.center = Vec3f((box.min + box.max) * 0.5);
-    m.radius = static_cast<float>(box.extent() * 0.5);
-    m.box_min = Vec3f(box.min);
-    m.box_max = Vec3f(box.max);
+    set_bounds(m, mesh.positions.first(vcount));
 
     std::vector<Vec3f> computed;
     std::span<const Vec3f> normals = mesh.normals;
@@ -522,12 +527,7 @@ Status Renderer::update_model(ModelId id, const MeshData& mesh, const Dirty& dir
         if (m.position_texture)
             texture_rows(m.position_texture, b, dirty.vertex_end, GL_RGB, GL_FLOAT,
                          reinterpret_cast<const uint8_t*>(mesh.positions.data()), sizeof(Vec3f));
-        Aabb box;
-        for (size_t i = 0; i < vcount; ++i) box.extend(Vec3(mesh.positions[i]));
-        m.center = Vec3f((box.min + box.max) * 0.5);
-        m.radius = static_cast<float>(box.extent() * 0.5);
-        m.box_min = Vec3f(box.min);
-        m.box_max = Vec3f(box.max);
+        set_bounds(m, mesh.positions.first(vcount));
     }
     if (dirty.index_begin < dirty.index_end) {
         const size_t b = dirty.index_begin, n = dirty.index_end - dirty.index_begin;

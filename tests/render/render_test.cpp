@@ -55,6 +55,12 @@ Camera scene_camera(Renderer& r) {
     return Camera::framing(c, radius, Vec3f(0.0f, 0.2f, 1.0f));
 }
 
+// The two shapes in one style and the camera that frames them.
+Camera two_shapes_framed(Renderer& r, Style style) {
+    two_shapes(r, style);
+    return scene_camera(r);
+}
+
 // Compares with golden/<name>.png (BODY_UPDATE_GOLDENS=1 rewrites it).
 void expect_golden(const std::string& name, const Image& img) {
     const std::string path = kGoldenDir + "/" + name + ".png";
@@ -79,8 +85,7 @@ class StyleGolden : public ::testing::TestWithParam<Style> {};
 TEST_P(StyleGolden, MatchesGolden) {
     RenderFixture f;
     REQUIRE_GL(f);
-    two_shapes(f.renderer(), GetParam());
-    Image img = f.draw(scene_camera(f.renderer()));
+    Image img = f.draw(two_shapes_framed(f.renderer(), GetParam()));
     expect_golden(std::string("style_") + style_name(GetParam()), img);
 }
 
@@ -151,8 +156,7 @@ TEST(RenderGolden, SelectionAndXray) {
 TEST(RenderGolden, MetricCatchesAMissingLinePass) {
     RenderFixture f;
     REQUIRE_GL(f);
-    two_shapes(f.renderer(), Style::Lines);
-    Camera cam = scene_camera(f.renderer());
+    const Camera cam = two_shapes_framed(f.renderer(), Style::Lines);
     Image with = f.draw(cam);
     FrameOptions o = f.frame();
     o.ink = o.paper;  // edges drawn invisibly = no line pass
@@ -166,8 +170,7 @@ TEST(RenderGolden, MetricCatchesAMissingLinePass) {
 TEST(RenderGolden, MetricCatchesAWrongTone) {
     RenderFixture f;
     REQUIRE_GL(f);
-    two_shapes(f.renderer(), Style::Hatching);
-    Camera cam = scene_camera(f.renderer());
+    const Camera cam = two_shapes_framed(f.renderer(), Style::Hatching);
     Image right = f.draw(cam);
     Lighting darker;
     darker.key -= 0.15f;  // about one tone darker
