@@ -3,7 +3,7 @@
 // Phases: quantize (16-bit positions in a float bounding box, 8-bit octahedral
 // normals), encode the base chunk (meshoptimizer vertex and index codecs), encode
 // split chunks (per-split records through the meshoptimizer vertex codec; new faces
-// as ranks in the parent's ring and index patches as bit masks over the parent's
+// as neighbour numbers over the parent's corners and index patches as bit masks over the parent's
 // corners, both computed by replaying the decoder's SplitReplay), frame sections
 // with CRCs.
 #include <meshoptimizer.h>
@@ -193,13 +193,14 @@ Result<StructureSections> encode_structure(const Mesh& mesh, const ProgressiveBu
         for (size_t j = first; j < first + count; ++j) chunk_faces += pm.splits[j].face_count;
         std::vector<uint8_t> payload, vpart, topo;
         std::vector<pm::SplitVertex> recs(count);
-        std::vector<uint32_t> ring, faces;
+        std::vector<uint32_t> parent_corners, faces;
         for (size_t j = first; j < first + count; ++j) {
             const VertexSplit& sp = pm.splits[j];
             const uint32_t child = uint32_t(pm.base_vertices + j), parent = sp.parent;
             // New faces are (child, parent, a) or (child, a, parent), a a neighbour of the
-            // parent before the split: sent as 2 * (a's rank in the parent's ring) + winding.
-            replay.ring_of(parent, ring);
+            // parent before the split: sent as 2 * (the first j with a = neighbour j over
+            // the parent's corners) + winding (one load to decode, no ring to sort).
+            replay.corners_of(parent, parent_corners);
             const uint64_t mask = mask_of(replay, pm, j, scratch);
             pm::put_varint(topo, (mask << 2) | sp.face_count);
             faces.clear();
@@ -213,11 +214,12 @@ Result<StructureSections> encode_structure(const Mesh& mesh, const ProgressiveBu
                 if (k == 3 || (flipped && a != parent))
                     return runtime_error("lod: '" + mesh.name + "': split " + std::to_string(j) +
                                          " adds a face without its parent and child");
-                const auto it = std::lower_bound(ring.begin(), ring.end(), third);
-                if (it == ring.end() || *it != third)
+                size_t n = 0;
+                while (n < 2 * parent_corners.size() && replay.neighbour(parent_corners.data(), n) != third) ++n;
+                if (n == 2 * parent_corners.size())
                     return runtime_error("lod: '" + mesh.name + "': split " + std::to_string(j) +
                                          " adds a face outside the parent's ring");
-                pm::put_varint(topo, uint64_t(it - ring.begin()) * 2 + (flipped ? 1 : 0));
+                pm::put_varint(topo, uint64_t(n) * 2 + (flipped ? 1 : 0));
                 if (flipped)
                     faces.insert(faces.end(), {child, third, parent});
                 else

@@ -88,6 +88,8 @@ private:
 // octahedral normals. The encoders live with the writer (builder/lod/bpm_writer.cpp),
 // compiled without floating-point contraction so the bytes match on every platform.
 float dequantize16(uint16_t q, float lo, float hi);
+// The same with step = (double(hi) - double(lo)) / 65535.0 computed once (same result).
+inline float dequantize16(uint16_t q, float lo, double step) { return float(double(lo) + double(q) * step); }
 void oct_decode8(const uint8_t in[2], float out[3]);
 
 // Zig-zag mapping of the wrap-around difference of two 16/8-bit codes.
@@ -167,6 +169,12 @@ public:
     // returns the number of distinct neighbours.
     size_t ring_of(const uint32_t* corners, size_t count, uint32_t* out) const;
     uint32_t index(size_t corner) const { return indices_[corner]; }
+    // Neighbour j of a vertex given its corners (as corners_of returned them): the
+    // vertex after (j even) or before (j odd) corner j / 2 in its face; j < 2 * count.
+    uint32_t neighbour(const uint32_t* corners, size_t j) const {
+        const uint32_t c = corners[j / 2], f = c - c % 3;
+        return indices_[f + (c - f + 1 + uint32_t(j % 2)) % 3];
+    }
     // Cache hints for a split of parent `v` a few splits ahead: stage 0 its
     // region's descriptor, 1 the region, 2 the faces of its corners, 3 its
     // neighbours' descriptors (stages in this order, a few splits apart). No effect

@@ -299,7 +299,9 @@ Status BpmStream::parse_splits(ProgressiveMesh& m, std::span<const uint8_t> payl
     size_t face_cursor = 0;
     float previous_error = first == 0 ? INFINITY : m.split_error_[first - 1];
     const Vec3f lo = m.bbox_min_, hi = m.bbox_max_;
-    uint32_t corners[64], moved[64], ring[128], faces_at[9];
+    double step[3];
+    for (int k = 0; k < 3; ++k) step[k] = (double(hi[k]) - double(lo[k])) / 65535.0;
+    uint32_t corners[64], moved[64], faces_at[9];
     // The replay is bound by memory latency (a parent is anywhere in the mesh):
     // pull the data of the splits a few steps ahead into the cache in stages.
     auto parent_of = [&](uint32_t i) {
@@ -336,12 +338,13 @@ Status BpmStream::parse_splits(ProgressiveMesh& m, std::span<const uint8_t> payl
         if (faces == 0 || face_cursor + faces > new_faces) return fail("face count out of range");
         const size_t corner_count = m.replay_.corners_of(parent, corners, 64);
         if (corner_count == SIZE_MAX) return fail("parent has more than 64 corners");
-        // New faces name their third vertex by rank in the parent's ring before the split.
-        const size_t ring_size = m.replay_.ring_of(corners, corner_count, ring);
+        // New faces name their third vertex as a neighbour over the parent's corners
+        // before the split.
         for (uint32_t f = 0; f < faces; ++f) {
             uint64_t code = 0;
-            if (!topo.varint(code) || (code >> 1) >= ring_size) return fail("a new face names a missing neighbour");
-            const uint32_t third = ring[code >> 1];
+            if (!topo.varint(code) || (code >> 1) >= 2 * corner_count)
+                return fail("a new face names a missing neighbour");
+            const uint32_t third = m.replay_.neighbour(corners, size_t(code >> 1));
             uint32_t* t = faces_at + 3 * f;
             t[0] = child;
             t[1] = (code & 1) ? third : parent;
@@ -367,9 +370,9 @@ Status BpmStream::parse_splits(ProgressiveMesh& m, std::span<const uint8_t> payl
             const uint16_t q = unzigzag16(rec.dq[k], qf), qt = unzigzag16(rec.pdq[k], qf);
             m.qpos_[size_t(child) * 3 + k] = q;
             m.qpos_[parent * 3 + k] = qt;
-            m.positions_[child][k] = dequantize16(q, lo[k], hi[k]);
-            from[k] = dequantize16(qf, lo[k], hi[k]);
-            to[k] = qt == qf ? from[k] : dequantize16(qt, lo[k], hi[k]);
+            m.positions_[child][k] = dequantize16(q, lo[k], step[k]);
+            from[k] = dequantize16(qf, lo[k], step[k]);
+            to[k] = qt == qf ? from[k] : dequantize16(qt, lo[k], step[k]);
         }
         m.parent_from_[j] = from;
         m.parent_to_[j] = to;
