@@ -1,6 +1,7 @@
 // Tiling dispatch: validates a contour pair and hands it to the chosen method.
 // Methods: tiling_optimal.cpp (Fuchs, Kedem & Uselton 1977) and
-// tiling_multires.cpp (Meyers, Skinner & Sloan 1992, as in the BodyGen thesis 2.5.2).
+// tiling_multires.cpp (Meyers, Skinner & Sloan 1992, as in the BodyGen thesis 2.5.2);
+// every band then gets the fold check of tiling_unfold.cpp.
 #include "builder/tiling/tiling.h"
 
 #include <cmath>
@@ -22,6 +23,14 @@ static Status validate_contour(std::span<const Vec3> c, const char* which) {
     return ok_status();
 }
 
+// The methods emit their path in order: the cyclic tiling it takes.
+static tiling_detail::CyclicTiling as_path(const tiling_detail::Band& band, const std::vector<uint32_t>& triangles) {
+    const uint32_t m = uint32_t(band.lower.size());
+    std::vector<uint8_t> moves(triangles.size() / 3);
+    for (size_t t = 0; t < moves.size(); ++t) moves[t] = triangles[3 * t + 1] < m ? 0 : 1;
+    return tiling_detail::CyclicTiling(band, triangles[0], triangles[2] - m, moves);
+}
+
 const char* tiling_method_name(TilingMethod method) {
     switch (method) {
         case TilingMethod::Optimal: return "optimal";
@@ -40,6 +49,22 @@ Status tile_band(std::span<const Vec3> lower, std::span<const Vec3> upper, Tilin
         case TilingMethod::Optimal: tile_optimal(lower, upper, triangles); break;
         case TilingMethod::Multires: tile_multires(lower, upper, triangles); break;
     }
+    // Fold check: a band whose triangles cross is repaired by diagonal flips
+    // (tiling_unfold.cpp); where crossings are left, the minimum-area tiling
+    // without the corner charge is repaired too and the band with fewer
+    // crossings (then lower cost) is kept.
+    tiling_detail::Band band(lower, upper);
+    tiling_detail::CyclicTiling path = as_path(band, triangles);
+    size_t left = tiling_detail::unfold(path);
+    if (left > 0) {
+        std::vector<uint32_t> area_only;
+        tile_optimal(lower, upper, area_only, false);
+        tiling_detail::CyclicTiling other = as_path(band, area_only);
+        const size_t other_left = tiling_detail::unfold(other);
+        if (other_left < left || (other_left == left && other.total() < path.total())) path = std::move(other);
+    }
+    triangles.clear();
+    path.emit(triangles);
     return ok_status();
 }
 

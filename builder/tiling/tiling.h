@@ -14,8 +14,11 @@
 //   contour edge (i, i+1 mod n) of both polygons is used by exactly one
 //   triangle, traversed in the direction that makes the band consistently
 //   oriented with normals facing outward for counter-clockwise input.
-// - The band never folds: among cost-equivalent choices, the non-folding one is
-//   taken; a pair that cannot be tiled without folding is reported as an error.
+// - The band does not fold: the cost charges corners where the band turns back
+//   on itself (folds before area), and a band whose triangles still cross each
+//   other is repaired by diagonal flips that remove the crossings. A pair the
+//   flips cannot untangle (jagged contours where no nearby tiling is free of
+//   crossings) keeps the fewest crossings they reach.
 // - No allocation beyond `triangles` and internal scratch proportional to the
 //   input.
 #include <cstdint>

@@ -246,12 +246,22 @@ struct CyclicTiling {
     }
 };
 
+// Fold check and repair (tiling_unfold.cpp): while triangles of the band cross
+// each other, flips the diagonal (or, on small bands, the pair of diagonals)
+// that leaves the fewest crossings (ties: the lower cost). Returns the number
+// of crossing triangle pairs left: 0 when none was found (large bands are
+// screened by sections at 1/4, 1/2 and 3/4 of the way between the contours).
+size_t unfold(CyclicTiling& tiling);
+
 }  // namespace body::tiling_detail
 
 namespace body {
 
 // The methods, each in its own file; inputs already validated (>= 3 finite points each).
-void tile_optimal(std::span<const Vec3> lower, std::span<const Vec3> upper, std::vector<uint32_t>& triangles);
+// `charge_corners` false: area alone (FKU's original cost; the fold check's
+// second candidate when the (folds, area) optimum crosses itself).
+void tile_optimal(std::span<const Vec3> lower, std::span<const Vec3> upper, std::vector<uint32_t>& triangles,
+                  bool charge_corners = true);
 void tile_multires(std::span<const Vec3> lower, std::span<const Vec3> upper, std::vector<uint32_t>& triangles);
 
 }  // namespace body

@@ -225,7 +225,8 @@ struct Search {
 
 }  // namespace
 
-void tile_optimal(std::span<const Vec3> lower, std::span<const Vec3> upper, std::vector<uint32_t>& triangles) {
+void tile_optimal(std::span<const Vec3> lower, std::span<const Vec3> upper, std::vector<uint32_t>& triangles,
+                  bool charge_corners) {
     Band band(lower, upper);
     const bool a_is_lower = lower.size() >= upper.size();
     Grid grid(band, a_is_lower, uint32_t(a_is_lower ? lower.size() : upper.size()),
@@ -235,7 +236,7 @@ void tile_optimal(std::span<const Vec3> lower, std::span<const Vec3> upper, std:
     for (const Vec3& p : lower) box.extend(p);
     for (const Vec3& p : upper) box.extend(p);
     // Every triangle's area is below extent^2 / 2: the weight exceeds any band's area.
-    grid.fold_weight = double(rows + cols) * box.extent() * box.extent() + 1.0;
+    grid.fold_weight = charge_corners ? double(rows + cols) * box.extent() * box.extent() + 1.0 : 0.0;
 
     std::vector<uint32_t> lo0(rows + 1, 0), hi0(rows + 1, cols);
     Path first;
@@ -254,7 +255,7 @@ void tile_optimal(std::span<const Vec3> lower, std::span<const Vec3> upper, std:
     const size_t i0 = a_is_lower ? 0 : search.best_start, j0 = a_is_lower ? search.best_start : 0;
     tiling_detail::CyclicTiling tiling(band, uint32_t(i0), uint32_t(j0), moves);
     tiling.split_full_fans();
-    tiling.swap_until_stable();  // corners break FKU's non-crossing argument: polish locally
+    if (charge_corners) tiling.swap_until_stable();  // corners break FKU's non-crossing argument: polish locally
     tiling.emit(triangles);
 }
 
