@@ -46,32 +46,20 @@ namespace {
 
 // One structure of a scene model: an OBJ object (ModelSource) or a structure
 // of a .bpm being streamed (owned by the model's BpmStream).
-void merge(render::Dirty& into, const render::Dirty& d) {
-    if (d.vertex_end > d.vertex_begin) {
-        into.vertex_begin =
-            into.vertex_end > into.vertex_begin ? std::min(into.vertex_begin, d.vertex_begin) : d.vertex_begin;
-        into.vertex_end = std::max(into.vertex_end, d.vertex_end);
-    }
-    if (d.index_end > d.index_begin) {
-        into.index_begin =
-            into.index_end > into.index_begin ? std::min(into.index_begin, d.index_begin) : d.index_begin;
-        into.index_end = std::max(into.index_end, d.index_end);
-    }
-}
-
 struct Part {
     std::unique_ptr<render::ModelSource> source;
     pm::ProgressiveMesh* pm = nullptr;
     render::ModelId id = 0;
     size_t base_triangles = 0;
-    // Geomorphs (pm parts), over Geomorph::kSeconds, in the vertex shader: the
-    // GPU holds each vertex's position and its parent's (morph_targets(), sent
-    // with the dirty ranges), and the renderer draws vertices [morph_begin,
-    // vertex_count) at mix(parent, own, morph_factor). After a refinement the
-    // vertices it added glide from their parents to their own positions; before
-    // a coarsening the vertices it will remove glide to their parents and the
-    // level drops when they arrive (`collapsing`, towards `pending_level`). The
-    // CPU only starts and stops a morph; nothing is re-uploaded per frame.
+    // Geomorphs (pm parts), over Geomorph::kSeconds, in the vertex shader. The
+    // GPU's morph buffer holds the positions (mesh() passes them as the morph
+    // sources) except, while a level change glides, the vertices it adds or moves
+    // [morph_begin, morph_end): those hold where they are at the coarser of the
+    // two levels, and the renderer draws mix(source, position, morph_factor). A
+    // refinement glides 0 -> 1 at the new level; a coarsening glides 1 -> 0 and
+    // drops the level when it arrives (`collapsing`, towards `pending_level`).
+    // The CPU uploads the sources once when a morph starts and puts the positions
+    // back once when it stops; nothing per frame.
     Geomorph morph;
     size_t morph_begin = 0, morph_end = 0;
     float morph_factor = 1.0f;
@@ -86,16 +74,10 @@ struct Part {
         m.positions = pm->positions();
         m.normals = pm->normals();
         m.indices = pm->indices();
-        m.morph_sources = pm->morph_targets();
+        m.morph_sources = pm->positions();  // at rest: nothing displaced
         m.vertex_count = pm->vertex_count();
         m.index_count = 3 * pm->triangle_count();
         return m;
-    }
-    // The pm's changes since the last upload.
-    render::Dirty take_dirty() {
-        const pm::DirtyRange v = pm->dirty_vertices(), i = pm->dirty_indices();
-        pm->clear_dirty();
-        return render::Dirty{v.begin, v.end, i.begin, i.end};
     }
     bool morphing() const { return morph_end > morph_begin; }
     // The renderer's morph state for this part.
@@ -103,47 +85,65 @@ struct Part {
         st.morph_begin = morphing() ? morph_begin : SIZE_MAX;
         st.morph = morphing() ? morph_factor : 1.0f;
     }
-    // Stops a morph where it is meant to end: every vertex on its own position.
-    void stop_morph() {
+    // Uploads the pm's changes since the last upload.
+    void upload_dirty(render::Renderer& r) {
+        const pm::DirtyRange v = pm->dirty_vertices(), i = pm->dirty_indices();
+        pm->clear_dirty();
+        if (v.end <= v.begin && i.end <= i.begin) return;
+        if (auto st = r.update_model(id, mesh(), render::Dirty{v.begin, v.end, i.begin, i.end}); !st)
+            std::fprintf(stderr, "bodyview: %s\n", st.error().message.c_str());
+    }
+    // Starts gliding between level `lo` and the current level (above it).
+    void start_morph(render::Renderer& r, size_t lo, double now) {
+        upload_dirty(r);
+        const size_t hi = pm->level();
+        const render::MorphSources m = render::morph_sources_from(*pm, lo);
+        if (auto st = r.set_morph_sources(id, m.begin, m.sources); !st)
+            std::fprintf(stderr, "bodyview: %s\n", st.error().message.c_str());
+        morph.start(now, pm->triangles_at(collapsing ? hi : lo), pm->triangles_at(collapsing ? lo : hi));
+        morph_begin = m.begin;
+        morph_end = m.begin + m.sources.size();
+        morph_factor = collapsing ? 1.0f : 0.0f;
+    }
+    // Ends a morph where it is meant to end: the sources back to the positions.
+    void stop_morph(render::Renderer& r) {
+        if (morphing()) {
+            const auto own = pm->positions().subspan(morph_begin, morph_end - morph_begin);
+            if (auto st = r.set_morph_sources(id, morph_begin, own); !st)
+                std::fprintf(stderr, "bodyview: %s\n", st.error().message.c_str());
+        }
         morph_begin = morph_end = 0;
         morph_factor = 1.0f;
         collapsing = false;
     }
-    // The blend at `now`; a finished collapse drops the level. Returns what to
-    // upload (only the index patches of a dropped level).
-    render::Dirty step_morph(double now) {
+    // The blend at `now`; a finished collapse drops the level.
+    void step_morph(render::Renderer& r, double now) {
         const float f = morph.factor(now);
         morph_factor = collapsing ? 1.0f - f : f;
-        if (f < 1.0f) return {};
+        if (f < 1.0f) return;
         const bool drop = collapsing;
-        stop_morph();
-        if (!drop) return {};
+        stop_morph(r);
+        if (!drop) return;
         pm->set_level(pending_level);
-        return take_dirty();
+        upload_dirty(r);
     }
-    // Heads for `level`; returns what to upload (possibly nothing).
-    render::Dirty update(size_t level, double now) {
-        render::Dirty d{};
-        if (collapsing && level == pending_level) return step_morph(now);
-        if (morphing()) stop_morph();  // a new target: land the old morph at once
+    // Heads for `level`, uploading what changed.
+    void update(render::Renderer& r, size_t level, double now) {
+        if (collapsing && level == pending_level) {
+            step_morph(r, now);
+            return;
+        }
+        if (morphing()) stop_morph(r);  // a new target: land the old morph at once
         const size_t current = pm->level();
         if (level > current) {
-            const size_t before = pm->vertex_count();
             pm->set_level(level);
-            merge(d, take_dirty());
-            morph.start(now, before, pm->vertex_count());
-            morph_begin = before;
-            morph_end = pm->vertex_count();
-            merge(d, step_morph(now));
+            start_morph(r, current, now);
         } else if (level < current) {
-            morph.start(now, pm->vertex_count(), pm->vertex_count() - (current - level));
-            morph_begin = pm->vertex_count() - (current - level);  // one vertex per split
-            morph_end = pm->vertex_count();
             collapsing = true;
             pending_level = level;
-            merge(d, step_morph(now));
+            start_morph(r, level, now);
         }
-        return d;
+        step_morph(r, now);
     }
 };
 
@@ -527,12 +527,7 @@ int run_kiosk(platform::Surface& surface, const scene::Scene& scene, const Kiosk
                     if (level < wanted_full || frame == 0) at_planned_detail = false;
                     // The first frame shows the base meshes: on screen as soon as possible.
                     if (frame > 0 && (level != p.pm->level() || p.morphing())) {
-                        const render::Dirty d = p.update(level, now);
-                        if (d.vertex_end > d.vertex_begin || d.index_end > d.index_begin) {
-                            if (auto s = renderer.update_model(p.id, p.mesh(), d); !s) {
-                                std::fprintf(stderr, "bodyview: %s\n", s.error().message.c_str());
-                            }
-                        }
+                        p.update(renderer, level, now);
                     }
                     p.apply_morph(*st);
                 }

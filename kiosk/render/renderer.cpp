@@ -74,7 +74,7 @@ struct Model {
     Vec3f center{0.0f};
     float radius = 0.0f;
     Vec3f box_min{0.0f}, box_max{0.0f};  // object space
-    // Lazily created for `lines` and `wireframe`.
+    // Lazily created: position and index textures for `wireframe`, the edge texture for `lines`.
     GLuint position_texture = 0, index_texture = 0;
     GLuint edge_texture = 0;                    // RGBA32UI, one GpuEdge per texel
     Vec3f edge_origin{0.0f}, edge_scale{0.0f};  // dequantization of the GpuEdge endpoints
@@ -548,6 +548,19 @@ Status Renderer::update_model(ModelId id, const MeshData& mesh, const Dirty& dir
     return ok_status();
 }
 
+Status Renderer::set_morph_sources(ModelId id, size_t begin, std::span<const Vec3f> sources) {
+    auto it = s_->models.find(id);
+    if (it == s_->models.end()) return input_error("set_morph_sources: unknown model " + std::to_string(id));
+    const Model& m = it->second;
+    if (!m.vbo_morph || begin + sources.size() > m.vertex_capacity)
+        return input_error(m.name + ": morph sources outside the uploaded capacity (or none uploaded)");
+    if (sources.empty()) return ok_status();
+    glBindBuffer(GL_ARRAY_BUFFER, m.vbo_morph);
+    glBufferSubData(GL_ARRAY_BUFFER, static_cast<GLintptr>(begin * sizeof(Vec3f)),
+                    static_cast<GLsizeiptr>(sources.size() * sizeof(Vec3f)), sources.data());
+    return ok_status();
+}
+
 void Renderer::remove_model(ModelId id) {
     auto it = s_->models.find(id);
     if (it == s_->models.end() || it->second.internal) return;
@@ -772,8 +785,11 @@ static void ensure_edges(Model& m) {
         records = build_edge_list(indices);
     }
     auto positions = read_buffer<Vec3f>(GL_ARRAY_BUFFER, m.vbo_position, m.vertex_count);
-    Aabb box;
-    for (const Vec3f& p : positions) box.extend(Vec3(p));
+    Aabb box;  // of the edge endpoints: vertices the level does not use do not change the codes
+    for (const EdgeRecord& e : records) {
+        box.extend(Vec3(positions[e.v0]));
+        box.extend(Vec3(positions[e.v1]));
+    }
     m.edge_origin = box.empty() ? Vec3f(0.0f) : Vec3f(box.min);
     const Vec3f extent = box.empty() ? Vec3f(0.0f) : Vec3f(box.max - box.min);
     m.edge_scale = extent / 65535.0f;

@@ -16,8 +16,10 @@
 // the given capacity (MeshData::capacity_*), then patched with update_model()
 // and the dirty ranges of a progressive mesh (shared/pm), drawing the current
 // prefixes vertex_count/index_count. Units are object space; ModelState::transform
-// places a model in the world. The renderer keeps no CPU copy of the mesh except
-// the edge list of models drawn in the `lines` style (16 bytes per edge).
+// places a model in the world. The renderer keeps no CPU copy of the mesh: the
+// `lines` style's edge texture (16 bytes per edge, positions and face normals
+// inside) and `wireframe`'s position/index textures are built lazily from the
+// GL buffers when a model is first drawn in that style.
 //
 // Frame order: opaque models (any style), then transparent ones (selected =
 // purple, x-ray/faded unselected) sorted back to front, each with a depth
@@ -150,6 +152,9 @@ public:
     // Patches the ranges of `mesh` named by `dirty` and sets the drawn counts.
     // The arrays must be the full arrays (dirty ranges index into them).
     Status update_model(ModelId id, const MeshData& mesh, const Dirty& dirty);
+    // Overwrites the geomorph sources [begin, begin + sources.size()) of a model
+    // uploaded with morph_sources (a morph starting or ending); see ModelState::morph.
+    Status set_morph_sources(ModelId id, size_t begin, std::span<const Vec3f> sources);
     void remove_model(ModelId id);
     // nullptr for an unknown id.
     ModelState* state(ModelId id);

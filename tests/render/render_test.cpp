@@ -10,9 +10,11 @@
 #include <filesystem>
 #include <fstream>
 #include <glm/gtc/matrix_transform.hpp>
+#include <span>
 
 #include "kiosk/render/model_source.h"
 #include "shared/obj_io.h"
+#include "shared/pm/progressive_mesh.h"
 #include "tests/render/render_fixture.h"
 
 using namespace body;
@@ -561,8 +563,16 @@ TEST(RenderGeomorph, MidMorphLiesBetweenCoarseAndFine) {
     size_t outside = 0;
     for (size_t i = 0; i < mid.size(); ++i) outside += (coarse[i] && !mid[i]) + (mid[i] && !fine[i]);
     EXPECT_LE(outside, 10u) << "mid-morph pixels outside the fine shape or coarse pixels missing";
-    // Vertices before morph_begin do not move; a model without morph sources ignores the factor.
+    // Vertices before morph_begin do not move.
     EXPECT_EQ(mask_at(0.0f, 5), fine);
+    // Sources patched in place (a morph starting / ending): at rest the source is
+    // the position, so even morph 0 draws the fine shape.
+    ASSERT_TRUE(f.renderer().set_morph_sources(id.value(), 4, std::span(positions).subspan(4)).ok());
+    EXPECT_EQ(mask_at(0.0f, 4), fine);
+    ASSERT_TRUE(f.renderer().set_morph_sources(id.value(), 4, std::span(sources).subspan(4)).ok());
+    EXPECT_EQ(mask_at(0.0f, 4), coarse);
+    EXPECT_FALSE(f.renderer().set_morph_sources(id.value(), 5, std::span(sources).subspan(4)).ok());
+    // A model without morph sources ignores the factor.
     MeshData plain{positions, normals, indices};
     auto plain_id = f.renderer().add_model(plain, "plain");
     ASSERT_TRUE(plain_id.ok());
@@ -571,4 +581,69 @@ TEST(RenderGeomorph, MidMorphLiesBetweenCoarseAndFine) {
     f.renderer().state(plain_id.value())->morph = 0.0f;
     f.renderer().state(plain_id.value())->morph_begin = 4;
     EXPECT_EQ(test::foreground_mask(f.draw(cam, {}, o), o.background), fine);
+}
+
+// The kiosk's geomorph on a real progressive mesh: at the finer level with the
+// sources of morph_sources_from(coarser level), morph 0 covers what the coarser
+// level covers, morph 1 what the finer one does, and mid-morph lies in between.
+TEST(RenderGeomorph, ProgressiveMeshMorphStartsAtTheCoarserLevel) {
+    const std::string bodygen = std::string(BODY_BINARY_DIR) + "/bin/bodygen";
+    const std::string bunny = "/usr/share/glmark2/models/bunny.obj";
+    if (!std::filesystem::exists(bodygen)) GTEST_SKIP() << "bodygen not built";
+    if (!std::filesystem::exists(bunny)) GTEST_SKIP() << "bunny.obj missing (Debian glmark2-data)";
+    const std::string bpm = (temp_dir() / "morph_bunny.bpm").string();
+    ASSERT_EQ(run(bodygen + " lod " + bunny + " -o " + bpm + " >/dev/null"), 0);
+    auto meshes = pm::read_bpm(bpm);
+    ASSERT_TRUE(meshes.ok()) << meshes.error().message;
+    pm::ProgressiveMesh& pm = *meshes.value().front();
+    RenderFixture f(240, 240);
+    REQUIRE_GL(f);
+    const Camera cam = Camera::framing(Vec3f(0.0f), 1.1f, Vec3f(0.3f, 0.2f, 1.0f));
+    const FrameOptions o = f.frame();
+    auto mesh_now = [&] {
+        MeshData m{pm.positions(), pm.normals(), pm.indices()};
+        m.morph_sources = pm.positions();
+        m.vertex_count = pm.vertex_count();
+        m.index_count = 3 * pm.triangle_count();
+        return m;
+    };
+    const size_t lo = pm.level_for_triangles(300), hi = pm.level_for_triangles(3000);
+    ASSERT_LT(lo, hi);
+    pm.set_level(lo);
+    auto coarse_id = f.renderer().add_model(mesh_now(), "coarse");
+    ASSERT_TRUE(coarse_id.ok());
+    f.renderer().state(coarse_id.value())->style = Style::Baseline;
+    const auto coarse = test::foreground_mask(f.draw(cam, {}, o), o.background);
+    f.renderer().state(coarse_id.value())->visible = false;
+
+    pm.set_level(hi);
+    pm.clear_dirty();
+    auto id = f.renderer().add_model(mesh_now(), "fine");
+    ASSERT_TRUE(id.ok());
+    ModelState& st = *f.renderer().state(id.value());
+    st.style = Style::Baseline;
+    const auto fine = test::foreground_mask(f.draw(cam, {}, o), o.background);
+    const MorphSources m = morph_sources_from(pm, lo);
+    EXPECT_EQ(pm.level(), hi);
+    EXPECT_EQ(m.begin + m.sources.size(), pm.vertex_count());
+    ASSERT_TRUE(f.renderer().set_morph_sources(id.value(), m.begin, m.sources).ok());
+    st.morph_begin = m.begin;
+    auto differing = [](const std::vector<bool>& a, const std::vector<bool>& b) {
+        size_t n = 0;
+        for (size_t i = 0; i < a.size(); ++i) n += a[i] != b[i];
+        return n;
+    };
+    st.morph = 0.0f;
+    const auto start = test::foreground_mask(f.draw(cam, {}, o), o.background);
+    st.morph = 0.5f;
+    const auto mid = test::foreground_mask(f.draw(cam, {}, o), o.background);
+    st.morph = 1.0f;
+    EXPECT_EQ(test::foreground_mask(f.draw(cam, {}, o), o.background), fine);
+    const size_t levels_apart = differing(coarse, fine);
+    ASSERT_GT(levels_apart, 100u) << "the two levels should differ visibly";
+    EXPECT_LT(differing(start, coarse), levels_apart / 20) << "morph 0 is not the coarse level";
+    EXPECT_LT(differing(mid, coarse), levels_apart);
+    EXPECT_LT(differing(mid, fine), levels_apart);
+    EXPECT_GT(differing(mid, coarse), levels_apart / 10);
+    EXPECT_GT(differing(mid, fine), levels_apart / 10);
 }
