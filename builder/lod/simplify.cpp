@@ -373,8 +373,11 @@ void update_vertex(State& s, uint32_t u) {
             continue;
         }
         const uint32_t f = c / 3 * 3;
-        for (uint32_t k = 0; k < 3; ++k) {
-            const uint32_t x = s.idx[f + k];
+        // In a consistently oriented fan every neighbour follows u in exactly one
+        // face; only a boundary fan has a neighbour that merely precedes it.
+        const uint32_t at = c - f;
+        for (uint32_t step = 1; step <= (s.boundary[u] ? 2u : 1u); ++step) {
+            const uint32_t x = s.idx[f + (at + step) % 3];
             if (x == u) continue;
             const double cost = collapse_cost(s, u, x);
             if (cost < best || (cost == best && x < target)) best = cost, target = x;
@@ -397,7 +400,7 @@ void update_neighbour(State& s, uint32_t x, uint32_t u, uint32_t v) {
     }
     if (!s.alive[x] || s.locked[x]) return;
     const double c = collapse_cost(s, x, v);
-    if (c < s.heap.key(x)) {
+    if (c < s.heap.key(x) || (c == s.heap.key(x) && v < s.best_target[x])) {
         s.best_target[x] = v;
         s.heap.set(x, c);
     }
@@ -606,6 +609,18 @@ void collapse_loop(State& s, size_t target_faces) {
         while (!s.heap.empty() && s.live_faces > target_faces) {
             const uint32_t u = s.heap.top();
             const double limit = s.heap.second_key();
+            // Fast path: the keyed collapse is usually the cheapest and legal.
+            if (const uint32_t v = s.best_target[u]; v != kNone) {
+                double cost = 0.0;
+                const Vec3 target = placement(s, u, v, cost);
+                uint32_t shared[2], shared_count = 0;
+                if (cost == s.heap.key(u) && topology_allowed(s, u, v, shared, shared_count) &&
+                    geometry_allowed(s, u, v, target, shared, shared_count)) {
+                    apply_collapse(s, u, v, target, shared, shared_count);
+                    ++done;
+                    continue;
+                }
+            }
             ring_of(s, u, s.ring_u);
             options.clear();
             for (uint32_t x : s.ring_u) options.push_back({collapse_cost(s, u, x), x, false});
