@@ -6,8 +6,10 @@
 //      a 10-level chain (100% -> 1%, each level from the previous)       goal <= 1.0
 //   2. symmetric sampled Hausdorff at 10% and 2% of the triangles, ours vs the better
 //      of meshopt_simplify and vtkQuadricDecimation                      goal <= 1.0
+//      (and the same build with half-edge collapses only, for comparison)
 //   3. runtime: vertex splits per second, full coarse -> fine sweep time (vs one
-//      memcpy of the full index array), bytes per vertex split (goal <= 10 B)
+//      memcpy of the full index array), decoding the whole file (vs meshopt decoding
+//      the full mesh as one vertex + index buffer), bytes per vertex split (goal <= 10 B)
 //
 // usage: bench_pm [--obj FILE] [--vtk-dir DIR] [--write-dir DIR] [--no-big] [--decode FILE.bpm]
 //   --decode times reading one .bpm (nothing else);
@@ -148,15 +150,22 @@ void run(const Mesh& mesh, const std::string& label, const std::string& vtk_dir,
     std::printf(" accuracy (symmetric sampled Hausdorff, object units; bbox diagonal %g)\n",
                 mesh_bounds(mesh.positions).extent());
     lod::SurfaceDistance full(mesh.positions, mesh.indices);
+    auto hausdorff_at = [&](pm::ProgressiveMesh& pmesh, size_t target) {
+        pmesh.set_level(pmesh.level_for_triangles(target));
+        std::vector<Vec3> pos;
+        for (size_t v = 0; v < pmesh.vertex_count(); ++v) pos.push_back(Vec3(pmesh.positions()[v]));
+        std::vector<uint32_t> idx(pmesh.indices().begin(),
+                                  pmesh.indices().begin() + ptrdiff_t(pmesh.triangle_count() * 3));
+        return std::max(lod::one_sided_hausdorff(pos, idx, full),
+                        lod::one_sided_hausdorff(mesh.positions, mesh.indices, lod::SurfaceDistance(pos, idx)));
+    };
+    // The same build with half-edge collapses only (no optimal placement), for comparison.
+    lod::LodOptions half_edge = options;
+    half_edge.optimal_placement = false;
+    auto he_pms = pm::read_bpm_bytes(*lod::encode_bpm(one, half_edge), label);
     for (double pct : {10.0, 2.0}) {
         const size_t target = size_t(double(tris) * pct / 100.0);
-        m.set_level(m.level_for_triangles(target));
-        std::vector<Vec3> pos;
-        for (size_t v = 0; v < m.vertex_count(); ++v) pos.push_back(Vec3(m.positions()[v]));
-        std::vector<uint32_t> idx(m.indices().begin(), m.indices().begin() + ptrdiff_t(m.triangle_count() * 3));
-        const double ours =
-            std::max(lod::one_sided_hausdorff(pos, idx, full),
-                     lod::one_sided_hausdorff(mesh.positions, mesh.indices, lod::SurfaceDistance(pos, idx)));
+        const double ours = hausdorff_at(m, target);
         const std::vector<uint32_t> mo = meshopt_level(mesh, fp, target);
         const double mopt =
             std::max(lod::one_sided_hausdorff(mesh.positions, mo, full),
@@ -178,6 +187,11 @@ void run(const Mesh& mesh, const std::string& label, const std::string& vtk_dir,
         if (vtk >= 0) row("ours Hausdorff", ours, "vtkQuadricDecimation", vtk);
         const double best = vtk >= 0 ? std::min(mopt, vtk) : mopt;
         row("ours Hausdorff", ours, vtk >= 0 ? "better of meshopt/vtk" : "meshopt (no vtk)", best);
+        if (he_pms) {
+            const double he = hausdorff_at(*(*he_pms)[0], target);
+            row("ours Hausdorff", ours, "ours, half-edge collapses only", he);
+            row("ours half-edge only Hausdorff", he, vtk >= 0 ? "better of meshopt/vtk" : "meshopt (no vtk)", best);
+        }
         // Positions are 16-bit quantized: the stored error bounds the distance together
         // with the quantization bound (which dominates on nearly flat levels).
         const double bound = double(m.error_at(m.level())) + double(m.quantization_bound());
