@@ -227,7 +227,7 @@ Status run_benchmark(platform::Surface& surface, const BenchmarkOptions& options
     std::printf("RSS above the empty context, step by step:\n%s", steps.c_str());
     const long peak = std::max(render_peak, peak_rss_kib());
     const auto mib = [](long kib) { return static_cast<double>(kib) / 1024.0; };
-    if (lod_peak > 0)
+    if (lod_peak > 0 && !source->progressive())
         std::printf(
             "peak RSS above the empty context while the OBJ preview LOD was simplified (CPU, not rendering): %.1f "
             "MiB\n",

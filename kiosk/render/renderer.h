@@ -57,9 +57,11 @@ struct MeshData {
     std::span<const Vec3f> positions;
     std::span<const Vec3f> normals;
     std::span<const uint32_t> indices;
-    // Optional geomorph sources, one per position (a progressive mesh's
-    // morph_targets(): each vertex's parent position), uploaded with the same
-    // dirty vertex ranges; see ModelState::morph.
+    // Optional geomorph sources, one per position, uploaded with the same dirty
+    // vertex ranges; their presence gives the model a morph buffer. At rest they
+    // equal the positions (the kiosk passes the positions and patches a morph's
+    // range with set_morph_sources, see model_source.h's morph_sources_from);
+    // see ModelState::morph.
     std::span<const Vec3f> morph_sources = {};
     size_t vertex_count = SIZE_MAX;  // SIZE_MAX: positions.size()
     size_t index_count = SIZE_MAX;   // SIZE_MAX: indices.size()
