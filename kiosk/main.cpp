@@ -15,6 +15,7 @@
 #include "kiosk/render/image.h"
 #include "kiosk/render/model_source.h"
 #include "kiosk/render/renderer.h"
+#include "platform/evdev_input.h"
 #include "platform/platform.h"
 #include "shared/cli_args.h"
 #include "shared/error.h"
@@ -40,6 +41,7 @@ void print_help(std::FILE* out) {
                  "  --windowed        glfw: a window instead of fullscreen\n"
                  "  --mode WxH[@Hz]   drm: display mode (default: the preferred one)\n"
                  "  --device PATH     drm: /dev/dri/cardN (default: the first that works)\n"
+                 "  --rotate DEG      touch panel rotation against the display: 0|90|180|270 (default 0)\n"
                  "  --model FILE      a .bpm progressive mesh or .obj file\n"
                  "  --scene FILE      a scene manifest (scene.json); BUNDLE/ means BUNDLE/scene.json\n"
                  "  --style S         smooth|wireframe|lines|hatching|hatching-2tone (overrides the scene)\n"
@@ -121,6 +123,11 @@ int run(const CliArgs& args) {
     so.fullscreen = !args.has("windowed");
     so.mode = args.get_or("mode", "");
     so.drm_device = args.get_or("device", "");
+    if (auto r = args.get("rotate")) {
+        auto deg = platform::parse_rotation(*r);
+        if (!deg) return fail(deg.error());
+        so.touch_rotation = deg.value();
+    }
     auto lod = args.get_double("lod", 1.0);
     if (!lod) return fail(lod.error());
     if (!(lod.value() > 0.0 && lod.value() <= 1.0)) return fail(input_error("--lod must be in (0, 1]"));
@@ -195,6 +202,7 @@ int run(const CliArgs& args) {
         ko.frames = frames.value();
         ko.auto_lod = !args.has("no-auto-lod");
         ko.verbose = args.has("kiosk-stats");
+        ko.touch_rotation = so.touch_rotation;
         return kiosk::run_kiosk(surf, *scene, ko);
     }
     render::Renderer renderer;
@@ -327,11 +335,11 @@ int main(int argc, char** argv) {
         print_help(stderr);
         return kExitBadInput;
     }
-    auto args =
-        CliArgs::parse(argv_list,
-                       {"platform", "size", "mode", "device", "model", "scene", "style", "lod", "select", "view",
-                        "line-width", "ssaa", "screenshot", "frames", "replay", "bench-triangles", "bench-frames"},
-                       {"headless", "windowed", "xray", "benchmark", "no-auto-lod", "kiosk-stats"});
+    auto args = CliArgs::parse(
+        argv_list,
+        {"platform", "size", "mode", "device", "rotate", "model", "scene", "style", "lod", "select", "view",
+         "line-width", "ssaa", "screenshot", "frames", "replay", "bench-triangles", "bench-frames"},
+        {"headless", "windowed", "xray", "benchmark", "no-auto-lod", "kiosk-stats"});
     if (!args) return fail(args.error());
     return run(args.value());
 }

@@ -30,6 +30,12 @@ TEST(Cli, BadUsageExitsTwo) {
     EXPECT_EQ(run(bin("bodygen") + " check --nope x").exit_code, 2);
 }
 
+TEST(Cli, BodyviewRejectsABadTouchRotationBeforeOpeningAnything) {
+    RunResult r = run(bin("bodyview") + " --headless --rotate 45 --model /nonexistent.bpm");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_EQ(r.output, "bodyview: --rotate: expected 0, 90, 180 or 270, got '45'\n");
+}
+
 TEST(Cli, BadContourFileIsOneLineNamingThePlace) {
     std::string path =
         std::filesystem::temp_directory_path() / ("body_cli_bad_" + std::to_string(::getpid()) + ".json");
