@@ -33,8 +33,8 @@ fi
 mkdir -p "$OUT"
 
 echo "build-sample: contours ($JOBS jobs)"
-# --min-area 3: per-slice islands of 1-3 voxels are atlas speckle, and partition
-# branching cannot split a small contour into many of them.
+# --min-area 3: per-slice islands of 1-3 voxels are atlas speckle: dropping them
+# gives cleaner models (every region also builds closed without it).
 "$BODYGEN" contours "$ATLAS" --labels "$NAMES" --min-area 3 --jobs "$JOBS" -o "$OUT/aal.contours.json"
 
 if ! "$BODYGEN" --help | grep -q '^  build '; then
