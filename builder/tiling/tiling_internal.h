@@ -262,6 +262,10 @@ namespace body {
 // second candidate when the (folds, area) optimum crosses itself).
 void tile_optimal(std::span<const Vec3> lower, std::span<const Vec3> upper, std::vector<uint32_t>& triangles,
                   bool charge_corners = true);
+// The optimal tiling among the paths through spanning edge (lower[i0],
+// upper[j0]) only: one start of the above, O(m n) instead of O(m n log n).
+void tile_optimal_from(std::span<const Vec3> lower, std::span<const Vec3> upper, uint32_t i0, uint32_t j0,
+                       std::vector<uint32_t>& triangles);
 void tile_multires(std::span<const Vec3> lower, std::span<const Vec3> upper, std::vector<uint32_t>& triangles);
 
 }  // namespace body

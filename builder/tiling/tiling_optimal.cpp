@@ -259,4 +259,33 @@ void tile_optimal(std::span<const Vec3> lower, std::span<const Vec3> upper, std:
     tiling.emit(triangles);
 }
 
+void tile_optimal_from(std::span<const Vec3> lower, std::span<const Vec3> upper, uint32_t i0, uint32_t j0,
+                       std::vector<uint32_t>& triangles) {
+    const bool a_is_lower = lower.size() >= upper.size();
+    // A turned so that the start's vertex on A is A's vertex 0 (where the grid starts).
+    std::span<const Vec3> a = a_is_lower ? lower : upper;
+    const uint32_t shift = a_is_lower ? i0 : j0, k = a_is_lower ? j0 : i0;
+    std::vector<Vec3> turned(a.begin() + shift, a.end());
+    turned.insert(turned.end(), a.begin(), a.begin() + shift);
+    Band turned_band(a_is_lower ? std::span<const Vec3>(turned) : lower,
+                     a_is_lower ? upper : std::span<const Vec3>(turned));
+    const uint32_t rows = uint32_t(a.size()), cols = uint32_t(a_is_lower ? upper.size() : lower.size());
+    Grid grid(turned_band, a_is_lower, rows, cols);
+    Aabb box;
+    for (const Vec3& p : lower) box.extend(p);
+    for (const Vec3& p : upper) box.extend(p);
+    grid.fold_weight = double(rows + cols) * box.extent() * box.extent() + 1.0;
+    std::vector<uint32_t> lo(rows + 1, 0), hi(rows + 1, 2 * cols);
+    Path path;
+    best_path(grid, k, lo, hi, path);
+    std::vector<uint8_t> moves(path.moves);
+    if (!a_is_lower)
+        for (uint8_t& mv : moves) mv ^= 1;
+    Band band(lower, upper);
+    tiling_detail::CyclicTiling tiling(band, i0, j0, moves);
+    tiling.split_full_fans();
+    tiling.swap_until_stable();
+    tiling.emit(triangles);
+}
+
 }  // namespace body
