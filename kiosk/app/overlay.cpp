@@ -6,6 +6,8 @@
 
 #include <algorithm>
 
+#include "kiosk/render/renderer.h"
+
 namespace body::kiosk {
 
 namespace {
@@ -53,21 +55,6 @@ void quad(std::vector<Vertex>& out, float x0, float y0, float x1, float y1, floa
     out.insert(out.end(), v, v + 6);
 }
 
-Result<GLuint> compile(GLenum type, const char* source) {
-    GLuint s = glCreateShader(type);
-    glShaderSource(s, 1, &source, nullptr);
-    glCompileShader(s);
-    GLint ok = 0;
-    glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-        char log[1024] = {};
-        glGetShaderInfoLog(s, sizeof log, nullptr, log);
-        glDeleteShader(s);
-        return runtime_error(std::string("overlay shader: ") + log);
-    }
-    return s;
-}
-
 }  // namespace
 
 struct Overlay::State {
@@ -89,19 +76,9 @@ Status Overlay::init(const std::string& font_file, float scale, const std::strin
     if (!body) return body.error();
     s->title = std::move(title).value();
     s->body = std::move(body).value();
-    auto vs = compile(GL_VERTEX_SHADER, kVertex);
-    if (!vs) return vs.error();
-    auto fs = compile(GL_FRAGMENT_SHADER, kFragment);
-    if (!fs) return fs.error();
-    s->program = glCreateProgram();
-    glAttachShader(s->program, *vs);
-    glAttachShader(s->program, *fs);
-    glLinkProgram(s->program);
-    glDeleteShader(*vs);
-    glDeleteShader(*fs);
-    GLint ok = 0;
-    glGetProgramiv(s->program, GL_LINK_STATUS, &ok);
-    if (!ok) return runtime_error("overlay shader: link failed");
+    auto program = render::link_program(kVertex, kFragment, "overlay");
+    if (!program) return program.error();
+    s->program = program.value();
     s->u_screen = glGetUniformLocation(s->program, "u_screen");
     s->u_textured = glGetUniformLocation(s->program, "u_textured");
     s->u_atlas = glGetUniformLocation(s->program, "u_atlas");

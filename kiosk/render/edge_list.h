@@ -29,7 +29,27 @@ struct GpuEdge {
 };
 
 // `indices`: triangles (three per face); degenerate faces are skipped.
-// Deterministic order (sorted by vertex pair) so frames are stable.
+// Deterministic order (by first vertex, then corner) so frames are stable.
 std::vector<EdgeRecord> build_edge_list(std::span<const uint32_t> indices);
+
+// The same records streamed in pieces, for callers that convert and upload
+// them without holding the whole list (a million-triangle mesh has 27 MiB of
+// records). Scratch: 4 bytes per corner and per vertex, held until destroyed.
+// `indices` must outlive the stream.
+//   EdgeStream s(indices);  s.count();  while (size_t n = s.next(chunk)) use(chunk.first(n));
+class EdgeStream {
+public:
+    explicit EdgeStream(std::span<const uint32_t> indices);
+    size_t count() const { return count_; }  // edges in all
+    // Writes the next up to out.size() records; 0 at the end.
+    size_t next(std::span<EdgeRecord> out);
+
+private:
+    std::span<const uint32_t> idx_;
+    std::vector<uint32_t> start_;   // per vertex + 1: first slot of its corners in corner_
+    std::vector<uint32_t> corner_;  // corner ids (3 * face + k) grouped by their vertex
+    size_t count_ = 0;
+    uint32_t vertex_ = 0, slot_ = 0;  // where next() resumes
+};
 
 }  // namespace body::render

@@ -134,9 +134,7 @@ void set_bounds(Model& m, std::span<const Vec3f> positions) {
     m.box_max = Vec3f(box.max);
 }
 
-Result<GLuint> compile(GLenum type, const std::string& name) {
-    const char* src = shader_source(name);
-    if (!src) return runtime_error("shader " + name + ": not embedded in this build");
+Result<GLuint> compile(GLenum type, const char* src, const std::string& label) {
     GLuint s = glCreateShader(type);
     glShaderSource(s, 1, &src, nullptr);
     glCompileShader(s);
@@ -148,45 +146,29 @@ Result<GLuint> compile(GLenum type, const std::string& name) {
         glDeleteShader(s);
         std::string one_line(log);
         std::replace(one_line.begin(), one_line.end(), '\n', ' ');
-        return runtime_error("shader " + name + ": compile failed: " + one_line);
+        return runtime_error("shader " + label + ": compile failed: " + one_line);
     }
     return s;
 }
 
 Result<Program> link(const std::string& vert, const std::string& frag) {
-    auto vs = compile(GL_VERTEX_SHADER, vert);
-    if (!vs) return vs.error();
-    auto fs = compile(GL_FRAGMENT_SHADER, frag);
-    if (!fs) {
-        glDeleteShader(vs.value());
-        return fs.error();
-    }
+    const char* vs = shader_source(vert);
+    const char* fs = shader_source(frag);
+    if (!vs || !fs) return runtime_error("shader " + (vs ? frag : vert) + ": not embedded in this build");
+    const std::pair<unsigned, const char*> attributes[] = {
+        {kPosition, "a_position"}, {kNormal, "a_normal"}, {kMorph, "a_morph"}};
+    auto id = link_program(vs, fs, vert + "+" + frag, attributes);
+    if (!id) return id.error();
     Program p;
-    p.id = glCreateProgram();
-    glAttachShader(p.id, vs.value());
-    glAttachShader(p.id, fs.value());
-    glBindAttribLocation(p.id, kPosition, "a_position");
-    glBindAttribLocation(p.id, kNormal, "a_normal");
-    glBindAttribLocation(p.id, kMorph, "a_morph");
-    glLinkProgram(p.id);
-    glDeleteShader(vs.value());
-    glDeleteShader(fs.value());
-    GLint ok = 0;
-    glGetProgramiv(p.id, GL_LINK_STATUS, &ok);
-    if (!ok) {
-        char log[2048] = {};
-        glGetProgramInfoLog(p.id, sizeof(log), nullptr, log);
-        glDeleteProgram(p.id);
-        std::string one_line(log);
-        std::replace(one_line.begin(), one_line.end(), '\n', ' ');
-        return runtime_error("program " + vert + "+" + frag + ": link failed: " + one_line);
-    }
+    p.id = id.value();
     return p;
 }
 
-// Uploads elements [begin, end) of an array laid out kTextureWidth per row.
-void texture_rows(GLuint tex, size_t begin, size_t end, GLenum format, GLenum type, const uint8_t* base,
+// Uploads elements [begin, end) of an array laid out kTextureWidth per row;
+// `src` holds element `begin` first.
+void texture_rows(GLuint tex, size_t begin, size_t end, GLenum format, GLenum type, const uint8_t* src,
                   size_t element_size) {
+    const size_t begin0 = begin;
     glBindTexture(GL_TEXTURE_2D, tex);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
     const size_t w = kTextureWidth;
@@ -196,12 +178,12 @@ void texture_rows(GLuint tex, size_t begin, size_t end, GLenum format, GLenum ty
         if (col == 0 && count == w) {
             size_t rows = (end - begin) / w;
             glTexSubImage2D(GL_TEXTURE_2D, 0, 0, static_cast<GLint>(row), static_cast<GLsizei>(w),
-                            static_cast<GLsizei>(rows), format, type, base + begin * element_size);
+                            static_cast<GLsizei>(rows), format, type, src + (begin - begin0) * element_size);
             begin += rows * w;
             continue;
         }
         glTexSubImage2D(GL_TEXTURE_2D, 0, static_cast<GLint>(col), static_cast<GLint>(row), static_cast<GLsizei>(count),
-                        1, format, type, base + begin * element_size);
+                        1, format, type, src + (begin - begin0) * element_size);
         begin += count;
     }
 }
@@ -232,6 +214,35 @@ std::vector<T> read_buffer(GLenum target, GLuint buffer, size_t count) {
 }
 
 }  // namespace
+
+Result<unsigned> link_program(const char* vertex_source, const char* fragment_source, const std::string& name,
+                              std::span<const std::pair<unsigned, const char*>> attributes) {
+    auto vs = compile(GL_VERTEX_SHADER, vertex_source, name + " (vertex)");
+    if (!vs) return vs.error();
+    auto fs = compile(GL_FRAGMENT_SHADER, fragment_source, name + " (fragment)");
+    if (!fs) {
+        glDeleteShader(vs.value());
+        return fs.error();
+    }
+    const GLuint id = glCreateProgram();
+    glAttachShader(id, vs.value());
+    glAttachShader(id, fs.value());
+    for (const auto& [location, attribute] : attributes) glBindAttribLocation(id, location, attribute);
+    glLinkProgram(id);
+    glDeleteShader(vs.value());
+    glDeleteShader(fs.value());
+    GLint ok = 0;
+    glGetProgramiv(id, GL_LINK_STATUS, &ok);
+    if (!ok) {
+        char log[2048] = {};
+        glGetProgramInfoLog(id, sizeof(log), nullptr, log);
+        glDeleteProgram(id);
+        std::string one_line(log);
+        std::replace(one_line.begin(), one_line.end(), '\n', ' ');
+        return runtime_error("program " + name + ": link failed: " + one_line);
+    }
+    return id;
+}
 
 const char* style_name(Style style) {
     switch (style) {
@@ -526,7 +537,7 @@ Status Renderer::update_model(ModelId id, const MeshData& mesh, const Dirty& dir
         glBufferSubData(GL_ARRAY_BUFFER, static_cast<GLintptr>(b * 4), static_cast<GLsizeiptr>(n * 4), packed.data());
         if (m.position_texture)
             texture_rows(m.position_texture, b, dirty.vertex_end, GL_RGB, GL_FLOAT,
-                         reinterpret_cast<const uint8_t*>(mesh.positions.data()), sizeof(Vec3f));
+                         reinterpret_cast<const uint8_t*>(mesh.positions.data() + b), sizeof(Vec3f));
         set_bounds(m, mesh.positions.first(vcount));
     }
     if (dirty.index_begin < dirty.index_end) {
@@ -536,7 +547,7 @@ Status Renderer::update_model(ModelId id, const MeshData& mesh, const Dirty& dir
                         mesh.indices.data() + b);
         if (m.index_texture)
             texture_rows(m.index_texture, b, dirty.index_end, GL_RED_INTEGER, GL_UNSIGNED_INT,
-                         reinterpret_cast<const uint8_t*>(mesh.indices.data()), 4);
+                         reinterpret_cast<const uint8_t*>(mesh.indices.data() + b), 4);
     }
     // The edge list holds face normals, so any change rebuilds it (lazily, when drawn in `lines`).
     if (icount - icount % 3 != m.index_count || dirty.index_begin < dirty.index_end ||
@@ -773,22 +784,56 @@ static void ensure_position_texture(Model& m) {
                  reinterpret_cast<const uint8_t*>(positions.data()), sizeof(Vec3f));
 }
 
+// A GL buffer mapped for reading for one scope (GLES 3.0 mapping; llvmpipe
+// hands out its storage, so nothing is copied). Bound to GL_COPY_READ_BUFFER,
+// which is no VAO's state.
+template <typename T>
+class MappedBuffer {
+public:
+    MappedBuffer(GLuint buffer, size_t count) : buffer_(buffer) {
+        if (count == 0) return;
+        glBindBuffer(GL_COPY_READ_BUFFER, buffer);
+        const void* p =
+            glMapBufferRange(GL_COPY_READ_BUFFER, 0, static_cast<GLsizeiptr>(count * sizeof(T)), GL_MAP_READ_BIT);
+        if (p) data_ = std::span<const T>(static_cast<const T*>(p), count);
+    }
+    ~MappedBuffer() {
+        if (data_.empty()) return;
+        glBindBuffer(GL_COPY_READ_BUFFER, buffer_);
+        glUnmapBuffer(GL_COPY_READ_BUFFER);
+    }
+    MappedBuffer(const MappedBuffer&) = delete;
+    MappedBuffer& operator=(const MappedBuffer&) = delete;
+    std::span<const T> data() const { return data_; }
+
+private:
+    GLuint buffer_;
+    std::span<const T> data_;
+};
+
 // The edge texture of the `lines` style, rebuilt when the mesh changed. The
-// records are turned into GpuEdges in place (same size), so the transient CPU
-// memory is the read-back indices and positions plus one 16-byte record per edge.
+// index and position buffers are read in place (mapped) and the records are
+// streamed: built, converted to GpuEdges and uploaded kEdgeChunk at a time, so
+// the transient CPU memory is the edge walk's 4 bytes per corner and vertex.
 static void ensure_edges(Model& m) {
     if (!m.edges_stale && m.edge_texture) return;
     static_assert(sizeof(EdgeRecord) == sizeof(GpuEdge));
-    std::vector<EdgeRecord> records;
-    {
-        auto indices = read_buffer<uint32_t>(GL_ELEMENT_ARRAY_BUFFER, m.ebo, m.index_count);
-        records = build_edge_list(indices);
+    // Mapping is per buffer: both stay mapped while the other target binding moves on.
+    MappedBuffer<uint32_t> index_map(m.ebo, m.index_count);
+    MappedBuffer<Vec3f> position_map(m.vbo_position, m.vertex_count);
+    const std::span<const uint32_t> indices = index_map.data();
+    const std::span<const Vec3f> positions = position_map.data();
+    if (indices.size() != m.index_count || positions.size() != m.vertex_count) {
+        m.edge_count = 0;  // mapping failed: no lines this time, retried on the next frame
+        return;
     }
-    auto positions = read_buffer<Vec3f>(GL_ARRAY_BUFFER, m.vbo_position, m.vertex_count);
-    Aabb box;  // of the edge endpoints: vertices the level does not use do not change the codes
-    for (const EdgeRecord& e : records) {
-        box.extend(Vec3(positions[e.v0]));
-        box.extend(Vec3(positions[e.v1]));
+    // Box of the edge endpoints, i.e. of the non-degenerate faces' corners:
+    // vertices the level does not use do not change the codes.
+    Aabb box;
+    for (size_t f = 0; f + 2 < indices.size(); f += 3) {
+        const uint32_t a = indices[f], b = indices[f + 1], c = indices[f + 2];
+        if (a == b || b == c || a == c) continue;
+        for (uint32_t v : {a, b, c}) box.extend(Vec3(positions[v]));
     }
     m.edge_origin = box.empty() ? Vec3f(0.0f) : Vec3f(box.min);
     const Vec3f extent = box.empty() ? Vec3f(0.0f) : Vec3f(box.max - box.min);
@@ -806,27 +851,35 @@ static void ensure_edges(Model& m) {
         float l = glm::length(n);
         return l > 0.0f ? n / l : Vec3f(0.0f, 0.0f, 1.0f);
     };
-    for (EdgeRecord& e : records) {
-        const glm::uvec3 c0 = code(positions[e.v0]), c1 = code(positions[e.v1]);
-        const Vec3f n0 = face_normal(e.v0, e.v1, e.a);
-        const Vec3f n1 = e.b == kNoVertex ? -n0 : face_normal(e.v1, e.v0, e.b);
-        const GpuEdge g{c0.x | (c0.y << 16), c0.z | (c1.x << 16), c1.y | (c1.z << 16),
-                        pack_octahedral(n0) | (pack_octahedral(n1) << 16)};
-        std::memcpy(&e, &g, sizeof(g));
+    {
+        EdgeStream stream(indices);
+        m.edge_count = stream.count();
+        if (m.edge_count > m.edge_capacity || !m.edge_texture) {
+            if (m.edge_texture) glDeleteTextures(1, &m.edge_texture);
+            m.edge_capacity = std::max<size_t>(m.edge_count, 1);
+            m.edge_texture = make_data_texture(GL_RGBA32UI, m.edge_capacity);
+        }
+        constexpr size_t kEdgeChunk = 16 * kTextureWidth;  // 512 KiB of records
+        std::vector<EdgeRecord> chunk(std::min(kEdgeChunk, std::max<size_t>(m.edge_count, 1)));
+        size_t first = 0;
+        while (const size_t n = stream.next(chunk)) {
+            for (size_t i = 0; i < n; ++i) {
+                const EdgeRecord e = chunk[i];
+                const glm::uvec3 c0 = code(positions[e.v0]), c1 = code(positions[e.v1]);
+                const Vec3f n0 = face_normal(e.v0, e.v1, e.a);
+                const Vec3f n1 = e.b == kNoVertex ? -n0 : face_normal(e.v1, e.v0, e.b);
+                const GpuEdge g{c0.x | (c0.y << 16), c0.z | (c1.x << 16), c1.y | (c1.z << 16),
+                                pack_octahedral(n0) | (pack_octahedral(n1) << 16)};
+                std::memcpy(&chunk[i], &g, sizeof(g));
+            }
+            texture_rows(m.edge_texture, first, first + n, GL_RGBA_INTEGER, GL_UNSIGNED_INT,
+                         reinterpret_cast<const uint8_t*>(chunk.data()), sizeof(GpuEdge));
+            first += n;
+        }
     }
-    m.edge_count = records.size();
-    if (records.size() > m.edge_capacity || !m.edge_texture) {
-        if (m.edge_texture) glDeleteTextures(1, &m.edge_texture);
-        m.edge_capacity = std::max<size_t>(records.size(), 1);
-        m.edge_texture = make_data_texture(GL_RGBA32UI, m.edge_capacity);
-    }
-    texture_rows(m.edge_texture, 0, records.size(), GL_RGBA_INTEGER, GL_UNSIGNED_INT,
-                 reinterpret_cast<const uint8_t*>(records.data()), sizeof(GpuEdge));
     m.edges_stale = false;
-    records = {};
-    positions = {};
 #ifdef __GLIBC__
-    malloc_trim(0);  // the build's scratch (tens of MiB for a big model) back to the system
+    malloc_trim(0);  // the walk's scratch (tens of MiB for a big model) back to the system
 #endif
 }
 

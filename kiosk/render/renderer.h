@@ -29,6 +29,7 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "shared/error.h"
@@ -188,5 +189,11 @@ private:
 // Embedded GLSL sources (kiosk/shaders/, generated into the build at compile
 // time); nullptr for an unknown name such as "smooth.frag".
 const char* shader_source(const std::string& name);
+
+// Compiles and links one GLSL ES 3.00 program (the renderer's and the kiosk
+// overlay's), binding the named attribute locations before linking; a context
+// must be current. Errors name `name` and carry the info log on one line.
+Result<unsigned> link_program(const char* vertex_source, const char* fragment_source, const std::string& name,
+                              std::span<const std::pair<unsigned, const char*>> attributes = {});
 
 }  // namespace body::render

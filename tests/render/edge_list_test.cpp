@@ -39,3 +39,32 @@ TEST(EdgeList, SkipsDegenerateFacesAndEmptyInput) {
     std::vector<uint32_t> degenerate = {0, 0, 1};
     EXPECT_TRUE(build_edge_list(degenerate).empty());
 }
+
+// The streamed walk hands out the same records in the same order whatever the
+// piece size, including pieces that end in the middle of a vertex's corners.
+TEST(EdgeList, StreamInPiecesMatchesTheWholeList) {
+    // A 6x5 grid of quads, two triangles each, with one degenerate face.
+    std::vector<uint32_t> idx;
+    const uint32_t w = 7;
+    for (uint32_t y = 0; y < 5; ++y)
+        for (uint32_t x = 0; x < 6; ++x) {
+            const uint32_t a = y * w + x, b = a + 1, c = a + w, d = c + 1;
+            idx.insert(idx.end(), {a, b, d, a, d, c});
+        }
+    idx.insert(idx.end(), {3, 3, 4});
+    const auto whole = build_edge_list(idx);
+    ASSERT_EQ(whole.size(), 6u * 6 + 5u * 7 + 30u);  // horizontal + vertical + diagonal edges
+    for (size_t piece : {1u, 2u, 3u, 7u, 64u, 1000u}) {
+        EdgeStream stream(idx);
+        EXPECT_EQ(stream.count(), whole.size());
+        std::vector<EdgeRecord> out, chunk(piece);
+        while (size_t n = stream.next(chunk)) out.insert(out.end(), chunk.begin(), chunk.begin() + n);
+        ASSERT_EQ(out.size(), whole.size()) << "piece " << piece;
+        for (size_t i = 0; i < out.size(); ++i) {
+            EXPECT_EQ(out[i].v0, whole[i].v0);
+            EXPECT_EQ(out[i].v1, whole[i].v1);
+            EXPECT_EQ(out[i].a, whole[i].a);
+            EXPECT_EQ(out[i].b, whole[i].b);
+        }
+    }
+}
