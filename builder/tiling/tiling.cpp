@@ -23,6 +23,14 @@ static Status validate_contour(std::span<const Vec3> c, const char* which) {
     return ok_status();
 }
 
+// Pairs with at most this many vertex pairs whose band still crosses after the
+// repair try the area-only optimum (O(m n) bits of memory).
+constexpr double kAreaOnlyCells = 4e6;
+
+// Pairs with at most this many vertices in all whose band still crosses after
+// the repair try every start of the optimal tiling.
+constexpr size_t kEveryStartVertices = 48;
+
 // The methods emit their path in order: the cyclic tiling it takes.
 static tiling_detail::CyclicTiling as_path(const tiling_detail::Band& band, const std::vector<uint32_t>& triangles) {
     const uint32_t m = uint32_t(band.lower.size());
@@ -51,17 +59,33 @@ Status tile_band(std::span<const Vec3> lower, std::span<const Vec3> upper, Tilin
     }
     // Fold check: a band whose triangles cross is repaired by diagonal flips
     // (tiling_unfold.cpp); where crossings are left, the minimum-area tiling
-    // without the corner charge is repaired too and the band with fewer
-    // crossings (then lower cost) is kept.
+    // without the corner charge (pairs up to kAreaOnlyCells), then on tiny
+    // pairs the optimal path from every start, are repaired too and the band
+    // with fewer crossings (then lower cost) is kept.
     tiling_detail::Band band(lower, upper);
     tiling_detail::CyclicTiling path = as_path(band, triangles);
     size_t left = tiling_detail::unfold(path);
-    if (left > 0) {
+    if (left > 0 && double(lower.size()) * double(upper.size()) <= kAreaOnlyCells) {
         std::vector<uint32_t> area_only;
         tile_optimal(lower, upper, area_only, false);
         tiling_detail::CyclicTiling other = as_path(band, area_only);
         const size_t other_left = tiling_detail::unfold(other);
-        if (other_left < left || (other_left == left && other.total() < path.total())) path = std::move(other);
+        if (other_left < left || (other_left == left && other.total() < path.total())) {
+            path = std::move(other);
+            left = other_left;
+        }
+    }
+    // Small bands still crossing: the optimal path through each spanning edge
+    // from lower vertex 0, each repaired in turn.
+    for (uint32_t j = 0; left > 0 && j < upper.size() && lower.size() + upper.size() <= kEveryStartVertices; ++j) {
+        std::vector<uint32_t> through;
+        tile_optimal_from(lower, upper, 0, j, through);
+        tiling_detail::CyclicTiling other = as_path(band, through);
+        const size_t other_left = tiling_detail::unfold(other);
+        if (other_left < left || (other_left == left && other.total() < path.total())) {
+            path = std::move(other);
+            left = other_left;
+        }
     }
     triangles.clear();
     path.emit(triangles);
