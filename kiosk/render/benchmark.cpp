@@ -116,6 +116,9 @@ Status run_benchmark(platform::Surface& surface, const BenchmarkOptions& options
         if (!g) return g.error();
         loaded.push_back(std::move(g.value()));
     }
+#ifdef __GLIBC__
+    malloc_trim(0);  // the generator's / loader's freed scratch is not the model's memory
+#endif
     // Peak RSS from here on: the model's CPU arrays plus everything the renderer
     // and the driver allocate for it (Linux: writing 5 to clear_refs resets VmHWM,
     // so the transient cost of generating the test model is not counted).
@@ -178,7 +181,8 @@ Status run_benchmark(platform::Surface& surface, const BenchmarkOptions& options
         base_ms = median(b);
     };
     const std::map<Style, double> goals = {{Style::Smooth, 1.1}, {Style::Hatching, 1.5}, {Style::Lines, 2.0}};
-    long after_baseline = 0, render_peak = 0, lod_peak = 0;
+    long after_baseline = 0, after_baseline_current = 0, render_peak = 0, lod_peak = 0;
+    std::vector<std::pair<Style, long>> style_added;  // peak over the RSS resident before the style, LOD 100%
     for (double lod : {1.0, 0.4, 0.1}) {
         if (lod < 1.0) {
             // An OBJ has no LOD hierarchy: set_lod runs a meshoptimizer
@@ -202,18 +206,26 @@ Status run_benchmark(platform::Surface& surface, const BenchmarkOptions& options
             renderer.render(camera, lighting, frame);
             glFinish();
             after_baseline = peak_rss_kib();
+            after_baseline_current = current_rss_kib();
             step("drawn in baseline");
         }
-        // Build the lazily created edge list / textures outside the timed frames.
+        // Per style: its first frame (building the lazily created edge list /
+        // textures outside the timed frames), then its timed frames. At full
+        // detail the peak restarts before each style, so the RSS each one adds
+        // over what is resident before it is known.
         for (Style s : kAllStyles) {
+            const long before = current_rss_kib();
+            if (lod == 1.0) {
+                render_peak = std::max(render_peak, peak_rss_kib());
+                reset_peak_rss();
+            }
             renderer.state(id.value())->style = s;
             renderer.render(camera, lighting, frame);
             glFinish();
             if (lod == 1.0) step((std::string("first frame in ") + style_name(s)).c_str());
-        }
-        for (Style s : kAllStyles) {
             double ms = 0, base = 0;
             time_pair(s, ms, base);
+            if (lod == 1.0) style_added.emplace_back(s, peak_rss_kib() - before);
             auto g = goals.find(s);
             char goal[32] = "";
             if (g != goals.end())
@@ -241,6 +253,12 @@ Status run_benchmark(platform::Surface& surface, const BenchmarkOptions& options
         "allocated: %.1f MiB\n",
         mib(peak - empty_rss), (peak - empty_rss) < 64 * 1024 ? "ok" : "MISSED",
         static_cast<double>(renderer.gpu_bytes()) / 1048576.0);
+    std::printf(
+        "peak RSS per style at LOD 100%% (MiB): added over what was resident before it | alone = drawn in "
+        "baseline + added\n");
+    for (const auto& [s, added] : style_added)
+        std::printf("  %-15s %7.1f | %7.1f\n", style_name(s), mib(added),
+                    mib(std::max(after_baseline, after_baseline_current + added) - empty_rss));
     renderer.shutdown();
     return ok_status();
 }

@@ -75,7 +75,9 @@ struct Model {
     float radius = 0.0f;
     Vec3f box_min{0.0f}, box_max{0.0f};  // object space
     // Lazily created: position and index textures for `wireframe`, the edge texture for `lines`.
-    GLuint position_texture = 0, index_texture = 0;
+    GLuint position_texture = 0, index_texture = 0;  // RGB16UI per vertex, RG32UI/RGB32UI per triangle
+    Vec3f wire_origin{0.0f}, wire_scale{0.0f};       // dequantization of the position texture
+    bool wire_stale = true;
     GLuint edge_texture = 0;                    // RGBA32UI, one GpuEdge per texel
     Vec3f edge_origin{0.0f}, edge_scale{0.0f};  // dequantization of the GpuEdge endpoints
     size_t edge_capacity = 0;
@@ -83,6 +85,9 @@ struct Model {
     bool edges_stale = true;
     bool internal = false;  // the manipulation sphere
 };
+
+// The wireframe's per-triangle indices fit 21 bits each (two words a triangle).
+bool wire_index_packed(const Model& m) { return m.vertex_capacity <= (size_t{1} << 21); }
 
 uint32_t pack_normal(const Vec3f& n) {
     auto q = [](float v) {
@@ -122,6 +127,19 @@ std::vector<Vec3f> area_normals(std::span<const Vec3f> p, std::span<const uint32
         v = l > 0.0f ? v / l : Vec3f(0.0f, 0.0f, 1.0f);
     }
     return n;
+}
+
+// Frees the upload's normal scratch and, when it was large, hands it back to the
+// system (glibc keeps big freed blocks resident once its mmap threshold grew).
+void release_scratch(std::vector<Vec3f>& computed, std::vector<uint32_t>& packed) {
+    const bool large = computed.size() * sizeof(Vec3f) + packed.size() * 4 >= (1u << 20);
+    computed = {};
+    packed = {};
+#ifdef __GLIBC__
+    if (large) malloc_trim(0);
+#else
+    (void)large;
+#endif
 }
 
 // Object-space box and bounding sphere of the drawn vertices.
@@ -197,20 +215,6 @@ GLuint make_data_texture(GLenum internal, size_t capacity) {
     size_t rows = (capacity + kTextureWidth - 1) / kTextureWidth;
     glTexStorage2D(GL_TEXTURE_2D, 1, internal, kTextureWidth, static_cast<GLsizei>(std::max<size_t>(rows, 1)));
     return tex;
-}
-
-// Reads a whole GL buffer back (GLES 3.0 mapping) for the lazily built data.
-template <typename T>
-std::vector<T> read_buffer(GLenum target, GLuint buffer, size_t count) {
-    std::vector<T> out(count);
-    if (count == 0) return out;
-    glBindBuffer(target, buffer);
-    void* p = glMapBufferRange(target, 0, static_cast<GLsizeiptr>(count * sizeof(T)), GL_MAP_READ_BIT);
-    if (p) {
-        std::copy_n(static_cast<const T*>(p), count, out.data());
-        glUnmapBuffer(target);
-    }
-    return out;
 }
 
 }  // namespace
@@ -498,6 +502,7 @@ Result<ModelId> Renderer::add_model(const MeshData& mesh, const std::string& nam
     glBufferSubData(GL_ELEMENT_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(iupload * 4), mesh.indices.data());
     glBindVertexArray(0);
     BODY_GL_CHECK("add_model");
+    release_scratch(computed, packed);
 
     ModelId id = s_->next_id++;
     s_->models.emplace(id, std::move(m));
@@ -535,9 +540,7 @@ Status Renderer::update_model(ModelId id, const MeshData& mesh, const Dirty& dir
         for (size_t i = 0; i < n; ++i) packed[i] = pack_normal(normals[b + i]);
         glBindBuffer(GL_ARRAY_BUFFER, m.vbo_normal);
         glBufferSubData(GL_ARRAY_BUFFER, static_cast<GLintptr>(b * 4), static_cast<GLsizeiptr>(n * 4), packed.data());
-        if (m.position_texture)
-            texture_rows(m.position_texture, b, dirty.vertex_end, GL_RGB, GL_FLOAT,
-                         reinterpret_cast<const uint8_t*>(mesh.positions.data() + b), sizeof(Vec3f));
+        release_scratch(computed, packed);
         set_bounds(m, mesh.positions.first(vcount));
     }
     if (dirty.index_begin < dirty.index_end) {
@@ -545,14 +548,11 @@ Status Renderer::update_model(ModelId id, const MeshData& mesh, const Dirty& dir
         glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m.ebo);
         glBufferSubData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLintptr>(b * 4), static_cast<GLsizeiptr>(n * 4),
                         mesh.indices.data() + b);
-        if (m.index_texture)
-            texture_rows(m.index_texture, b, dirty.index_end, GL_RED_INTEGER, GL_UNSIGNED_INT,
-                         reinterpret_cast<const uint8_t*>(mesh.indices.data() + b), 4);
     }
     // The edge list holds face normals, so any change rebuilds it (lazily, when drawn in `lines`).
     if (icount - icount % 3 != m.index_count || dirty.index_begin < dirty.index_end ||
         dirty.vertex_begin < dirty.vertex_end)
-        m.edges_stale = true;
+        m.edges_stale = m.wire_stale = true;
     m.vertex_count = vcount;
     m.index_count = icount - icount % 3;
     BODY_GL_CHECK("update_model");
@@ -671,8 +671,8 @@ size_t Renderer::gpu_bytes() const {
     for (const auto& [id, m] : s_->models) {
         total += m.vertex_capacity * (sizeof(Vec3f) + 4) + m.index_capacity * 4;
         if (m.vbo_morph) total += m.vertex_capacity * sizeof(Vec3f);
-        if (m.position_texture) total += (m.vertex_capacity + w - 1) / w * w * sizeof(Vec3f);
-        if (m.index_texture) total += (m.index_capacity + w - 1) / w * w * 4;
+        if (m.position_texture) total += (m.vertex_capacity + w - 1) / w * w * 6;
+        if (m.index_texture) total += (m.index_capacity / 3 + w - 1) / w * w * (wire_index_packed(m) ? 8 : 12);
         if (m.edge_texture) total += (m.edge_capacity + w - 1) / w * w * sizeof(GpuEdge);
     }
     if (s_->tam[0]) total += 2 * 256 * 256 * 3 * 4 / 3;  // two RGB8 textures with mip chains
@@ -775,15 +775,6 @@ void draw_triangles(const Model& m) {
 
 }  // namespace
 
-// Position texture (and the edge list or index texture) for the styles that fetch.
-static void ensure_position_texture(Model& m) {
-    if (m.position_texture) return;
-    auto positions = read_buffer<Vec3f>(GL_ARRAY_BUFFER, m.vbo_position, m.vertex_capacity);
-    m.position_texture = make_data_texture(GL_RGB32F, m.vertex_capacity);
-    texture_rows(m.position_texture, 0, m.vertex_capacity, GL_RGB, GL_FLOAT,
-                 reinterpret_cast<const uint8_t*>(positions.data()), sizeof(Vec3f));
-}
-
 // A GL buffer mapped for reading for one scope (GLES 3.0 mapping; llvmpipe
 // hands out its storage, so nothing is copied). Bound to GL_COPY_READ_BUFFER,
 // which is no VAO's state.
@@ -883,13 +874,58 @@ static void ensure_edges(Model& m) {
 #endif
 }
 
-static void ensure_index_texture(Model& m) {
-    ensure_position_texture(m);
-    if (m.index_texture) return;
-    auto indices = read_buffer<uint32_t>(GL_ELEMENT_ARRAY_BUFFER, m.ebo, m.index_capacity);
-    m.index_texture = make_data_texture(GL_R32UI, m.index_capacity);
-    texture_rows(m.index_texture, 0, m.index_capacity, GL_RED_INTEGER, GL_UNSIGNED_INT,
-                 reinterpret_cast<const uint8_t*>(indices.data()), 4);
+// The `wireframe` textures, rebuilt (in place) when the mesh changed: per
+// vertex its position as 16-bit codes in the box of the drawn vertices (6
+// bytes), per triangle its three indices, 21 bits each in two words when the
+// model has at most 2^21 vertices (8 bytes) or three words otherwise. Built in
+// pieces from the mapped buffers, so the only scratch is one piece.
+static void ensure_wire_textures(Model& m) {
+    if (!m.wire_stale && m.position_texture && m.index_texture) return;
+    const bool packed = wire_index_packed(m);
+    if (!m.position_texture) m.position_texture = make_data_texture(GL_RGB16UI, m.vertex_capacity);
+    if (!m.index_texture) m.index_texture = make_data_texture(packed ? GL_RG32UI : GL_RGB32UI, m.index_capacity / 3);
+    MappedBuffer<Vec3f> position_map(m.vbo_position, m.vertex_count);
+    MappedBuffer<uint32_t> index_map(m.ebo, m.index_count);
+    const std::span<const Vec3f> positions = position_map.data();
+    const std::span<const uint32_t> indices = index_map.data();
+    if (positions.size() != m.vertex_count || indices.size() != m.index_count) return;  // retried next frame
+    Aabb box;
+    for (const Vec3f& p : positions) box.extend(Vec3(p));
+    m.wire_origin = box.empty() ? Vec3f(0.0f) : Vec3f(box.min);
+    const Vec3f extent = box.empty() ? Vec3f(0.0f) : Vec3f(box.max - box.min);
+    m.wire_scale = extent / 65535.0f;
+    constexpr size_t kPiece = 16 * kTextureWidth;
+    std::vector<uint32_t> piece(kPiece * 3);
+    for (size_t first = 0; first < positions.size(); first += kPiece) {
+        const size_t n = std::min(kPiece, positions.size() - first);
+        auto* codes = reinterpret_cast<uint16_t*>(piece.data());
+        for (size_t i = 0; i < n; ++i)
+            for (int k = 0; k < 3; ++k)
+                codes[i * 3 + static_cast<size_t>(k)] =
+                    extent[k] > 0.0f
+                        ? static_cast<uint16_t>(std::lround(
+                              std::clamp((positions[first + i][k] - m.wire_origin[k]) / extent[k], 0.0f, 1.0f) *
+                              65535.0f))
+                        : uint16_t{0};
+        texture_rows(m.position_texture, first, first + n, GL_RGB_INTEGER, GL_UNSIGNED_SHORT,
+                     reinterpret_cast<const uint8_t*>(codes), 6);
+    }
+    const size_t triangles = indices.size() / 3;
+    for (size_t first = 0; first < triangles; first += kPiece) {
+        const size_t n = std::min(kPiece, triangles - first);
+        for (size_t t = 0; t < n; ++t) {
+            const uint32_t* f = &indices[(first + t) * 3];
+            if (packed) {
+                piece[t * 2] = f[0] | (f[1] << 21);
+                piece[t * 2 + 1] = (f[1] >> 11) | (f[2] << 10);
+            } else {
+                std::copy_n(f, 3, &piece[t * 3]);
+            }
+        }
+        texture_rows(m.index_texture, first, first + n, packed ? GL_RG_INTEGER : GL_RGB_INTEGER, GL_UNSIGNED_INT,
+                     reinterpret_cast<const uint8_t*>(piece.data()), packed ? 8 : 12);
+    }
+    m.wire_stale = false;
 }
 
 void Renderer::render(const Camera& camera, const Lighting& lighting, const FrameOptions& o) {
@@ -998,7 +1034,7 @@ void Renderer::render(const Camera& camera, const Lighting& lighting, const Fram
                 break;
             }
             case Style::Wireframe: {
-                ensure_index_texture(m);
+                ensure_wire_textures(m);
                 Program& p = s.wireframe;
                 glUseProgram(p.id);
                 set_matrices(p, f, m);
@@ -1006,6 +1042,9 @@ void Renderer::render(const Camera& camera, const Lighting& lighting, const Fram
                 glUniform4f(p.loc("u_color"), col.r, col.g, col.b, 1.0f);
                 glUniform1f(p.loc("u_width_px"), o.line_width_px * 0.75f);
                 glUniform1i(p.loc("u_texture_width"), kTextureWidth);
+                glUniform1i(p.loc("u_packed_indices"), wire_index_packed(m) ? 1 : 0);
+                glUniform3fv(p.loc("u_quant_origin"), 1, glm::value_ptr(m.wire_origin));
+                glUniform3fv(p.loc("u_quant_scale"), 1, glm::value_ptr(m.wire_scale));
                 bind_textures(p, "u_positions", m.position_texture, "u_indices", m.index_texture);
                 glBindVertexArray(s.empty_vao);
                 draw_vertex_id_chunks(p, m.index_count);
