@@ -9,6 +9,7 @@
 // a progress bar is drawn when stderr is a terminal.
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cctype>
 #include <chrono>
@@ -134,12 +135,19 @@ Result<std::vector<StructureMesh>> build_in_parallel(const ContourStack& stack, 
             ContourStack part;
             part.units = stack.units;
             part.structures = {stack.structures[i]};
+            // Slices without this structure stay inside its z range: a gap in a
+            // structure closes both sides (as the whole-stack build does) instead
+            // of bridging across it.
             for (const Slice& s : stack.slices) {
                 Slice mine{s.z, {}, s.source_index};
                 for (const Contour& c : s.contours)
                     if (c.structure == stack.structures[i].id) mine.contours.push_back(c);
-                if (!mine.contours.empty()) part.slices.push_back(std::move(mine));
+                part.slices.push_back(std::move(mine));
             }
+            while (!part.slices.empty() && part.slices.back().contours.empty()) part.slices.pop_back();
+            const auto first = std::find_if(part.slices.begin(), part.slices.end(),
+                                            [](const Slice& s) { return !s.contours.empty(); });
+            part.slices.erase(part.slices.begin(), first);
             results[i] = part.slices.empty() ? Result<std::vector<StructureMesh>>(std::vector<StructureMesh>{})
                                              : build_structures(part, quiet, input);
         }

@@ -67,6 +67,38 @@ TEST_F(BuildCli, BuildsClosedMeshesAndPrintsStats) {
     EXPECT_EQ(quiet.output, "");
 }
 
+// Structure "a" is missing from the middle slice (a gap), "b" spans all three:
+// built in parallel, "a" must still be two closed pieces capped at the gap, the
+// same OBJ as the one-thread build.
+TEST_F(BuildCli, ParallelBuildKeepsAGapInAStructure) {
+    const std::string in = write("gap.contours.json", R"({"format": "bodygen.contours", "version": 1,
+      "structures": [{"id": "a", "name": "A", "color": [1, 0, 0]}, {"id": "b", "name": "B", "color": [0, 1, 0]}],
+      "slices": [
+        {"z": 0, "contours": [{"points": [[0,0],[10,0],[10,10],[0,10]], "structure": "a"},
+                              {"points": [[20,0],[30,0],[30,10],[20,10]], "structure": "b"}]},
+        {"z": 2, "contours": [{"points": [[21,0],[31,0],[31,10],[21,10]], "structure": "b"}]},
+        {"z": 4, "contours": [{"points": [[1,1],[9,1],[9,9],[1,9]], "structure": "a"},
+                              {"points": [[20,1],[30,1],[30,9],[20,9]], "structure": "b"}]}]})");
+    const std::string one = (dir / "one.obj").string(), two = (dir / "two.obj").string();
+    ASSERT_EQ(run(bin("bodygen") + " build " + in + " -o " + one + " --quiet --jobs 1").exit_code, 0);
+    RunResult r = run(bin("bodygen") + " build " + in + " -o " + two + " --quiet --jobs 2");
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    auto serial = read_obj(one), parallel = read_obj(two);
+    ASSERT_TRUE(serial.ok() && parallel.ok());
+    ASSERT_EQ(parallel->size(), 2u);
+    ASSERT_EQ(serial->size(), parallel->size());
+    for (size_t i = 0; i < serial->size(); ++i) {
+        const Mesh &s = (*serial)[i], &p = (*parallel)[i];
+        EXPECT_EQ(s.name, p.name);
+        EXPECT_EQ(s.indices.size(), p.indices.size()) << s.name;
+        EXPECT_NEAR(mesh_volume(s.positions, s.indices), mesh_volume(p.positions, p.indices), 1e-9) << s.name;
+        EXPECT_TRUE(analyze_topology(p.positions, p.indices).closed_manifold()) << p.name;
+    }
+    // "a" is two capped pieces (nothing bridges z 0..4), so two components.
+    const Mesh& a = (*parallel)[0].name == "A" ? (*parallel)[0] : (*parallel)[1];
+    EXPECT_EQ(analyze_topology(a.positions, a.indices).components, 2u);
+}
+
 struct BadCase {
     const char* name;
     std::string json;
