@@ -53,7 +53,9 @@ for s in stack["structures"]:
     part = dict(stack, structures=[s])
     part["slices"] = [{"z": sl["z"], "contours": [c for c in sl["contours"] if c["structure"] == s["id"]]}
                       for sl in stack["slices"]]
-    part["slices"] = [sl for sl in part["slices"] if sl["contours"]]
+    # Empty slices inside the region's z range stay: a gap is capped, not bridged.
+    kept = [i for i, sl in enumerate(part["slices"]) if sl["contours"]]
+    part["slices"] = part["slices"][kept[0]:kept[-1] + 1] if kept else []
     json.dump(part, open(os.path.join(out, "regions", s["id"] + ".contours.json"), "w"))
 PY
 ls "$OUT"/regions/*.contours.json | xargs -P "$JOBS" -I{} sh -c \
