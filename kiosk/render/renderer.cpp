@@ -46,10 +46,37 @@ constexpr GLuint kPosition = 0, kNormal = 1, kMorph = 2;
 // Software rasterizers (llvmpipe) bin every triangle of a frame before
 // rasterizing it, about 130 bytes per covered triangle plus 48 per varying, and
 // keep that memory: a million-triangle model held ~75 MiB of bins. Flushing
-// after every kFlushTriangles bounds it to a few scenes of that size (tilers on
-// real GPUs would pay a tile resolve per flush, so only software drivers do it).
+// after every kFlushTriangles, and waiting for the scene before (FlushPacer),
+// bounds it to two scenes of that size (tilers on real GPUs would pay a tile
+// resolve per flush, so only software drivers do it).
 constexpr size_t kFlushTriangles = 32 * 1024;
-bool g_flush_large_draws = false;    // set by init() from GL_RENDERER
+bool g_flush_large_draws = false;  // set by init() from GL_RENDERER
+
+// A flush alone lets the application run ahead of the rasterizer threads, and
+// every queued scene keeps its bins: how many depends on the machine's load.
+// Waiting for the scene before the last one keeps at most two in flight (one
+// binning, one rasterizing), so the working memory no longer depends on timing.
+class FlushPacer {
+public:
+    FlushPacer() = default;
+    FlushPacer(const FlushPacer&) = delete;
+    FlushPacer& operator=(const FlushPacer&) = delete;
+    ~FlushPacer() {
+        if (previous_) glDeleteSync(previous_);
+    }
+    void flush() {
+        GLsync fence = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+        glFlush();
+        if (previous_) {
+            glClientWaitSync(previous_, 0, GL_TIMEOUT_IGNORED);
+            glDeleteSync(previous_);
+        }
+        previous_ = fence;
+    }
+
+private:
+    GLsync previous_ = nullptr;
+};
 constexpr size_t kQuadEdges = 4096;  // edges per draw of the `lines` style (16-bit indices)
 
 struct Program {
@@ -718,12 +745,13 @@ constexpr size_t kVertexIdChunk = 3 * 1024;
 void draw_vertex_id_chunks(Program& p, size_t vertices) {
     const GLint base = p.loc("u_vertex_base");
     size_t since_flush = 0;
+    FlushPacer pacer;
     for (size_t first = 0; first < vertices; first += kVertexIdChunk) {
         glUniform1i(base, static_cast<GLint>(first));
         glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(std::min(kVertexIdChunk, vertices - first)));
         since_flush += kVertexIdChunk / 3;
         if (g_flush_large_draws && since_flush >= kFlushTriangles) {
-            glFlush();  // bounds the software rasterizer's bins (see kFlushTriangles)
+            pacer.flush();  // bounds the software rasterizer's bins (see kFlushTriangles)
             since_flush = 0;
         }
     }
@@ -747,13 +775,14 @@ void draw_edge_quads(Program& p, GLuint quad_vao, size_t edges) {
     glBindVertexArray(quad_vao);
     const GLint base = p.loc("u_vertex_base");
     size_t since_flush = 0;
+    FlushPacer pacer;
     for (size_t first = 0; first < edges; first += kQuadEdges) {
         const size_t n = std::min(kQuadEdges, edges - first);
         glUniform1i(base, static_cast<GLint>(first * 4));
         glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(n * 6), GL_UNSIGNED_SHORT, nullptr);
         since_flush += 2 * n;
         if (g_flush_large_draws && since_flush >= kFlushTriangles) {
-            glFlush();  // bounds the software rasterizer's bins (see kFlushTriangles)
+            pacer.flush();  // bounds the software rasterizer's bins (see kFlushTriangles)
             since_flush = 0;
         }
     }
@@ -766,10 +795,11 @@ void draw_triangles(const Model& m) {
         glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(m.index_count), GL_UNSIGNED_INT, nullptr);
         return;
     }
+    FlushPacer pacer;
     for (size_t first = 0; first < m.index_count; first += chunk) {
         glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(std::min(chunk, m.index_count - first)), GL_UNSIGNED_INT,
                        reinterpret_cast<const void*>(first * sizeof(uint32_t)));
-        glFlush();
+        pacer.flush();
     }
 }
 
