@@ -480,11 +480,12 @@ int run_kiosk(platform::Surface& surface, const scene::Scene& scene, const Kiosk
         }
         app.update(now);
 
-        // Detail still arriving: decoding gets stream_ms_per_frame, or as long as
-        // the previous frame took when that was longer (a slow renderer would
-        // otherwise starve the stream: 8 ms of every 70 on llvmpipe).
+        // Detail still arriving: decoding gets stream_ms_per_frame, or
+        // stream_work_ratio times the previous frame's own work when that is
+        // longer (a slow renderer would otherwise starve the stream: 8 ms of
+        // every 70 on llvmpipe). On a GPU the 8 ms floor governs.
         bool streaming = false;
-        const double stream_ms = std::max(options.stream_ms_per_frame, previous_frame_ms);
+        const double stream_ms = std::max(options.stream_ms_per_frame, options.stream_work_ratio * previous_frame_ms);
         const auto deadline = frame_start + std::chrono::microseconds(static_cast<long>(stream_ms * 1000.0));
         const auto stream_start = std::chrono::steady_clock::now();
         for (size_t i = 0; i < loaded.size(); ++i) {
