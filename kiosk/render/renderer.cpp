@@ -47,9 +47,9 @@ constexpr GLuint kPosition = 0, kNormal = 1, kMorph = 2;
 // rasterizing it, about 130 bytes per covered triangle plus 48 per varying, and
 // keep that memory: a million-triangle model held ~75 MiB of bins. Flushing
 // after every kFlushTriangles, and waiting for the scene before (FlushPacer),
-// bounds it to two scenes of that size (tilers on real GPUs would pay a tile
+// bounds it to two scenes of that size (8K: ~1 MiB of bins each) (tilers on real GPUs would pay a tile
 // resolve per flush, so only software drivers do it).
-constexpr size_t kFlushTriangles = 32 * 1024;
+constexpr size_t kFlushTriangles = 8 * 1024;
 bool g_flush_large_draws = false;  // set by init() from GL_RENDERER
 
 // A flush alone lets the application run ahead of the rasterizer threads, and
