@@ -1,28 +1,17 @@
 // Edge list for feature-edge rendering. Reference: M. McGuire, J. F. Hughes,
 // "Hardware-determined feature edge templates", NPAR 2004.
-// Phases: bucket the face corners by their first vertex (CSR, 4 bytes per
-// corner), then for each half-edge a->b look for its twin b->a among b's
-// outgoing half-edges; emit each pair once (from the side with a < b) and every
-// unpaired half-edge as a boundary. O(corners x valence), no sort. A first walk
-// counts the edges, a second (resumable) one emits them in pieces.
+// Phases, per window of vertices: bucket the half-edges whose smaller endpoint
+// lies in the window by that vertex (CSR, 4 bytes per half-edge), then for each
+// half-edge a->b look for its twin b->a in the same bucket; emit each pair once
+// (from the side with a < b) and every unpaired half-edge as a boundary.
+// O(corners x windows + corners x valence), no sort. A first walk counts the
+// edges, a second (resumable) one emits them in pieces.
 #include "kiosk/render/edge_list.h"
 
 #include <algorithm>
 
 namespace body::render {
 namespace {
-
-// start[v] .. start[v + 1]: the corners of vertex v, ascending (no fill array:
-// counts are summed to bucket ends and the corners placed backwards).
-void bucket_corners(std::span<const uint32_t> indices, uint32_t vertex_count, std::vector<uint32_t>& start,
-                    std::vector<uint32_t>& corner) {
-    start.assign(static_cast<size_t>(vertex_count) + 1, 0);
-    for (uint32_t v : indices) ++start[v];
-    for (size_t i = 1; i < vertex_count; ++i) start[i] += start[i - 1];
-    start[vertex_count] = static_cast<uint32_t>(indices.size());
-    corner.resize(indices.size());
-    for (size_t i = indices.size(); i-- > 0;) corner[--start[indices[i]]] = static_cast<uint32_t>(i);
-}
 
 inline uint32_t next_of(std::span<const uint32_t> idx, uint32_t corner) {
     return idx[corner - corner % 3 + (corner % 3 + 1) % 3];
@@ -36,20 +25,17 @@ bool degenerate(std::span<const uint32_t> idx, uint32_t corner) {
     return idx[f] == idx[f + 1] || idx[f + 1] == idx[f + 2] || idx[f] == idx[f + 2];
 }
 
-// The record of the half-edge at `corner` (from its vertex a), or false when it
-// is degenerate or emitted from its twin's side.
-bool edge_at(std::span<const uint32_t> idx, const std::vector<uint32_t>& start, const std::vector<uint32_t>& corners,
-             uint32_t a, uint32_t corner, EdgeRecord& out) {
-    if (degenerate(idx, corner)) return false;
-    const uint32_t b = next_of(idx, corner);
+// The record of the half-edge at `corner` (a = its vertex) found in the bucket
+// [begin, end) of its smaller endpoint, or false when its twin emits it.
+bool edge_at(std::span<const uint32_t> idx, const uint32_t* begin, const uint32_t* end, uint32_t corner,
+             EdgeRecord& out) {
+    const uint32_t a = idx[corner], b = next_of(idx, corner);
     uint32_t twin_opposite = kNoVertex;
-    for (uint32_t j = start[b]; j < start[b + 1]; ++j) {
-        const uint32_t tc = corners[j];
-        if (!degenerate(idx, tc) && next_of(idx, tc) == a) {
-            twin_opposite = prev_of(idx, tc);
+    for (const uint32_t* j = begin; j != end; ++j)
+        if (idx[*j] == b && next_of(idx, *j) == a) {
+            twin_opposite = prev_of(idx, *j);
             break;
         }
-    }
     if (twin_opposite != kNoVertex && a > b) return false;  // emitted from b's side
     out = {a, b, prev_of(idx, corner), twin_opposite};
     return true;
@@ -57,23 +43,60 @@ bool edge_at(std::span<const uint32_t> idx, const std::vector<uint32_t>& start, 
 
 }  // namespace
 
-EdgeStream::EdgeStream(std::span<const uint32_t> indices) : idx_(indices.first(indices.size() - indices.size() % 3)) {
+void EdgeStream::bucket_window(uint32_t lo) {
+    window_lo_ = lo;
+    window_end_ = static_cast<uint32_t>(std::min<size_t>(size_t{lo} + window_vertices_, vertex_count_));
+    const uint32_t n = window_end_ - lo;
+    start_.assign(static_cast<size_t>(n) + 1, 0);
+    auto key = [&](uint32_t corner) { return std::min(idx_[corner], next_of(idx_, corner)); };
+    for (uint32_t c = 0; c < idx_.size(); ++c) {
+        const uint32_t k = key(c);
+        if (k >= lo && k < window_end_ && !degenerate(idx_, c)) ++start_[k - lo];
+    }
+    for (uint32_t i = 1; i < n; ++i) start_[i] += start_[i - 1];
+    start_[n] = n ? start_[n - 1] : 0;
+    corner_.resize(start_[n]);
+    for (size_t c = idx_.size(); c-- > 0;) {  // backwards: each bucket ascending
+        const uint32_t k = key(static_cast<uint32_t>(c));
+        if (k >= lo && k < window_end_ && !degenerate(idx_, static_cast<uint32_t>(c)))
+            corner_[--start_[k - lo]] = static_cast<uint32_t>(c);
+    }
+}
+
+EdgeStream::EdgeStream(std::span<const uint32_t> indices, size_t scratch_bytes)
+    : idx_(indices.first(indices.size() - indices.size() % 3)) {
     if (idx_.empty()) return;
-    const uint32_t vertex_count = *std::max_element(idx_.begin(), idx_.end()) + 1;
-    bucket_corners(idx_, vertex_count, start_, corner_);
+    vertex_count_ = *std::max_element(idx_.begin(), idx_.end()) + 1;
+    // Half-edges per window ~ corners x window / vertices; at least one vertex a window.
+    const size_t corner_bytes = std::max<size_t>(idx_.size() * 4, 1);
+    const size_t windows = std::max<size_t>(1, (corner_bytes + scratch_bytes - 1) / std::max<size_t>(scratch_bytes, 1));
+    window_vertices_ = static_cast<uint32_t>(std::max<size_t>(1, (vertex_count_ + windows - 1) / windows));
     EdgeRecord e;
-    for (uint32_t a = 0; a < vertex_count; ++a)
-        for (uint32_t i = start_[a]; i < start_[a + 1]; ++i) count_ += edge_at(idx_, start_, corner_, a, corner_[i], e);
+    for (uint32_t lo = 0; lo < vertex_count_; lo = window_end_) {
+        bucket_window(lo);
+        for (uint32_t v = 0; v < window_end_ - lo; ++v)
+            for (uint32_t i = start_[v]; i < start_[v + 1]; ++i)
+                count_ += edge_at(idx_, corner_.data() + start_[v], corner_.data() + start_[v + 1], corner_[i], e);
+    }
+    window_end_ = 0;  // next() buckets the first window again
+    vertex_ = 0;
+    slot_ = 0;
 }
 
 size_t EdgeStream::next(std::span<EdgeRecord> out) {
     size_t n = 0;
-    const auto vertex_count = static_cast<uint32_t>(start_.empty() ? 0 : start_.size() - 1);
-    for (; vertex_ < vertex_count && n < out.size(); ++vertex_) {
-        slot_ = std::max(slot_, start_[vertex_]);
-        for (; slot_ < start_[vertex_ + 1] && n < out.size(); ++slot_)
-            n += edge_at(idx_, start_, corner_, vertex_, corner_[slot_], out[n]);
-        if (slot_ < start_[vertex_ + 1]) break;  // out is full mid-vertex: resume here
+    while (n < out.size() && vertex_ < vertex_count_) {
+        if (vertex_ >= window_end_ || window_end_ == 0) {
+            bucket_window(vertex_);
+            slot_ = 0;
+        }
+        const uint32_t v = vertex_ - window_lo_;
+        slot_ = std::max(slot_, start_[v]);
+        const uint32_t* begin = corner_.data() + start_[v];
+        const uint32_t* end = corner_.data() + start_[v + 1];
+        for (; slot_ < start_[v + 1] && n < out.size(); ++slot_) n += edge_at(idx_, begin, end, corner_[slot_], out[n]);
+        if (slot_ < start_[v + 1]) break;  // out is full mid-vertex: resume here
+        ++vertex_;
     }
     return n;
 }

@@ -29,27 +29,33 @@ struct GpuEdge {
 };
 
 // `indices`: triangles (three per face); degenerate faces are skipped.
-// Deterministic order (by first vertex, then corner) so frames are stable.
+// Deterministic order (by the edge's smaller vertex, then corner) so frames
+// are stable.
 std::vector<EdgeRecord> build_edge_list(std::span<const uint32_t> indices);
 
 // The same records streamed in pieces, for callers that convert and upload
 // them without holding the whole list (a million-triangle mesh has 27 MiB of
-// records). Scratch: 4 bytes per corner and per vertex, held until destroyed.
-// `indices` must outlive the stream.
+// records). The half-edges are bucketed by their smaller vertex one window of
+// vertices at a time, so the scratch stays near `scratch_bytes` (plus 4 bytes
+// per vertex of a window) whatever the mesh size. `indices` must outlive the
+// stream. Records come in the order of build_edge_list.
 //   EdgeStream s(indices);  s.count();  while (size_t n = s.next(chunk)) use(chunk.first(n));
 class EdgeStream {
 public:
-    explicit EdgeStream(std::span<const uint32_t> indices);
+    explicit EdgeStream(std::span<const uint32_t> indices, size_t scratch_bytes = size_t{2} << 20);
     size_t count() const { return count_; }  // edges in all
     // Writes the next up to out.size() records; 0 at the end.
     size_t next(std::span<EdgeRecord> out);
 
 private:
+    void bucket_window(uint32_t lo);  // fills start_/corner_ for the vertices [lo, window_end_)
     std::span<const uint32_t> idx_;
-    std::vector<uint32_t> start_;   // per vertex + 1: first slot of its corners in corner_
-    std::vector<uint32_t> corner_;  // corner ids (3 * face + k) grouped by their vertex
+    uint32_t vertex_count_ = 0, window_vertices_ = 0;
+    std::vector<uint32_t> start_;   // per window vertex + 1: first slot of its half-edges in corner_
+    std::vector<uint32_t> corner_;  // corner ids (3 * face + k) of the window's half-edges by smaller vertex
     size_t count_ = 0;
-    uint32_t vertex_ = 0, slot_ = 0;  // where next() resumes
+    uint32_t window_lo_ = 0, window_end_ = 0;  // the bucketed window
+    uint32_t vertex_ = 0, slot_ = 0;           // where next() resumes
 };
 
 }  // namespace body::render

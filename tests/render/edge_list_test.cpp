@@ -41,7 +41,8 @@ TEST(EdgeList, SkipsDegenerateFacesAndEmptyInput) {
 }
 
 // The streamed walk hands out the same records in the same order whatever the
-// piece size, including pieces that end in the middle of a vertex's corners.
+// piece size (including pieces that end in the middle of a vertex's corners)
+// and however many vertex windows its scratch budget splits the walk into.
 TEST(EdgeList, StreamInPiecesMatchesTheWholeList) {
     // A 6x5 grid of quads, two triangles each, with one degenerate face.
     std::vector<uint32_t> idx;
@@ -54,17 +55,18 @@ TEST(EdgeList, StreamInPiecesMatchesTheWholeList) {
     idx.insert(idx.end(), {3, 3, 4});
     const auto whole = build_edge_list(idx);
     ASSERT_EQ(whole.size(), 6u * 6 + 5u * 7 + 30u);  // horizontal + vertical + diagonal edges
-    for (size_t piece : {1u, 2u, 3u, 7u, 64u, 1000u}) {
-        EdgeStream stream(idx);
-        EXPECT_EQ(stream.count(), whole.size());
-        std::vector<EdgeRecord> out, chunk(piece);
-        while (size_t n = stream.next(chunk)) out.insert(out.end(), chunk.begin(), chunk.begin() + n);
-        ASSERT_EQ(out.size(), whole.size()) << "piece " << piece;
-        for (size_t i = 0; i < out.size(); ++i) {
-            EXPECT_EQ(out[i].v0, whole[i].v0);
-            EXPECT_EQ(out[i].v1, whole[i].v1);
-            EXPECT_EQ(out[i].a, whole[i].a);
-            EXPECT_EQ(out[i].b, whole[i].b);
+    for (size_t piece : {1u, 2u, 3u, 7u, 64u, 1000u})
+        for (size_t scratch : {size_t{4}, size_t{60}, size_t{2} << 20}) {  // one vertex a window .. one window
+            EdgeStream stream(idx, scratch);
+            EXPECT_EQ(stream.count(), whole.size());
+            std::vector<EdgeRecord> out, chunk(piece);
+            while (size_t n = stream.next(chunk)) out.insert(out.end(), chunk.begin(), chunk.begin() + n);
+            ASSERT_EQ(out.size(), whole.size()) << "piece " << piece << ", scratch " << scratch;
+            for (size_t i = 0; i < out.size(); ++i) {
+                EXPECT_EQ(out[i].v0, whole[i].v0);
+                EXPECT_EQ(out[i].v1, whole[i].v1);
+                EXPECT_EQ(out[i].a, whole[i].a);
+                EXPECT_EQ(out[i].b, whole[i].b);
+            }
         }
-    }
 }
