@@ -179,20 +179,28 @@ void set_bounds(Model& m, std::span<const Vec3f> positions) {
     m.box_max = Vec3f(box.max);
 }
 
+// A shader's or program's info log on one line; the object is deleted.
+std::string take_info_log(GLuint id, bool program) {
+    char log[2048] = {};
+    if (program) {
+        glGetProgramInfoLog(id, sizeof(log), nullptr, log);
+        glDeleteProgram(id);
+    } else {
+        glGetShaderInfoLog(id, sizeof(log), nullptr, log);
+        glDeleteShader(id);
+    }
+    std::string one_line(log);
+    std::replace(one_line.begin(), one_line.end(), '\n', ' ');
+    return one_line;
+}
+
 Result<GLuint> compile(GLenum type, const char* src, const std::string& label) {
     GLuint s = glCreateShader(type);
     glShaderSource(s, 1, &src, nullptr);
     glCompileShader(s);
     GLint ok = 0;
     glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-        char log[2048] = {};
-        glGetShaderInfoLog(s, sizeof(log), nullptr, log);
-        glDeleteShader(s);
-        std::string one_line(log);
-        std::replace(one_line.begin(), one_line.end(), '\n', ' ');
-        return runtime_error("shader " + label + ": compile failed: " + one_line);
-    }
+    if (!ok) return runtime_error("shader " + label + ": compile failed: " + take_info_log(s, false));
     return s;
 }
 
@@ -264,14 +272,7 @@ Result<unsigned> link_program(const char* vertex_source, const char* fragment_so
     glDeleteShader(fs.value());
     GLint ok = 0;
     glGetProgramiv(id, GL_LINK_STATUS, &ok);
-    if (!ok) {
-        char log[2048] = {};
-        glGetProgramInfoLog(id, sizeof(log), nullptr, log);
-        glDeleteProgram(id);
-        std::string one_line(log);
-        std::replace(one_line.begin(), one_line.end(), '\n', ' ');
-        return runtime_error("program " + name + ": link failed: " + one_line);
-    }
+    if (!ok) return runtime_error("program " + name + ": link failed: " + take_info_log(id, true));
     return id;
 }
 
