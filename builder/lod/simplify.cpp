@@ -178,6 +178,8 @@ struct State {
     std::vector<Quadric> q, e;  // ordering quadric, error quadric
     VertexHeap heap;
     std::vector<uint32_t> best_target;  // per vertex: the target of its heap key
+    std::vector<Vec3> best_pos;         // ... where that collapse puts the merged vertex
+    std::vector<uint8_t> best_valid;    // best_pos is the placement for exactly the heap key
     std::vector<Collapse> collapses;
     std::vector<uint32_t> patch_faces;
     size_t live_faces = 0;
@@ -326,8 +328,10 @@ void ring_of(State& s, uint32_t v, std::vector<uint32_t>& ring) {
 // ordering cost there.
 Vec3 placement(const State& s, uint32_t from, uint32_t to, double& cost) {
     const Vec3& pv = s.pos[to];
-    cost = std::max(s.q[from].eval(pv) + s.q[to].eval(pv), 0.0);
-    if (!s.optimal || s.boundary[from] || s.boundary[to] || s.locked[to]) return pv;
+    if (!s.optimal || s.boundary[from] || s.boundary[to] || s.locked[to]) {
+        cost = std::max(s.q[from].eval(pv) + s.q[to].eval(pv), 0.0);
+        return pv;
+    }
     Quadric sum = s.q[from];
     sum.add(s.q[to]);
     const Vec3& pu = s.pos[from];
@@ -341,6 +345,8 @@ Vec3 placement(const State& s, uint32_t from, uint32_t to, double& cost) {
             return p;
         }
     }
+    // The fallback: the half-edge cost (evaluated only here, where it is needed).
+    cost = std::max(s.q[from].eval(pv) + s.q[to].eval(pv), 0.0);
     Vec3 best = pv;
     for (const Vec3& c : {pu, mid}) {
         const double k = std::max(sum.eval(c), 0.0);
@@ -365,6 +371,7 @@ void update_vertex(State& s, uint32_t u) {
     // broken by vertex number does not depend on the walk order.
     double best = std::numeric_limits<double>::infinity();
     uint32_t target = kNone;
+    Vec3 best_p{0.0};
     uint32_t* link = &s.head[u];
     while (*link != kNone) {
         const uint32_t c = *link;
@@ -379,12 +386,15 @@ void update_vertex(State& s, uint32_t u) {
         for (uint32_t step = 1; step <= (s.boundary[u] ? 2u : 1u); ++step) {
             const uint32_t x = s.idx[f + (at + step) % 3];
             if (x == u) continue;
-            const double cost = collapse_cost(s, u, x);
-            if (cost < best || (cost == best && x < target)) best = cost, target = x;
+            double cost = 0.0;
+            const Vec3 p = placement(s, u, x, cost);
+            if (cost < best || (cost == best && x < target)) best = cost, target = x, best_p = p;
         }
         link = &s.next[c];
     }
     s.best_target[u] = target;
+    s.best_pos[u] = best_p;
+    s.best_valid[u] = 1;
     if (target == kNone)
         s.heap.erase(u);
     else
@@ -399,9 +409,12 @@ void update_neighbour(State& s, uint32_t x, uint32_t u, uint32_t v) {
         return;
     }
     if (!s.alive[x] || s.locked[x]) return;
-    const double c = collapse_cost(s, x, v);
+    double c = 0.0;
+    const Vec3 p = placement(s, x, v, c);
     if (c < s.heap.key(x) || (c == s.heap.key(x) && v < s.best_target[x])) {
         s.best_target[x] = v;
+        s.best_pos[x] = p;
+        s.best_valid[x] = 1;
         s.heap.set(x, c);
     }
 }
@@ -492,8 +505,18 @@ bool geometry_allowed(State& s, uint32_t u, uint32_t v, const Vec3& target, cons
         fan.insert(fan.end(), s.cv.begin(), s.cv.end());
     }
     auto removed = [&](uint32_t f) { return f == shared[0] || (shared_count == 2 && f == shared[1]); };
-    for (uint32_t c : fan) {
-        const uint32_t f = c / 3;
+    // Unit normals before/after, kept for the fold guard below (as face_normal computes them).
+    auto& fan_old = s.fan_old;
+    auto& fan_new = s.fan_new;
+    fan_old.resize(fan.size());
+    fan_new.resize(fan.size());
+    auto unit = [](const Vec3& n) {
+        const double l = glm::length(n);
+        return l > 0.0 ? n / l : Vec3(0.0);
+    };
+    for (size_t i = 0; i < fan.size(); ++i) {
+        const uint32_t f = fan[i] / 3;
+        fan_old[i] = fan_new[i] = Vec3(0.0);
         if (removed(f)) continue;
         const uint32_t* t = &s.idx[f * 3];
         Vec3 p[3], r[3];
@@ -508,19 +531,12 @@ bool geometry_allowed(State& s, uint32_t u, uint32_t v, const Vec3& target, cons
         const double l2 = std::max({glm::dot(r[1] - r[0], r[1] - r[0]), glm::dot(r[2] - r[1], r[2] - r[1]),
                                     glm::dot(r[0] - r[2], r[0] - r[2])});
         if (glm::dot(n1, n1) <= 1e-12 * l2 * l2) return false;
+        fan_old[i] = unit(n0);
+        fan_new[i] = unit(n1);
     }
     // Fold guard: a moved face must not end up (nearly) back to back with a
     // neighbour unless it already was. Neighbours across the fan edges are other
     // faces of the fan; across the edge opposite the moving vertex, one lookup.
-    auto& fan_old = s.fan_old;
-    auto& fan_new = s.fan_new;
-    fan_old.clear();
-    fan_new.clear();
-    for (uint32_t c : fan) {
-        const uint32_t f = c / 3;
-        fan_old.push_back(removed(f) ? Vec3(0.0) : face_normal(s, f, kNone, kNone, target));
-        fan_new.push_back(removed(f) ? Vec3(0.0) : face_normal(s, f, u, v, target));
-    }
     for (size_t i = 0; i < fan.size(); ++i) {
         const uint32_t f = fan[i] / 3, k = fan[i] % 3;
         if (fan_new[i] == Vec3(0.0)) continue;
@@ -604,6 +620,8 @@ void collapse_loop(State& s, size_t target_faces) {
     for (int pass = 0; pass < 16 && s.live_faces > target_faces; ++pass) {
         s.heap.reset(n);
         s.best_target.assign(n, kNone);
+        s.best_pos.assign(n, Vec3(0.0));
+        s.best_valid.assign(n, 0);
         for (uint32_t v = 0; v < n; ++v) update_vertex(s, v);
         size_t done = 0;
         while (!s.heap.empty() && s.live_faces > target_faces) {
@@ -611,8 +629,10 @@ void collapse_loop(State& s, size_t target_faces) {
             const double limit = s.heap.second_key();
             // Fast path: the keyed collapse is usually the cheapest and legal.
             if (const uint32_t v = s.best_target[u]; v != kNone) {
-                double cost = 0.0;
-                const Vec3 target = placement(s, u, v, cost);
+                // The key and position are current unless the key was set from a
+                // re-ranked option below (best_valid cleared): recompute then.
+                double cost = s.heap.key(u);
+                const Vec3 target = s.best_valid[u] ? s.best_pos[u] : placement(s, u, v, cost);
                 uint32_t shared[2], shared_count = 0;
                 if (cost == s.heap.key(u) && topology_allowed(s, u, v, shared, shared_count) &&
                     geometry_allowed(s, u, v, target, shared, shared_count)) {
@@ -630,6 +650,7 @@ void collapse_loop(State& s, size_t target_faces) {
                 const auto [cost, v, half_edge] = options[i];
                 if (cost > limit) {
                     s.best_target[u] = v;
+                    s.best_valid[u] = 0;
                     s.heap.set(u, cost);  // cheaper work elsewhere first
                     handled = true;
                     break;
