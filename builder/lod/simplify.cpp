@@ -180,6 +180,19 @@ struct State {
     std::vector<uint32_t> best_target;  // per vertex: the target of its heap key
     std::vector<Vec3> best_pos;         // ... where that collapse puts the merged vertex
     std::vector<uint8_t> best_valid;    // best_pos is the placement for exactly the heap key
+    // The optimum of an edge is the same in both directions (Q_u + Q_v, the midpoint and
+    // the edge length are symmetric in IEEE arithmetic): after u -> v, the placements
+    // v -> x computed for v's key are reused for x -> v by v's neighbours.
+    uint32_t sym_v = kNone, sym_epoch = 0;
+    std::vector<uint32_t> sym_stamp;
+    // Per corner c: the cost of idx[c] -> the next vertex of its face, computed at
+    // collapse number corner_time[c] (0: never); valid while both ends' last_changed
+    // (the collapse that last moved them or grew their quadric) is not later.
+    std::vector<double> corner_cost;
+    std::vector<uint32_t> corner_time, last_changed;
+    uint32_t now = 1;
+    std::vector<double> sym_cost;
+    std::vector<Vec3> sym_pos;
     std::vector<Collapse> collapses;
     std::vector<uint32_t> patch_faces;
     size_t live_faces = 0;
@@ -326,7 +339,7 @@ void ring_of(State& s, uint32_t v, std::vector<uint32_t>& ring) {
 
 // Where the collapse from -> to puts the merged vertex (see simplify.h), and its
 // ordering cost there.
-Vec3 placement(const State& s, uint32_t from, uint32_t to, double& cost) {
+Vec3 placement(const State& s, uint32_t from, uint32_t to, double& cost, bool* optimum = nullptr) {
     const Vec3& pv = s.pos[to];
     if (!s.optimal || s.boundary[from] || s.boundary[to] || s.locked[to]) {
         cost = std::max(s.q[from].eval(pv) + s.q[to].eval(pv), 0.0);
@@ -342,6 +355,7 @@ Vec3 placement(const State& s, uint32_t from, uint32_t to, double& cost) {
         const Vec3 d = p - mid, e = pv - pu;
         if (glm::dot(d, d) <= glm::dot(e, e)) {  // within an edge length of the midpoint
             cost = std::max(sum.eval(p), 0.0);
+            if (optimum) *optimum = true;
             return p;
         }
     }
@@ -353,6 +367,22 @@ Vec3 placement(const State& s, uint32_t from, uint32_t to, double& cost) {
         if (k < cost) cost = k, best = c;
     }
     return best;
+}
+
+// placement(), reusing (and, for the vertex just merged, recording) symmetric optima.
+Vec3 placement_cached(State& s, uint32_t from, uint32_t to, double& cost) {
+    if (to == s.sym_v && s.sym_stamp[from] == s.sym_epoch) {
+        cost = s.sym_cost[from];
+        return s.sym_pos[from];
+    }
+    bool optimum = false;
+    const Vec3 p = placement(s, from, to, cost, &optimum);
+    if (from == s.sym_v && optimum) {
+        s.sym_stamp[to] = s.sym_epoch;
+        s.sym_cost[to] = cost;
+        s.sym_pos[to] = p;
+    }
+    return p;
 }
 
 double collapse_cost(const State& s, uint32_t from, uint32_t to) {
@@ -372,6 +402,11 @@ void update_vertex(State& s, uint32_t u) {
     double best = std::numeric_limits<double>::infinity();
     uint32_t target = kNone;
     Vec3 best_p{0.0};
+    bool best_cached = false;
+    // Interior fans: the cost of u -> (the vertex after u in face of corner c) is kept
+    // per corner and reused while neither end has changed since (placement is a pure
+    // function of both ends' positions and quadrics).
+    const bool cache = !s.boundary[u];
     uint32_t* link = &s.head[u];
     while (*link != kNone) {
         const uint32_t c = *link;
@@ -387,10 +422,22 @@ void update_vertex(State& s, uint32_t u) {
             const uint32_t x = s.idx[f + (at + step) % 3];
             if (x == u) continue;
             double cost = 0.0;
-            const Vec3 p = placement(s, u, x, cost);
-            if (cost < best || (cost == best && x < target)) best = cost, target = x, best_p = p;
+            Vec3 p{0.0};
+            const uint32_t t = s.corner_time[c];
+            const bool cached = cache && t != 0 && t >= s.last_changed[u] && t >= s.last_changed[x];
+            if (cached) {
+                cost = s.corner_cost[c];
+            } else {
+                p = placement_cached(s, u, x, cost);
+                if (cache) s.corner_cost[c] = cost, s.corner_time[c] = s.now;
+            }
+            if (cost < best || (cost == best && x < target)) best = cost, target = x, best_p = p, best_cached = cached;
         }
         link = &s.next[c];
+    }
+    if (best_cached) {
+        double unused = 0.0;
+        best_p = placement_cached(s, u, target, unused);
     }
     s.best_target[u] = target;
     s.best_pos[u] = best_p;
@@ -410,7 +457,7 @@ void update_neighbour(State& s, uint32_t x, uint32_t u, uint32_t v) {
     }
     if (!s.alive[x] || s.locked[x]) return;
     double c = 0.0;
-    const Vec3 p = placement(s, x, v, c);
+    const Vec3 p = placement_cached(s, x, v, c);
     if (c < s.heap.key(x) || (c == s.heap.key(x) && v < s.best_target[x])) {
         s.best_target[x] = v;
         s.best_pos[x] = p;
@@ -572,6 +619,8 @@ void apply_collapse(State& s, uint32_t u, uint32_t v, const Vec3& target, const 
     rec.to_before = s.pos[v];
     rec.to_after = target;
     s.pos[v] = target;
+    ++s.now;
+    s.last_changed[v] = s.now;
     s.running_error = std::max(s.running_error, err);
     rec.error = s.running_error;
     for (uint32_t i = 0; i < shared_count; ++i) {
@@ -605,8 +654,11 @@ void apply_collapse(State& s, uint32_t u, uint32_t v, const Vec3& target, const 
     // The costs of collapses from v and from its neighbours (towards v) changed.
     s.heap.erase(u);
     ring_of(s, v, s.touched);
+    s.sym_v = v;
+    ++s.sym_epoch;
     update_vertex(s, v);
     for (uint32_t x : s.touched) update_neighbour(s, x, u, v);
+    s.sym_v = kNone;
 }
 
 // Greedy: take the vertex with the cheapest outgoing collapse; try its collapses in
@@ -622,6 +674,11 @@ void collapse_loop(State& s, size_t target_faces) {
         s.best_target.assign(n, kNone);
         s.best_pos.assign(n, Vec3(0.0));
         s.best_valid.assign(n, 0);
+        s.sym_stamp.assign(n, 0);
+        s.sym_cost.assign(n, 0.0);
+        s.sym_pos.assign(n, Vec3(0.0));
+        s.sym_epoch = 0;
+        s.sym_v = kNone;
         for (uint32_t v = 0; v < n; ++v) update_vertex(s, v);
         size_t done = 0;
         while (!s.heap.empty() && s.live_faces > target_faces) {
@@ -760,6 +817,9 @@ Result<ProgressiveBuild> build_progressive_mesh(const Mesh& mesh, const LodOptio
     build_adjacency(s);
     init_quadrics(s, options.boundary_weight);
     s.optimal = options.optimal_placement;
+    s.corner_cost.assign(s.idx.size(), 0.0);
+    s.corner_time.assign(s.idx.size(), 0);
+    s.last_changed.assign(s.pos.size(), 0);
     const Aabb box = mesh_bounds(s.pos);
     s.box_min = box.min;
     s.box_max = box.max;
