@@ -594,13 +594,14 @@ bool geometry_allowed(State& s, uint32_t u, uint32_t v, const Vec3& target, cons
             const double after = glm::dot(fan_new[i], ng), before = glm::dot(fan_old[i], ng);
             if (after < kFoldCos && after < before) return false;
         }
+        // Nearly every pair is far from folded: test the angle first, adjacency after
+        // (a removed face's zero normal never passes the angle test).
         for (size_t j = i + 1; j < fan.size(); ++j) {
-            if (fan_new[j] == Vec3(0.0)) continue;
-            const uint32_t g2 = fan[j] / 3;
-            const uint32_t* t = &s.idx[g2 * 3];
+            const double after = glm::dot(fan_new[i], fan_new[j]);
+            if (!(after < kFoldCos)) continue;
+            const uint32_t* t = &s.idx[fan[j] / 3 * 3];
             if (t[0] != x && t[1] != x && t[2] != x && t[0] != y && t[1] != y && t[2] != y) continue;
-            const double after = glm::dot(fan_new[i], fan_new[j]), before = glm::dot(fan_old[i], fan_old[j]);
-            if (after < kFoldCos && after < before) return false;
+            if (after < glm::dot(fan_old[i], fan_old[j])) return false;
         }
     }
     return true;
