@@ -32,6 +32,19 @@ struct Shape {
 };
 
 // Builds the shape and checks topology and volume.
+// The label volume written as a NIfTI file, read back as a contour stack and
+// built with the default options.
+template <typename T>
+Result<std::vector<StructureMesh>> build_label_volume(const std::string& name, const test::VolumeSpec& spec,
+                                                      const std::vector<T>& data, int datatype) {
+    const std::string path = test::temp_path(name + ".nii.gz");
+    test::write_nifti(path, spec, data, datatype);
+    auto stack = load_any_contour_source(path, {});
+    std::filesystem::remove(path);
+    if (!stack) return stack.error();
+    return build_structures(*stack, {}, path);
+}
+
 void build_and_compare(const Shape& shape, size_t expected_components, long expected_genus, bool plain_too) {
     test::VolumeSpec spec;
     spec.nx = spec.ny = spec.nz = shape.n;
@@ -58,11 +71,7 @@ void build_and_compare(const Shape& shape, size_t expected_components, long expe
     ASSERT_GE(per_slice.size(), 2u);
     const double convention_voxels =
         static_cast<double>(voxels) - 0.5 * static_cast<double>(per_slice.front() + per_slice.back());
-    const std::string path = test::temp_path(std::string(shape.name) + ".nii.gz");
-    test::write_nifti(path, spec, data, DT_INT16);
-    auto stack = load_any_contour_source(path, {});
-    ASSERT_TRUE(stack.ok()) << stack.error().message;
-    auto built = build_structures(*stack, {}, path);
+    auto built = build_label_volume(shape.name, spec, data, DT_INT16);
     ASSERT_TRUE(built.ok()) << built.error().message;
     ASSERT_EQ(built->size(), 1u);
     const StructureMesh& m = built->front();
@@ -77,7 +86,6 @@ void build_and_compare(const Shape& shape, size_t expected_components, long expe
         const double voxel_volume = static_cast<double>(voxels) * voxel;
         EXPECT_NEAR(m.volume, voxel_volume, 0.02 * voxel_volume) << shape.name << ": mesh " << m.volume << " mm^3";
     }
-    std::filesystem::remove(path);
 }
 
 TEST(ImportBuild, SphereVolumeMatchesItsVoxels) {
@@ -144,11 +152,7 @@ TEST(ImportBuild, SpeckleOverTinyRegionsBuildsClosed) {
         for (int x : {4, 6}) set(x, y, 6);
     set(5, 5, 7);
     set(4, 5, 8), set(6, 5, 8);
-    const std::string path = test::temp_path("speckle.nii.gz");
-    test::write_nifti(path, spec, data, DT_UINT8);
-    auto stack = load_any_contour_source(path, {});
-    ASSERT_TRUE(stack.ok()) << stack.error().message;
-    auto built = build_structures(*stack, {}, path);
+    auto built = build_label_volume("speckle", spec, data, DT_UINT8);
     ASSERT_TRUE(built.ok()) << built.error().message;
     ASSERT_EQ(built->size(), 1u);
     const StructureMesh& m = built->front();
@@ -158,7 +162,6 @@ TEST(ImportBuild, SpeckleOverTinyRegionsBuildsClosed) {
                                      << " non-manifold vertices, " << t.degenerate_triangles << " degenerate triangles";
     EXPECT_GT(m.volume, 0.0);
     EXPECT_LT(m.volume, 52.0);  // 50 voxels of 1 mm^3
-    std::filesystem::remove(path);
 }
 
 }  // namespace

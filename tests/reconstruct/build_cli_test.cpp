@@ -1,6 +1,6 @@
-// `bodygen build` end to end: a good stack gives a closed OBJ and stats; each
-// bad-input case exits 2 with one line naming file, place and reason, and
-// leaves no output file behind.
+// `bodygen build` end to end: a good stack gives a closed OBJ and stats, the
+// parallel build equals the serial one, bad options exit 2. Bad contour files:
+// tests/contours/contour_cli_test.cpp.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -99,36 +99,8 @@ TEST_F(BuildCli, ParallelBuildKeepsAGapInAStructure) {
     EXPECT_EQ(analyze_topology(a.positions, a.indices).components, 2u);
 }
 
-struct BadCase {
-    const char* name;
-    std::string json;
-    const char* expected;  // after "<file>: "
-};
-
-TEST_F(BuildCli, BadInputExitsTwoNamesThePlaceAndWritesNothing) {
-    const BadCase cases[] = {
-        {"few_points", stack_with(R"({"points": [[0,0],[1,1],[0,0]]})"),
-         "slice 1 contour 0: fewer than 3 distinct points"},
-        {"zero_area", stack_with(R"({"points": [[0,0],[1,1],[2,2],[3,3]]})"), "slice 1 contour 0: zero area"},
-        {"self_intersecting", stack_with(R"({"points": [[0,0],[4,4],[4,0],[0,4]]})"),
-         "slice 1 contour 0: self-intersects at (2, 2)"},
-        {"crossing", stack_with(R"({"points": [[0,0],[4,0],[4,4],[0,4]]}, {"points": [[2,1],[6,1],[6,3],[2,3]]})"),
-         "slice 1 contour 0: crosses slice 1 contour 1 at (4, "},
-        {"bad_json", "{\"format\": \"bodygen.contours\", \"version\": 1, \"slices\": [", "byte "},
-    };
-    for (const BadCase& c : cases) {
-        SCOPED_TRACE(c.name);
-        const std::string in = write(std::string(c.name) + ".contours.json", c.json);
-        const std::string out = (dir / (std::string(c.name) + ".obj")).string();
-        RunResult r = run(bin("bodygen") + " build " + in + " -o " + out);
-        EXPECT_EQ(r.exit_code, 2) << r.output;
-        EXPECT_NE(r.output.find("bodygen: " + in + ": " + c.expected), std::string::npos) << r.output;
-        EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
-        EXPECT_FALSE(fs::exists(out));
-        for (const auto& entry : fs::directory_iterator(dir))
-            EXPECT_EQ(entry.path().string().find(".obj"), std::string::npos) << entry.path();
-    }
-}
+// Every bad contour file (exit 2, one line naming the place, nothing written) is
+// covered through `bodygen build` in tests/contours/contour_cli_test.cpp.
 
 TEST_F(BuildCli, BadOptionsExitTwo) {
     const std::string in = write("ok.contours.json", stack_with(R"({"points": [[0,0],[10,0],[10,10],[0,10]]})"));
