@@ -4,7 +4,6 @@
 // consecutive points are the exception: removed with a warning, and the build
 // goes on.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -12,6 +11,7 @@
 #include <string>
 
 #include "tests/cli/cli_test.h"
+#include "tests/common/test_dir.h"
 
 namespace body::test {
 namespace {
@@ -21,13 +21,7 @@ namespace fs = std::filesystem;
 class ContourCli : public ::testing::Test {
 protected:
     fs::path dir;
-    void SetUp() override {
-        dir = fs::temp_directory_path() /
-              ("bodygen_contour_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) +
-               "_" + std::to_string(::getpid()));
-        fs::remove_all(dir);
-        fs::create_directories(dir);
-    }
+    void SetUp() override { dir = fresh_test_dir("bodygen_contour_cli"); }
     void TearDown() override { fs::remove_all(dir); }
     std::string write(const std::string& name, const std::string& text) {
         const fs::path p = dir / name;

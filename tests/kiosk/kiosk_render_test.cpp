@@ -2,7 +2,6 @@
 // card, a tap on empty space hides it, and a model that fails to load is skipped
 // while the others still show.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
@@ -10,6 +9,7 @@
 
 #include "../cli/cli_test.h"
 #include "kiosk/render/image.h"
+#include "tests/common/test_dir.h"
 
 namespace body {
 namespace {
@@ -39,9 +39,7 @@ void write_sphere(const fs::path& path, float cx, float r) {
 class KioskReplay : public ::testing::Test {
 protected:
     void SetUp() override {
-        dir_ = fs::temp_directory_path() / ("body_kiosk_replay_" + std::to_string(::getpid()) + "_" +
-                                            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::create_directories(dir_);
+        dir_ = test::fresh_test_dir("body_kiosk_replay");
         write_sphere(dir_ / "a.obj", -1.5f, 0.8f);
         write_sphere(dir_ / "b.obj", 1.5f, 0.8f);
         std::ofstream(dir_ / "broken.bpm", std::ios::binary) << std::string("BPM\0xx", 6);

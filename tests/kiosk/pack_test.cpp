@@ -7,7 +7,7 @@
 
 #include "../cli/cli_test.h"
 #include "shared/scene/scene.h"
-#include "test_dir.h"
+#include "tests/common/test_dir.h"
 
 namespace body {
 namespace {

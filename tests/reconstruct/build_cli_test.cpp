@@ -8,6 +8,7 @@
 
 #include "shared/obj_io.h"
 #include "tests/cli/cli_test.h"
+#include "tests/common/test_dir.h"
 
 namespace body::test {
 namespace {
@@ -17,13 +18,7 @@ namespace fs = std::filesystem;
 class BuildCli : public ::testing::Test {
 protected:
     fs::path dir;
-    void SetUp() override {
-        dir = fs::temp_directory_path() /
-              ("bodygen_build_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" +
-               std::to_string(::getpid()));
-        fs::remove_all(dir);
-        fs::create_directories(dir);
-    }
+    void SetUp() override { dir = fresh_test_dir("bodygen_build"); }
     void TearDown() override { fs::remove_all(dir); }
     std::string write(const std::string& name, const std::string& text) {
         const fs::path p = dir / name;

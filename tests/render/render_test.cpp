@@ -34,6 +34,26 @@ std::filesystem::path temp_dir() {
 #define REQUIRE_GL(fixture) \
     if (!(fixture).ok()) GTEST_SKIP() << "no headless EGL/GLES 3 (Mesa libegl1/libgl1-mesa-dri): " << (fixture).why()
 
+int run(const std::string& cmd) {
+    int rc = std::system(cmd.c_str());
+    return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
+}
+
+// `bodygen lod` on the glmark2 bunny into temp_dir()/file. `skip` names a missing
+// prerequisite; `path` is empty when bodygen failed.
+struct BunnyBpm {
+    std::string path, skip;
+};
+BunnyBpm make_bunny_bpm(const std::string& file) {
+    const std::string bodygen = std::string(BODY_BINARY_DIR) + "/bin/bodygen";
+    const std::string bunny = "/usr/share/glmark2/models/bunny.obj";
+    if (!std::filesystem::exists(bodygen)) return {"", "bodygen not built"};
+    if (!std::filesystem::exists(bunny)) return {"", "bunny.obj missing (Debian glmark2-data)"};
+    const std::string bpm = (temp_dir() / file).string();
+    if (run(bodygen + " lod " + bunny + " -o " + bpm + " >/dev/null") != 0) return {};
+    return {bpm, ""};
+}
+
 // Sphere on the left, a turned cube on the right, in one style.
 std::vector<ModelId> two_shapes(Renderer& r, Style style) {
     static const test::GenMesh sphere = test::icosphere(3);
@@ -381,10 +401,6 @@ std::string shapes_obj() {
     return path;
 }
 
-int run(const std::string& cmd) {
-    int rc = std::system(cmd.c_str());
-    return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
-}
 }  // namespace
 
 TEST(RenderCli, BadModelRendersNothingAndLogsOneLine) {
@@ -479,12 +495,10 @@ TEST(RenderLod, PrefixOnlyAddLeavesCapacityForLaterUpdates) {
 }
 
 TEST(RenderLod, ProgressiveMeshPatchesMatchFreshUploads) {
-    const std::string bodygen = std::string(BODY_BINARY_DIR) + "/bin/bodygen";
-    const std::string bunny = "/usr/share/glmark2/models/bunny.obj";
-    if (!std::filesystem::exists(bodygen)) GTEST_SKIP() << "bodygen not built";
-    if (!std::filesystem::exists(bunny)) GTEST_SKIP() << "bunny.obj missing (Debian glmark2-data)";
-    const std::string bpm = (temp_dir() / "bunny.bpm").string();
-    ASSERT_EQ(run(bodygen + " lod " + bunny + " -o " + bpm + " >/dev/null"), 0);
+    const BunnyBpm made = make_bunny_bpm("bunny.bpm");
+    if (!made.skip.empty()) GTEST_SKIP() << made.skip;
+    ASSERT_FALSE(made.path.empty()) << "bodygen lod failed";
+    const std::string& bpm = made.path;
     auto sources = load_model_file(bpm);
     ASSERT_TRUE(sources.ok()) << sources.error().message;
     ModelSource& src = sources.value().front();
@@ -587,12 +601,10 @@ TEST(RenderGeomorph, MidMorphLiesBetweenCoarseAndFine) {
 // sources of morph_sources_from(coarser level), morph 0 covers what the coarser
 // level covers, morph 1 what the finer one does, and mid-morph lies in between.
 TEST(RenderGeomorph, ProgressiveMeshMorphStartsAtTheCoarserLevel) {
-    const std::string bodygen = std::string(BODY_BINARY_DIR) + "/bin/bodygen";
-    const std::string bunny = "/usr/share/glmark2/models/bunny.obj";
-    if (!std::filesystem::exists(bodygen)) GTEST_SKIP() << "bodygen not built";
-    if (!std::filesystem::exists(bunny)) GTEST_SKIP() << "bunny.obj missing (Debian glmark2-data)";
-    const std::string bpm = (temp_dir() / "morph_bunny.bpm").string();
-    ASSERT_EQ(run(bodygen + " lod " + bunny + " -o " + bpm + " >/dev/null"), 0);
+    const BunnyBpm made = make_bunny_bpm("morph_bunny.bpm");
+    if (!made.skip.empty()) GTEST_SKIP() << made.skip;
+    ASSERT_FALSE(made.path.empty()) << "bodygen lod failed";
+    const std::string& bpm = made.path;
     auto meshes = pm::read_bpm(bpm);
     ASSERT_TRUE(meshes.ok()) << meshes.error().message;
     pm::ProgressiveMesh& pm = *meshes.value().front();
