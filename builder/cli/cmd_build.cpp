@@ -9,16 +9,12 @@
 // a progress bar is drawn when stderr is a terminal.
 #include <unistd.h>
 
-#include <algorithm>
-#include <atomic>
 #include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
-#include <optional>
-#include <thread>
 
 #include "builder/cli/commands.h"
 #include "builder/lod/simplify.h"
@@ -115,54 +111,6 @@ Status write_output(const std::string& output, const std::vector<StructureMesh>&
     return ok_status();
 }
 
-// Structures are independent once every contour carries a label: split the
-// stack per structure and build them on `jobs` threads. Unlabelled stacks
-// need correspondence across all contours first, so they build in one piece.
-Result<std::vector<StructureMesh>> build_in_parallel(const ContourStack& stack, const BuildOptions& options,
-                                                     const std::string& input, int jobs) {
-    bool all_labelled = !stack.structures.empty();
-    for (const Slice& s : stack.slices)
-        for (const Contour& c : s.contours) all_labelled = all_labelled && !c.structure.empty();
-    if (jobs <= 1 || !all_labelled || stack.structures.size() < 2) return build_structures(stack, options, input);
-
-    const size_t n = stack.structures.size();
-    std::vector<std::optional<Result<std::vector<StructureMesh>>>> results(n);
-    std::atomic<size_t> next{0};
-    BuildOptions quiet = options;
-    quiet.progress = nullptr;  // per-structure progress from several threads would interleave
-    auto worker = [&] {
-        for (size_t i = next++; i < n; i = next++) {
-            ContourStack part;
-            part.units = stack.units;
-            part.structures = {stack.structures[i]};
-            // Slices without this structure stay inside its z range: a gap in a
-            // structure closes both sides (as the whole-stack build does) instead
-            // of bridging across it.
-            for (const Slice& s : stack.slices) {
-                Slice mine{s.z, {}, s.source_index};
-                for (const Contour& c : s.contours)
-                    if (c.structure == stack.structures[i].id) mine.contours.push_back(c);
-                part.slices.push_back(std::move(mine));
-            }
-            while (!part.slices.empty() && part.slices.back().contours.empty()) part.slices.pop_back();
-            const auto first = std::find_if(part.slices.begin(), part.slices.end(),
-                                            [](const Slice& s) { return !s.contours.empty(); });
-            part.slices.erase(part.slices.begin(), first);
-            results[i] = part.slices.empty() ? Result<std::vector<StructureMesh>>(std::vector<StructureMesh>{})
-                                             : build_structures(part, quiet, input);
-        }
-    };
-    std::vector<std::thread> threads;
-    for (int t = 0; t < jobs; ++t) threads.emplace_back(worker);
-    for (auto& t : threads) t.join();
-    std::vector<StructureMesh> all;
-    for (auto& r : results) {
-        if (!r->ok()) return r->error();
-        for (auto& m : r->value()) all.push_back(std::move(m));
-    }
-    return all;
-}
-
 }  // namespace body::cli
 
 int run_build(const Args& argv) {
@@ -235,7 +183,8 @@ int run_build(const Args& argv) {
     const auto start = std::chrono::steady_clock::now();
     auto stack = load_input(input, *args, quiet);
     if (!stack) return report(stack.error());
-    auto built = build_in_parallel(*stack, options, input, int(*jobs));
+    options.jobs = static_cast<unsigned>(*jobs);
+    auto built = build_structures(*stack, options, input);
     if (!built) return report(built.error());
     Status written = write_output(output, *built, args->has("normals"));
     if (!written) return report(written.error());

@@ -9,10 +9,15 @@
 #include "builder/pipeline/build_pipeline.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <map>
+#include <mutex>
 #include <numeric>
+#include <optional>
+#include <thread>
 
 #include "builder/contours/validate.h"
 #include "shared/mesh_intersect.h"
@@ -258,18 +263,17 @@ public:
     StructureBuilder(const ContourStack& stack, const BuildOptions& options, const std::string& path)
         : stack_(stack), options_(options), path_(path) {}
 
-    Status build(const std::vector<std::vector<uint32_t>>& members, size_t& done, size_t total) {
+    // `advance` is called once per slice (progress).
+    Status build(const std::vector<std::vector<uint32_t>>& members, const std::function<void()>& advance) {
         make_loops(members);
         for (size_t s = 0; s + 1 < loops_.size(); ++s) {
             if (!loops_[s].empty() || !loops_[s + 1].empty()) {
                 auto status = connect(s);
                 if (!status) return status;
             }
-            ++done;
-            if (options_.progress) options_.progress(done, total);
+            advance();
         }
-        ++done;
-        if (options_.progress) options_.progress(done, total);
+        advance();
         return close_ends();
     }
 
@@ -816,6 +820,35 @@ private:
     }
 };
 
+// One structure of a validated stack: its mesh and statistics.
+Result<StructureMesh> build_structure(const ContourStack& stack, const Grouping& grouping, size_t i,
+                                      const BuildOptions& options, const std::string& source_path,
+                                      const std::function<void()>& advance) {
+    const auto& members = grouping.members[i];
+    size_t contours = 0;
+    for (const auto& v : members) contours += v.size();
+    const auto start = std::chrono::steady_clock::now();
+    StructureBuilder builder(stack, options, source_path);
+    auto status = builder.build(members, advance);
+    if (!status) return status.error();
+    StructureMesh sm;
+    sm.id = grouping.infos[i].id;
+    sm.contours = contours;
+    sm.mesh.name = grouping.infos[i].name;
+    sm.mesh.color = grouping.infos[i].color;
+    sm.mesh.positions = std::move(builder.positions);
+    sm.mesh.indices = std::move(builder.triangles);
+    const MeshTopology topo = analyze_topology(sm.mesh.positions, sm.mesh.indices);
+    sm.triangles = sm.mesh.triangle_count();
+    sm.volume = mesh_volume(sm.mesh.positions, sm.mesh.indices);
+    sm.area = mesh_area(sm.mesh.positions, sm.mesh.indices);
+    sm.closed_manifold = topo.closed_manifold();
+    sm.genus = topo.genus();
+    sm.components = topo.components;
+    sm.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return sm;
+}
+
 }  // namespace
 
 Result<std::vector<StructureMesh>> build_structures(const ContourStack& input, const BuildOptions& options,
@@ -831,36 +864,46 @@ Result<std::vector<StructureMesh>> build_structures(const ContourStack& input, c
     // Stage 2: structures (labels, or correspondence for unlabelled contours).
     Grouping grouping = group_structures(stack, options.correspondence);
 
-    // Stage 3: one mesh per structure.
-    std::vector<StructureMesh> out;
-    size_t total = 0, done = 0;
-    for (const auto& m : grouping.members)
-        if (std::any_of(m.begin(), m.end(), [](const auto& v) { return !v.empty(); })) total += stack.slices.size();
+    // Stage 3: one mesh per structure, options.jobs at a time (structures are
+    // independent). Results keep the structure order; the first error in that
+    // order is the one reported, as in a one-thread build.
+    std::vector<size_t> todo;
     for (size_t i = 0; i < grouping.infos.size(); ++i) {
-        const auto& members = grouping.members[i];
-        size_t contours = 0;
-        for (const auto& v : members) contours += v.size();
-        if (contours == 0) continue;
-        const auto start = std::chrono::steady_clock::now();
-        StructureBuilder builder(stack, options, source_path);
-        auto status = builder.build(members, done, total);
-        if (!status) return status.error();
-        StructureMesh sm;
-        sm.id = grouping.infos[i].id;
-        sm.contours = contours;
-        sm.mesh.name = grouping.infos[i].name;
-        sm.mesh.color = grouping.infos[i].color;
-        sm.mesh.positions = std::move(builder.positions);
-        sm.mesh.indices = std::move(builder.triangles);
-        const MeshTopology topo = analyze_topology(sm.mesh.positions, sm.mesh.indices);
-        sm.triangles = sm.mesh.triangle_count();
-        sm.volume = mesh_volume(sm.mesh.positions, sm.mesh.indices);
-        sm.area = mesh_area(sm.mesh.positions, sm.mesh.indices);
-        sm.closed_manifold = topo.closed_manifold();
-        sm.genus = topo.genus();
-        sm.components = topo.components;
-        sm.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        out.push_back(std::move(sm));
+        const auto& m = grouping.members[i];
+        if (std::any_of(m.begin(), m.end(), [](const auto& v) { return !v.empty(); })) todo.push_back(i);
+    }
+    const size_t total = todo.size() * stack.slices.size();
+    size_t done = 0;
+    std::mutex progress_mutex;
+    const std::function<void()> advance = [&] {
+        if (!options.progress) return;
+        std::lock_guard<std::mutex> lock(progress_mutex);
+        options.progress(++done, total);
+    };
+    std::vector<std::optional<Result<StructureMesh>>> results(todo.size());
+    std::atomic<size_t> next{0};
+    std::atomic<bool> failed{false};
+    auto worker = [&] {
+        // Indices are taken in increasing order, so after a failure every
+        // structure before it has been taken and finishes: nothing later is needed.
+        for (size_t k = next++; k < todo.size() && !failed; k = next++) {
+            results[k] = build_structure(stack, grouping, todo[k], options, source_path, advance);
+            if (!results[k]->ok()) failed = true;
+        }
+    };
+    const size_t threads = std::min<size_t>(std::max(options.jobs, 1u), todo.size());
+    if (threads <= 1) {
+        worker();
+    } else {
+        std::vector<std::thread> pool;
+        for (size_t t = 0; t < threads; ++t) pool.emplace_back(worker);
+        for (auto& t : pool) t.join();
+    }
+    std::vector<StructureMesh> out;
+    for (auto& r : results) {
+        if (!r) break;  // not taken: only after a failure, which comes first in this order
+        if (!r->ok()) return r->error();
+        out.push_back(std::move(r->value()));
     }
     return out;
 }

@@ -44,7 +44,10 @@ struct BuildOptions {
     TilingMethod tiling = TilingMethod::Multires;  // bunny: same Hausdorff as optimal, lower mean, 4-8x faster
     CorrespondenceMethod correspondence = CorrespondenceMethod::Overlap;  // measured more accurate, see tests
     BranchingMethod branching = BranchingMethod::Partition;
-    // Called after each slice pair of each structure: (done, total) slice pairs.
+    // Structures built at once (they are independent; the output does not depend on it).
+    unsigned jobs = 1;
+    // Called after each slice of each structure: (done, total) slices. With
+    // jobs > 1 it is called from the worker threads, one call at a time.
     std::function<void(size_t done, size_t total)> progress;
     // Receives repair warnings (duplicate points removed, keyholes split, ...).
     std::function<void(const std::string& message)> warning;
