@@ -18,6 +18,13 @@ namespace body::pm {
 // An allocator whose value-less construct() default-initialises: resize() of a
 // vector of trivial elements leaves them indeterminate instead of zeroing them,
 // so capacity reserved for detail that has not arrived costs no page faults.
+// Large arrays (a 1M-triangle structure's are 2-13 MB each) are asked for in
+// transparent huge pages: decoding first-touches every page, and 4 KiB page
+// faults cost the streaming thread more time than half its decoding.
+void* allocate_large_array(size_t bytes);  // aligned to 2 MiB, huge pages advised; throws std::bad_alloc
+void free_large_array(void* p);
+inline constexpr size_t kLargeArrayBytes = size_t(2) << 20;
+
 template <class T>
 struct UninitAllocator : std::allocator<T> {
     using std::allocator<T>::allocator;
@@ -25,6 +32,16 @@ struct UninitAllocator : std::allocator<T> {
     struct rebind {
         using other = UninitAllocator<U>;
     };
+    T* allocate(size_t n) {
+        if (n * sizeof(T) >= kLargeArrayBytes) return static_cast<T*>(allocate_large_array(n * sizeof(T)));
+        return std::allocator<T>::allocate(n);
+    }
+    void deallocate(T* p, size_t n) {
+        if (n * sizeof(T) >= kLargeArrayBytes)
+            free_large_array(p);
+        else
+            std::allocator<T>::deallocate(p, n);
+    }
     template <class U, class... Args>
     void construct(U* p, Args&&... args) {
         if constexpr (sizeof...(Args) == 0)
@@ -186,7 +203,7 @@ private:
         uint32_t offset = 0, count = 0, capacity = 0;
     };
     uint32_t* make_room(uint32_t v, size_t count);  // v's region with room for `count` corners
-    std::vector<Region> regions_;                   // per vertex
+    UninitVector<Region> regions_;                  // per vertex
     UninitVector<uint32_t> pool_;     // corners, ascending per region (entries past a region's count unused)
     UninitVector<uint32_t> indices_;  // per corner: the vertex at the replayed level (set by add_faces)
 };

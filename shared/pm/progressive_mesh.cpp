@@ -79,6 +79,41 @@ size_t ProgressiveMesh::coarsen_to(size_t level) {
     return level_;
 }
 
+size_t ProgressiveMesh::morph_sources(size_t lo, std::vector<Vec3f>& out, std::vector<uint64_t>& scratch) const {
+    lo = std::min(lo, level_);
+    const size_t lo_vc = base_vertices_ + lo, hi_vc = vertex_count();
+    // The lowest older vertex that a split since lo moves: the sources start there.
+    size_t begin = lo_vc;
+    for (size_t j = lo; j < level_; ++j) {
+        const uint32_t p = parents_[base_vertices_ + j];
+        if (p < begin && parent_to_[j] != parent_from_[j]) begin = p;
+    }
+    out.assign(positions_.begin() + ptrdiff_t(begin), positions_.begin() + ptrdiff_t(hi_vc));
+    // parent_from_[j] is the parent's position just before split j, so the first
+    // split since lo naming an older vertex as parent gives its position at lo;
+    // `scratch` marks the older vertices in [begin, lo_vc) already settled.
+    scratch.assign((lo_vc - begin + 63) / 64, 0);
+    for (size_t j = lo; j < level_; ++j) {
+        const size_t c = base_vertices_ + j;
+        const uint32_t p = parents_[c];
+        Vec3f at_lo;
+        if (p >= lo_vc) {
+            at_lo = out[p - begin];  // added since lo: its own source, set before (p < c)
+        } else if (p < begin) {
+            at_lo = parent_from_[j];  // never moved since lo
+        } else {
+            const size_t bit = p - begin;
+            if (!(scratch[bit / 64] >> (bit % 64) & 1)) {
+                scratch[bit / 64] |= uint64_t(1) << (bit % 64);
+                out[bit] = parent_from_[j];
+            }
+            at_lo = out[bit];
+        }
+        out[c - begin] = at_lo;
+    }
+    return begin;
+}
+
 // ---------------------------------------------------------------- reader
 
 BpmStream::BpmStream(std::string source_name) : source_(std::move(source_name)) {}
@@ -294,7 +329,10 @@ Status BpmStream::parse_splits(ProgressiveMesh& m, std::span<const uint8_t> payl
     if (meshopt_decodeVertexBuffer(split_records_.data(), count, sizeof(SplitVertex), vbuf.data(), vbuf.size()) != 0)
         return input_error(where + ": split records do not decode");
     // Everything below runs per split: no allocation (the message is built on failure only).
-    m.patch_corners_.reserve(m.patch_corners_.size() + size_t(count) * 4);
+    // Geometric growth: reserving the exact need per section would copy the whole
+    // array at every section (quadratic: 0.5 GB of copying for a 1M-triangle file).
+    if (const size_t need = m.patch_corners_.size() + size_t(count) * 4; need > m.patch_corners_.capacity())
+        m.patch_corners_.reserve(std::max(need, 2 * m.patch_corners_.capacity()));
     ByteReader topo(tbuf);
     size_t face_cursor = 0;
     float previous_error = first == 0 ? INFINITY : m.split_error_[first - 1];

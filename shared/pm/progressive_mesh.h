@@ -87,6 +87,16 @@ public:
     size_t coarsen_to(size_t level);
     size_t set_level(size_t level) { return level >= level_ ? refine_to(level) : coarsen_to(level); }
 
+    // Geomorph sources for gliding from level `lo` (<= level()) up to the current
+    // level: where each vertex is at level lo (a vertex added since lo: where its
+    // ancestor is at lo; a vertex moved since lo: where it was; the rest: where
+    // it is). Writes them for the vertices [begin, vertex_count()) to `out`
+    // (resized to vertex_count() - begin) and returns `begin`, the lowest vertex
+    // whose source differs from its position (<= base_vertex_count() + lo).
+    // Cost O(level() - lo) plus the copy; the level is not changed. `scratch` is
+    // caller-owned working memory (reused across calls, no allocation once grown).
+    size_t morph_sources(size_t lo, std::vector<Vec3f>& out, std::vector<uint64_t>& scratch) const;
+
     // --- arrays, sized max_vertex_count() / 3 * max_triangle_count(); entries past
     // the current prefix are valid once decoded but are not part of this level.
     std::span<const Vec3f> positions() const { return positions_; }
@@ -121,10 +131,11 @@ private:
     UninitVector<uint32_t> face_end_;     // per split: triangle count after it
     UninitVector<float> split_error_;     // per split: error of the level before it
     UninitVector<uint32_t> patch_begin_;  // per split + 1: range into patch_corners_
-    // Per split: the parent's position before and after it and its geomorph
-    // source before it (only read for splits that move the parent).
+    // Per split: the parent's position before and after it (before: also read by
+    // morph_sources for every split) and its geomorph source before it (only
+    // read for splits that move the parent).
     UninitVector<Vec3f> parent_from_, parent_to_, parent_morph_;
-    std::vector<uint32_t> patch_corners_;  // index entries set to the child on refine, parent on coarsen
+    UninitVector<uint32_t> patch_corners_;  // index entries set to the child on refine, parent on coarsen
     DirtyRange dirty_vertices_, dirty_indices_;
     // Decoding state, released when the structure is complete.
     SplitReplay replay_;
