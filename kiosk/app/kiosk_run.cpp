@@ -65,6 +65,8 @@ struct Part {
     float morph_factor = 1.0f;
     bool collapsing = false;
     size_t pending_level = 0;
+    std::vector<Vec3f> morph_sources;  // working memory of start_morph, kept to avoid reallocating
+    std::vector<uint64_t> morph_scratch;
 
     size_t full_triangles() const { return pm ? pm->max_triangle_count() : source->full_triangles(); }
     size_t triangles() const { return pm ? pm->triangle_count() : source->triangles(); }
@@ -97,12 +99,12 @@ struct Part {
     void start_morph(render::Renderer& r, size_t lo, double now) {
         upload_dirty(r);
         const size_t hi = pm->level();
-        const render::MorphSources m = render::morph_sources_from(*pm, lo);
-        if (auto st = r.set_morph_sources(id, m.begin, m.sources); !st)
+        const size_t begin = pm->morph_sources(lo, morph_sources, morph_scratch);
+        if (auto st = r.set_morph_sources(id, begin, morph_sources); !st)
             std::fprintf(stderr, "bodyview: %s\n", st.error().message.c_str());
         morph.start(now, pm->triangles_at(collapsing ? hi : lo), pm->triangles_at(collapsing ? lo : hi));
-        morph_begin = m.begin;
-        morph_end = m.begin + m.sources.size();
+        morph_begin = begin;
+        morph_end = begin + morph_sources.size();
         morph_factor = collapsing ? 1.0f : 0.0f;
     }
     // Ends a morph where it is meant to end: the sources back to the positions.
@@ -148,106 +150,43 @@ struct Part {
 };
 
 // A scene model: its parts (a file may hold several structures) and, for a
-// .bpm, the stream still delivering its detail.
+// .bpm, the loader thread still decoding its detail (its structures may only be
+// touched while holding the loader's lock).
 struct Loaded {
     std::vector<Part> parts;
     glm::mat4 transform{1.0f};
-    std::unique_ptr<pm::BpmStream> stream;
     std::unique_ptr<StreamLoader> loader;
     bool streaming = false;
-    std::vector<uint8_t> held;  // bytes after the bases, taken before the first frame, not decoded yet
 };
 
-constexpr size_t kChunkBytes = 64 * 1024;
-
-// Feeds what the loader has to the stream; false (with the reason logged) when
-// the file turned out bad: what arrived before stays usable.
-bool pump_stream(Loaded& l, const std::string& name, std::chrono::steady_clock::time_point deadline) {
-    if (!l.held.empty()) {
-        std::vector<uint8_t> held = std::move(l.held);
-        l.held.clear();
-        if (auto st = l.stream->feed(held); !st) {
-            std::fprintf(stderr, "bodyview: %s: %s (keeping what arrived)\n", name.c_str(), st.error().message.c_str());
-            l.streaming = false;
-            return false;
-        }
-    }
-    do {
-        auto fed = l.loader->pump([&](std::span<const uint8_t> chunk) { return l.stream->feed(chunk); }, kChunkBytes);
-        if (!fed) {
-            std::fprintf(stderr, "bodyview: %s: %s (keeping what arrived)\n", name.c_str(),
-                         fed.error().message.c_str());
-            l.streaming = false;
-            return false;
-        }
-        if (l.loader->finished()) {
-            l.streaming = false;
-            if (auto st = l.stream->finish(); !st) {
-                std::fprintf(stderr, "bodyview: %s: %s (keeping what arrived)\n", name.c_str(),
-                             st.error().message.c_str());
-            }
-            return true;
-        }
-        if (*fed == 0) return true;  // nothing waiting: the reader is behind
-    } while (std::chrono::steady_clock::now() < deadline);
-    return true;
+// Notes, under the loader's lock, that a stream has ended, logging why when it
+// ended early (what arrived before stays usable).
+void check_stream(Loaded& l, const std::string& name) {
+    if (!l.streaming || !l.loader->done()) return;
+    l.streaming = false;
+    if (!l.loader->error().empty())
+        std::fprintf(stderr, "bodyview: %s: %s (keeping what arrived)\n", name.c_str(), l.loader->error().c_str());
 }
 
-// Loads a model: an OBJ at once; a .bpm until every structure's base mesh is in
-// (the rest streams during the frames). Uploads the parts.
+// Loads a model: an OBJ at once; a .bpm once every structure's base mesh is in
+// (its loader decodes the rest during the frames). Uploads the parts.
 Status load_model(render::Renderer& renderer, const scene::Model& m, Loaded& l) {
     const std::string ext = std::filesystem::path(m.path).extension().string();
+    std::unique_lock<std::mutex> stream_lock;
     if (ext == ".bpm") {
-        l.stream = std::make_unique<pm::BpmStream>(m.path);
-        if (!l.loader) l.loader = std::make_unique<StreamLoader>(m.path, kChunkBytes);
+        if (!l.loader) l.loader = std::make_unique<StreamLoader>(m.path);
+        l.loader->wait_for_bases();
+        stream_lock = l.loader->lock();
+        if (!l.loader->bases_ready()) {
+            const std::string& why = l.loader->error();
+            return input_error(why.empty() ? m.path + ": ended before every base mesh arrived" : why);
+        }
         l.streaming = true;
-        auto bases_ready = [&] {
-            if (l.stream->structure_count_declared() == 0 ||
-                l.stream->structure_count() < l.stream->structure_count_declared()) {
-                return false;
-            }
-            for (size_t i = 0; i < l.stream->structure_count(); ++i) {
-                if (!l.stream->structure(i).base_ready()) return false;
-            }
-            return true;
-        };
-        Status failure = ok_status();
-        while (!bases_ready() && l.streaming) {
-            l.loader->wait_for_data();
-            // One chunk at a time, fed in slices: stop decoding as soon as the
-            // bases are in and hold the rest for the frames (a small file's
-            // chunk would otherwise decode all its detail before the first frame).
-            auto fed = l.loader->pump(
-                [&](std::span<const uint8_t> chunk) -> Status {
-                    constexpr size_t kSlice = 4096;
-                    for (size_t off = 0; off < chunk.size(); off += kSlice) {
-                        if (bases_ready()) {
-                            l.held.assign(chunk.begin() + static_cast<std::ptrdiff_t>(off), chunk.end());
-                            return ok_status();
-                        }
-                        if (auto st = l.stream->feed(chunk.subspan(off, std::min(kSlice, chunk.size() - off))); !st)
-                            return st;
-                    }
-                    return ok_status();
-                },
-                kChunkBytes);
-            if (!fed) {
-                failure = fed.error();
-                l.streaming = false;
-            } else if (l.loader->finished() && l.held.empty()) {
-                l.streaming = false;
-                if (auto st = l.stream->finish(); !st) failure = st.error();
-            }
-        }
-        if (!bases_ready()) return failure ? input_error(m.path + ": ended before every base mesh arrived") : failure;
-        if (!failure) {
-            // The bases are in: show them, without the detail that failed.
-            std::fprintf(stderr, "bodyview: %s: %s (keeping what arrived)\n", m.name.c_str(),
-                         failure.error().message.c_str());
-        }
-        for (size_t i = 0; i < l.stream->structure_count(); ++i) {
+        check_stream(l, m.name);  // a file that failed after its bases: show them
+        pm::BpmStream& stream = l.loader->stream();
+        for (size_t i = 0; i < stream.structure_count(); ++i) {
             Part p;
-            p.pm = &l.stream->structure(i);
+            p.pm = &stream.structure(i);
             p.base_triangles = p.pm->base_triangle_count();
             l.parts.push_back(std::move(p));
         }
@@ -356,11 +295,10 @@ int run_kiosk(platform::Surface& surface, const scene::Scene& scene, const Kiosk
     std::vector<ModelInfo> info(scene.models.size());
     std::string label_text;
     size_t ok_models = 0;
-    // Every .bpm starts reading at once: its first chunks are queued by the time
-    // load_model gets to it.
+    // Every .bpm starts reading and decoding its base meshes at once, in parallel.
     for (size_t i = 0; i < scene.models.size(); ++i) {
         if (std::filesystem::path(scene.models[i].path).extension() == ".bpm")
-            loaded[i].loader = std::make_unique<StreamLoader>(scene.models[i].path, kChunkBytes);
+            loaded[i].loader = std::make_unique<StreamLoader>(scene.models[i].path);
     }
     for (size_t i = 0; i < scene.models.size(); ++i) {
         const scene::Model& m = scene.models[i];
@@ -457,10 +395,14 @@ int run_kiosk(platform::Surface& surface, const scene::Scene& scene, const Kiosk
     long frames_counted = 0;
     int exit_code = kExitOk;
     double first_frame_ms = -1.0, full_detail_ms = -1.0;
-    double previous_frame_ms = 0.0;  // the last frame without its stream decoding
     for (long frame = 0;; ++frame) {
         const auto frame_start = std::chrono::steady_clock::now();
         const double now = replaying ? static_cast<double>(frame) * step : surface.time();
+        // The streamed structures are shared with their loaders: picking (in the
+        // event handlers) and level changes read and write them.
+        std::vector<std::unique_lock<std::mutex>> stream_locks;
+        for (const Loaded& l : loaded)
+            if (l.streaming) stream_locks.push_back(l.loader->lock());
         events.clear();
         bool keep = surface.poll_events(events);
         if (touch) touch->poll(surface.time(), events);
@@ -480,23 +422,15 @@ int run_kiosk(platform::Surface& surface, const scene::Scene& scene, const Kiosk
         }
         app.update(now);
 
-        // Detail still arriving: decoding gets stream_ms_per_frame, or
-        // stream_work_ratio times the previous frame's own work when that is
-        // longer (a slow renderer would otherwise starve the stream: 8 ms of
-        // every 70 on llvmpipe). On a GPU the 8 ms floor governs.
+        // Detail still arriving: its loaders decode beside this thread; what they
+        // have decoded is taken under their locks (held until the draw).
         bool streaming = false;
-        const double stream_ms = std::max(options.stream_ms_per_frame, options.stream_work_ratio * previous_frame_ms);
-        const auto deadline = frame_start + std::chrono::microseconds(static_cast<long>(stream_ms * 1000.0));
-        const auto stream_start = std::chrono::steady_clock::now();
         for (size_t i = 0; i < loaded.size(); ++i) {
             Loaded& l = loaded[i];
             if (!l.streaming) continue;
-            // The first frame shows the bases as soon as they are in: no decoding before it.
-            if (frame > 0) pump_stream(l, scene.models[i].name, deadline);
+            check_stream(l, scene.models[i].name);
             streaming = streaming || l.streaming;
         }
-        const double stream_spent_ms =
-            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - stream_start).count();
 
         // Apply the app's state to the renderer.
         size_t triangles = 0;
@@ -523,8 +457,14 @@ int run_kiosk(platform::Surface& surface, const scene::Scene& scene, const Kiosk
                     // The level the app wants, as far as the stream has delivered it.
                     const auto want =
                         static_cast<size_t>(std::llround(static_cast<double>(p.full_triangles()) * ratio));
-                    const size_t level = p.pm->level_for_triangles(std::max<size_t>(want, 1));
+                    size_t level = p.pm->level_for_triangles(std::max<size_t>(want, 1));
                     const size_t wanted_full = pm_level_wanted(*p.pm, want);
+                    // While detail streams in, refine in steps that at least double
+                    // the triangles: each step costs an upload and a geomorph, and
+                    // frames of a half-way level compete with the decoding thread.
+                    if (l.streaming && level > p.pm->level() && level < wanted_full &&
+                        p.pm->triangles_at(level) < 2 * p.pm->triangle_count())
+                        level = p.pm->level();
                     if (level < wanted_full || frame == 0) at_planned_detail = false;
                     // The first frame shows the base meshes: on screen as soon as possible.
                     if (frame > 0 && (level != p.pm->level() || p.morphing())) {
@@ -557,6 +497,7 @@ int run_kiosk(platform::Surface& surface, const scene::Scene& scene, const Kiosk
         fo.width = surface.width();
         fo.height = surface.height();
         fo.framebuffer = surface.framebuffer();
+        stream_locks.clear();  // drawing needs only the GL buffers
         renderer.render(rc, lighting, fo);
 
         LabelCard card;
@@ -594,6 +535,15 @@ int run_kiosk(platform::Surface& surface, const scene::Scene& scene, const Kiosk
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - load_start).count();
         if (first_frame_ms < 0.0) {
             first_frame_ms = since_start;
+            // The first picture is up: detail may decode now. A replay waits for
+            // all of it so that its frames do not depend on the machine's speed.
+            for (Loaded& l : loaded) {
+                if (!l.loader) continue;
+                if (replaying)
+                    l.loader->wait_until_done();
+                else
+                    l.loader->release_detail();
+            }
             if (options.verbose) {
                 std::fprintf(stderr,
                              "bodyview: first frame %.1f ms after start (renderer init %.1f ms, %zu/%zu models, "
@@ -609,10 +559,7 @@ int run_kiosk(platform::Surface& surface, const scene::Scene& scene, const Kiosk
                              full_detail_ms, triangles);
             }
         }
-        previous_frame_ms = std::max(0.0, frame_ms - stream_spent_ms);
-        // The LOD controller sees the frame as it would be with the fixed decoding share.
-        const double reported_ms = frame_ms - std::max(0.0, stream_spent_ms - options.stream_ms_per_frame);
-        if (!replaying || options.measure_frames_in_replay) app.report_frame(reported_ms, triangles);
+        if (!replaying || options.measure_frames_in_replay) app.report_frame(frame_ms, triangles);
         frame_ms_sum += frame_ms;
         ++frames_counted;
         if (options.verbose && frames_counted % 60 == 0) {
@@ -620,6 +567,16 @@ int run_kiosk(platform::Surface& surface, const scene::Scene& scene, const Kiosk
                          frame_ms_sum / static_cast<double>(frames_counted), triangles, app.lod_controller().budget());
         }
         if (last) break;
+        // While detail streams in, the loader threads get the CPU for twice as
+        // long as the frame took (at most 200 ms, or until they are done): a
+        // renderer that runs on the CPU (llvmpipe) would otherwise starve them,
+        // and the visitor sees full detail sooner.
+        if (streaming && frame > 0 && !replaying) {
+            const auto until = std::chrono::steady_clock::now() +
+                               std::chrono::microseconds(static_cast<long>(std::min(2.0 * frame_ms, 200.0) * 1000.0));
+            for (const Loaded& l : loaded)
+                if (l.streaming && !l.loader->wait_done_until(until)) break;
+        }
     }
     if (app.exit_requested()) std::fprintf(stderr, "bodyview: admin exit\n");
     if (options.verbose && frames_counted > 0) {

@@ -31,13 +31,6 @@ struct KioskRunOptions {
     // DRM backend: touch screens from /dev/input (platform/evdev_input.h), with the
     // panel turned this many degrees clockwise relative to the picture.
     int touch_rotation = 0;
-    // Streaming: milliseconds per frame spent decoding arrived .bpm chunks (at
-    // least one 64 KiB chunk per frame while data is waiting).
-    double stream_ms_per_frame = 8.0;
-    // ... or this many times the previous frame's rendering work when that is
-    // longer: 2 gives decoding two thirds of a slow frame (on llvmpipe a 1.1M
-    // triangle model reaches full detail in ~0.85 s instead of ~1.2 s with 1).
-    double stream_work_ratio = 2.0;
 };
 
 // A scene style as the renderer's style, and a scene transform as a model matrix

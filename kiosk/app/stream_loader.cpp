@@ -1,108 +1,117 @@
-// A reader thread and a bounded chunk queue between it and the render thread.
+// A reader-and-decoder thread per streamed .bpm (contract in stream_loader.h).
 #include "kiosk/app/stream_loader.h"
 
+#include <pthread.h>
+
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <span>
+#include <vector>
 
 namespace body::kiosk {
 
-StreamLoader::StreamLoader(std::string path, size_t chunk_bytes, size_t max_queued)
-    : path_(std::move(path)), chunk_bytes_(chunk_bytes ? chunk_bytes : 1), max_queued_(max_queued ? max_queued : 1) {
+namespace {
+// Bytes fed per lock: bounds how long the render thread can wait for the lock
+// (one slice completes at most a section or two: ~1-3 ms of decoding).
+constexpr size_t kSliceBytes = 16 * 1024;
+}  // namespace
+
+StreamLoader::StreamLoader(std::string path, size_t chunk_bytes)
+    : path_(std::move(path)), chunk_bytes_(chunk_bytes ? chunk_bytes : 1), stream_(path_) {
     thread_ = std::thread([this] { run(); });
 }
 
 StreamLoader::~StreamLoader() {
     {
-        std::lock_guard lock(mutex_);
+        std::lock_guard guard(mutex_);
         stop_ = true;
     }
     cv_.notify_all();
     thread_.join();
 }
 
+bool StreamLoader::bases_ready() const {
+    if (stream_.structure_count_declared() == 0 || stream_.structure_count() < stream_.structure_count_declared())
+        return false;
+    for (size_t i = 0; i < stream_.structure_count(); ++i)
+        if (!stream_.structure(i).base_ready()) return false;
+    return true;
+}
+
+void StreamLoader::wait_for_bases() const {
+    std::unique_lock guard(mutex_);
+    cv_.wait(guard, [&] { return done_ || bases_ready(); });
+}
+
+void StreamLoader::release_detail() {
+    {
+        std::lock_guard guard(mutex_);
+        released_ = true;
+    }
+    cv_.notify_all();
+}
+
+void StreamLoader::wait_until_done() {
+    release_detail();
+    std::unique_lock guard(mutex_);
+    cv_.wait(guard, [&] { return done_; });
+}
+
+bool StreamLoader::wait_done_until(std::chrono::steady_clock::time_point deadline) const {
+    std::unique_lock guard(mutex_);
+    return cv_.wait_until(guard, deadline, [&] { return done_; });
+}
+
+void StreamLoader::finish(std::string error) {
+    done_ = true;
+    error_ = std::move(error);
+    cv_.notify_all();
+}
+
 void StreamLoader::run() {
+    pthread_setname_np(pthread_self(), "bodyview-load");  // for top and perf
     std::FILE* f = std::fopen(path_.c_str(), "rb");
-    auto finish = [&](std::string error) {
-        std::lock_guard lock(mutex_);
-        reader_done_ = true;
-        if (!error.empty()) {
-            failed_ = true;
-            error_ = std::move(error);
-        }
-        cv_.notify_all();
-    };
-    if (!f) return finish(path_ + ": " + std::strerror(errno));
+    if (!f) {
+        std::lock_guard guard(mutex_);
+        return finish(path_ + ": " + std::strerror(errno));
+    }
     if (std::fseek(f, 0, SEEK_END) == 0) {
         const long size = std::ftell(f);
-        std::lock_guard lock(mutex_);
+        std::lock_guard guard(mutex_);
         total_ = size > 0 ? static_cast<size_t>(size) : 0;
     }
     std::fseek(f, 0, SEEK_SET);
+    std::vector<uint8_t> chunk(chunk_bytes_);
     for (;;) {
-        std::vector<uint8_t> chunk(chunk_bytes_);
         const size_t n = std::fread(chunk.data(), 1, chunk.size(), f);
         if (n == 0) {
-            const bool error = std::ferror(f) != 0;
+            const bool read_error = std::ferror(f) != 0;
             std::fclose(f);
-            return finish(error ? path_ + ": read error" : std::string());
+            std::lock_guard guard(mutex_);
+            if (read_error) return finish(path_ + ": read error");
+            const Status st = stream_.finish();
+            return finish(st ? std::string() : st.error().message);
         }
-        chunk.resize(n);
-        std::unique_lock lock(mutex_);
-        cv_.wait(lock, [&] { return stop_ || queue_.size() < max_queued_; });
-        if (stop_) {
-            std::fclose(f);
-            reader_done_ = true;
-            return;
-        }
-        queue_.push_back(std::move(chunk));
-        cv_.notify_all();
-    }
-}
-
-Result<size_t> StreamLoader::pump(const Consumer& consume, size_t max_bytes) {
-    size_t fed = 0;
-    while (fed < max_bytes) {
-        std::vector<uint8_t> chunk;
-        {
-            std::lock_guard lock(mutex_);
-            if (queue_.empty()) {
-                if (failed_) return runtime_error(error_);
-                break;
+        for (size_t off = 0; off < n; off += kSliceBytes) {
+            std::unique_lock guard(mutex_);
+            // Past the bases, detail waits for the first frame.
+            cv_.wait(guard, [&] { return stop_ || released_ || !bases_ready(); });
+            if (stop_) {
+                std::fclose(f);
+                return finish(std::string());
             }
-            chunk = std::move(queue_.front());
-            queue_.pop_front();
+            const auto slice = std::span<const uint8_t>(chunk).subspan(off, std::min(kSliceBytes, n - off));
+            const bool had_bases = bases_ready();
+            if (const Status st = stream_.feed(slice); !st) {
+                std::fclose(f);
+                return finish(st.error().message);
+            }
+            decoded_ += slice.size();
+            if (!had_bases && bases_ready()) cv_.notify_all();
         }
-        cv_.notify_all();  // room for the reader
-        Status st = consume(chunk);
-        if (!st) {
-            std::lock_guard lock(mutex_);
-            failed_ = true;
-            error_ = st.error().message;
-            queue_.clear();
-            stop_ = true;
-            cv_.notify_all();
-            return st.error();
-        }
-        fed += chunk.size();
-        fed_ += chunk.size();
     }
-    return fed;
-}
-
-bool StreamLoader::finished() const {
-    std::lock_guard lock(mutex_);
-    return (reader_done_ && queue_.empty()) || failed_;
-}
-
-size_t StreamLoader::bytes_total() const {
-    std::lock_guard lock(mutex_);
-    return total_;
-}
-
-void StreamLoader::wait_for_data() const {
-    std::unique_lock lock(mutex_);
-    cv_.wait(lock, [&] { return !queue_.empty() || reader_done_; });
 }
 
 }  // namespace body::kiosk

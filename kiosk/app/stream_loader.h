@@ -1,59 +1,73 @@
 #pragma once
-// Streaming model loading: a background thread reads a file in chunks; the
-// render thread takes the chunks that have arrived with pump() and hands them
-// to the progressive-mesh decoder (pm::BpmStream::feed), a bounded number of
-// bytes per frame, so the first frame can draw base meshes while detail is
-// still on its way. Decoding stays on the render thread because a
-// ProgressiveMesh is not shared across threads (shared/pm/progressive_mesh.h).
+// Streaming .bpm loading: one background thread per file reads it in chunks and
+// decodes each chunk as it arrives (pm::BpmStream::feed), beside the render
+// thread instead of inside its frames: on a 2-core board the renderer's vertex
+// work and the decoding then overlap, and a frame never waits for a decode
+// budget. The render thread draws whatever level has been decoded so far.
+//
+// Sharing: a ProgressiveMesh is not thread-safe, so the stream (and every
+// structure in it) may only be touched while holding lock(). The thread holds
+// it while decoding one slice of a chunk (a few milliseconds at most); the
+// render thread holds it while it changes levels and uploads, and releases it
+// before drawing (the GL buffers need no lock).
+//
+// Order: the thread decodes the base meshes at once, then waits until
+// release_detail() (the kiosk calls it after its first frame, so that detail
+// does not compete with the first picture), then decodes the rest.
+#include <chrono>
 #include <condition_variable>
 #include <cstdint>
-#include <deque>
-#include <functional>
 #include <mutex>
-#include <span>
 #include <string>
 #include <thread>
-#include <vector>
 
-#include "shared/error.h"
+#include "shared/pm/progressive_mesh.h"
 
 namespace body::kiosk {
 
 class StreamLoader {
 public:
-    using Consumer = std::function<Status(std::span<const uint8_t>)>;
-
-    // Starts reading `path` at once. `chunk_bytes` per read; `max_queued` chunks
-    // may wait before the reader pauses (bounded memory).
-    explicit StreamLoader(std::string path, size_t chunk_bytes = 256 * 1024, size_t max_queued = 64);
-    ~StreamLoader();  // stops and joins the reader
+    // Starts reading and decoding `path` at once, `chunk_bytes` per read.
+    explicit StreamLoader(std::string path, size_t chunk_bytes = 64 * 1024);
+    ~StreamLoader();  // stops the thread (between two slices) and joins it
     StreamLoader(const StreamLoader&) = delete;
     StreamLoader& operator=(const StreamLoader&) = delete;
 
-    // Feeds arrived chunks to `consume` until `max_bytes` were fed or none is
-    // waiting. Returns the bytes fed, or the first error (from reading or from
-    // `consume`); after an error the loader is finished.
-    Result<size_t> pump(const Consumer& consume, size_t max_bytes = SIZE_MAX);
-    // Everything was read and fed (or it failed).
-    bool finished() const;
-    size_t bytes_total() const;  // the file's size (0 until opened)
-    size_t bytes_fed() const { return fed_; }
+    // Blocks until every structure's base mesh is decoded, or the thread is done.
+    void wait_for_bases() const;
+    // Lets decoding go past the base meshes. Idempotent.
+    void release_detail();
+    // Blocks until the thread is done (whole file decoded, or failed). Releases
+    // the detail first. For replays: frames that do not depend on timing.
+    void wait_until_done();
+    // Blocks until the thread is done or `deadline` passed; true when done.
+    bool wait_done_until(std::chrono::steady_clock::time_point deadline) const;
+
+    // Hold this while touching stream() or its structures.
+    std::unique_lock<std::mutex> lock() const { return std::unique_lock(mutex_); }
+    // --- under lock()
+    pm::BpmStream& stream() { return stream_; }
+    bool bases_ready() const;            // every declared structure has its base mesh
+    bool done() const { return done_; }  // nothing more will be decoded
+    // Why decoding stopped early: a read error, a corrupt section, or a file that
+    // ended too soon (BpmStream::finish). Empty when the whole file decoded.
+    const std::string& error() const { return error_; }
+    size_t bytes_total() const { return total_; }  // the file's size (0 until opened)
+    size_t bytes_decoded() const { return decoded_; }
     const std::string& path() const { return path_; }
-    // Blocks until a chunk is waiting or the reader ended (for tools and tests).
-    void wait_for_data() const;
 
 private:
     void run();
+    void finish(std::string error);  // under the lock
 
     std::string path_;
-    size_t chunk_bytes_, max_queued_;
+    size_t chunk_bytes_;
     mutable std::mutex mutex_;
     mutable std::condition_variable cv_;
-    std::deque<std::vector<uint8_t>> queue_;
-    bool reader_done_ = false, stop_ = false, failed_ = false;
+    pm::BpmStream stream_;
+    bool released_ = false, stop_ = false, done_ = false;
     std::string error_;
-    size_t total_ = 0;
-    size_t fed_ = 0;
+    size_t total_ = 0, decoded_ = 0;
     std::thread thread_;
 };
 

@@ -1,67 +1,126 @@
-// The streaming loader hands a file over in order, in bounded pieces per pump,
-// and reports read and consumer errors.
+// The streaming loader decodes a .bpm on its own thread: the base meshes at
+// once, the detail only after release_detail(), everything in the end exactly
+// as a one-shot read; failures keep what arrived and name the section.
 #include "kiosk/app/stream_loader.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <fstream>
+#include <thread>
+
+#include "builder/lod/simplify.h"
+#include "tests/common/test_meshes.h"
 
 namespace body::kiosk {
 namespace {
 
-std::string temp_file(const std::string& bytes) {
-    char name[] = "/tmp/body_stream_XXXXXX";
-    const int fd = ::mkstemp(name);
+std::string temp_file(std::span<const uint8_t> bytes) {
+    char name[] = "/tmp/body_stream_XXXXXX.bpm";
+    const int fd = ::mkstemps(name, 4);
     EXPECT_GE(fd, 0);
     ::close(fd);
-    std::ofstream(name, std::ios::binary) << bytes;
+    std::ofstream(name, std::ios::binary)
+        .write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
     return name;
 }
 
-TEST(StreamLoader, DeliversTheWholeFileInOrderWithinThePerPumpBudget) {
-    std::string bytes;
-    for (int i = 0; i < 100000; ++i) bytes.push_back(static_cast<char>(i * 7 % 251));
+// Two spheres (two structures), small SPLT sections: many sections after the bases.
+std::vector<uint8_t> two_sphere_bpm() {
+    lod::LodOptions options;
+    options.chunk_splits = 256;
+    const std::vector<Mesh> meshes{test::uv_sphere(40, 80), test::uv_sphere(30, 60, Vec3(3.0, 0.0, 0.0))};
+    auto bytes = lod::encode_bpm(meshes, options);
+    EXPECT_TRUE(bytes) << bytes.error().message;
+    return bytes ? std::move(bytes).value() : std::vector<uint8_t>{};
+}
+
+TEST(StreamLoader, DecodesTheBasesThenWaitsForReleaseThenEverything) {
+    const std::vector<uint8_t> bytes = two_sphere_bpm();
+    ASSERT_GT(bytes.size(), 40000u);
     const std::string path = temp_file(bytes);
-    std::string got;
+    auto expected = pm::read_bpm_bytes(bytes, path);
+    ASSERT_TRUE(expected) << expected.error().message;
     {
-        StreamLoader loader(path, 4096, 4);
-        size_t pumps = 0;
-        while (!loader.finished()) {
-            loader.wait_for_data();
-            auto n = loader.pump(
-                [&](std::span<const uint8_t> chunk) {
-                    got.append(reinterpret_cast<const char*>(chunk.data()), chunk.size());
-                    return ok_status();
-                },
-                8192);
-            ASSERT_TRUE(n) << n.error().message;
-            EXPECT_LE(*n, 8192u);
-            ++pumps;
+        StreamLoader loader(path, 4096);
+        loader.wait_for_bases();
+        auto held = loader.lock();
+        ASSERT_TRUE(loader.bases_ready());
+        ASSERT_EQ(loader.stream().structure_count(), 2u);
+        EXPECT_FALSE(loader.done());
+        // At most one 4 KiB chunk past the bases before it waits.
+        EXPECT_LE(loader.bytes_decoded(), bytes.size() - 8192);
+        const size_t before = loader.bytes_decoded();
+        held.unlock();
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+        held.lock();
+        EXPECT_EQ(loader.bytes_decoded(), before) << "decoded detail before release_detail()";
+        held.unlock();
+
+        loader.wait_until_done();
+        held.lock();
+        EXPECT_TRUE(loader.error().empty()) << loader.error();
+        EXPECT_TRUE(loader.stream().complete());
+        EXPECT_EQ(loader.bytes_decoded(), bytes.size());
+        for (size_t s = 0; s < 2; ++s) {
+            pm::ProgressiveMesh& got = loader.stream().structure(s);
+            // The one-shot read sits at level 0: bring a copy to the top to compare.
+            pm::ProgressiveMesh want = *expected.value()[s];
+            ASSERT_EQ(got.available_level(), want.max_level());
+            got.set_level(got.max_level());
+            want.set_level(want.max_level());
+            const auto gp = got.positions(), wp = want.positions();
+            ASSERT_EQ(gp.size(), wp.size());
+            EXPECT_TRUE(std::equal(gp.begin(), gp.end(), wp.begin()));
+            const auto gi = got.indices(), wi = want.indices();
+            ASSERT_EQ(gi.size(), wi.size());
+            EXPECT_TRUE(std::equal(gi.begin(), gi.end(), wi.begin()));
         }
-        EXPECT_EQ(loader.bytes_total(), bytes.size());
-        EXPECT_EQ(loader.bytes_fed(), bytes.size());
-        EXPECT_GE(pumps, bytes.size() / 8192);
     }
-    EXPECT_EQ(got, bytes);
     ::unlink(path.c_str());
 }
 
-TEST(StreamLoader, ReportsAMissingFileAndAConsumerError) {
-    StreamLoader missing("/nonexistent/model.bpm");
-    missing.wait_for_data();
-    auto r = missing.pump([](std::span<const uint8_t>) { return ok_status(); });
-    ASSERT_FALSE(r);
-    EXPECT_NE(r.error().message.find("/nonexistent/model.bpm"), std::string::npos);
-    EXPECT_TRUE(missing.finished());
+TEST(StreamLoader, ACorruptSectionAfterTheBasesKeepsWhatArrived) {
+    std::vector<uint8_t> bytes = two_sphere_bpm();
+    bytes[bytes.size() * 3 / 4] ^= 0x5a;  // inside a late SPLT section
+    const std::string path = temp_file(bytes);
+    StreamLoader loader(path, 4096);
+    loader.wait_until_done();
+    auto held = loader.lock();
+    EXPECT_TRUE(loader.bases_ready());
+    EXPECT_NE(loader.error().find(path + ": section SPLT of structure"), std::string::npos) << loader.error();
+    EXPECT_NE(loader.error().find("checksum mismatch"), std::string::npos) << loader.error();
+    EXPECT_GT(loader.stream().structure(0).available_level(), 0u);
+    ::unlink(path.c_str());
+}
 
-    const std::string path = temp_file(std::string(50000, 'x'));
-    StreamLoader loader(path, 1000, 2);  // the reader blocks on a full queue; destruction must still stop it
-    loader.wait_for_data();
-    auto e = loader.pump([](std::span<const uint8_t>) -> Status { return input_error("m.bpm: byte 0: bad magic"); });
-    ASSERT_FALSE(e);
-    EXPECT_EQ(e.error().message, "m.bpm: byte 0: bad magic");
-    EXPECT_TRUE(loader.finished());
+TEST(StreamLoader, ReportsAMissingFileAndATruncatedOne) {
+    StreamLoader missing("/nonexistent/model.bpm");
+    missing.wait_for_bases();
+    {
+        auto held = missing.lock();
+        EXPECT_TRUE(missing.done());
+        EXPECT_FALSE(missing.bases_ready());
+        EXPECT_NE(missing.error().find("/nonexistent/model.bpm"), std::string::npos);
+    }
+    std::vector<uint8_t> bytes = two_sphere_bpm();
+    bytes.resize(bytes.size() - 10);
+    const std::string path = temp_file(bytes);
+    StreamLoader truncated(path, 4096);
+    truncated.wait_until_done();
+    auto held = truncated.lock();
+    EXPECT_NE(truncated.error().find("truncated"), std::string::npos) << truncated.error();
+    ::unlink(path.c_str());
+}
+
+TEST(StreamLoader, StopsWhileWaitingForRelease) {
+    const std::vector<uint8_t> bytes = two_sphere_bpm();
+    const std::string path = temp_file(bytes);
+    {
+        StreamLoader loader(path, 1024);
+        loader.wait_for_bases();
+    }  // the destructor must stop the thread that waits for release_detail()
     ::unlink(path.c_str());
 }
 
