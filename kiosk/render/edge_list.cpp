@@ -78,6 +78,10 @@ EdgeStream::EdgeStream(std::span<const uint32_t> indices, size_t scratch_bytes)
             for (uint32_t i = start_[v]; i < start_[v + 1]; ++i)
                 count_ += edge_at(idx_, corner_.data() + start_[v], corner_.data() + start_[v + 1], corner_[i], e);
     }
+    restart();
+}
+
+void EdgeStream::restart() {
     window_end_ = 0;  // next() buckets the first window again
     vertex_ = 0;
     slot_ = 0;

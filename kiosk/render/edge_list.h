@@ -46,6 +46,8 @@ public:
     size_t count() const { return count_; }  // edges in all
     // Writes the next up to out.size() records; 0 at the end.
     size_t next(std::span<EdgeRecord> out);
+    // Back to the first record (for a second walk over the same records).
+    void restart();
 
 private:
     void bucket_window(uint32_t lo);  // fills start_/corner_ for the vertices [lo, window_end_)

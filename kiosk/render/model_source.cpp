@@ -42,7 +42,8 @@ void ModelSource::set_lod(double ratio) {
     }
     const size_t old_size = current_indices().size();
     if (target >= full_indices_.size() / 3) {
-        indices_ = {};  // the full level draws full_indices_: no second copy
+        std::vector<uint32_t>().swap(
+            indices_);  // the full level draws full_indices_: no second copy (`= {}` would keep the storage)
         simplified_ = false;
     } else {
         std::vector<uint32_t> out(full_indices_.size());

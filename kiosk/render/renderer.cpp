@@ -159,9 +159,11 @@ std::vector<Vec3f> area_normals(std::span<const Vec3f> p, std::span<const uint32
 // Frees the upload's normal scratch and, when it was large, hands it back to the
 // system (glibc keeps big freed blocks resident once its mmap threshold grew).
 void release_scratch(std::vector<Vec3f>& computed, std::vector<uint32_t>& packed) {
-    const bool large = computed.size() * sizeof(Vec3f) + packed.size() * 4 >= (1u << 20);
-    computed = {};
-    packed = {};
+    const bool large = computed.capacity() * sizeof(Vec3f) + packed.capacity() * 4 >= (1u << 20);
+    // Swapped out, not `= {}`: that picks the initializer_list assignment, which
+    // empties the vector but keeps its storage.
+    std::vector<Vec3f>().swap(computed);
+    std::vector<uint32_t>().swap(packed);
 #ifdef __GLIBC__
     if (large) malloc_trim(0);
 #else
@@ -833,6 +835,31 @@ private:
     std::span<const T> data_;
 };
 
+// A model is drawn in one style at a time, so it keeps the lazily built data of
+// one line style only: building the `lines` edge texture frees the `wireframe`
+// textures and the other way round (a million-triangle model's are 6-26 MiB
+// and 12 MiB). Switching back rebuilds them from the GL buffers.
+static void free_wire_textures(Model& m) {
+    if (!m.position_texture && !m.index_texture) return;
+    GLuint textures[] = {m.position_texture, m.index_texture};
+    glDeleteTextures(2, textures);
+    m.position_texture = m.index_texture = 0;
+    m.wire_stale = true;
+#ifdef __GLIBC__
+    malloc_trim(0);  // software drivers keep textures in host memory: hand it back before the other style builds
+#endif
+}
+static void free_edge_texture(Model& m) {
+    if (!m.edge_texture) return;
+    glDeleteTextures(1, &m.edge_texture);
+    m.edge_texture = 0;
+    m.edge_capacity = m.edge_count = 0;
+    m.edges_stale = true;
+#ifdef __GLIBC__
+    malloc_trim(0);
+#endif
+}
+
 // The edge texture of the `lines` style, rebuilt when the mesh changed. The
 // index and position buffers are read in place (mapped) and the records are
 // streamed: built, converted to GpuEdges and uploaded kEdgeChunk at a time, so
@@ -840,6 +867,7 @@ private:
 static void ensure_edges(Model& m) {
     if (!m.edges_stale && m.edge_texture) return;
     static_assert(sizeof(EdgeRecord) == sizeof(GpuEdge));
+    free_wire_textures(m);
     // Mapping is per buffer: both stay mapped while the other target binding moves on.
     MappedBuffer<uint32_t> index_map(m.ebo, m.index_count);
     MappedBuffer<Vec3f> position_map(m.vbo_position, m.vertex_count);
@@ -873,30 +901,49 @@ static void ensure_edges(Model& m) {
         float l = glm::length(n);
         return l > 0.0f ? n / l : Vec3f(0.0f, 0.0f, 1.0f);
     };
+    // Edges between faces with the same normal code can never be drawn: both
+    // faces face the eye alike (no silhouette) and the dihedral angle is zero
+    // (no crease at any threshold above 0). They are left out, which takes most
+    // of a flat or finely subdivided region's edges off the GPU. A first walk
+    // counts the edges kept so that the texture is sized to them.
+    struct Coded {
+        EdgeRecord e;
+        uint32_t n0, n1;
+    };
+    auto normals_of = [&](const EdgeRecord& e) {
+        const Vec3f n0 = face_normal(e.v0, e.v1, e.a);
+        const uint32_t c0 = pack_octahedral(n0);
+        const uint32_t c1 = pack_octahedral(e.b == kNoVertex ? -n0 : face_normal(e.v1, e.v0, e.b));
+        return Coded{e, c0, c1};
+    };
+    auto drawable = [](const Coded& c) { return c.e.b == kNoVertex || c.n0 != c.n1; };
     {
         EdgeStream stream(indices);
-        m.edge_count = stream.count();
+        constexpr size_t kEdgeChunk = 16 * kTextureWidth;  // 512 KiB of records
+        std::vector<EdgeRecord> chunk(std::min(kEdgeChunk, std::max<size_t>(stream.count(), 1)));
+        size_t kept = 0;
+        while (const size_t n = stream.next(chunk))
+            for (size_t i = 0; i < n; ++i) kept += drawable(normals_of(chunk[i]));
+        m.edge_count = kept;
         if (m.edge_count > m.edge_capacity || !m.edge_texture) {
             if (m.edge_texture) glDeleteTextures(1, &m.edge_texture);
             m.edge_capacity = std::max<size_t>(m.edge_count, 1);
             m.edge_texture = make_data_texture(GL_RGBA32UI, m.edge_capacity);
         }
-        constexpr size_t kEdgeChunk = 16 * kTextureWidth;  // 512 KiB of records
-        std::vector<EdgeRecord> chunk(std::min(kEdgeChunk, std::max<size_t>(m.edge_count, 1)));
+        stream.restart();
         size_t first = 0;
         while (const size_t n = stream.next(chunk)) {
+            size_t out = 0;  // kept records are written over the chunk's front, in order
             for (size_t i = 0; i < n; ++i) {
-                const EdgeRecord e = chunk[i];
-                const glm::uvec3 c0 = code(positions[e.v0]), c1 = code(positions[e.v1]);
-                const Vec3f n0 = face_normal(e.v0, e.v1, e.a);
-                const Vec3f n1 = e.b == kNoVertex ? -n0 : face_normal(e.v1, e.v0, e.b);
-                const GpuEdge g{c0.x | (c0.y << 16), c0.z | (c1.x << 16), c1.y | (c1.z << 16),
-                                pack_octahedral(n0) | (pack_octahedral(n1) << 16)};
-                std::memcpy(&chunk[i], &g, sizeof(g));
+                const Coded c = normals_of(chunk[i]);
+                if (!drawable(c)) continue;
+                const glm::uvec3 c0 = code(positions[c.e.v0]), c1 = code(positions[c.e.v1]);
+                const GpuEdge g{c0.x | (c0.y << 16), c0.z | (c1.x << 16), c1.y | (c1.z << 16), c.n0 | (c.n1 << 16)};
+                std::memcpy(&chunk[out++], &g, sizeof(g));
             }
-            texture_rows(m.edge_texture, first, first + n, GL_RGBA_INTEGER, GL_UNSIGNED_INT,
+            texture_rows(m.edge_texture, first, first + out, GL_RGBA_INTEGER, GL_UNSIGNED_INT,
                          reinterpret_cast<const uint8_t*>(chunk.data()), sizeof(GpuEdge));
-            first += n;
+            first += out;
         }
     }
     m.edges_stale = false;
@@ -912,6 +959,7 @@ static void ensure_edges(Model& m) {
 // pieces from the mapped buffers, so the only scratch is one piece.
 static void ensure_wire_textures(Model& m) {
     if (!m.wire_stale && m.position_texture && m.index_texture) return;
+    free_edge_texture(m);
     const bool packed = wire_index_packed(m);
     if (!m.position_texture) m.position_texture = make_data_texture(GL_RGB16UI, m.vertex_capacity);
     if (!m.index_texture) m.index_texture = make_data_texture(packed ? GL_RG32UI : GL_RGB32UI, m.index_capacity / 3);

@@ -17,9 +17,11 @@
 // and the dirty ranges of a progressive mesh (shared/pm), drawing the current
 // prefixes vertex_count/index_count. Units are object space; ModelState::transform
 // places a model in the world. The renderer keeps no CPU copy of the mesh: the
-// `lines` style's edge texture (16 bytes per edge, positions and face normals
-// inside) and `wireframe`'s position/index textures are built lazily from the
-// GL buffers when a model is first drawn in that style.
+// `lines` style's edge texture (16 bytes per edge that can be drawn, positions
+// and face normals inside; edges between faces of the same normal are left
+// out) and `wireframe`'s position/index textures are built lazily from the GL
+// buffers when a model is first drawn in that style, and a model keeps one of
+// the two at a time (building one frees the other).
 //
 // Frame order: opaque models (any style), then transparent ones (selected =
 // purple, x-ray/faded unselected) sorted back to front, each with a depth

@@ -62,11 +62,18 @@ TEST(EdgeList, StreamInPiecesMatchesTheWholeList) {
             std::vector<EdgeRecord> out, chunk(piece);
             while (size_t n = stream.next(chunk)) out.insert(out.end(), chunk.begin(), chunk.begin() + n);
             ASSERT_EQ(out.size(), whole.size()) << "piece " << piece << ", scratch " << scratch;
+            // A second walk after restart() hands out the same records again.
+            stream.restart();
+            std::vector<EdgeRecord> again;
+            while (size_t n = stream.next(chunk)) again.insert(again.end(), chunk.begin(), chunk.begin() + n);
+            ASSERT_EQ(again.size(), whole.size()) << "after restart, piece " << piece << ", scratch " << scratch;
             for (size_t i = 0; i < out.size(); ++i) {
                 EXPECT_EQ(out[i].v0, whole[i].v0);
                 EXPECT_EQ(out[i].v1, whole[i].v1);
                 EXPECT_EQ(out[i].a, whole[i].a);
                 EXPECT_EQ(out[i].b, whole[i].b);
+                EXPECT_EQ(again[i].v0, whole[i].v0);
+                EXPECT_EQ(again[i].b, whole[i].b);
             }
         }
 }

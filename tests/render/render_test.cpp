@@ -274,6 +274,40 @@ TEST(RenderProperty, CubeCreasesAreDrawnInside) {
     EXPECT_EQ(dark, 0);
 }
 
+// Edges between faces of the same normal can never be drawn (no silhouette,
+// no crease), so `lines` leaves them out: a flat grid keeps its boundary only,
+// and folding it keeps the edges along the fold too.
+TEST(RenderProperty, LinesLeaveOutEdgesBetweenCoplanarFaces) {
+    RenderFixture f(128, 128);
+    REQUIRE_GL(f);
+    constexpr uint32_t kQuads = 4, kRow = kQuads + 1;
+    test::GenMesh grid;
+    for (uint32_t y = 0; y < kRow; ++y)
+        for (uint32_t x = 0; x < kRow; ++x)
+            grid.positions.emplace_back(static_cast<float>(x) - 2.0f, static_cast<float>(y) - 2.0f, 0.0f);
+    for (uint32_t y = 0; y < kQuads; ++y)
+        for (uint32_t x = 0; x < kQuads; ++x) {
+            const uint32_t a = y * kRow + x, b = a + 1, c = a + kRow, d = c + 1;
+            grid.indices.insert(grid.indices.end(), {a, b, d, a, d, c});
+        }
+    const Camera camera = Camera::framing(Vec3f(0.0f), 3.0f, Vec3f(0.2f, 0.3f, 1.0f));
+    auto flat = f.renderer().add_model(grid.data(), "flat grid");
+    ASSERT_TRUE(flat.ok());
+    f.renderer().state(flat.value())->style = Style::Lines;
+    (void)f.draw(camera);
+    EXPECT_EQ(f.renderer().last_frame_stats().edges, 4u * kQuads);  // 56 edges in all, 16 on the boundary
+    f.renderer().remove_model(flat.value());
+
+    test::GenMesh folded = grid;  // the right half turned up by 60 degrees about x = 0
+    for (Vec3f& p : folded.positions)
+        if (p.x > 0.0f) p = Vec3f(p.x * 0.5f, p.y, p.x * std::sqrt(3.0f) * 0.5f);
+    auto fold = f.renderer().add_model(folded.data(), "folded grid");
+    ASSERT_TRUE(fold.ok());
+    f.renderer().state(fold.value())->style = Style::Lines;
+    (void)f.draw(camera);
+    EXPECT_EQ(f.renderer().last_frame_stats().edges, 4u * kQuads + kQuads);  // + the fold's 4 edges
+}
+
 TEST(RenderProperty, HatchingDarkensMonotonicallyAsTheLightMovesAway) {
     for (Style style : {Style::Hatching, Style::Hatching2Tone}) {
         RenderFixture f(200, 200);
