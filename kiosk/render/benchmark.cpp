@@ -103,6 +103,7 @@ Status run_benchmark(platform::Surface& surface, const BenchmarkOptions& options
     surface.make_current();
     glFinish();
     const long empty_rss = peak_rss_kib();
+    const long empty_file_rss = status_field_kib("RssFile");
     const char* gl_renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
 
     ModelSource* source = nullptr;
@@ -132,10 +133,11 @@ Status run_benchmark(platform::Surface& surface, const BenchmarkOptions& options
     // Where the memory goes: current and peak RSS above the empty context after each step.
     std::string steps;
     const auto step = [&](const char* what) {
-        char line[160];
-        std::snprintf(line, sizeof(line), "  %-34s current %7.1f  peak %7.1f MiB\n", what,
+        char line[200];
+        std::snprintf(line, sizeof(line), "  %-34s current %7.1f  peak %7.1f MiB  (library code %5.1f)\n", what,
                       static_cast<double>(current_rss_kib() - empty_rss) / 1024.0,
-                      static_cast<double>(peak_rss_kib() - empty_rss) / 1024.0);
+                      static_cast<double>(peak_rss_kib() - empty_rss) / 1024.0,
+                      static_cast<double>(status_field_kib("RssFile") - empty_file_rss) / 1024.0);
         steps += line;
     };
     step("model CPU arrays");
@@ -253,6 +255,13 @@ Status run_benchmark(platform::Surface& surface, const BenchmarkOptions& options
         "allocated: %.1f MiB\n",
         mib(peak - empty_rss), (peak - empty_rss) < 64 * 1024 ? "ok" : "MISSED",
         static_cast<double>(renderer.gpu_bytes()) / 1048576.0);
+    // File-backed pages only grow here (nothing evicts them on an idle machine),
+    // so the peak less their growth is the peak of private memory.
+    const long library_kib = status_field_kib("RssFile") - empty_file_rss;
+    std::printf(
+        "  of which shared library code paged in since the empty context (LLVM's JIT, the driver): %.1f MiB; "
+        "private memory: %.1f MiB\n",
+        mib(library_kib), mib(peak - empty_rss - library_kib));
     std::printf(
         "peak RSS per style at LOD 100%% (MiB): added over what was resident before it | alone = drawn in "
         "baseline + added\n");
