@@ -40,8 +40,9 @@ namespace body::render {
 
 namespace {
 
-constexpr int kTextureWidth = 2048;  // texels per row of the position/index textures (GLES 3.0 minimum)
+constexpr int kTextureWidth = 2048;  // texels per row of the data textures (GLES 3.0 minimum)
 constexpr GLuint kPosition = 0, kNormal = 1, kMorph = 2;
+constexpr GLuint kWireVertex = 3;  // `wireframe`: the index buffer read as a vertex attribute
 
 // Software rasterizers (llvmpipe) bin every triangle of a frame before
 // rasterizing it, about 130 bytes per covered triangle plus 48 per varying, and
@@ -101,9 +102,9 @@ struct Model {
     Vec3f center{0.0f};
     float radius = 0.0f;
     Vec3f box_min{0.0f}, box_max{0.0f};  // object space
-    // Lazily created: position and index textures for `wireframe`, the edge texture for `lines`.
-    GLuint position_texture = 0, index_texture = 0;  // RGB16UI per vertex, RG32UI/RGB32UI per triangle
-    Vec3f wire_origin{0.0f}, wire_scale{0.0f};       // dequantization of the position texture
+    // Lazily created: the position texture for `wireframe`, the edge texture for `lines`.
+    GLuint position_texture = 0;                // RGB16UI per vertex
+    Vec3f wire_origin{0.0f}, wire_scale{0.0f};  // dequantization of the position texture
     bool wire_stale = true;
     GLuint edge_texture = 0;                    // RGBA32UI, one GpuEdge per texel
     Vec3f edge_origin{0.0f}, edge_scale{0.0f};  // dequantization of the GpuEdge endpoints
@@ -112,9 +113,6 @@ struct Model {
     bool edges_stale = true;
     bool internal = false;  // the manipulation sphere
 };
-
-// The wireframe's per-triangle indices fit 21 bits each (two words a triangle).
-bool wire_index_packed(const Model& m) { return m.vertex_capacity <= (size_t{1} << 21); }
 
 uint32_t pack_normal(const Vec3f& n) {
     auto q = [](float v) {
@@ -211,7 +209,7 @@ Result<Program> link(const std::string& vert, const std::string& frag) {
     const char* fs = shader_source(frag);
     if (!vs || !fs) return runtime_error("shader " + (vs ? frag : vert) + ": not embedded in this build");
     const std::pair<unsigned, const char*> attributes[] = {
-        {kPosition, "a_position"}, {kNormal, "a_normal"}, {kMorph, "a_morph"}};
+        {kPosition, "a_position"}, {kNormal, "a_normal"}, {kMorph, "a_morph"}, {kWireVertex, "a_vertex"}};
     auto id = link_program(vs, fs, vert + "+" + frag, attributes);
     if (!id) return id.error();
     Program p;
@@ -339,7 +337,7 @@ struct Renderer::State {
     bool ready = false;
     Program baseline, smooth, hatching, xray, edges, wireframe;
     GLuint tam[2] = {0, 0};             // tonal art map: tones 0-2, 3-5
-    GLuint empty_vao = 0;               // wireframe draws without attributes
+    GLuint wire_vao = 0;                // `wireframe`: a model's index buffer as the kWireVertex attribute
     GLuint quad_vao = 0, quad_ebo = 0;  // `lines`: the shared edge-quad index buffer
     std::map<ModelId, Model> models;
     ModelId next_id = 1;
@@ -393,7 +391,10 @@ Status Renderer::init() {
         glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
     }
 
-    glGenVertexArrays(1, &s_->empty_vao);
+    glGenVertexArrays(1, &s_->wire_vao);
+    glBindVertexArray(s_->wire_vao);
+    glEnableVertexAttribArray(kWireVertex);
+    glBindVertexArray(0);
     {
         std::vector<uint16_t> quads;
         quads.reserve(kQuadEdges * 6);
@@ -443,8 +444,8 @@ void free_model(Model& m) {
     GLuint buffers[] = {m.vbo_position, m.vbo_normal, m.ebo, m.vbo_morph};
     glDeleteBuffers(4, buffers);
     glDeleteVertexArrays(1, &m.vao);
-    GLuint textures[] = {m.position_texture, m.index_texture, m.edge_texture};
-    glDeleteTextures(3, textures);
+    GLuint textures[] = {m.position_texture, m.edge_texture};
+    glDeleteTextures(2, textures);
 }
 }  // namespace
 
@@ -456,10 +457,10 @@ void Renderer::shutdown() {
         *p = Program{};
     }
     glDeleteTextures(2, s_->tam);
-    if (s_->empty_vao) glDeleteVertexArrays(1, &s_->empty_vao);
+    if (s_->wire_vao) glDeleteVertexArrays(1, &s_->wire_vao);
     if (s_->quad_vao) glDeleteVertexArrays(1, &s_->quad_vao);
     if (s_->quad_ebo) glDeleteBuffers(1, &s_->quad_ebo);
-    s_->tam[0] = s_->tam[1] = s_->empty_vao = s_->quad_vao = s_->quad_ebo = 0;
+    s_->tam[0] = s_->tam[1] = s_->wire_vao = s_->quad_vao = s_->quad_ebo = 0;
     s_->ready = false;
 }
 
@@ -579,10 +580,12 @@ Status Renderer::update_model(ModelId id, const MeshData& mesh, const Dirty& dir
         glBufferSubData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLintptr>(b * 4), static_cast<GLsizeiptr>(n * 4),
                         mesh.indices.data() + b);
     }
-    // The edge list holds face normals, so any change rebuilds it (lazily, when drawn in `lines`).
+    // The edge list holds face normals, so any change rebuilds it (lazily, when
+    // drawn in `lines`); the wireframe's position texture only follows the vertices.
     if (icount - icount % 3 != m.index_count || dirty.index_begin < dirty.index_end ||
         dirty.vertex_begin < dirty.vertex_end)
-        m.edges_stale = m.wire_stale = true;
+        m.edges_stale = true;
+    if (vcount != m.vertex_count || dirty.vertex_begin < dirty.vertex_end) m.wire_stale = true;
     m.vertex_count = vcount;
     m.index_count = icount - icount % 3;
     BODY_GL_CHECK("update_model");
@@ -702,7 +705,6 @@ size_t Renderer::gpu_bytes() const {
         total += m.vertex_capacity * (sizeof(Vec3f) + 4) + m.index_capacity * 4;
         if (m.vbo_morph) total += m.vertex_capacity * sizeof(Vec3f);
         if (m.position_texture) total += (m.vertex_capacity + w - 1) / w * w * 6;
-        if (m.index_texture) total += (m.index_capacity / 3 + w - 1) / w * w * (wire_index_packed(m) ? 8 : 12);
         if (m.edge_texture) total += (m.edge_capacity + w - 1) / w * w * sizeof(GpuEdge);
     }
     if (s_->tam[0]) total += 2 * 256 * 256 * 3 * 4 / 3;  // two RGB8 textures with mip chains
@@ -740,17 +742,22 @@ void set_lights(Program& p, const Lighting& l) {
     glUniform4f(p.loc("u_light_levels"), l.key, l.fill, l.rim, l.ambient);
 }
 
-// Attribute-less draws index their data with gl_VertexID. They are issued in
-// chunks with the offset as a uniform: softpipe (Mesa's reference driver, the
-// aarch64 cross smoke's) restarts gl_VertexID in the pieces it splits long
-// draws into, which drops most of a large model.
+// `wireframe` draws the triangles unindexed, three vertices each, with the
+// model's index buffer bound as the integer attribute kWireVertex: vertex i of
+// the draw gets index i, i.e. the mesh vertex of that corner, and i % 3 is the
+// corner. Issued in chunks, the attribute re-pointed at each chunk's first
+// index and gl_VertexID counting from 0 in each: softpipe (Mesa's reference
+// driver, the aarch64 cross smoke's) restarts gl_VertexID in the pieces it
+// splits long draws into, which drops most of a large model.
 constexpr size_t kVertexIdChunk = 3 * 1024;
-void draw_vertex_id_chunks(Program& p, size_t vertices) {
-    const GLint base = p.loc("u_vertex_base");
+void draw_wire_chunks(GLuint vao, GLuint index_buffer, size_t vertices) {
+    glBindVertexArray(vao);
+    glBindBuffer(GL_ARRAY_BUFFER, index_buffer);
     size_t since_flush = 0;
     FlushPacer pacer;
     for (size_t first = 0; first < vertices; first += kVertexIdChunk) {
-        glUniform1i(base, static_cast<GLint>(first));
+        glVertexAttribIPointer(kWireVertex, 1, GL_UNSIGNED_INT, sizeof(uint32_t),
+                               reinterpret_cast<const void*>(first * sizeof(uint32_t)));
         glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(std::min(kVertexIdChunk, vertices - first)));
         since_flush += kVertexIdChunk / 3;
         if (g_flush_large_draws && since_flush >= kFlushTriangles) {
@@ -837,13 +844,12 @@ private:
 
 // A model is drawn in one style at a time, so it keeps the lazily built data of
 // one line style only: building the `lines` edge texture frees the `wireframe`
-// textures and the other way round (a million-triangle model's are 6-26 MiB
-// and 12 MiB). Switching back rebuilds them from the GL buffers.
+// position texture and the other way round (a million-triangle model's are
+// 6-26 MiB and 3 MiB). Switching back rebuilds them from the GL buffers.
 static void free_wire_textures(Model& m) {
-    if (!m.position_texture && !m.index_texture) return;
-    GLuint textures[] = {m.position_texture, m.index_texture};
-    glDeleteTextures(2, textures);
-    m.position_texture = m.index_texture = 0;
+    if (!m.position_texture) return;
+    glDeleteTextures(1, &m.position_texture);
+    m.position_texture = 0;
     m.wire_stale = true;
 #ifdef __GLIBC__
     malloc_trim(0);  // software drivers keep textures in host memory: hand it back before the other style builds
@@ -952,32 +958,26 @@ static void ensure_edges(Model& m) {
 #endif
 }
 
-// The `wireframe` textures, rebuilt (in place) when the mesh changed: per
-// vertex its position as 16-bit codes in the box of the drawn vertices (6
-// bytes), per triangle its three indices, 21 bits each in two words when the
-// model has at most 2^21 vertices (8 bytes) or three words otherwise. Built in
-// pieces from the mapped buffers, so the only scratch is one piece.
-static void ensure_wire_textures(Model& m) {
-    if (!m.wire_stale && m.position_texture && m.index_texture) return;
+// The `wireframe` position texture, rebuilt (in place) when the vertices
+// changed: per vertex its position as 16-bit codes in the box of the drawn
+// vertices (6 bytes). The indices need no texture (see draw_wire_chunks). Built
+// in pieces from the mapped buffer, so the only scratch is one piece.
+static void ensure_wire_positions(Model& m) {
+    if (!m.wire_stale && m.position_texture) return;
     free_edge_texture(m);
-    const bool packed = wire_index_packed(m);
     if (!m.position_texture) m.position_texture = make_data_texture(GL_RGB16UI, m.vertex_capacity);
-    if (!m.index_texture) m.index_texture = make_data_texture(packed ? GL_RG32UI : GL_RGB32UI, m.index_capacity / 3);
     MappedBuffer<Vec3f> position_map(m.vbo_position, m.vertex_count);
-    MappedBuffer<uint32_t> index_map(m.ebo, m.index_count);
     const std::span<const Vec3f> positions = position_map.data();
-    const std::span<const uint32_t> indices = index_map.data();
-    if (positions.size() != m.vertex_count || indices.size() != m.index_count) return;  // retried next frame
+    if (positions.size() != m.vertex_count) return;  // retried next frame
     Aabb box;
     for (const Vec3f& p : positions) box.extend(Vec3(p));
     m.wire_origin = box.empty() ? Vec3f(0.0f) : Vec3f(box.min);
     const Vec3f extent = box.empty() ? Vec3f(0.0f) : Vec3f(box.max - box.min);
     m.wire_scale = extent / 65535.0f;
     constexpr size_t kPiece = 16 * kTextureWidth;
-    std::vector<uint32_t> piece(kPiece * 3);
+    std::vector<uint16_t> codes(kPiece * 3);
     for (size_t first = 0; first < positions.size(); first += kPiece) {
         const size_t n = std::min(kPiece, positions.size() - first);
-        auto* codes = reinterpret_cast<uint16_t*>(piece.data());
         for (size_t i = 0; i < n; ++i)
             for (int k = 0; k < 3; ++k)
                 codes[i * 3 + static_cast<size_t>(k)] =
@@ -987,22 +987,7 @@ static void ensure_wire_textures(Model& m) {
                               65535.0f))
                         : uint16_t{0};
         texture_rows(m.position_texture, first, first + n, GL_RGB_INTEGER, GL_UNSIGNED_SHORT,
-                     reinterpret_cast<const uint8_t*>(codes), 6);
-    }
-    const size_t triangles = indices.size() / 3;
-    for (size_t first = 0; first < triangles; first += kPiece) {
-        const size_t n = std::min(kPiece, triangles - first);
-        for (size_t t = 0; t < n; ++t) {
-            const uint32_t* f = &indices[(first + t) * 3];
-            if (packed) {
-                piece[t * 2] = f[0] | (f[1] << 21);
-                piece[t * 2 + 1] = (f[1] >> 11) | (f[2] << 10);
-            } else {
-                std::copy_n(f, 3, &piece[t * 3]);
-            }
-        }
-        texture_rows(m.index_texture, first, first + n, packed ? GL_RG_INTEGER : GL_RGB_INTEGER, GL_UNSIGNED_INT,
-                     reinterpret_cast<const uint8_t*>(piece.data()), packed ? 8 : 12);
+                     reinterpret_cast<const uint8_t*>(codes.data()), 6);
     }
     m.wire_stale = false;
 }
@@ -1113,7 +1098,7 @@ void Renderer::render(const Camera& camera, const Lighting& lighting, const Fram
                 break;
             }
             case Style::Wireframe: {
-                ensure_wire_textures(m);
+                ensure_wire_positions(m);
                 Program& p = s.wireframe;
                 glUseProgram(p.id);
                 set_matrices(p, f, m);
@@ -1121,12 +1106,12 @@ void Renderer::render(const Camera& camera, const Lighting& lighting, const Fram
                 glUniform4f(p.loc("u_color"), col.r, col.g, col.b, 1.0f);
                 glUniform1f(p.loc("u_width_px"), o.line_width_px * 0.75f);
                 glUniform1i(p.loc("u_texture_width"), kTextureWidth);
-                glUniform1i(p.loc("u_packed_indices"), wire_index_packed(m) ? 1 : 0);
                 glUniform3fv(p.loc("u_quant_origin"), 1, glm::value_ptr(m.wire_origin));
                 glUniform3fv(p.loc("u_quant_scale"), 1, glm::value_ptr(m.wire_scale));
-                bind_textures(p, "u_positions", m.position_texture, "u_indices", m.index_texture);
-                glBindVertexArray(s.empty_vao);
-                draw_vertex_id_chunks(p, m.index_count);
+                glActiveTexture(GL_TEXTURE0);
+                glBindTexture(GL_TEXTURE_2D, m.position_texture);
+                glUniform1i(p.loc("u_positions"), 0);
+                draw_wire_chunks(s.wire_vao, m.ebo, m.index_count);
                 break;
             }
         }

@@ -19,7 +19,7 @@
 // places a model in the world. The renderer keeps no CPU copy of the mesh: the
 // `lines` style's edge texture (16 bytes per edge that can be drawn, positions
 // and face normals inside; edges between faces of the same normal are left
-// out) and `wireframe`'s position/index textures are built lazily from the GL
+// out) and `wireframe`'s position texture are built lazily from the GL
 // buffers when a model is first drawn in that style, and a model keeps one of
 // the two at a time (building one frees the other).
 //
