@@ -11,7 +11,8 @@
 //      memcpy of the full index array), decoding the whole file (vs meshopt decoding
 //      the full mesh as one vertex + index buffer), bytes per vertex split (goal <= 10 B)
 //
-// usage: bench_pm [--obj FILE] [--vtk-dir DIR] [--write-dir DIR] [--no-big] [--decode FILE.bpm]
+// usage: bench_pm [--obj FILE] [--vtk-dir DIR] [--write-dir DIR] [--no-big] [--build-only] [--decode FILE.bpm]
+//   --build-only prints the build times only (section 1);
 //   --decode times reading one .bpm (nothing else);
 //   --write-dir writes the inputs (bunny.obj, bunny_sub.obj) for the VTK script;
 //   --vtk-dir reads DIR/<name>_vtk_<percent>.obj written by vtkQuadricDecimation.
@@ -121,7 +122,7 @@ void row(const char* what, double ours, const char* base_name, double base) {
     std::printf("  %-44s %12.6g   %-30s %12.6g   ratio %7.3f\n", what, ours, base_name, base, ours / base);
 }
 
-void run(const Mesh& mesh, const std::string& label, const std::string& vtk_dir, int reps) {
+void run(const Mesh& mesh, const std::string& label, const std::string& vtk_dir, int reps, bool build_only) {
     const size_t tris = mesh.triangle_count();
     std::printf("\n== %s: %zu vertices, %zu triangles\n", label.c_str(), mesh.positions.size(), tris);
     const std::vector<float> fp = float_positions(mesh);
@@ -136,6 +137,7 @@ void run(const Mesh& mesh, const std::string& label, const std::string& vtk_dir,
     std::printf(" build\n");
     row("PM build + encode (s)", t_pm, "meshopt 10-level chain (s)", t_chain);
     row("  of which simplification (s)", t_simplify, "meshopt 10-level chain (s)", t_chain);
+    if (build_only) return;
 
     auto pms = pm::read_bpm_bytes(bytes, label);
     if (!pms) {
@@ -275,7 +277,7 @@ int decode_only(const std::string& path) {
 
 int main(int argc, char** argv) {
     std::string obj = "/usr/share/glmark2/models/bunny.obj", vtk_dir, write_dir, decode;
-    bool big = true;
+    bool big = true, build_only = false;
     for (int i = 1; i < argc; ++i) {
         std::string a = argv[i];
         if (a == "--obj" && i + 1 < argc)
@@ -288,10 +290,12 @@ int main(int argc, char** argv) {
             decode = argv[++i];
         else if (a == "--no-big")
             big = false;
+        else if (a == "--build-only")
+            build_only = true;
         else {
-            std::fprintf(
-                stderr,
-                "usage: bench_pm [--obj FILE] [--vtk-dir DIR] [--write-dir DIR] [--no-big] [--decode FILE.bpm]\n");
+            std::fprintf(stderr,
+                         "usage: bench_pm [--obj FILE] [--vtk-dir DIR] [--write-dir DIR] [--no-big] [--build-only] "
+                         "[--decode FILE.bpm]\n");
             return 2;
         }
     }
@@ -311,7 +315,7 @@ int main(int argc, char** argv) {
         return 0;
     }
     std::printf("bench_pm: ratios are ours / baseline, same run, same machine; times in thread CPU seconds\n");
-    run(*mesh, "bunny", vtk_dir, 3);
-    if (big) run(sub, "bunny_sub", vtk_dir, 1);
+    run(*mesh, "bunny", vtk_dir, 3, build_only);
+    if (big) run(sub, "bunny_sub", vtk_dir, 1, build_only);
     return 0;
 }

@@ -20,6 +20,7 @@
 #include <cmath>
 #include <limits>
 #include <tuple>
+#include <type_traits>
 
 #include "shared/pm/bpm_format.h"
 
@@ -86,29 +87,33 @@ struct Quadric {
 };
 
 // Indexed binary min-heap of vertices keyed by the cost of their cheapest outgoing
-// half-edge collapse; ties broken by vertex number so the order is the same everywhere.
+// half-edge collapse; ties broken by the vertex's input number (`rank`) so the order
+// is the same everywhere and does not depend on the internal numbering. Keys and
+// ranks live in the heap entries: a sift compares without random loads.
 class VertexHeap {
 public:
-    void reset(size_t n) {
-        pos_.assign(n, kNone);
-        key_.assign(n, 0.0);
+    void reset(const std::vector<uint32_t>& rank) {
+        rank_ = rank.data();
+        pos_.assign(rank.size(), kNone);
         items_.clear();
     }
     bool empty() const { return items_.empty(); }
     bool contains(uint32_t v) const { return pos_[v] != kNone; }
-    uint32_t top() const { return items_[0]; }
-    double key(uint32_t v) const { return key_[v]; }
+    uint32_t top() const { return items_[0].v; }
+    // The key of a vertex in the heap.
+    double key(uint32_t v) const { return items_[pos_[v]].key; }
     // The smallest key other than the top's (infinity when there is none).
     double second_key() const {
         double k = std::numeric_limits<double>::infinity();
-        for (size_t c = 1; c <= 2 && c < items_.size(); ++c) k = std::min(k, key_[items_[c]]);
+        for (size_t c = 1; c <= 2 && c < items_.size(); ++c) k = std::min(k, items_[c].key);
         return k;
     }
     void set(uint32_t v, double key) {
-        key_[v] = key;
         if (pos_[v] == kNone) {
             pos_[v] = uint32_t(items_.size());
-            items_.push_back(v);
+            items_.push_back({key, v, rank_[v]});
+        } else {
+            items_[pos_[v]].key = key;
         }
         sift_up(pos_[v]);
         sift_down(pos_[v]);
@@ -116,46 +121,50 @@ public:
     void erase(uint32_t v) {
         const uint32_t i = pos_[v];
         if (i == kNone) return;
-        const uint32_t last = items_.back();
+        const Item last = items_.back();
         items_.pop_back();
         pos_[v] = kNone;
-        if (last == v) return;
-        items_[i] = last;
-        pos_[last] = i;
+        if (last.v == v) return;
+        place(i, last);
         sift_up(i);
-        sift_down(pos_[last]);
+        sift_down(pos_[last.v]);
     }
 
 private:
-    bool before(uint32_t a, uint32_t b) const { return key_[a] < key_[b] || (key_[a] == key_[b] && a < b); }
-    void place(size_t i, uint32_t v) {
-        items_[i] = v;
-        pos_[v] = uint32_t(i);
+    struct Item {
+        double key;
+        uint32_t v, rank;
+    };
+    static bool before(const Item& a, const Item& b) { return a.key < b.key || (a.key == b.key && a.rank < b.rank); }
+    void place(size_t i, const Item& item) {
+        items_[i] = item;
+        pos_[item.v] = uint32_t(i);
     }
     void sift_up(size_t i) {
-        const uint32_t v = items_[i];
+        const Item item = items_[i];
         while (i > 0) {
             const size_t parent = (i - 1) / 2;
-            if (!before(v, items_[parent])) break;
+            if (!before(item, items_[parent])) break;
             place(i, items_[parent]);
             i = parent;
         }
-        place(i, v);
+        place(i, item);
     }
     void sift_down(size_t i) {
-        const uint32_t v = items_[i];
+        const Item item = items_[i];
         for (;;) {
             size_t c = 2 * i + 1;
             if (c >= items_.size()) break;
             if (c + 1 < items_.size() && before(items_[c + 1], items_[c])) ++c;
-            if (!before(items_[c], v)) break;
+            if (!before(items_[c], item)) break;
             place(i, items_[c]);
             i = c;
         }
-        place(i, v);
+        place(i, item);
     }
-    std::vector<uint32_t> pos_, items_;
-    std::vector<double> key_;
+    const uint32_t* rank_ = nullptr;
+    std::vector<uint32_t> pos_;
+    std::vector<Item> items_;
 };
 
 struct Collapse {
@@ -183,16 +192,29 @@ struct State {
     // The optimum of an edge is the same in both directions (Q_u + Q_v, the midpoint and
     // the edge length are symmetric in IEEE arithmetic): after u -> v, the placements
     // v -> x computed for v's key are reused for x -> v by v's neighbours.
-    uint32_t sym_v = kNone, sym_epoch = 0;
-    std::vector<uint32_t> sym_stamp;
+    // A short list (v's ring) searched linearly rather than per-vertex arrays: fewer
+    // cold cache lines per collapse.
+    struct SymmetricPlacement {
+        uint32_t to;
+        double cost;
+        Vec3 pos;
+    };
+    uint32_t sym_v = kNone;
+    std::vector<SymmetricPlacement> sym;
     // Per corner c: the cost of idx[c] -> the next vertex of its face, computed at
     // collapse number corner_time[c] (0: never); valid while both ends' last_changed
     // (the collapse that last moved them or grew their quadric) is not later.
-    std::vector<double> corner_cost;
-    std::vector<uint32_t> corner_time, last_changed;
+    struct CornerCost {
+        double cost;
+        uint32_t time;
+    };
+    std::vector<CornerCost> corner_cost;  // one load for both
+    std::vector<uint32_t> last_changed;
     uint32_t now = 1;
-    std::vector<double> sym_cost;
-    std::vector<Vec3> sym_pos;
+    std::vector<uint32_t> face_of_input;  // input face (after clean_input) -> face here
+    // Vertex v here is input vertex rank[v] (after clean_input); ties between equal
+    // costs go to the lower rank, so the result does not depend on the numbering here.
+    std::vector<uint32_t> rank, vertex_of_input;
     std::vector<Collapse> collapses;
     std::vector<uint32_t> patch_faces;
     size_t live_faces = 0;
@@ -304,6 +326,89 @@ void init_quadrics(State& s, double boundary_weight) {
     }
 }
 
+// Renumbers the vertices along a Morton curve over the bounding box (10 bits per
+// axis, ties by input number) so that a neighbourhood's vertices share cache lines;
+// many inputs (subdivided meshes, merged OBJ objects) append vertices in an order
+// unrelated to the surface. The quadrics, flags and normals move with their vertex.
+void reorder_vertices(State& s, std::vector<Vec3>& normals) {
+    const size_t n = s.pos.size();
+    const Aabb box = mesh_bounds(s.pos);
+    const Vec3 extent = box.max - box.min;
+    auto cell = [](double t) {  // t in [0, 1] -> 0 .. 1023
+        return uint64_t(std::clamp(t * 1024.0, 0.0, 1023.0));
+    };
+    auto spread = [](uint64_t x) {  // 10 bits -> every third bit of 30
+        x = (x | (x << 16)) & 0x030000FFull;
+        x = (x | (x << 8)) & 0x0300F00Full;
+        x = (x | (x << 4)) & 0x030C30C3ull;
+        x = (x | (x << 2)) & 0x09249249ull;
+        return x;
+    };
+    std::vector<uint64_t> keys(n);
+    for (size_t v = 0; v < n; ++v) {
+        const Vec3 d = s.pos[v] - box.min;
+        const uint64_t x = cell(extent.x > 0.0 ? d.x / extent.x : 0.0), y = cell(extent.y > 0.0 ? d.y / extent.y : 0.0),
+                       z = cell(extent.z > 0.0 ? d.z / extent.z : 0.0);
+        keys[v] = (spread(x) | spread(y) << 1 | spread(z) << 2) << 32 | v;
+    }
+    std::sort(keys.begin(), keys.end());
+    s.rank.resize(n);
+    s.vertex_of_input.resize(n);
+    for (size_t i = 0; i < n; ++i) {
+        s.rank[i] = uint32_t(keys[i]);
+        s.vertex_of_input[s.rank[i]] = uint32_t(i);
+    }
+    auto permute = [&](auto& values) {
+        std::remove_reference_t<decltype(values)> out(n);
+        for (size_t i = 0; i < n; ++i) out[i] = values[s.rank[i]];
+        values.swap(out);
+    };
+    permute(s.pos);
+    permute(normals);
+    permute(s.q);
+    permute(s.e);
+    permute(s.boundary);
+    permute(s.locked);
+    permute(s.alive);
+    permute(s.fcount);
+    for (uint32_t& v : s.idx) v = s.vertex_of_input[v];
+}
+
+// Renumbers the faces by their smallest vertex (stable), so that a fan's faces lie
+// close together in every per-face and per-corner array: the input's face order
+// may be unrelated to its vertex order (bunny: the next face's vertices lie ~700
+// vertices away), and the collapse loop is bound by memory latency. Runs after the
+// quadrics (their sums keep the input's order); the output does not depend on face
+// numbers (emit_order restores the input order through face_of_input).
+void reorder_faces(State& s) {
+    const size_t n = s.pos.size(), faces = s.idx.size() / 3;
+    std::vector<uint32_t> start(n + 1, 0);
+    for (size_t f = 0; f < faces; ++f) ++start[std::min({s.idx[f * 3], s.idx[f * 3 + 1], s.idx[f * 3 + 2]}) + 1];
+    for (size_t v = 0; v < n; ++v) start[v + 1] += start[v];
+    s.face_of_input.resize(faces);
+    std::vector<uint32_t> idx(s.idx.size());
+    std::vector<uint8_t> edge_boundary(s.idx.size());
+    for (size_t f = 0; f < faces; ++f) {
+        const uint32_t g = start[std::min({s.idx[f * 3], s.idx[f * 3 + 1], s.idx[f * 3 + 2]})]++;
+        s.face_of_input[f] = g;
+        for (int k = 0; k < 3; ++k) {
+            idx[g * 3 + k] = s.idx[f * 3 + k];
+            edge_boundary[g * 3 + k] = s.edge_boundary[f * 3 + k];
+        }
+    }
+    s.idx.swap(idx);
+    s.edge_boundary.swap(edge_boundary);
+    // The corner lists in the input's order, as build_adjacency made them: the order
+    // of a fan's walk decides which of a split's faces comes first in the output.
+    s.head.assign(n, kNone);
+    for (size_t f = faces; f-- > 0;)
+        for (uint32_t k = 3; k-- > 0;) {
+            const uint32_t c = s.face_of_input[f] * 3 + k;
+            s.next[c] = s.head[s.idx[c]];
+            s.head[s.idx[c]] = c;
+        }
+}
+
 // Live corners of v, compacting dead ones out of its list on the way.
 void live_corners(State& s, uint32_t v, std::vector<uint32_t>& out) {
     out.clear();
@@ -371,17 +476,15 @@ Vec3 placement(const State& s, uint32_t from, uint32_t to, double& cost, bool* o
 
 // placement(), reusing (and, for the vertex just merged, recording) symmetric optima.
 Vec3 placement_cached(State& s, uint32_t from, uint32_t to, double& cost) {
-    if (to == s.sym_v && s.sym_stamp[from] == s.sym_epoch) {
-        cost = s.sym_cost[from];
-        return s.sym_pos[from];
-    }
+    if (to == s.sym_v)
+        for (const auto& e : s.sym)
+            if (e.to == from) {
+                cost = e.cost;
+                return e.pos;
+            }
     bool optimum = false;
     const Vec3 p = placement(s, from, to, cost, &optimum);
-    if (from == s.sym_v && optimum) {
-        s.sym_stamp[to] = s.sym_epoch;
-        s.sym_cost[to] = cost;
-        s.sym_pos[to] = p;
-    }
+    if (from == s.sym_v && optimum) s.sym.push_back({to, cost, p});
     return p;
 }
 
@@ -423,15 +526,16 @@ void update_vertex(State& s, uint32_t u) {
             if (x == u) continue;
             double cost = 0.0;
             Vec3 p{0.0};
-            const uint32_t t = s.corner_time[c];
+            const uint32_t t = s.corner_cost[c].time;
             const bool cached = cache && t != 0 && t >= s.last_changed[u] && t >= s.last_changed[x];
             if (cached) {
-                cost = s.corner_cost[c];
+                cost = s.corner_cost[c].cost;
             } else {
                 p = placement_cached(s, u, x, cost);
-                if (cache) s.corner_cost[c] = cost, s.corner_time[c] = s.now;
+                if (cache) s.corner_cost[c] = {cost, s.now};
             }
-            if (cost < best || (cost == best && x < target)) best = cost, target = x, best_p = p, best_cached = cached;
+            if (cost < best || (cost == best && (target == kNone || s.rank[x] < s.rank[target])))
+                best = cost, target = x, best_p = p, best_cached = cached;
         }
         link = &s.next[c];
     }
@@ -458,7 +562,7 @@ void update_neighbour(State& s, uint32_t x, uint32_t u, uint32_t v) {
     if (!s.alive[x] || s.locked[x]) return;
     double c = 0.0;
     const Vec3 p = placement_cached(s, x, v, c);
-    if (c < s.heap.key(x) || (c == s.heap.key(x) && v < s.best_target[x])) {
+    if (c < s.heap.key(x) || (c == s.heap.key(x) && s.rank[v] < s.rank[s.best_target[x]])) {
         s.best_target[x] = v;
         s.best_pos[x] = p;
         s.best_valid[x] = 1;
@@ -656,7 +760,7 @@ void apply_collapse(State& s, uint32_t u, uint32_t v, const Vec3& target, const 
     s.heap.erase(u);
     ring_of(s, v, s.touched);
     s.sym_v = v;
-    ++s.sym_epoch;
+    s.sym.clear();
     update_vertex(s, v);
     for (uint32_t x : s.touched) update_neighbour(s, x, u, v);
     s.sym_v = kNone;
@@ -669,16 +773,12 @@ void collapse_loop(State& s, size_t target_faces) {
     const uint32_t n = uint32_t(s.pos.size());
     // (cost, target, half-edge only): a placement rejected by the geometry checks
     // comes back as the half-edge collapse at its own cost, re-ranked.
-    std::vector<std::tuple<double, uint32_t, bool>> options;
+    std::vector<std::tuple<double, uint32_t, uint32_t, bool>> options;  // ... with the target's rank before it
     for (int pass = 0; pass < 16 && s.live_faces > target_faces; ++pass) {
-        s.heap.reset(n);
+        s.heap.reset(s.rank);
         s.best_target.assign(n, kNone);
         s.best_pos.assign(n, Vec3(0.0));
         s.best_valid.assign(n, 0);
-        s.sym_stamp.assign(n, 0);
-        s.sym_cost.assign(n, 0.0);
-        s.sym_pos.assign(n, Vec3(0.0));
-        s.sym_epoch = 0;
         s.sym_v = kNone;
         for (uint32_t v = 0; v < n; ++v) update_vertex(s, v);
         size_t done = 0;
@@ -701,11 +801,11 @@ void collapse_loop(State& s, size_t target_faces) {
             }
             ring_of(s, u, s.ring_u);
             options.clear();
-            for (uint32_t x : s.ring_u) options.push_back({collapse_cost(s, u, x), x, false});
+            for (uint32_t x : s.ring_u) options.push_back({collapse_cost(s, u, x), s.rank[x], x, false});
             std::sort(options.begin(), options.end());
             bool handled = false;
             for (size_t i = 0; i < options.size();) {
-                const auto [cost, v, half_edge] = options[i];
+                const auto [cost, rank, v, half_edge] = options[i];
                 if (cost > limit) {
                     s.best_target[u] = v;
                     s.best_valid[u] = 0;
@@ -732,7 +832,7 @@ void collapse_loop(State& s, size_t target_faces) {
                 }
                 // The safe fallback: the half-edge collapse (v where it is), at its cost.
                 const Vec3& pv = s.pos[v];
-                options[i] = {std::max(s.q[u].eval(pv) + s.q[v].eval(pv), 0.0), v, true};
+                options[i] = {std::max(s.q[u].eval(pv) + s.q[v].eval(pv), 0.0), rank, v, true};
                 std::sort(options.begin() + ptrdiff_t(i), options.end());
             }
             if (!handled) s.heap.erase(u);
@@ -762,10 +862,10 @@ ProgressiveBuild emit_order(const State& s, const std::vector<Vec3>& normals) {
     const size_t n = s.pos.size(), faces = s.idx.size() / 3, splits = s.collapses.size();
     std::vector<uint32_t> vid(n, kNone), fid(faces, kNone);
     uint32_t next_v = 0, next_f = 0;
-    for (size_t v = 0; v < n; ++v)
+    for (const uint32_t v : s.vertex_of_input)
         if (s.alive[v]) vid[v] = next_v++;
     pm.base_vertices = next_v;
-    for (size_t f = 0; f < faces; ++f)
+    for (const uint32_t f : s.face_of_input)
         if (s.face_alive[f]) fid[f] = next_f++;
     pm.base_faces = next_f;
     for (size_t j = 0; j < splits; ++j) {
@@ -817,9 +917,10 @@ Result<ProgressiveBuild> build_progressive_mesh(const Mesh& mesh, const LodOptio
     }
     build_adjacency(s);
     init_quadrics(s, options.boundary_weight);
+    reorder_vertices(s, normals);
+    reorder_faces(s);
     s.optimal = options.optimal_placement;
-    s.corner_cost.assign(s.idx.size(), 0.0);
-    s.corner_time.assign(s.idx.size(), 0);
+    s.corner_cost.assign(s.idx.size(), {0.0, 0});
     s.last_changed.assign(s.pos.size(), 0);
     const Aabb box = mesh_bounds(s.pos);
     s.box_min = box.min;
