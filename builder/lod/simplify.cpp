@@ -201,6 +201,8 @@ struct State {
     };
     uint32_t sym_v = kNone;
     std::vector<SymmetricPlacement> sym;
+    std::vector<SymmetricPlacement> fresh;  // update_vertex scratch: optima computed this call
+    std::vector<uint32_t> twins;            // ... and the corners before u in its faces
     // Per corner c: the cost of idx[c] -> the next vertex of its face, computed at
     // collapse number corner_time[c] (0: never); valid while both ends' last_changed
     // (the collapse that last moved them or grew their quadric) is not later.
@@ -261,31 +263,27 @@ void build_adjacency(State& s) {
     }
     s.face_alive.assign(faces, 1);
     s.live_faces = faces;
-    // Edge multiplicity through sorted undirected keys (deterministic, no hashing).
-    std::vector<std::pair<uint64_t, uint32_t>> keys(corners);
-    for (size_t c = 0; c < corners; ++c) {
-        uint32_t a = s.idx[c], b = s.idx[c - c % 3 + (c + 1) % 3];
-        keys[c] = {uint64_t(std::min(a, b)) << 32 | std::max(a, b), uint32_t(c)};
-    }
-    std::sort(keys.begin(), keys.end());
+    // Edge multiplicity from the fans: the faces around a that also contain b are
+    // the faces of edge {a, b} (no sort over all corners; the same flags).
     s.edge_boundary.assign(corners, 0);
     s.boundary.assign(n, 0);
     s.locked.assign(n, 0);
-    for (size_t i = 0; i < keys.size();) {
-        size_t j = i;
-        while (j < keys.size() && keys[j].first == keys[i].first) ++j;
-        const uint32_t a = uint32_t(keys[i].first >> 32), b = uint32_t(keys[i].first);
-        if (j - i == 1) {
-            s.edge_boundary[keys[i].second] = 1;
-            s.boundary[a] = s.boundary[b] = 1;
-        } else if (j - i > 2) {
-            s.locked[a] = s.locked[b] = 1;  // non-manifold edge: never move its ends
-        } else {
-            // Two faces must traverse the edge in opposite directions.
-            uint32_t c0 = keys[i].second, c1 = keys[i + 1].second;
-            if (s.idx[c0] == s.idx[c1]) s.locked[a] = s.locked[b] = 1;
+    for (size_t c = 0; c < corners; ++c) {
+        const uint32_t a = s.idx[c], b = s.idx[c - c % 3 + (c + 1) % 3];
+        uint32_t count = 0;
+        bool same_direction = false;  // another face also runs a -> b
+        for (uint32_t d = s.head[a]; d != kNone; d = s.next[d]) {
+            const uint32_t f = d - d % 3, after = s.idx[f + (d % 3 + 1) % 3], before = s.idx[f + (d % 3 + 2) % 3];
+            if (after != b && before != b) continue;
+            ++count;
+            if (after == b && f != c - c % 3) same_direction = true;
         }
-        i = j;
+        if (count == 1) {
+            s.edge_boundary[c] = 1;
+            s.boundary[a] = s.boundary[b] = 1;
+        } else if (count > 2 || same_direction) {
+            s.locked[a] = s.locked[b] = 1;  // non-manifold edge: never move its ends
+        }
     }
     s.alive.assign(n, 1);
 }
@@ -475,16 +473,18 @@ Vec3 placement(const State& s, uint32_t from, uint32_t to, double& cost, bool* o
 }
 
 // placement(), reusing (and, for the vertex just merged, recording) symmetric optima.
-Vec3 placement_cached(State& s, uint32_t from, uint32_t to, double& cost) {
+Vec3 placement_cached(State& s, uint32_t from, uint32_t to, double& cost, bool* symmetric = nullptr) {
     if (to == s.sym_v)
         for (const auto& e : s.sym)
             if (e.to == from) {
                 cost = e.cost;
+                if (symmetric) *symmetric = true;
                 return e.pos;
             }
     bool optimum = false;
     const Vec3 p = placement(s, from, to, cost, &optimum);
     if (from == s.sym_v && optimum) s.sym.push_back({to, cost, p});
+    if (symmetric) *symmetric = optimum;
     return p;
 }
 
@@ -510,6 +510,12 @@ void update_vertex(State& s, uint32_t u) {
     // per corner and reused while neither end has changed since (placement is a pure
     // function of both ends' positions and quadrics).
     const bool cache = !s.boundary[u];
+    // An optimum just computed for u -> x is also the cost of x -> u: it goes to the
+    // corner of x before u (u's fan holds it), so a later update of x need not solve
+    // it again while neither end changes.
+    const bool twins = cache;
+    s.fresh.clear();
+    s.twins.clear();
     uint32_t* link = &s.head[u];
     while (*link != kNone) {
         const uint32_t c = *link;
@@ -531,13 +537,24 @@ void update_vertex(State& s, uint32_t u) {
             if (cached) {
                 cost = s.corner_cost[c].cost;
             } else {
-                p = placement_cached(s, u, x, cost);
+                bool symmetric = false;
+                p = placement_cached(s, u, x, cost, &symmetric);
                 if (cache) s.corner_cost[c] = {cost, s.now};
+                if (twins && symmetric) s.fresh.push_back({x, cost, p});
             }
+            if (twins) s.twins.push_back(f + (at + 2) % 3);
             if (cost < best || (cost == best && (target == kNone || s.rank[x] < s.rank[target])))
                 best = cost, target = x, best_p = p, best_cached = cached;
         }
         link = &s.next[c];
+    }
+    for (const uint32_t c : s.twins) {
+        const uint32_t w = s.idx[c];
+        for (const auto& e : s.fresh)
+            if (e.to == w) {
+                s.corner_cost[c] = {e.cost, s.now};
+                break;
+            }
     }
     if (best_cached) {
         double unused = 0.0;
