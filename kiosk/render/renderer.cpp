@@ -336,7 +336,7 @@ Camera Camera::framing_box(Vec3f lo, Vec3f hi, Vec3f direction, float aspect, fl
 struct Renderer::State {
     bool ready = false;
     Program baseline, smooth, hatching, xray, edges, wireframe;
-    GLuint tam[2] = {0, 0};             // tonal art map: tones 0-2, 3-5
+    GLuint tam = 0;                     // tonal art map: a 2D array texture, see init()
     GLuint wire_vao = 0;                // `wireframe`: a model's index buffer as the kWireVertex attribute
     GLuint quad_vao = 0, quad_ebo = 0;  // `lines`: the shared edge-quad index buffer
     std::map<ModelId, Model> models;
@@ -367,29 +367,34 @@ Status Renderer::init() {
         *w.p = std::move(p.value());
     }
 
-    // Tonal art map: tones 0-2 and 3-5 packed into the RGB of two textures
-    // (Praun et al. 2001), our own mip chain (tone matched per level).
+    // Tonal art map (Praun et al. 2001) with our own mip chain (tone matched
+    // per level), packed so that every fragment needs one texture read: hatching
+    // blends the two tones around its light level, and layer 0 holds tones 0-3,
+    // layer 1 tones 2-5 (RGBA), so either layer covers any such pair (the shader
+    // picks the layer per fragment); layer 2 holds the two tones of the
+    // two-tone variant (1 and 4, in R and G).
     TonalArtMap tam = make_tonal_art_map(256, 6);
+    constexpr int kLayerTones[3][4] = {{0, 1, 2, 3}, {2, 3, 4, 5}, {1, 4, 4, 4}};
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     const auto levels = static_cast<GLsizei>(tam.levels.size());
-    for (int half = 0; half < 2; ++half) {
-        GLuint& tex = s_->tam[half];
-        glGenTextures(1, &tex);
-        glBindTexture(GL_TEXTURE_2D, tex);
-        glTexStorage2D(GL_TEXTURE_2D, levels, GL_RGB8, tam.size, tam.size);
-        for (GLsizei l = 0; l < levels; ++l) {
-            const int size = std::max(1, tam.size >> l);
-            const auto& tones = tam.levels[static_cast<size_t>(l)];
-            std::vector<uint8_t> rgb(static_cast<size_t>(size) * static_cast<size_t>(size) * 3);
-            for (size_t i = 0; i < rgb.size() / 3; ++i)
-                for (size_t c = 0; c < 3; ++c) rgb[i * 3 + c] = tones[static_cast<size_t>(half) * 3 + c][i];
-            glTexSubImage2D(GL_TEXTURE_2D, l, 0, 0, size, size, GL_RGB, GL_UNSIGNED_BYTE, rgb.data());
+    glGenTextures(1, &s_->tam);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, s_->tam);
+    glTexStorage3D(GL_TEXTURE_2D_ARRAY, levels, GL_RGBA8, tam.size, tam.size, 3);
+    for (GLsizei l = 0; l < levels; ++l) {
+        const int size = std::max(1, tam.size >> l);
+        const auto& tones = tam.levels[static_cast<size_t>(l)];
+        std::vector<uint8_t> rgba(static_cast<size_t>(size) * static_cast<size_t>(size) * 4);
+        for (int layer = 0; layer < 3; ++layer) {
+            for (size_t i = 0; i < rgba.size() / 4; ++i)
+                for (size_t c = 0; c < 4; ++c) rgba[i * 4 + c] = tones[static_cast<size_t>(kLayerTones[layer][c])][i];
+            glTexSubImage3D(GL_TEXTURE_2D_ARRAY, l, 0, 0, layer, size, size, 1, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
         }
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_NEAREST);
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
     }
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, GL_REPEAT);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_T, GL_REPEAT);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
 
     glGenVertexArrays(1, &s_->wire_vao);
     glBindVertexArray(s_->wire_vao);
@@ -456,11 +461,11 @@ void Renderer::shutdown() {
         if (p->id) glDeleteProgram(p->id);
         *p = Program{};
     }
-    glDeleteTextures(2, s_->tam);
+    if (s_->tam) glDeleteTextures(1, &s_->tam);
     if (s_->wire_vao) glDeleteVertexArrays(1, &s_->wire_vao);
     if (s_->quad_vao) glDeleteVertexArrays(1, &s_->quad_vao);
     if (s_->quad_ebo) glDeleteBuffers(1, &s_->quad_ebo);
-    s_->tam[0] = s_->tam[1] = s_->wire_vao = s_->quad_vao = s_->quad_ebo = 0;
+    s_->tam = s_->wire_vao = s_->quad_vao = s_->quad_ebo = 0;
     s_->ready = false;
 }
 
@@ -707,7 +712,7 @@ size_t Renderer::gpu_bytes() const {
         if (m.position_texture) total += (m.vertex_capacity + w - 1) / w * w * 6;
         if (m.edge_texture) total += (m.edge_capacity + w - 1) / w * w * sizeof(GpuEdge);
     }
-    if (s_->tam[0]) total += 2 * 256 * 256 * 3 * 4 / 3;  // two RGB8 textures with mip chains
+    if (s_->tam) total += 3 * 256 * 256 * 4 * 4 / 3;  // three RGBA8 layers with mip chains
     return total;
 }
 
@@ -765,17 +770,6 @@ void draw_wire_chunks(GLuint vao, GLuint index_buffer, size_t vertices) {
             since_flush = 0;
         }
     }
-}
-
-// Two textures on units 0 and 1, named by their sampler uniforms.
-void bind_textures(Program& p, const char* name0, GLuint tex0, const char* name1, GLuint tex1) {
-    glActiveTexture(GL_TEXTURE0);
-    glBindTexture(GL_TEXTURE_2D, tex0);
-    glUniform1i(p.loc(name0), 0);
-    glActiveTexture(GL_TEXTURE1);
-    glBindTexture(GL_TEXTURE_2D, tex1);
-    glUniform1i(p.loc(name1), 1);
-    glActiveTexture(GL_TEXTURE0);
 }
 
 // Edge quads: four corners per edge, gl_VertexID = u_vertex_base + the index,
@@ -1059,7 +1053,9 @@ void Renderer::render(const Camera& camera, const Lighting& lighting, const Fram
                 // Hatch paper tinted lightly by the structure colour.
                 Vec3f paper = glm::mix(o.paper, col, 0.25f);
                 glUniform4f(p.loc("u_color"), paper.r, paper.g, paper.b, 1.0f);
-                bind_textures(p, "u_tam_light", s.tam[0], "u_tam_dark", s.tam[1]);
+                glActiveTexture(GL_TEXTURE0);
+                glBindTexture(GL_TEXTURE_2D_ARRAY, s.tam);
+                glUniform1i(p.loc("u_tam"), 0);
                 glUniform1f(p.loc("u_hatch_scale"), 1.6f / std::max(m.radius, 1e-6f));
                 glUniform1i(p.loc("u_two_tone"), m.state.style == Style::Hatching2Tone ? 1 : 0);
                 draw_triangles(m);
