@@ -40,7 +40,8 @@ namespace body::render {
 
 namespace {
 
-constexpr int kTextureWidth = 2048;  // texels per row of the data textures (GLES 3.0 minimum)
+constexpr int kTextureWidth =
+    2048;  // texels per row of the data textures (GLES 3.0 minimum; a constant in the shaders)
 constexpr GLuint kPosition = 0, kNormal = 1, kMorph = 2;
 constexpr GLuint kWireVertex = 3;  // `wireframe`: the index buffer read as a vertex attribute
 
@@ -1079,7 +1080,6 @@ void Renderer::render(const Camera& camera, const Lighting& lighting, const Fram
                 glUniform1f(p.loc("u_cos_crease"), std::cos(glm::radians(o.crease_angle_deg)));
                 glUniform2f(p.loc("u_viewport"), static_cast<float>(o.width), static_cast<float>(o.height));
                 glUniform1f(p.loc("u_width_px"), o.line_width_px);
-                glUniform1i(p.loc("u_texture_width"), kTextureWidth);
                 glUniform4f(p.loc("u_color"), o.ink.r, o.ink.g, o.ink.b, 1.0f);
                 glUniform3fv(p.loc("u_quant_origin"), 1, glm::value_ptr(m.edge_origin));
                 glUniform3fv(p.loc("u_quant_scale"), 1, glm::value_ptr(m.edge_scale));
@@ -1101,7 +1101,6 @@ void Renderer::render(const Camera& camera, const Lighting& lighting, const Fram
                 set_lights(p, lighting);
                 glUniform4f(p.loc("u_color"), col.r, col.g, col.b, 1.0f);
                 glUniform1f(p.loc("u_width_px"), o.line_width_px * 0.75f);
-                glUniform1i(p.loc("u_texture_width"), kTextureWidth);
                 glUniform3fv(p.loc("u_quant_origin"), 1, glm::value_ptr(m.wire_origin));
                 glUniform3fv(p.loc("u_quant_scale"), 1, glm::value_ptr(m.wire_scale));
                 glActiveTexture(GL_TEXTURE0);

@@ -16,7 +16,10 @@ precision highp int;
 precision highp usampler2D;
 
 uniform usampler2D u_edges;  // RGBA32UI, one edge per texel
-uniform int u_texture_width;
+// Texels per row of the edge texture (renderer.cpp's kTextureWidth = 2^11): a
+// constant shift and mask, since a division by a uniform is per-lane integer
+// division on a software rasterizer.
+const int kTextureWidthLog2 = 11;
 uniform int u_vertex_base;  // the draw is split in chunks; gl_VertexID counts within one
 uniform vec3 u_quant_origin;  // object space of code 0
 uniform vec3 u_quant_scale;   // object units per code step
@@ -42,7 +45,7 @@ void main() {
     // Corner k of the quad: x = endpoint k >> 1, y = side -1/+1 from k & 1.
     int k = vid & 3;
     vec2 a_corner = vec2(float(k >> 1), (k & 1) == 1 ? 1.0 : -1.0);
-    uvec4 r = texelFetch(u_edges, ivec2(edge % u_texture_width, edge / u_texture_width), 0);
+    uvec4 r = texelFetch(u_edges, ivec2(edge & ((1 << kTextureWidthLog2) - 1), edge >> kTextureWidthLog2), 0);
     const uint lo = 0xffffu;
     vec3 p0 = u_quant_origin + u_quant_scale * vec3(uvec3(r.x & lo, r.x >> 16u, r.y & lo));
     vec3 p1 = u_quant_origin + u_quant_scale * vec3(uvec3(r.y >> 16u, r.z & lo, r.z >> 16u));

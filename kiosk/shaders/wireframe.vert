@@ -10,7 +10,7 @@ precision highp int;
 precision highp usampler2D;
 layout(location = 3) in highp uint a_vertex;
 uniform usampler2D u_positions;  // RGB16UI
-uniform int u_texture_width;
+const int kTextureWidthLog2 = 11;  // texels per row, renderer.cpp's kTextureWidth (shift, not division)
 uniform vec3 u_quant_origin;  // object space of code 0
 uniform vec3 u_quant_scale;   // object units per code step
 uniform mat4 u_model_view;
@@ -21,7 +21,7 @@ out vec3 v_view_pos;
 void main() {
     int corner = gl_VertexID % 3;
     int k = int(a_vertex);
-    vec3 p = u_quant_origin + u_quant_scale * vec3(texelFetch(u_positions, ivec2(k % u_texture_width, k / u_texture_width), 0).xyz);
+    vec3 p = u_quant_origin + u_quant_scale * vec3(texelFetch(u_positions, ivec2(k & ((1 << kTextureWidthLog2) - 1), k >> kTextureWidthLog2), 0).xyz);
     v_barycentric = vec3(corner == 0, corner == 1, corner == 2);
     vec4 view = u_model_view * vec4(p, 1.0);
     v_view_pos = view.xyz;
