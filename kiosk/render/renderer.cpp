@@ -83,6 +83,7 @@ constexpr size_t kQuadEdges = 4096;  // edges per draw of the `lines` style (16-
 
 struct Program {
     GLuint id = 0;
+    bool drawn = false;  // used by a frame already (its shader variants compiled)
     std::map<std::string, GLint> locations;
     GLint loc(const char* name) {
         auto it = locations.find(name);
@@ -1013,6 +1014,15 @@ void Renderer::render(const Camera& camera, const Lighting& lighting, const Fram
     f.view_ray = glm::vec4(2.0f / (static_cast<float>(o.width) * f.projection[0][0]),
                            2.0f / (static_cast<float>(o.height) * f.projection[1][1]), -1.0f / f.projection[0][0],
                            -1.0f / f.projection[1][1]);
+    // Drivers compile a program's shaders at its first draw (llvmpipe: LLVM)
+    // and free the compiler's scratch into the heap, a few MiB for a textured
+    // shader: a frame that drew a program for the first time hands it back.
+    bool first_use = false;
+    auto use_program = [&first_use](Program& p) {
+        glUseProgram(p.id);
+        first_use |= !p.drawn;
+        p.drawn = true;
+    };
     bool any_selected = false;
     for (auto& [id, m] : s.models) any_selected |= !m.internal && m.state.visible && m.state.selected;
     const bool fade_rest = o.xray_unselected && any_selected;
@@ -1031,14 +1041,14 @@ void Renderer::render(const Camera& camera, const Lighting& lighting, const Fram
         const Vec3f col = m.state.color;
         switch (m.state.style) {
             case Style::Baseline: {
-                glUseProgram(s.baseline.id);
+                use_program(s.baseline);
                 set_matrices(s.baseline, f, m);
                 glUniform4f(s.baseline.loc("u_color"), col.r, col.g, col.b, 1.0f);
                 draw_triangles(m);
                 break;
             }
             case Style::Smooth: {
-                glUseProgram(s.smooth.id);
+                use_program(s.smooth);
                 set_matrices(s.smooth, f, m);
                 set_lights(s.smooth, lighting);
                 glUniform4f(s.smooth.loc("u_color"), col.r, col.g, col.b, 1.0f);
@@ -1048,7 +1058,7 @@ void Renderer::render(const Camera& camera, const Lighting& lighting, const Fram
             case Style::Hatching:
             case Style::Hatching2Tone: {
                 Program& p = s.hatching;
-                glUseProgram(p.id);
+                use_program(p);
                 set_matrices(p, f, m);
                 set_lights(p, lighting);
                 // Hatch paper tinted lightly by the structure colour.
@@ -1063,7 +1073,7 @@ void Renderer::render(const Camera& camera, const Lighting& lighting, const Fram
                 break;
             }
             case Style::Lines: {
-                glUseProgram(s.baseline.id);
+                use_program(s.baseline);
                 set_matrices(s.baseline, f, m);
                 glUniform4f(s.baseline.loc("u_color"), o.paper.r, o.paper.g, o.paper.b, 1.0f);
                 glEnable(GL_POLYGON_OFFSET_FILL);
@@ -1072,7 +1082,7 @@ void Renderer::render(const Camera& camera, const Lighting& lighting, const Fram
                 glDisable(GL_POLYGON_OFFSET_FILL);
                 ensure_edges(m);
                 Program& p = s.edges;
-                glUseProgram(p.id);
+                use_program(p);
                 glm::mat4 mvp = f.projection * f.view * m.state.transform;
                 Vec3f eye_object = Vec3f(glm::inverse(m.state.transform) * glm::vec4(camera.eye, 1.0f));
                 glUniformMatrix4fv(p.loc("u_model_view_projection"), 1, GL_FALSE, glm::value_ptr(mvp));
@@ -1096,7 +1106,7 @@ void Renderer::render(const Camera& camera, const Lighting& lighting, const Fram
             case Style::Wireframe: {
                 ensure_wire_positions(m);
                 Program& p = s.wireframe;
-                glUseProgram(p.id);
+                use_program(p);
                 set_matrices(p, f, m);
                 set_lights(p, lighting);
                 glUniform4f(p.loc("u_color"), col.r, col.g, col.b, 1.0f);
@@ -1117,7 +1127,7 @@ void Renderer::render(const Camera& camera, const Lighting& lighting, const Fram
     // centre (seen through the transparent purple)
     if (o.manipulation_sphere && any_selected) {
         Model& sphere = s.models[s.sphere];
-        glUseProgram(s.smooth.id);
+        use_program(s.smooth);
         set_lights(s.smooth, lighting);
         glUniform4f(s.smooth.loc("u_color"), 0.95f, 0.95f, 0.95f, 1.0f);
         for (auto& [id, m] : s.models) {
@@ -1144,7 +1154,7 @@ void Renderer::render(const Camera& camera, const Lighting& lighting, const Fram
     glEnable(GL_BLEND);
     glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
     auto draw_transparent = [&](Model& m, Program& p, Vec3f color, float alpha, bool lit, Vec3f rim) {
-        glUseProgram(p.id);
+        use_program(p);
         set_matrices(p, f, m);
         if (lit) set_lights(p, lighting);
         glUniform4f(p.loc("u_color"), color.r, color.g, color.b, alpha);
@@ -1171,6 +1181,9 @@ void Renderer::render(const Camera& camera, const Lighting& lighting, const Fram
     glDisable(GL_BLEND);
     glBindVertexArray(0);
     glUseProgram(0);
+#ifdef __GLIBC__
+    if (first_use) malloc_trim(0);
+#endif
     BODY_GL_CHECK("render");
 }
 
