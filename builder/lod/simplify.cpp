@@ -18,6 +18,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <tuple>
 #include <type_traits>
@@ -751,12 +752,8 @@ void apply_collapse(State& s, uint32_t u, uint32_t v, const Vec3& target, const 
         for (int k = 0; k < 3; ++k) --s.fcount[s.idx[f * 3 + k]];
         --s.live_faces;
     }
-    // Keep the opposite vertices' corner lists free of the removed faces.
-    for (uint32_t i = 0; i < shared_count; ++i)
-        for (int k = 0; k < 3; ++k) {
-            const uint32_t a = s.idx[shared[i] * 3 + k];
-            if (a != u && a != v) live_corners(s, a, s.ring_u);
-        }
+    // (The opposite vertices' lists keep the removed corners until their next walk
+    // drops them: every walk skips dead faces.)
     // Move u's surviving corners onto v (s.cu holds u's live corners from the check).
     for (uint32_t c : s.cu) {
         if (!s.face_alive[c / 3]) continue;
@@ -775,7 +772,16 @@ void apply_collapse(State& s, uint32_t u, uint32_t v, const Vec3& target, const 
     s.e[v].add(s.e[u]);
     // The costs of collapses from v and from its neighbours (towards v) changed.
     s.heap.erase(u);
-    ring_of(s, v, s.touched);
+    if (!s.boundary[u]) {
+        // Around an interior u every edge keeps a face, so v's ring is the union of the
+        // two rings topology_allowed sorted (s.ring_u, s.ring_v) without u and v.
+        s.touched.clear();
+        std::set_union(s.ring_u.begin(), s.ring_u.end(), s.ring_v.begin(), s.ring_v.end(),
+                       std::back_inserter(s.touched));
+        std::erase_if(s.touched, [&](uint32_t x) { return x == u || x == v; });
+    } else {
+        ring_of(s, v, s.touched);
+    }
     s.sym_v = v;
     s.sym.clear();
     update_vertex(s, v);
