@@ -524,12 +524,13 @@ void update_vertex(State& s, uint32_t u) {
             *link = s.next[c];
             continue;
         }
-        const uint32_t f = c / 3 * 3;
+        const uint32_t f = c / 3 * 3, at = c - f;
         // In a consistently oriented fan every neighbour follows u in exactly one
         // face; only a boundary fan has a neighbour that merely precedes it.
-        const uint32_t at = c - f;
-        for (uint32_t step = 1; step <= (s.boundary[u] ? 2u : 1u); ++step) {
-            const uint32_t x = s.idx[f + (at + step) % 3];
+        const uint32_t after_u = f + (at == 2 ? 0 : at + 1), before_u = f + (at == 0 ? 2 : at - 1);
+        for (const uint32_t corner : {after_u, before_u}) {
+            if (corner == before_u && cache) break;
+            const uint32_t x = s.idx[corner];
             if (x == u) continue;
             double cost = 0.0;
             Vec3 p{0.0};
@@ -543,7 +544,7 @@ void update_vertex(State& s, uint32_t u) {
                 if (cache) s.corner_cost[c] = {cost, s.now};
                 if (twins && symmetric) s.fresh.push_back({x, cost, p});
             }
-            if (twins) s.twins.push_back(f + (at + 2) % 3);
+            if (twins) s.twins.push_back(before_u);
             if (cost < best || (cost == best && (target == kNone || s.rank[x] < s.rank[target])))
                 best = cost, target = x, best_p = p, best_cached = cached;
         }
