@@ -158,17 +158,30 @@ std::vector<Vec3f> area_normals(std::span<const Vec3f> p, std::span<const uint32
 
 // Frees the upload's normal scratch and, when it was large, hands it back to the
 // system (glibc keeps big freed blocks resident once its mmap threshold grew).
-void release_scratch(std::vector<Vec3f>& computed, std::vector<uint32_t>& packed) {
-    const bool large = computed.capacity() * sizeof(Vec3f) + packed.capacity() * 4 >= (1u << 20);
+void release_scratch(std::vector<Vec3f>& computed) {
+    const bool large = computed.capacity() * sizeof(Vec3f) >= (1u << 20);
     // Swapped out, not `= {}`: that picks the initializer_list assignment, which
     // empties the vector but keeps its storage.
     std::vector<Vec3f>().swap(computed);
-    std::vector<uint32_t>().swap(packed);
 #ifdef __GLIBC__
     if (large) malloc_trim(0);
 #else
     (void)large;
 #endif
+}
+
+// Packs normals [begin, end) into the GL_ARRAY_BUFFER bound (4 bytes each, at
+// their own element offsets) a piece at a time, so no packed copy of the whole
+// range is held.
+void upload_packed_normals(std::span<const Vec3f> normals, size_t begin, size_t end) {
+    constexpr size_t kPiece = 64 * 1024;
+    std::vector<uint32_t> packed(std::min(kPiece, end - begin));
+    for (size_t first = begin; first < end; first += kPiece) {
+        const size_t n = std::min(kPiece, end - first);
+        for (size_t i = 0; i < n; ++i) packed[i] = pack_normal(normals[first + i]);
+        glBufferSubData(GL_ARRAY_BUFFER, static_cast<GLintptr>(first * 4), static_cast<GLsizeiptr>(n * 4),
+                        packed.data());
+    }
 }
 
 // Object-space box and bounding sphere of the drawn vertices.
@@ -500,17 +513,25 @@ Result<ModelId> Renderer::add_model(const MeshData& mesh, const std::string& nam
     m.index_count = icount - icount % 3;
     set_bounds(m, mesh.positions.first(vcount));
 
-    std::vector<Vec3f> computed;
-    std::span<const Vec3f> normals = mesh.normals;
-    if (normals.empty()) {
-        computed = area_normals(mesh.positions, mesh.indices.first(m.index_count), mesh.positions.size());
-        normals = computed;
-    }
-    std::vector<uint32_t> packed(vupload);
-    for (size_t i = 0; i < vupload; ++i) packed[i] = pack_normal(normals[i]);
-
     glGenVertexArrays(1, &m.vao);
     glBindVertexArray(m.vao);
+    // Normals first: computed ones are scratch, freed before the other buffers
+    // are filled, so the upload's peak is the buffers or the scratch, not both.
+    {
+        std::vector<Vec3f> computed;
+        std::span<const Vec3f> normals = mesh.normals;
+        if (normals.empty()) {
+            computed = area_normals(mesh.positions, mesh.indices.first(m.index_count), mesh.positions.size());
+            normals = computed;
+        }
+        glGenBuffers(1, &m.vbo_normal);
+        glBindBuffer(GL_ARRAY_BUFFER, m.vbo_normal);
+        glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(m.vertex_capacity * 4), nullptr, GL_DYNAMIC_DRAW);
+        upload_packed_normals(normals, 0, vupload);
+        glVertexAttribPointer(kNormal, 4, GL_INT_2_10_10_10_REV, GL_TRUE, 4, nullptr);
+        glEnableVertexAttribArray(kNormal);
+        release_scratch(computed);
+    }
     glGenBuffers(1, &m.vbo_position);
     glBindBuffer(GL_ARRAY_BUFFER, m.vbo_position);
     // Buffers at full capacity, filled up to the counts only.
@@ -518,12 +539,6 @@ Result<ModelId> Renderer::add_model(const MeshData& mesh, const std::string& nam
     glBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(vupload * sizeof(Vec3f)), mesh.positions.data());
     glVertexAttribPointer(kPosition, 3, GL_FLOAT, GL_FALSE, sizeof(Vec3f), nullptr);
     glEnableVertexAttribArray(kPosition);
-    glGenBuffers(1, &m.vbo_normal);
-    glBindBuffer(GL_ARRAY_BUFFER, m.vbo_normal);
-    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(m.vertex_capacity * 4), nullptr, GL_DYNAMIC_DRAW);
-    glBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(vupload * 4), packed.data());
-    glVertexAttribPointer(kNormal, 4, GL_INT_2_10_10_10_REV, GL_TRUE, 4, nullptr);
-    glEnableVertexAttribArray(kNormal);
     if (mesh.morph_sources.size() >= mesh.positions.size()) {
         glGenBuffers(1, &m.vbo_morph);
         glBindBuffer(GL_ARRAY_BUFFER, m.vbo_morph);
@@ -540,7 +555,6 @@ Result<ModelId> Renderer::add_model(const MeshData& mesh, const std::string& nam
     glBufferSubData(GL_ELEMENT_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(iupload * 4), mesh.indices.data());
     glBindVertexArray(0);
     BODY_GL_CHECK("add_model");
-    release_scratch(computed, packed);
 
     ModelId id = s_->next_id++;
     s_->models.emplace(id, std::move(m));
@@ -570,15 +584,13 @@ Status Renderer::update_model(ModelId id, const MeshData& mesh, const Dirty& dir
             glBufferSubData(GL_ARRAY_BUFFER, static_cast<GLintptr>(b * sizeof(Vec3f)),
                             static_cast<GLsizeiptr>(n * sizeof(Vec3f)), mesh.morph_sources.data() + b);
         }
-        std::vector<uint32_t> packed(n);
         std::vector<Vec3f> computed;
         if (mesh.normals.empty())
             computed = area_normals(mesh.positions, mesh.indices.first(icount - icount % 3), mesh.positions.size());
         std::span<const Vec3f> normals = mesh.normals.empty() ? std::span<const Vec3f>(computed) : mesh.normals;
-        for (size_t i = 0; i < n; ++i) packed[i] = pack_normal(normals[b + i]);
         glBindBuffer(GL_ARRAY_BUFFER, m.vbo_normal);
-        glBufferSubData(GL_ARRAY_BUFFER, static_cast<GLintptr>(b * 4), static_cast<GLsizeiptr>(n * 4), packed.data());
-        release_scratch(computed, packed);
+        upload_packed_normals(normals, b, b + n);
+        release_scratch(computed);
         set_bounds(m, mesh.positions.first(vcount));
     }
     if (dirty.index_begin < dirty.index_end) {
