@@ -40,8 +40,9 @@ namespace body::render {
 
 namespace {
 
-constexpr int kTextureWidth =
-    2048;  // texels per row of the data textures (GLES 3.0 minimum; a constant in the shaders)
+// Texels per row of the data textures (the GLES 3.0 minimum); edges.vert and
+// wireframe.vert hold it as a constant (a shift, not a division).
+constexpr int kTextureWidth = 2048;
 constexpr GLuint kPosition = 0, kNormal = 1, kMorph = 2;
 constexpr GLuint kWireVertex = 3;  // `wireframe`: the index buffer read as a vertex attribute
 
