@@ -11,8 +11,9 @@
 //   build_adjacency  per-vertex corner lists (singly linked through corners), boundary/non-manifold flags
 //   init_quadrics    area-weighted plane quadrics + boundary penalty planes (ordering) and unit-weight
 //                    quadrics (the stored object-space error)
+//   reorder_vertices, reorder_faces  renumber for cache locality (the output keeps the input numbering)
 //   placement        optimal (quadric minimiser) or fallback position of a collapse
-//   collapse_loop    indexed binary heap of vertices keyed by their cheapest outgoing collapse
+//   collapse_loop    indexed 4-ary heap of vertices keyed by their cheapest outgoing collapse
 //   emit_order       vertices and faces in refinement order, index patches per split
 #include "builder/lod/simplify.h"
 
@@ -87,10 +88,11 @@ struct Quadric {
     }
 };
 
-// Indexed binary min-heap of vertices keyed by the cost of their cheapest outgoing
+// Indexed 4-ary min-heap of vertices keyed by the cost of their cheapest outgoing
 // half-edge collapse; ties broken by the vertex's input number (`rank`) so the order
 // is the same everywhere and does not depend on the internal numbering. Keys and
-// ranks live in the heap entries: a sift compares without random loads.
+// ranks live in the heap entries: a sift compares without random loads, and four
+// 16-byte siblings lie in one or two cache lines (half the depth of a binary heap).
 class VertexHeap {
 public:
     void reset(const std::vector<uint32_t>& rank) {
@@ -106,7 +108,7 @@ public:
     // The smallest key other than the top's (infinity when there is none).
     double second_key() const {
         double k = std::numeric_limits<double>::infinity();
-        for (size_t c = 1; c <= 2 && c < items_.size(); ++c) k = std::min(k, items_[c].key);
+        for (size_t c = 1; c <= kArity && c < items_.size(); ++c) k = std::min(k, items_[c].key);
         return k;
     }
     void set(uint32_t v, double key) {
@@ -141,10 +143,11 @@ private:
         items_[i] = item;
         pos_[item.v] = uint32_t(i);
     }
+    static constexpr size_t kArity = 4;
     void sift_up(size_t i) {
         const Item item = items_[i];
         while (i > 0) {
-            const size_t parent = (i - 1) / 2;
+            const size_t parent = (i - 1) / kArity;
             if (!before(item, items_[parent])) break;
             place(i, items_[parent]);
             i = parent;
@@ -154,9 +157,11 @@ private:
     void sift_down(size_t i) {
         const Item item = items_[i];
         for (;;) {
-            size_t c = 2 * i + 1;
-            if (c >= items_.size()) break;
-            if (c + 1 < items_.size() && before(items_[c + 1], items_[c])) ++c;
+            const size_t first = kArity * i + 1;
+            if (first >= items_.size()) break;
+            size_t c = first;
+            for (size_t d = first + 1; d < std::min(first + kArity, items_.size()); ++d)
+                if (before(items_[d], items_[c])) c = d;
             if (!before(items_[c], item)) break;
             place(i, items_[c]);
             i = c;

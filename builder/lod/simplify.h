@@ -13,9 +13,10 @@
 // is "a prefix of the vertex array + a prefix of the face array + index patches +
 // the positions of the parents moved so far".
 //
-// Ordering: a binary heap of directed edge collapses keyed by (quadric cost, from,
-// to) with lazy invalidation through per-vertex stamps; deterministic (no hash
-// iteration, IEEE double arithmetic with contraction disabled in this library).
+// Ordering: an indexed heap of vertices keyed by their cheapest outgoing collapse
+// (quadric cost, then the input vertex number); deterministic (no hash iteration,
+// IEEE double arithmetic with contraction disabled in this library) and independent
+// of the internal renumbering done for cache locality.
 //
 // Rejected collapses: triangle flips and folds (a normal turning by more than 78 degrees), and
 // near-degenerate results, link-condition violations (would make the surface
