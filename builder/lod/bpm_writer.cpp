@@ -2,10 +2,11 @@
 //
 // Phases: quantize (16-bit positions in a float bounding box, 8-bit octahedral
 // normals), encode the base chunk (meshoptimizer vertex and index codecs), encode
-// split chunks (per-split records through the meshoptimizer vertex codec; new faces
-// as neighbour numbers over the parent's corners and index patches as bit masks over the parent's
-// corners, both computed by replaying the decoder's SplitReplay), frame sections
-// with CRCs.
+// split chunks (every split replayed on the decoder's SplitReplay: its topology as
+// two positions in the parent's ordered fan, or neighbour numbers and a patch mask
+// when it is not a manifold fan split; positions as residuals of the predictions
+// the reader makes too; all values through pm::SplitEncoder), frame sections with
+// CRCs.
 #include <meshoptimizer.h>
 
 #include <algorithm>
@@ -41,8 +42,8 @@ float round_up(double x) {
 }
 
 // Rounds a non-negative error up to 8 significant bits (the low 16 bits of the
-// binary32 become zero and cost nothing after the vertex codec); still an upper
-// bound, still monotonic.
+// binary32 become zero: the file codes the high 16 bits' steps down); still an
+// upper bound, still monotonic.
 float round_up_coarse(double x) {
     const float f = round_up(x);
     uint32_t u;
@@ -141,13 +142,65 @@ std::vector<uint32_t> put_index_codec(std::vector<uint8_t>& out, const std::vect
 
 // Bit i: the i-th corner (ascending) of the split's parent belongs to a face the
 // split patches.
-uint64_t mask_of(const pm::SplitReplay& replay, const ProgressiveBuild& pm, size_t j, std::vector<uint32_t>& corners) {
+// (file_face: the builder's face numbers as the file has them.)
+uint64_t mask_of(const pm::SplitReplay& replay, const ProgressiveBuild& pm, const std::vector<uint32_t>& file_face,
+                 size_t j, std::vector<uint32_t>& corners) {
     replay.corners_of(pm.splits[j].parent, corners);
     uint64_t mask = 0;
-    const auto b = pm.patch_faces.begin() + pm.patch_begin[j], e = pm.patch_faces.begin() + pm.patch_begin[j + 1];
-    for (size_t i = 0; i < corners.size() && i < 64; ++i)
-        if (std::find(b, e, corners[i] / 3) != e) mask |= uint64_t(1) << i;
+    for (uint32_t i = pm.patch_begin[j]; i < pm.patch_begin[j + 1]; ++i) {
+        const uint32_t f = file_face[pm.patch_faces[i]];
+        for (size_t n = 0; n < corners.size() && n < 64; ++n)
+            if (corners[n] / 3 == f) mask |= uint64_t(1) << n;
+    }
     return mask;
+}
+
+Error split_error(const Mesh& mesh, size_t j, const char* what) {
+    return runtime_error("lod: '" + mesh.name + "': split " + std::to_string(j) + " " + what);
+}
+
+constexpr uint32_t kInfinityBits = 0x7f800000u;  // +inf: the error before the first split
+uint32_t error_bits(float e) {
+    uint32_t u;
+    std::memcpy(&u, &e, 4);
+    return u;
+}
+
+// A split in the compact form: the parent is an interior manifold vertex, the
+// new faces are (c, p, ring[start]) and (c, ring[start + length], p) and the
+// fan faces start .. start + length - 1 move to the child. length 0: not such a split.
+struct FanSplit {
+    uint32_t start = 0, length = 0, fan = 0;
+    bool swapped = false;  // the builder made (c, vr, p) first: the file has them the other way round
+};
+
+FanSplit fan_split(const pm::SplitReplay& replay, uint32_t parent, const std::vector<uint32_t>& corners,
+                   const std::vector<uint32_t>& faces, uint64_t mask, uint32_t* ring, uint8_t* at) {
+    FanSplit none;
+    const size_t k = replay.ordered_fan(corners.data(), corners.size(), ring, at);
+    if (k == 0) return none;
+    none.fan = uint32_t(k);
+    if (faces.size() != 6) return none;
+    const bool swapped = faces[1] != parent;
+    const uint32_t* left = swapped ? &faces[3] : &faces[0];   // (c, p, vl)
+    const uint32_t* right = swapped ? &faces[0] : &faces[3];  // (c, vr, p)
+    if (left[1] != parent || right[2] != parent) return none;
+    size_t a = k, b = k;
+    for (size_t t = 0; t < k; ++t) {
+        if (ring[t] == left[2]) a = t;
+        if (ring[t] == right[1]) b = t;
+    }
+    if (a == k || b == k || a == b) return none;
+    const size_t length = (b + k - a) % k;
+    uint64_t expected = 0;
+    for (size_t t = 0; t < length; ++t) expected |= uint64_t(1) << at[(a + t) % k];
+    if (expected != mask) return none;
+    FanSplit s;
+    s.start = uint32_t(a);
+    s.length = uint32_t(length);
+    s.fan = uint32_t(k);
+    s.swapped = swapped;
+    return s;
 }
 
 struct StructureSections {
@@ -184,75 +237,114 @@ Result<StructureSections> encode_structure(const Mesh& mesh, const ProgressiveBu
 
     // SPLT chunks
     std::vector<uint32_t> scratch, moved;
+    // The file puts the two new faces of a fan split in one order (one symbol less
+    // per split): the builder's face numbers as the file has them.
+    std::vector<uint32_t> file_face(nf);
+    for (size_t f = 0; f < nf; ++f) file_face[f] = uint32_t(f);
     size_t face = pm.base_faces;
     // Quantized positions at the level being encoded (the reader tracks the same).
     std::vector<uint16_t> cur = z.q;
+    uint32_t previous_error = kInfinityBits;
     for (size_t first = 0; first < ns; first += chunk) {
         const size_t count = std::min(chunk, ns - first);
         size_t chunk_faces = 0;
         for (size_t j = first; j < first + count; ++j) chunk_faces += pm.splits[j].face_count;
-        std::vector<uint8_t> payload, vpart, topo;
-        std::vector<pm::SplitVertex> recs(count);
+        std::vector<uint8_t> payload, topo;
+        pm::SplitEncoder values;
+        // All parents of the chunk first: the reader prefetches their data splits ahead.
+        for (size_t j = first; j < first + count; ++j)
+            values.put(pm::kCtxParentDelta, uint32_t(pm.base_vertices + j) - pm.splits[j].parent - 1);
         std::vector<uint32_t> parent_corners, faces;
+        uint32_t ring[64];
+        uint8_t fan_at[64];
         for (size_t j = first; j < first + count; ++j) {
             const VertexSplit& sp = pm.splits[j];
             const uint32_t child = uint32_t(pm.base_vertices + j), parent = sp.parent;
-            // New faces are (child, parent, a) or (child, a, parent), a a neighbour of the
-            // parent before the split: sent as 2 * (the first j with a = neighbour j over
-            // the parent's corners) + winding (one load to decode, no ring to sort).
             replay.corners_of(parent, parent_corners);
-            const uint64_t mask = mask_of(replay, pm, j, scratch);
-            pm::put_varint(topo, (mask << 2) | sp.face_count);
+            const uint64_t mask = mask_of(replay, pm, file_face, j, scratch);
+            // New faces are (child, parent, a) or (child, a, parent), a a neighbour of the
+            // parent before the split.
             faces.clear();
             for (uint32_t f = 0; f < sp.face_count; ++f) {
                 const uint32_t* t = &pm.indices[(face + f) * 3];
                 int k = 0;
                 while (k < 3 && t[k] != child) ++k;
+                if (k == 3) return split_error(mesh, j, "adds a face without its child");
                 const uint32_t b = t[(k + 1) % 3], a = t[(k + 2) % 3];
-                const bool flipped = b != parent;  // (child, a, parent)
-                const uint32_t third = flipped ? b : a;
-                if (k == 3 || (flipped && a != parent))
-                    return runtime_error("lod: '" + mesh.name + "': split " + std::to_string(j) +
-                                         " adds a face without its parent and child");
-                size_t n = 0;
-                while (n < 2 * parent_corners.size() && replay.neighbour(parent_corners.data(), n) != third) ++n;
-                if (n == 2 * parent_corners.size())
-                    return runtime_error("lod: '" + mesh.name + "': split " + std::to_string(j) +
-                                         " adds a face outside the parent's ring");
-                pm::put_varint(topo, uint64_t(n) * 2 + (flipped ? 1 : 0));
-                if (flipped)
-                    faces.insert(faces.end(), {child, third, parent});
+                if (b == parent)
+                    faces.insert(faces.end(), {child, parent, a});
+                else if (a == parent)
+                    faces.insert(faces.end(), {child, b, parent});
                 else
-                    faces.insert(faces.end(), {child, parent, third});
+                    return split_error(mesh, j, "adds a face without its parent");
             }
+            const FanSplit fan = fan_split(replay, parent, parent_corners, faces, mask, ring, fan_at);
+            if (fan.swapped) {
+                std::rotate(faces.begin(), faces.begin() + 3, faces.end());
+                std::swap(file_face[face], file_face[face + 1]);
+            }
+            // Positions: the parent's before (cur) and after the split, the child's.
+            uint16_t from[3], to[3], at[3];
+            for (int k = 0; k < 3; ++k) {
+                from[k] = cur[size_t(parent) * 3 + k];
+                if (from[k] != quantize16(sp.parent_from[k], z.lo[k], z.hi[k]))
+                    return split_error(mesh, j, "moves its parent from elsewhere than it is");
+                to[k] = quantize16(sp.parent_to[k], z.lo[k], z.hi[k]);
+                at[k] = z.q[size_t(child) * 3 + k];
+            }
+            const bool moves = from[0] != to[0] || from[1] != to[1] || from[2] != to[2];
+            const uint32_t form = fan.length == 0 ? pm::kTopoGeneral : pm::kTopoFan;
+            values.put(pm::kCtxKind, form * 2 + (moves ? 1 : 0));
+            const uint32_t error = error_bits(round_up_coarse(sp.error));
+            values.put(pm::kCtxErrorStep, (previous_error - error) >> 16);
+            previous_error = error;
+            pm::FanPrediction pred{{from[0], from[1], from[2]}, {0, 0, 0}, {0, 0, 0}};
+            if (form == pm::kTopoGeneral) {
+                // Neighbour numbers over the parent's corners and the patch mask.
+                pm::put_varint(topo, (mask << 2) | sp.face_count);
+                for (size_t f = 0; f < faces.size(); f += 3) {
+                    const bool flipped = faces[f + 2] == parent;  // (child, a, parent)
+                    const uint32_t third = flipped ? faces[f + 1] : faces[f + 2];
+                    size_t n = 0;
+                    while (n < 2 * parent_corners.size() && replay.neighbour(parent_corners.data(), n) != third) ++n;
+                    if (n == 2 * parent_corners.size())
+                        return split_error(mesh, j, "adds a face outside the parent's ring");
+                    pm::put_varint(topo, uint64_t(n) * 2 + (flipped ? 1 : 0));
+                }
+            } else {
+                values.put(pm::kCtxFanStart, fan.start);
+                values.put(pm::kCtxFanLength, fan.length - 1);
+                pm::predict_fan(cur.data(), ring, fan.fan, fan.start, fan.length, from, pred);
+            }
+            for (int k = 0; k < 3; ++k)
+                values.put_scaled(pm::kCtxChild0 + uint32_t(k), pm::zigzag16(at[k], pred.child[k]), pred.shift[k]);
+            if (moves)
+                for (int k = 0; k < 3; ++k) {
+                    const uint16_t reflected = pm::reflect16(from[k], at[k]);
+                    const uint16_t predicted =
+                        fan.length != 0 ? pm::midpoint16(reflected, pred.parent_centroid[k]) : reflected;
+                    values.put_scaled(pm::kCtxParent0 + uint32_t(k), pm::zigzag16(to[k], predicted), pred.shift[k]);
+                }
+            for (int k = 0; k < 2; ++k)
+                values.put(pm::kCtxNormal0 + uint32_t(k),
+                           pm::zigzag8(z.oct[size_t(child) * 2 + k], z.oct[size_t(parent) * 2 + k]));
             replay.apply_mask(parent, child, mask, scratch, moved);
             if (moved.size() != pm.patch_begin[j + 1] - pm.patch_begin[j])
-                return runtime_error("lod: '" + mesh.name + "': index patches of split " + std::to_string(j) +
-                                     " do not replay");
+                return split_error(mesh, j, "index patches do not replay");
             replay.add_faces(face, faces);
             face += sp.face_count;
-            pm::SplitVertex& r = recs[j - first];
-            r = pm::SplitVertex{};
             for (int k = 0; k < 3; ++k) {
-                uint16_t& qp = cur[size_t(parent) * 3 + k];
-                if (qp != quantize16(sp.parent_from[k], z.lo[k], z.hi[k]))
-                    return runtime_error("lod: '" + mesh.name + "': split " + std::to_string(j) +
-                                         " moves its parent from elsewhere than it is");
-                const uint16_t to = quantize16(sp.parent_to[k], z.lo[k], z.hi[k]);
-                r.dq[k] = pm::zigzag16(z.q[size_t(child) * 3 + k], qp);
-                r.pdq[k] = pm::zigzag16(to, qp);
-                qp = to;
+                cur[size_t(parent) * 3 + k] = to[k];
+                cur[size_t(child) * 3 + k] = at[k];
             }
-            for (int k = 0; k < 2; ++k)
-                r.doct[k] = pm::zigzag8(z.oct[size_t(child) * 2 + k], z.oct[size_t(parent) * 2 + k]);
-            r.parent_delta = child - parent;
-            r.error = round_up_coarse(sp.error);
         }
-        put_vertex_codec(vpart, recs);
         put_u32(payload, uint32_t(first));
         put_u32(payload, uint32_t(count));
         put_u32(payload, uint32_t(chunk_faces));
-        payload.insert(payload.end(), vpart.begin(), vpart.end());
+        std::vector<uint8_t> coded;
+        values.finish(coded);
+        put_u32(payload, uint32_t(coded.size()));
+        payload.insert(payload.end(), coded.begin(), coded.end());
         put_u32(payload, uint32_t(topo.size()));
         payload.insert(payload.end(), topo.begin(), topo.end());
         out.chunks.push_back(std::move(payload));

@@ -119,6 +119,150 @@ void oct_decode8(const uint8_t in[2], float out[3]) {
     out[2] = float(z / l);
 }
 
+// ---- split stream coding
+
+namespace {
+// Frequencies summing to 2^kRansBits, each used symbol at least 1 (integer
+// arithmetic only: the same tables on every platform).
+void normalize(const uint32_t* counts, uint32_t m, uint64_t total, uint32_t* freq) {
+    uint32_t sum = 0;
+    for (uint32_t s = 0; s < m; ++s) {
+        freq[s] = counts[s] == 0 ? 0 : uint32_t(std::max<uint64_t>(1, uint64_t(counts[s]) * (1u << kRansBits) / total));
+        sum += freq[s];
+    }
+    while (sum != (1u << kRansBits)) {
+        uint32_t best = 0;
+        for (uint32_t s = 1; s < m; ++s)
+            if (freq[s] > freq[best]) best = s;
+        if (sum < (1u << kRansBits)) {
+            freq[best] += (1u << kRansBits) - sum;
+            sum = 1u << kRansBits;
+        } else {
+            const uint32_t take = std::min(sum - (1u << kRansBits), freq[best] - 1);
+            freq[best] -= take;
+            sum -= take;
+            if (take == 0) break;  // cannot happen: m <= kSymbolCount symbols of at least 1
+        }
+    }
+}
+}  // namespace
+
+void SplitEncoder::finish(std::vector<uint8_t>& out) const {
+    uint32_t counts[kSplitContexts][kSymbolCount] = {};
+    uint64_t totals[kSplitContexts] = {};
+    for (const Item& it : values_) {
+        if (it.context >= kRawContext) continue;
+        uint32_t raw, bits;
+        ++counts[it.context][value_symbol(it.value, raw, bits)];
+        ++totals[it.context];
+    }
+    uint32_t freq[kSplitContexts][kSymbolCount] = {}, start[kSplitContexts][kSymbolCount] = {};
+    for (uint32_t c = 0; c < kSplitContexts; ++c) {
+        uint32_t m = kSymbolCount;
+        while (m > 0 && counts[c][m - 1] == 0) --m;
+        out.push_back(uint8_t(m));
+        if (m == 0) continue;
+        normalize(counts[c], m, totals[c], freq[c]);
+        for (uint32_t s = 0, cum = 0; s < m; ++s) {
+            start[c][s] = cum;
+            cum += freq[c][s];
+            put_varint(out, freq[c][s]);
+        }
+    }
+    // rANS runs backwards: encode the last value first, reverse the bytes at the end.
+    // Symbol i (raw items not counted) uses state i mod 2.
+    std::vector<uint8_t> rans;
+    uint32_t state[2] = {kRansLow, kRansLow};
+    size_t symbols = 0;
+    for (const Item& it : values_) symbols += it.context < kRawContext;
+    for (size_t i = values_.size(); i-- > 0;) {
+        if (values_[i].context >= kRawContext) continue;
+        uint32_t raw, bits;
+        const uint32_t c = values_[i].context, s = value_symbol(values_[i].value, raw, bits);
+        const uint32_t f = freq[c][s];
+        uint32_t& x = state[--symbols & 1];
+        const uint64_t x_max = (uint64_t(kRansLow >> kRansBits) << 16) * f;
+        if (x >= x_max) {  // once at most: x < 2^32
+            rans.push_back(uint8_t(x >> 8));
+            rans.push_back(uint8_t(x));
+            x >>= 16;
+        }
+        x = ((x / f) << kRansBits) + (x % f) + start[c][s];
+    }
+    for (int lane = 1; lane >= 0; --lane)
+        for (int k = 3; k >= 0; --k) rans.push_back(uint8_t(state[lane] >> (8 * k)));
+    std::reverse(rans.begin(), rans.end());
+    put_u32(out, uint32_t(rans.size()));
+    out.insert(out.end(), rans.begin(), rans.end());
+    // Raw bits in decoding order, least significant first.
+    std::vector<uint8_t> raw_bytes;
+    uint64_t buffer = 0;
+    uint32_t count = 0;
+    for (const Item& it : values_) {
+        uint32_t raw = it.value, bits = it.context - kRawContext;
+        if (it.context < kRawContext) value_symbol(it.value, raw, bits);
+        buffer |= uint64_t(raw) << count;
+        count += bits;
+        while (count >= 8) {
+            raw_bytes.push_back(uint8_t(buffer));
+            buffer >>= 8;
+            count -= 8;
+        }
+    }
+    if (count > 0) raw_bytes.push_back(uint8_t(buffer));
+    put_u32(out, uint32_t(raw_bytes.size()));
+    out.insert(out.end(), raw_bytes.begin(), raw_bytes.end());
+}
+
+bool SplitDecoder::init(std::span<const uint8_t> bytes) {
+    ByteReader r(bytes);
+    slot_symbol_.assign(size_t(kSplitContexts) << kRansBits, 0);
+    for (uint32_t c = 0; c < kSplitContexts; ++c) {
+        uint8_t* lut = slot_symbol_.data() + (size_t(c) << kRansBits);
+        std::span<const uint8_t> m_byte;
+        if (!r.bytes(1, m_byte) || m_byte[0] > kSymbolCount) return false;
+        const uint32_t m = m_byte[0];
+        if (m == 0) {  // unused: decodes as symbol 0 without consuming anything (a valid file never asks)
+            symbol_info_[c][0] = 1u << kRansBits;
+            continue;
+        }
+        uint32_t cum = 0;
+        for (uint32_t s = 0; s < m; ++s) {
+            uint64_t f = 0;
+            if (!r.varint(f) || f > (1u << kRansBits) - cum) return false;
+            std::fill_n(lut + cum, f, uint8_t(s));
+            symbol_info_[c][s] = uint32_t(f) | cum << 16;
+            cum += uint32_t(f);
+        }
+        if (cum != (1u << kRansBits)) return false;
+    }
+    uint32_t rbytes = 0, bbytes = 0;
+    std::span<const uint8_t> rans, raw;
+    if (!r.u32(rbytes) || rbytes < 8 || !r.bytes(rbytes, rans) || !r.u32(bbytes) || !r.bytes(bbytes, raw) ||
+        r.left() != 0)
+        return false;
+    data_.assign(size_t(rbytes) + 4 + bbytes + 16, 0);
+    std::copy(rans.begin(), rans.end(), data_.begin());
+    std::copy(raw.begin(), raw.end(), data_.begin() + rbytes + 4);
+    rans_end_ = rbytes;
+    raw_begin_ = size_t(rbytes) + 4;
+    bit_end_ = size_t(bbytes) * 8;
+    return true;
+}
+
+SplitDecoder::Cursor SplitDecoder::begin() const {
+    return Cursor{slot_symbol_.data(),
+                  symbol_info_,
+                  data_.data(),
+                  8,
+                  rans_end_,
+                  raw_begin_,
+                  0,
+                  bit_end_,
+                  get_u32(data_.data()),
+                  get_u32(data_.data() + 4)};
+}
+
 namespace {
 constexpr uint32_t kMinRegion = 8;  // corners: a typical vertex (valence 6) fits with room to grow
 }  // namespace
@@ -193,6 +337,44 @@ void SplitReplay::ring_of(uint32_t v, std::vector<uint32_t>& out) const {
     out.resize(ring_of(corners.data(), corners.size(), out.data()));
 }
 
+size_t SplitReplay::ordered_fan(const uint32_t* corners, size_t count, uint32_t* ring, uint8_t* at) const {
+    if (count < 3 || count > 64) return 0;
+    // Faces by the vertex after v in them: a direct-mapped table on its low bits
+    // (when two share a slot, a scan instead).
+    constexpr uint32_t kSlots = 256;
+    uint8_t slot_face[kSlots];
+    uint32_t after[64], before[64];  // the vertices after and before v in each face
+    for (size_t i = 0; i < count; ++i) {
+        const uint32_t c = corners[i], f = c / 3 * 3, k = c - f;
+        after[i] = indices_[f + (k == 2 ? 0 : k + 1)];
+        before[i] = indices_[f + (k == 0 ? 2 : k - 1)];
+        slot_face[after[i] % kSlots] = 0xff;
+        slot_face[before[i] % kSlots] = 0xff;
+    }
+    bool hashed = true;
+    for (size_t i = 0; i < count; ++i) {
+        uint8_t& s = slot_face[after[i] % kSlots];
+        hashed = hashed && s == 0xff;
+        s = uint8_t(i);
+    }
+    // Walk from face 0 to the face that starts where this one ends. Returning to
+    // face 0 first after exactly `count` steps means every face was visited once.
+    uint32_t i = 0;
+    for (size_t t = 0; t < count; ++t) {
+        at[t] = uint8_t(i);
+        ring[t] = after[i];
+        uint32_t next = slot_face[before[i] % kSlots];
+        if (!hashed) {
+            next = 0;
+            while (next < count && after[next] != before[i]) ++next;
+        }
+        if (next >= count || after[next] != before[i]) return 0;
+        if (next == 0) return t + 1 == count ? count : 0;
+        i = next;
+    }
+    return 0;
+}
+
 bool SplitReplay::apply_mask(uint32_t parent, uint32_t child, uint64_t mask, const uint32_t* corners, size_t count,
                              uint32_t* moved) {
     if (count < 64 && (mask >> count) != 0) return false;
@@ -227,7 +409,7 @@ bool SplitReplay::apply_mask(uint32_t parent, uint32_t child, uint64_t mask, std
     return true;
 }
 
-void SplitReplay::prefetch(uint32_t v, int stage) const {
+void SplitReplay::prefetch(uint32_t v, int stage, const uint16_t* qpos) const {
 #if defined(__GNUC__)
     if (stage == 0) {
         __builtin_prefetch(&regions_[v]);
@@ -247,11 +429,15 @@ void SplitReplay::prefetch(uint32_t v, int stage) const {
     // Stage 3: the neighbours' regions (a new face adds a corner to one of them).
     for (uint32_t i = 0; i < r.count && i < 16; ++i) {
         const uint32_t* t = &indices_[c[i] / 3 * 3];
-        for (int k = 0; k < 3; ++k) __builtin_prefetch(&regions_[t[k]]);
+        // The vertex after v in each face: every neighbour once around an interior vertex.
+        const uint32_t k = c[i] - c[i] / 3 * 3, n = t[k == 2 ? 0 : k + 1];
+        __builtin_prefetch(&regions_[n]);
+        if (qpos) __builtin_prefetch(qpos + size_t(n) * 3);
     }
 #else
     (void)v;
     (void)stage;
+    (void)qpos;
 #endif
 }
 

@@ -5,8 +5,12 @@
 //
 // Everything here is integer or correctly rounded IEEE arithmetic so that the
 // writer produces the same bytes on x86-64 and aarch64.
+#include <algorithm>
+#include <bit>
 #include <cstddef>
 #include <cstdint>
+#include <cstdlib>
+#include <cstring>
 #include <memory>
 #include <span>
 #include <string>
@@ -55,7 +59,7 @@ template <class T>
 using UninitVector = std::vector<T, UninitAllocator<T>>;
 
 inline constexpr char kMagic[4] = {'B', 'P', 'M', '\0'};
-inline constexpr uint16_t kVersion = 2;             // 2: splits move their parents (optimal placement)
+inline constexpr uint16_t kVersion = 3;             // 3: entropy-coded split values, fan topology
 inline constexpr size_t kFileHeaderSize = 16;       // magic, version, flags, structure count, header crc
 inline constexpr size_t kSectionHeaderSize = 12;    // tag, structure, reserved, payload length
 inline constexpr size_t kSectionTrailerSize = 4;    // crc32 over header + payload
@@ -127,6 +131,192 @@ inline uint8_t unzigzag8(uint8_t z, uint8_t from) {
     return uint8_t(from + d);
 }
 
+// ---- Split stream coding (SPLT, version 3).
+//
+// Every value of a split is an unsigned integer coded in one of the contexts
+// below: a small symbol (the value itself below 8, else its bit length and the
+// bit after the leading one) entropy-coded with a static rANS table per context
+// and chunk, plus the remaining low bits sent raw in a separate bit stream. So a
+// value costs about its information content, and decoding is one table lookup
+// plus one bit-field read.
+enum SplitContext : uint32_t {
+    kCtxKind,                       // split kind: topology form * 2 + parent moves
+    kCtxParentDelta,                // child - parent - 1
+    kCtxErrorStep,                  // (previous error bits - error bits) >> 16
+    kCtxFanStart,                   // compact topology: ring position of the left wing
+    kCtxFanLength,                  // compact topology: faces moving to the child
+    kCtxChild0,                     // child position residual, x y z (zig-zag)
+    kCtxParent0 = kCtxChild0 + 3,   // parent move residual, x y z (zig-zag)
+    kCtxNormal0 = kCtxParent0 + 3,  // child normal residual, u v (zig-zag)
+    kSplitContexts = kCtxNormal0 + 2,
+};
+inline constexpr uint32_t kSymbolCount = 66;    // 8 small values + 2 per bit length 4..32
+inline constexpr uint32_t kRansBits = 10;       // table precision: frequencies sum to 1024
+inline constexpr uint32_t kRansLow = 1u << 16;  // rANS state normalisation interval [2^16, 2^32), 16-bit words
+// Split kinds (kCtxKind >> 1): how the topology is coded.
+inline constexpr uint32_t kTopoGeneral = 0;  // neighbour numbers and patch mask in the topology bytes
+inline constexpr uint32_t kTopoFan = 1;      // manifold split, new faces (c, p, vl), (c, vr, p) in this order
+
+// Symbol of `v` and its raw low bits (`bits` of them).
+inline uint32_t value_symbol(uint32_t v, uint32_t& raw, uint32_t& bits) {
+    if (v < 8) {
+        raw = bits = 0;
+        return v;
+    }
+    const uint32_t n = uint32_t(std::bit_width(v));  // 4 .. 32
+    bits = n - 2;
+    raw = v & ((1u << bits) - 1);
+    return 8 + (n - 4) * 2 + ((v >> bits) & 1);
+}
+
+// Collects the values of one chunk in decoding order and writes them as
+//   per context: u8 m, then m LEB128 frequencies of symbols 0 .. m-1 (sum 4096, or m = 0: unused)
+//   u32 rbytes, u8 rans[rbytes]   rANS: two interleaved 32-bit states, then 16-bit words, read forward
+//   u32 bbytes, u8 raw[bbytes]    raw bits, least significant first
+class SplitEncoder {
+public:
+    void put(uint32_t context, uint32_t value) { values_.push_back({context, value}); }
+    // `bits` (<= 30) low bits of `value`, raw, in the raw bit stream.
+    void put_raw(uint32_t value, uint32_t bits) {
+        if (bits > 0) values_.push_back({kRawContext + bits, value & ((1u << bits) - 1)});
+    }
+    // A residual whose magnitude scales with 2^shift: the high part entropy coded,
+    // the low `shift` bits raw (about uniform).
+    void put_scaled(uint32_t context, uint32_t value, uint32_t shift) {
+        put(context, value >> shift);
+        put_raw(value, shift);
+    }
+    void finish(std::vector<uint8_t>& out) const;
+
+private:
+    static constexpr uint32_t kRawContext = 64;  // context kRawContext + n: n raw bits
+    struct Item {
+        uint32_t context, value;
+    };
+    std::vector<Item> values_;
+};
+
+// Reads what SplitEncoder wrote: init() checks the framing and builds the tables,
+// then a Cursor (a small value the caller keeps in registers: it must not escape)
+// decodes the values in order. A Cursor never reads out of bounds: past the end
+// it returns garbage and ok() becomes false (the caller checks at the end of the
+// chunk, and bounds-checks every decoded value it uses before that). Branch-free
+// apart from the symbol size: both streams sit in one zero-padded copy.
+class SplitDecoder {
+public:
+    // False when the tables or sizes are malformed (one allocation per chunk).
+    bool init(std::span<const uint8_t> bytes);
+
+    struct Cursor {
+        const uint8_t* slot_symbol;                   // per context and slot: the symbol
+        const uint32_t (*symbol_info)[kSymbolCount];  // per context and symbol: freq | cum << 16
+        const uint8_t* data;                          // rANS words, 4 zero bytes, raw bits, 16 zero bytes
+        size_t rans_pos, rans_end, raw_begin, bit_pos, bit_end;
+        uint32_t state, other_state;  // the rANS states of the next symbol and of the one after
+
+        [[gnu::always_inline]] uint32_t get(uint32_t context) {
+            // Two rANS states take turns (symbol i uses state i mod 2): two independent
+            // dependency chains, so consecutive symbols decode in parallel.
+            uint32_t x = state;
+            const uint32_t slot = x & ((1u << kRansBits) - 1);
+            const uint32_t symbol = slot_symbol[(context << kRansBits) | slot];
+            const uint32_t info = symbol_info[context][symbol];
+            x = (info & 0xffff) * (x >> kRansBits) + slot - (info >> 16);
+            // One 16-bit word brings the state back above kRansLow.
+            const bool refill = x < kRansLow;
+            const uint32_t word = uint32_t(data[rans_pos]) | uint32_t(data[rans_pos + 1]) << 8;
+            x = refill ? (x << 16) | word : x;
+            rans_pos = std::min(rans_pos + (refill ? 2 : 0), rans_end + 2);  // stays in the padding
+            state = other_state;
+            other_state = x;
+            if (symbol < 8) return symbol;
+            const uint32_t bits = (symbol - 8) / 2 + 2;
+            return ((2u | (symbol & 1)) << bits) | get_raw(bits);
+        }
+        // `bits` (<= 30) raw bits.
+        [[gnu::always_inline]] uint32_t get_raw(uint32_t bits) {
+            uint64_t window;
+            std::memcpy(&window, data + raw_begin + (bit_pos >> 3), 8);
+            const uint32_t v = uint32_t((window >> (bit_pos & 7)) & ((uint64_t(1) << bits) - 1));
+            bit_pos = std::min(bit_pos + bits, bit_end + 8);  // stays in the padding
+            return v;
+        }
+        [[gnu::always_inline]] uint32_t get_scaled(uint32_t context, uint32_t shift) {
+            const uint32_t high = get(context);
+            return (high << shift) | get_raw(shift);
+        }
+        // True when every byte was consumed exactly and nothing was read past the end.
+        bool ok() const {
+            return rans_pos == rans_end && state == kRansLow && other_state == kRansLow &&
+                   (bit_pos + 7) / 8 * 8 == bit_end;
+        }
+    };
+    // The cursor at the first value (valid while this decoder lives).
+    Cursor begin() const;
+
+private:
+    std::vector<uint8_t> slot_symbol_;
+    uint32_t symbol_info_[kSplitContexts][kSymbolCount] = {};
+    std::vector<uint8_t> data_;
+    size_t rans_end_ = 0, raw_begin_ = 0, bit_end_ = 0;
+};
+
+// Division by a ring size n (1 .. 65) as a multiplication: x * (floor(2^24 / n) + 1) >> 24
+// (x < 2^22: equal to x / n, rarely one more; this is the definition).
+struct SmallReciprocals {
+    uint32_t r[66];
+    constexpr SmallReciprocals() : r{} {
+        for (uint32_t n = 1; n < 66; ++n) r[n] = (1u << 24) / n + 1;
+    }
+};
+inline constexpr SmallReciprocals kSmallReciprocals{};
+inline uint32_t divide_small(uint32_t x, uint32_t n) { return uint32_t((uint64_t(x) * kSmallReciprocals.r[n]) >> 24); }
+inline uint16_t midpoint16(uint32_t a, uint32_t b) { return uint16_t((a + b + 1) / 2); }
+inline uint16_t reflect16(uint16_t about, uint16_t x) { return uint16_t(2u * about - x); }
+
+// Predictions of a fan split's positions (quantized), from the positions at the
+// level before it (`q`, 3 per vertex; `v` the parent's; ring, k, start, length as
+// in SplitReplay::ordered_fan; integer arithmetic, wrap-around 16-bit results):
+//   child  = midpoint(v, centroid of ring[start .. start + length])   (its future ring)
+//   parent = midpoint(reflection of the child about v, parent_centroid) where
+//            parent_centroid = centroid of ring[start + length .. start + k]
+//            (both wings, ring[start] and ring[start + length], are in both rings)
+//   shift per axis = max(0, bit_width(max - min of the ring) - 4): the low bits of
+//            both residuals are about uniform below the ring's extent / 16.
+// (A split that is not a fan: child = v, parent = reflection, shift 0.)
+// centroid of n vertices = divide_small(sum + n / 2, n).
+struct FanPrediction {
+    uint16_t child[3];
+    uint16_t parent_centroid[3];
+    uint32_t shift[3];
+};
+inline void predict_fan(const uint16_t* q, const uint32_t* ring, uint32_t k, uint32_t start, uint32_t length,
+                        const uint16_t v[3], FanPrediction& out) {
+    uint32_t lo[3] = {65535, 65535, 65535}, hi[3] = {0, 0, 0}, all[3] = {0, 0, 0}, child[3] = {0, 0, 0};
+    for (uint32_t t = 0; t < k; ++t) {
+        const uint16_t* p = q + size_t(ring[t]) * 3;
+        for (int a = 0; a < 3; ++a) {
+            lo[a] = std::min<uint32_t>(lo[a], p[a]);
+            hi[a] = std::max<uint32_t>(hi[a], p[a]);
+            all[a] += p[a];
+        }
+    }
+    for (uint32_t t = 0, i = start; t <= length; ++t, i = i + 1 == k ? 0 : i + 1) {
+        const uint16_t* p = q + size_t(ring[i]) * 3;
+        for (int a = 0; a < 3; ++a) child[a] += p[a];
+    }
+    const uint16_t* left = q + size_t(ring[start]) * 3;
+    const uint16_t* right = q + size_t(ring[start + length < k ? start + length : start + length - k]) * 3;
+    const uint32_t nc = length + 1, np = k - length + 1;
+    for (int a = 0; a < 3; ++a) {
+        const int width = std::bit_width(hi[a] - lo[a]);
+        out.shift[a] = width > 4 ? uint32_t(width - 4) : 0;
+        out.child[a] = midpoint16(v[a], divide_small(child[a] + nc / 2, nc));
+        const uint32_t parent = all[a] - child[a] + left[a] + right[a];
+        out.parent_centroid[a] = uint16_t(divide_small(parent + np / 2, np));
+    }
+}
+
 // Packed vertex of the base chunk (meshopt vertex codec, stride 8).
 struct BaseVertex {
     uint16_t q[3];
@@ -134,11 +324,8 @@ struct BaseVertex {
 };
 static_assert(sizeof(BaseVertex) == 8);
 
-// Packed record of a vertex split (meshopt vertex codec, stride 24): the child's
-// quantized position and normal as zig-zag differences from its parent's (the
-// parent's position before the split), the parent's move (its position after
-// the split minus before; 0 for a half-edge collapse), the distance child -
-// parent in the vertex order, and the level error.
+// The split record of version 2 (not read any more). Kept only because
+// BpmStream still declares a scratch vector of it; remove both together.
 struct SplitVertex {
     uint16_t dq[3];
     uint8_t doct[2];
@@ -185,6 +372,12 @@ public:
     // The same from v's corners (as corners_of returned them) into out[0 .. 2 * count);
     // returns the number of distinct neighbours.
     size_t ring_of(const uint32_t* corners, size_t count, uint32_t* out) const;
+    // The faces around a vertex as one closed fan, counter-clockwise seen from
+    // outside, from its corners (as corners_of returned them, count <= 64): fan
+    // face t is corners[at[t]] = (v, ring[t], ring[t + 1 mod k]), t = 0 at corners[0].
+    // Returns k = count, or 0 when the faces are not one closed manifold fan (a
+    // boundary or non-manifold vertex).
+    size_t ordered_fan(const uint32_t* corners, size_t count, uint32_t* ring, uint8_t* at) const;
     uint32_t index(size_t corner) const { return indices_[corner]; }
     // Neighbour j of a vertex given its corners (as corners_of returned them): the
     // vertex after (j even) or before (j odd) corner j / 2 in its face; j < 2 * count.
@@ -194,9 +387,10 @@ public:
     }
     // Cache hints for a split of parent `v` a few splits ahead: stage 0 its
     // region's descriptor, 1 the region, 2 the faces of its corners, 3 its
-    // neighbours' descriptors (stages in this order, a few splits apart). No effect
-    // on results; `v` must be a valid vertex.
-    void prefetch(uint32_t v, int stage) const;
+    // neighbours' descriptors and, given `qpos` (3 per vertex), their positions
+    // (stages in this order, a few splits apart). No effect on results; `v` must be
+    // a valid vertex.
+    void prefetch(uint32_t v, int stage, const uint16_t* qpos = nullptr) const;
 
 private:
     struct Region {

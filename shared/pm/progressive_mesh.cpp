@@ -325,9 +325,17 @@ Status BpmStream::parse_splits(ProgressiveMesh& m, std::span<const uint8_t> payl
         new_faces > m.face_count_ - m.decoded_faces_)
         return input_error(where + ": split range " + std::to_string(first) + "+" + std::to_string(count) +
                            " does not follow split " + std::to_string(m.decoded_splits_));
-    split_records_.resize(count);
-    if (meshopt_decodeVertexBuffer(split_records_.data(), count, sizeof(SplitVertex), vbuf.data(), vbuf.size()) != 0)
-        return input_error(where + ": split records do not decode");
+    SplitDecoder decoder;
+    if (!decoder.init(vbuf)) return input_error(where + ": split value tables do not decode");
+    SplitDecoder::Cursor values = decoder.begin();
+    // The chunk's parents come first (the loop below prefetches their data).
+    std::vector<uint32_t> parents(count);
+    for (uint32_t i = 0; i < count; ++i) {
+        const uint32_t child = uint32_t(m.base_vertices_ + first + i), delta = values.get(kCtxParentDelta);
+        if (delta >= child)
+            return input_error(where + ": split " + std::to_string(first + i) + ": parent out of range");
+        parents[i] = child - 1 - delta;
+    }
     // Everything below runs per split: no allocation (the message is built on failure only).
     // Geometric growth: reserving the exact need per section would copy the whole
     // array at every section (quadratic: 0.5 GB of copying for a 1M-triangle file).
@@ -336,21 +344,20 @@ Status BpmStream::parse_splits(ProgressiveMesh& m, std::span<const uint8_t> payl
     ByteReader topo(tbuf);
     size_t face_cursor = 0;
     float previous_error = first == 0 ? INFINITY : m.split_error_[first - 1];
+    uint32_t previous_error_bits;
+    std::memcpy(&previous_error_bits, &previous_error, 4);
     const Vec3f lo = m.bbox_min_, hi = m.bbox_max_;
     double step[3];
     for (int k = 0; k < 3; ++k) step[k] = (double(hi[k]) - double(lo[k])) / 65535.0;
-    uint32_t corners[64], moved[64], faces_at[9];
+    uint32_t corners[64], moved[64], faces_at[9], ring[64];
+    uint8_t fan_at[64];
     // The replay is bound by memory latency (a parent is anywhere in the mesh):
     // pull the data of the splits a few steps ahead into the cache in stages.
-    auto parent_of = [&](uint32_t i) {
-        const uint32_t child = uint32_t(m.base_vertices_ + first + i), delta = split_records_[i].parent_delta;
-        return delta != 0 && delta <= child ? child - delta : child;
-    };
-    constexpr uint32_t kAhead0 = 32, kAhead1 = 20, kAhead2 = 10, kAhead3 = 4;
+    constexpr uint32_t kAhead0 = 32, kAhead1 = 20, kAhead2 = 12, kAhead3 = 6;
     for (uint32_t i = 0; i < count; ++i) {
-        if (i + kAhead0 < count) m.replay_.prefetch(parent_of(i + kAhead0), 0);
+        if (i + kAhead0 < count) m.replay_.prefetch(parents[i + kAhead0], 0);
         if (i + kAhead1 < count) {
-            const uint32_t p = parent_of(i + kAhead1);
+            const uint32_t p = parents[i + kAhead1];
             m.replay_.prefetch(p, 1);
 #if defined(__GNUC__)
             __builtin_prefetch(&m.qpos_[size_t(p) * 3]);
@@ -358,36 +365,76 @@ Status BpmStream::parse_splits(ProgressiveMesh& m, std::span<const uint8_t> payl
             __builtin_prefetch(&m.qoct_[size_t(p) * 2]);
 #endif
         }
-        if (i + kAhead2 < count) m.replay_.prefetch(parent_of(i + kAhead2), 2);
-        if (i + kAhead3 < count) m.replay_.prefetch(parent_of(i + kAhead3), 3);
+        if (i + kAhead2 < count) m.replay_.prefetch(parents[i + kAhead2], 2);
+        if (i + kAhead3 < count) m.replay_.prefetch(parents[i + kAhead3], 3, m.qpos_.data());
         const size_t j = first + i;
-        const uint32_t child = uint32_t(m.base_vertices_ + j);
-        const SplitVertex& rec = split_records_[i];
+        const uint32_t child = uint32_t(m.base_vertices_ + j), parent = parents[i];
         auto fail = [&](const char* what) { return input_error(where + ": split " + std::to_string(j) + ": " + what); };
-        if (rec.parent_delta == 0 || rec.parent_delta > child) return fail("parent out of range");
-        const uint32_t parent = child - rec.parent_delta;
-        if (!(rec.error >= 0.0f) || rec.error > previous_error) return fail("error not monotonic");
-        if (rec.reserved != 0) return fail("reserved field not 0");
-        previous_error = rec.error;
-        uint64_t head = 0;
-        if (!topo.varint(head)) return fail("topology record truncated");
-        const uint32_t faces = uint32_t(head & 3);
-        const uint64_t mask = head >> 2;
-        if (faces == 0 || face_cursor + faces > new_faces) return fail("face count out of range");
+        const uint32_t kind = values.get(kCtxKind), form = kind >> 1;
+        const bool moves = kind & 1;
+        // Errors are non-increasing by construction: each is a step down from the previous.
+        const uint32_t error_step = values.get(kCtxErrorStep);
+        if (error_step > (previous_error_bits >> 16)) return fail("error not monotonic");
+        previous_error_bits -= error_step << 16;
+        float error;
+        std::memcpy(&error, &previous_error_bits, 4);
         const size_t corner_count = m.replay_.corners_of(parent, corners, 64);
         if (corner_count == SIZE_MAX) return fail("parent has more than 64 corners");
-        // New faces name their third vertex as a neighbour over the parent's corners
-        // before the split.
-        for (uint32_t f = 0; f < faces; ++f) {
-            uint64_t code = 0;
-            if (!topo.varint(code) || (code >> 1) >= 2 * corner_count)
-                return fail("a new face names a missing neighbour");
-            const uint32_t third = m.replay_.neighbour(corners, size_t(code >> 1));
-            uint32_t* t = faces_at + 3 * f;
-            t[0] = child;
-            t[1] = (code & 1) ? third : parent;
-            t[2] = (code & 1) ? parent : third;
+        uint32_t faces = 0;
+        uint64_t mask = 0;
+        uint16_t from[3];
+        for (int k = 0; k < 3; ++k) from[k] = m.qpos_[size_t(parent) * 3 + k];
+        // Predictions (the general form: child at the parent, no scaling).
+        FanPrediction pred{{from[0], from[1], from[2]}, {0, 0, 0}, {0, 0, 0}};
+        uint32_t fan = 0;
+        if (form == kTopoFan) {
+            // Manifold split: the fan faces from ring[start] to ring[start + length] move to the child.
+            fan = uint32_t(m.replay_.ordered_fan(corners, corner_count, ring, fan_at));
+            const uint32_t start = values.get(kCtxFanStart), length = values.get(kCtxFanLength) + 1;
+            if (fan == 0 || start >= fan || length >= fan) return fail("fan split of a vertex without such a fan");
+            uint32_t at = start;
+            for (uint32_t t = 0; t < length; ++t, at = at + 1 == fan ? 0 : at + 1) mask |= uint64_t(1) << fan_at[at];
+            faces = 2;
+            const uint32_t f[6] = {child, parent, ring[start], child, ring[at], parent};
+            std::copy_n(f, 6, faces_at);
+            predict_fan(m.qpos_.data(), ring, fan, start, length, from, pred);
+        } else if (form == kTopoGeneral) {
+            uint64_t head = 0;
+            if (!topo.varint(head)) return fail("topology record truncated");
+            faces = uint32_t(head & 3);
+            mask = head >> 2;
+            // New faces name their third vertex as a neighbour over the parent's corners
+            // before the split.
+            for (uint32_t f = 0; f < faces && f < 3; ++f) {
+                uint64_t code = 0;
+                if (!topo.varint(code) || (code >> 1) >= 2 * corner_count)
+                    return fail("a new face names a missing neighbour");
+                const uint32_t third = m.replay_.neighbour(corners, size_t(code >> 1));
+                uint32_t* t = faces_at + 3 * f;
+                t[0] = child;
+                t[1] = (code & 1) ? third : parent;
+                t[2] = (code & 1) ? parent : third;
+            }
+        } else {
+            return fail("unknown split kind");
         }
+        if (faces == 0 || face_cursor + faces > new_faces) return fail("face count out of range");
+        // The child's position and the parent's move (0 to 1 positions), as residuals
+        // of their predictions.
+        uint16_t q[3], to[3];
+        for (int k = 0; k < 3; ++k)
+            q[k] = unzigzag16(uint16_t(values.get_scaled(kCtxChild0 + uint32_t(k), pred.shift[k])), pred.child[k]);
+        for (int k = 0; k < 3; ++k) to[k] = from[k];
+        if (moves) {
+            for (int k = 0; k < 3; ++k) {
+                const uint16_t reflected = reflect16(from[k], q[k]);
+                const uint16_t predicted = fan != 0 ? midpoint16(reflected, pred.parent_centroid[k]) : reflected;
+                to[k] = unzigzag16(uint16_t(values.get_scaled(kCtxParent0 + uint32_t(k), pred.shift[k])), predicted);
+            }
+        }
+        uint8_t oct[2];
+        for (int k = 0; k < 2; ++k)
+            oct[k] = unzigzag8(uint8_t(values.get(kCtxNormal0 + uint32_t(k))), m.qoct_[size_t(parent) * 2 + k]);
         // Index patches first (on the level before the split), then the new faces.
         if (!m.replay_.apply_mask(parent, child, mask, corners, corner_count, moved))
             return fail("patch mask names a missing corner");
@@ -397,34 +444,31 @@ Status BpmStream::parse_splits(ProgressiveMesh& m, std::span<const uint8_t> payl
         m.decoded_faces_ += faces;
         face_cursor += faces;
         m.face_end_[j] = uint32_t(m.decoded_faces_);
-        m.split_error_[j] = rec.error;
+        m.split_error_[j] = error;
         m.patch_corners_.insert(m.patch_corners_.end(), moved, moved + std::popcount(mask));
         m.patch_begin_[j + 1] = uint32_t(m.patch_corners_.size());
-        // The child's vertex data, coded against its parent before the split, and
-        // the parent's move.
-        Vec3f from, to;
+        Vec3f from_f, to_f;
         for (int k = 0; k < 3; ++k) {
-            const uint16_t qf = m.qpos_[parent * 3 + k];
-            const uint16_t q = unzigzag16(rec.dq[k], qf), qt = unzigzag16(rec.pdq[k], qf);
-            m.qpos_[size_t(child) * 3 + k] = q;
-            m.qpos_[parent * 3 + k] = qt;
-            m.positions_[child][k] = dequantize16(q, lo[k], step[k]);
-            from[k] = dequantize16(qf, lo[k], step[k]);
-            to[k] = qt == qf ? from[k] : dequantize16(qt, lo[k], step[k]);
+            m.qpos_[size_t(child) * 3 + k] = q[k];
+            m.qpos_[size_t(parent) * 3 + k] = to[k];
+            m.positions_[child][k] = dequantize16(q[k], lo[k], step[k]);
+            from_f[k] = dequantize16(from[k], lo[k], step[k]);
+            to_f[k] = to[k] == from[k] ? from_f[k] : dequantize16(to[k], lo[k], step[k]);
         }
-        m.parent_from_[j] = from;
-        m.parent_to_[j] = to;
+        m.parent_from_[j] = from_f;
+        m.parent_to_[j] = to_f;
         m.parent_morph_[j] = m.decoded_morph_[parent];
-        if (to != from) m.decoded_morph_[parent] = from;
-        m.decoded_morph_[child] = from;
-        for (int k = 0; k < 2; ++k) m.qoct_[size_t(child) * 2 + k] = unzigzag8(rec.doct[k], m.qoct_[parent * 2 + k]);
+        if (to_f != from_f) m.decoded_morph_[parent] = from_f;
+        m.decoded_morph_[child] = from_f;
+        m.qoct_[size_t(child) * 2] = oct[0];
+        m.qoct_[size_t(child) * 2 + 1] = oct[1];
         if (m.has_normals_) {
             float n[3];
-            oct_decode8(&m.qoct_[size_t(child) * 2], n);
+            oct_decode8(oct, n);
             m.normals_[child] = Vec3f(n[0], n[1], n[2]);
         }
         m.parents_[child] = parent;
-        m.morph_targets_[child] = from;
+        m.morph_targets_[child] = from_f;
     }
     if (count > 0) {
         const size_t first_child = m.base_vertices_ + first;
@@ -433,6 +477,7 @@ Status BpmStream::parse_splits(ProgressiveMesh& m, std::span<const uint8_t> payl
     }
     if (face_cursor != new_faces || topo.left() != 0)
         return input_error(where + ": split face count does not match its records");
+    if (!values.ok()) return input_error(where + ": split values do not end where the chunk does");
     m.decoded_splits_ += count;
     if (m.decoded_splits_ == m.split_count_) {
         if (m.decoded_faces_ != m.face_count_) return input_error(where + ": face count does not match INFO");
