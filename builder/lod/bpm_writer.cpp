@@ -296,6 +296,7 @@ Result<StructureSections> encode_structure(const Mesh& mesh, const ProgressiveBu
             const uint32_t form = fan.length == 0 ? pm::kTopoGeneral : pm::kTopoFan;
             values.put(pm::kCtxKind, form * 2 + (moves ? 1 : 0));
             const uint32_t error = error_bits(round_up_coarse(sp.error));
+            if (error > previous_error) return split_error(mesh, j, "has a larger error than the split before it");
             values.put(pm::kCtxErrorStep, (previous_error - error) >> 16);
             previous_error = error;
             pm::FanPrediction pred{{from[0], from[1], from[2]}, {0, 0, 0}, {0, 0, 0}};

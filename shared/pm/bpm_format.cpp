@@ -19,21 +19,32 @@ std::string tag_name(uint32_t tag) {
 }
 
 namespace {
-std::array<uint32_t, 256> make_crc_table() {
-    std::array<uint32_t, 256> t{};
+// Slicing-by-8 tables: table[k][b] is the CRC of byte b followed by k zero bytes.
+std::array<std::array<uint32_t, 256>, 8> make_crc_tables() {
+    std::array<std::array<uint32_t, 256>, 8> t{};
     for (uint32_t i = 0; i < 256; ++i) {
         uint32_t c = i;
         for (int k = 0; k < 8; ++k) c = (c & 1) ? 0xedb88320u ^ (c >> 1) : c >> 1;
-        t[i] = c;
+        t[0][i] = c;
     }
+    for (uint32_t i = 0; i < 256; ++i)
+        for (size_t k = 1; k < 8; ++k) t[k][i] = (t[k - 1][i] >> 8) ^ t[0][t[k - 1][i] & 0xff];
     return t;
 }
 }  // namespace
 
 uint32_t crc32(std::span<const uint8_t> bytes, uint32_t crc) {
-    static const std::array<uint32_t, 256> table = make_crc_table();
+    static const std::array<std::array<uint32_t, 256>, 8> t = make_crc_tables();
     crc = ~crc;
-    for (uint8_t b : bytes) crc = table[(crc ^ b) & 0xff] ^ (crc >> 8);
+    const uint8_t* p = bytes.data();
+    size_t n = bytes.size();
+    // Eight bytes per step (the reader checks every section it receives).
+    for (; n >= 8; n -= 8, p += 8) {
+        const uint32_t lo = crc ^ get_u32(p), hi = get_u32(p + 4);
+        crc = t[7][lo & 0xff] ^ t[6][(lo >> 8) & 0xff] ^ t[5][(lo >> 16) & 0xff] ^ t[4][lo >> 24] ^ t[3][hi & 0xff] ^
+              t[2][(hi >> 8) & 0xff] ^ t[1][(hi >> 16) & 0xff] ^ t[0][hi >> 24];
+    }
+    for (; n > 0; --n, ++p) crc = t[0][(crc ^ *p) & 0xff] ^ (crc >> 8);
     return ~crc;
 }
 
@@ -241,11 +252,11 @@ bool SplitDecoder::init(std::span<const uint8_t> bytes) {
     if (!r.u32(rbytes) || rbytes < 8 || !r.bytes(rbytes, rans) || !r.u32(bbytes) || !r.bytes(bbytes, raw) ||
         r.left() != 0)
         return false;
-    data_.assign(size_t(rbytes) + 4 + bbytes + 16, 0);
+    data_.assign(size_t(rbytes) + kSlack + bbytes + kSlack, 0);
     std::copy(rans.begin(), rans.end(), data_.begin());
-    std::copy(raw.begin(), raw.end(), data_.begin() + rbytes + 4);
+    std::copy(raw.begin(), raw.end(), data_.begin() + rbytes + kSlack);
     rans_end_ = rbytes;
-    raw_begin_ = size_t(rbytes) + 4;
+    raw_begin_ = size_t(rbytes) + kSlack;
     bit_end_ = size_t(bbytes) * 8;
     return true;
 }

@@ -201,7 +201,8 @@ private:
 // decodes the values in order. A Cursor never reads out of bounds: past the end
 // it returns garbage and ok() becomes false (the caller checks at the end of the
 // chunk, and bounds-checks every decoded value it uses before that). Branch-free
-// apart from the symbol size: both streams sit in one zero-padded copy.
+// apart from the symbol size: both streams sit in one zero-padded copy, and the
+// caller checks past_end() once per split.
 class SplitDecoder {
 public:
     // False when the tables or sizes are malformed (one allocation per chunk).
@@ -210,7 +211,7 @@ public:
     struct Cursor {
         const uint8_t* slot_symbol;                   // per context and slot: the symbol
         const uint32_t (*symbol_info)[kSymbolCount];  // per context and symbol: freq | cum << 16
-        const uint8_t* data;                          // rANS words, 4 zero bytes, raw bits, 16 zero bytes
+        const uint8_t* data;                          // rANS words, kSlack zero bytes, raw bits, kSlack zero bytes
         size_t rans_pos, rans_end, raw_begin, bit_pos, bit_end;
         uint32_t state, other_state;  // the rANS states of the next symbol and of the one after
 
@@ -226,7 +227,7 @@ public:
             const bool refill = x < kRansLow;
             const uint32_t word = uint32_t(data[rans_pos]) | uint32_t(data[rans_pos + 1]) << 8;
             x = refill ? (x << 16) | word : x;
-            rans_pos = std::min(rans_pos + (refill ? 2 : 0), rans_end + 2);  // stays in the padding
+            rans_pos += refill ? 2 : 0;
             state = other_state;
             other_state = x;
             if (symbol < 8) return symbol;
@@ -238,19 +239,24 @@ public:
             uint64_t window;
             std::memcpy(&window, data + raw_begin + (bit_pos >> 3), 8);
             const uint32_t v = uint32_t((window >> (bit_pos & 7)) & ((uint64_t(1) << bits) - 1));
-            bit_pos = std::min(bit_pos + bits, bit_end + 8);  // stays in the padding
+            bit_pos += bits;
             return v;
         }
         [[gnu::always_inline]] uint32_t get_scaled(uint32_t context, uint32_t shift) {
             const uint32_t high = get(context);
             return (high << shift) | get_raw(shift);
         }
+        // True once the cursor went past the end of either stream. The padding
+        // after each holds what one split can read (at most 20 values: 40 bytes
+        // of rANS words, 75 bytes of raw bits): check this at least once per split.
+        bool past_end() const { return rans_pos > rans_end || bit_pos > bit_end; }
         // True when every byte was consumed exactly and nothing was read past the end.
         bool ok() const {
             return rans_pos == rans_end && state == kRansLow && other_state == kRansLow &&
                    (bit_pos + 7) / 8 * 8 == bit_end;
         }
     };
+    static constexpr size_t kSlack = 128;  // zero bytes after each stream
     // The cursor at the first value (valid while this decoder lives).
     Cursor begin() const;
 

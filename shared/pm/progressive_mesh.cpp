@@ -332,7 +332,7 @@ Status BpmStream::parse_splits(ProgressiveMesh& m, std::span<const uint8_t> payl
     std::vector<uint32_t> parents(count);
     for (uint32_t i = 0; i < count; ++i) {
         const uint32_t child = uint32_t(m.base_vertices_ + first + i), delta = values.get(kCtxParentDelta);
-        if (delta >= child)
+        if (delta >= child || values.past_end())
             return input_error(where + ": split " + std::to_string(first + i) + ": parent out of range");
         parents[i] = child - 1 - delta;
     }
@@ -435,6 +435,7 @@ Status BpmStream::parse_splits(ProgressiveMesh& m, std::span<const uint8_t> payl
         uint8_t oct[2];
         for (int k = 0; k < 2; ++k)
             oct[k] = unzigzag8(uint8_t(values.get(kCtxNormal0 + uint32_t(k))), m.qoct_[size_t(parent) * 2 + k]);
+        if (values.past_end()) return fail("values truncated");
         // Index patches first (on the level before the split), then the new faces.
         if (!m.replay_.apply_mask(parent, child, mask, corners, corner_count, moved))
             return fail("patch mask names a missing corner");
