@@ -425,3 +425,81 @@ TEST(Lod, RejectsEmptyInput) {
 
 }  // namespace
 }  // namespace body
+
+namespace body {
+namespace {
+
+// The split value coder round-trips every value range, and a stream cut short or
+// with a flipped byte is caught (ok() false or a different value).
+TEST(BpmCodec, SplitValuesRoundTripAndTruncationIsCaught) {
+    uint32_t seed = 7;
+    auto next = [&] { return seed = seed * 1664525u + 1013904223u; };
+    struct Value {
+        uint32_t context, value, shift;
+    };
+    std::vector<Value> in;
+    for (int i = 0; i < 5000; ++i) {
+        const uint32_t context = next() % pm::kSplitContexts, width = next() % 33;
+        const uint32_t value = width == 0 ? 0 : (next() >> (32 - width)), shift = next() % 13;
+        in.push_back({context, value, context >= pm::kCtxChild0 ? shift : 0});
+    }
+    pm::SplitEncoder enc;
+    for (const Value& v : in) enc.put_scaled(v.context, v.value, v.shift);
+    std::vector<uint8_t> bytes;
+    enc.finish(bytes);
+    pm::SplitDecoder dec;
+    ASSERT_TRUE(dec.init(bytes));
+    pm::SplitDecoder::Cursor c = dec.begin();
+    for (const Value& v : in) ASSERT_EQ(c.get_scaled(v.context, v.shift), v.value);
+    EXPECT_TRUE(c.ok());
+    // Fewer values read than written: not ok.
+    pm::SplitDecoder::Cursor short_read = dec.begin();
+    for (size_t i = 0; i + 1 < in.size(); ++i) (void)short_read.get_scaled(in[i].context, in[i].shift);
+    EXPECT_FALSE(short_read.ok());
+    // A changed byte in the rANS words: some value or the end state differs.
+    std::vector<uint8_t> bad = bytes;
+    bad[bad.size() / 2] ^= 0x5a;
+    pm::SplitDecoder bad_dec;
+    if (bad_dec.init(bad)) {
+        pm::SplitDecoder::Cursor b = bad_dec.begin();
+        bool same = true;
+        for (const Value& v : in) same = same && b.get_scaled(v.context, v.shift) == v.value;
+        EXPECT_FALSE(same && b.ok());
+    }
+    // Frequencies that do not sum to the table size are rejected.
+    std::vector<uint8_t> table = bytes;
+    table[1] ^= 1;  // context 0's first frequency
+    EXPECT_FALSE(pm::SplitDecoder().init(table));
+}
+
+// ordered_fan: the faces around an interior vertex in counter-clockwise order;
+// none for a vertex on a boundary.
+TEST(BpmCodec, OrderedFanOfInteriorAndBoundaryVertices) {
+    // A hexagon fan around vertex 0 (ring 1..6 counter-clockwise), faces listed out of order.
+    const std::vector<uint32_t> faces = {0, 3, 4, 0, 1, 2, 0, 5, 6, 0, 2, 3, 0, 6, 1, 0, 4, 5};
+    pm::SplitReplay replay;
+    replay.reset(7, 6);
+    replay.add_faces(0, faces);
+    std::vector<uint32_t> corners;
+    replay.corners_of(0, corners);
+    uint32_t ring[64];
+    uint8_t at[64];
+    ASSERT_EQ(replay.ordered_fan(corners.data(), corners.size(), ring, at), 6u);
+    // Face 0 is the face of the lowest corner, (0, 3, 4).
+    const uint32_t expected[6] = {3, 4, 5, 6, 1, 2};
+    for (int t = 0; t < 6; ++t) {
+        EXPECT_EQ(ring[t], expected[t]);
+        EXPECT_EQ(replay.index(corners[at[t]] / 3 * 3 + (corners[at[t]] % 3 + 1) % 3), expected[t]);
+    }
+    // Without the face (0, 6, 1) vertex 0 is on a boundary.
+    pm::SplitReplay open;
+    std::vector<uint32_t> open_faces(faces.begin(), faces.begin() + 12);
+    open_faces.insert(open_faces.end(), faces.begin() + 15, faces.end());
+    open.reset(7, 5);
+    open.add_faces(0, open_faces);
+    open.corners_of(0, corners);
+    EXPECT_EQ(open.ordered_fan(corners.data(), corners.size(), ring, at), 0u);
+}
+
+}  // namespace
+}  // namespace body
