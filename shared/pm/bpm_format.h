@@ -330,18 +330,6 @@ struct BaseVertex {
 };
 static_assert(sizeof(BaseVertex) == 8);
 
-// The split record of version 2 (not read any more). Kept only because
-// BpmStream still declares a scratch vector of it; remove both together.
-struct SplitVertex {
-    uint16_t dq[3];
-    uint8_t doct[2];
-    uint16_t pdq[3];
-    uint16_t reserved;  // 0
-    uint32_t parent_delta;
-    float error;
-};
-static_assert(sizeof(SplitVertex) == 24);
-
 // The connectivity replay shared by writer and reader. It tracks, for the most
 // refined level decoded so far, which corners (face * 3 + k) reference each
 // vertex, so that a split's index patches can be sent as a bit mask over its

@@ -178,7 +178,6 @@ private:
     size_t declared_structures_ = 0;
     std::vector<std::unique_ptr<ProgressiveMesh>> meshes_;
     std::vector<uint32_t> decoded_indices_;
-    std::vector<SplitVertex> split_records_;
 };
 
 // Reads a whole file; errors name the path, section and byte offset.
