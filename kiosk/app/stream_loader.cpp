@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstring>
 #include <span>
+#include <thread>
 #include <vector>
 
 namespace body::kiosk {
@@ -41,13 +42,13 @@ bool StreamLoader::bases_ready() const {
 }
 
 void StreamLoader::wait_for_bases() const {
-    std::unique_lock guard(mutex_);
+    std::unique_lock guard = lock();
     cv_.wait(guard, [&] { return done_ || bases_ready(); });
 }
 
 void StreamLoader::release_detail() {
     {
-        std::lock_guard guard(mutex_);
+        std::unique_lock guard = lock();
         released_ = true;
     }
     cv_.notify_all();
@@ -55,17 +56,23 @@ void StreamLoader::release_detail() {
 
 void StreamLoader::wait_until_done() {
     release_detail();
-    std::unique_lock guard(mutex_);
+    std::unique_lock guard = lock();
     cv_.wait(guard, [&] { return done_; });
 }
 
 bool StreamLoader::wait_done_until(std::chrono::steady_clock::time_point deadline) const {
-    std::unique_lock guard(mutex_);
-    return cv_.wait_until(guard, deadline, [&] { return done_; });
+    // Polls instead of waiting on the condition: waking from a timed wait would
+    // re-take the mutex past the thread's fairness check (see lock()).
+    while (!finished_.load(std::memory_order_acquire)) {
+        if (std::chrono::steady_clock::now() >= deadline) return false;
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    return true;
 }
 
 void StreamLoader::finish(std::string error) {
     done_ = true;
+    finished_.store(true, std::memory_order_release);
     error_ = std::move(error);
     cv_.notify_all();
 }
@@ -95,6 +102,7 @@ void StreamLoader::run() {
             return finish(st ? std::string() : st.error().message);
         }
         for (size_t off = 0; off < n; off += kSliceBytes) {
+            while (waiting_.load(std::memory_order_relaxed) > 0) std::this_thread::yield();
             std::unique_lock guard(mutex_);
             // Past the bases, detail waits for the first frame.
             cv_.wait(guard, [&] { return stop_ || released_ || !bases_ready(); });

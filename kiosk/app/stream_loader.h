@@ -14,6 +14,7 @@
 // Order: the thread decodes the base meshes at once, then waits until
 // release_detail() (the kiosk calls it after its first frame, so that detail
 // does not compete with the first picture), then decodes the rest.
+#include <atomic>
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
@@ -43,8 +44,15 @@ public:
     // Blocks until the thread is done or `deadline` passed; true when done.
     bool wait_done_until(std::chrono::steady_clock::time_point deadline) const;
 
-    // Hold this while touching stream() or its structures.
-    std::unique_lock<std::mutex> lock() const { return std::unique_lock(mutex_); }
+    // Hold this while touching stream() or its structures. The thread lets a
+    // waiting caller in before its next slice (a mutex alone is not fair: the
+    // thread would re-take it at once, slice after slice, and starve the frames).
+    std::unique_lock<std::mutex> lock() const {
+        waiting_.fetch_add(1, std::memory_order_relaxed);
+        std::unique_lock guard(mutex_);
+        waiting_.fetch_sub(1, std::memory_order_relaxed);
+        return guard;
+    }
     // --- under lock()
     pm::BpmStream& stream() { return stream_; }
     bool bases_ready() const;            // every declared structure has its base mesh
@@ -63,6 +71,8 @@ private:
     std::string path_;
     size_t chunk_bytes_;
     mutable std::mutex mutex_;
+    mutable std::atomic<int> waiting_{0};  // callers blocked in lock()
+    std::atomic<bool> finished_{false};    // done_, readable without the lock
     mutable std::condition_variable cv_;
     pm::BpmStream stream_;
     bool released_ = false, stop_ = false, done_ = false;

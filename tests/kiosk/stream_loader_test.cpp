@@ -114,6 +114,36 @@ TEST(StreamLoader, ReportsAMissingFileAndATruncatedOne) {
     ::unlink(path.c_str());
 }
 
+// The render thread takes the lock every frame while the thread decodes: it must
+// get in between two slices, not when the whole file is done (a plain mutex lets
+// the decoding thread re-take it slice after slice).
+TEST(StreamLoader, LetsAWaitingCallerInBetweenSlices) {
+    lod::LodOptions options;
+    options.chunk_splits = 256;
+    auto bytes = lod::encode_bpm(std::vector<Mesh>{test::uv_sphere(150, 300)}, options);
+    ASSERT_TRUE(bytes) << bytes.error().message;
+    ASSERT_GT(bytes->size(), 300000u);
+    const std::string path = temp_file(bytes.value());
+    StreamLoader loader(path, 1 << 20);  // one read: only the slices leave gaps
+    loader.wait_for_bases();
+    loader.release_detail();
+    int taken_mid_file = 0;
+    for (int i = 0; i < 8; ++i) {
+        auto held = loader.lock();
+        if (!loader.done()) ++taken_mid_file;
+        held.unlock();
+        std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    }
+    EXPECT_GE(taken_mid_file, 6) << "the caller only got the lock after the decoding";
+    loader.wait_until_done();
+    {
+        auto held = loader.lock();
+        EXPECT_TRUE(loader.error().empty()) << loader.error();
+        EXPECT_TRUE(loader.stream().complete());
+    }
+    ::unlink(path.c_str());
+}
+
 TEST(StreamLoader, StopsWhileWaitingForRelease) {
     const std::vector<uint8_t> bytes = two_sphere_bpm();
     const std::string path = temp_file(bytes);
