@@ -27,6 +27,9 @@ namespace body::pm {
 // faults cost the streaming thread more time than half its decoding.
 void* allocate_large_array(size_t bytes);  // aligned to 2 MiB, huge pages advised; throws std::bad_alloc
 void free_large_array(void* p);
+// From now on a low-priority thread prefaults the large arrays allocated before
+// and after the call (see shared/pm/large_array.cpp). Without it, nothing runs.
+void start_background_prefault();
 inline constexpr size_t kLargeArrayBytes = size_t(2) << 20;
 
 template <class T>

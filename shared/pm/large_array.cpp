@@ -1,27 +1,111 @@
 // Huge-page backed storage for the progressive-mesh arrays (see UninitAllocator
-// in bpm_format.h): a 1M-triangle structure first-touches ~100 MB while it
+// in bpm_format.h): a 1M-triangle structure first-touches ~120 MB while it
 // decodes, and with 4 KiB pages the page faults cost as much as the decoding.
+//
+// Even with huge pages the kernel must clear every page the decoder touches
+// first (a fifth of a 1M-triangle decode). So a background thread at the lowest
+// priority prefaults each new array (MADV_POPULATE_WRITE: maps the pages
+// writable, never changes contents, so it is safe beside the decoder's writes
+// and harmless on memory freed meanwhile): the clearing moves to a core the
+// decoder does not use, when one is idle. It starts when the application says
+// so (the kiosk: after its first frame, which it must not slow down).
+#include <condition_variable>
 #include <cstdlib>
+#include <deque>
+#include <mutex>
 #include <new>
+#include <thread>
+#include <utility>
 
 #include "shared/pm/bpm_format.h"
 #if defined(__linux__)
+#include <pthread.h>
 #include <sys/mman.h>
+#include <sys/resource.h>
+#include <unistd.h>
 #endif
 
 namespace body::pm {
 
+namespace {
+
+constexpr size_t kHugePage = size_t(2) << 20;
+
+#if defined(__linux__) && defined(MADV_POPULATE_WRITE)
+class Prefaulter {
+public:
+    static Prefaulter& instance() {
+        static Prefaulter p;
+        return p;
+    }
+    void add(void* p, size_t bytes) {
+        {
+            std::lock_guard guard(mutex_);
+            ranges_.emplace_back(static_cast<char*>(p), bytes);
+        }
+        cv_.notify_one();
+    }
+    void start() {
+        std::lock_guard guard(mutex_);
+        if (!thread_.joinable()) thread_ = std::thread([this] { run(); });
+    }
+    ~Prefaulter() {
+        {
+            std::lock_guard guard(mutex_);
+            stop_ = true;
+        }
+        cv_.notify_one();
+        if (thread_.joinable()) thread_.join();
+    }
+
+private:
+    Prefaulter() = default;
+    void run() {
+        ::setpriority(PRIO_PROCESS, static_cast<id_t>(::gettid()), 19);  // idle cores only
+        pthread_setname_np(pthread_self(), "bpm-prefault");
+        for (;;) {
+            std::pair<char*, size_t> r;
+            {
+                std::unique_lock guard(mutex_);
+                cv_.wait(guard, [&] { return stop_ || !ranges_.empty(); });
+                if (stop_) return;
+                r = ranges_.front();
+                ranges_.pop_front();
+            }
+            // One huge page at a time: an error (memory freed meanwhile) ends the range.
+            for (size_t off = 0; off < r.second; off += kHugePage)
+                if (::madvise(r.first + off, std::min(kHugePage, r.second - off), MADV_POPULATE_WRITE) != 0) break;
+        }
+    }
+    std::mutex mutex_;
+    std::condition_variable cv_;
+    std::deque<std::pair<char*, size_t>> ranges_;
+    bool stop_ = false;
+    std::thread thread_;
+};
+#endif
+
+}  // namespace
+
 void* allocate_large_array(size_t bytes) {
-    constexpr size_t kHugePage = size_t(2) << 20;
     const size_t rounded = (bytes + kHugePage - 1) / kHugePage * kHugePage;
     void* p = std::aligned_alloc(kHugePage, rounded);
     if (!p) throw std::bad_alloc();
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
     ::madvise(p, rounded, MADV_HUGEPAGE);  // advice only: without THP it is ordinary memory
 #endif
+#if defined(__linux__) && defined(MADV_POPULATE_WRITE)
+    Prefaulter::instance().add(p, rounded);
+#endif
     return p;
 }
 
 void free_large_array(void* p) { std::free(p); }
+
+void start_background_prefault() {
+#if defined(__linux__) && defined(MADV_POPULATE_WRITE)
+    Prefaulter::instance().start();
+#endif
+}
 
 }  // namespace body::pm

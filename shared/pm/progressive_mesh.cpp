@@ -52,7 +52,6 @@ size_t ProgressiveMesh::refine_to(size_t level) {
         if (parent_to_[j] != parent_from_[j]) {
             const uint32_t parent = parents_[child];
             positions_[parent] = parent_to_[j];
-            morph_targets_[parent] = parent_from_[j];
             dirty_vertices_.add(parent, parent + 1);
         }
     }
@@ -71,7 +70,6 @@ size_t ProgressiveMesh::coarsen_to(size_t level) {
         }
         if (parent_to_[j] != parent_from_[j]) {
             positions_[parent] = parent_from_[j];
-            morph_targets_[parent] = parent_morph_[j];
             dirty_vertices_.add(parent, parent + 1);
         }
     }
@@ -250,15 +248,12 @@ Status BpmStream::parse_info(std::span<const uint8_t> payload, const std::string
         m->normals_.resize(vertices);
     else
         m->normals_.assign(vertices, Vec3f(0.0f, 0.0f, 1.0f));
-    m->morph_targets_.resize(vertices);
     m->parents_.resize(vertices);
     m->indices_.resize(size_t(faces) * 3);
     m->face_end_.resize(splits);
     m->split_error_.resize(splits);
     m->parent_from_.resize(splits);
     m->parent_to_.resize(splits);
-    m->parent_morph_.resize(splits);
-    m->decoded_morph_.resize(vertices);
     m->patch_begin_.resize(size_t(splits) + 1);
     m->patch_begin_[0] = 0;
     m->patch_corners_.clear();
@@ -295,8 +290,6 @@ Status BpmStream::parse_base(ProgressiveMesh& m, std::span<const uint8_t> payloa
             oct_decode8(verts[v].oct, n);
             m.normals_[v] = Vec3f(n[0], n[1], n[2]);
         }
-        m.morph_targets_[v] = m.positions_[v];
-        m.decoded_morph_[v] = m.positions_[v];
         m.parents_[v] = uint32_t(v);
     }
     std::copy(decoded_indices_.begin(), decoded_indices_.end(), m.indices_.begin());
@@ -309,7 +302,6 @@ Status BpmStream::parse_base(ProgressiveMesh& m, std::span<const uint8_t> payloa
         m.replay_ = SplitReplay{};
         m.qpos_ = {};
         m.qoct_ = {};
-        m.decoded_morph_ = {};
     }
     return ok_status();
 }
@@ -361,7 +353,6 @@ Status BpmStream::parse_splits(ProgressiveMesh& m, std::span<const uint8_t> payl
             m.replay_.prefetch(p, 1);
 #if defined(__GNUC__)
             __builtin_prefetch(&m.qpos_[size_t(p) * 3]);
-            __builtin_prefetch(&m.decoded_morph_[p]);
             __builtin_prefetch(&m.qoct_[size_t(p) * 2]);
 #endif
         }
@@ -458,9 +449,6 @@ Status BpmStream::parse_splits(ProgressiveMesh& m, std::span<const uint8_t> payl
         }
         m.parent_from_[j] = from_f;
         m.parent_to_[j] = to_f;
-        m.parent_morph_[j] = m.decoded_morph_[parent];
-        if (to_f != from_f) m.decoded_morph_[parent] = from_f;
-        m.decoded_morph_[child] = from_f;
         m.qoct_[size_t(child) * 2] = oct[0];
         m.qoct_[size_t(child) * 2 + 1] = oct[1];
         if (m.has_normals_) {
@@ -469,7 +457,6 @@ Status BpmStream::parse_splits(ProgressiveMesh& m, std::span<const uint8_t> payl
             m.normals_[child] = Vec3f(n[0], n[1], n[2]);
         }
         m.parents_[child] = parent;
-        m.morph_targets_[child] = from_f;
     }
     if (count > 0) {
         const size_t first_child = m.base_vertices_ + first;
@@ -485,7 +472,6 @@ Status BpmStream::parse_splits(ProgressiveMesh& m, std::span<const uint8_t> payl
         m.replay_ = SplitReplay{};
         m.qpos_ = {};
         m.qoct_ = {};
-        m.decoded_morph_ = {};
     }
     return ok_status();
 }

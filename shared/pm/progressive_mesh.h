@@ -101,12 +101,6 @@ public:
     // the current prefix are valid once decoded but are not part of this level.
     std::span<const Vec3f> positions() const { return positions_; }
     std::span<const Vec3f> normals() const { return normals_; }  // unit; (0,0,1) when the file has none
-    // Geomorph source, for the current level: where each vertex was before the
-    // last split that created or moved it (a new vertex: its parent's position
-    // before the split; a moved parent: its own; a base vertex never moved: itself).
-    // Draw mix(morph_targets, positions, t) for the vertices added or moved since
-    // the previous level (dirty_vertices() covers both), t going 0 -> 1.
-    std::span<const Vec3f> morph_targets() const { return morph_targets_; }
     std::span<const uint32_t> parents() const { return parents_; }
     std::span<const uint32_t> indices() const { return indices_; }
 
@@ -126,22 +120,20 @@ private:
 
     // Sized to full capacity by INFO but written only as sections arrive: entries
     // past the decoded vertices, faces and splits are indeterminate.
-    UninitVector<Vec3f> positions_, normals_, morph_targets_;
+    UninitVector<Vec3f> positions_, normals_;
     UninitVector<uint32_t> parents_, indices_;
     UninitVector<uint32_t> face_end_;     // per split: triangle count after it
     UninitVector<float> split_error_;     // per split: error of the level before it
     UninitVector<uint32_t> patch_begin_;  // per split + 1: range into patch_corners_
-    // Per split: the parent's position before and after it (before: also read by
-    // morph_sources for every split) and its geomorph source before it (only
-    // read for splits that move the parent).
-    UninitVector<Vec3f> parent_from_, parent_to_, parent_morph_;
+    // Per split: the parent's position before and after it (equal when the split
+    // does not move it; `from` is what morph_sources reads for every split).
+    UninitVector<Vec3f> parent_from_, parent_to_;
     UninitVector<uint32_t> patch_corners_;  // index entries set to the child on refine, parent on coarsen
     DirtyRange dirty_vertices_, dirty_indices_;
     // Decoding state, released when the structure is complete.
     SplitReplay replay_;
-    UninitVector<uint16_t> qpos_;        // 3 per vertex: quantized positions (children are coded against parents)
-    UninitVector<uint8_t> qoct_;         // 2 per vertex: octahedral normals
-    UninitVector<Vec3f> decoded_morph_;  // per vertex: morph_targets() at the last decoded level
+    UninitVector<uint16_t> qpos_;  // 3 per vertex: quantized positions (children are coded against parents)
+    UninitVector<uint8_t> qoct_;   // 2 per vertex: octahedral normals
 };
 
 // Reads a .bpm file from byte chunks as they arrive (network, disk, a test).
