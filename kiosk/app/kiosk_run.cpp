@@ -464,7 +464,7 @@ int run_kiosk(platform::Surface& surface, const scene::Scene& scene, const Kiosk
                     // the triangles: each step costs an upload and a geomorph, and
                     // frames of a half-way level compete with the decoding thread.
                     if (l.streaming && level > p.pm->level() && level < wanted_full &&
-                        p.pm->triangles_at(level) < 2 * p.pm->triangle_count())
+                        p.pm->triangles_at(level) < 4 * p.pm->triangle_count())
                         level = p.pm->level();
                     if (level < wanted_full || frame == 0) at_planned_detail = false;
                     // The first frame shows the base meshes: on screen as soon as possible.
@@ -536,8 +536,10 @@ int run_kiosk(platform::Surface& surface, const scene::Scene& scene, const Kiosk
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - load_start).count();
         if (first_frame_ms < 0.0) {
             first_frame_ms = since_start;
-            // The first picture is up: detail may decode now. A replay waits for
-            // all of it so that its frames do not depend on the machine's speed.
+            // The first picture is up: detail may decode now (and its memory be
+            // prefaulted beside it). A replay waits for all of it so that its
+            // frames do not depend on the machine's speed.
+            pm::start_background_prefault();
             for (Loaded& l : loaded) {
                 if (!l.loader) continue;
                 if (replaying)
@@ -576,7 +578,7 @@ int run_kiosk(platform::Surface& surface, const scene::Scene& scene, const Kiosk
         // and the visitor sees full detail sooner.
         if (streaming && frame > 0 && !replaying) {
             const auto until = std::chrono::steady_clock::now() +
-                               std::chrono::microseconds(static_cast<long>(std::min(2.0 * frame_ms, 200.0) * 1000.0));
+                               std::chrono::microseconds(static_cast<long>(std::min(5.0 * frame_ms, 500.0) * 1000.0));
             for (const Loaded& l : loaded)
                 if (l.streaming && !l.loader->wait_done_until(until)) break;
         }

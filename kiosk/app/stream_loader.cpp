@@ -7,6 +7,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <semaphore>
 #include <span>
 #include <thread>
 #include <vector>
@@ -17,6 +18,22 @@ namespace {
 // Bytes fed per lock: bounds how long the render thread can wait for the lock
 // (one slice completes at most a section or two: ~1-3 ms of decoding).
 constexpr size_t kSliceBytes = 16 * 1024;
+
+// Decoding slots shared by every loader: one core fewer than the machine has, so
+// that a scene of many files (the AAL brain: 116) does not put all its threads
+// against the render thread while it compiles shaders and draws the first frame.
+std::counting_semaphore<1024>& decode_slots() {
+    static std::counting_semaphore<1024> slots(
+        std::ptrdiff_t(std::clamp(std::thread::hardware_concurrency(), 2u, 1025u) - 1));
+    return slots;
+}
+
+struct DecodeSlot {
+    DecodeSlot() { decode_slots().acquire(); }
+    ~DecodeSlot() { decode_slots().release(); }
+    DecodeSlot(const DecodeSlot&) = delete;
+    DecodeSlot& operator=(const DecodeSlot&) = delete;
+};
 }  // namespace
 
 StreamLoader::StreamLoader(std::string path, size_t chunk_bytes)
@@ -102,10 +119,14 @@ void StreamLoader::run() {
             return finish(st ? std::string() : st.error().message);
         }
         for (size_t off = 0; off < n; off += kSliceBytes) {
+            {
+                // Past the bases, detail waits for the first frame.
+                std::unique_lock guard(mutex_);
+                cv_.wait(guard, [&] { return stop_ || released_ || !bases_ready(); });
+            }
             while (waiting_.load(std::memory_order_relaxed) > 0) std::this_thread::yield();
+            DecodeSlot slot;
             std::unique_lock guard(mutex_);
-            // Past the bases, detail waits for the first frame.
-            cv_.wait(guard, [&] { return stop_ || released_ || !bases_ready(); });
             if (stop_) {
                 std::fclose(f);
                 return finish(std::string());
