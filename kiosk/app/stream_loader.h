@@ -13,7 +13,9 @@
 //
 // Order: the thread decodes the base meshes at once, then waits until
 // release_detail() (the kiosk calls it after its first frame, so that detail
-// does not compete with the first picture), then decodes the rest.
+// does not compete with the first picture), then decodes the rest. All loader
+// threads share hardware_concurrency - 1 decoding slots, taken per slice, so a
+// scene of many files (the AAL brain: 116) leaves a core to the render thread.
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
