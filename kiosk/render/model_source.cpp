@@ -95,35 +95,6 @@ Dirty ModelSource::take_dirty() {
     return d;
 }
 
-MorphSources morph_sources_from(pm::ProgressiveMesh& pm, size_t lo) {
-    const size_t hi = pm.level();
-    lo = std::min(lo, hi);
-    const size_t lo_vc = pm.base_vertex_count() + lo, hi_vc = pm.vertex_count();
-    const auto parents = pm.parents();
-    std::vector<Vec3f> added(hi_vc - lo_vc);                // where the added vertices are at lo
-    std::vector<std::pair<uint32_t, Vec3f>> split_parents;  // older vertices split since lo, at lo
-    pm.set_level(lo);
-    const auto at_lo = pm.positions();
-    for (size_t c = lo_vc; c < hi_vc; ++c) {
-        const uint32_t p = parents[c];
-        added[c - lo_vc] = p >= lo_vc ? added[p - lo_vc] : at_lo[p];
-        if (p < lo_vc) split_parents.emplace_back(p, at_lo[p]);
-    }
-    pm.set_level(hi);
-    pm.clear_dirty();  // back where it was
-    const auto own = pm.positions();
-    MorphSources out;
-    out.begin = lo_vc;
-    for (const auto& [v, pos] : split_parents)
-        if (pos != own[v]) out.begin = std::min<size_t>(out.begin, v);
-    out.sources.assign(own.begin() + static_cast<std::ptrdiff_t>(out.begin),
-                       own.begin() + static_cast<std::ptrdiff_t>(hi_vc));
-    for (const auto& [v, pos] : split_parents)
-        if (v >= out.begin) out.sources[v - out.begin] = pos;
-    std::copy(added.begin(), added.end(), out.sources.begin() + static_cast<std::ptrdiff_t>(lo_vc - out.begin));
-    return out;
-}
-
 Result<std::vector<ModelSource>> load_model_file(const std::string& path) {
     std::string ext = std::filesystem::path(path).extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(),

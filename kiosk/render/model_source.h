@@ -54,19 +54,6 @@ private:
     Dirty pending_;
 };
 
-// Geomorph sources for gliding between a coarser level `lo` and the pm's current
-// level: for vertices [begin, vertex_count()), where each is at `lo` (a vertex
-// added since `lo`: its ancestor's position there; one a split moved: its
-// position there; any other: its own position). Exact for chains of splits: it
-// steps the pm down to `lo` and back, so call it with no dirty range pending
-// (uploaded first); the round trip's ranges are cleared. For
-// Renderer::set_morph_sources with ModelState::morph_begin = begin.
-struct MorphSources {
-    size_t begin = 0;
-    std::vector<Vec3f> sources;
-};
-MorphSources morph_sources_from(pm::ProgressiveMesh& pm, size_t lo);
-
 // Loads `.bpm` or `.obj` (by extension); errors name the file and the reason.
 Result<std::vector<ModelSource>> load_model_file(const std::string& path);
 

@@ -63,7 +63,7 @@ struct MeshData {
     // Optional geomorph sources, one per position, uploaded with the same dirty
     // vertex ranges; their presence gives the model a morph buffer. At rest they
     // equal the positions (the kiosk passes the positions and patches a morph's
-    // range with set_morph_sources, see model_source.h's morph_sources_from);
+    // range with set_morph_sources, see pm::ProgressiveMesh::morph_sources);
     // see ModelState::morph.
     std::span<const Vec3f> morph_sources = {};
     size_t vertex_count = SIZE_MAX;  // SIZE_MAX: positions.size()

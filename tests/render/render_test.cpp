@@ -632,7 +632,7 @@ TEST(RenderGeomorph, MidMorphLiesBetweenCoarseAndFine) {
 }
 
 // The kiosk's geomorph on a real progressive mesh: at the finer level with the
-// sources of morph_sources_from(coarser level), morph 0 covers what the coarser
+// sources of ProgressiveMesh::morph_sources(coarser level), morph 0 covers what the coarser
 // level covers, morph 1 what the finer one does, and mid-morph lies in between.
 TEST(RenderGeomorph, ProgressiveMeshMorphStartsAtTheCoarserLevel) {
     const BunnyBpm made = make_bunny_bpm("morph_bunny.bpm");
@@ -669,11 +669,13 @@ TEST(RenderGeomorph, ProgressiveMeshMorphStartsAtTheCoarserLevel) {
     ModelState& st = *f.renderer().state(id.value());
     st.style = Style::Baseline;
     const auto fine = test::foreground_mask(f.draw(cam, {}, o), o.background);
-    const MorphSources m = morph_sources_from(pm, lo);
+    std::vector<Vec3f> sources;
+    std::vector<uint64_t> scratch;
+    const size_t begin = pm.morph_sources(lo, sources, scratch);
     EXPECT_EQ(pm.level(), hi);
-    EXPECT_EQ(m.begin + m.sources.size(), pm.vertex_count());
-    ASSERT_TRUE(f.renderer().set_morph_sources(id.value(), m.begin, m.sources).ok());
-    st.morph_begin = m.begin;
+    EXPECT_EQ(begin + sources.size(), pm.vertex_count());
+    ASSERT_TRUE(f.renderer().set_morph_sources(id.value(), begin, sources).ok());
+    st.morph_begin = begin;
     auto differing = [](const std::vector<bool>& a, const std::vector<bool>& b) {
         size_t n = 0;
         for (size_t i = 0; i < a.size(); ++i) n += a[i] != b[i];
