@@ -7,6 +7,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <memory>
 #include <semaphore>
 #include <span>
 #include <thread>
@@ -60,7 +61,7 @@ bool StreamLoader::bases_ready() const {
 
 void StreamLoader::wait_for_bases() const {
     std::unique_lock guard = lock();
-    cv_.wait(guard, [&] { return done_ || bases_ready(); });
+    cv_.wait(guard, [&] { return done_.load(std::memory_order_relaxed) || bases_ready(); });
 }
 
 void StreamLoader::release_detail() {
@@ -74,13 +75,13 @@ void StreamLoader::release_detail() {
 void StreamLoader::wait_until_done() {
     release_detail();
     std::unique_lock guard = lock();
-    cv_.wait(guard, [&] { return done_; });
+    cv_.wait(guard, [&] { return done_.load(std::memory_order_relaxed); });
 }
 
 bool StreamLoader::wait_done_until(std::chrono::steady_clock::time_point deadline) const {
     // Polls instead of waiting on the condition: waking from a timed wait would
     // re-take the mutex past the thread's fairness check (see lock()).
-    while (!finished_.load(std::memory_order_acquire)) {
+    while (!done_.load(std::memory_order_acquire)) {
         if (std::chrono::steady_clock::now() >= deadline) return false;
         std::this_thread::sleep_for(std::chrono::milliseconds(1));
     }
@@ -88,15 +89,15 @@ bool StreamLoader::wait_done_until(std::chrono::steady_clock::time_point deadlin
 }
 
 void StreamLoader::finish(std::string error) {
-    done_ = true;
-    finished_.store(true, std::memory_order_release);
     error_ = std::move(error);
+    done_.store(true, std::memory_order_release);
     cv_.notify_all();
 }
 
 void StreamLoader::run() {
     pthread_setname_np(pthread_self(), "bodyview-load");  // for top and perf
-    std::FILE* f = std::fopen(path_.c_str(), "rb");
+    const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path_.c_str(), "rb"), &std::fclose);
+    std::FILE* f = file.get();
     if (!f) {
         std::lock_guard guard(mutex_);
         return finish(path_ + ": " + std::strerror(errno));
@@ -112,7 +113,6 @@ void StreamLoader::run() {
         const size_t n = std::fread(chunk.data(), 1, chunk.size(), f);
         if (n == 0) {
             const bool read_error = std::ferror(f) != 0;
-            std::fclose(f);
             std::lock_guard guard(mutex_);
             if (read_error) return finish(path_ + ": read error");
             const Status st = stream_.finish();
@@ -127,16 +127,10 @@ void StreamLoader::run() {
             while (waiting_.load(std::memory_order_relaxed) > 0) std::this_thread::yield();
             DecodeSlot slot;
             std::unique_lock guard(mutex_);
-            if (stop_) {
-                std::fclose(f);
-                return finish(std::string());
-            }
+            if (stop_) return finish(std::string());
             const auto slice = std::span<const uint8_t>(chunk).subspan(off, std::min(kSliceBytes, n - off));
             const bool had_bases = bases_ready();
-            if (const Status st = stream_.feed(slice); !st) {
-                std::fclose(f);
-                return finish(st.error().message);
-            }
+            if (const Status st = stream_.feed(slice); !st) return finish(st.error().message);
             decoded_ += slice.size();
             if (!had_bases && bases_ready()) cv_.notify_all();
         }

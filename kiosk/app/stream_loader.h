@@ -57,8 +57,8 @@ public:
     }
     // --- under lock()
     pm::BpmStream& stream() { return stream_; }
-    bool bases_ready() const;            // every declared structure has its base mesh
-    bool done() const { return done_; }  // nothing more will be decoded
+    bool bases_ready() const;                                            // every declared structure has its base mesh
+    bool done() const { return done_.load(std::memory_order_relaxed); }  // nothing more will be decoded
     // Why decoding stopped early: a read error, a corrupt section, or a file that
     // ended too soon (BpmStream::finish). Empty when the whole file decoded.
     const std::string& error() const { return error_; }
@@ -74,10 +74,12 @@ private:
     size_t chunk_bytes_;
     mutable std::mutex mutex_;
     mutable std::atomic<int> waiting_{0};  // callers blocked in lock()
-    std::atomic<bool> finished_{false};    // done_, readable without the lock
+    // Nothing more will be decoded; set under the lock, and atomic so that
+    // wait_done_until can poll it without the lock.
+    std::atomic<bool> done_{false};
     mutable std::condition_variable cv_;
     pm::BpmStream stream_;
-    bool released_ = false, stop_ = false, done_ = false;
+    bool released_ = false, stop_ = false;
     std::string error_;
     size_t total_ = 0, decoded_ = 0;
     std::thread thread_;
