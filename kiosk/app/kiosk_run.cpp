@@ -460,7 +460,7 @@ int run_kiosk(platform::Surface& surface, const scene::Scene& scene, const Kiosk
                         static_cast<size_t>(std::llround(static_cast<double>(p.full_triangles()) * ratio));
                     size_t level = p.pm->level_for_triangles(std::max<size_t>(want, 1));
                     const size_t wanted_full = pm_level_wanted(*p.pm, want);
-                    // While detail streams in, refine in steps that at least double
+                    // While detail streams in, refine in steps that at least quadruple
                     // the triangles: each step costs an upload and a geomorph, and
                     // frames of a half-way level compete with the decoding thread.
                     if (l.streaming && level > p.pm->level() && level < wanted_full &&

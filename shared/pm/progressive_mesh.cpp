@@ -321,7 +321,8 @@ Status BpmStream::parse_splits(ProgressiveMesh& m, std::span<const uint8_t> payl
     if (!decoder.init(vbuf)) return input_error(where + ": split value tables do not decode");
     SplitDecoder::Cursor values = decoder.begin();
     // The chunk's parents come first (the loop below prefetches their data).
-    std::vector<uint32_t> parents(count);
+    std::vector<uint32_t>& parents = split_parents_;
+    parents.resize(count);
     for (uint32_t i = 0; i < count; ++i) {
         const uint32_t child = uint32_t(m.base_vertices_ + first + i), delta = values.get(kCtxParentDelta);
         if (delta >= child || values.past_end())

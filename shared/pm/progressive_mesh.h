@@ -170,6 +170,7 @@ private:
     size_t declared_structures_ = 0;
     std::vector<std::unique_ptr<ProgressiveMesh>> meshes_;
     std::vector<uint32_t> decoded_indices_;
+    std::vector<uint32_t> split_parents_;  // parse_splits: the parents of a chunk's splits (reused)
 };
 
 // Reads a whole file; errors name the path, section and byte offset.
