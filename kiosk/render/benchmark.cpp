@@ -148,6 +148,7 @@ Status run_benchmark(platform::Surface& surface, const BenchmarkOptions& options
     auto id = renderer.add_model(source->mesh(), source->name());
     if (!id) return id.error();
     (void)source->take_dirty();
+    source->release_arrays();  // the GL buffers have the level; set_lod decodes what it needs
     step("model uploaded");
     Vec3f center;
     float radius = 0;
@@ -215,7 +216,13 @@ Status run_benchmark(platform::Surface& surface, const BenchmarkOptions& options
             lod_peak = std::max(lod_peak, peak_rss_kib());
             reset_peak_rss();
         }
-        if (auto s = renderer.update_model(id.value(), source->mesh(), source->take_dirty()); !s) return s;
+        // Nothing to patch at the first pass (the upload has the full level):
+        // mesh() would only decode the released indices again.
+        if (const Dirty dirty = source->take_dirty();
+            dirty.vertex_begin < dirty.vertex_end || dirty.index_begin < dirty.index_end) {
+            if (auto s = renderer.update_model(id.value(), source->mesh(), dirty); !s) return s;
+            source->release_arrays();
+        }
         if (lod == 1.0) {
             step("LOD 100% patched in");
             // Memory of the model drawn with the simplest shader: CPU arrays, GL buffers, driver working set.

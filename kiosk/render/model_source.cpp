@@ -4,13 +4,39 @@
 #include "kiosk/render/model_source.h"
 
 #include <meshoptimizer.h>
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
 
 #include <algorithm>
 #include <filesystem>
+#include <span>
 
 #include "shared/obj_io.h"
 
 namespace body::render {
+
+namespace {
+
+// The triangles of `indices` in meshoptimizer's index codec; empty when they
+// cannot be coded (the renderer reports such a mesh).
+std::vector<uint8_t> encode_triangles(std::span<const uint32_t> indices) {
+    if (indices.empty()) return {};
+    const uint32_t top = *std::max_element(indices.begin(), indices.end());
+    if (top == UINT32_MAX) return {};
+    std::vector<uint8_t> code(meshopt_encodeIndexBufferBound(indices.size(), size_t{top} + 1));
+    code.resize(meshopt_encodeIndexBuffer(code.data(), code.size(), indices.data(), indices.size()));
+    code.shrink_to_fit();
+    return code;
+}
+
+void decode_triangles(std::span<const uint8_t> code, size_t index_count, std::vector<uint32_t>& out) {
+    out.resize(index_count);
+    if (index_count > 0 && meshopt_decodeIndexBuffer(out.data(), index_count, code.data(), code.size()) != 0)
+        out.clear();  // cannot happen for our own code; an empty level draws nothing
+}
+
+}  // namespace
 
 ModelSource::ModelSource(std::string name, Vec3f color, std::vector<Vec3f> positions, std::vector<Vec3f> normals,
                          std::vector<uint32_t> indices)
@@ -18,10 +44,13 @@ ModelSource::ModelSource(std::string name, Vec3f color, std::vector<Vec3f> posit
       color_(color),
       positions_(std::move(positions)),
       normals_(std::move(normals)),
-      full_indices_(std::move(indices)) {
+      indices_(std::move(indices)) {
     positions_.shrink_to_fit();
     normals_.shrink_to_fit();
-    full_indices_.shrink_to_fit();
+    indices_.resize(indices_.size() - indices_.size() % 3);  // whole triangles only
+    indices_.shrink_to_fit();
+    full_index_count_ = indices_.size();
+    full_code_ = encode_triangles(indices_);
 }
 
 ModelSource::ModelSource(std::unique_ptr<pm::ProgressiveMesh> pm) : pm_(std::move(pm)) {
@@ -30,8 +59,32 @@ ModelSource::ModelSource(std::unique_ptr<pm::ProgressiveMesh> pm) : pm_(std::mov
     pm_->set_level(pm_->available_level());
 }
 
-size_t ModelSource::full_triangles() const { return pm_ ? pm_->max_triangle_count() : full_indices_.size() / 3; }
-size_t ModelSource::triangles() const { return pm_ ? pm_->triangle_count() : current_indices().size() / 3; }
+size_t ModelSource::full_triangles() const { return pm_ ? pm_->max_triangle_count() : full_index_count_ / 3; }
+size_t ModelSource::triangles() const { return pm_ ? pm_->triangle_count() : current_index_count() / 3; }
+
+std::span<const uint32_t> ModelSource::current_indices() const {
+    const Decoded want = simplified_ ? Decoded::Level : Decoded::Full;
+    if (decoded_ != want) {
+        decode_triangles(simplified_ ? level_code_ : full_code_, current_index_count(), indices_);
+        decoded_ = want;
+    }
+    return indices_;
+}
+
+void ModelSource::release_arrays() {
+    if (pm_ || decoded_ == Decoded::None || full_code_.empty()) return;
+    if (decoded_ == Decoded::Level && level_code_.empty()) return;  // could not be coded: kept plain
+    const bool large = indices_.capacity() * sizeof(uint32_t) >= (1u << 20);
+    std::vector<uint32_t>().swap(indices_);  // `= {}` would keep the storage
+    decoded_ = Decoded::None;
+#ifdef __GLIBC__
+    // glibc keeps big freed blocks on its heap once its mmap threshold grew
+    // (after any earlier large free): hand them back.
+    if (large) malloc_trim(0);
+#else
+    (void)large;
+#endif
+}
 
 void ModelSource::set_lod(double ratio) {
     ratio = std::clamp(ratio, 0.0, 1.0);
@@ -40,22 +93,33 @@ void ModelSource::set_lod(double ratio) {
         pm_->set_level(pm_->level_for_triangles(std::max<size_t>(target, 1)));
         return;
     }
-    const size_t old_size = current_indices().size();
-    if (target >= full_indices_.size() / 3) {
-        std::vector<uint32_t>().swap(
-            indices_);  // the full level draws full_indices_: no second copy (`= {}` would keep the storage)
+    const size_t old_size = current_index_count();
+    std::vector<uint8_t>().swap(level_code_);
+    if (target >= full_index_count_ / 3 || full_code_.empty()) {
         simplified_ = false;
+        if (decoded_ == Decoded::Level) {
+            std::vector<uint32_t>().swap(indices_);
+            decoded_ = Decoded::None;  // the full level is decoded when asked for
+        }
     } else {
-        std::vector<uint32_t> out(full_indices_.size());
-        size_t n =
-            meshopt_simplify(out.data(), full_indices_.data(), full_indices_.size(), &positions_[0].x,
-                             positions_.size(), sizeof(Vec3f), std::max<size_t>(target, 1) * 3, 1e-1f, 0, nullptr);
+        std::vector<uint32_t> full;  // the full level, decoded unless it is at hand
+        if (decoded_ != Decoded::Full) decode_triangles(full_code_, full_index_count_, full);
+        const std::span<const uint32_t> from = decoded_ == Decoded::Full ? std::span<const uint32_t>(indices_) : full;
+        std::vector<uint32_t> out(from.size());
+        size_t n = meshopt_simplify(out.data(), from.data(), from.size(), &positions_[0].x, positions_.size(),
+                                    sizeof(Vec3f), std::max<size_t>(target, 1) * 3, 1e-1f, 0, nullptr);
         out.resize(n);
         out.shrink_to_fit();
+        std::vector<uint32_t>().swap(full);
+        // Coded now, with the simplifier's scratch, not when released (the
+        // coder's worst-case buffer is 11 bytes a triangle).
+        level_code_ = encode_triangles(out);
         indices_ = std::move(out);
+        decoded_ = Decoded::Level;
+        level_index_count_ = n;
         simplified_ = true;
     }
-    const size_t size = current_indices().size();
+    const size_t size = current_index_count();
     pending_.index_begin = 0;
     pending_.index_end = std::max(pending_.index_end, std::min(size, std::max(old_size, size)));
 }
@@ -87,8 +151,8 @@ Dirty ModelSource::take_dirty() {
         }
         pm_->clear_dirty();
     } else {
-        d = first_ ? Dirty{0, positions_.size(), 0, current_indices().size()} : pending_;
-        d.index_end = std::min(d.index_end, current_indices().size());
+        d = first_ ? Dirty{0, positions_.size(), 0, current_index_count()} : pending_;
+        d.index_end = std::min(d.index_end, current_index_count());
     }
     first_ = false;
     pending_ = Dirty{};

@@ -12,6 +12,13 @@
 // patches as dirty ranges). OBJ files have no LOD hierarchy; set_lod() on one
 // falls back to a meshoptimizer simplification of the whole index array (a
 // preview path only: convert with `bodygen` to get progressive meshes).
+//
+// Memory (plain meshes): the full index array is also kept compressed
+// (meshoptimizer's index codec, 3-5 bytes a triangle instead of 12), which is
+// what set_lod() simplifies from; the current level's plain array is needed
+// only until the renderer has it, and release_arrays() frees it (mesh()
+// decodes it again if asked):
+//   renderer.update_model(id, src.mesh(), src.take_dirty());  src.release_arrays();
 #include <memory>
 #include <string>
 #include <vector>
@@ -41,15 +48,29 @@ public:
     MeshData mesh() const;
     // Ranges changed since the last call (everything on the first call).
     Dirty take_dirty();
+    // Plain meshes: frees the current level's index array once it is uploaded
+    // (the renderer keeps its own copy); a later mesh() decodes it again from
+    // the compressed copy, with the same triangles (a triangle's corners may
+    // come rotated, its winding kept). Progressive meshes: nothing (their
+    // splits patch their arrays in place).
+    void release_arrays();
 
 private:
+    enum class Decoded : uint8_t { None, Full, Level };
     std::string name_;
     Vec3f color_{0.8f};
     std::unique_ptr<pm::ProgressiveMesh> pm_;
     std::vector<Vec3f> positions_, normals_;
-    std::vector<uint32_t> full_indices_, indices_;  // OBJ: full and (when simplified_) current indices
+    // Plain meshes: the full level and (when simplified_) the current level's
+    // indices, compressed; indices_ holds the
+    // level named by decoded_.
+    std::vector<uint8_t> full_code_, level_code_;
+    size_t full_index_count_ = 0, level_index_count_ = 0;
     bool simplified_ = false;
-    std::span<const uint32_t> current_indices() const { return simplified_ ? indices_ : full_indices_; }
+    mutable std::vector<uint32_t> indices_;
+    mutable Decoded decoded_ = Decoded::Full;
+    size_t current_index_count() const { return simplified_ ? level_index_count_ : full_index_count_; }
+    std::span<const uint32_t> current_indices() const;  // decodes the current level when released
     bool first_ = true;
     Dirty pending_;
 };

@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -417,6 +418,44 @@ TEST(RenderLod, ObjPreviewLodReducesTriangles) {
     EXPECT_GT(src.triangles(), full / 10);
     Dirty d = src.take_dirty();
     EXPECT_EQ(d.index_end, src.mesh().indices.size());
+}
+
+namespace {
+// Triangles as sorted rotations (the index codec may rotate a triangle's corners, keeping its winding).
+std::vector<std::array<uint32_t, 3>> triangle_set(std::span<const uint32_t> idx) {
+    std::vector<std::array<uint32_t, 3>> t;
+    for (size_t f = 0; f + 2 < idx.size(); f += 3) {
+        std::array<uint32_t, 3> a{idx[f], idx[f + 1], idx[f + 2]};
+        while (a[0] != std::min({a[0], a[1], a[2]})) a = {a[1], a[2], a[0]};
+        t.push_back(a);
+    }
+    std::sort(t.begin(), t.end());
+    return t;
+}
+}  // namespace
+
+TEST(RenderLod, ObjPreviewReleasedArraysComeBackWithTheSameTriangles) {
+    test::GenMesh sphere = test::icosphere(4);
+    ModelSource src("s", Vec3f(1.0f), sphere.positions, {}, sphere.indices);
+    const auto full = triangle_set(sphere.indices);
+    (void)src.take_dirty();
+    src.release_arrays();
+    EXPECT_EQ(triangle_set(src.mesh().indices), full);
+    src.set_lod(0.25);
+    const auto level = triangle_set(src.mesh().indices);
+    ASSERT_LT(level.size(), full.size() / 2);
+    EXPECT_EQ(level.size(), src.triangles());
+    Dirty d = src.take_dirty();
+    EXPECT_EQ(d.index_end, src.mesh().indices.size());
+    src.release_arrays();
+    EXPECT_EQ(triangle_set(src.mesh().indices), level);
+    src.release_arrays();
+    src.set_lod(1.0);
+    EXPECT_EQ(src.triangles(), src.full_triangles());
+    d = src.take_dirty();
+    EXPECT_EQ(d.index_begin, 0u);
+    EXPECT_EQ(d.index_end, src.mesh().indices.size());
+    EXPECT_EQ(triangle_set(src.mesh().indices), full);
 }
 
 namespace {
