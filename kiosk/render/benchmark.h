@@ -1,7 +1,9 @@
 #pragma once
 // `bodyview --headless --benchmark`: per style and LOD, the median frame time
 // and its ratio to a minimal baseline drawn in the same run (the same buffers,
-// the flat-colour shader), plus peak RSS above the empty-context baseline.
+// the flat-colour shader), plus peak RSS above the empty-context baseline and
+// above the empty scene (the renderer initialised and every style drawn once
+// on one triangle before the model is loaded: the driver's fixed cost apart).
 #include <string>
 
 #include "platform/platform.h"
