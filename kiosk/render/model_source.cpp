@@ -132,6 +132,9 @@ MeshData ModelSource::mesh() const {
         m.indices = pm_->indices();
         m.vertex_count = pm_->vertex_count();
         m.index_count = 3 * pm_->triangle_count();
+        m.has_position_box = true;
+        m.position_box_min = pm_->bounds_min();
+        m.position_box_max = pm_->bounds_max();
         return m;
     }
     m.positions = positions_;

@@ -100,6 +100,12 @@ struct Model {
     ModelState state;
     GLuint vao = 0, vbo_position = 0, vbo_normal = 0, ebo = 0;
     GLuint vbo_morph = 0;  // geomorph sources (progressive meshes only)
+    // Positions (and morph sources) in GL: 16-bit codes per axis in a box fixed
+    // at add_model (object = pos_origin + pos_scale * code, 6 bytes a vertex),
+    // or floats (12 bytes) when the box is not known or a patch left it.
+    bool quantized = false;
+    Vec3f pos_origin{0.0f}, pos_scale{1.0f};
+    size_t position_stride() const { return quantized ? 6 : sizeof(Vec3f); }
     size_t vertex_capacity = 0, index_capacity = 0;
     size_t vertex_count = 0, index_count = 0;
     Vec3f center{0.0f};
@@ -114,7 +120,8 @@ struct Model {
     size_t edge_capacity = 0;
     size_t edge_count = 0;
     bool edges_stale = true;
-    bool internal = false;  // the manipulation sphere
+    bool internal = false;             // the manipulation sphere
+    int frames_without_line_data = 0;  // frames drawn in a style that uses neither data texture
 };
 
 uint32_t pack_normal(const Vec3f& n) {
@@ -183,6 +190,55 @@ void upload_packed_normals(std::span<const Vec3f> normals, size_t begin, size_t 
         glBufferSubData(GL_ARRAY_BUFFER, static_cast<GLintptr>(first * 4), static_cast<GLsizeiptr>(n * 4),
                         packed.data());
     }
+}
+
+// The 16-bit code of p in the model's position box (clamped to it).
+glm::u16vec3 position_code(const Model& m, const Vec3f& p) {
+    glm::u16vec3 c(0);
+    for (int k = 0; k < 3; ++k)
+        if (m.pos_scale[k] > 0.0f)
+            c[k] = static_cast<uint16_t>(
+                std::lround(std::clamp((p[k] - m.pos_origin[k]) / m.pos_scale[k], 0.0f, 65535.0f)));
+    return c;
+}
+
+// Whether every position of [begin, end) has a code within half a step (the
+// box a quantized model was given still holds them).
+bool inside_position_box(const Model& m, std::span<const Vec3f> positions, size_t begin, size_t end) {
+    const Vec3f lo = m.pos_origin - m.pos_scale * 0.5f - Vec3f(1e-6f),
+                hi = m.pos_origin + m.pos_scale * 65535.5f + Vec3f(1e-6f);
+    for (size_t i = begin; i < end; ++i)
+        if (glm::any(glm::lessThan(positions[i], lo)) || glm::any(glm::greaterThan(positions[i], hi))) return false;
+    return true;
+}
+
+// Writes the positions of vertices [begin, end) (`src` holds vertex `begin`
+// first) into the GL_ARRAY_BUFFER bound, in the model's format: quantized a
+// piece at a time.
+void upload_positions(const Model& m, const Vec3f* src, size_t begin, size_t end) {
+    if (begin >= end) return;
+    if (!m.quantized) {
+        glBufferSubData(GL_ARRAY_BUFFER, static_cast<GLintptr>(begin * sizeof(Vec3f)),
+                        static_cast<GLsizeiptr>((end - begin) * sizeof(Vec3f)), src);
+        return;
+    }
+    constexpr size_t kPiece = 64 * 1024;
+    static_assert(sizeof(glm::u16vec3) == 6);
+    std::vector<glm::u16vec3> codes(std::min(kPiece, end - begin));
+    for (size_t first = begin; first < end; first += kPiece) {
+        const size_t n = std::min(kPiece, end - first);
+        for (size_t i = 0; i < n; ++i) codes[i] = position_code(m, src[first - begin + i]);
+        glBufferSubData(GL_ARRAY_BUFFER, static_cast<GLintptr>(first * 6), static_cast<GLsizeiptr>(n * 6),
+                        codes.data());
+    }
+}
+
+// The position (or morph) attribute of the model's format, from the buffer bound.
+void position_pointer(const Model& m, GLuint location) {
+    if (m.quantized)
+        glVertexAttribPointer(location, 3, GL_UNSIGNED_SHORT, GL_FALSE, 6, nullptr);
+    else
+        glVertexAttribPointer(location, 3, GL_FLOAT, GL_FALSE, sizeof(Vec3f), nullptr);
 }
 
 // Object-space box and bounding sphere of the drawn vertices.
@@ -513,6 +569,24 @@ Result<ModelId> Renderer::add_model(const MeshData& mesh, const std::string& nam
     m.vertex_count = vcount;
     m.index_count = icount - icount % 3;
     set_bounds(m, mesh.positions.first(vcount));
+    // The quantization box: given (a progressive mesh's, which holds every
+    // vertex it will have), or that of all the arrays when they are all written.
+    if (mesh.has_position_box || !mesh.prefix_only) {
+        Aabb box;
+        if (mesh.has_position_box) {
+            box.extend(Vec3(mesh.position_box_min));
+            box.extend(Vec3(mesh.position_box_max));
+        } else {
+            for (const Vec3f& p : mesh.positions) box.extend(Vec3(p));
+            if (mesh.morph_sources.size() >= mesh.positions.size())
+                for (const Vec3f& p : mesh.morph_sources.first(mesh.positions.size())) box.extend(Vec3(p));
+        }
+        m.quantized = !box.empty();
+        m.pos_origin = Vec3f(box.min);
+        m.pos_scale = Vec3f(box.max - box.min) / 65535.0f;
+        if (m.quantized && !inside_position_box(m, mesh.positions, 0, vupload)) m.quantized = false;
+        if (!m.quantized) m.pos_origin = Vec3f(0.0f), m.pos_scale = Vec3f(1.0f);
+    }
 
     glGenVertexArrays(1, &m.vao);
     glBindVertexArray(m.vao);
@@ -536,18 +610,18 @@ Result<ModelId> Renderer::add_model(const MeshData& mesh, const std::string& nam
     glGenBuffers(1, &m.vbo_position);
     glBindBuffer(GL_ARRAY_BUFFER, m.vbo_position);
     // Buffers at full capacity, filled up to the counts only.
-    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(m.vertex_capacity * sizeof(Vec3f)), nullptr, GL_DYNAMIC_DRAW);
-    glBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(vupload * sizeof(Vec3f)), mesh.positions.data());
-    glVertexAttribPointer(kPosition, 3, GL_FLOAT, GL_FALSE, sizeof(Vec3f), nullptr);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(m.vertex_capacity * m.position_stride()), nullptr,
+                 GL_DYNAMIC_DRAW);
+    upload_positions(m, mesh.positions.data(), 0, vupload);
+    position_pointer(m, kPosition);
     glEnableVertexAttribArray(kPosition);
     if (mesh.morph_sources.size() >= mesh.positions.size()) {
         glGenBuffers(1, &m.vbo_morph);
         glBindBuffer(GL_ARRAY_BUFFER, m.vbo_morph);
-        glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(m.vertex_capacity * sizeof(Vec3f)), nullptr,
+        glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(m.vertex_capacity * m.position_stride()), nullptr,
                      GL_DYNAMIC_DRAW);
-        glBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(vupload * sizeof(Vec3f)),
-                        mesh.morph_sources.data());
-        glVertexAttribPointer(kMorph, 3, GL_FLOAT, GL_FALSE, sizeof(Vec3f), nullptr);
+        upload_positions(m, mesh.morph_sources.data(), 0, vupload);
+        position_pointer(m, kMorph);
         glEnableVertexAttribArray(kMorph);
     }
     glGenBuffers(1, &m.ebo);
@@ -561,6 +635,30 @@ Result<ModelId> Renderer::add_model(const MeshData& mesh, const std::string& nam
     s_->models.emplace(id, std::move(m));
     return id;
 }
+
+namespace {
+// A patch moved vertices out of the quantization box: the model's positions
+// (and morph sources) go back to floats, [0, count) uploaded again from the
+// full arrays (the rest arrives with later dirty ranges).
+void to_float_positions(Model& m, const MeshData& mesh, size_t count) {
+    m.quantized = false;
+    m.pos_origin = Vec3f(0.0f);
+    m.pos_scale = Vec3f(1.0f);
+    glBindVertexArray(m.vao);
+    for (auto [buffer, location] : {std::pair{m.vbo_position, kPosition}, std::pair{m.vbo_morph, kMorph}}) {
+        if (!buffer) continue;
+        const std::span<const Vec3f> src =
+            location == kMorph && mesh.morph_sources.size() >= count ? mesh.morph_sources : mesh.positions;
+        glBindBuffer(GL_ARRAY_BUFFER, buffer);
+        glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(m.vertex_capacity * sizeof(Vec3f)), nullptr,
+                     GL_DYNAMIC_DRAW);
+        upload_positions(m, src.data(), 0, count);
+        position_pointer(m, location);
+    }
+    glBindVertexArray(0);
+    m.wire_stale = m.edges_stale = true;
+}
+}  // namespace
 
 Status Renderer::update_model(ModelId id, const MeshData& mesh, const Dirty& dirty) {
     auto it = s_->models.find(id);
@@ -577,13 +675,13 @@ Status Renderer::update_model(ModelId id, const MeshData& mesh, const Dirty& dir
             return input_error(m.name + ": index " + std::to_string(i) + " out of range");
     if (dirty.vertex_begin < dirty.vertex_end) {
         const size_t b = dirty.vertex_begin, n = dirty.vertex_end - dirty.vertex_begin;
+        if (m.quantized && !inside_position_box(m, mesh.positions, b, b + n))
+            to_float_positions(m, mesh, std::max(vcount, dirty.vertex_end));
         glBindBuffer(GL_ARRAY_BUFFER, m.vbo_position);
-        glBufferSubData(GL_ARRAY_BUFFER, static_cast<GLintptr>(b * sizeof(Vec3f)),
-                        static_cast<GLsizeiptr>(n * sizeof(Vec3f)), mesh.positions.data() + b);
+        upload_positions(m, mesh.positions.data() + b, b, b + n);
         if (m.vbo_morph && mesh.morph_sources.size() >= dirty.vertex_end) {
             glBindBuffer(GL_ARRAY_BUFFER, m.vbo_morph);
-            glBufferSubData(GL_ARRAY_BUFFER, static_cast<GLintptr>(b * sizeof(Vec3f)),
-                            static_cast<GLsizeiptr>(n * sizeof(Vec3f)), mesh.morph_sources.data() + b);
+            upload_positions(m, mesh.morph_sources.data() + b, b, b + n);
         }
         std::vector<Vec3f> computed;
         if (mesh.normals.empty())
@@ -620,8 +718,8 @@ Status Renderer::set_morph_sources(ModelId id, size_t begin, std::span<const Vec
         return input_error(m.name + ": morph sources outside the uploaded capacity (or none uploaded)");
     if (sources.empty()) return ok_status();
     glBindBuffer(GL_ARRAY_BUFFER, m.vbo_morph);
-    glBufferSubData(GL_ARRAY_BUFFER, static_cast<GLintptr>(begin * sizeof(Vec3f)),
-                    static_cast<GLsizeiptr>(sources.size() * sizeof(Vec3f)), sources.data());
+    // Quantized: clamped to the box (a progressive mesh's parents lie in it).
+    upload_positions(m, sources.data(), begin, begin + sources.size());
     return ok_status();
 }
 
@@ -722,8 +820,8 @@ size_t Renderer::gpu_bytes() const {
     size_t total = 0;
     constexpr size_t w = kTextureWidth;
     for (const auto& [id, m] : s_->models) {
-        total += m.vertex_capacity * (sizeof(Vec3f) + 4) + m.index_capacity * 4;
-        if (m.vbo_morph) total += m.vertex_capacity * sizeof(Vec3f);
+        total += m.vertex_capacity * (m.position_stride() + 4) + m.index_capacity * 4;
+        if (m.vbo_morph) total += m.vertex_capacity * m.position_stride();
         if (m.position_texture) total += (m.vertex_capacity + w - 1) / w * w * 6;
         if (m.edge_texture) total += (m.edge_capacity + w - 1) / w * w * sizeof(GpuEdge);
     }
@@ -746,6 +844,8 @@ void set_matrices(Program& p, const Frame& f, const Model& m) {
     glUniformMatrix4fv(p.loc("u_model_view"), 1, GL_FALSE, glm::value_ptr(mv));
     glUniformMatrix4fv(p.loc("u_projection"), 1, GL_FALSE, glm::value_ptr(f.projection));
     glUniformMatrix3fv(p.loc("u_normal_matrix"), 1, GL_FALSE, glm::value_ptr(nm));
+    glUniform3fv(p.loc("u_pos_origin"), 1, glm::value_ptr(m.pos_origin));
+    glUniform3fv(p.loc("u_pos_scale"), 1, glm::value_ptr(m.pos_scale));
     glUniform4fv(p.loc("u_view_ray"), 1, glm::value_ptr(f.view_ray));
     const bool morphing = m.vbo_morph && m.state.morph < 1.0f && m.state.morph_begin < m.vertex_count;
     glUniform1f(p.loc("u_morph"), morphing ? std::max(m.state.morph, 0.0f) : 1.0f);
@@ -851,6 +951,28 @@ private:
     std::span<const T> data_;
 };
 
+// A model's GL positions for reading, in either format (mapped in place).
+class MappedPositions {
+public:
+    explicit MappedPositions(const Model& m) : m_(m), map_(m.vbo_position, m.vertex_count * m.position_stride() / 2) {}
+    bool ok() const { return map_.data().size() * 2 == m_.vertex_count * m_.position_stride(); }
+    size_t size() const { return m_.vertex_count; }
+    Vec3f operator[](size_t v) const {
+        const uint16_t* q = map_.data().data() + v * (m_.position_stride() / 2);
+        if (!m_.quantized) {
+            Vec3f p;
+            std::memcpy(&p, q, sizeof(p));
+            return p;
+        }
+        return m_.pos_origin + m_.pos_scale * Vec3f(q[0], q[1], q[2]);
+    }
+    const uint16_t* codes() const { return map_.data().data(); }  // quantized: 3 per vertex
+
+private:
+    const Model& m_;
+    MappedBuffer<uint16_t> map_;
+};
+
 // A model is drawn in one style at a time, so it keeps the lazily built data of
 // one line style only: building the `lines` edge texture frees the `wireframe`
 // position texture and the other way round (a million-triangle model's are
@@ -885,10 +1007,9 @@ static void ensure_edges(Model& m) {
     free_wire_textures(m);
     // Mapping is per buffer: both stay mapped while the other target binding moves on.
     MappedBuffer<uint32_t> index_map(m.ebo, m.index_count);
-    MappedBuffer<Vec3f> position_map(m.vbo_position, m.vertex_count);
+    const MappedPositions positions(m);
     const std::span<const uint32_t> indices = index_map.data();
-    const std::span<const Vec3f> positions = position_map.data();
-    if (indices.size() != m.index_count || positions.size() != m.vertex_count) {
+    if (indices.size() != m.index_count || !positions.ok()) {
         m.edge_count = 0;  // mapping failed: no lines this time, retried on the next frame
         return;
     }
@@ -975,15 +1096,23 @@ static void ensure_wire_positions(Model& m) {
     if (!m.wire_stale && m.position_texture) return;
     free_edge_texture(m);
     if (!m.position_texture) m.position_texture = make_data_texture(GL_RGB16UI, m.vertex_capacity);
-    MappedBuffer<Vec3f> position_map(m.vbo_position, m.vertex_count);
-    const std::span<const Vec3f> positions = position_map.data();
-    if (positions.size() != m.vertex_count) return;  // retried next frame
+    const MappedPositions positions(m);
+    if (!positions.ok()) return;  // retried next frame
+    constexpr size_t kPiece = 16 * kTextureWidth;
+    if (m.quantized) {  // the buffer's codes are the texture's
+        m.wire_origin = m.pos_origin;
+        m.wire_scale = m.pos_scale;
+        for (size_t first = 0; first < positions.size(); first += kPiece)
+            texture_rows(m.position_texture, first, std::min(first + kPiece, positions.size()), GL_RGB_INTEGER,
+                         GL_UNSIGNED_SHORT, reinterpret_cast<const uint8_t*>(positions.codes() + first * 3), 6);
+        m.wire_stale = false;
+        return;
+    }
     Aabb box;
-    for (const Vec3f& p : positions) box.extend(Vec3(p));
+    for (size_t v = 0; v < positions.size(); ++v) box.extend(Vec3(positions[v]));
     m.wire_origin = box.empty() ? Vec3f(0.0f) : Vec3f(box.min);
     const Vec3f extent = box.empty() ? Vec3f(0.0f) : Vec3f(box.max - box.min);
     m.wire_scale = extent / 65535.0f;
-    constexpr size_t kPiece = 16 * kTextureWidth;
     std::vector<uint16_t> codes(kPiece * 3);
     for (size_t first = 0; first < positions.size(); first += kPiece) {
         const size_t n = std::min(kPiece, positions.size() - first);
@@ -1039,6 +1168,22 @@ void Renderer::render(const Camera& camera, const Lighting& lighting, const Fram
     bool any_selected = false;
     for (auto& [id, m] : s.models) any_selected |= !m.internal && m.state.visible && m.state.selected;
     const bool fade_rest = o.xray_unselected && any_selected;
+
+    // A model drawn kReleaseFrames frames in a row in a style that uses
+    // neither (other style, selected, faded) gives its `lines` / `wireframe`
+    // data texture back: it is rebuilt from the GL buffers if that style
+    // returns (a million-triangle model's is 3-10 MiB; the rebuild ~0.1 s).
+    constexpr int kReleaseFrames = 3;
+    for (auto& [id, m] : s.models) {
+        if (m.internal || !m.state.visible || m.index_count == 0) continue;
+        const bool uses =
+            (m.state.style == Style::Lines || m.state.style == Style::Wireframe) && !m.state.selected && !fade_rest;
+        m.frames_without_line_data = uses ? 0 : m.frames_without_line_data + 1;
+        if (m.frames_without_line_data >= kReleaseFrames && (m.edge_texture || m.position_texture)) {
+            free_edge_texture(m);
+            free_wire_textures(m);
+        }
+    }
 
     // ---- opaque pass
     std::vector<Model*> transparent;

@@ -21,7 +21,8 @@
 // and face normals inside; edges between faces of the same normal are left
 // out) and `wireframe`'s position texture are built lazily from the GL
 // buffers when a model is first drawn in that style, and a model keeps one of
-// the two at a time (building one frees the other).
+// the two at a time (building one frees the other) and gives it back after
+// three frames drawn in a style that uses neither.
 //
 // Frame order: opaque models (any style), then transparent ones (selected =
 // purple, x-ray/faded unselected) sorted back to front, each with a depth
@@ -73,6 +74,14 @@ struct MeshData {
     // still streaming). Buffers are sized to the arrays but only the counted
     // prefix is read and uploaded. False: the whole arrays are uploaded.
     bool prefix_only = false;
+    // Optional box holding every position and morph source the model will
+    // have (a progressive mesh's bounds). The renderer keeps positions as
+    // 16-bit codes in a box (6 bytes a vertex instead of 12; exact for .bpm
+    // positions, which are 16-bit codes in their box): this one, or without it
+    // the box of the arrays when they are all written (not prefix_only); else
+    // floats. A patch that leaves the box turns the model's positions to floats.
+    bool has_position_box = false;
+    Vec3f position_box_min{0.0f}, position_box_max{0.0f};
 };
 
 // Half-open element ranges changed since the last upload (vertices: positions

@@ -9,6 +9,10 @@
 // at mix(a_morph, a_position, u_morph), a_morph being the parent's position
 // (pm::ProgressiveMesh::morph_targets()); u_morph = 1 draws every vertex at its
 // own position. gl_VertexID is the index value in an indexed draw.
+//
+// Positions (and morph sources) may arrive as 16-bit codes in the model's box
+// (renderer.cpp, Model::quantized): object = u_pos_origin + u_pos_scale * code;
+// float positions come with origin 0 and scale 1.
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
 layout(location = 2) in vec3 a_morph;
@@ -16,6 +20,8 @@ layout(location = 2) in vec3 a_morph;
 uniform mat4 u_model_view;
 uniform mat4 u_projection;
 uniform mat3 u_normal_matrix;
+uniform vec3 u_pos_origin;
+uniform vec3 u_pos_scale;
 uniform float u_morph;     // 0: at the parents .. 1: at their own positions
 uniform int u_morph_begin;  // first morphing vertex
 
@@ -24,7 +30,7 @@ out vec3 v_object_pos;
 out vec3 v_object_normal;
 
 void main() {
-    vec3 p = gl_VertexID >= u_morph_begin ? mix(a_morph, a_position, u_morph) : a_position;
+    vec3 p = u_pos_origin + u_pos_scale * (gl_VertexID >= u_morph_begin ? mix(a_morph, a_position, u_morph) : a_position);
     v_view_normal = u_normal_matrix * a_normal;
     v_object_pos = p;
     v_object_normal = a_normal;

@@ -309,6 +309,31 @@ TEST(RenderProperty, LinesLeaveOutEdgesBetweenCoplanarFaces) {
     EXPECT_EQ(f.renderer().last_frame_stats().edges, 4u * kQuads + kQuads);  // + the fold's 4 edges
 }
 
+TEST(RenderProperty, LineDataIsGivenBackInAnotherStyleAndRebuiltTheSame) {
+    RenderFixture f(160, 160);
+    REQUIRE_GL(f);
+    test::GenMesh sphere = test::icosphere(3);
+    auto id = f.renderer().add_model(sphere.data(), "sphere");
+    ASSERT_TRUE(id.ok());
+    const Camera cam = Camera::framing(Vec3f(0.0f), 1.1f, Vec3f(0.2f, 0.3f, 1.0f));
+    const size_t without = f.renderer().gpu_bytes();
+    for (Style line_style : {Style::Lines, Style::Wireframe}) {
+        f.renderer().state(id.value())->style = line_style;
+        const Image before = f.draw(cam);
+        const size_t with = f.renderer().gpu_bytes();
+        EXPECT_GT(with, without) << style_name(line_style);
+        f.renderer().state(id.value())->style = Style::Smooth;
+        (void)f.draw(cam);
+        (void)f.draw(cam);
+        EXPECT_EQ(f.renderer().gpu_bytes(), with) << "kept for a style switch back and forth";
+        (void)f.draw(cam);
+        EXPECT_EQ(f.renderer().gpu_bytes(), without) << style_name(line_style);
+        f.renderer().state(id.value())->style = line_style;
+        EXPECT_EQ(test::compare(f.draw(cam), before, 4).bad_block_fraction, 0.0) << style_name(line_style);
+        EXPECT_EQ(f.renderer().gpu_bytes(), with);
+    }
+}
+
 TEST(RenderProperty, HatchingDarkensMonotonicallyAsTheLightMovesAway) {
     for (Style style : {Style::Hatching, Style::Hatching2Tone}) {
         RenderFixture f(200, 200);
@@ -543,6 +568,14 @@ TEST(RenderLod, PrefixOnlyAddLeavesCapacityForLaterUpdates) {
     for (size_t i = half; i < indices.size(); ++i) indices[i] = 0xdeadbeefu;  // not written yet
     MeshData partial{positions, sphere.positions, indices};
     partial.index_count = half;
+    // The box a fresh upload of the whole arrays computes, so that both keep
+    // the same 16-bit position codes.
+    partial.has_position_box = true;
+    partial.position_box_min = partial.position_box_max = positions.front();
+    for (const Vec3f& p : positions) {
+        partial.position_box_min = glm::min(partial.position_box_min, p);
+        partial.position_box_max = glm::max(partial.position_box_max, p);
+    }
     EXPECT_FALSE(f.renderer().add_model(partial, "unwritten capacity").ok());  // whole arrays: invalid
     partial.prefix_only = true;
     auto id = f.renderer().add_model(partial, "streaming");
@@ -565,6 +598,33 @@ TEST(RenderLod, PrefixOnlyAddLeavesCapacityForLaterUpdates) {
     ASSERT_TRUE(fresh.ok());
     EXPECT_EQ(test::compare(h.draw(cam), full, 4).bad_block_fraction, 0.0);
     EXPECT_GT(test::compare(first, full, 4).bad_block_fraction, 0.0);  // the second half did show up
+}
+
+TEST(RenderLod, PatchOutsideThePositionBoxStillDrawsTheMovedVertices) {
+    RenderFixture f(200, 200);
+    REQUIRE_GL(f);
+    test::GenMesh sphere = test::icosphere(3);
+    auto id = f.renderer().add_model({sphere.positions, sphere.positions, sphere.indices}, "sphere");
+    ASSERT_TRUE(id.ok());
+    const Camera cam = Camera::framing(Vec3f(0.0f), 1.6f, Vec3f(0.2f, 0.3f, 1.0f));
+    const Image small = f.draw(cam);
+    // Every vertex moves 1.5x out: beyond the box the positions were coded in.
+    std::vector<Vec3f> grown = sphere.positions;
+    for (Vec3f& p : grown) p *= 1.5f;
+    ASSERT_TRUE(f.renderer().update_model(id.value(), {grown, grown, sphere.indices}, {0, grown.size(), 0, 0}).ok());
+    for (Style style : {Style::Smooth, Style::Wireframe, Style::Lines}) {
+        f.renderer().state(id.value())->style = style;
+        const Image patched = f.draw(cam);
+        RenderFixture g(200, 200);
+        auto fresh = g.renderer().add_model({grown, grown, sphere.indices}, "fresh");
+        ASSERT_TRUE(fresh.ok());
+        g.renderer().state(fresh.value())->style = style;
+        // Codes in the new box against floats: a few pixels on the outline may differ.
+        EXPECT_LT(test::compare(g.draw(cam), patched, 4).bad_block_fraction, 0.01) << style_name(style);
+        if (style == Style::Smooth) {
+            EXPECT_GT(test::compare(small, patched, 4).bad_block_fraction, 0.05);
+        }
+    }
 }
 
 TEST(RenderLod, ProgressiveMeshPatchesMatchFreshUploads) {
