@@ -147,6 +147,7 @@ Status run_benchmark(platform::Surface& surface, const BenchmarkOptions& options
     }
     step("empty scene (every style drawn once)");
     const long empty_scene_rss = current_rss_kib();
+    const long empty_scene_peak = peak_rss_kib();  // of the renderer's init and the empty scene
 
     ModelSource* source = nullptr;
     std::vector<ModelSource> loaded;
@@ -166,7 +167,6 @@ Status run_benchmark(platform::Surface& surface, const BenchmarkOptions& options
     // and the driver allocate for it (Linux: writing 5 to clear_refs resets VmHWM,
     // so the transient cost of generating the test model is not counted; the
     // peak of the renderer's init and the empty scene, before, is).
-    const long empty_scene_peak = peak_rss_kib();
     reset_peak_rss();
     const long source_rss = current_rss_kib();
     // The largest structure is the one measured.
