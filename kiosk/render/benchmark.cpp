@@ -174,7 +174,7 @@ Status run_benchmark(platform::Surface& surface, const BenchmarkOptions& options
         return a.full_triangles() < b.full_triangles();
     });
     step("model CPU arrays");
-    auto id = renderer.add_model(source->mesh(), source->name());
+    auto id = renderer.add_model(source->upload_mesh(), source->name());
     if (!id) return id.error();
     (void)source->take_dirty();
     source->release_arrays();  // the GL buffers have the level; set_lod decodes what it needs
@@ -244,7 +244,7 @@ Status run_benchmark(platform::Surface& surface, const BenchmarkOptions& options
         // mesh() would only decode the released indices again.
         if (const Dirty dirty = source->take_dirty();
             dirty.vertex_begin < dirty.vertex_end || dirty.index_begin < dirty.index_end) {
-            if (auto s = renderer.update_model(id.value(), source->mesh(), dirty); !s) return s;
+            if (auto s = renderer.update_model(id.value(), source->upload_mesh(), dirty); !s) return s;
             source->release_arrays();
         }
         if (lod == 1.0) {

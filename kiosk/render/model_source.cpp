@@ -40,13 +40,23 @@ void decode_triangles(std::span<const uint8_t> code, size_t index_count, std::ve
 
 ModelSource::ModelSource(std::string name, Vec3f color, std::vector<Vec3f> positions, std::vector<Vec3f> normals,
                          std::vector<uint32_t> indices)
-    : name_(std::move(name)),
-      color_(color),
-      positions_(std::move(positions)),
-      normals_(std::move(normals)),
-      indices_(std::move(indices)) {
-    positions_.shrink_to_fit();
+    : name_(std::move(name)), color_(color), normals_(std::move(normals)), indices_(std::move(indices)) {
     normals_.shrink_to_fit();
+    vertex_count_ = positions.size();
+    box_min_ = box_max_ = positions.empty() ? Vec3f(0.0f) : positions.front();
+    for (const Vec3f& p : positions) {
+        box_min_ = glm::min(box_min_, p);
+        box_max_ = glm::max(box_max_, p);
+    }
+    const Vec3f extent = box_max_ - box_min_;
+    position_codes_.resize(positions.size() * 3);
+    for (size_t v = 0; v < positions.size(); ++v)
+        for (int k = 0; k < 3; ++k)
+            position_codes_[v * 3 + static_cast<size_t>(k)] =
+                extent[k] > 0.0f ? static_cast<uint16_t>(std::lround(
+                                       std::clamp((positions[v][k] - box_min_[k]) / extent[k], 0.0f, 1.0f) * 65535.0f))
+                                 : uint16_t{0};
+    std::vector<Vec3f>().swap(positions);
     indices_.resize(indices_.size() - indices_.size() % 3);  // whole triangles only
     indices_.shrink_to_fit();
     full_index_count_ = indices_.size();
@@ -54,8 +64,8 @@ ModelSource::ModelSource(std::string name, Vec3f color, std::vector<Vec3f> posit
     // index codec then needs 2.6 instead of 4.6 bytes a triangle (1.1M
     // triangles: 2.8 instead of 4.9 MiB kept), and nearby triangles share
     // their vertices in the renderer's draws; the image is the same.
-    if (!indices_.empty() && *std::max_element(indices_.begin(), indices_.end()) < positions_.size())
-        meshopt_optimizeVertexCache(indices_.data(), indices_.data(), indices_.size(), positions_.size());
+    if (!indices_.empty() && *std::max_element(indices_.begin(), indices_.end()) < vertex_count_)
+        meshopt_optimizeVertexCache(indices_.data(), indices_.data(), indices_.size(), vertex_count_);
     full_code_ = encode_triangles(indices_);
 }
 
@@ -77,18 +87,48 @@ std::span<const uint32_t> ModelSource::current_indices() const {
     return indices_;
 }
 
+std::span<const Vec3f> ModelSource::positions() const {
+    if (!positions_decoded_) {
+        const Vec3f scale = (box_max_ - box_min_) / 65535.0f;
+        positions_.resize(vertex_count_);
+        for (size_t v = 0; v < vertex_count_; ++v) {
+            const uint16_t* c = &position_codes_[v * 3];
+            positions_[v] = box_min_ + scale * Vec3f(c[0], c[1], c[2]);
+        }
+        positions_decoded_ = true;
+    }
+    return positions_;
+}
+
+MeshData ModelSource::upload_mesh() const {
+    if (pm_) return mesh();
+    MeshData m;
+    m.position_codes = position_codes_;
+    m.has_position_box = true;
+    m.position_box_min = box_min_;
+    m.position_box_max = box_max_;
+    m.normals = normals_;
+    m.indices = current_indices();
+    return m;
+}
+
 void ModelSource::release_arrays() {
-    if (pm_ || decoded_ == Decoded::None || full_code_.empty()) return;
-    if (decoded_ == Decoded::Level && level_code_.empty()) return;  // could not be coded: kept plain
-    const bool large = indices_.capacity() * sizeof(uint32_t) >= (1u << 20);
-    std::vector<uint32_t>().swap(indices_);  // `= {}` would keep the storage
-    decoded_ = Decoded::None;
+    if (pm_) return;
+    size_t freed = positions_.capacity() * sizeof(Vec3f);
+    std::vector<Vec3f>().swap(positions_);  // `= {}` would keep the storage
+    positions_decoded_ = false;
+    // The current level's indices, unless they exist only plainly (no code).
+    if (decoded_ != Decoded::None && !full_code_.empty() && (decoded_ == Decoded::Full || !level_code_.empty())) {
+        freed += indices_.capacity() * sizeof(uint32_t);
+        std::vector<uint32_t>().swap(indices_);
+        decoded_ = Decoded::None;
+    }
 #ifdef __GLIBC__
     // glibc keeps big freed blocks on its heap once its mmap threshold grew
     // (after any earlier large free): hand them back.
-    if (large) malloc_trim(0);
+    if (freed >= (1u << 20)) malloc_trim(0);
 #else
-    (void)large;
+    (void)freed;
 #endif
 }
 
@@ -112,8 +152,14 @@ void ModelSource::set_lod(double ratio) {
         if (decoded_ != Decoded::Full) decode_triangles(full_code_, full_index_count_, full);
         const std::span<const uint32_t> from = decoded_ == Decoded::Full ? std::span<const uint32_t>(indices_) : full;
         std::vector<uint32_t> out(from.size());
-        size_t n = meshopt_simplify(out.data(), from.data(), from.size(), &positions_[0].x, positions_.size(),
+        const bool had_positions = positions_decoded_;
+        const std::span<const Vec3f> positions = this->positions();
+        size_t n = meshopt_simplify(out.data(), from.data(), from.size(), &positions[0].x, positions.size(),
                                     sizeof(Vec3f), std::max<size_t>(target, 1) * 3, 1e-1f, 0, nullptr);
+        if (!had_positions) {  // decoded for the simplifier only
+            std::vector<Vec3f>().swap(positions_);
+            positions_decoded_ = false;
+        }
         out.resize(n);
         out.shrink_to_fit();
         std::vector<uint32_t>().swap(full);
@@ -143,7 +189,11 @@ MeshData ModelSource::mesh() const {
         m.position_box_max = pm_->bounds_max();
         return m;
     }
-    m.positions = positions_;
+    m.positions = positions();
+    m.position_codes = position_codes_;
+    m.has_position_box = true;
+    m.position_box_min = box_min_;
+    m.position_box_max = box_max_;
     m.normals = normals_;
     m.indices = current_indices();
     return m;
@@ -160,7 +210,7 @@ Dirty ModelSource::take_dirty() {
         }
         pm_->clear_dirty();
     } else {
-        d = first_ ? Dirty{0, positions_.size(), 0, current_index_count()} : pending_;
+        d = first_ ? Dirty{0, vertex_count_, 0, current_index_count()} : pending_;
         d.index_end = std::min(d.index_end, current_index_count());
     }
     first_ = false;

@@ -13,12 +13,13 @@
 // falls back to a meshoptimizer simplification of the whole index array (a
 // preview path only: convert with `bodygen` to get progressive meshes).
 //
-// Memory (plain meshes): the full index array is also kept compressed
+// Memory (plain meshes): positions are kept as 16-bit codes in their box (the
+// renderer's format), and the full index array compressed
 // (meshoptimizer's index codec, 3-5 bytes a triangle instead of 12), which is
 // what set_lod() simplifies from; the current level's plain array is needed
 // only until the renderer has it, and release_arrays() frees it (mesh()
 // decodes it again if asked):
-//   renderer.update_model(id, src.mesh(), src.take_dirty());  src.release_arrays();
+//   renderer.update_model(id, src.upload_mesh(), src.take_dirty());  src.release_arrays();
 #include <memory>
 #include <string>
 #include <vector>
@@ -44,14 +45,18 @@ public:
     size_t triangles() const;  // at the current level
     // Ratio of full_triangles() in (0, 1]; values outside are clamped.
     void set_lod(double ratio);
-    // Current arrays and drawn counts.
+    // Current arrays and drawn counts (plain meshes: float positions decoded
+    // from the kept codes when first asked for, plus the codes themselves).
     MeshData mesh() const;
+    // The same for an upload: plain meshes give their positions as codes only
+    // (MeshData::position_codes), so no float copy is made.
+    MeshData upload_mesh() const;
     // Ranges changed since the last call (everything on the first call).
     Dirty take_dirty();
-    // Plain meshes: frees the current level's index array once it is uploaded
-    // (the renderer keeps its own copy); a later mesh() decodes it again from
-    // the compressed copy, with the same triangles (a triangle's corners may
-    // come rotated, its winding kept). Progressive meshes: nothing (their
+    // Plain meshes: frees the current level's index array and the float
+    // positions once uploaded (the renderer keeps its own copy); a later
+    // mesh() decodes them again from the codes, with the same triangles (a
+    // triangle's corners may come rotated, its winding kept). Progressive meshes: nothing (their
     // splits patch their arrays in place).
     void release_arrays();
 
@@ -60,10 +65,18 @@ private:
     std::string name_;
     Vec3f color_{0.8f};
     std::unique_ptr<pm::ProgressiveMesh> pm_;
-    std::vector<Vec3f> positions_, normals_;
+    std::vector<Vec3f> normals_;
+    // Plain meshes: positions as 16-bit codes in [box_min_, box_max_] (3 per
+    // vertex, as a .bpm keeps them; the renderer draws the same codes), and
+    // as floats while positions_decoded_ (until release_arrays()).
+    std::vector<uint16_t> position_codes_;
+    Vec3f box_min_{0.0f}, box_max_{0.0f};
+    size_t vertex_count_ = 0;
+    mutable std::vector<Vec3f> positions_;
+    mutable bool positions_decoded_ = false;
+    std::span<const Vec3f> positions() const;  // decodes when released
     // Plain meshes: the full level and (when simplified_) the current level's
-    // indices, compressed; indices_ holds the
-    // level named by decoded_.
+    // indices, compressed; indices_ holds the level named by decoded_.
     std::vector<uint8_t> full_code_, level_code_;
     size_t full_index_count_ = 0, level_index_count_ = 0;
     bool simplified_ = false;

@@ -120,8 +120,7 @@ struct Model {
     size_t edge_capacity = 0;
     size_t edge_count = 0;
     bool edges_stale = true;
-    bool internal = false;             // the manipulation sphere
-    int frames_without_line_data = 0;  // frames drawn in a style that uses neither data texture
+    bool internal = false;  // the manipulation sphere
 };
 
 uint32_t pack_normal(const Vec3f& n) {
@@ -147,7 +146,40 @@ uint32_t pack_octahedral(const Vec3f& n) {
     return q(p.x) | (q(p.y) << 8);
 }
 
-std::vector<Vec3f> area_normals(std::span<const Vec3f> p, std::span<const uint32_t> idx, size_t vertex_count) {
+// The positions of an upload: floats, or 16-bit codes in a box (MeshData::
+// position_codes), indexed by vertex number (a view of morph sources from
+// `first` on starts there).
+class PositionView {
+public:
+    explicit PositionView(std::span<const Vec3f> f, size_t first = 0) : f_(f), first_(first), n_(first + f.size()) {}
+    explicit PositionView(const MeshData& mesh) : f_(mesh.positions), n_(mesh.positions.size()) {
+        if (mesh.position_codes.empty()) return;
+        q_ = mesh.position_codes;
+        n_ = q_.size() / 3;
+        origin_ = mesh.position_box_min;
+        scale_ = (mesh.position_box_max - mesh.position_box_min) / 65535.0f;
+    }
+    size_t size() const { return n_; }  // vertices, counting from 0
+    bool empty() const { return n_ == 0; }
+    bool coded() const { return !q_.empty(); }
+    Vec3f origin() const { return origin_; }
+    Vec3f scale() const { return scale_; }
+    const uint16_t* codes(size_t v) const { return q_.data() + (v - first_) * 3; }
+    const Vec3f* floats(size_t v) const { return f_.data() + (v - first_); }
+    Vec3f operator[](size_t v) const {
+        if (q_.empty()) return f_[v - first_];
+        const uint16_t* c = codes(v);
+        return origin_ + scale_ * Vec3f(c[0], c[1], c[2]);
+    }
+
+private:
+    std::span<const Vec3f> f_;
+    std::span<const uint16_t> q_;
+    size_t first_ = 0, n_ = 0;
+    Vec3f origin_{0.0f}, scale_{1.0f};
+};
+
+std::vector<Vec3f> area_normals(const PositionView& p, std::span<const uint32_t> idx, size_t vertex_count) {
     std::vector<Vec3f> n(vertex_count, Vec3f(0.0f));
     for (size_t f = 0; f + 2 < idx.size(); f += 3) {
         uint32_t a = idx[f], b = idx[f + 1], c = idx[f + 2];
@@ -204,7 +236,7 @@ glm::u16vec3 position_code(const Model& m, const Vec3f& p) {
 
 // Whether every position of [begin, end) has a code within half a step (the
 // box a quantized model was given still holds them).
-bool inside_position_box(const Model& m, std::span<const Vec3f> positions, size_t begin, size_t end) {
+bool inside_position_box(const Model& m, const PositionView& positions, size_t begin, size_t end) {
     const Vec3f lo = m.pos_origin - m.pos_scale * 0.5f - Vec3f(1e-6f),
                 hi = m.pos_origin + m.pos_scale * 65535.5f + Vec3f(1e-6f);
     for (size_t i = begin; i < end; ++i)
@@ -212,24 +244,38 @@ bool inside_position_box(const Model& m, std::span<const Vec3f> positions, size_
     return true;
 }
 
-// Writes the positions of vertices [begin, end) (`src` holds vertex `begin`
-// first) into the GL_ARRAY_BUFFER bound, in the model's format: quantized a
-// piece at a time.
-void upload_positions(const Model& m, const Vec3f* src, size_t begin, size_t end) {
+// Writes the positions of vertices [begin, end) into the GL_ARRAY_BUFFER
+// bound, in the model's format: codes in the model's box as they are,
+// anything else converted a piece at a time.
+void upload_positions(const Model& m, const PositionView& src, size_t begin, size_t end) {
     if (begin >= end) return;
-    if (!m.quantized) {
+    if (m.quantized && src.coded() && src.origin() == m.pos_origin && src.scale() == m.pos_scale) {
+        glBufferSubData(GL_ARRAY_BUFFER, static_cast<GLintptr>(begin * 6), static_cast<GLsizeiptr>((end - begin) * 6),
+                        src.codes(begin));
+        return;
+    }
+    if (!m.quantized && !src.coded()) {
         glBufferSubData(GL_ARRAY_BUFFER, static_cast<GLintptr>(begin * sizeof(Vec3f)),
-                        static_cast<GLsizeiptr>((end - begin) * sizeof(Vec3f)), src);
+                        static_cast<GLsizeiptr>((end - begin) * sizeof(Vec3f)), src.floats(begin));
         return;
     }
     constexpr size_t kPiece = 64 * 1024;
     static_assert(sizeof(glm::u16vec3) == 6);
-    std::vector<glm::u16vec3> codes(std::min(kPiece, end - begin));
+    const size_t stride = m.position_stride();
+    std::vector<uint8_t> piece(std::min(kPiece, end - begin) * stride);
     for (size_t first = begin; first < end; first += kPiece) {
         const size_t n = std::min(kPiece, end - first);
-        for (size_t i = 0; i < n; ++i) codes[i] = position_code(m, src[first - begin + i]);
-        glBufferSubData(GL_ARRAY_BUFFER, static_cast<GLintptr>(first * 6), static_cast<GLsizeiptr>(n * 6),
-                        codes.data());
+        for (size_t i = 0; i < n; ++i) {
+            if (m.quantized) {
+                const glm::u16vec3 c = position_code(m, src[first + i]);
+                std::memcpy(piece.data() + i * stride, &c, stride);
+            } else {
+                const Vec3f p = src[first + i];
+                std::memcpy(piece.data() + i * stride, &p, stride);
+            }
+        }
+        glBufferSubData(GL_ARRAY_BUFFER, static_cast<GLintptr>(first * stride), static_cast<GLsizeiptr>(n * stride),
+                        piece.data());
     }
 }
 
@@ -242,9 +288,9 @@ void position_pointer(const Model& m, GLuint location) {
 }
 
 // Object-space box and bounding sphere of the drawn vertices.
-void set_bounds(Model& m, std::span<const Vec3f> positions) {
+void set_bounds(Model& m, const PositionView& positions, size_t count) {
     Aabb box;
-    for (const Vec3f& p : positions) box.extend(Vec3(p));
+    for (size_t v = 0; v < count; ++v) box.extend(Vec3(positions[v]));
     m.center = Vec3f((box.min + box.max) * 0.5);
     m.radius = static_cast<float>(box.extent() * 0.5);
     m.box_min = Vec3f(box.min);
@@ -422,6 +468,15 @@ Renderer::~Renderer() = default;
 
 Status Renderer::init() {
     if (s_->ready) return ok_status();
+#ifdef __GLIBC__
+    // Blocks of 1 MiB and more (GL buffers and textures on software drivers,
+    // upload scratch) are mapped and unmapped, whatever was freed before:
+    // glibc would otherwise raise that threshold to the largest block freed
+    // (up to 32 MiB) and keep freed textures resident on its heap until a
+    // trim, e.g. a data texture the driver releases in the middle of the next
+    // style's first frame. Process-wide, like the trims here.
+    mallopt(M_MMAP_THRESHOLD, 1 << 20);
+#endif
     struct Want {
         Program* p;
         const char* vert;
@@ -542,33 +597,34 @@ void Renderer::shutdown() {
 }
 
 Result<ModelId> Renderer::add_model(const MeshData& mesh, const std::string& name) {
-    const size_t vcount = mesh.vertex_count == SIZE_MAX ? mesh.positions.size() : mesh.vertex_count;
+    const PositionView pos(mesh);
+    const size_t vcount = mesh.vertex_count == SIZE_MAX ? pos.size() : mesh.vertex_count;
     const size_t icount = mesh.index_count == SIZE_MAX ? mesh.indices.size() : mesh.index_count;
     if (!s_->ready) return runtime_error(name + ": renderer not initialised");
-    if (mesh.positions.empty() || mesh.indices.empty() || vcount == 0 || icount < 3)
-        return input_error(name + ": empty mesh");
-    if (vcount > mesh.positions.size() || icount > mesh.indices.size() ||
-        (!mesh.normals.empty() && mesh.normals.size() < mesh.positions.size()))
+    if (pos.empty() || mesh.indices.empty() || vcount == 0 || icount < 3) return input_error(name + ": empty mesh");
+    if (pos.coded() && !mesh.has_position_box) return input_error(name + ": position codes without their box");
+    if (vcount > pos.size() || icount > mesh.indices.size() ||
+        (!mesh.normals.empty() && mesh.normals.size() < pos.size()))
         return input_error(name + ": counts exceed the arrays");
     // prefix_only: capacity past the counts may be unwritten (a progressive mesh
     // still streaming); it arrives through update_model.
-    const size_t vupload = mesh.prefix_only ? vcount : mesh.positions.size();
+    const size_t vupload = mesh.prefix_only ? vcount : pos.size();
     const size_t iupload = mesh.prefix_only ? icount : mesh.indices.size();
     for (size_t i = 0; i < iupload; ++i)
-        if (mesh.indices[i] >= mesh.positions.size())
+        if (mesh.indices[i] >= pos.size())
             return input_error(name + ": index " + std::to_string(i) + " refers to vertex " +
-                               std::to_string(mesh.indices[i]) + " of " + std::to_string(mesh.positions.size()));
-    if (mesh.positions.size() > static_cast<size_t>(kTextureWidth) * 8192 ||
+                               std::to_string(mesh.indices[i]) + " of " + std::to_string(pos.size()));
+    if (pos.size() > static_cast<size_t>(kTextureWidth) * 8192 ||
         mesh.indices.size() > static_cast<size_t>(kTextureWidth) * 8192)
         return input_error(name + ": too large for one model");
 
     Model m;
     m.name = name;
-    m.vertex_capacity = mesh.positions.size();
+    m.vertex_capacity = pos.size();
     m.index_capacity = mesh.indices.size();
     m.vertex_count = vcount;
     m.index_count = icount - icount % 3;
-    set_bounds(m, mesh.positions.first(vcount));
+    set_bounds(m, pos, vcount);
     // The quantization box: given (a progressive mesh's, which holds every
     // vertex it will have), or that of all the arrays when they are all written.
     if (mesh.has_position_box || !mesh.prefix_only) {
@@ -577,14 +633,15 @@ Result<ModelId> Renderer::add_model(const MeshData& mesh, const std::string& nam
             box.extend(Vec3(mesh.position_box_min));
             box.extend(Vec3(mesh.position_box_max));
         } else {
-            for (const Vec3f& p : mesh.positions) box.extend(Vec3(p));
-            if (mesh.morph_sources.size() >= mesh.positions.size())
-                for (const Vec3f& p : mesh.morph_sources.first(mesh.positions.size())) box.extend(Vec3(p));
+            for (size_t v = 0; v < pos.size(); ++v) box.extend(Vec3(pos[v]));
+            if (mesh.morph_sources.size() >= pos.size())
+                for (const Vec3f& p : mesh.morph_sources.first(pos.size())) box.extend(Vec3(p));
         }
         m.quantized = !box.empty();
         m.pos_origin = Vec3f(box.min);
         m.pos_scale = Vec3f(box.max - box.min) / 65535.0f;
-        if (m.quantized && !inside_position_box(m, mesh.positions, 0, vupload)) m.quantized = false;
+        if (pos.coded()) m.pos_origin = pos.origin(), m.pos_scale = pos.scale();  // the codes' own box, bit for bit
+        if (m.quantized && !inside_position_box(m, pos, 0, vupload)) m.quantized = false;
         if (!m.quantized) m.pos_origin = Vec3f(0.0f), m.pos_scale = Vec3f(1.0f);
     }
 
@@ -596,7 +653,7 @@ Result<ModelId> Renderer::add_model(const MeshData& mesh, const std::string& nam
         std::vector<Vec3f> computed;
         std::span<const Vec3f> normals = mesh.normals;
         if (normals.empty()) {
-            computed = area_normals(mesh.positions, mesh.indices.first(m.index_count), mesh.positions.size());
+            computed = area_normals(pos, mesh.indices.first(m.index_count), pos.size());
             normals = computed;
         }
         glGenBuffers(1, &m.vbo_normal);
@@ -612,15 +669,15 @@ Result<ModelId> Renderer::add_model(const MeshData& mesh, const std::string& nam
     // Buffers at full capacity, filled up to the counts only.
     glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(m.vertex_capacity * m.position_stride()), nullptr,
                  GL_DYNAMIC_DRAW);
-    upload_positions(m, mesh.positions.data(), 0, vupload);
+    upload_positions(m, pos, 0, vupload);
     position_pointer(m, kPosition);
     glEnableVertexAttribArray(kPosition);
-    if (mesh.morph_sources.size() >= mesh.positions.size()) {
+    if (mesh.morph_sources.size() >= pos.size()) {
         glGenBuffers(1, &m.vbo_morph);
         glBindBuffer(GL_ARRAY_BUFFER, m.vbo_morph);
         glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(m.vertex_capacity * m.position_stride()), nullptr,
                      GL_DYNAMIC_DRAW);
-        upload_positions(m, mesh.morph_sources.data(), 0, vupload);
+        upload_positions(m, PositionView(mesh.morph_sources), 0, vupload);
         position_pointer(m, kMorph);
         glEnableVertexAttribArray(kMorph);
     }
@@ -647,12 +704,13 @@ void to_float_positions(Model& m, const MeshData& mesh, size_t count) {
     glBindVertexArray(m.vao);
     for (auto [buffer, location] : {std::pair{m.vbo_position, kPosition}, std::pair{m.vbo_morph, kMorph}}) {
         if (!buffer) continue;
-        const std::span<const Vec3f> src =
-            location == kMorph && mesh.morph_sources.size() >= count ? mesh.morph_sources : mesh.positions;
+        const PositionView src = location == kMorph && mesh.morph_sources.size() >= count
+                                     ? PositionView(mesh.morph_sources)
+                                     : PositionView(mesh);
         glBindBuffer(GL_ARRAY_BUFFER, buffer);
         glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(m.vertex_capacity * sizeof(Vec3f)), nullptr,
                      GL_DYNAMIC_DRAW);
-        upload_positions(m, src.data(), 0, count);
+        upload_positions(m, src, 0, count);
         position_pointer(m, location);
     }
     glBindVertexArray(0);
@@ -664,33 +722,33 @@ Status Renderer::update_model(ModelId id, const MeshData& mesh, const Dirty& dir
     auto it = s_->models.find(id);
     if (it == s_->models.end()) return input_error("update_model: unknown model " + std::to_string(id));
     Model& m = it->second;
-    const size_t vcount = mesh.vertex_count == SIZE_MAX ? mesh.positions.size() : mesh.vertex_count;
+    const PositionView pos(mesh);
+    const size_t vcount = mesh.vertex_count == SIZE_MAX ? pos.size() : mesh.vertex_count;
     const size_t icount = mesh.index_count == SIZE_MAX ? mesh.indices.size() : mesh.index_count;
-    if (mesh.positions.size() > m.vertex_capacity || mesh.indices.size() > m.index_capacity ||
-        vcount > mesh.positions.size() || icount > mesh.indices.size() || dirty.vertex_end > mesh.positions.size() ||
+    if (pos.size() > m.vertex_capacity || mesh.indices.size() > m.index_capacity || vcount > pos.size() ||
+        icount > mesh.indices.size() || dirty.vertex_end > pos.size() || (pos.coded() && !mesh.has_position_box) ||
         dirty.index_end > mesh.indices.size() || (!mesh.normals.empty() && mesh.normals.size() < dirty.vertex_end))
         return input_error(m.name + ": update exceeds the uploaded capacity");
     for (size_t i = dirty.index_begin; i < dirty.index_end; ++i)
-        if (mesh.indices[i] >= mesh.positions.size())
+        if (mesh.indices[i] >= pos.size())
             return input_error(m.name + ": index " + std::to_string(i) + " out of range");
     if (dirty.vertex_begin < dirty.vertex_end) {
         const size_t b = dirty.vertex_begin, n = dirty.vertex_end - dirty.vertex_begin;
-        if (m.quantized && !inside_position_box(m, mesh.positions, b, b + n))
+        if (m.quantized && !inside_position_box(m, pos, b, b + n))
             to_float_positions(m, mesh, std::max(vcount, dirty.vertex_end));
         glBindBuffer(GL_ARRAY_BUFFER, m.vbo_position);
-        upload_positions(m, mesh.positions.data() + b, b, b + n);
+        upload_positions(m, pos, b, b + n);
         if (m.vbo_morph && mesh.morph_sources.size() >= dirty.vertex_end) {
             glBindBuffer(GL_ARRAY_BUFFER, m.vbo_morph);
-            upload_positions(m, mesh.morph_sources.data() + b, b, b + n);
+            upload_positions(m, PositionView(mesh.morph_sources), b, b + n);
         }
         std::vector<Vec3f> computed;
-        if (mesh.normals.empty())
-            computed = area_normals(mesh.positions, mesh.indices.first(icount - icount % 3), mesh.positions.size());
+        if (mesh.normals.empty()) computed = area_normals(pos, mesh.indices.first(icount - icount % 3), pos.size());
         std::span<const Vec3f> normals = mesh.normals.empty() ? std::span<const Vec3f>(computed) : mesh.normals;
         glBindBuffer(GL_ARRAY_BUFFER, m.vbo_normal);
         upload_packed_normals(normals, b, b + n);
         release_scratch(computed);
-        set_bounds(m, mesh.positions.first(vcount));
+        set_bounds(m, pos, vcount);
     }
     if (dirty.index_begin < dirty.index_end) {
         const size_t b = dirty.index_begin, n = dirty.index_end - dirty.index_begin;
@@ -719,7 +777,7 @@ Status Renderer::set_morph_sources(ModelId id, size_t begin, std::span<const Vec
     if (sources.empty()) return ok_status();
     glBindBuffer(GL_ARRAY_BUFFER, m.vbo_morph);
     // Quantized: clamped to the box (a progressive mesh's parents lie in it).
-    upload_positions(m, sources.data(), begin, begin + sources.size());
+    upload_positions(m, PositionView(sources, begin), begin, begin + sources.size());
     return ok_status();
 }
 
@@ -1054,8 +1112,10 @@ static void ensure_edges(Model& m) {
     };
     auto drawable = [](const Coded& c) { return c.e.b == kNoVertex || c.n0 != c.n1; };
     {
-        EdgeStream stream(indices);
-        constexpr size_t kEdgeChunk = 16 * kTextureWidth;  // 512 KiB of records
+        // 1 MiB of walk scratch and 128 KiB of records: they are alive while
+        // the texture is filled, the first frame's peak in `lines`.
+        EdgeStream stream(indices, size_t{1} << 20);
+        constexpr size_t kEdgeChunk = 4 * kTextureWidth;
         std::vector<EdgeRecord> chunk(std::min(kEdgeChunk, std::max<size_t>(stream.count(), 1)));
         size_t kept = 0;
         while (const size_t n = stream.next(chunk))
@@ -1169,19 +1229,22 @@ void Renderer::render(const Camera& camera, const Lighting& lighting, const Fram
     for (auto& [id, m] : s.models) any_selected |= !m.internal && m.state.visible && m.state.selected;
     const bool fade_rest = o.xray_unselected && any_selected;
 
-    // A model drawn kReleaseFrames frames in a row in a style that uses
-    // neither (other style, selected, faded) gives its `lines` / `wireframe`
-    // data texture back: it is rebuilt from the GL buffers if that style
-    // returns (a million-triangle model's is 3-10 MiB; the rebuild ~0.1 s).
-    constexpr int kReleaseFrames = 3;
+    // A model whose style uses neither the `lines` nor the `wireframe` data
+    // texture gives it back before the frame draws (the new style's own first
+    // frame would otherwise stack on it): a million-triangle model's is 3-10
+    // MiB, rebuilt from the GL buffers (~0.1 s) if the style returns. Selected
+    // or faded models keep theirs (their style returns when deselected), and
+    // so does the benchmark's baseline. The driver may free the storage only
+    // once this frame has unbound it (llvmpipe: the vertex stage's sampler
+    // view), so the heap is trimmed again at the end of the frame.
+    bool released = false;
     for (auto& [id, m] : s.models) {
-        if (m.internal || !m.state.visible || m.index_count == 0) continue;
-        const bool uses =
-            (m.state.style == Style::Lines || m.state.style == Style::Wireframe) && !m.state.selected && !fade_rest;
-        m.frames_without_line_data = uses ? 0 : m.frames_without_line_data + 1;
-        if (m.frames_without_line_data >= kReleaseFrames && (m.edge_texture || m.position_texture)) {
+        const Style st = m.state.style;
+        if (m.internal || st == Style::Lines || st == Style::Wireframe || st == Style::Baseline) continue;
+        if (m.edge_texture || m.position_texture) {
             free_edge_texture(m);
             free_wire_textures(m);
+            released = true;
         }
     }
 
@@ -1340,7 +1403,7 @@ void Renderer::render(const Camera& camera, const Lighting& lighting, const Fram
     glBindVertexArray(0);
     glUseProgram(0);
 #ifdef __GLIBC__
-    if (first_use) malloc_trim(0);
+    if (first_use || released) malloc_trim(0);
 #endif
     BODY_GL_CHECK("render");
 }

@@ -21,8 +21,8 @@
 // and face normals inside; edges between faces of the same normal are left
 // out) and `wireframe`'s position texture are built lazily from the GL
 // buffers when a model is first drawn in that style, and a model keeps one of
-// the two at a time (building one frees the other) and gives it back after
-// three frames drawn in a style that uses neither.
+// the two at a time (building one frees the other) and gives it back when
+// its style changes to one that uses neither.
 //
 // Frame order: opaque models (any style), then transparent ones (selected =
 // purple, x-ray/faded unselected) sorted back to front, each with a depth
@@ -82,6 +82,11 @@ struct MeshData {
     // floats. A patch that leaves the box turns the model's positions to floats.
     bool has_position_box = false;
     Vec3f position_box_min{0.0f}, position_box_max{0.0f};
+    // Optional, in place of `positions`: three 16-bit codes per vertex in the
+    // position box (has_position_box needed), position = min + code * (max -
+    // min) / 65535; uploaded as they are (a source that keeps its positions so
+    // needs no float copy).
+    std::span<const uint16_t> position_codes = {};
 };
 
 // Half-open element ranges changed since the last upload (vertices: positions

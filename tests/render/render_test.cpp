@@ -322,10 +322,13 @@ TEST(RenderProperty, LineDataIsGivenBackInAnotherStyleAndRebuiltTheSame) {
         const Image before = f.draw(cam);
         const size_t with = f.renderer().gpu_bytes();
         EXPECT_GT(with, without) << style_name(line_style);
+        f.renderer().state(id.value())->selected = true;  // drawn purple, its style kept
+        (void)f.draw(cam);
+        f.renderer().state(id.value())->selected = false;
+        f.renderer().state(id.value())->style = Style::Baseline;
+        (void)f.draw(cam);
+        EXPECT_EQ(f.renderer().gpu_bytes(), with) << "kept while selected and for the benchmark's baseline";
         f.renderer().state(id.value())->style = Style::Smooth;
-        (void)f.draw(cam);
-        (void)f.draw(cam);
-        EXPECT_EQ(f.renderer().gpu_bytes(), with) << "kept for a style switch back and forth";
         (void)f.draw(cam);
         EXPECT_EQ(f.renderer().gpu_bytes(), without) << style_name(line_style);
         f.renderer().state(id.value())->style = line_style;
@@ -475,6 +478,11 @@ TEST(RenderLod, ObjPreviewReleasedArraysComeBackWithTheSameTriangles) {
     src.release_arrays();
     EXPECT_EQ(triangle_set(src.mesh().indices), level);
     src.release_arrays();
+    // Positions come back from their 16-bit codes, within half a step of the input.
+    const MeshData again = src.mesh();
+    ASSERT_EQ(again.positions.size(), sphere.positions.size());
+    for (size_t v = 0; v < sphere.positions.size(); ++v)
+        EXPECT_LT(glm::length(again.positions[v] - sphere.positions[v]), 2.0f / 65535.0f) << v;
     src.set_lod(1.0);
     EXPECT_EQ(src.triangles(), src.full_triangles());
     d = src.take_dirty();
@@ -624,6 +632,32 @@ TEST(RenderLod, PatchOutsideThePositionBoxStillDrawsTheMovedVertices) {
         if (style == Style::Smooth) {
             EXPECT_GT(test::compare(small, patched, 4).bad_block_fraction, 0.05);
         }
+    }
+}
+
+TEST(RenderLod, PositionCodesDrawLikeTheirFloats) {
+    RenderFixture f(200, 200);
+    REQUIRE_GL(f);
+    test::GenMesh sphere = test::icosphere(3);
+    ModelSource src("s", Vec3f(1.0f), sphere.positions, {}, sphere.indices);
+    const Camera cam = Camera::framing(Vec3f(0.0f), 1.1f, Vec3f(0.2f, 0.3f, 1.0f));
+    MeshData codes_only = src.upload_mesh();
+    ASSERT_TRUE(codes_only.positions.empty());
+    ASSERT_EQ(codes_only.position_codes.size(), sphere.positions.size() * 3);
+    codes_only.has_position_box = false;
+    EXPECT_FALSE(f.renderer().add_model(codes_only, "no box").ok());
+    auto coded = f.renderer().add_model(src.upload_mesh(), "codes");
+    ASSERT_TRUE(coded.ok());
+    for (Style style : {Style::Smooth, Style::Wireframe, Style::Lines}) {
+        f.renderer().state(coded.value())->style = style;
+        const Image from_codes = f.draw(cam);
+        RenderFixture g(200, 200);
+        MeshData floats = src.mesh();
+        floats.position_codes = {};
+        auto plain = g.renderer().add_model(floats, "floats");
+        ASSERT_TRUE(plain.ok());
+        g.renderer().state(plain.value())->style = style;
+        EXPECT_EQ(test::compare(g.draw(cam), from_codes, 4).bad_block_fraction, 0.0) << style_name(style);
     }
 }
 
