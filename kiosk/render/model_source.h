@@ -13,8 +13,10 @@
 // falls back to a meshoptimizer simplification of the whole index array (a
 // preview path only: convert with `bodygen` to get progressive meshes).
 //
-// Memory (plain meshes): positions are kept as 16-bit codes in their box (the
-// renderer's format), and the full index array compressed
+// Plain meshes are reordered at load (triangles in vertex-cache order,
+// vertices renumbered in the order the triangles first use them): the same
+// surface, other numbers. Memory: positions are kept as 16-bit codes in their
+// box (the renderer's format), and the full index array compressed
 // (meshoptimizer's index codec, 3-5 bytes a triangle instead of 12), which is
 // what set_lod() simplifies from; the current level's plain array is needed
 // only until the renderer has it, and release_arrays() frees it (mesh()
