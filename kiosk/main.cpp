@@ -85,7 +85,7 @@ bool load_into(render::Renderer& renderer, const std::string& path, double lod, 
         return false;
     }
     for (auto& src : sources.value()) {
-        auto id = renderer.add_model(src.mesh(), src.name());
+        auto id = renderer.add_model(src.upload_mesh(), src.name());
         if (!id) {
             std::fprintf(stderr, "bodyview: %s: %s\n", path.c_str(), id.error().message.c_str());
             continue;
@@ -93,9 +93,10 @@ bool load_into(render::Renderer& renderer, const std::string& path, double lod, 
         (void)src.take_dirty();
         if (lod < 1.0) {
             src.set_lod(lod);
-            if (auto s = renderer.update_model(id.value(), src.mesh(), src.take_dirty()); !s)
+            if (auto s = renderer.update_model(id.value(), src.upload_mesh(), src.take_dirty()); !s)
                 std::fprintf(stderr, "bodyview: %s: %s\n", path.c_str(), s.error().message.c_str());
         }
+        src.release_arrays();  // the renderer keeps its own copy
         // Files without a colour of their own (the OBJ default grey) keep the renderer's.
         if (src.color() != Vec3f(0.8f)) renderer.state(id.value())->color = src.color();
         out.push_back({std::move(src), id.value()});

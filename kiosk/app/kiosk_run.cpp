@@ -202,7 +202,8 @@ Status load_model(render::Renderer& renderer, const scene::Model& m, Loaded& l) 
     }
     if (l.parts.empty()) return input_error(m.path + ": no structures");
     for (Part& p : l.parts) {
-        render::MeshData data = p.mesh();
+        // Plain meshes go up as their 16-bit position codes (no float copy).
+        render::MeshData data = p.pm ? p.mesh() : p.source->upload_mesh();
         data.prefix_only = p.pm != nullptr;  // the stream has not written the rest yet
         auto id = renderer.add_model(data, m.name);
         if (!id) return id.error();
@@ -219,6 +220,7 @@ Status load_model(render::Renderer& renderer, const scene::Model& m, Loaded& l) 
             }
         } else {
             (void)p.source->take_dirty();
+            p.source->release_arrays();  // the renderer has its copy; picking decodes them again
         }
         p.id = id.value();
     }
@@ -360,6 +362,7 @@ int run_kiosk(platform::Surface& surface, const scene::Scene& scene, const Kiosk
         for (const Part& p : l.parts) {
             auto hit = pick_part(p, t, ray);
             if (hit && (!best || *hit < *best)) best = hit;
+            if (p.source) p.source->release_arrays();  // what the pick decoded
         }
         return best;
     });
