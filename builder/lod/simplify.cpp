@@ -563,13 +563,11 @@ void update_vertex(State& s, uint32_t u) {
                 break;
             }
     }
-    if (best_cached) {
-        double unused = 0.0;
-        best_p = placement_cached(s, u, target, unused);
-    }
+    // A cost from the corner cache comes without its position: that is placed when
+    // the vertex is popped (most keys are set again before).
     s.best_target[u] = target;
     s.best_pos[u] = best_p;
-    s.best_valid[u] = 1;
+    s.best_valid[u] = !best_cached;
     if (target == kNone)
         s.heap.erase(u);
     else
