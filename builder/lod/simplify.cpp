@@ -270,25 +270,36 @@ void build_adjacency(State& s) {
     s.face_alive.assign(faces, 1);
     s.live_faces = faces;
     // Edge multiplicity from the fans: the faces around a that also contain b are
-    // the faces of edge {a, b} (no sort over all corners; the same flags).
+    // the faces of edge {a, b} (no sort over all corners; the same flags). Each fan
+    // is walked once into a local list that all its corners then scan.
     s.edge_boundary.assign(corners, 0);
     s.boundary.assign(n, 0);
     s.locked.assign(n, 0);
-    for (size_t c = 0; c < corners; ++c) {
-        const uint32_t a = s.idx[c], b = s.idx[c - c % 3 + (c + 1) % 3];
-        uint32_t count = 0;
-        bool same_direction = false;  // another face also runs a -> b
+    struct FanCorner {
+        uint32_t after, before, face, corner;
+    };
+    std::vector<FanCorner> fan;
+    for (uint32_t a = 0; a < n; ++a) {
+        fan.clear();
         for (uint32_t d = s.head[a]; d != kNone; d = s.next[d]) {
-            const uint32_t f = d - d % 3, after = s.idx[f + (d % 3 + 1) % 3], before = s.idx[f + (d % 3 + 2) % 3];
-            if (after != b && before != b) continue;
-            ++count;
-            if (after == b && f != c - c % 3) same_direction = true;
+            const uint32_t f = d - d % 3;
+            fan.push_back({s.idx[f + (d % 3 + 1) % 3], s.idx[f + (d % 3 + 2) % 3], f, d});
         }
-        if (count == 1) {
-            s.edge_boundary[c] = 1;
-            s.boundary[a] = s.boundary[b] = 1;
-        } else if (count > 2 || same_direction) {
-            s.locked[a] = s.locked[b] = 1;  // non-manifold edge: never move its ends
+        for (const FanCorner& c : fan) {  // edge a -> c.after
+            const uint32_t b = c.after;
+            uint32_t count = 0;
+            bool same_direction = false;  // another face also runs a -> b
+            for (const FanCorner& d : fan) {
+                if (d.after != b && d.before != b) continue;
+                ++count;
+                if (d.after == b && d.face != c.face) same_direction = true;
+            }
+            if (count == 1) {
+                s.edge_boundary[c.corner] = 1;
+                s.boundary[a] = s.boundary[b] = 1;
+            } else if (count > 2 || same_direction) {
+                s.locked[a] = s.locked[b] = 1;  // non-manifold edge: never move its ends
+            }
         }
     }
     s.alive.assign(n, 1);
