@@ -195,7 +195,6 @@ struct State {
     std::vector<uint32_t> best_target;  // per vertex: the target of its heap key
     std::vector<Vec3> best_pos;         // ... where that collapse puts the merged vertex
     std::vector<uint8_t> best_valid;    // best_pos is the placement for exactly the heap key
-    std::vector<uint8_t> dirty;         // the key is a lower bound only: re-scan when popped
     // The optimum of an edge is the same in both directions (Q_u + Q_v, the midpoint and
     // the edge length are symmetric in IEEE arithmetic): after u -> v, the placements
     // v -> x computed for v's key are reused for x -> v by v's neighbours.
@@ -514,7 +513,6 @@ double collapse_cost(const State& s, uint32_t from, uint32_t to) {
 
 // Re-keys `u` by its cheapest outgoing collapse (or drops it when it has none).
 void update_vertex(State& s, uint32_t u) {
-    s.dirty[u] = 0;
     if (!s.alive[u] || s.locked[u]) {
         s.heap.erase(u);
         return;
@@ -590,14 +588,8 @@ void update_vertex(State& s, uint32_t u) {
 // After u collapsed onto v, neighbour x of v only gained or changed its edge to v;
 // a full update is needed only when its cheapest collapse went to u or v.
 void update_neighbour(State& s, uint32_t x, uint32_t u, uint32_t v) {
-    if (!s.heap.contains(x) || s.best_target[x] == kNone) {
+    if (!s.heap.contains(x) || s.best_target[x] == u || s.best_target[x] == v || s.best_target[x] == kNone) {
         update_vertex(s, x);
-        return;
-    }
-    if (s.best_target[x] == u || s.best_target[x] == v) {
-        // Its key edge grew (quadrics only grow under collapse): the old key is a
-        // lower bound of the new one, so the re-scan waits until x is popped.
-        s.dirty[x] = 1;
         return;
     }
     if (!s.alive[x] || s.locked[x]) return;
@@ -825,16 +817,11 @@ void collapse_loop(State& s, size_t target_faces) {
         s.best_target.assign(n, kNone);
         s.best_pos.assign(n, Vec3(0.0));
         s.best_valid.assign(n, 0);
-        s.dirty.assign(n, 0);
         s.sym_v = kNone;
         for (uint32_t v = 0; v < n; ++v) update_vertex(s, v);
         size_t done = 0;
         while (!s.heap.empty() && s.live_faces > target_faces) {
             const uint32_t u = s.heap.top();
-            if (s.dirty[u]) {
-                update_vertex(s, u);
-                continue;
-            }
             const double limit = s.heap.second_key();
             // Fast path: the keyed collapse is usually the cheapest and legal.
             if (const uint32_t v = s.best_target[u]; v != kNone) {
