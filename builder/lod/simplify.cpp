@@ -8,7 +8,8 @@
 //
 // Pipeline (static phases, public entry at the bottom):
 //   clean_input      drop degenerate triangles and unreferenced vertices
-//   build_adjacency  per-vertex corner lists (singly linked through corners), boundary/non-manifold flags
+//   build_adjacency  per-vertex corner lists (singly linked through corners), the face across each
+//                    edge (kept up to date by the collapses), boundary/non-manifold flags
 //   init_quadrics    area-weighted plane quadrics + boundary penalty planes (ordering) and unit-weight
 //                    quadrics (the stored object-space error)
 //   reorder_vertices, reorder_faces  renumber for cache locality (the output keeps the input numbering)
@@ -30,6 +31,7 @@ namespace body::lod {
 namespace {
 
 constexpr uint32_t kNone = 0xffffffffu;
+constexpr uint32_t kUnknown = 0xfffffffeu;
 constexpr double kMinTurnCos = 0.2;  // cos(78 degrees): the largest turn of a face in one collapse
 constexpr double kFoldCos = -0.9;    // neighbours closer than 26 degrees to back-to-back count as folded
 
@@ -187,8 +189,11 @@ struct State {
     std::vector<uint32_t> idx;           // 3 per face, current
     std::vector<uint8_t> face_alive;     // per face
     std::vector<uint8_t> edge_boundary;  // per corner: edge corner -> next corner has one face
-    std::vector<uint32_t> head, next;    // corner lists
-    std::vector<uint32_t> fcount;        // live faces per vertex
+    // Per corner: the live face across the edge corner -> next corner (kNone: none;
+    // kUnknown: a non-manifold or inconsistently oriented edge, looked up by walking).
+    std::vector<uint32_t> across;
+    std::vector<uint32_t> head, next;  // corner lists
+    std::vector<uint32_t> fcount;      // live faces per vertex
     std::vector<uint8_t> boundary, locked, alive;
     std::vector<Quadric> q, e;  // ordering quadric, error quadric
     VertexHeap heap;
@@ -273,6 +278,7 @@ void build_adjacency(State& s) {
     // the faces of edge {a, b} (no sort over all corners; the same flags). Each fan
     // is walked once into a local list that all its corners then scan.
     s.edge_boundary.assign(corners, 0);
+    s.across.assign(corners, kUnknown);
     s.boundary.assign(n, 0);
     s.locked.assign(n, 0);
     struct FanCorner {
@@ -289,12 +295,16 @@ void build_adjacency(State& s) {
             const uint32_t b = c.after;
             uint32_t count = 0;
             bool same_direction = false;  // another face also runs a -> b
+            uint32_t other = kNone;       // the face running b -> a
             for (const FanCorner& d : fan) {
                 if (d.after != b && d.before != b) continue;
                 ++count;
                 if (d.after == b && d.face != c.face) same_direction = true;
+                if (d.before == b) other = d.face / 3;
             }
+            if (count == 2 && !same_direction) s.across[c.corner] = other;
             if (count == 1) {
+                s.across[c.corner] = kNone;
                 s.edge_boundary[c.corner] = 1;
                 s.boundary[a] = s.boundary[b] = 1;
             } else if (count > 2 || same_direction) {
@@ -403,16 +413,21 @@ void reorder_faces(State& s) {
     s.face_of_input.resize(faces);
     std::vector<uint32_t> idx(s.idx.size());
     std::vector<uint8_t> edge_boundary(s.idx.size());
+    std::vector<uint32_t> across(s.idx.size());
     for (size_t f = 0; f < faces; ++f) {
         const uint32_t g = start[std::min({s.idx[f * 3], s.idx[f * 3 + 1], s.idx[f * 3 + 2]})]++;
         s.face_of_input[f] = g;
         for (int k = 0; k < 3; ++k) {
             idx[g * 3 + k] = s.idx[f * 3 + k];
             edge_boundary[g * 3 + k] = s.edge_boundary[f * 3 + k];
+            across[g * 3 + k] = s.across[f * 3 + k];
         }
     }
     s.idx.swap(idx);
     s.edge_boundary.swap(edge_boundary);
+    for (uint32_t& g : across)
+        if (g < kUnknown) g = s.face_of_input[g];
+    s.across.swap(across);
     // The corner lists in the input's order, as build_adjacency made them: the order
     // of a fan's walk decides which of a split's faces comes first in the output.
     s.head.assign(n, kNone);
@@ -725,7 +740,8 @@ bool geometry_allowed(State& s, uint32_t u, uint32_t v, const Vec3& target, cons
         const uint32_t f = fan[i] / 3, k = fan[i] % 3;
         if (fan_new[i] == Vec3(0.0)) continue;
         const uint32_t x = s.idx[f * 3 + (k + 1) % 3], y = s.idx[f * 3 + (k + 2) % 3];
-        const uint32_t g = face_across(s, x, y);
+        const uint32_t known = s.across[f * 3 + (k + 1) % 3];
+        const uint32_t g = known == kUnknown ? face_across(s, x, y) : known;
         if (g != kNone && !removed(g)) {
             const Vec3 ng = face_normal(s, g, u, v, target);
             const double after = glm::dot(fan_new[i], ng), before = glm::dot(fan_old[i], ng);
@@ -742,6 +758,23 @@ bool geometry_allowed(State& s, uint32_t u, uint32_t v, const Vec3& target, cons
         }
     }
     return true;
+}
+
+// Face f (with edge u-v) is removed by the collapse u -> v: the faces across its
+// two other edges (at the third vertex) become neighbours of each other.
+void relink_across(State& s, uint32_t f, uint32_t u, uint32_t v) {
+    uint32_t g[2] = {kUnknown, kUnknown}, n = 0;
+    for (uint32_t k = 0; k < 3; ++k) {
+        const uint32_t a = s.idx[f * 3 + k], b = s.idx[f * 3 + (k + 1) % 3];
+        if ((a == u && b == v) || (a == v && b == u)) continue;
+        g[n++] = s.across[f * 3 + k];
+    }
+    for (uint32_t i = 0; i < 2; ++i) {
+        const uint32_t h = g[i], other = g[1 - i];
+        if (h >= kUnknown) continue;
+        for (uint32_t k = 0; k < 3; ++k)
+            if (s.across[h * 3 + k] == f) s.across[h * 3 + k] = other;
+    }
 }
 
 void apply_collapse(State& s, uint32_t u, uint32_t v, const Vec3& target, const uint32_t shared[2],
@@ -763,6 +796,7 @@ void apply_collapse(State& s, uint32_t u, uint32_t v, const Vec3& target, const 
     rec.error = s.running_error;
     for (uint32_t i = 0; i < shared_count; ++i) {
         const uint32_t f = shared[i];
+        relink_across(s, f, u, v);
         s.face_alive[f] = 0;
         for (int k = 0; k < 3; ++k) --s.fcount[s.idx[f * 3 + k]];
         --s.live_faces;
