@@ -313,8 +313,11 @@ int main(int argc, char** argv) {
         return 1;
     }
     mesh->name = "bunny";
-    body::Mesh sub = subdivide(subdivide(*mesh));
-    sub.name = "bunny_sub";
+    body::Mesh sub;  // the big mesh, made only when it is used (subdividing takes seconds)
+    if (big) {
+        sub = subdivide(subdivide(*mesh));
+        sub.name = "bunny_sub";
+    }
     if (!write_dir.empty()) {
         (void)body::write_obj(write_dir + "/bunny.obj", std::vector<body::Mesh>{*mesh});
         if (big) (void)body::write_obj(write_dir + "/bunny_sub.obj", std::vector<body::Mesh>{sub});
