@@ -236,6 +236,9 @@ struct State {
     Vec3 box_min{0.0}, box_max{0.0};  // the input's bounds: placements stay inside
     // scratch
     std::vector<uint32_t> cu, cv, fan, ring_u, ring_v, touched;
+    // Per vertex: the last ring that listed it (topology_allowed: stamp - 1 for u's, stamp for v's).
+    std::vector<uint32_t> mark;
+    uint32_t stamp = 0;
     std::vector<Vec3> fan_old, fan_new;
 };
 
@@ -650,6 +653,31 @@ uint32_t face_across(const State& s, uint32_t a, uint32_t b) {
     return kNone;
 }
 
+// The distinct neighbours of v in walk order (marked instead of sorted): each gets
+// mark `stamp`; returns how many of them carried mark `other` before.
+size_t mark_ring(State& s, uint32_t v, std::vector<uint32_t>& ring, uint32_t stamp, uint32_t other) {
+    ring.clear();
+    size_t common = 0;
+    uint32_t* link = &s.head[v];
+    while (*link != kNone) {
+        const uint32_t c = *link;
+        if (!s.face_alive[c / 3]) {
+            *link = s.next[c];  // drop corners of removed faces on the way
+            continue;
+        }
+        const uint32_t f = c / 3 * 3;
+        for (int k = 0; k < 3; ++k) {
+            const uint32_t x = s.idx[f + k];
+            if (x == v || s.mark[x] == stamp) continue;
+            common += s.mark[x] == other;
+            s.mark[x] = stamp;
+            ring.push_back(x);
+        }
+        link = &s.next[c];
+    }
+    return common;
+}
+
 // Checks topology of the collapse u -> v (u disappears). Fills s.cu with u's live
 // corners; `shared` gets the faces removed.
 bool topology_allowed(State& s, uint32_t u, uint32_t v, uint32_t shared[2], uint32_t& shared_count) {
@@ -668,21 +696,9 @@ bool topology_allowed(State& s, uint32_t u, uint32_t v, uint32_t shared[2], uint
     // A boundary vertex may only slide along its boundary edge; an interior one over an interior edge.
     if (s.boundary[u] ? shared_count != 1 : shared_count != 2) return false;
     // Link condition: the common neighbours of u and v are exactly the opposite vertices.
-    ring_of(s, u, s.ring_u);
-    ring_of(s, v, s.ring_v);
-    size_t common = 0;
-    for (size_t i = 0, j = 0; i < s.ring_u.size() && j < s.ring_v.size();) {
-        if (s.ring_u[i] < s.ring_v[j])
-            ++i;
-        else if (s.ring_v[j] < s.ring_u[i])
-            ++j;
-        else {
-            ++common;
-            ++i;
-            ++j;
-        }
-    }
-    if (common != shared_count) return false;
+    s.stamp += 2;
+    mark_ring(s, u, s.ring_u, s.stamp - 1, kNone);
+    if (mark_ring(s, v, s.ring_v, s.stamp, s.stamp - 1) != shared_count) return false;
     // Opposite vertices lose a face; keep their fans valid (no structure collapses to nothing).
     for (uint32_t i = 0; i < shared_count; ++i) {
         const uint32_t a = opposite[i];
@@ -823,11 +839,12 @@ void apply_collapse(State& s, uint32_t u, uint32_t v, const Vec3& target, const 
     s.heap.erase(u);
     if (!s.boundary[u]) {
         // Around an interior u every edge keeps a face, so v's ring is the union of the
-        // two rings topology_allowed sorted (s.ring_u, s.ring_v) without u and v.
+        // two rings topology_allowed marked (s.ring_v, then s.ring_u's others) without u and v.
         s.touched.clear();
-        std::set_union(s.ring_u.begin(), s.ring_u.end(), s.ring_v.begin(), s.ring_v.end(),
-                       std::back_inserter(s.touched));
-        std::erase_if(s.touched, [&](uint32_t x) { return x == u || x == v; });
+        for (const uint32_t x : s.ring_v)
+            if (x != u) s.touched.push_back(x);
+        for (const uint32_t x : s.ring_u)
+            if (x != v && s.mark[x] == s.stamp - 1) s.touched.push_back(x);
     } else {
         ring_of(s, v, s.touched);
     }
@@ -994,6 +1011,7 @@ Result<ProgressiveBuild> build_progressive_mesh(const Mesh& mesh, const LodOptio
     s.optimal = options.optimal_placement;
     s.corner_cost.assign(s.idx.size(), {0.0, 0});
     s.last_changed.assign(s.pos.size(), 0);
+    s.mark.assign(s.pos.size(), 0);
     const Aabb box = mesh_bounds(s.pos);
     s.box_min = box.min;
     s.box_max = box.max;
