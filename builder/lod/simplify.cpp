@@ -357,7 +357,7 @@ void init_quadrics(State& s, double boundary_weight) {
 // Renumbers the vertices along a Morton curve over the bounding box (10 bits per
 // axis, ties by input number) so that a neighbourhood's vertices share cache lines;
 // many inputs (subdivided meshes, merged OBJ objects) append vertices in an order
-// unrelated to the surface. The quadrics, flags and normals move with their vertex.
+// unrelated to the surface. The flags and normals move with their vertex (the quadrics are built after).
 void reorder_vertices(State& s, std::vector<Vec3>& normals) {
     const size_t n = s.pos.size();
     const Aabb box = mesh_bounds(s.pos);
@@ -393,8 +393,6 @@ void reorder_vertices(State& s, std::vector<Vec3>& normals) {
     };
     permute(s.pos);
     permute(normals);
-    permute(s.q);
-    permute(s.e);
     permute(s.boundary);
     permute(s.locked);
     permute(s.alive);
@@ -1005,8 +1003,10 @@ Result<ProgressiveBuild> build_progressive_mesh(const Mesh& mesh, const LodOptio
         normals = area_weighted_normals(s.pos, s.idx);
     }
     build_adjacency(s);
-    init_quadrics(s, options.boundary_weight);
     reorder_vertices(s, normals);
+    // After the renumbering (nothing to permute) and before the faces' (the sums keep
+    // the input's face order): the same quadrics bit for bit.
+    init_quadrics(s, options.boundary_weight);
     reorder_faces(s);
     s.optimal = options.optimal_placement;
     s.corner_cost.assign(s.idx.size(), {0.0, 0});
