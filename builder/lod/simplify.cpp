@@ -200,6 +200,11 @@ struct State {
     std::vector<uint32_t> best_target;  // per vertex: the target of its heap key
     std::vector<Vec3> best_pos;         // ... where that collapse puts the merged vertex
     std::vector<uint8_t> best_valid;    // best_pos is the placement for exactly the heap key
+    // ... and the cheapest of its other collapses (kNone: not known), so that a vertex
+    // whose keyed collapse disappears is re-keyed without walking its fan again.
+    std::vector<uint32_t> second_target;
+    std::vector<double> second_cost;
+    std::vector<uint8_t> key_is_min;  // the key is the cheapest collapse (not one re-ranked past illegal ones)
     // The optimum of an edge is the same in both directions (Q_u + Q_v, the midpoint and
     // the edge length are symmetric in IEEE arithmetic): after u -> v, the placements
     // v -> x computed for v's key are reused for x -> v by v's neighbours.
@@ -535,8 +540,8 @@ void update_vertex(State& s, uint32_t u) {
     }
     // Walk u's faces (each neighbour comes up once or twice); the minimum with ties
     // broken by vertex number does not depend on the walk order.
-    double best = std::numeric_limits<double>::infinity();
-    uint32_t target = kNone;
+    double best = std::numeric_limits<double>::infinity(), second = best;
+    uint32_t target = kNone, second_target = kNone;
     Vec3 best_p{0.0};
     bool best_cached = false;
     // Interior fans: the cost of u -> (the vertex after u in face of corner c) is kept
@@ -577,8 +582,13 @@ void update_vertex(State& s, uint32_t u) {
                 if (twins && symmetric) s.fresh.push_back({x, cost, p});
             }
             if (twins) s.twins.push_back(before_u);
-            if (cost < best || (cost == best && (target == kNone || s.rank[x] < s.rank[target])))
+            if (cost < best || (cost == best && (target == kNone || s.rank[x] < s.rank[target]))) {
+                if (target != x) second = best, second_target = target;
                 best = cost, target = x, best_p = p, best_cached = cached;
+            } else if (x != target && (cost < second || (cost == second && (second_target == kNone ||
+                                                                            s.rank[x] < s.rank[second_target])))) {
+                second = cost, second_target = x;
+            }
         }
         link = &s.next[c];
     }
@@ -595,6 +605,9 @@ void update_vertex(State& s, uint32_t u) {
     s.best_target[u] = target;
     s.best_pos[u] = best_p;
     s.best_valid[u] = !best_cached;
+    s.second_target[u] = second_target;
+    s.second_cost[u] = second;
+    s.key_is_min[u] = 1;
     if (target == kNone)
         s.heap.erase(u);
     else
@@ -604,18 +617,49 @@ void update_vertex(State& s, uint32_t u) {
 // After u collapsed onto v, neighbour x of v only gained or changed its edge to v;
 // a full update is needed only when its cheapest collapse went to u or v.
 void update_neighbour(State& s, uint32_t x, uint32_t u, uint32_t v) {
-    if (!s.heap.contains(x) || s.best_target[x] == u || s.best_target[x] == v || s.best_target[x] == kNone) {
+    if (!s.heap.contains(x) || s.best_target[x] == kNone) {
         update_vertex(s, x);
         return;
     }
-    if (!s.alive[x] || s.locked[x]) return;
+    const uint32_t w = s.second_target[x];
+    const double w_cost = s.second_cost[x];
+    if (w == u || w == v) s.second_target[x] = kNone;  // that collapse changed: the runner-up is not known
+    const bool lost = s.best_target[x] == u || s.best_target[x] == v;
+    // The keyed collapse changed: its successor is the better of the runner-up (the
+    // cheapest of the others, none of which changed) and the new x -> v.
+    if (lost && (w == kNone || w == u || w == v)) {
+        update_vertex(s, x);
+        return;
+    }
     double c = 0.0;
     const Vec3 p = placement_cached(s, x, v, c);
-    if (c < s.heap.key(x) || (c == s.heap.key(x) && s.rank[v] < s.rank[s.best_target[x]])) {
+    if (lost) {
+        if (c < w_cost || (c == w_cost && s.rank[v] < s.rank[w])) {
+            s.best_target[x] = v;
+            s.best_pos[x] = p;
+            s.best_valid[x] = 1;
+            s.heap.set(x, c);
+        } else {
+            s.best_target[x] = w;
+            s.best_valid[x] = 0;  // placed when popped
+            s.second_target[x] = kNone;
+            s.heap.set(x, w_cost);
+        }
+        return;
+    }
+    const double key = s.heap.key(x);
+    if (c < key || (c == key && s.rank[v] < s.rank[s.best_target[x]])) {
+        // The old key is the cheapest of the others only when it was the cheapest of all.
+        s.second_target[x] = s.key_is_min[x] ? s.best_target[x] : kNone;
+        s.second_cost[x] = key;
         s.best_target[x] = v;
         s.best_pos[x] = p;
         s.best_valid[x] = 1;
         s.heap.set(x, c);
+    } else if (s.second_target[x] != kNone &&
+               (c < s.second_cost[x] || (c == s.second_cost[x] && s.rank[v] < s.rank[s.second_target[x]]))) {
+        s.second_target[x] = v;
+        s.second_cost[x] = c;
     }
 }
 
@@ -866,6 +910,9 @@ void collapse_loop(State& s, size_t target_faces) {
         s.best_target.assign(n, kNone);
         s.best_pos.assign(n, Vec3(0.0));
         s.best_valid.assign(n, 0);
+        s.second_target.assign(n, kNone);
+        s.second_cost.assign(n, 0.0);
+        s.key_is_min.assign(n, 0);
         s.sym_v = kNone;
         for (uint32_t v = 0; v < n; ++v) update_vertex(s, v);
         size_t done = 0;
@@ -896,6 +943,8 @@ void collapse_loop(State& s, size_t target_faces) {
                 if (cost > limit) {
                     s.best_target[u] = v;
                     s.best_valid[u] = 0;
+                    s.second_target[u] = kNone;  // the key is not the cheapest collapse
+                    s.key_is_min[u] = 0;
                     s.heap.set(u, cost);  // cheaper work elsewhere first
                     handled = true;
                     break;
