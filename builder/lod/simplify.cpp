@@ -117,11 +117,16 @@ public:
         if (pos_[v] == kNone) {
             pos_[v] = uint32_t(items_.size());
             items_.push_back({key, v, rank_[v]});
-        } else {
-            items_[pos_[v]].key = key;
+            sift_up(pos_[v]);
+            return;
         }
-        sift_up(pos_[v]);
-        sift_down(pos_[v]);
+        Item& item = items_[pos_[v]];
+        const bool up = key < item.key;  // only one direction can move it
+        item.key = key;
+        if (up)
+            sift_up(pos_[v]);
+        else
+            sift_down(pos_[v]);
     }
     void erase(uint32_t v) {
         const uint32_t i = pos_[v];
