@@ -502,5 +502,66 @@ TEST(BpmCodec, OrderedFanOfInteriorAndBoundaryVertices) {
     EXPECT_EQ(open.ordered_fan(corners.data(), corners.size(), ring, at), 0u);
 }
 
+// ---------------------------------------------------------------- simplifier: non-manifold input
+// The fold guard looks faces up through a table kept by the collapses, except across
+// non-manifold edges (walked): two closed spheres glued along one edge (four faces on
+// it) must simplify around that edge without moving its ends or opening a hole.
+TEST(LodSimplifier, SpheresGluedAlongAnEdgeKeepTheEdgeAndStayClosed) {
+    constexpr uint32_t kNoVertex = 0xffffffffu;
+    const Mesh a = test::icosphere(3);
+    // The edge of the first sphere farthest along +x, and the second sphere its mirror
+    // image across the plane x = (the edge's mean x), glued onto it along that edge.
+    uint32_t ea = 0, eb = 0;
+    double far = -1e300;
+    for (size_t f = 0; f < a.indices.size(); f += 3)
+        for (int k = 0; k < 3; ++k) {
+            const uint32_t p = a.indices[f + k], q = a.indices[f + (k + 1) % 3];
+            const double x = a.positions[p].x + a.positions[q].x;
+            if (x > far) far = x, ea = p, eb = q;
+        }
+    const double mirror = far;  // 2 * the mean x
+    Mesh m = a;
+    const uint32_t n = uint32_t(a.positions.size());
+    for (const Vec3& p : a.positions) m.positions.push_back({mirror - p.x, p.y, p.z});
+    auto glued = [&](uint32_t v) { return v == ea ? ea : v == eb ? eb : v + n; };
+    for (size_t f = 0; f < a.indices.size(); f += 3)  // mirrored: reverse the winding
+        m.indices.insert(m.indices.end(), {glued(a.indices[f]), glued(a.indices[f + 2]), glued(a.indices[f + 1])});
+    m.name = "glued";
+    const Vec3 pa = m.positions[ea], pb = m.positions[eb];
+
+    auto build = lod::build_progressive_mesh(m);
+    ASSERT_TRUE(build.ok());
+    EXPECT_LT(build->base_faces * 10, m.triangle_count());  // it did simplify around the edge
+    const size_t levels = build->splits.size();
+    for (size_t step = 0; step <= 16; ++step) {
+        const size_t level = levels * step / 16;
+        const Mesh l = lod::extract_level(*build, level);
+        if (step == 16) {
+            EXPECT_EQ(l.triangle_count(), m.triangle_count());
+        }
+        // The glued edge's ends are still there, where they were, and the edge keeps four faces.
+        uint32_t la = kNoVertex, lb = kNoVertex;
+        for (uint32_t v = 0; v < l.positions.size(); ++v) {
+            if (l.positions[v] == pa) la = v;
+            if (l.positions[v] == pb) lb = v;
+        }
+        ASSERT_NE(la, kNoVertex) << "level " << level;
+        ASSERT_NE(lb, kNoVertex) << "level " << level;
+        // Closed: every edge has an even number of faces, half in each direction.
+        std::map<std::pair<uint32_t, uint32_t>, int> directed;
+        for (size_t f = 0; f < l.indices.size(); f += 3) {
+            const uint32_t* t = &l.indices[f];
+            ASSERT_TRUE(t[0] != t[1] && t[1] != t[2] && t[0] != t[2]) << "level " << level;
+            for (int k = 0; k < 3; ++k) ++directed[{t[k], t[(k + 1) % 3]}];
+        }
+        for (const auto& [edge, count] : directed) {
+            const auto back = directed.find({edge.second, edge.first});
+            ASSERT_TRUE(back != directed.end() && back->second == count) << "hole at level " << level;
+        }
+        const int on_edge = directed[std::make_pair(la, lb)] + directed[std::make_pair(lb, la)];
+        EXPECT_EQ(on_edge, 4) << "level " << level;
+    }
+}
+
 }  // namespace
 }  // namespace body
