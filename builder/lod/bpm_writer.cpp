@@ -5,8 +5,9 @@
 // split chunks (every split replayed on the decoder's SplitReplay: its topology as
 // two positions in the parent's ordered fan, or neighbour numbers and a patch mask
 // when it is not a manifold fan split; positions as residuals of the predictions
-// the reader makes too; all values through pm::SplitEncoder), frame sections with
-// CRCs.
+// the reader makes too -- ring centroids, and along the parent's normal the plane
+// through it; the child's normal as a residual of its faces' normal after the
+// split; all values through pm::SplitEncoder), frame sections with CRCs.
 #include <meshoptimizer.h>
 
 #include <algorithm>
@@ -244,6 +245,9 @@ Result<StructureSections> encode_structure(const Mesh& mesh, const ProgressiveBu
     size_t face = pm.base_faces;
     // Quantized positions at the level being encoded (the reader tracks the same).
     std::vector<uint16_t> cur = z.q;
+    int32_t axis_weight[3], plane_weight[3];
+    pm::normal_axis_weights(z.lo, z.hi, axis_weight);
+    pm::plane_axis_weights(z.lo, z.hi, plane_weight);
     uint32_t previous_error = kInfinityBits;
     for (size_t first = 0; first < ns; first += chunk) {
         const size_t count = std::min(chunk, ns - first);
@@ -315,20 +319,49 @@ Result<StructureSections> encode_structure(const Mesh& mesh, const ProgressiveBu
             } else {
                 values.put(pm::kCtxFanStart, fan.start);
                 values.put(pm::kCtxFanLength, fan.length - 1);
-                pm::predict_fan(cur.data(), ring, fan.fan, fan.start, fan.length, from, pred);
+                // The plane through the parent: its normal (when the file has normals).
+                int64_t plane[3];
+                pm::plane_normal(&z.oct[size_t(parent) * 2], plane_weight, plane);
+                pm::predict_fan(cur.data(), ring, fan.fan, fan.start, fan.length, from,
+                                options.normals ? plane : nullptr, pred);
             }
-            for (int k = 0; k < 3; ++k)
-                values.put_scaled(pm::kCtxChild0 + uint32_t(k), pm::zigzag16(at[k], pred.child[k]), pred.shift[k]);
-            if (moves)
-                for (int k = 0; k < 3; ++k) {
+            // Positions: with a plane, the two other axes first, then the plane's axis.
+            uint32_t order[3] = {0, 1, 2};
+            if (pred.axis < 3) {
+                pm::plane_axes(pred.axis, order[0], order[1]);
+                order[2] = pred.axis;
+            }
+            for (uint32_t i = 0; i < 3; ++i) {
+                const uint32_t k = order[i];
+                if (i == 2 && pred.axis < 3) {
+                    const uint16_t predicted = pm::plane_coordinate(pred, from, at, pred.child_dot, 4);
+                    values.put_scaled(pm::kCtxChild0 + i, pm::zigzag16(at[k], predicted), pred.axis_shift);
+                } else {
+                    values.put_scaled(pm::kCtxChild0 + i, pm::zigzag16(at[k], pred.child[k]), pred.shift[k]);
+                }
+            }
+            if (moves) {
+                const int64_t offset = pred.axis < 3 ? pred.parent_dot - 4 * pm::plane_dot(pred, from, at) : 0;
+                for (uint32_t i = 0; i < 3; ++i) {
+                    const uint32_t k = order[i];
+                    if (i == 2 && pred.axis < 3) {
+                        const uint16_t predicted = pm::plane_coordinate(pred, from, to, offset, 8);
+                        values.put_scaled(pm::kCtxParent0 + i, pm::zigzag16(to[k], predicted), pred.axis_shift);
+                        continue;
+                    }
                     const uint16_t reflected = pm::reflect16(from[k], at[k]);
                     const uint16_t predicted =
                         fan.length != 0 ? pm::midpoint16(reflected, pred.parent_centroid[k]) : reflected;
-                    values.put_scaled(pm::kCtxParent0 + uint32_t(k), pm::zigzag16(to[k], predicted), pred.shift[k]);
+                    values.put_scaled(pm::kCtxParent0 + i, pm::zigzag16(to[k], predicted), pred.shift[k]);
                 }
-            for (int k = 0; k < 2; ++k)
-                values.put(pm::kCtxNormal0 + uint32_t(k),
-                           pm::zigzag8(z.oct[size_t(child) * 2 + k], z.oct[size_t(parent) * 2 + k]));
+            }
+            if (options.normals) {
+                // The child's normal: from its faces after the split (fan form), else the parent's.
+                uint8_t predicted[2] = {z.oct[size_t(parent) * 2], z.oct[size_t(parent) * 2 + 1]};
+                if (form == pm::kTopoFan) pm::predict_normal(pred, from, to, axis_weight, predicted);
+                for (int k = 0; k < 2; ++k)
+                    values.put(pm::kCtxNormal0 + uint32_t(k), pm::zigzag8(z.oct[size_t(child) * 2 + k], predicted[k]));
+            }
             replay.apply_mask(parent, child, mask, scratch, moved);
             if (moved.size() != pm.patch_begin[j + 1] - pm.patch_begin[j])
                 return split_error(mesh, j, "index patches do not replay");

@@ -342,6 +342,12 @@ Status BpmStream::parse_splits(ProgressiveMesh& m, std::span<const uint8_t> payl
     const Vec3f lo = m.bbox_min_, hi = m.bbox_max_;
     double step[3];
     for (int k = 0; k < 3; ++k) step[k] = (double(hi[k]) - double(lo[k])) / 65535.0;
+    int32_t axis_weight[3], plane_weight[3];
+    {
+        const float box_lo[3] = {lo.x, lo.y, lo.z}, box_hi[3] = {hi.x, hi.y, hi.z};
+        normal_axis_weights(box_lo, box_hi, axis_weight);
+        plane_axis_weights(box_lo, box_hi, plane_weight);
+    }
     uint32_t corners[64], moved[64], faces_at[9], ring[64];
     uint8_t fan_at[64];
     // The replay is bound by memory latency (a parent is anywhere in the mesh):
@@ -389,7 +395,10 @@ Status BpmStream::parse_splits(ProgressiveMesh& m, std::span<const uint8_t> payl
             faces = 2;
             const uint32_t f[6] = {child, parent, ring[start], child, ring[at], parent};
             std::copy_n(f, 6, faces_at);
-            predict_fan(m.qpos_.data(), ring, fan, start, length, from, pred);
+            // The plane through the parent: its normal (when the file has normals).
+            int64_t plane[3];
+            plane_normal(&m.qoct_[size_t(parent) * 2], plane_weight, plane);
+            predict_fan(m.qpos_.data(), ring, fan, start, length, from, m.has_normals_ ? plane : nullptr, pred);
         } else if (form == kTopoGeneral) {
             uint64_t head = 0;
             if (!topo.varint(head)) return fail("topology record truncated");
@@ -414,19 +423,39 @@ Status BpmStream::parse_splits(ProgressiveMesh& m, std::span<const uint8_t> payl
         // The child's position and the parent's move (0 to 1 positions), as residuals
         // of their predictions.
         uint16_t q[3], to[3];
-        for (int k = 0; k < 3; ++k)
-            q[k] = unzigzag16(uint16_t(values.get_scaled(kCtxChild0 + uint32_t(k), pred.shift[k])), pred.child[k]);
+        uint32_t order[3] = {0, 1, 2};
+        if (pred.axis < 3) {
+            plane_axes(pred.axis, order[0], order[1]);
+            order[2] = pred.axis;
+        }
+        for (uint32_t i = 0; i < 2; ++i)
+            q[order[i]] =
+                unzigzag16(uint16_t(values.get_scaled(kCtxChild0 + i, pred.shift[order[i]])), pred.child[order[i]]);
+        if (pred.axis < 3)
+            q[order[2]] = unzigzag16(uint16_t(values.get_scaled(kCtxChild0 + 2, pred.axis_shift)),
+                                     plane_coordinate(pred, from, q, pred.child_dot, 4));
+        else
+            q[2] = unzigzag16(uint16_t(values.get_scaled(kCtxChild0 + 2, pred.shift[2])), pred.child[2]);
         for (int k = 0; k < 3; ++k) to[k] = from[k];
         if (moves) {
-            for (int k = 0; k < 3; ++k) {
+            for (uint32_t i = 0; i < (pred.axis < 3 ? 2u : 3u); ++i) {
+                const uint32_t k = order[i];
                 const uint16_t reflected = reflect16(from[k], q[k]);
                 const uint16_t predicted = fan != 0 ? midpoint16(reflected, pred.parent_centroid[k]) : reflected;
-                to[k] = unzigzag16(uint16_t(values.get_scaled(kCtxParent0 + uint32_t(k), pred.shift[k])), predicted);
+                to[k] = unzigzag16(uint16_t(values.get_scaled(kCtxParent0 + i, pred.shift[k])), predicted);
+            }
+            if (pred.axis < 3) {
+                const int64_t offset = pred.parent_dot - 4 * plane_dot(pred, from, q);
+                to[order[2]] = unzigzag16(uint16_t(values.get_scaled(kCtxParent0 + 2, pred.axis_shift)),
+                                          plane_coordinate(pred, from, to, offset, 8));
             }
         }
-        uint8_t oct[2];
-        for (int k = 0; k < 2; ++k)
-            oct[k] = unzigzag8(uint8_t(values.get(kCtxNormal0 + uint32_t(k))), m.qoct_[size_t(parent) * 2 + k]);
+        uint8_t oct[2] = {m.qoct_[size_t(parent) * 2], m.qoct_[size_t(parent) * 2 + 1]};
+        if (m.has_normals_) {
+            // Predicted from the child's faces after the split (fan form), else the parent's normal.
+            if (fan != 0) predict_normal(pred, from, to, axis_weight, oct);
+            for (int k = 0; k < 2; ++k) oct[k] = unzigzag8(uint8_t(values.get(kCtxNormal0 + uint32_t(k))), oct[k]);
+        }
         if (values.past_end()) return fail("values truncated");
         // Index patches first (on the level before the split), then the new faces.
         if (!m.replay_.apply_mask(parent, child, mask, corners, corner_count, moved))

@@ -1,0 +1,210 @@
+// The version-4 split predictions of the .bpm format (shared/pm/bpm_format.h,
+// FORMAT.md "Predictions"): the plane through the parent, the child's normal from
+// its faces after the split, and what a file with or without normals decodes to.
+#include "shared/pm/bpm_format.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+
+#include "builder/lod/simplify.h"
+#include "shared/pm/progressive_mesh.h"
+#include "tests/lod/lod_test_util.h"
+
+namespace body {
+namespace {
+
+// A ring of k vertices around v = (1000, 2000, 3000) on the plane through v with
+// normal n (quantized space), counter-clockwise seen from n: q holds v (vertex 0),
+// then the ring (vertices 1 .. k).
+struct PlaneFan {
+    std::vector<uint16_t> q;
+    std::vector<uint32_t> ring;
+};
+PlaneFan plane_fan(uint32_t k, const double n[3], double radius) {
+    const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    const double z[3] = {n[0] / len, n[1] / len, n[2] / len};
+    // Tangents: x = a unit vector orthogonal to z, y = z cross x.
+    double x[3] = {z[1], -z[0], 0.0};
+    if (std::fabs(z[2]) > 0.9) x[0] = 1.0, x[1] = 0.0, x[2] = -z[0] / z[2];
+    const double lx = std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+    for (double& c : x) c /= lx;
+    const double y[3] = {z[1] * x[2] - z[2] * x[1], z[2] * x[0] - z[0] * x[2], z[0] * x[1] - z[1] * x[0]};
+    PlaneFan f;
+    f.q = {1000, 2000, 3000};
+    for (uint32_t t = 0; t < k; ++t) {
+        const double a = 2.0 * M_PI * t / k;
+        for (int c = 0; c < 3; ++c)
+            f.q.push_back(uint16_t(std::lround(f.q[size_t(c)] + radius * (std::cos(a) * x[c] + std::sin(a) * y[c]))));
+        f.ring.push_back(t + 1);
+    }
+    return f;
+}
+
+TEST(BpmFormat, PlaneNormalFollowsTheOctahedralNormal) {
+    const int32_t unit[3] = {1, 1, 1};
+    int64_t n[3];
+    const uint8_t up[2] = {128, 128};  // (u, w) = (1, 1) / 255: about +z
+    pm::plane_normal(up, unit, n);
+    EXPECT_EQ(n[2], 253);
+    EXPECT_EQ(n[0], 1);
+    const uint8_t down[2] = {255, 255};  // folded corner: -z
+    pm::plane_normal(down, unit, n);
+    EXPECT_LT(n[2], -250);
+    // The weights scale each axis (object -> quantized space).
+    const int32_t w[3] = {256, 128, 1};
+    const uint8_t x_axis[2] = {254, 128};  // (u, w, z) = (253, 1, 1)
+    pm::plane_normal(x_axis, w, n);
+    EXPECT_EQ(n[0], 253 * 256);
+    EXPECT_EQ(n[1], 1 * 128);
+    EXPECT_EQ(n[2], 1);
+}
+
+TEST(BpmFormat, FlatRingPredictsTheAxisAlongTheNormalExactly) {
+    // Tilted planes: the coordinate along the dominant axis of any point on the
+    // plane is predicted within rounding from the other two.
+    const double normals[][3] = {{0, 0, 1}, {0.3, -0.2, 1}, {1, 0.5, 0.2}, {-0.4, -1, 0.3}};
+    for (const auto& nd : normals) {
+        const PlaneFan f = plane_fan(8, nd, 400.0);
+        // The plane's normal as the decoder has it: scaled to integers.
+        const int64_t plane[3] = {std::llround(nd[0] * 1000), std::llround(nd[1] * 1000), std::llround(nd[2] * 1000)};
+        pm::FanPrediction pred{{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+        pm::predict_fan(f.q.data(), f.ring.data(), 8, 2, 3, f.q.data(), plane, pred);
+        ASSERT_LT(pred.axis, 3u);
+        uint32_t a, b;
+        pm::plane_axes(pred.axis, a, b);
+        EXPECT_NE(a, pred.axis);
+        EXPECT_NE(b, pred.axis);
+        EXPECT_LT(a, b);
+        // The ring lies on the plane (to rounding): the shift of the plane's axis is small.
+        EXPECT_LE(pred.axis_shift, 1u) << nd[0] << " " << nd[1] << " " << nd[2];
+        for (uint32_t t = 1; t <= 8; ++t) {
+            const uint16_t* p = &f.q[t * 3];
+            const uint16_t predicted = pm::plane_coordinate(pred, f.q.data(), p, 0, 4);
+            EXPECT_NEAR(int(predicted), int(p[pred.axis]), 2) << "ring vertex " << t;
+        }
+        // Off the plane by the offset: offset / (scale * N_axis) along the axis.
+        const uint16_t on = pm::plane_coordinate(pred, f.q.data(), f.q.data(), 0, 4);
+        EXPECT_EQ(on, f.q[pred.axis]);
+        const int64_t n_axis = plane[pred.axis];
+        const uint16_t off = pm::plane_coordinate(pred, f.q.data(), f.q.data(), 4 * 10 * n_axis, 4);
+        EXPECT_EQ(int(off), int(f.q[pred.axis]) + 10);
+    }
+}
+
+TEST(BpmFormat, NoPlaneWithoutANormal) {
+    const double nd[3] = {0, 0, 1};
+    const PlaneFan f = plane_fan(6, nd, 300.0);
+    pm::FanPrediction pred{{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+    pm::predict_fan(f.q.data(), f.ring.data(), 6, 0, 2, f.q.data(), nullptr, pred);
+    EXPECT_EQ(pred.axis, 3u);
+    const int64_t zero[3] = {0, 0, 0};
+    pm::predict_fan(f.q.data(), f.ring.data(), 6, 0, 2, f.q.data(), zero, pred);
+    EXPECT_EQ(pred.axis, 3u);
+    // The old predictions are unchanged: the child at the midpoint of v and its ring's centroid.
+    uint32_t sum[3] = {0, 0, 0};
+    for (uint32_t t = 0; t <= 2; ++t)
+        for (int c = 0; c < 3; ++c) sum[c] += f.q[(t + 1) * 3 + size_t(c)];
+    for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(int(pred.child[c]), (int(f.q[size_t(c)]) + int(std::lround(sum[c] / 3.0))) / 2, 1);
+}
+
+TEST(BpmFormat, ChildNormalIsTheNormalOfItsFacesAfterTheSplit) {
+    // The child and its loop on a plane: the predicted octahedral normal is the
+    // plane's (the orientation of the fan: counter-clockwise seen from the normal).
+    const double normals[][3] = {{0, 0, 1}, {0.5, 0.2, 1}, {-1, 0.3, -0.6}, {0.1, -1, 0.2}};
+    const float lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};  // a cube: no axis scaling
+    int32_t weight[3];
+    pm::normal_axis_weights(lo, hi, weight);
+    EXPECT_EQ(weight[0], 256);
+    EXPECT_EQ(weight[2], 256);
+    for (const auto& nd : normals) {
+        const PlaneFan f = plane_fan(7, nd, 500.0);
+        pm::FanPrediction pred{{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+        const int64_t plane[3] = {0, 0, 1};
+        pm::predict_fan(f.q.data(), f.ring.data(), 7, 5, 3, f.q.data(), plane, pred);
+        // The parent stays at v; the child (anywhere: the loop's area does not depend on it).
+        uint8_t oct[2];
+        pm::predict_normal(pred, f.q.data(), f.q.data(), weight, oct);
+        float got[3];
+        pm::oct_decode8(oct, got);
+        const double len = std::sqrt(nd[0] * nd[0] + nd[1] * nd[1] + nd[2] * nd[2]);
+        const double dot = (got[0] * nd[0] + got[1] * nd[1] + got[2] * nd[2]) / len;
+        EXPECT_GT(dot, 0.999) << nd[0] << " " << nd[1] << " " << nd[2];
+    }
+    // A degenerate loop (every vertex at v) gives the neutral code.
+    const std::vector<uint16_t> same(3 * 8, 7);
+    const uint32_t ring[7] = {1, 2, 3, 4, 5, 6, 7};
+    pm::FanPrediction pred{{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+    pm::predict_fan(same.data(), ring, 7, 0, 3, same.data(), nullptr, pred);
+    uint8_t oct[2];
+    pm::predict_normal(pred, same.data(), same.data(), weight, oct);
+    EXPECT_EQ(oct[0], 128);
+    EXPECT_EQ(oct[1], 128);
+}
+
+// Full round trips: the decoded normals are the builder's (to 8-bit octahedral
+// precision) with the normal predictions, and a file without normals (no plane)
+// still decodes every position.
+TEST(BpmFormat, NormalsRoundTripThroughTheirPredictions) {
+    const Mesh torus = test::bumpy_torus(40, 24);
+    lod::LodOptions options;
+    auto build = lod::build_progressive_mesh(torus, options);
+    ASSERT_TRUE(build.ok());
+    auto bytes = lod::encode_bpm(std::vector<Mesh>{torus}, options);
+    ASSERT_TRUE(bytes.ok());
+    auto pms = pm::read_bpm_bytes(*bytes, "torus.bpm");
+    ASSERT_TRUE(pms.ok()) << pms.error().message;
+    pm::ProgressiveMesh& m = *(*pms)[0];
+    ASSERT_TRUE(m.has_normals());
+    ASSERT_EQ(m.max_vertex_count(), build->normals.size());
+    for (size_t v = 0; v < build->normals.size(); ++v) {
+        const Vec3 n = glm::normalize(build->normals[v]);
+        const Vec3f got = m.normals()[v];
+        ASSERT_GT(double(got.x) * n.x + double(got.y) * n.y + double(got.z) * n.z, 0.999) << "vertex " << v;
+    }
+}
+
+TEST(BpmFormat, FileWithoutNormalsDecodesEveryPosition) {
+    const Mesh torus = test::bumpy_torus(36, 20);
+    lod::LodOptions options;
+    options.normals = false;
+    auto build = lod::build_progressive_mesh(torus, options);
+    ASSERT_TRUE(build.ok());
+    auto bytes = lod::encode_bpm(std::vector<Mesh>{torus}, options);
+    ASSERT_TRUE(bytes.ok());
+    auto with = lod::encode_bpm(std::vector<Mesh>{torus}, lod::LodOptions{});
+    ASSERT_TRUE(with.ok());
+    EXPECT_LT(bytes->size(), with->size());  // no normal values at all
+    auto pms = pm::read_bpm_bytes(*bytes, "torus.bpm");
+    ASSERT_TRUE(pms.ok()) << pms.error().message;
+    pm::ProgressiveMesh& m = *(*pms)[0];
+    EXPECT_FALSE(m.has_normals());
+    // Each vertex where it appears: the base at level 0, vertex B + j at level j + 1.
+    const double bound = double(m.quantization_bound()) * 1.01;
+    m.set_level(0);
+    const size_t base = m.max_vertex_count() - m.max_level();
+    for (size_t v = 0; v < base; ++v)
+        ASSERT_LE(glm::length(Vec3(m.positions()[v]) - build->positions[v]), bound) << "vertex " << v;
+    for (size_t j = 0; j < m.max_level(); ++j) {
+        m.set_level(j + 1);
+        ASSERT_LE(glm::length(Vec3(m.positions()[base + j]) - build->positions[base + j]), bound) << "split " << j;
+    }
+}
+
+TEST(BpmFormat, OlderVersionsAreRejectedWithTheirNumber) {
+    auto bytes = lod::encode_bpm(std::vector<Mesh>{test::icosphere(2)}, lod::LodOptions{});
+    ASSERT_TRUE(bytes.ok());
+    std::vector<uint8_t> old = *bytes;
+    old[4] = 3;
+    old[5] = 0;
+    const uint32_t crc = pm::crc32({old.data(), 12});
+    std::memcpy(&old[12], &crc, 4);  // little-endian host, as the format
+    auto r = pm::read_bpm_bytes(old, "old.bpm");
+    ASSERT_FALSE(r.ok());
+    EXPECT_NE(r.error().message.find("byte 4: unsupported version 3"), std::string::npos) << r.error().message;
+}
+
+}  // namespace
+}  // namespace body
