@@ -159,7 +159,7 @@ void run(const Mesh& mesh, const std::string& label, const std::string& vtk_dir,
     auto hausdorff_at = [&](pm::ProgressiveMesh& pmesh, size_t target) {
         pmesh.set_level(pmesh.level_for_triangles(target));
         std::vector<Vec3> pos;
-        for (size_t v = 0; v < pmesh.vertex_count(); ++v) pos.push_back(Vec3(pmesh.positions()[v]));
+        for (size_t v = 0; v < pmesh.vertex_count(); ++v) pos.push_back(Vec3(pmesh.position(v)));
         std::vector<uint32_t> idx(pmesh.indices().begin(),
                                   pmesh.indices().begin() + ptrdiff_t(pmesh.triangle_count() * 3));
         return std::max(lod::one_sided_hausdorff(pos, idx, full),

@@ -49,9 +49,9 @@ int run_extract(const Args& argv) {
         Mesh m;
         m.name = p->name();
         m.color = Vec3(p->color());
-        for (size_t v = 0; v < p->vertex_count(); ++v) m.positions.push_back(Vec3(p->positions()[v]));
+        for (size_t v = 0; v < p->vertex_count(); ++v) m.positions.push_back(Vec3(p->position(v)));
         if (p->has_normals())
-            for (size_t v = 0; v < p->vertex_count(); ++v) m.normals.push_back(Vec3(p->normals()[v]));
+            for (size_t v = 0; v < p->vertex_count(); ++v) m.normals.push_back(Vec3(p->normal(v)));
         m.indices.assign(p->indices().begin(), p->indices().begin() + ptrdiff_t(p->triangle_count() * 3));
         std::printf("%s: level %zu of %zu, %zu triangles, error %g\n", m.name.c_str(), level, p->max_level(),
                     m.triangle_count(), double(p->error_at(level)));

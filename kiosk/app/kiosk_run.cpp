@@ -73,10 +73,14 @@ struct Part {
     render::MeshData mesh() const {
         if (!pm) return source->mesh();
         render::MeshData m;
-        m.positions = pm->positions();
-        m.normals = pm->normals();
+        // The pm's own codes (positions in its box, octahedral normals): no float copy.
+        m.position_codes = pm->position_codes();
+        m.has_position_box = true;
+        m.position_box_min = pm->bounds_min();
+        m.position_box_max = pm->bounds_max();
+        m.normal_codes = pm->normal_codes();
         m.indices = pm->indices();
-        m.morph_sources = pm->positions();  // at rest: nothing displaced
+        m.morph_at_rest = true;  // at rest: nothing displaced
         m.vertex_count = pm->vertex_count();
         m.index_count = 3 * pm->triangle_count();
         return m;
@@ -110,8 +114,9 @@ struct Part {
     // Ends a morph where it is meant to end: the sources back to the positions.
     void stop_morph(render::Renderer& r) {
         if (morphing()) {
-            const auto own = pm->positions().subspan(morph_begin, morph_end - morph_begin);
-            if (auto st = r.set_morph_sources(id, morph_begin, own); !st)
+            morph_sources.resize(morph_end - morph_begin);  // the positions, as floats
+            pm->positions(morph_begin, morph_sources);
+            if (auto st = r.set_morph_sources(id, morph_begin, morph_sources); !st)
                 std::fprintf(stderr, "bodyview: %s\n", st.error().message.c_str());
         }
         morph_begin = morph_end = 0;
@@ -234,12 +239,13 @@ std::optional<float> pick_part(const Part& p, const glm::mat4& transform, const 
     const glm::vec3 d = glm::vec3(inv * glm::vec4(ray.direction, 0.0f));
     const render::MeshData mesh = p.mesh();
     const size_t n = std::min(mesh.index_count, mesh.indices.size());
+    // A pm keeps codes: dequantized per corner.
+    const auto at = [&](uint32_t v) { return p.pm ? p.pm->position(v) : mesh.positions[v]; };
     float best = 1e30f;
     bool hit = false;
     for (size_t i = 0; i + 2 < n; i += 3) {
         // Möller-Trumbore, both sides.
-        const glm::vec3 a = mesh.positions[mesh.indices[i]], b = mesh.positions[mesh.indices[i + 1]],
-                        c = mesh.positions[mesh.indices[i + 2]];
+        const glm::vec3 a = at(mesh.indices[i]), b = at(mesh.indices[i + 1]), c = at(mesh.indices[i + 2]);
         const glm::vec3 e1 = b - a, e2 = c - a, pv = glm::cross(d, e2);
         const float det = glm::dot(e1, pv);
         if (std::abs(det) < 1e-12f) continue;

@@ -103,7 +103,11 @@ std::span<const uint32_t> ModelSource::current_indices() const {
 }
 
 std::span<const Vec3f> ModelSource::positions() const {
-    if (!positions_decoded_) {
+    if (!positions_decoded_ && pm_) {
+        positions_.resize(pm_->max_vertex_count());
+        pm_->positions(0, std::span<Vec3f>(positions_).first(pm_->available_level() + pm_->base_vertex_count()));
+        positions_decoded_ = true;
+    } else if (!positions_decoded_) {
         const Vec3f scale = (box_max_ - box_min_) / 65535.0f;
         positions_.resize(vertex_count_);
         for (size_t v = 0; v < vertex_count_; ++v) {
@@ -116,8 +120,18 @@ std::span<const Vec3f> ModelSource::positions() const {
 }
 
 MeshData ModelSource::upload_mesh() const {
-    if (pm_) return mesh();
     MeshData m;
+    if (pm_) {
+        m.position_codes = pm_->position_codes();
+        m.has_position_box = true;
+        m.position_box_min = pm_->bounds_min();
+        m.position_box_max = pm_->bounds_max();
+        m.normal_codes = pm_->normal_codes();
+        m.indices = pm_->indices();
+        m.vertex_count = pm_->vertex_count();
+        m.index_count = 3 * pm_->triangle_count();
+        return m;
+    }
     m.position_codes = position_codes_;
     m.has_position_box = true;
     m.position_box_min = box_min_;
@@ -128,9 +142,9 @@ MeshData ModelSource::upload_mesh() const {
 }
 
 void ModelSource::release_arrays() {
-    if (pm_) return;
-    size_t freed = positions_.capacity() * sizeof(Vec3f);
+    size_t freed = (positions_.capacity() + pm_normals_.capacity()) * sizeof(Vec3f);
     std::vector<Vec3f>().swap(positions_);  // `= {}` would keep the storage
+    std::vector<Vec3f>().swap(pm_normals_);
     positions_decoded_ = false;
     // The current level's indices, unless they exist only plainly (no code).
     if (decoded_ != Decoded::None && !full_code_.empty() && (decoded_ == Decoded::Full || !level_code_.empty())) {
@@ -152,6 +166,7 @@ void ModelSource::set_lod(double ratio) {
     const auto target = static_cast<size_t>(static_cast<double>(full_triangles()) * ratio + 0.5);
     if (pm_) {
         pm_->set_level(pm_->level_for_triangles(std::max<size_t>(target, 1)));
+        positions_decoded_ = false;  // the level's floats are decoded again when asked for
         return;
     }
     const size_t old_size = current_index_count();
@@ -194,14 +209,13 @@ void ModelSource::set_lod(double ratio) {
 MeshData ModelSource::mesh() const {
     MeshData m;
     if (pm_) {
-        m.positions = pm_->positions();
-        if (pm_->has_normals()) m.normals = pm_->normals();
-        m.indices = pm_->indices();
-        m.vertex_count = pm_->vertex_count();
-        m.index_count = 3 * pm_->triangle_count();
-        m.has_position_box = true;
-        m.position_box_min = pm_->bounds_min();
-        m.position_box_max = pm_->bounds_max();
+        m = upload_mesh();
+        m.positions = positions();
+        if (pm_->has_normals() && pm_normals_.empty()) {
+            pm_normals_.resize(pm_->max_vertex_count());
+            for (size_t v = 0; v < pm_normals_.size(); ++v) pm_normals_[v] = pm_->normal(v);
+        }
+        m.normals = pm_normals_;
         return m;
     }
     m.positions = positions();
@@ -218,7 +232,7 @@ Dirty ModelSource::take_dirty() {
     Dirty d;
     if (pm_) {
         if (first_) {
-            d = {0, pm_->positions().size(), 0, pm_->indices().size()};
+            d = {0, pm_->max_vertex_count(), 0, pm_->indices().size()};
         } else {
             d = {pm_->dirty_vertices().begin, pm_->dirty_vertices().end, pm_->dirty_indices().begin,
                  pm_->dirty_indices().end};

@@ -47,19 +47,22 @@ public:
     size_t triangles() const;  // at the current level
     // Ratio of full_triangles() in (0, 1]; values outside are clamped.
     void set_lod(double ratio);
-    // Current arrays and drawn counts (plain meshes: float positions decoded
-    // from the kept codes when first asked for, plus the codes themselves).
+    // Current arrays and drawn counts (float positions and, for progressive
+    // meshes, normals decoded from the kept codes when first asked for, plus
+    // the codes themselves).
     MeshData mesh() const;
-    // The same for an upload: plain meshes give their positions as codes only
-    // (MeshData::position_codes), so no float copy is made.
+    // The same for an upload: positions as codes only (MeshData::position_codes)
+    // and a progressive mesh's normals as its octahedral codes
+    // (MeshData::normal_codes), so no float copy is made.
     MeshData upload_mesh() const;
     // Ranges changed since the last call (everything on the first call).
     Dirty take_dirty();
     // Plain meshes: frees the current level's index array and the float
     // positions once uploaded (the renderer keeps its own copy); a later
     // mesh() decodes them again from the codes, with the same triangles (a
-    // triangle's corners may come rotated, its winding kept). Progressive meshes: nothing (their
-    // splits patch their arrays in place).
+    // triangle's corners may come rotated, its winding kept). Progressive
+    // meshes: the floats mesh() decoded (their splits patch the codes and
+    // indices in place).
     void release_arrays();
 
 private:
@@ -74,7 +77,7 @@ private:
     std::vector<uint16_t> position_codes_;
     Vec3f box_min_{0.0f}, box_max_{0.0f};
     size_t vertex_count_ = 0;
-    mutable std::vector<Vec3f> positions_;
+    mutable std::vector<Vec3f> positions_, pm_normals_;  // pm_normals_: a progressive mesh's, decoded
     mutable bool positions_decoded_ = false;
     std::span<const Vec3f> positions() const;  // decodes when released
     // Plain meshes: the full level and (when simplified_) the current level's

@@ -23,6 +23,7 @@
 
 #include "kiosk/render/edge_list.h"
 #include "kiosk/render/tonal_art_map.h"
+#include "shared/pm/bpm_format.h"
 
 namespace body::render {
 
@@ -212,13 +213,22 @@ void release_scratch(std::vector<Vec3f>& computed) {
 
 // Packs normals [begin, end) into the GL_ARRAY_BUFFER bound (4 bytes each, at
 // their own element offsets) a piece at a time, so no packed copy of the whole
-// range is held.
-void upload_packed_normals(std::span<const Vec3f> normals, size_t begin, size_t end) {
+// range is held. From octahedral `codes` (two per vertex) when given, else from
+// `normals`.
+void upload_packed_normals(std::span<const Vec3f> normals, std::span<const uint8_t> codes, size_t begin, size_t end) {
     constexpr size_t kPiece = 64 * 1024;
     std::vector<uint32_t> packed(std::min(kPiece, end - begin));
     for (size_t first = begin; first < end; first += kPiece) {
         const size_t n = std::min(kPiece, end - first);
-        for (size_t i = 0; i < n; ++i) packed[i] = pack_normal(normals[first + i]);
+        if (codes.empty()) {
+            for (size_t i = 0; i < n; ++i) packed[i] = pack_normal(normals[first + i]);
+        } else {
+            for (size_t i = 0; i < n; ++i) {
+                float v[3];
+                pm::oct_decode8(&codes[(first + i) * 2], v);
+                packed[i] = pack_normal(Vec3f(v[0], v[1], v[2]));
+            }
+        }
         glBufferSubData(GL_ARRAY_BUFFER, static_cast<GLintptr>(first * 4), static_cast<GLsizeiptr>(n * 4),
                         packed.data());
     }
@@ -604,7 +614,8 @@ Result<ModelId> Renderer::add_model(const MeshData& mesh, const std::string& nam
     if (pos.empty() || mesh.indices.empty() || vcount == 0 || icount < 3) return input_error(name + ": empty mesh");
     if (pos.coded() && !mesh.has_position_box) return input_error(name + ": position codes without their box");
     if (vcount > pos.size() || icount > mesh.indices.size() ||
-        (!mesh.normals.empty() && mesh.normals.size() < pos.size()))
+        (!mesh.normals.empty() && mesh.normals.size() < pos.size()) ||
+        (!mesh.normal_codes.empty() && mesh.normal_codes.size() / 2 < pos.size()))
         return input_error(name + ": counts exceed the arrays");
     // prefix_only: capacity past the counts may be unwritten (a progressive mesh
     // still streaming); it arrives through update_model.
@@ -652,14 +663,14 @@ Result<ModelId> Renderer::add_model(const MeshData& mesh, const std::string& nam
     {
         std::vector<Vec3f> computed;
         std::span<const Vec3f> normals = mesh.normals;
-        if (normals.empty()) {
+        if (normals.empty() && mesh.normal_codes.empty()) {
             computed = area_normals(pos, mesh.indices.first(m.index_count), pos.size());
             normals = computed;
         }
         glGenBuffers(1, &m.vbo_normal);
         glBindBuffer(GL_ARRAY_BUFFER, m.vbo_normal);
         glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(m.vertex_capacity * 4), nullptr, GL_DYNAMIC_DRAW);
-        upload_packed_normals(normals, 0, vupload);
+        upload_packed_normals(normals, mesh.normal_codes, 0, vupload);
         glVertexAttribPointer(kNormal, 4, GL_INT_2_10_10_10_REV, GL_TRUE, 4, nullptr);
         glEnableVertexAttribArray(kNormal);
         release_scratch(computed);
@@ -672,12 +683,13 @@ Result<ModelId> Renderer::add_model(const MeshData& mesh, const std::string& nam
     upload_positions(m, pos, 0, vupload);
     position_pointer(m, kPosition);
     glEnableVertexAttribArray(kPosition);
-    if (mesh.morph_sources.size() >= pos.size()) {
+    if (mesh.morph_sources.size() >= pos.size() || mesh.morph_at_rest) {
         glGenBuffers(1, &m.vbo_morph);
         glBindBuffer(GL_ARRAY_BUFFER, m.vbo_morph);
         glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(m.vertex_capacity * m.position_stride()), nullptr,
                      GL_DYNAMIC_DRAW);
-        upload_positions(m, PositionView(mesh.morph_sources), 0, vupload);
+        upload_positions(m, mesh.morph_sources.size() >= pos.size() ? PositionView(mesh.morph_sources) : pos, 0,
+                         vupload);
         position_pointer(m, kMorph);
         glEnableVertexAttribArray(kMorph);
     }
@@ -727,7 +739,8 @@ Status Renderer::update_model(ModelId id, const MeshData& mesh, const Dirty& dir
     const size_t icount = mesh.index_count == SIZE_MAX ? mesh.indices.size() : mesh.index_count;
     if (pos.size() > m.vertex_capacity || mesh.indices.size() > m.index_capacity || vcount > pos.size() ||
         icount > mesh.indices.size() || dirty.vertex_end > pos.size() || (pos.coded() && !mesh.has_position_box) ||
-        dirty.index_end > mesh.indices.size() || (!mesh.normals.empty() && mesh.normals.size() < dirty.vertex_end))
+        dirty.index_end > mesh.indices.size() || (!mesh.normals.empty() && mesh.normals.size() < dirty.vertex_end) ||
+        (!mesh.normal_codes.empty() && mesh.normal_codes.size() / 2 < dirty.vertex_end))
         return input_error(m.name + ": update exceeds the uploaded capacity");
     for (size_t i = dirty.index_begin; i < dirty.index_end; ++i)
         if (mesh.indices[i] >= pos.size())
@@ -741,12 +754,16 @@ Status Renderer::update_model(ModelId id, const MeshData& mesh, const Dirty& dir
         if (m.vbo_morph && mesh.morph_sources.size() >= dirty.vertex_end) {
             glBindBuffer(GL_ARRAY_BUFFER, m.vbo_morph);
             upload_positions(m, PositionView(mesh.morph_sources), b, b + n);
+        } else if (m.vbo_morph && mesh.morph_at_rest) {
+            glBindBuffer(GL_ARRAY_BUFFER, m.vbo_morph);
+            upload_positions(m, pos, b, b + n);
         }
         std::vector<Vec3f> computed;
-        if (mesh.normals.empty()) computed = area_normals(pos, mesh.indices.first(icount - icount % 3), pos.size());
+        if (mesh.normals.empty() && mesh.normal_codes.empty())
+            computed = area_normals(pos, mesh.indices.first(icount - icount % 3), pos.size());
         std::span<const Vec3f> normals = mesh.normals.empty() ? std::span<const Vec3f>(computed) : mesh.normals;
         glBindBuffer(GL_ARRAY_BUFFER, m.vbo_normal);
-        upload_packed_normals(normals, b, b + n);
+        upload_packed_normals(normals, mesh.normal_codes, b, b + n);
         release_scratch(computed);
         set_bounds(m, pos, vcount);
     }

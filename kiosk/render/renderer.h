@@ -87,6 +87,13 @@ struct MeshData {
     // min) / 65535; uploaded as they are (a source that keeps its positions so
     // needs no float copy).
     std::span<const uint16_t> position_codes = {};
+    // Optional, in place of `normals`: two 8-bit octahedral codes per vertex, as
+    // a .bpm keeps them (pm::oct_decode8); packed for GL as they are uploaded.
+    std::span<const uint8_t> normal_codes = {};
+    // Without morph_sources: true gives the model a morph buffer holding its
+    // positions (the sources at rest), patched with the same dirty vertex
+    // ranges, so a source that keeps only codes needs no float copy.
+    bool morph_at_rest = false;
 };
 
 // Half-open element ranges changed since the last upload (vertices: positions

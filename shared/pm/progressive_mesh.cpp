@@ -25,6 +25,17 @@ float ProgressiveMesh::quantization_bound() const {
     return 0.5f * glm::length(step) + 2.0f * ulp;
 }
 
+void ProgressiveMesh::positions(size_t begin, std::span<Vec3f> out) const {
+    for (size_t i = 0; i < out.size(); ++i) out[i] = dequantize(&positions_[(begin + i) * 3]);
+}
+
+Vec3f ProgressiveMesh::normal(size_t v) const {
+    if (!has_normals_) return Vec3f(0.0f, 0.0f, 1.0f);
+    float n[3];
+    oct_decode8(&qoct_[v * 2], n);
+    return Vec3f(n[0], n[1], n[2]);
+}
+
 size_t ProgressiveMesh::level_for_triangles(size_t triangles) const {
     if (triangles < base_faces_) return 0;
     auto end = face_end_.begin() + ptrdiff_t(decoded_splits_);
@@ -49,9 +60,9 @@ size_t ProgressiveMesh::refine_to(size_t level) {
             indices_[c] = child;
             dirty_indices_.add(c, c + 1);
         }
-        if (parent_to_[j] != parent_from_[j]) {
+        if (!same_parent_position(j)) {
             const uint32_t parent = parents_[child];
-            positions_[parent] = parent_to_[j];
+            std::copy_n(&parent_to_[j * 3], 3, &positions_[size_t(parent) * 3]);
             dirty_vertices_.add(parent, parent + 1);
         }
     }
@@ -68,8 +79,8 @@ size_t ProgressiveMesh::coarsen_to(size_t level) {
             indices_[c] = parent;
             dirty_indices_.add(c, c + 1);
         }
-        if (parent_to_[j] != parent_from_[j]) {
-            positions_[parent] = parent_from_[j];
+        if (!same_parent_position(j)) {
+            std::copy_n(&parent_from_[j * 3], 3, &positions_[size_t(parent) * 3]);
             dirty_vertices_.add(parent, parent + 1);
         }
     }
@@ -84,9 +95,10 @@ size_t ProgressiveMesh::morph_sources(size_t lo, std::vector<Vec3f>& out, std::v
     size_t begin = lo_vc;
     for (size_t j = lo; j < level_; ++j) {
         const uint32_t p = parents_[base_vertices_ + j];
-        if (p < begin && parent_to_[j] != parent_from_[j]) begin = p;
+        if (p < begin && !same_parent_position(j)) begin = p;
     }
-    out.assign(positions_.begin() + ptrdiff_t(begin), positions_.begin() + ptrdiff_t(hi_vc));
+    out.resize(hi_vc - begin);
+    positions(begin, out);
     // parent_from_[j] is the parent's position just before split j, so the first
     // split since lo naming an older vertex as parent gives its position at lo;
     // `scratch` marks the older vertices in [begin, lo_vc) already settled.
@@ -98,18 +110,28 @@ size_t ProgressiveMesh::morph_sources(size_t lo, std::vector<Vec3f>& out, std::v
         if (p >= lo_vc) {
             at_lo = out[p - begin];  // added since lo: its own source, set before (p < c)
         } else if (p < begin) {
-            at_lo = parent_from_[j];  // never moved since lo
+            at_lo = dequantize(&parent_from_[j * 3]);  // never moved since lo
         } else {
             const size_t bit = p - begin;
             if (!(scratch[bit / 64] >> (bit % 64) & 1)) {
                 scratch[bit / 64] |= uint64_t(1) << (bit % 64);
-                out[bit] = parent_from_[j];
+                out[bit] = dequantize(&parent_from_[j * 3]);
             }
             at_lo = out[bit];
         }
         out[c - begin] = at_lo;
     }
     return begin;
+}
+
+void ProgressiveMesh::release_decoding_state() {
+    // Swapped out, not `= {}` (that empties a vector but keeps its storage).
+    replay_ = SplitReplay{};
+    UninitVector<uint16_t>().swap(qpos_);
+    if (!has_normals_) UninitVector<uint8_t>().swap(qoct_);  // with normals: kept as them
+    // patch_corners_ grew geometrically while the splits arrived: to its size,
+    // now that the replay's larger arrays are gone (the copy adds no peak).
+    patch_corners_.shrink_to_fit();
 }
 
 // ---------------------------------------------------------------- reader
@@ -236,6 +258,7 @@ Status BpmStream::parse_info(std::span<const uint8_t> payload, const std::string
     m->bbox_min_ = Vec3f(f[3], f[4], f[5]);
     m->bbox_max_ = Vec3f(f[6], f[7], f[8]);
     m->has_normals_ = flags & 1;
+    for (int k = 0; k < 3; ++k) m->step_[k] = (double(m->bbox_max_[k]) - double(m->bbox_min_[k])) / 65535.0;
     m->base_vertices_ = bv;
     m->base_faces_ = bf;
     m->split_count_ = splits;
@@ -243,17 +266,13 @@ Status BpmStream::parse_info(std::span<const uint8_t> payload, const std::string
     m->chunk_splits_ = chunk;
     // Full capacity, uninitialised: each entry is written when its section
     // arrives, and only decoded entries are read (no page faults for the rest).
-    m->positions_.resize(vertices);
-    if (m->has_normals_)
-        m->normals_.resize(vertices);
-    else
-        m->normals_.assign(vertices, Vec3f(0.0f, 0.0f, 1.0f));
+    m->positions_.resize(vertices * 3);
     m->parents_.resize(vertices);
     m->indices_.resize(size_t(faces) * 3);
     m->face_end_.resize(splits);
     m->split_error_.resize(splits);
-    m->parent_from_.resize(splits);
-    m->parent_to_.resize(splits);
+    m->parent_from_.resize(size_t(splits) * 3);
+    m->parent_to_.resize(size_t(splits) * 3);
     m->patch_begin_.resize(size_t(splits) + 1);
     m->patch_begin_[0] = 0;
     m->patch_corners_.clear();
@@ -281,15 +300,10 @@ Status BpmStream::parse_base(ProgressiveMesh& m, std::span<const uint8_t> payloa
     for (size_t v = 0; v < verts.size(); ++v) {
         for (int k = 0; k < 3; ++k) {
             m.qpos_[v * 3 + k] = verts[v].q[k];
-            m.positions_[v][k] = dequantize16(verts[v].q[k], m.bbox_min_[k], m.bbox_max_[k]);
+            m.positions_[v * 3 + k] = verts[v].q[k];
         }
         m.qoct_[v * 2] = verts[v].oct[0];
         m.qoct_[v * 2 + 1] = verts[v].oct[1];
-        if (m.has_normals_) {
-            float n[3];
-            oct_decode8(verts[v].oct, n);
-            m.normals_[v] = Vec3f(n[0], n[1], n[2]);
-        }
         m.parents_[v] = uint32_t(v);
     }
     std::copy(decoded_indices_.begin(), decoded_indices_.end(), m.indices_.begin());
@@ -298,11 +312,7 @@ Status BpmStream::parse_base(ProgressiveMesh& m, std::span<const uint8_t> payloa
     m.base_ready_ = true;
     m.dirty_vertices_.add(0, m.base_vertices_);
     m.dirty_indices_.add(0, m.base_faces_ * 3);
-    if (m.split_count_ == 0) {
-        m.replay_ = SplitReplay{};
-        m.qpos_ = {};
-        m.qoct_ = {};
-    }
+    if (m.split_count_ == 0) m.release_decoding_state();
     return ok_status();
 }
 
@@ -340,8 +350,6 @@ Status BpmStream::parse_splits(ProgressiveMesh& m, std::span<const uint8_t> payl
     uint32_t previous_error_bits;
     std::memcpy(&previous_error_bits, &previous_error, 4);
     const Vec3f lo = m.bbox_min_, hi = m.bbox_max_;
-    double step[3];
-    for (int k = 0; k < 3; ++k) step[k] = (double(hi[k]) - double(lo[k])) / 65535.0;
     int32_t axis_weight[3], plane_weight[3];
     {
         const float box_lo[3] = {lo.x, lo.y, lo.z}, box_hi[3] = {hi.x, hi.y, hi.z};
@@ -469,23 +477,15 @@ Status BpmStream::parse_splits(ProgressiveMesh& m, std::span<const uint8_t> payl
         m.split_error_[j] = error;
         m.patch_corners_.insert(m.patch_corners_.end(), moved, moved + std::popcount(mask));
         m.patch_begin_[j + 1] = uint32_t(m.patch_corners_.size());
-        Vec3f from_f, to_f;
         for (int k = 0; k < 3; ++k) {
             m.qpos_[size_t(child) * 3 + k] = q[k];
             m.qpos_[size_t(parent) * 3 + k] = to[k];
-            m.positions_[child][k] = dequantize16(q[k], lo[k], step[k]);
-            from_f[k] = dequantize16(from[k], lo[k], step[k]);
-            to_f[k] = to[k] == from[k] ? from_f[k] : dequantize16(to[k], lo[k], step[k]);
+            m.positions_[size_t(child) * 3 + k] = q[k];
+            m.parent_from_[j * 3 + k] = from[k];
+            m.parent_to_[j * 3 + k] = to[k];
         }
-        m.parent_from_[j] = from_f;
-        m.parent_to_[j] = to_f;
         m.qoct_[size_t(child) * 2] = oct[0];
         m.qoct_[size_t(child) * 2 + 1] = oct[1];
-        if (m.has_normals_) {
-            float n[3];
-            oct_decode8(oct, n);
-            m.normals_[child] = Vec3f(n[0], n[1], n[2]);
-        }
         m.parents_[child] = parent;
     }
     if (count > 0) {
@@ -499,9 +499,7 @@ Status BpmStream::parse_splits(ProgressiveMesh& m, std::span<const uint8_t> payl
     m.decoded_splits_ += count;
     if (m.decoded_splits_ == m.split_count_) {
         if (m.decoded_faces_ != m.face_count_) return input_error(where + ": face count does not match INFO");
-        m.replay_ = SplitReplay{};
-        m.qpos_ = {};
-        m.qoct_ = {};
+        m.release_decoding_state();
     }
     return ok_status();
 }

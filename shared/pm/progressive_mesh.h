@@ -4,7 +4,7 @@
 //
 // A level is "k vertex splits applied on top of the base mesh". At level k the
 // mesh is exactly
-//   vertices  positions()[0 .. vertex_count())     (a prefix)
+//   vertices  position(0 .. vertex_count())        (a prefix)
 //   triangles indices()[0 .. 3 * triangle_count())  (a prefix, three per triangle,
 //                                                    counter-clockwise from outside)
 // and moving between levels only rewrites a few entries of indices() (the index
@@ -14,13 +14,17 @@
 // max_vertex_count()/max_triangle_count(), upload what dirty_vertices()/
 // dirty_indices() say after each change, and draw the prefixes.
 //
-// Units are object space (millimetres for anatomy). Positions are dequantized
-// from 16 bits per axis in the structure's bounding box, so they differ from the
-// builder's input by at most quantization_bound() (half a step per axis).
+// Units are object space (millimetres for anatomy). Positions are kept as the
+// file's 16-bit codes per axis in the structure's bounding box (position_codes(),
+// 6 bytes a vertex; the renderer draws them as they are) and dequantized on
+// demand (position(), positions()), so they differ from the builder's input by
+// at most quantization_bound() (half a step per axis). Normals are kept as the
+// file's 8:8 octahedral codes (normal_codes(), 2 bytes a vertex; normal()).
 //
 // Threading: none inside; one ProgressiveMesh per thread at a time.
 // Allocation: arrays are sized when a structure's INFO section arrives; feeding
 // chunks decodes into them; refine_to/coarsen_to never allocate.
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -99,8 +103,20 @@ public:
 
     // --- arrays, sized max_vertex_count() / 3 * max_triangle_count(); entries past
     // the current prefix are valid once decoded but are not part of this level.
-    std::span<const Vec3f> positions() const { return positions_; }
-    std::span<const Vec3f> normals() const { return normals_; }  // unit; (0,0,1) when the file has none
+    // Three codes per vertex in [bounds_min(), bounds_max()]: axis k of vertex v
+    // is dequantize16(code, bounds_min()[k], step) with step = (double(max) -
+    // double(min)) / 65535 (bpm_format.h), what position() returns.
+    std::span<const uint16_t> position_codes() const { return positions_; }
+    Vec3f position(size_t v) const { return dequantize(&positions_[v * 3]); }
+    // Dequantizes the positions of the vertices [begin, begin + out.size()) into
+    // `out` (caller-owned; no allocation).
+    void positions(size_t begin, std::span<Vec3f> out) const;
+    // Two octahedral codes per vertex (oct_decode8 in bpm_format.h); empty when the
+    // file has none.
+    std::span<const uint8_t> normal_codes() const {
+        return has_normals_ ? std::span<const uint8_t>(qoct_) : std::span<const uint8_t>();
+    }
+    Vec3f normal(size_t v) const;  // unit; (0,0,1) when the file has none
     std::span<const uint32_t> parents() const { return parents_; }
     std::span<const uint32_t> indices() const { return indices_; }
 
@@ -120,20 +136,31 @@ private:
 
     // Sized to full capacity by INFO but written only as sections arrive: entries
     // past the decoded vertices, faces and splits are indeterminate.
-    UninitVector<Vec3f> positions_, normals_;
+    double step_[3] = {0.0, 0.0, 0.0};  // dequantization step per axis
+    UninitVector<uint16_t> positions_;  // 3 per vertex: codes at the current level
     UninitVector<uint32_t> parents_, indices_;
     UninitVector<uint32_t> face_end_;     // per split: triangle count after it
     UninitVector<float> split_error_;     // per split: error of the level before it
     UninitVector<uint32_t> patch_begin_;  // per split + 1: range into patch_corners_
-    // Per split: the parent's position before and after it (equal when the split
-    // does not move it; `from` is what morph_sources reads for every split).
-    UninitVector<Vec3f> parent_from_, parent_to_;
+    // Per split, 3 codes each: the parent's position before and after it (equal
+    // when the split does not move it; `from` is what morph_sources reads for every split).
+    UninitVector<uint16_t> parent_from_, parent_to_;
     UninitVector<uint32_t> patch_corners_;  // index entries set to the child on refine, parent on coarsen
     DirtyRange dirty_vertices_, dirty_indices_;
-    // Decoding state, released when the structure is complete.
+    // Decoding state, released when the structure is complete (qoct_ is kept as
+    // the normals when the file has them).
     SplitReplay replay_;
-    UninitVector<uint16_t> qpos_;  // 3 per vertex: quantized positions (children are coded against parents)
-    UninitVector<uint8_t> qoct_;   // 2 per vertex: octahedral normals
+    UninitVector<uint16_t>
+        qpos_;  // 3 per vertex: positions at the finest decoded level (children are coded against parents)
+    UninitVector<uint8_t> qoct_;  // 2 per vertex: octahedral normals
+    void release_decoding_state();
+    bool same_parent_position(size_t j) const {
+        return std::equal(&parent_to_[j * 3], &parent_to_[j * 3] + 3, &parent_from_[j * 3]);
+    }
+    Vec3f dequantize(const uint16_t* q) const {
+        return Vec3f(dequantize16(q[0], bbox_min_.x, step_[0]), dequantize16(q[1], bbox_min_.y, step_[1]),
+                     dequantize16(q[2], bbox_min_.z, step_[2]));
+    }
 };
 
 // Reads a .bpm file from byte chunks as they arrive (network, disk, a test).

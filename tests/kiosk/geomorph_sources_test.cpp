@@ -19,7 +19,7 @@ std::vector<Vec3f> sources_by_stepping(const ProgressiveMesh& pm, size_t lo, siz
     const size_t lo_vc = m.base_vertex_count() + lo, hi_vc = m.vertex_count();
     m.set_level(lo);
     std::vector<Vec3f> at(hi_vc);
-    for (size_t v = 0; v < lo_vc; ++v) at[v] = m.positions()[v];
+    for (size_t v = 0; v < lo_vc; ++v) at[v] = m.position(v);
     for (size_t v = lo_vc; v < hi_vc; ++v) at[v] = at[m.parents()[v]];  // parents come first
     return at;
 }
@@ -48,7 +48,7 @@ TEST(GeomorphSources, MatchSteppingDownForRandomLevelPairs) {
         ASSERT_LE(begin, pm.base_vertex_count() + lo);
         ASSERT_EQ(out.size(), pm.vertex_count() - begin);
         for (size_t v = 0; v < pm.vertex_count(); ++v) {
-            const Vec3f got = v < begin ? pm.positions()[v] : out[v - begin];
+            const Vec3f got = v < begin ? pm.position(v) : out[v - begin];
             ASSERT_EQ(got, want[v]) << "vertex " << v << ", levels " << lo << " -> " << hi;
         }
         moved_parents_seen += pm.base_vertex_count() + lo - begin;

@@ -70,7 +70,7 @@ TEST(StreamLoader, DecodesTheBasesThenWaitsForReleaseThenEverything) {
             ASSERT_EQ(got.available_level(), want.max_level());
             got.set_level(got.max_level());
             want.set_level(want.max_level());
-            const auto gp = got.positions(), wp = want.positions();
+            const auto gp = got.position_codes(), wp = want.position_codes();
             ASSERT_EQ(gp.size(), wp.size());
             EXPECT_TRUE(std::equal(gp.begin(), gp.end(), wp.begin()));
             const auto gi = got.indices(), wi = want.indices();

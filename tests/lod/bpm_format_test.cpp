@@ -161,7 +161,7 @@ TEST(BpmFormat, NormalsRoundTripThroughTheirPredictions) {
     ASSERT_EQ(m.max_vertex_count(), build->normals.size());
     for (size_t v = 0; v < build->normals.size(); ++v) {
         const Vec3 n = glm::normalize(build->normals[v]);
-        const Vec3f got = m.normals()[v];
+        const Vec3f got = m.normal(v);
         ASSERT_GT(double(got.x) * n.x + double(got.y) * n.y + double(got.z) * n.z, 0.999) << "vertex " << v;
     }
 }
@@ -186,10 +186,10 @@ TEST(BpmFormat, FileWithoutNormalsDecodesEveryPosition) {
     m.set_level(0);
     const size_t base = m.max_vertex_count() - m.max_level();
     for (size_t v = 0; v < base; ++v)
-        ASSERT_LE(glm::length(Vec3(m.positions()[v]) - build->positions[v]), bound) << "vertex " << v;
+        ASSERT_LE(glm::length(Vec3(m.position(v)) - build->positions[v]), bound) << "vertex " << v;
     for (size_t j = 0; j < m.max_level(); ++j) {
         m.set_level(j + 1);
-        ASSERT_LE(glm::length(Vec3(m.positions()[base + j]) - build->positions[base + j]), bound) << "split " << j;
+        ASSERT_LE(glm::length(Vec3(m.position(base + j)) - build->positions[base + j]), bound) << "split " << j;
     }
 }
 

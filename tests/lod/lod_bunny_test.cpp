@@ -51,7 +51,7 @@ TEST_F(LodBunny, EveryLevelIsAClosedManifoldWithinItsStoredError) {
         const double r = std::pow(2.0, -7.0 + 7.0 * i / 21.0);
         m.set_level(m.level_for_triangles(size_t(r * double(m.max_triangle_count()))));
         std::vector<Vec3> pos;
-        for (size_t v = 0; v < m.vertex_count(); ++v) pos.push_back(Vec3(m.positions()[v]));
+        for (size_t v = 0; v < m.vertex_count(); ++v) pos.push_back(Vec3(m.position(v)));
         std::vector<uint32_t> idx(m.indices().begin(), m.indices().begin() + ptrdiff_t(m.triangle_count() * 3));
         const MeshTopology t = analyze_topology(pos, idx);
         EXPECT_TRUE(t.closed_manifold()) << "level " << m.level();

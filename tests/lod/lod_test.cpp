@@ -33,7 +33,7 @@ std::vector<std::unique_ptr<ProgressiveMesh>> decode(const std::vector<uint8_t>&
 
 std::vector<Vec3> positions_of(const ProgressiveMesh& m) {
     std::vector<Vec3> out;
-    for (size_t v = 0; v < m.vertex_count(); ++v) out.push_back(Vec3(m.positions()[v]));
+    for (size_t v = 0; v < m.vertex_count(); ++v) out.push_back(Vec3(m.position(v)));
     return out;
 }
 std::vector<uint32_t> indices_of(const ProgressiveMesh& m) {
@@ -99,7 +99,7 @@ TEST(Lod, FullLevelIsTheInputUpToQuantization) {
     std::vector<uint32_t> match(m.vertex_count());
     std::set<uint32_t> used;
     for (size_t v = 0; v < m.vertex_count(); ++v) {
-        const Vec3 p(m.positions()[v]);
+        const Vec3 p(m.position(v));
         double best = 1e300;
         for (size_t i = 0; i < in.positions.size(); ++i) {
             const double d = glm::length(in.positions[i] - p);
@@ -184,7 +184,7 @@ TEST(Lod, RuntimeMatchesBuilderLevels) {
         // Same positions (moved parents included) up to quantization.
         ASSERT_EQ(ref.positions.size(), m.vertex_count());
         for (size_t v = 0; v < m.vertex_count(); ++v)
-            ASSERT_LE(glm::length(ref.positions[v] - Vec3(m.positions()[v])), m.quantization_bound())
+            ASSERT_LE(glm::length(ref.positions[v] - Vec3(m.position(v))), m.quantization_bound())
                 << "level " << k << " vertex " << v;
     }
 }
@@ -257,7 +257,7 @@ TEST(Lod, OpenSheetKeepsItsBoundaryAndManifoldness) {
     m.set_level(m.level_for_triangles(40));
     std::set<std::pair<int, int>> corners;
     for (size_t v = 0; v < m.vertex_count(); ++v) {
-        const Vec3f p = m.positions()[v];
+        const Vec3f p = m.position(v);
         if ((p.x < 0.01f || p.x > 19.99f) && (p.y < 0.01f || p.y > 19.99f)) corners.insert({p.x > 10, p.y > 10});
     }
     EXPECT_EQ(corners.size(), 4u);
@@ -393,27 +393,27 @@ TEST(Lod, LevelSelectionAndDirtyRanges) {
         const size_t child = m.base_vertex_count() + j;
         const uint32_t parent = m.parents()[child];
         ASSERT_LT(parent, child);
-        const Vec3f before = m.positions()[parent];
+        const Vec3f before = m.position(parent);
         m.clear_dirty();
         m.refine_to(j + 1);
         const size_t begin = m.morph_sources(j, sources, scratch);
         ASSERT_LE(begin, child);
         ASSERT_EQ(sources[child - begin], before) << "split " << j;
-        if (m.positions()[parent] != before) {
+        if (m.position(parent) != before) {
             ++moved;
             ASSERT_LE(begin, parent);
             ASSERT_EQ(sources[parent - begin], before) << "split " << j;
             ASSERT_LE(m.dirty_vertices().begin, parent);
             ASSERT_GT(m.dirty_vertices().end, parent);
             m.coarsen_to(j);
-            ASSERT_EQ(m.positions()[parent], before);
+            ASSERT_EQ(m.position(parent), before);
             m.refine_to(j + 1);
         } else {
             ASSERT_EQ(begin, child) << "split " << j << " moved nothing older";
         }
     }
     EXPECT_GT(moved, 0u);  // optimal placement moved some parents
-    for (size_t v = 0; v < m.max_vertex_count(); ++v) ASSERT_NEAR(glm::length(m.normals()[v]), 1.0f, 1e-4f);
+    for (size_t v = 0; v < m.max_vertex_count(); ++v) ASSERT_NEAR(glm::length(m.normal(v)), 1.0f, 1e-4f);
 }
 
 TEST(Lod, RejectsEmptyInput) {
