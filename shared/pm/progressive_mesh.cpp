@@ -46,16 +46,18 @@ size_t ProgressiveMesh::level_for_triangles(size_t triangles) const {
 size_t ProgressiveMesh::level_for_error(float error) const {
     auto end = split_error_.begin() + ptrdiff_t(decoded_splits_);
     // split_error_ is non-increasing: the first entry <= error is the coarsest such level.
-    auto it = std::partition_point(split_error_.begin(), end, [&](float e) { return e > error; });
+    auto it = std::partition_point(split_error_.begin(), end, [&](uint16_t e) { return error_value(e) > error; });
     return size_t(it - split_error_.begin());
 }
 
 size_t ProgressiveMesh::refine_to(size_t level) {
     level = std::min(level, decoded_splits_);
+    size_t e = patch_at_level_;
     for (size_t j = level_; j < level; ++j) {
         const uint32_t child = uint32_t(base_vertices_ + j);
-        const uint32_t b = patch_begin_[j], e = patch_begin_[j + 1];
-        for (uint32_t i = b; i < e; ++i) {
+        const size_t b = e;
+        e = b + patch_count_[j];
+        for (size_t i = b; i < e; ++i) {
             uint32_t c = patch_corners_[i];
             indices_[c] = child;
             dirty_indices_.add(c, c + 1);
@@ -66,15 +68,20 @@ size_t ProgressiveMesh::refine_to(size_t level) {
             dirty_vertices_.add(parent, parent + 1);
         }
     }
-    if (level > level_) level_ = level;
+    if (level > level_) {
+        level_ = level;
+        patch_at_level_ = e;
+    }
     return level_;
 }
 
 size_t ProgressiveMesh::coarsen_to(size_t level) {
+    size_t b = patch_at_level_;
     for (size_t j = level_; j-- > level;) {
         const uint32_t parent = parents_[base_vertices_ + j];
-        const uint32_t b = patch_begin_[j], e = patch_begin_[j + 1];
-        for (uint32_t i = b; i < e; ++i) {
+        const size_t e = b;
+        b = e - patch_count_[j];
+        for (size_t i = b; i < e; ++i) {
             uint32_t c = patch_corners_[i];
             indices_[c] = parent;
             dirty_indices_.add(c, c + 1);
@@ -84,7 +91,10 @@ size_t ProgressiveMesh::coarsen_to(size_t level) {
             dirty_vertices_.add(parent, parent + 1);
         }
     }
-    if (level < level_) level_ = level;
+    if (level < level_) {
+        level_ = level;
+        patch_at_level_ = b;
+    }
     return level_;
 }
 
@@ -273,8 +283,7 @@ Status BpmStream::parse_info(std::span<const uint8_t> payload, const std::string
     m->split_error_.resize(splits);
     m->parent_from_.resize(size_t(splits) * 3);
     m->parent_to_.resize(size_t(splits) * 3);
-    m->patch_begin_.resize(size_t(splits) + 1);
-    m->patch_begin_[0] = 0;
+    m->patch_count_.resize(splits);
     m->patch_corners_.clear();
     m->qpos_.resize(vertices * 3);
     m->qoct_.resize(vertices * 2);
@@ -346,7 +355,7 @@ Status BpmStream::parse_splits(ProgressiveMesh& m, std::span<const uint8_t> payl
         m.patch_corners_.reserve(std::max(need, 2 * m.patch_corners_.capacity()));
     ByteReader topo(tbuf);
     size_t face_cursor = 0;
-    float previous_error = first == 0 ? INFINITY : m.split_error_[first - 1];
+    float previous_error = first == 0 ? INFINITY : m.error_at(first - 1);
     uint32_t previous_error_bits;
     std::memcpy(&previous_error_bits, &previous_error, 4);
     const Vec3f lo = m.bbox_min_, hi = m.bbox_max_;
@@ -382,8 +391,6 @@ Status BpmStream::parse_splits(ProgressiveMesh& m, std::span<const uint8_t> payl
         const uint32_t error_step = values.get(kCtxErrorStep);
         if (error_step > (previous_error_bits >> 16)) return fail("error not monotonic");
         previous_error_bits -= error_step << 16;
-        float error;
-        std::memcpy(&error, &previous_error_bits, 4);
         const size_t corner_count = m.replay_.corners_of(parent, corners, 64);
         if (corner_count == SIZE_MAX) return fail("parent has more than 64 corners");
         uint32_t faces = 0;
@@ -474,9 +481,9 @@ Status BpmStream::parse_splits(ProgressiveMesh& m, std::span<const uint8_t> payl
         m.decoded_faces_ += faces;
         face_cursor += faces;
         m.face_end_[j] = uint32_t(m.decoded_faces_);
-        m.split_error_[j] = error;
+        m.split_error_[j] = uint16_t(previous_error_bits >> 16);  // the low half is 0
         m.patch_corners_.insert(m.patch_corners_.end(), moved, moved + std::popcount(mask));
-        m.patch_begin_[j + 1] = uint32_t(m.patch_corners_.size());
+        m.patch_count_[j] = uint8_t(std::popcount(mask));
         for (int k = 0; k < 3; ++k) {
             m.qpos_[size_t(child) * 3 + k] = q[k];
             m.qpos_[size_t(parent) * 3 + k] = to[k];

@@ -27,6 +27,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <memory>
 #include <span>
 #include <string>
@@ -79,7 +80,7 @@ public:
     size_t triangles_at(size_t level) const { return level == 0 ? base_faces_ : face_end_[level - 1]; }
     // Object-space error of level k: an estimate of the symmetric Hausdorff distance
     // to the full mesh; non-increasing in k, 0 at max_level().
-    float error_at(size_t level) const { return level < split_count_ ? split_error_[level] : 0.0f; }
+    float error_at(size_t level) const { return level < split_count_ ? error_value(split_error_[level]) : 0.0f; }
 
     // Level selection, limited to available_level().
     size_t level_for_triangles(size_t triangles) const;  // the finest level with at most that many (>= 0)
@@ -139,9 +140,20 @@ private:
     double step_[3] = {0.0, 0.0, 0.0};  // dequantization step per axis
     UninitVector<uint16_t> positions_;  // 3 per vertex: codes at the current level
     UninitVector<uint32_t> parents_, indices_;
-    UninitVector<uint32_t> face_end_;     // per split: triangle count after it
-    UninitVector<float> split_error_;     // per split: error of the level before it
-    UninitVector<uint32_t> patch_begin_;  // per split + 1: range into patch_corners_
+    UninitVector<uint32_t> face_end_;  // per split: triangle count after it
+    // Per split: the error of the level before it, the high half of its float
+    // (the file codes errors as steps of 2^16 in the float's bits: exact).
+    UninitVector<uint16_t> split_error_;
+    static float error_value(uint16_t high) {
+        const uint32_t bits = uint32_t(high) << 16;
+        float e;
+        std::memcpy(&e, &bits, 4);
+        return e;
+    }
+    // Per split: how many patch_corners_ entries it patches (<= 64); the splits'
+    // entries follow one another, and patch_at_level_ is where split level_'s start.
+    UninitVector<uint8_t> patch_count_;
+    size_t patch_at_level_ = 0;
     // Per split, 3 codes each: the parent's position before and after it (equal
     // when the split does not move it; `from` is what morph_sources reads for every split).
     UninitVector<uint16_t> parent_from_, parent_to_;
