@@ -66,7 +66,6 @@ struct Part {
     bool collapsing = false;
     size_t pending_level = 0;
     std::vector<Vec3f> morph_sources;  // working memory of start_morph, kept to avoid reallocating
-    std::vector<uint64_t> morph_scratch;
 
     size_t full_triangles() const { return pm ? pm->max_triangle_count() : source->full_triangles(); }
     size_t triangles() const { return pm ? pm->triangle_count() : source->triangles(); }
@@ -103,7 +102,7 @@ struct Part {
     void start_morph(render::Renderer& r, size_t lo, double now) {
         upload_dirty(r);
         const size_t hi = pm->level();
-        const size_t begin = pm->morph_sources(lo, morph_sources, morph_scratch);
+        const size_t begin = pm->morph_sources(lo, morph_sources);
         if (auto st = r.set_morph_sources(id, begin, morph_sources); !st)
             std::fprintf(stderr, "bodyview: %s\n", st.error().message.c_str());
         morph.start(now, pm->triangles_at(collapsing ? hi : lo), pm->triangles_at(collapsing ? lo : hi));

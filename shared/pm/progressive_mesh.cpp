@@ -36,11 +36,33 @@ Vec3f ProgressiveMesh::normal(size_t v) const {
     return Vec3f(n[0], n[1], n[2]);
 }
 
+namespace {
+// Sum of the 2-bit fields of x.
+size_t sum2(uint64_t x) {
+    return size_t(std::popcount(x & 0x5555555555555555ull) + 2 * std::popcount(x & 0xaaaaaaaaaaaaaaaaull));
+}
+uint64_t low_bits(size_t n) { return n >= 64 ? ~uint64_t(0) : (uint64_t(1) << n) - 1; }
+}  // namespace
+
+size_t ProgressiveMesh::triangles_at(size_t level) const {
+    const size_t b = level / 64, r = level % 64;
+    size_t t = face_sample_[b];
+    if (r > 0) {
+        const uint64_t first = face_count_bits_[2 * b];
+        t += r <= 32 ? sum2(first & low_bits(2 * r))
+                     : sum2(first) + sum2(face_count_bits_[2 * b + 1] & low_bits(2 * (r - 32)));
+    }
+    return t;
+}
+
 size_t ProgressiveMesh::level_for_triangles(size_t triangles) const {
     if (triangles < base_faces_) return 0;
-    auto end = face_end_.begin() + ptrdiff_t(decoded_splits_);
-    return size_t(std::upper_bound(face_end_.begin(), end, uint32_t(std::min<size_t>(triangles, UINT32_MAX))) -
-                  face_end_.begin());
+    // The last sampled level (<= available_level()) with at most that many, then split by split.
+    const auto end = face_sample_.begin() + ptrdiff_t(decoded_splits_ / 64 + 1);
+    const auto it = std::upper_bound(face_sample_.begin(), end, uint32_t(std::min<size_t>(triangles, UINT32_MAX)));
+    size_t level = size_t(it - face_sample_.begin() - 1) * 64, t = face_sample_[level / 64];
+    while (level < decoded_splits_ && t + faces_added(level) <= triangles) t += faces_added(level++);
+    return level;
 }
 
 size_t ProgressiveMesh::level_for_error(float error) const {
@@ -62,9 +84,9 @@ size_t ProgressiveMesh::refine_to(size_t level) {
             indices_[c] = child;
             dirty_indices_.add(c, c + 1);
         }
-        if (!same_parent_position(j)) {
+        if (moves_parent(j)) {
             const uint32_t parent = parents_[child];
-            std::copy_n(&parent_to_[j * 3], 3, &positions_[size_t(parent) * 3]);
+            move_parent(j, parent);
             dirty_vertices_.add(parent, parent + 1);
         }
     }
@@ -86,8 +108,8 @@ size_t ProgressiveMesh::coarsen_to(size_t level) {
             indices_[c] = parent;
             dirty_indices_.add(c, c + 1);
         }
-        if (!same_parent_position(j)) {
-            std::copy_n(&parent_from_[j * 3], 3, &positions_[size_t(parent) * 3]);
+        if (moves_parent(j)) {
+            move_parent(j, parent);
             dirty_vertices_.add(parent, parent + 1);
         }
     }
@@ -98,38 +120,39 @@ size_t ProgressiveMesh::coarsen_to(size_t level) {
     return level_;
 }
 
-size_t ProgressiveMesh::morph_sources(size_t lo, std::vector<Vec3f>& out, std::vector<uint64_t>& scratch) const {
+size_t ProgressiveMesh::morph_sources(size_t lo, std::vector<Vec3f>& out) const {
     lo = std::min(lo, level_);
     const size_t lo_vc = base_vertices_ + lo, hi_vc = vertex_count();
     // The lowest older vertex that a split since lo moves: the sources start there.
     size_t begin = lo_vc;
     for (size_t j = lo; j < level_; ++j) {
         const uint32_t p = parents_[base_vertices_ + j];
-        if (p < begin && !same_parent_position(j)) begin = p;
+        if (p < begin && moves_parent(j)) begin = p;
     }
+    // Codes first, held exactly as floats (< 2^16): the older vertices where they
+    // are, taken back to lo by undoing the moves since lo (each split's move is
+    // an XOR, so the order does not matter); then each vertex added since lo
+    // takes its parent's source (set before: p < c).
     out.resize(hi_vc - begin);
-    positions(begin, out);
-    // parent_from_[j] is the parent's position just before split j, so the first
-    // split since lo naming an older vertex as parent gives its position at lo;
-    // `scratch` marks the older vertices in [begin, lo_vc) already settled.
-    scratch.assign((lo_vc - begin + 63) / 64, 0);
+    auto code = [&](size_t v) {
+        const uint16_t* q = &positions_[v * 3];
+        return Vec3f(q[0], q[1], q[2]);
+    };
+    for (size_t v = begin; v < lo_vc; ++v) out[v - begin] = code(v);
+    for (size_t j = lo; j < level_; ++j) {
+        const uint32_t p = parents_[base_vertices_ + j];
+        if (p < begin || p >= lo_vc || !moves_parent(j)) continue;
+        Vec3f& q = out[p - begin];
+        for (int k = 0; k < 3; ++k) q[k] = float(uint16_t(q[k]) ^ parent_move_[j * 3 + size_t(k)]);
+    }
     for (size_t j = lo; j < level_; ++j) {
         const size_t c = base_vertices_ + j;
         const uint32_t p = parents_[c];
-        Vec3f at_lo;
-        if (p >= lo_vc) {
-            at_lo = out[p - begin];  // added since lo: its own source, set before (p < c)
-        } else if (p < begin) {
-            at_lo = dequantize(&parent_from_[j * 3]);  // never moved since lo
-        } else {
-            const size_t bit = p - begin;
-            if (!(scratch[bit / 64] >> (bit % 64) & 1)) {
-                scratch[bit / 64] |= uint64_t(1) << (bit % 64);
-                out[bit] = dequantize(&parent_from_[j * 3]);
-            }
-            at_lo = out[bit];
-        }
-        out[c - begin] = at_lo;
+        out[c - begin] = p >= begin ? out[p - begin] : code(p);
+    }
+    for (Vec3f& q : out) {
+        const uint16_t c[3] = {uint16_t(q.x), uint16_t(q.y), uint16_t(q.z)};
+        q = dequantize(c);
     }
     return begin;
 }
@@ -279,10 +302,11 @@ Status BpmStream::parse_info(std::span<const uint8_t> payload, const std::string
     m->positions_.resize(vertices * 3);
     m->parents_.resize(vertices);
     m->indices_.resize(size_t(faces) * 3);
-    m->face_end_.resize(splits);
+    m->face_count_bits_.assign((size_t(splits) + 31) / 32, 0);
+    m->face_sample_.resize(size_t(splits) / 64 + 1);
+    m->face_sample_[0] = bf;
     m->split_error_.resize(splits);
-    m->parent_from_.resize(size_t(splits) * 3);
-    m->parent_to_.resize(size_t(splits) * 3);
+    m->parent_move_.resize(size_t(splits) * 3);
     m->patch_count_.resize(splits);
     m->patch_corners_.clear();
     m->qpos_.resize(vertices * 3);
@@ -480,7 +504,8 @@ Status BpmStream::parse_splits(ProgressiveMesh& m, std::span<const uint8_t> payl
         std::copy(fi.begin(), fi.end(), m.indices_.begin() + ptrdiff_t(m.decoded_faces_ * 3));
         m.decoded_faces_ += faces;
         face_cursor += faces;
-        m.face_end_[j] = uint32_t(m.decoded_faces_);
+        m.face_count_bits_[j / 32] |= uint64_t(faces) << (j % 32 * 2);
+        if ((j + 1) % 64 == 0) m.face_sample_[(j + 1) / 64] = uint32_t(m.decoded_faces_);
         m.split_error_[j] = uint16_t(previous_error_bits >> 16);  // the low half is 0
         m.patch_corners_.insert(m.patch_corners_.end(), moved, moved + std::popcount(mask));
         m.patch_count_[j] = uint8_t(std::popcount(mask));
@@ -488,8 +513,7 @@ Status BpmStream::parse_splits(ProgressiveMesh& m, std::span<const uint8_t> payl
             m.qpos_[size_t(child) * 3 + k] = q[k];
             m.qpos_[size_t(parent) * 3 + k] = to[k];
             m.positions_[size_t(child) * 3 + k] = q[k];
-            m.parent_from_[j * 3 + k] = from[k];
-            m.parent_to_[j * 3 + k] = to[k];
+            m.parent_move_[j * 3 + k] = uint16_t(from[k] ^ to[k]);
         }
         m.qoct_[size_t(child) * 2] = oct[0];
         m.qoct_[size_t(child) * 2 + 1] = oct[1];

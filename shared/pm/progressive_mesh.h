@@ -77,7 +77,7 @@ public:
     size_t max_triangle_count() const { return face_count_; }
     size_t vertex_count() const { return base_vertices_ + level_; }
     size_t triangle_count() const { return triangles_at(level_); }
-    size_t triangles_at(size_t level) const { return level == 0 ? base_faces_ : face_end_[level - 1]; }
+    size_t triangles_at(size_t level) const;  // O(1)
     // Object-space error of level k: an estimate of the symmetric Hausdorff distance
     // to the full mesh; non-increasing in k, 0 at max_level().
     float error_at(size_t level) const { return level < split_count_ ? error_value(split_error_[level]) : 0.0f; }
@@ -98,9 +98,9 @@ public:
     // it is). Writes them for the vertices [begin, vertex_count()) to `out`
     // (resized to vertex_count() - begin) and returns `begin`, the lowest vertex
     // whose source differs from its position (<= base_vertex_count() + lo).
-    // Cost O(level() - lo) plus the copy; the level is not changed. `scratch` is
-    // caller-owned working memory (reused across calls, no allocation once grown).
-    size_t morph_sources(size_t lo, std::vector<Vec3f>& out, std::vector<uint64_t>& scratch) const;
+    // Cost O(level() - lo) plus the copy; the level is not changed; no other
+    // memory than `out` (caller-owned, reused across calls: no allocation once grown).
+    size_t morph_sources(size_t lo, std::vector<Vec3f>& out) const;
 
     // --- arrays, sized max_vertex_count() / 3 * max_triangle_count(); entries past
     // the current prefix are valid once decoded but are not part of this level.
@@ -140,7 +140,12 @@ private:
     double step_[3] = {0.0, 0.0, 0.0};  // dequantization step per axis
     UninitVector<uint16_t> positions_;  // 3 per vertex: codes at the current level
     UninitVector<uint32_t> parents_, indices_;
-    UninitVector<uint32_t> face_end_;  // per split: triangle count after it
+    // Per split, 2 bits: the faces it adds (1 to 3), 32 splits a word; per 64
+    // splits the triangle count at that level (face_sample_[b]: level 64 b), so
+    // triangles_at is a sample plus two popcounts.
+    UninitVector<uint64_t> face_count_bits_;
+    UninitVector<uint32_t> face_sample_;
+    size_t faces_added(size_t j) const { return size_t(face_count_bits_[j / 32] >> (j % 32 * 2)) & 3; }
     // Per split: the error of the level before it, the high half of its float
     // (the file codes errors as steps of 2^16 in the float's bits: exact).
     UninitVector<uint16_t> split_error_;
@@ -154,9 +159,10 @@ private:
     // entries follow one another, and patch_at_level_ is where split level_'s start.
     UninitVector<uint8_t> patch_count_;
     size_t patch_at_level_ = 0;
-    // Per split, 3 codes each: the parent's position before and after it (equal
-    // when the split does not move it; `from` is what morph_sources reads for every split).
-    UninitVector<uint16_t> parent_from_, parent_to_;
+    // Per split, 3 per axis: the parent's position code before it XOR after it
+    // (0 when the split does not move it), so refining and coarsening apply the
+    // same XOR and morph_sources undoes the moves since a level.
+    UninitVector<uint16_t> parent_move_;
     UninitVector<uint32_t> patch_corners_;  // index entries set to the child on refine, parent on coarsen
     DirtyRange dirty_vertices_, dirty_indices_;
     // Decoding state, released when the structure is complete (qoct_ is kept as
@@ -166,8 +172,11 @@ private:
         qpos_;  // 3 per vertex: positions at the finest decoded level (children are coded against parents)
     UninitVector<uint8_t> qoct_;  // 2 per vertex: octahedral normals
     void release_decoding_state();
-    bool same_parent_position(size_t j) const {
-        return std::equal(&parent_to_[j * 3], &parent_to_[j * 3] + 3, &parent_from_[j * 3]);
+    bool moves_parent(size_t j) const {
+        return (parent_move_[j * 3] | parent_move_[j * 3 + 1] | parent_move_[j * 3 + 2]) != 0;
+    }
+    void move_parent(size_t j, uint32_t parent) {
+        for (size_t k = 0; k < 3; ++k) positions_[size_t(parent) * 3 + k] ^= parent_move_[j * 3 + k];
     }
     Vec3f dequantize(const uint16_t* q) const {
         return Vec3f(dequantize16(q[0], bbox_min_.x, step_[0]), dequantize16(q[1], bbox_min_.y, step_[1]),

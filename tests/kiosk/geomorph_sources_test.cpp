@@ -35,7 +35,6 @@ TEST(GeomorphSources, MatchSteppingDownForRandomLevelPairs) {
     ASSERT_GT(pm.max_level(), 1000u);
     std::mt19937 rng(7);
     std::vector<Vec3f> out;
-    std::vector<uint64_t> scratch;
     size_t moved_parents_seen = 0;
     for (int trial = 0; trial < 40; ++trial) {
         size_t lo = rng() % (pm.max_level() + 1), hi = rng() % (pm.max_level() + 1);
@@ -43,7 +42,7 @@ TEST(GeomorphSources, MatchSteppingDownForRandomLevelPairs) {
         if (trial == 0) lo = 0, hi = pm.max_level();
         const std::vector<Vec3f> want = sources_by_stepping(pm, lo, hi);
         pm.set_level(hi);
-        const size_t begin = pm.morph_sources(lo, out, scratch);
+        const size_t begin = pm.morph_sources(lo, out);
         ASSERT_EQ(pm.level(), hi);
         ASSERT_LE(begin, pm.base_vertex_count() + lo);
         ASSERT_EQ(out.size(), pm.vertex_count() - begin);

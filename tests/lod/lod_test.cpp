@@ -388,7 +388,6 @@ TEST(Lod, LevelSelectionAndDirtyRanges) {
     m.coarsen_to(0);
     size_t moved = 0;
     std::vector<Vec3f> sources;
-    std::vector<uint64_t> scratch;
     for (size_t j = 0; j < m.max_level(); ++j) {
         const size_t child = m.base_vertex_count() + j;
         const uint32_t parent = m.parents()[child];
@@ -396,7 +395,7 @@ TEST(Lod, LevelSelectionAndDirtyRanges) {
         const Vec3f before = m.position(parent);
         m.clear_dirty();
         m.refine_to(j + 1);
-        const size_t begin = m.morph_sources(j, sources, scratch);
+        const size_t begin = m.morph_sources(j, sources);
         ASSERT_LE(begin, child);
         ASSERT_EQ(sources[child - begin], before) << "split " << j;
         if (m.position(parent) != before) {

@@ -822,8 +822,7 @@ TEST(RenderGeomorph, ProgressiveMeshMorphStartsAtTheCoarserLevel) {
     st.style = Style::Baseline;
     const auto fine = test::foreground_mask(f.draw(cam, {}, o), o.background);
     std::vector<Vec3f> sources;
-    std::vector<uint64_t> scratch;
-    const size_t begin = pm.morph_sources(lo, sources, scratch);
+    const size_t begin = pm.morph_sources(lo, sources);
     EXPECT_EQ(pm.level(), hi);
     EXPECT_EQ(begin + sources.size(), pm.vertex_count());
     ASSERT_TRUE(f.renderer().set_morph_sources(id.value(), begin, sources).ok());
