@@ -80,7 +80,7 @@ size_t ProgressiveMesh::refine_to(size_t level) {
         const size_t b = e;
         e = b + patch_count_[j];
         for (size_t i = b; i < e; ++i) {
-            uint32_t c = patch_corners_[i];
+            const uint32_t c = patch_corner(i);
             indices_[c] = child;
             dirty_indices_.add(c, c + 1);
         }
@@ -104,7 +104,7 @@ size_t ProgressiveMesh::coarsen_to(size_t level) {
         const size_t e = b;
         b = e - patch_count_[j];
         for (size_t i = b; i < e; ++i) {
-            uint32_t c = patch_corners_[i];
+            const uint32_t c = patch_corner(i);
             indices_[c] = parent;
             dirty_indices_.add(c, c + 1);
         }
@@ -309,6 +309,7 @@ Status BpmStream::parse_info(std::span<const uint8_t> payload, const std::string
     m->parent_move_.resize(size_t(splits) * 3);
     m->patch_count_.resize(splits);
     m->patch_corners_.clear();
+    m->corner_bytes_ = uint64_t(faces) * 3 <= (uint64_t(1) << 24) ? 3 : 4;
     m->qpos_.resize(vertices * 3);
     m->qoct_.resize(vertices * 2);
     m->replay_.reset(vertices, faces);
@@ -375,7 +376,8 @@ Status BpmStream::parse_splits(ProgressiveMesh& m, std::span<const uint8_t> payl
     // Everything below runs per split: no allocation (the message is built on failure only).
     // Geometric growth: reserving the exact need per section would copy the whole
     // array at every section (quadratic: 0.5 GB of copying for a 1M-triangle file).
-    if (const size_t need = m.patch_corners_.size() + size_t(count) * 4; need > m.patch_corners_.capacity())
+    if (const size_t need = m.patch_corners_.size() + size_t(count) * 4 * m.corner_bytes_;
+        need > m.patch_corners_.capacity())
         m.patch_corners_.reserve(std::max(need, 2 * m.patch_corners_.capacity()));
     ByteReader topo(tbuf);
     size_t face_cursor = 0;
@@ -507,7 +509,12 @@ Status BpmStream::parse_splits(ProgressiveMesh& m, std::span<const uint8_t> payl
         m.face_count_bits_[j / 32] |= uint64_t(faces) << (j % 32 * 2);
         if ((j + 1) % 64 == 0) m.face_sample_[(j + 1) / 64] = uint32_t(m.decoded_faces_);
         m.split_error_[j] = uint16_t(previous_error_bits >> 16);  // the low half is 0
-        m.patch_corners_.insert(m.patch_corners_.end(), moved, moved + std::popcount(mask));
+        {
+            const size_t at = m.patch_corners_.size(), w = m.corner_bytes_, n = size_t(std::popcount(mask));
+            m.patch_corners_.resize(at + n * w);
+            for (size_t i = 0; i < n; ++i)
+                for (size_t k = 0; k < w; ++k) m.patch_corners_[at + i * w + k] = uint8_t(moved[i] >> (8 * k));
+        }
         m.patch_count_[j] = uint8_t(std::popcount(mask));
         for (int k = 0; k < 3; ++k) {
             m.qpos_[size_t(child) * 3 + k] = q[k];

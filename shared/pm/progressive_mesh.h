@@ -163,7 +163,16 @@ private:
     // (0 when the split does not move it), so refining and coarsening apply the
     // same XOR and morph_sources undoes the moves since a level.
     UninitVector<uint16_t> parent_move_;
-    UninitVector<uint32_t> patch_corners_;  // index entries set to the child on refine, parent on coarsen
+    // Index entries set to the child on refine and the parent on coarsen,
+    // corner_bytes_ bytes each, least significant first (3 when every entry
+    // number fits 24 bits: up to 5.59M triangles; else 4).
+    UninitVector<uint8_t> patch_corners_;
+    size_t corner_bytes_ = 4;
+    uint32_t patch_corner(size_t i) const {
+        const uint8_t* p = &patch_corners_[i * corner_bytes_];
+        const uint32_t c = uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16;
+        return corner_bytes_ == 4 ? c | uint32_t(p[3]) << 24 : c;
+    }
     DirtyRange dirty_vertices_, dirty_indices_;
     // Decoding state, released when the structure is complete (qoct_ is kept as
     // the normals when the file has them).
