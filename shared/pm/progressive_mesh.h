@@ -23,7 +23,9 @@
 //
 // Threading: none inside; one ProgressiveMesh per thread at a time.
 // Allocation: arrays are sized when a structure's INFO section arrives; feeding
-// chunks decodes into them; refine_to/coarsen_to never allocate.
+// chunks decodes into them; refine_to/coarsen_to never allocate. Once complete
+// (decoding state freed) a structure keeps about 57 bytes a vertex split, 24 of
+// them the index array (1.1M-triangle bunny: 30 MiB).
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
