@@ -505,10 +505,27 @@ Vec3 placement(const State& s, uint32_t from, uint32_t to, double& cost, bool* o
             return p;
         }
     }
-    // The fallback: the half-edge cost (evaluated only here, where it is needed).
+    // The fallback for a rank-deficient sum: the cheapest point of the edge (the
+    // quadric restricted to the edge is a parabola in t). Where the edge lies in the
+    // quadric's null space (a flat or crease region: every point costs the same up to
+    // rounding) the midpoint, so that equal costs do not let one vertex swallow its
+    // neighbourhood; else the parabola's minimum clamped to the edge.
+    const Vec3 e = pv - pu;
+    const double ax = sum.a00 * e.x + sum.a01 * e.y + sum.a02 * e.z;
+    const double ay = sum.a01 * e.x + sum.a11 * e.y + sum.a12 * e.z;
+    const double az = sum.a02 * e.x + sum.a12 * e.y + sum.a22 * e.z;
+    const double curv = e.x * ax + e.y * ay + e.z * az, tr = sum.a00 + sum.a11 + sum.a22;
+    if (!(curv > 1e-9 * tr * glm::dot(e, e))) {
+        cost = std::max(sum.eval(mid), 0.0);
+        return mid;
+    }
+    const double gx = sum.a00 * pu.x + sum.a01 * pu.y + sum.a02 * pu.z + sum.b0;
+    const double gy = sum.a01 * pu.x + sum.a11 * pu.y + sum.a12 * pu.z + sum.b1;
+    const double gz = sum.a02 * pu.x + sum.a12 * pu.y + sum.a22 * pu.z + sum.b2;
+    const double t = std::clamp(-(gx * e.x + gy * e.y + gz * e.z) / curv, 0.0, 1.0);
     cost = std::max(s.q[from].eval(pv) + s.q[to].eval(pv), 0.0);
     Vec3 best = pv;
-    for (const Vec3& c : {pu, mid}) {
+    for (const Vec3& c : {pu, mid, pu + e * t}) {
         const double k = std::max(sum.eval(c), 0.0);
         if (k < cost) cost = k, best = c;
     }
