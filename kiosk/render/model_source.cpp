@@ -207,24 +207,16 @@ void ModelSource::set_lod(double ratio) {
 }
 
 MeshData ModelSource::mesh() const {
-    MeshData m;
+    // What an upload gets, plus floats for CPU readers.
+    MeshData m = upload_mesh();
+    m.positions = positions();
     if (pm_) {
-        m = upload_mesh();
-        m.positions = positions();
         if (pm_->has_normals() && pm_normals_.empty()) {
             pm_normals_.resize(pm_->max_vertex_count());
             for (size_t v = 0; v < pm_normals_.size(); ++v) pm_normals_[v] = pm_->normal(v);
         }
         m.normals = pm_normals_;
-        return m;
     }
-    m.positions = positions();
-    m.position_codes = position_codes_;
-    m.has_position_box = true;
-    m.position_box_min = box_min_;
-    m.position_box_max = box_max_;
-    m.normals = normals_;
-    m.indices = current_indices();
     return m;
 }
 
