@@ -71,17 +71,8 @@ struct Part {
     size_t triangles() const { return pm ? pm->triangle_count() : source->triangles(); }
     render::MeshData mesh() const {
         if (!pm) return source->mesh();
-        render::MeshData m;
-        // The pm's own codes (positions in its box, octahedral normals): no float copy.
-        m.position_codes = pm->position_codes();
-        m.has_position_box = true;
-        m.position_box_min = pm->bounds_min();
-        m.position_box_max = pm->bounds_max();
-        m.normal_codes = pm->normal_codes();
-        m.indices = pm->indices();
+        render::MeshData m = render::mesh_data_of(*pm);
         m.morph_at_rest = true;  // at rest: nothing displaced
-        m.vertex_count = pm->vertex_count();
-        m.index_count = 3 * pm->triangle_count();
         return m;
     }
     bool morphing() const { return morph_end > morph_begin; }

@@ -119,19 +119,22 @@ std::span<const Vec3f> ModelSource::positions() const {
     return positions_;
 }
 
-MeshData ModelSource::upload_mesh() const {
+MeshData mesh_data_of(const pm::ProgressiveMesh& pm) {
     MeshData m;
-    if (pm_) {
-        m.position_codes = pm_->position_codes();
-        m.has_position_box = true;
-        m.position_box_min = pm_->bounds_min();
-        m.position_box_max = pm_->bounds_max();
-        m.normal_codes = pm_->normal_codes();
-        m.indices = pm_->indices();
-        m.vertex_count = pm_->vertex_count();
-        m.index_count = 3 * pm_->triangle_count();
-        return m;
-    }
+    m.position_codes = pm.position_codes();
+    m.has_position_box = true;
+    m.position_box_min = pm.bounds_min();
+    m.position_box_max = pm.bounds_max();
+    m.normal_codes = pm.normal_codes();
+    m.indices = pm.indices();
+    m.vertex_count = pm.vertex_count();
+    m.index_count = 3 * pm.triangle_count();
+    return m;
+}
+
+MeshData ModelSource::upload_mesh() const {
+    if (pm_) return mesh_data_of(*pm_);
+    MeshData m;
     m.position_codes = position_codes_;
     m.has_position_box = true;
     m.position_box_min = box_min_;

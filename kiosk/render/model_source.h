@@ -94,6 +94,10 @@ private:
 };
 
 // Loads `.bpm` or `.obj` (by extension); errors name the file and the reason.
+// The renderer's view of a progressive mesh at its current level: its own
+// codes (positions in its box, octahedral normals), no float copy.
+MeshData mesh_data_of(const pm::ProgressiveMesh& pm);
+
 Result<std::vector<ModelSource>> load_model_file(const std::string& path);
 
 }  // namespace body::render
