@@ -9,6 +9,7 @@
 #include "kiosk/render/edge_list.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace body::render {
 namespace {
@@ -41,7 +42,30 @@ bool edge_at(std::span<const uint32_t> idx, const uint32_t* begin, const uint32_
     return true;
 }
 
+// The unit normal of the face (p, q, r) and the bound on its tilt when each
+// corner moves by up to half of `step` (see coplanar_within_rounding); false
+// for a degenerate face.
+bool normal_and_tilt(const Vec3f& p, const Vec3f& q, const Vec3f& r, float step_length, Vec3f& normal, float& tilt) {
+    const Vec3f n = glm::cross(q - p, r - p);
+    const float twice_area = glm::length(n);
+    if (!(twice_area > 0.0f)) return false;
+    normal = n / twice_area;
+    const float a = glm::length(q - p), b = glm::length(r - q), c = glm::length(p - r);
+    tilt = step_length * (a + b + c - std::max({a, b, c})) / twice_area;
+    return true;
+}
+
 }  // namespace
+
+bool coplanar_within_rounding(const Vec3f& v0, const Vec3f& v1, const Vec3f& a, const Vec3f& b, const Vec3f& step) {
+    const float step_length = glm::length(step);
+    Vec3f n0, n1;
+    float tilt0 = 0.0f, tilt1 = 0.0f;
+    if (!normal_and_tilt(v0, v1, a, step_length, n0, tilt0) || !normal_and_tilt(v1, v0, b, step_length, n1, tilt1))
+        return false;
+    const float angle = std::atan2(glm::length(glm::cross(n0, n1)), glm::dot(n0, n1));
+    return angle <= tilt0 + tilt1;
+}
 
 void EdgeStream::bucket_window(uint32_t lo) {
     window_lo_ = lo;

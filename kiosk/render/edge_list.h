@@ -7,6 +7,8 @@
 #include <span>
 #include <vector>
 
+#include "shared/geometry.h"
+
 namespace body::render {
 
 inline constexpr uint32_t kNoVertex = 0xffffffffu;
@@ -27,6 +29,21 @@ struct GpuEdge {
     uint32_t xy0, z0x1, y1z1;
     uint32_t normals;
 };
+
+// Whether the faces (v0, v1, a) and (v1, v0, b) of an edge are coplanar up to
+// the rounding of their corners to a grid of `step` object units per axis (the
+// renderer's 16-bit position codes; 0 on an axis that is not rounded): the
+// angle between their normals is within the largest tilt that moving every
+// corner by up to half a step can give the two faces. To first order a corner
+// moved by d (|d| <= |step| / 2) tilts a face's normal by at most
+// |step| (|e1| + |e2|) / |e1 x e2|, e1 and e2 the face's edges from any corner
+// (the two shortest give the tightest bound). Such an edge is never a crease
+// and is a silhouette only when seen within that angle of edge-on, where the
+// faces around it carry the outline, so the `lines` style leaves it out
+// (faces that were coplanar before rounding, e.g. of a linearly subdivided
+// mesh, otherwise differ by rounding noise). A zero step asks for exact
+// coplanarity; degenerate faces are never coplanar.
+bool coplanar_within_rounding(const Vec3f& v0, const Vec3f& v1, const Vec3f& a, const Vec3f& b, const Vec3f& step);
 
 // `indices`: triangles (three per face); degenerate faces are skipped.
 // Deterministic order (by the edge's smaller vertex, then corner) so frames

@@ -77,3 +77,56 @@ TEST(EdgeList, StreamInPiecesMatchesTheWholeList) {
             }
         }
 }
+
+// Two triangles sharing the edge (0,0,0)-(1,0,0): face 0 in the plane z = 0,
+// face 1 turned about the x axis by `degrees` (0: coplanar).
+namespace {
+struct Hinge {
+    body::Vec3f v0{0.0f, 0.0f, 0.0f}, v1{1.0f, 0.0f, 0.0f}, a{0.5f, 1.0f, 0.0f}, b;
+    explicit Hinge(float degrees) {
+        const float t = glm::radians(degrees);
+        b = body::Vec3f(0.5f, -std::cos(t), std::sin(t));
+    }
+};
+}  // namespace
+
+TEST(EdgeList, CoplanarWithinRoundingOfTheCorners) {
+    const body::Vec3f none(0.0f);
+    EXPECT_TRUE(coplanar_within_rounding(Hinge(0).v0, Hinge(0).v1, Hinge(0).a, Hinge(0).b, none));
+    const Hinge fold(1.0f);
+    EXPECT_FALSE(coplanar_within_rounding(fold.v0, fold.v1, fold.a, fold.b, none)) << "exact test, 1 degree fold";
+    // A grid step of 1/100: corners moved by up to 0.0087 tilt these unit-size
+    // faces by up to ~2 degrees each, so a 1 degree fold is within the noise
+    // and a 10 degree fold is not.
+    const body::Vec3f coarse(0.01f);
+    EXPECT_TRUE(coplanar_within_rounding(fold.v0, fold.v1, fold.a, fold.b, coarse));
+    const Hinge real(10.0f);
+    EXPECT_FALSE(coplanar_within_rounding(real.v0, real.v1, real.a, real.b, coarse));
+    // The 16-bit grid of a unit box (step 1/65535) keeps even a 0.1 degree fold.
+    const Hinge slight(0.1f);
+    EXPECT_FALSE(coplanar_within_rounding(slight.v0, slight.v1, slight.a, slight.b, body::Vec3f(1.0f / 65535.0f)));
+    // Degenerate faces have no normal: never coplanar.
+    EXPECT_FALSE(coplanar_within_rounding(fold.v0, fold.v1, fold.v0, fold.b, coarse));
+}
+
+// Faces that are coplanar before rounding stay coplanar after it: a fine flat
+// grid, tilted out of the axes and rounded to a coarse grid, has noisy face
+// normals, yet every interior edge is within the rounding bound.
+TEST(EdgeList, RoundedFlatGridIsCoplanarEverywhere) {
+    const float step = 1.0f / 512.0f;
+    const body::Vec3f u = glm::normalize(body::Vec3f(1.0f, 0.3f, 0.2f));
+    const body::Vec3f w = glm::normalize(glm::cross(u, body::Vec3f(0.1f, 0.2f, 1.0f)));
+    auto at = [&](int i, int j) {
+        body::Vec3f p = u * (static_cast<float>(i) * 0.02f) + w * (static_cast<float>(j) * 0.02f);
+        return glm::round(p / step) * step;
+    };
+    int noisy = 0;
+    for (int i = 0; i < 8; ++i)
+        for (int j = 0; j < 8; ++j) {
+            // Quad (i, j) split along its diagonal: the diagonal edge (i,j)-(i+1,j+1).
+            const body::Vec3f v0 = at(i, j), v1 = at(i + 1, j + 1), a = at(i + 1, j), b = at(i, j + 1);
+            EXPECT_TRUE(coplanar_within_rounding(v0, v1, a, b, body::Vec3f(step))) << i << " " << j;
+            noisy += !coplanar_within_rounding(v0, v1, a, b, body::Vec3f(0.0f));
+        }
+    EXPECT_GT(noisy, 0) << "the rounding should have tilted some faces";
+}
