@@ -1,9 +1,9 @@
 #version 300 es
 // Shared vertex stage for the triangle styles (baseline, smooth, hatching,
-// paper fill, selection, x-ray): the view-space normal for lighting and the
-// object-space position/normal for the triplanar hatching coordinates; each
-// program keeps only the outputs its fragment stage reads (the view direction
-// comes from gl_FragCoord, see lighting.glsl).
+// paper fill, selection, x-ray): the view-space normal for lighting and, for
+// `hatching`, the object-space position in texture repeats; each program keeps
+// only the outputs its fragment stage reads (the view direction comes from
+// gl_FragCoord, see lighting.glsl).
 //
 // Geomorph (progressive meshes): vertices with index >= u_morph_begin are drawn
 // at mix(a_morph, a_position, u_morph), a_morph being the parent's position
@@ -24,15 +24,14 @@ uniform vec3 u_pos_origin;
 uniform vec3 u_pos_scale;
 uniform float u_morph;     // 0: at the parents .. 1: at their own positions
 uniform int u_morph_begin;  // first morphing vertex
+uniform float u_hatch_scale;  // hatching: texture repeats per object-space unit
 
 out vec3 v_view_normal;
-out vec3 v_object_pos;
-out vec3 v_object_normal;
+out vec3 v_hatch_pos;  // `hatching`: the object position in texture repeats
 
 void main() {
     vec3 p = u_pos_origin + u_pos_scale * (gl_VertexID >= u_morph_begin ? mix(a_morph, a_position, u_morph) : a_position);
     v_view_normal = u_normal_matrix * a_normal;
-    v_object_pos = p;
-    v_object_normal = a_normal;
+    v_hatch_pos = p * u_hatch_scale;
     gl_Position = u_projection * (u_model_view * vec4(p, 1.0));
 }
