@@ -4,6 +4,10 @@ uniform vec3 u_key_dir;
 uniform vec3 u_fill_dir;
 uniform vec3 u_rim_dir;
 uniform vec4 u_light_levels;  // key, fill, rim, ambient
+// The Blinn-Phong half vector of the key light for the view direction +z
+// (normalize(key + (0, 0, 1)), on the CPU): `smooth` takes the eye direction as
+// the view axis for its specular and rim terms (see smooth.frag).
+uniform vec3 u_half_dir;
 // The view ray through this pixel from gl_FragCoord (no view-position varying:
 // on a software rasterizer every varying costs per-triangle setup, and a
 // million-triangle model has more triangles than covered pixels):
