@@ -24,6 +24,7 @@ void main() {
     float specular = 0.25 * u_light_levels.x * x32 * x8;
     float f = 1.0 - max(n.z, 0.0);
     float rim = u_light_levels.z * f * f * f * (0.5 + 0.5 * max(dot(n, u_rim_dir), 0.0));
-    vec3 c = u_color.rgb * diffuse + vec3(specular + rim);
-    o_color = vec4(min(c, vec3(1.0)), u_color.a);
+    // No clamp: a fixed-point colour buffer clamps the output to [0, 1] before
+    // blending and storing it (GLES 3.0: blending, conversion to fixed point).
+    o_color = vec4(u_color.rgb * diffuse + vec3(specular + rim), u_color.a);
 }
