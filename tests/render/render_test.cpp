@@ -309,6 +309,39 @@ TEST(RenderProperty, LinesLeaveOutEdgesBetweenCoplanarFaces) {
     EXPECT_EQ(f.renderer().last_frame_stats().edges, 4u * kQuads + kQuads);  // + the fold's 4 edges
 }
 
+// A plane tilted out of the axes and subdivided finely, in a box so large that
+// the 16-bit position codes move its corners by up to a tenth of an edge: the
+// face normals differ by rounding noise only, so `lines` still keeps just the
+// boundary (coplanar_within_rounding), not the noisy interior edges.
+TEST(RenderProperty, LinesLeaveOutEdgesOfAPlaneThatOnlyRoundingTilts) {
+    RenderFixture f(128, 128);
+    REQUIRE_GL(f);
+    constexpr uint32_t kQuads = 32, kRow = kQuads + 1;
+    const Vec3f u = glm::normalize(Vec3f(1.0f, 0.35f, 0.2f));
+    const Vec3f w = glm::normalize(glm::cross(u, Vec3f(0.15f, 0.25f, 1.0f)));
+    test::GenMesh plane;
+    for (uint32_t y = 0; y < kRow; ++y)
+        for (uint32_t x = 0; x < kRow; ++x)
+            plane.positions.push_back(u * (10.0f * static_cast<float>(x) / kQuads) +
+                                      w * (10.0f * static_cast<float>(y) / kQuads));
+    for (uint32_t y = 0; y < kQuads; ++y)
+        for (uint32_t x = 0; x < kQuads; ++x) {
+            const uint32_t a = y * kRow + x, b = a + 1, c = a + kRow, d = c + 1;
+            plane.indices.insert(plane.indices.end(), {a, b, d, a, d, c});
+        }
+    // A small far triangle makes the box 2000 units wide: a code step of 0.03,
+    // a tenth of an edge of the grid.
+    const auto far = static_cast<uint32_t>(plane.positions.size());
+    plane.positions.insert(plane.positions.end(),
+                           {Vec3f(2000.0f), Vec3f(2000.0f, 2001.0f, 2000.0f), Vec3f(2001.0f, 2000.0f, 2000.0f)});
+    plane.indices.insert(plane.indices.end(), {far, far + 1, far + 2});
+    auto id = f.renderer().add_model(plane.data(), "rounded plane");
+    ASSERT_TRUE(id.ok());
+    f.renderer().state(id.value())->style = Style::Lines;
+    (void)f.draw(Camera::framing(Vec3f(5.0f), 10.0f, Vec3f(0.2f, 0.3f, 1.0f)));
+    EXPECT_EQ(f.renderer().last_frame_stats().edges, 4u * kQuads + 3u);  // the grid's boundary and the far triangle's
+}
+
 TEST(RenderProperty, LineDataIsGivenBackInAnotherStyleAndRebuiltTheSame) {
     RenderFixture f(160, 160);
     REQUIRE_GL(f);
