@@ -11,9 +11,10 @@
 //      memcpy of the full index array), decoding the whole file (vs meshopt decoding
 //      the full mesh as one vertex + index buffer), bytes per vertex split (goal <= 10 B)
 //
-// usage: bench_pm [--obj FILE] [--vtk-dir DIR] [--write-dir DIR] [--no-big] [--build-only] [--reps N]
-//                 [--decode FILE.bpm]
-//   --build-only prints the build times only (section 1); --reps N: best of N for the bunny (default 3;
+// usage: bench_pm [--obj FILE] [--vtk-dir DIR] [--write-dir DIR] [--no-big] [--build-only] [--accuracy-only]
+//                 [--reps N] [--decode FILE.bpm]
+//   --build-only prints the build times only (section 1); --accuracy-only prints section 2 only (one build,
+//   no half-edge comparison build, no runtime) and the bytes per split; --reps N: best of N for the bunny (default 3;
 //   the big mesh gets best of 1) -- on a busy machine a larger N finds the quiet runs;
 //   --decode times reading one .bpm (nothing else);
 //   --write-dir writes the inputs (bunny.obj, bunny_sub.obj) for the VTK script;
@@ -126,7 +127,8 @@ void row(const char* what, double ours, const char* base_name, double base) {
     std::printf("  %-44s %12.6g   %-30s %12.6g   ratio %7.3f\n", what, ours, base_name, base, ours / base);
 }
 
-void run(const Mesh& mesh, const std::string& label, const std::string& vtk_dir, int reps, bool build_only) {
+void run(const Mesh& mesh, const std::string& label, const std::string& vtk_dir, int reps, bool build_only,
+         bool accuracy_only) {
     const size_t tris = mesh.triangle_count();
     std::printf("\n== %s: %zu vertices, %zu triangles\n", label.c_str(), mesh.positions.size(), tris);
     const std::vector<float> fp = float_positions(mesh);
@@ -135,12 +137,14 @@ void run(const Mesh& mesh, const std::string& label, const std::string& vtk_dir,
     // 1. build time
     std::vector<uint8_t> bytes;
     lod::LodOptions options;
-    const double t_pm = best_time(reps, [&] { bytes = *lod::encode_bpm(one, options); });
-    const double t_simplify = best_time(reps, [&] { (void)lod::build_progressive_mesh(mesh, options); });
-    const double t_chain = best_time(reps, [&] { meshopt_chain(mesh, fp); });
-    std::printf(" build\n");
-    row("PM build + encode (s)", t_pm, "meshopt 10-level chain (s)", t_chain);
-    row("  of which simplification (s)", t_simplify, "meshopt 10-level chain (s)", t_chain);
+    const double t_pm = best_time(accuracy_only ? 1 : reps, [&] { bytes = *lod::encode_bpm(one, options); });
+    if (!accuracy_only) {
+        const double t_simplify = best_time(reps, [&] { (void)lod::build_progressive_mesh(mesh, options); });
+        const double t_chain = best_time(reps, [&] { meshopt_chain(mesh, fp); });
+        std::printf(" build\n");
+        row("PM build + encode (s)", t_pm, "meshopt 10-level chain (s)", t_chain);
+        row("  of which simplification (s)", t_simplify, "meshopt 10-level chain (s)", t_chain);
+    }
     if (build_only) return;
 
     auto pms = pm::read_bpm_bytes(bytes, label);
@@ -168,7 +172,9 @@ void run(const Mesh& mesh, const std::string& label, const std::string& vtk_dir,
     // The same build with half-edge collapses only (no optimal placement), for comparison.
     lod::LodOptions half_edge = options;
     half_edge.optimal_placement = false;
-    auto he_pms = pm::read_bpm_bytes(*lod::encode_bpm(one, half_edge), label);
+    auto he_pms = accuracy_only ? Result<std::vector<std::unique_ptr<pm::ProgressiveMesh>>>(
+                                      input_error("bench_pm: half-edge build skipped (--accuracy-only)"))
+                                : pm::read_bpm_bytes(*lod::encode_bpm(one, half_edge), label);
     for (double pct : {10.0, 2.0}) {
         const size_t target = size_t(double(tris) * pct / 100.0);
         const double ours = hausdorff_at(m, target);
@@ -233,6 +239,11 @@ void run(const Mesh& mesh, const std::string& label, const std::string& vtk_dir,
                     bound, double(m.error_at(m.level())), double(m.quantization_bound()), ours / bound);
     }
 
+    if (accuracy_only) {
+        const SectionBytes sb = section_bytes(bytes);
+        row("bytes per vertex split (SPLT sections)", double(sb.splits) / double(m.max_level()), "goal", 10.0);
+        return;
+    }
     // 3. runtime
     std::printf(" runtime\n");
     const size_t n = m.max_level();
@@ -309,7 +320,7 @@ int decode_only(const std::string& path) {
 
 int main(int argc, char** argv) {
     std::string obj = "/usr/share/glmark2/models/bunny.obj", vtk_dir, write_dir, decode;
-    bool big = true, build_only = false;
+    bool big = true, build_only = false, accuracy_only = false;
     int reps = 3;
     for (int i = 1; i < argc; ++i) {
         std::string a = argv[i];
@@ -325,13 +336,15 @@ int main(int argc, char** argv) {
             big = false;
         else if (a == "--build-only")
             build_only = true;
+        else if (a == "--accuracy-only")
+            accuracy_only = true;
         else if (a == "--reps" && i + 1 < argc)
             reps = std::max(1, std::atoi(argv[++i]));
         else {
-            std::fprintf(
-                stderr,
-                "usage: bench_pm [--obj FILE] [--vtk-dir DIR] [--write-dir DIR] [--no-big] [--build-only] [--reps N] "
-                "[--decode FILE.bpm]\n");
+            std::fprintf(stderr,
+                         "usage: bench_pm [--obj FILE] [--vtk-dir DIR] [--write-dir DIR] [--no-big] [--build-only] "
+                         "[--accuracy-only] "
+                         "[--reps N] [--decode FILE.bpm]\n");
             return 2;
         }
     }
@@ -354,7 +367,7 @@ int main(int argc, char** argv) {
         return 0;
     }
     std::printf("bench_pm: ratios are ours / baseline, same run, same machine; times in thread CPU seconds\n");
-    run(*mesh, "bunny", vtk_dir, reps, build_only);
-    if (big) run(sub, "bunny_sub", vtk_dir, 1, build_only);
+    run(*mesh, "bunny", vtk_dir, reps, build_only, accuracy_only);
+    if (big) run(sub, "bunny_sub", vtk_dir, 1, build_only, accuracy_only);
     return 0;
 }
