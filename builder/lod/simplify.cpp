@@ -5,6 +5,8 @@
 //   H. Hoppe, "Progressive Meshes", SIGGRAPH 1996.
 //   T. Dey, H. Edelsbrunner, S. Guha, D. Nekhayev, "Topology preserving edge contraction", 1999
 //     (the link condition).
+//   P. Lindstrom, G. Turk, "Fast and Memory Efficient Polygonal Simplification", IEEE Visualization
+//     1998 (quadrics from the current mesh rather than the accumulated input: restart_ordering).
 //
 // Pipeline (static phases, public entry at the bottom):
 //   clean_input      drop degenerate triangles and unreferenced vertices
@@ -15,6 +17,8 @@
 //   reorder_vertices, reorder_faces  renumber for cache locality (the output keeps the input numbering)
 //   placement        optimal (quadric minimiser) or fallback position of a collapse
 //   collapse_loop    indexed 4-ary heap of vertices keyed by their cheapest outgoing collapse
+//                    (ordering cost per unit quadric weight)
+//   restart_ordering at the end of the lossless phase, ordering quadrics from the current faces
 //   emit_order       vertices and faces in refinement order, index patches per split
 #include "builder/lod/simplify.h"
 
@@ -34,6 +38,9 @@ constexpr uint32_t kNone = 0xffffffffu;
 constexpr uint32_t kUnknown = 0xfffffffeu;
 constexpr double kMinTurnCos = 0.2;  // cos(78 degrees): the largest turn of a face in one collapse
 constexpr double kFoldCos = -0.9;    // neighbours closer than 26 degrees to back-to-back count as folded
+// A collapse whose ordering cost (mean squared distance) is below (this x the bounding-box
+// diagonal)^2 loses nothing: the lossless phase (flat and straight regions, rounding noise).
+constexpr double kLosslessDistance = 1e-6;
 
 // Symmetric 4x4 quadric: A (6), b (3), c.
 struct Quadric {
@@ -243,6 +250,9 @@ struct State {
     size_t live_faces = 0;
     double running_error = 0.0;
     bool optimal = true;              // LodOptions::optimal_placement
+    double boundary_weight = 100.0;   // LodOptions::boundary_weight
+    double lossless_cost = 0.0;       // ordering cost (squared distance) of a collapse that loses nothing
+    bool restarted = false;           // restart_ordering has run
     Vec3 box_min{0.0}, box_max{0.0};  // the input's bounds: placements stay inside
     // scratch
     std::vector<uint32_t> cu, cv, fan, ring_u, ring_v, touched;
@@ -328,11 +338,14 @@ void build_adjacency(State& s) {
     s.alive.assign(n, 1);
 }
 
-void init_quadrics(State& s, double boundary_weight) {
+// The quadrics of the live faces; `ordering_only` recomputes the ordering quadrics alone
+// (restart_ordering).
+void init_quadrics(State& s, double boundary_weight, bool ordering_only = false) {
     const size_t n = s.pos.size(), faces = s.idx.size() / 3;
     s.q.assign(n, Quadric{});
-    s.e.assign(n, Quadric{});
+    if (!ordering_only) s.e.assign(n, Quadric{});
     for (size_t f = 0; f < faces; ++f) {
+        if (!s.face_alive[f]) continue;
         const uint32_t* t = &s.idx[f * 3];
         const Vec3 &p0 = s.pos[t[0]], &p1 = s.pos[t[1]], &p2 = s.pos[t[2]];
         Vec3 nrm = glm::cross(p1 - p0, p2 - p0);
@@ -343,7 +356,7 @@ void init_quadrics(State& s, double boundary_weight) {
         const Quadric area = Quadric::plane(nrm, d, 0.5 * len), unit = Quadric::plane(nrm, d, 1.0);
         for (int k = 0; k < 3; ++k) {
             s.q[t[k]].add(area);
-            s.e[t[k]].add(unit);
+            if (!ordering_only) s.e[t[k]].add(unit);
         }
         for (int k = 0; k < 3; ++k) {
             if (!s.edge_boundary[f * 3 + k]) continue;
@@ -358,7 +371,7 @@ void init_quadrics(State& s, double boundary_weight) {
             const Quadric upen = Quadric::plane(bn, bd, 1.0);
             for (uint32_t v : {t[k], t[(k + 1) % 3]}) {
                 s.q[v].add(pen);
-                s.e[v].add(upen);
+                if (!ordering_only) s.e[v].add(upen);
             }
         }
     }
@@ -483,9 +496,27 @@ void ring_of(State& s, uint32_t v, std::vector<uint32_t>& ring) {
     ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
 }
 
+// The weight of a quadric: the sum of its planes' weights (trace of A, each plane's
+// normal being a unit vector) -- the area it has accumulated.
+double weight(const Quadric& q) { return q.a00 + q.a11 + q.a22; }
+
+Vec3 placement_raw(const State& s, uint32_t from, uint32_t to, double& cost, bool* optimum);
+
 // Where the collapse from -> to puts the merged vertex (see simplify.h), and its
-// ordering cost there.
+// ordering cost there: Q_from + Q_to per unit of their weight, i.e. the area-weighted
+// mean squared distance to the accumulated planes. Ranking by the plain sum (area x
+// distance^2) lets a vertex that has swallowed a large flat neighbourhood outrank
+// collapses that move the surface farther; per unit weight the order follows the
+// distance, which is what the Hausdorff error of a level measures.
 Vec3 placement(const State& s, uint32_t from, uint32_t to, double& cost, bool* optimum = nullptr) {
+    const Vec3 p = placement_raw(s, from, to, cost, optimum);
+    const double w = weight(s.q[from]) + weight(s.q[to]);
+    if (w > 0.0) cost /= w;
+    return p;
+}
+
+// placement() before the division by the weight.
+Vec3 placement_raw(const State& s, uint32_t from, uint32_t to, double& cost, bool* optimum) {
     const Vec3& pv = s.pos[to];
     if (!s.optimal || s.boundary[from] || s.boundary[to] || s.locked[to]) {
         cost = std::max(s.q[from].eval(pv) + s.q[to].eval(pv), 0.0);
@@ -919,6 +950,27 @@ void apply_collapse(State& s, uint32_t u, uint32_t v, const Vec3& target, const 
     s.sym_v = kNone;
 }
 
+// The end of the lossless phase (the cheapest collapse would move the surface by more
+// than kLosslessDistance): the mesh is still the input surface, but each vertex's
+// ordering quadric is now the sum of whatever flat or straight neighbourhood it happened
+// to swallow (a linearly subdivided mesh: whole coplanar patches), which skews the
+// order and the placements from here on. The current faces' planes describe the same
+// surface, so the ordering quadrics start again from them, as if the simplification
+// began on this mesh (Lindstrom & Turk's observation that the current mesh's planes
+// suffice, used once). The error quadrics keep accumulating from the input: the stored
+// error stays a bound against the input surface. Runs at most once.
+void restart_ordering(State& s) {
+    s.restarted = true;
+    // A lossless phase that removed less than a quarter of the faces (the bunny: 0.3%)
+    // left nearly every quadric as it was built; a restart would only cost a second
+    // heap build.
+    if (s.live_faces * 4 > s.idx.size() / 3 * 3) return;
+    init_quadrics(s, s.boundary_weight, true);
+    for (State::CornerCost& c : s.corner_cost) c.time = 0;
+    s.sym_v = kNone;
+    for (uint32_t v = 0; v < uint32_t(s.pos.size()); ++v) update_vertex(s, v);
+}
+
 // Greedy: take the vertex with the cheapest outgoing collapse; try its collapses in
 // cost order while they stay no dearer than the next vertex; the first legal one
 // is applied. A vertex without a legal collapse waits until its neighbourhood changes.
@@ -939,6 +991,10 @@ void collapse_loop(State& s, size_t target_faces) {
         for (uint32_t v = 0; v < n; ++v) update_vertex(s, v);
         size_t done = 0;
         while (!s.heap.empty() && s.live_faces > target_faces) {
+            if (!s.restarted && s.heap.key(s.heap.top()) > s.lossless_cost) {
+                restart_ordering(s);
+                if (s.heap.empty()) break;
+            }
             const uint32_t u = s.heap.top();
             const double limit = s.heap.second_key();
             // Fast path: the keyed collapse is usually the cheapest and legal.
@@ -990,7 +1046,8 @@ void collapse_loop(State& s, size_t target_faces) {
                 }
                 // The safe fallback: the half-edge collapse (v where it is), at its cost.
                 const Vec3& pv = s.pos[v];
-                options[i] = {std::max(s.q[u].eval(pv) + s.q[v].eval(pv), 0.0), rank, v, true};
+                const double w = weight(s.q[u]) + weight(s.q[v]);
+                options[i] = {std::max(s.q[u].eval(pv) + s.q[v].eval(pv), 0.0) / (w > 0.0 ? w : 1.0), rank, v, true};
                 std::sort(options.begin() + ptrdiff_t(i), options.end());
             }
             if (!handled) s.heap.erase(u);
@@ -1080,6 +1137,9 @@ Result<ProgressiveBuild> build_progressive_mesh(const Mesh& mesh, const LodOptio
     init_quadrics(s, options.boundary_weight);
     reorder_faces(s);
     s.optimal = options.optimal_placement;
+    s.boundary_weight = options.boundary_weight;
+    const double lossless = kLosslessDistance * mesh_bounds(s.pos).extent();
+    s.lossless_cost = lossless * lossless;
     s.corner_cost.assign(s.idx.size(), {0.0, 0});
     s.last_changed.assign(s.pos.size(), 0);
     s.mark.assign(s.pos.size(), 0);

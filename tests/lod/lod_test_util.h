@@ -59,6 +59,26 @@ inline Mesh bumpy_torus(int rings, int segments, double major = 10.0, double min
     return m;
 }
 
+// Every triangle split into four at its edge midpoints, in place (the surface does
+// not change: each input triangle becomes four coplanar ones).
+inline Mesh subdivide_linear(const Mesh& in) {
+    Mesh out;
+    out.name = in.name + "_sub";
+    out.positions = in.positions;
+    std::map<std::pair<uint32_t, uint32_t>, uint32_t> mid;
+    auto midpoint = [&](uint32_t a, uint32_t b) {
+        auto [it, inserted] = mid.emplace(std::minmax(a, b), uint32_t(out.positions.size()));
+        if (inserted) out.positions.push_back((in.positions[a] + in.positions[b]) * 0.5);
+        return it->second;
+    };
+    for (size_t f = 0; f + 2 < in.indices.size(); f += 3) {
+        const uint32_t a = in.indices[f], b = in.indices[f + 1], c = in.indices[f + 2];
+        const uint32_t ab = midpoint(a, b), bc = midpoint(b, c), ca = midpoint(c, a);
+        out.indices.insert(out.indices.end(), {a, ab, ca, b, bc, ab, c, ca, bc, ab, bc, ca});
+    }
+    return out;
+}
+
 // A wavy open square sheet (boundary) of n x n quads.
 inline Mesh wavy_sheet(int n, double size = 20.0) {
     Mesh m;
