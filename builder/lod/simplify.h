@@ -17,9 +17,10 @@
 // (the ordering quadric's cost per unit of its weight -- an area-weighted mean squared
 // distance -- then the input vertex number). The ordering quadrics are rebuilt once from
 // the current faces when the lossless phase ends (the cheapest collapse would move the
-// surface by more than 1e-6 of the bounding-box diagonal), so that a mesh with redundant
-// flat detail (a linearly subdivided one) is simplified as its coarse original would be;
-// the stored errors come from unit-weight quadrics accumulated from the input all along.
+// surface by more than 1e-6 of the bounding-box diagonal) if it removed at least a
+// quarter of the faces, so that a mesh with redundant flat detail (a linearly subdivided
+// one) is simplified as its coarse original would be; the stored errors come from
+// unit-weight quadrics accumulated from the input all along.
 // Deterministic (no hash iteration, IEEE double arithmetic with contraction disabled
 // in this library) and independent of the internal renumbering done for cache locality.
 //
