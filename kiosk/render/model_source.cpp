@@ -103,6 +103,7 @@ std::span<const uint32_t> ModelSource::current_indices() const {
 }
 
 std::span<const Vec3f> ModelSource::positions() const {
+    if (pm_ && pm_->vertex_data_released()) return {};  // the renderer's buffer has them
     if (!positions_decoded_ && pm_) {
         positions_.resize(pm_->max_vertex_count());
         pm_->positions(0, std::span<Vec3f>(positions_).first(pm_->available_level() + pm_->base_vertex_count()));
@@ -132,8 +133,36 @@ MeshData mesh_data_of(const pm::ProgressiveMesh& pm) {
     return m;
 }
 
+bool ModelSource::hands_over_indices() const {
+    return pm_ && pm_->has_normals() && !pm_->indices_released() && pm_->available_level() == pm_->max_level();
+}
+
 MeshData ModelSource::upload_mesh() const {
-    if (pm_) return mesh_data_of(*pm_);
+    if (pm_) {
+        MeshData m = mesh_data_of(*pm_);
+        pm::ProgressiveMesh* pm = pm_.get();
+        if (pm->vertex_data_released()) {
+            // The renderer's buffers are the positions and normals: the
+            // parents' moves are XORed into its codes, normals never change.
+            m.position_patch = [pm](std::span<uint16_t> window, size_t first) {
+                pm->patch_position_codes(window, first);
+            };
+            m.position_patch_begin = pm->pending_vertex_range().begin;
+            m.position_patch_end = pm->pending_vertex_range().end;
+        }
+        if (pm->indices_released()) {
+            // The renderer's element buffer is the index array: the level's
+            // patches are written into it.
+            m.index_patch = [pm](std::span<uint32_t> window, size_t first) { pm->patch_indices(window, first); };
+            m.index_patch_begin = pm->pending_index_range().begin;
+            m.index_patch_end = pm->pending_index_range().end;
+        } else if (hands_over_indices()) {
+            // Complete: the whole array going up is the last use of ours (freed
+            // as it goes, see release_arrays()).
+            m.indices_uploaded = [pm](size_t end) { pm->release_indices_upto(end); };
+        }
+        return m;
+    }
     MeshData m;
     m.position_codes = position_codes_;
     m.has_position_box = true;
@@ -149,6 +178,19 @@ void ModelSource::release_arrays() {
     std::vector<Vec3f>().swap(positions_);  // `= {}` would keep the storage
     std::vector<Vec3f>().swap(pm_normals_);
     positions_decoded_ = false;
+    // A complete progressive mesh with normals hands its index array to the
+    // renderer's buffer for good (12 bytes a triangle); without normals the
+    // renderer computes them from the indices at every update, so it keeps them.
+    if (hands_over_indices()) {
+        const size_t bytes = pm_->indices().size() * sizeof(uint32_t);
+        if (pm_->release_indices()) freed += bytes;
+    }
+    // Its positions and normals likewise, once the indices went (the renderer
+    // has every vertex: add_model uploads them all).
+    if (pm_ && pm_->indices_released() && !pm_->vertex_data_released()) {
+        const size_t bytes = pm_->position_codes().size() * 2 + pm_->normal_codes().size();
+        if (pm_->release_vertex_data()) freed += bytes;
+    }
     // The current level's indices, unless they exist only plainly (no code).
     if (decoded_ != Decoded::None && !full_code_.empty() && (decoded_ == Decoded::Full || !level_code_.empty())) {
         freed += indices_.capacity() * sizeof(uint32_t);
@@ -210,10 +252,12 @@ void ModelSource::set_lod(double ratio) {
 }
 
 MeshData ModelSource::mesh() const {
-    // What an upload gets, plus floats for CPU readers.
+    // What an upload gets, plus floats for CPU readers; the arrays stay ours
+    // (an upload of these does not hand the index array over).
     MeshData m = upload_mesh();
+    m.indices_uploaded = {};
     m.positions = positions();
-    if (pm_) {
+    if (pm_ && !pm_->vertex_data_released()) {
         if (pm_->has_normals() && pm_normals_.empty()) {
             pm_normals_.resize(pm_->max_vertex_count());
             for (size_t v = 0; v < pm_normals_.size(); ++v) pm_normals_[v] = pm_->normal(v);
@@ -227,7 +271,7 @@ Dirty ModelSource::take_dirty() {
     Dirty d;
     if (pm_) {
         if (first_) {
-            d = {0, pm_->max_vertex_count(), 0, pm_->indices().size()};
+            d = {0, pm_->max_vertex_count(), 0, 3 * pm_->max_triangle_count()};
         } else {
             d = {pm_->dirty_vertices().begin, pm_->dirty_vertices().end, pm_->dirty_indices().begin,
                  pm_->dirty_indices().end};

@@ -53,7 +53,10 @@ public:
     MeshData mesh() const;
     // The same for an upload: positions as codes only (MeshData::position_codes)
     // and a progressive mesh's normals as its octahedral codes
-    // (MeshData::normal_codes), so no float copy is made.
+    // (MeshData::normal_codes), so no float copy is made. A complete
+    // progressive mesh with normals hands its index array over to the
+    // add_model it goes to (MeshData::indices_uploaded: freed as it goes up;
+    // see release_arrays() for what follows).
     MeshData upload_mesh() const;
     // Ranges changed since the last call (everything on the first call).
     Dirty take_dirty();
@@ -61,8 +64,15 @@ public:
     // positions once uploaded (the renderer keeps its own copy); a later
     // mesh() decodes them again from the codes, with the same triangles (a
     // triangle's corners may come rotated, its winding kept). Progressive
-    // meshes: the floats mesh() decoded (their splits patch the codes and
-    // indices in place).
+    // meshes: the floats mesh() decoded (their splits patch the codes in
+    // place) and, once every split is decoded and when the file has normals,
+    // the index array and the vertex data for good (pm::ProgressiveMesh::
+    // release_indices, ::release_vertex_data; upload_mesh() already hands the
+    // index array over to add_model, freeing it as it goes up): the renderer's
+    // buffers become the only copy, upload_mesh() then carries the level's
+    // patches (MeshData::index_patch, ::position_patch) instead of arrays, and
+    // mesh() has none. Call it only after add_model(upload_mesh()) of one
+    // renderer model, and use upload_mesh() for every later update of it.
     void release_arrays();
 
 private:
@@ -91,6 +101,8 @@ private:
     std::span<const uint32_t> current_indices() const;  // decodes the current level when released
     bool first_ = true;
     Dirty pending_;
+    // A complete progressive mesh with normals, its index array still its own.
+    bool hands_over_indices() const;
 };
 
 // Loads `.bpm` or `.obj` (by extension); errors name the file and the reason.

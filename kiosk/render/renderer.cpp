@@ -234,6 +234,19 @@ void upload_packed_normals(std::span<const Vec3f> normals, std::span<const uint8
     }
 }
 
+// Writes indices [begin, end) into the GL_ELEMENT_ARRAY_BUFFER bound, a piece
+// at a time, telling `uploaded` (MeshData::indices_uploaded) after each piece.
+void upload_indices(const MeshData& mesh, size_t begin, size_t end,
+                    const std::function<void(size_t)>& uploaded = nullptr) {
+    constexpr size_t kPiece = 256 * 1024;  // 1 MiB
+    for (size_t first = begin; first < end; first += kPiece) {
+        const size_t n = std::min(kPiece, end - first);
+        glBufferSubData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLintptr>(first * 4), static_cast<GLsizeiptr>(n * 4),
+                        mesh.indices.data() + first);
+        if (uploaded) uploaded(first + n);
+    }
+}
+
 // The 16-bit code of p in the model's position box (clamped to it).
 glm::u16vec3 position_code(const Model& m, const Vec3f& p) {
     glm::u16vec3 c(0);
@@ -658,12 +671,26 @@ Result<ModelId> Renderer::add_model(const MeshData& mesh, const std::string& nam
 
     glGenVertexArrays(1, &m.vao);
     glBindVertexArray(m.vao);
-    // Normals first: computed ones are scratch, freed before the other buffers
-    // are filled, so the upload's peak is the buffers or the scratch, not both.
+    // The indices go up first when they can: a source handing its array over
+    // (MeshData::indices_uploaded) frees it as it goes, before the vertex
+    // buffers exist (drivers may clear a new buffer's memory at once:
+    // llvmpipe does), so the upload's peak holds one full index array, not two
+    // plus the vertex buffers. Computed normals need the indices: then last.
+    const auto upload_element_buffer = [&] {
+        glGenBuffers(1, &m.ebo);
+        glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m.ebo);
+        glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(m.index_capacity * 4), nullptr, GL_DYNAMIC_DRAW);
+        upload_indices(mesh, 0, iupload, mesh.prefix_only ? nullptr : mesh.indices_uploaded);
+    };
+    const bool computed_normals = mesh.normals.empty() && mesh.normal_codes.empty();
+    if (!computed_normals) upload_element_buffer();
+    // Normals before the positions: computed ones are scratch, freed before the
+    // other buffers are filled, so the upload's peak is the buffers or the
+    // scratch, not both.
     {
         std::vector<Vec3f> computed;
         std::span<const Vec3f> normals = mesh.normals;
-        if (normals.empty() && mesh.normal_codes.empty()) {
+        if (computed_normals) {
             computed = area_normals(pos, mesh.indices.first(m.index_count), pos.size());
             normals = computed;
         }
@@ -693,10 +720,7 @@ Result<ModelId> Renderer::add_model(const MeshData& mesh, const std::string& nam
         position_pointer(m, kMorph);
         glEnableVertexAttribArray(kMorph);
     }
-    glGenBuffers(1, &m.ebo);
-    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m.ebo);
-    glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(m.index_capacity * 4), nullptr, GL_DYNAMIC_DRAW);
-    glBufferSubData(GL_ELEMENT_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(iupload * 4), mesh.indices.data());
+    if (computed_normals) upload_element_buffer();
     glBindVertexArray(0);
     BODY_GL_CHECK("add_model");
 
@@ -704,6 +728,8 @@ Result<ModelId> Renderer::add_model(const MeshData& mesh, const std::string& nam
     s_->models.emplace(id, std::move(m));
     return id;
 }
+
+static void set_bounds_from_buffer(Model& m);
 
 namespace {
 // A patch moved vertices out of the quantization box: the model's positions
@@ -735,17 +761,41 @@ Status Renderer::update_model(ModelId id, const MeshData& mesh, const Dirty& dir
     if (it == s_->models.end()) return input_error("update_model: unknown model " + std::to_string(id));
     Model& m = it->second;
     const PositionView pos(mesh);
-    const size_t vcount = mesh.vertex_count == SIZE_MAX ? pos.size() : mesh.vertex_count;
-    const size_t icount = mesh.index_count == SIZE_MAX ? mesh.indices.size() : mesh.index_count;
-    if (pos.size() > m.vertex_capacity || mesh.indices.size() > m.index_capacity || vcount > pos.size() ||
-        icount > mesh.indices.size() || dirty.vertex_end > pos.size() || (pos.coded() && !mesh.has_position_box) ||
-        dirty.index_end > mesh.indices.size() || (!mesh.normals.empty() && mesh.normals.size() < dirty.vertex_end) ||
-        (!mesh.normal_codes.empty() && mesh.normal_codes.size() / 2 < dirty.vertex_end))
+    // Patched in place (MeshData::index_patch, ::position_patch): the buffers
+    // are the arrays.
+    const bool patched = mesh.indices.empty() && mesh.index_patch;
+    const bool vpatched =
+        pos.empty() && mesh.normals.empty() && mesh.normal_codes.empty() && static_cast<bool>(mesh.position_patch);
+    const size_t index_size = patched ? m.index_capacity : mesh.indices.size();
+    const size_t vertex_size = vpatched ? m.vertex_capacity : pos.size();
+    const size_t vcount = mesh.vertex_count == SIZE_MAX ? vertex_size : mesh.vertex_count;
+    const size_t icount = mesh.index_count == SIZE_MAX ? index_size : mesh.index_count;
+    if (vertex_size > m.vertex_capacity || index_size > m.index_capacity || vcount > vertex_size ||
+        icount > index_size || dirty.vertex_end > vertex_size || (pos.coded() && !mesh.has_position_box) ||
+        dirty.index_end > index_size || (!mesh.normals.empty() && mesh.normals.size() < dirty.vertex_end) ||
+        (!mesh.normal_codes.empty() && mesh.normal_codes.size() / 2 < dirty.vertex_end) ||
+        (patched &&
+         (mesh.index_patch_end > index_size || (mesh.normals.empty() && mesh.normal_codes.empty() && !vpatched))) ||
+        (vpatched && mesh.position_patch_end > m.vertex_capacity))
         return input_error(m.name + ": update exceeds the uploaded capacity");
-    for (size_t i = dirty.index_begin; i < dirty.index_end; ++i)
-        if (mesh.indices[i] >= pos.size())
-            return input_error(m.name + ": index " + std::to_string(i) + " out of range");
-    if (dirty.vertex_begin < dirty.vertex_end) {
+    if (vpatched && (!m.quantized || m.vbo_morph || !mesh.has_position_box || m.pos_origin != mesh.position_box_min ||
+                     m.pos_scale != (mesh.position_box_max - mesh.position_box_min) / 65535.0f))
+        return input_error(m.name + ": position patches need the model's positions as codes in their box, no morph");
+    if (!patched)
+        for (size_t i = dirty.index_begin; i < dirty.index_end; ++i)
+            if (mesh.indices[i] >= pos.size())
+                return input_error(m.name + ": index " + std::to_string(i) + " out of range");
+    const bool vertex_patched = vpatched && mesh.position_patch_begin < mesh.position_patch_end;
+    if (vertex_patched) {
+        const size_t b = mesh.position_patch_begin, n = mesh.position_patch_end - mesh.position_patch_begin;
+        glBindBuffer(GL_COPY_WRITE_BUFFER, m.vbo_position);
+        void* p = glMapBufferRange(GL_COPY_WRITE_BUFFER, static_cast<GLintptr>(b * 6), static_cast<GLsizeiptr>(n * 6),
+                                   GL_MAP_WRITE_BIT);
+        if (!p) return runtime_error(m.name + ": the position buffer could not be mapped for patching");
+        mesh.position_patch(std::span<uint16_t>(static_cast<uint16_t*>(p), n * 3), b);
+        glUnmapBuffer(GL_COPY_WRITE_BUFFER);
+        glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
+    } else if (!vpatched && dirty.vertex_begin < dirty.vertex_end) {
         const size_t b = dirty.vertex_begin, n = dirty.vertex_end - dirty.vertex_begin;
         if (m.quantized && !inside_position_box(m, pos, b, b + n))
             to_float_positions(m, mesh, std::max(vcount, dirty.vertex_end));
@@ -767,20 +817,32 @@ Status Renderer::update_model(ModelId id, const MeshData& mesh, const Dirty& dir
         release_scratch(computed);
         set_bounds(m, pos, vcount);
     }
-    if (dirty.index_begin < dirty.index_end) {
-        const size_t b = dirty.index_begin, n = dirty.index_end - dirty.index_begin;
+    const bool index_patched = patched && mesh.index_patch_begin < mesh.index_patch_end;
+    if (index_patched) {
+        // Mapped through GL_COPY_WRITE_BUFFER, which is no VAO's state; the
+        // range is not invalidated, so the entries the patch skips keep theirs.
+        const size_t b = mesh.index_patch_begin, n = mesh.index_patch_end - mesh.index_patch_begin;
+        glBindBuffer(GL_COPY_WRITE_BUFFER, m.ebo);
+        void* p = glMapBufferRange(GL_COPY_WRITE_BUFFER, static_cast<GLintptr>(b * 4), static_cast<GLsizeiptr>(n * 4),
+                                   GL_MAP_WRITE_BIT);
+        if (!p) return runtime_error(m.name + ": the index buffer could not be mapped for patching");
+        mesh.index_patch(std::span<uint32_t>(static_cast<uint32_t*>(p), n), b);
+        glUnmapBuffer(GL_COPY_WRITE_BUFFER);
+        glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
+    } else if (!patched && dirty.index_begin < dirty.index_end) {
         glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m.ebo);
-        glBufferSubData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLintptr>(b * 4), static_cast<GLsizeiptr>(n * 4),
-                        mesh.indices.data() + b);
+        upload_indices(mesh, dirty.index_begin, dirty.index_end);
     }
     // The edge list holds face normals, so any change rebuilds it (lazily, when
     // drawn in `lines`); the wireframe's position texture only follows the vertices.
-    if (icount - icount % 3 != m.index_count || dirty.index_begin < dirty.index_end ||
-        dirty.vertex_begin < dirty.vertex_end)
+    if (icount - icount % 3 != m.index_count || dirty.index_begin < dirty.index_end || index_patched ||
+        dirty.vertex_begin < dirty.vertex_end || vertex_patched)
         m.edges_stale = true;
-    if (vcount != m.vertex_count || dirty.vertex_begin < dirty.vertex_end) m.wire_stale = true;
+    const bool vertices_changed = vcount != m.vertex_count || dirty.vertex_begin < dirty.vertex_end || vertex_patched;
+    if (vertices_changed) m.wire_stale = true;
     m.vertex_count = vcount;
     m.index_count = icount - icount % 3;
+    if (vpatched && vertices_changed) set_bounds_from_buffer(m);  // no CPU positions to take them from
     BODY_GL_CHECK("update_model");
     return ok_status();
 }
@@ -1048,6 +1110,19 @@ private:
     const Model& m_;
     MappedBuffer<uint16_t> map_;
 };
+
+// Object-space box and bounding sphere of the drawn vertices, read from the
+// GL positions (a source that keeps none).
+static void set_bounds_from_buffer(Model& m) {
+    const MappedPositions positions(m);
+    if (!positions.ok()) return;  // the bounds stay those of the last upload
+    Aabb box;
+    for (size_t v = 0; v < positions.size(); ++v) box.extend(Vec3(positions[v]));
+    m.center = Vec3f((box.min + box.max) * 0.5);
+    m.radius = static_cast<float>(box.extent() * 0.5);
+    m.box_min = Vec3f(box.min);
+    m.box_max = Vec3f(box.max);
+}
 
 // A model is drawn in one style at a time, so it keeps the lazily built data of
 // one line style only: building the `lines` edge texture frees the `wireframe`

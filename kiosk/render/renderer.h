@@ -29,6 +29,7 @@
 // pre-pass so only its nearest layer blends. The white manipulation sphere of a
 // selected model sits at its centre (opaque, seen through the purple).
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <span>
 #include <string>
@@ -94,6 +95,32 @@ struct MeshData {
     // positions (the sources at rest), patched with the same dirty vertex
     // ranges, so a source that keeps only codes needs no float copy.
     bool morph_at_rest = false;
+    // Optional, for update_model in place of `indices` (left empty): a source
+    // that keeps no index array of its own (the model's GL element buffer is
+    // its only copy, e.g. a progressive mesh after
+    // pm::ProgressiveMesh::release_indices) writes its changes straight into the
+    // buffer's elements [index_patch_begin, index_patch_end), mapped for writing
+    // (no copy on drivers that share memory with the CPU): window[i] is element
+    // first + i; entries it does not write keep their values. Its values are
+    // trusted (the source's own, checked when it was read). Needs normals or
+    // normal codes (area normals need the indices).
+    std::function<void(std::span<uint32_t> window, size_t first)> index_patch = {};
+    size_t index_patch_begin = 0, index_patch_end = 0;
+    // Optional, for update_model in place of the positions and normals (both
+    // left empty; has_position_box set to the box of the model's codes): a
+    // source that keeps no vertex data of its own (pm::ProgressiveMesh::
+    // release_vertex_data) XORs its position changes into the model's 16-bit
+    // codes of the vertices [position_patch_begin, position_patch_end), mapped
+    // for writing (window: 3 codes a vertex, first = the first vertex); the
+    // normals do not change. Only for a model whose positions are codes in
+    // that box and that has no morph buffer.
+    std::function<void(std::span<uint16_t> window, size_t first)> position_patch = {};
+    size_t position_patch_begin = 0, position_patch_end = 0;
+    // Optional, add_model only: told as `indices` go up in order (a piece at a
+    // time) that the entries [0, end) are in the GL buffer, so a source handing
+    // its array over for good can free it while it goes up (the two copies
+    // never coexist in full). Not called for a prefix_only upload.
+    std::function<void(size_t end)> indices_uploaded = {};
 };
 
 // Half-open element ranges changed since the last upload (vertices: positions

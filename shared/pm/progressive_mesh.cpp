@@ -10,6 +10,10 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
+#if defined(__linux__)
+#include <sys/mman.h>
+#include <unistd.h>
+#endif
 
 #include "shared/atomic_file.h"
 
@@ -81,8 +85,9 @@ size_t ProgressiveMesh::refine_to(size_t level) {
         e = b + patch_count_[j];
         for (size_t i = b; i < e; ++i) {
             const uint32_t c = patch_corner(i);
-            indices_[c] = child;
+            if (!indices_released_) indices_[c] = child;
             dirty_indices_.add(c, c + 1);
+            if (indices_released_) pending_indices_.add(c, c + 1);
         }
         if (moves_parent(j)) {
             const uint32_t parent = parents_[child];
@@ -105,8 +110,9 @@ size_t ProgressiveMesh::coarsen_to(size_t level) {
         b = e - patch_count_[j];
         for (size_t i = b; i < e; ++i) {
             const uint32_t c = patch_corner(i);
-            indices_[c] = parent;
+            if (!indices_released_) indices_[c] = parent;
             dirty_indices_.add(c, c + 1);
+            if (indices_released_) pending_indices_.add(c, c + 1);
         }
         if (moves_parent(j)) {
             move_parent(j, parent);
@@ -118,6 +124,83 @@ size_t ProgressiveMesh::coarsen_to(size_t level) {
         patch_at_level_ = b;
     }
     return level_;
+}
+
+bool ProgressiveMesh::release_indices() {
+    if (indices_released_) return true;
+    if (decoded_splits_ != split_count_ || !base_ready_) return false;
+    UninitVector<uint32_t>().swap(indices_);
+    indices_released_ = true;
+    index_pages_released_ = 0;
+    index_level_ = level_;
+    pending_indices_ = DirtyRange{};
+    return true;
+}
+
+bool ProgressiveMesh::release_indices_upto(size_t end) {
+    if (indices_released_) return true;
+    if (decoded_splits_ != split_count_ || !base_ready_) return false;
+    if (end >= indices_.size()) return release_indices();
+#if defined(__linux__)
+    // Whole pages inside the array only: its first and last page may hold
+    // another allocation's bytes.
+    const uintptr_t base = reinterpret_cast<uintptr_t>(indices_.data());
+    const uintptr_t page = uintptr_t(::sysconf(_SC_PAGESIZE));
+    const uintptr_t lo = std::max((base + page - 1) / page * page, base + index_pages_released_);
+    const uintptr_t hi = (base + end * sizeof(uint32_t)) / page * page;
+    if (hi > lo && ::madvise(reinterpret_cast<void*>(lo), hi - lo, MADV_DONTNEED) == 0)
+        index_pages_released_ = hi - base;
+#endif
+    return true;
+}
+
+bool ProgressiveMesh::release_vertex_data() {
+    if (vertices_released_) return true;
+    if (decoded_splits_ != split_count_ || !base_ready_) return false;
+    UninitVector<uint16_t>().swap(positions_);
+    UninitVector<uint8_t>().swap(qoct_);
+    vertices_released_ = true;
+    position_level_ = level_;
+    pending_vertices_ = DirtyRange{};
+    return true;
+}
+
+void ProgressiveMesh::patch_position_codes(std::span<uint16_t> window, size_t first) {
+    if (!vertices_released_) return;
+    // Each move is an XOR: the splits between the two levels in any order.
+    const size_t n = window.size() / 3;
+    for (size_t j = std::min(position_level_, level_); j < std::max(position_level_, level_); ++j) {
+        const size_t p = parents_[base_vertices_ + j];
+        if (!moves_parent(j) || p < first || p - first >= n) continue;
+        for (size_t k = 0; k < 3; ++k) window[(p - first) * 3 + k] ^= parent_move_[j * 3 + k];
+    }
+    position_level_ = level_;
+    pending_vertices_ = DirtyRange{};
+}
+
+void ProgressiveMesh::patch_indices(std::span<uint32_t> window, size_t first) {
+    if (!indices_released_) return;
+    auto put = [&](size_t c, uint32_t v) {
+        if (c >= first && c - first < window.size()) window[c - first] = v;
+    };
+    // Where split min(index_level_, level_)'s patches start: patch_at_level_ is
+    // split level_'s, the splits in between are counted off.
+    size_t at = patch_at_level_;
+    if (index_level_ < level_) {
+        for (size_t j = index_level_; j < level_; ++j) at -= patch_count_[j];
+        for (size_t j = index_level_; j < level_; ++j) {
+            const uint32_t child = uint32_t(base_vertices_ + j);
+            for (const size_t e = at + patch_count_[j]; at < e; ++at) put(patch_corner(at), child);
+        }
+    } else if (index_level_ > level_) {
+        for (size_t j = level_; j < index_level_; ++j) at += patch_count_[j];
+        for (size_t j = index_level_; j-- > level_;) {
+            const uint32_t parent = parents_[base_vertices_ + j];
+            for (const size_t b = at - patch_count_[j]; at > b;) put(patch_corner(--at), parent);
+        }
+    }
+    index_level_ = level_;
+    pending_indices_ = DirtyRange{};
 }
 
 size_t ProgressiveMesh::morph_sources(size_t lo, std::vector<Vec3f>& out) const {

@@ -25,7 +25,8 @@
 // Allocation: arrays are sized when a structure's INFO section arrives; feeding
 // chunks decodes into them; refine_to/coarsen_to never allocate. Once complete
 // (decoding state freed) a structure keeps about 57 bytes a vertex split, 24 of
-// them the index array (1.1M-triangle bunny: 30 MiB).
+// them the index array (1.1M-triangle bunny: 30 MiB; 17.7 MiB once the index
+// array is released to a renderer, see release_indices()).
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
@@ -121,7 +122,45 @@ public:
     }
     Vec3f normal(size_t v) const;  // unit; (0,0,1) when the file has none
     std::span<const uint32_t> parents() const { return parents_; }
+    // Empty once release_indices() handed the array to a caller's copy.
     std::span<const uint32_t> indices() const { return indices_; }
+
+    // --- the index array kept by the caller only (a renderer's element buffer
+    // is its one full copy: a 1.1M-triangle structure saves 12.75 MiB).
+    // release_indices() frees indices(); false (nothing freed) until every split
+    // is decoded (streaming writes new faces there). Afterwards refine_to and
+    // coarsen_to keep moving the level, the positions and the dirty ranges but
+    // leave the index patches pending, and patch_indices() writes them, from the
+    // level the caller's array was last brought to up to the current level, into
+    // the caller's elements [first, first + window.size()), which must cover
+    // pending_index_range() (entries outside the window are left alone). The
+    // array at a level depends on the level only, so several moves between two
+    // patch_indices() calls cost one pass over the splits between their ends.
+    bool release_indices();
+    bool indices_released() const { return indices_released_; }
+    // For a caller copying the array away in order: the entries [0, end) are
+    // copied, so their memory goes back to the system now (whole pages; the
+    // entries read as indeterminate afterwards). Reaching the end releases the
+    // array as release_indices() does. Returns false (nothing done) where
+    // release_indices() would.
+    bool release_indices_upto(size_t end);
+    // Index entries patch_indices() will write (a superset of the entries whose
+    // value changes); empty when nothing is pending.
+    DirtyRange pending_index_range() const { return pending_indices_; }
+    void patch_indices(std::span<uint32_t> window, size_t first);
+
+    // --- the vertex data kept by the caller only, likewise (a renderer's
+    // position and normal buffers: 8 bytes a vertex). release_vertex_data()
+    // frees position_codes() and normal_codes() (position(), positions(),
+    // normal() and morph_sources() may not be called afterwards); false
+    // (nothing freed) until every split is decoded. Normals do not change with
+    // the level; the positions' pending changes (the parents' moves) are XORed
+    // into the caller's codes of the vertices [first, first + window.size() / 3)
+    // by patch_position_codes(), which must cover pending_vertex_range().
+    bool release_vertex_data();
+    bool vertex_data_released() const { return vertices_released_; }
+    DirtyRange pending_vertex_range() const { return pending_vertices_; }
+    void patch_position_codes(std::span<uint16_t> window, size_t first);
 
     // Elements changed since clear_dirty(): vertex data newly decoded, index
     // entries newly decoded or patched by refine/coarsen.
@@ -136,6 +175,13 @@ private:
     bool has_normals_ = false, base_ready_ = false;
     size_t base_vertices_ = 0, base_faces_ = 0, face_count_ = 0, split_count_ = 0, chunk_splits_ = 0;
     size_t decoded_splits_ = 0, decoded_faces_ = 0, level_ = 0;
+    // Released indices: the level the caller's array is at, and the entries
+    // its pending patches touch.
+    bool indices_released_ = false, vertices_released_ = false;
+    size_t position_level_ = 0;  // released vertex data: the level of the caller's codes
+    DirtyRange pending_vertices_;
+    size_t index_level_ = 0, index_pages_released_ = 0;  // bytes of indices_ handed back so far
+    DirtyRange pending_indices_;
 
     // Sized to full capacity by INFO but written only as sections arrive: entries
     // past the decoded vertices, faces and splits are indeterminate.
@@ -187,6 +233,10 @@ private:
         return (parent_move_[j * 3] | parent_move_[j * 3 + 1] | parent_move_[j * 3 + 2]) != 0;
     }
     void move_parent(size_t j, uint32_t parent) {
+        if (vertices_released_) {
+            pending_vertices_.add(parent, parent + 1);
+            return;
+        }
         for (size_t k = 0; k < 3; ++k) positions_[size_t(parent) * 3 + k] ^= parent_move_[j * 3 + k];
     }
     Vec3f dequantize(const uint16_t* q) const {
