@@ -73,7 +73,24 @@ struct Part {
         if (!pm) return source->mesh();
         render::MeshData m = render::mesh_data_of(*pm);
         m.morph_at_rest = true;  // at rest: nothing displaced
+        if (pm->indices_released()) {
+            // The element buffer is the index array: the level's patches go there.
+            pm::ProgressiveMesh* to = pm;
+            m.index_patch = [to](std::span<uint32_t> window, size_t first) { to->patch_indices(window, first); };
+            m.index_patch_begin = pm->pending_index_range().begin;
+            m.index_patch_end = pm->pending_index_range().end;
+        }
         return m;
+    }
+    // Once every split has arrived (with normals: the renderer needs no indices
+    // to compute them), the renderer's element buffer becomes the only copy of
+    // the index array (12 bytes a triangle): what is still dirty goes up, then
+    // the pm frees its array; picking reads the buffer back. Positions stay
+    // (geomorph sources and picking read them).
+    void hand_over_indices(render::Renderer& r) {
+        if (!pm || pm->indices_released() || !pm->has_normals() || pm->available_level() != pm->max_level()) return;
+        upload_dirty(r);
+        pm->release_indices();
     }
     bool morphing() const { return morph_end > morph_begin; }
     // The renderer's morph state for this part.
@@ -223,35 +240,40 @@ Status load_model(render::Renderer& renderer, const scene::Model& m, Loaded& l) 
 }
 
 // Ray (world) against the current level of a part; distance along the ray.
-std::optional<float> pick_part(const Part& p, const glm::mat4& transform, const Ray& ray) {
+std::optional<float> pick_part(const render::Renderer& r, const Part& p, const glm::mat4& transform, const Ray& ray) {
     const glm::mat4 inv = glm::inverse(transform);
     const glm::vec3 o = glm::vec3(inv * glm::vec4(ray.origin, 1.0f));
     const glm::vec3 d = glm::vec3(inv * glm::vec4(ray.direction, 0.0f));
     const render::MeshData mesh = p.mesh();
-    const size_t n = std::min(mesh.index_count, mesh.indices.size());
     // A pm keeps codes: dequantized per corner.
     const auto at = [&](uint32_t v) { return p.pm ? p.pm->position(v) : mesh.positions[v]; };
     float best = 1e30f;
     bool hit = false;
-    for (size_t i = 0; i + 2 < n; i += 3) {
-        // Möller-Trumbore, both sides.
-        const glm::vec3 a = at(mesh.indices[i]), b = at(mesh.indices[i + 1]), c = at(mesh.indices[i + 2]);
-        const glm::vec3 e1 = b - a, e2 = c - a, pv = glm::cross(d, e2);
-        const float det = glm::dot(e1, pv);
-        if (std::abs(det) < 1e-12f) continue;
-        const float inv_det = 1.0f / det;
-        const glm::vec3 tv = o - a;
-        const float u = glm::dot(tv, pv) * inv_det;
-        if (u < 0.0f || u > 1.0f) continue;
-        const glm::vec3 qv = glm::cross(tv, e1);
-        const float v = glm::dot(d, qv) * inv_det;
-        if (v < 0.0f || u + v > 1.0f) continue;
-        const float t = glm::dot(e2, qv) * inv_det;
-        if (t > 0.0f && t < best) {
-            best = t;
-            hit = true;
+    const auto test = [&](std::span<const uint32_t> indices) {
+        for (size_t i = 0; i + 2 < indices.size(); i += 3) {
+            // Möller-Trumbore, both sides.
+            const glm::vec3 a = at(indices[i]), b = at(indices[i + 1]), c = at(indices[i + 2]);
+            const glm::vec3 e1 = b - a, e2 = c - a, pv = glm::cross(d, e2);
+            const float det = glm::dot(e1, pv);
+            if (std::abs(det) < 1e-12f) continue;
+            const float inv_det = 1.0f / det;
+            const glm::vec3 tv = o - a;
+            const float u = glm::dot(tv, pv) * inv_det;
+            if (u < 0.0f || u > 1.0f) continue;
+            const glm::vec3 qv = glm::cross(tv, e1);
+            const float v = glm::dot(d, qv) * inv_det;
+            if (v < 0.0f || u + v > 1.0f) continue;
+            const float t = glm::dot(e2, qv) * inv_det;
+            if (t > 0.0f && t < best) {
+                best = t;
+                hit = true;
+            }
         }
-    }
+    };
+    if (p.pm && p.pm->indices_released())
+        r.read_indices(p.id, mesh.index_count, test);  // the renderer's buffer holds the only copy
+    else
+        test(mesh.indices.first(std::min(mesh.index_count, mesh.indices.size())));
     if (!hit) return std::nullopt;
     // t is in object units along d; convert to world distance.
     return best * glm::length(glm::vec3(transform * glm::vec4(d, 0.0f)));
@@ -356,7 +378,7 @@ int run_kiosk(platform::Surface& surface, const scene::Scene& scene, const Kiosk
         const Loaded& l = loaded[static_cast<size_t>(model)];
         glm::mat4 t = glm::translate(glm::mat4(1.0f), app.model(model).offset) * l.transform;
         for (const Part& p : l.parts) {
-            auto hit = pick_part(p, t, ray);
+            auto hit = pick_part(renderer, p, t, ray);
             if (hit && (!best || *hit < *best)) best = hit;
             if (p.source) p.source->release_arrays();  // what the pick decoded
         }
@@ -470,6 +492,7 @@ int run_kiosk(platform::Surface& surface, const scene::Scene& scene, const Kiosk
                     if (frame > 0 && (level != p.pm->level() || p.morphing())) {
                         p.update(renderer, level, now);
                     }
+                    if (!l.streaming) p.hand_over_indices(renderer);
                     p.apply_morph(*st);
                 }
                 if (vis) triangles += p.triangles();

@@ -1510,4 +1510,18 @@ void Renderer::render(const Camera& camera, const Lighting& lighting, const Fram
     BODY_GL_CHECK("render");
 }
 
+bool Renderer::read_indices(ModelId id, size_t count,
+                            const std::function<void(std::span<const uint32_t>)>& read) const {
+    auto it = s_->models.find(id);
+    if (it == s_->models.end() || count > it->second.index_capacity) return false;
+    if (count == 0) {
+        read({});
+        return true;
+    }
+    const MappedBuffer<uint32_t> map(it->second.ebo, count);
+    if (map.data().size() != count) return false;
+    read(map.data());
+    return true;
+}
+
 }  // namespace body::render
