@@ -545,6 +545,7 @@ Status Renderer::init() {
     glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, GL_REPEAT);
     glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_T, GL_REPEAT);
     glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
+    tam = TonalArtMap{};  // the CPU tones freed now (and trimmed at the end of init)
 
     glGenVertexArrays(1, &s_->wire_vao);
     glBindVertexArray(s_->wire_vao);
@@ -590,6 +591,9 @@ Status Renderer::init() {
     if (!sphere) return sphere.error();
     s_->sphere = sphere.value();
     s_->models[s_->sphere].internal = true;
+#ifdef __GLIBC__
+    malloc_trim(0);  // the tonal art map's CPU tones and upload scratch back to the system
+#endif
     BODY_GL_CHECK("init");
     return ok_status();
 }
