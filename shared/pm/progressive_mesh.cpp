@@ -172,7 +172,8 @@ void ProgressiveMesh::patch_position_codes(std::span<uint16_t> window, size_t fi
     for (size_t j = std::min(position_level_, level_); j < std::max(position_level_, level_); ++j) {
         const size_t p = parents_[base_vertices_ + j];
         if (!moves_parent(j) || p < first || p - first >= n) continue;
-        for (size_t k = 0; k < 3; ++k) window[(p - first) * 3 + k] ^= parent_move_[j * 3 + k];
+        const uint16_t* move = parent_move(j);
+        for (size_t k = 0; k < 3; ++k) window[(p - first) * 3 + k] ^= move[k];
     }
     position_level_ = level_;
     pending_vertices_ = DirtyRange{};
@@ -226,7 +227,8 @@ size_t ProgressiveMesh::morph_sources(size_t lo, std::vector<Vec3f>& out) const 
         const uint32_t p = parents_[base_vertices_ + j];
         if (p < begin || p >= lo_vc || !moves_parent(j)) continue;
         Vec3f& q = out[p - begin];
-        for (int k = 0; k < 3; ++k) q[k] = float(uint16_t(q[k]) ^ parent_move_[j * 3 + size_t(k)]);
+        const uint16_t* move = parent_move(j);
+        for (int k = 0; k < 3; ++k) q[k] = float(uint16_t(q[k]) ^ move[k]);
     }
     for (size_t j = lo; j < level_; ++j) {
         const size_t c = base_vertices_ + j;
@@ -248,6 +250,8 @@ void ProgressiveMesh::release_decoding_state() {
     // patch_corners_ grew geometrically while the splits arrived: to its size,
     // now that the replay's larger arrays are gone (the copy adds no peak).
     patch_corners_.shrink_to_fit();
+    moves_.resize(move_count_ * 3);  // to the splits that move their parent
+    moves_.shrink_to_fit();
 }
 
 // ---------------------------------------------------------------- reader
@@ -389,7 +393,10 @@ Status BpmStream::parse_info(std::span<const uint8_t> payload, const std::string
     m->face_sample_.resize(size_t(splits) / 64 + 1);
     m->face_sample_[0] = bf;
     m->split_error_.resize(splits);
-    m->parent_move_.resize(size_t(splits) * 3);
+    m->move_bits_.assign(size_t(splits) / 64 + 1, 0);
+    m->move_rank_.resize(size_t(splits) / 64 + 1);
+    m->moves_.resize(size_t(splits) * 3);  // at most; shrunk to the moves once complete
+    m->move_count_ = 0;
     m->patch_count_.resize(splits);
     m->patch_corners_.clear();
     m->corner_bytes_ = uint64_t(faces) * 3 <= (uint64_t(1) << 24) ? 3 : 4;
@@ -599,11 +606,16 @@ Status BpmStream::parse_splits(ProgressiveMesh& m, std::span<const uint8_t> payl
                 for (size_t k = 0; k < w; ++k) m.patch_corners_[at + i * w + k] = uint8_t(moved[i] >> (8 * k));
         }
         m.patch_count_[j] = uint8_t(std::popcount(mask));
+        if (j % 64 == 0) m.move_rank_[j / 64] = uint32_t(m.move_count_);
+        if ((from[0] ^ to[0]) | (from[1] ^ to[1]) | (from[2] ^ to[2])) {
+            m.move_bits_[j / 64] |= uint64_t(1) << (j % 64);
+            for (int k = 0; k < 3; ++k) m.moves_[m.move_count_ * 3 + size_t(k)] = uint16_t(from[k] ^ to[k]);
+            ++m.move_count_;
+        }
         for (int k = 0; k < 3; ++k) {
             m.qpos_[size_t(child) * 3 + k] = q[k];
             m.qpos_[size_t(parent) * 3 + k] = to[k];
             m.positions_[size_t(child) * 3 + k] = q[k];
-            m.parent_move_[j * 3 + k] = uint16_t(from[k] ^ to[k]);
         }
         m.qoct_[size_t(child) * 2] = oct[0];
         m.qoct_[size_t(child) * 2 + 1] = oct[1];
