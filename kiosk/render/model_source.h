@@ -55,8 +55,9 @@ public:
     // and a progressive mesh's normals as its octahedral codes
     // (MeshData::normal_codes), so no float copy is made. A complete
     // progressive mesh with normals hands its index array over to the
-    // add_model it goes to (MeshData::indices_uploaded: freed as it goes up;
-    // see release_arrays() for what follows).
+    // add_model it goes to: packed in place now, it fills the new element
+    // buffer and is freed (MeshData::index_fill; see release_arrays() for what
+    // follows).
     MeshData upload_mesh() const;
     // Ranges changed since the last call (everything on the first call).
     Dirty take_dirty();
@@ -103,6 +104,7 @@ private:
     Dirty pending_;
     // A complete progressive mesh with normals, its index array still its own.
     bool hands_over_indices() const;
+    MeshData upload_mesh_of(bool hand_over) const;  // hand_over: upload_mesh(), else mesh()
 };
 
 // Loads `.bpm` or `.obj` (by extension); errors name the file and the reason.

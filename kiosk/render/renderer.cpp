@@ -625,31 +625,33 @@ void Renderer::shutdown() {
 
 Result<ModelId> Renderer::add_model(const MeshData& mesh, const std::string& name) {
     const PositionView pos(mesh);
+    // Filled in place (MeshData::index_fill): the source writes the whole buffer.
+    const bool filled = mesh.indices.empty() && mesh.index_fill && !mesh.prefix_only &&
+                        (!mesh.normals.empty() || !mesh.normal_codes.empty());
+    const size_t isize = filled ? mesh.index_fill_count : mesh.indices.size();
     const size_t vcount = mesh.vertex_count == SIZE_MAX ? pos.size() : mesh.vertex_count;
-    const size_t icount = mesh.index_count == SIZE_MAX ? mesh.indices.size() : mesh.index_count;
+    const size_t icount = mesh.index_count == SIZE_MAX ? isize : mesh.index_count;
     if (!s_->ready) return runtime_error(name + ": renderer not initialised");
-    if (pos.empty() || mesh.indices.empty() || vcount == 0 || icount < 3) return input_error(name + ": empty mesh");
+    if (pos.empty() || isize == 0 || vcount == 0 || icount < 3) return input_error(name + ": empty mesh");
     if (pos.coded() && !mesh.has_position_box) return input_error(name + ": position codes without their box");
-    if (vcount > pos.size() || icount > mesh.indices.size() ||
-        (!mesh.normals.empty() && mesh.normals.size() < pos.size()) ||
+    if (vcount > pos.size() || icount > isize || (!mesh.normals.empty() && mesh.normals.size() < pos.size()) ||
         (!mesh.normal_codes.empty() && mesh.normal_codes.size() / 2 < pos.size()))
         return input_error(name + ": counts exceed the arrays");
     // prefix_only: capacity past the counts may be unwritten (a progressive mesh
     // still streaming); it arrives through update_model.
     const size_t vupload = mesh.prefix_only ? vcount : pos.size();
-    const size_t iupload = mesh.prefix_only ? icount : mesh.indices.size();
+    const size_t iupload = filled ? 0 : mesh.prefix_only ? icount : mesh.indices.size();
     for (size_t i = 0; i < iupload; ++i)
         if (mesh.indices[i] >= pos.size())
             return input_error(name + ": index " + std::to_string(i) + " refers to vertex " +
                                std::to_string(mesh.indices[i]) + " of " + std::to_string(pos.size()));
-    if (pos.size() > static_cast<size_t>(kTextureWidth) * 8192 ||
-        mesh.indices.size() > static_cast<size_t>(kTextureWidth) * 8192)
+    if (pos.size() > static_cast<size_t>(kTextureWidth) * 8192 || isize > static_cast<size_t>(kTextureWidth) * 8192)
         return input_error(name + ": too large for one model");
 
     Model m;
     m.name = name;
     m.vertex_capacity = pos.size();
-    m.index_capacity = mesh.indices.size();
+    m.index_capacity = isize;
     m.vertex_count = vcount;
     m.index_count = icount - icount % 3;
     set_bounds(m, pos, vcount);
@@ -680,10 +682,20 @@ Result<ModelId> Renderer::add_model(const MeshData& mesh, const std::string& nam
     // buffers exist (drivers may clear a new buffer's memory at once:
     // llvmpipe does), so the upload's peak holds one full index array, not two
     // plus the vertex buffers. Computed normals need the indices: then last.
+    bool fill_failed = false;
     const auto upload_element_buffer = [&] {
         glGenBuffers(1, &m.ebo);
         glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m.ebo);
         glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(m.index_capacity * 4), nullptr, GL_DYNAMIC_DRAW);
+        if (filled) {
+            void* p = glMapBufferRange(GL_ELEMENT_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(m.index_capacity * 4),
+                                       GL_MAP_WRITE_BIT | GL_MAP_INVALIDATE_BUFFER_BIT);
+            if (p) {
+                mesh.index_fill(std::span<uint32_t>(static_cast<uint32_t*>(p), m.index_capacity));
+                glUnmapBuffer(GL_ELEMENT_ARRAY_BUFFER);
+            }
+            fill_failed = !p;
+        }
         upload_indices(mesh, 0, iupload, mesh.prefix_only ? nullptr : mesh.indices_uploaded);
     };
     const bool computed_normals = mesh.normals.empty() && mesh.normal_codes.empty();
@@ -726,6 +738,10 @@ Result<ModelId> Renderer::add_model(const MeshData& mesh, const std::string& nam
     }
     if (computed_normals) upload_element_buffer();
     glBindVertexArray(0);
+    if (fill_failed) {
+        free_model(m);
+        return runtime_error(name + ": the index buffer could not be mapped to fill it");
+    }
     BODY_GL_CHECK("add_model");
 
     ModelId id = s_->next_id++;

@@ -116,6 +116,12 @@ struct MeshData {
     // that box and that has no morph buffer.
     std::function<void(std::span<uint16_t> window, size_t first)> position_patch = {};
     size_t position_patch_begin = 0, position_patch_end = 0;
+    // Optional, add_model only, in place of `indices` (left empty; not with
+    // prefix_only; needs normals or normal codes): a source that keeps its
+    // index array packed fills the whole new element buffer of
+    // index_fill_count entries, mapped for writing, and frees its copy.
+    std::function<void(std::span<uint32_t> out)> index_fill = {};
+    size_t index_fill_count = 0;
     // Optional, add_model only: told as `indices` go up in order (a piece at a
     // time) that the entries [0, end) are in the GL buffer, so a source handing
     // its array over for good can free it while it goes up (the two copies

@@ -90,7 +90,7 @@ size_t ProgressiveMesh::refine_to(size_t level) {
             if (indices_released_) pending_indices_.add(c, c + 1);
         }
         if (moves_parent(j)) {
-            const uint32_t parent = parents_[child];
+            const uint32_t parent = split_parent(j);
             move_parent(j, parent);
             dirty_vertices_.add(parent, parent + 1);
         }
@@ -105,7 +105,7 @@ size_t ProgressiveMesh::refine_to(size_t level) {
 size_t ProgressiveMesh::coarsen_to(size_t level) {
     size_t b = patch_at_level_;
     for (size_t j = level_; j-- > level;) {
-        const uint32_t parent = parents_[base_vertices_ + j];
+        const uint32_t parent = split_parent(j);
         const size_t e = b;
         b = e - patch_count_[j];
         for (size_t i = b; i < e; ++i) {
@@ -154,6 +154,55 @@ bool ProgressiveMesh::release_indices_upto(size_t end) {
     return true;
 }
 
+bool ProgressiveMesh::pack_indices() {
+    if (indices_released_) return indices_packed();
+    if (decoded_splits_ != split_count_ || !base_ready_) return false;
+    const size_t n = indices_.size(), bits = std::max<size_t>(1, size_t(std::bit_width(max_vertex_count() - 1)));
+    // In place: entry i goes to bits [i * bits, (i + 1) * bits), i.e. into
+    // words <= i, after entry i was read.
+    uint32_t* w = indices_.data();
+    uint64_t acc = 0;
+    size_t held = 0, out = 0;
+    for (size_t i = 0; i < n; ++i) {
+        acc |= uint64_t(w[i]) << held;
+        held += bits;
+        if (held >= 32) {
+            w[out++] = uint32_t(acc);
+            acc >>= 32;
+            held -= 32;
+        }
+    }
+    if (held > 0) w[out++] = uint32_t(acc);
+#if defined(__linux__)
+    const uintptr_t base = reinterpret_cast<uintptr_t>(w), page = uintptr_t(::sysconf(_SC_PAGESIZE));
+    const uintptr_t lo = (base + out * 4 + page - 1) / page * page, hi = (base + n * 4) / page * page;
+    if (hi > lo) ::madvise(reinterpret_cast<void*>(lo), hi - lo, MADV_DONTNEED);
+#endif
+    packed_indices_.swap(indices_);
+    packed_bits_ = bits;
+    packed_count_ = n;
+    indices_released_ = true;
+    index_level_ = level_;
+    pending_indices_ = DirtyRange{};
+    return true;
+}
+
+void ProgressiveMesh::fill_indices(std::span<uint32_t> out) {
+    if (!indices_packed() || out.size() < packed_count_) return;
+    const uint32_t* w = packed_indices_.data();
+    const uint64_t mask = (uint64_t(1) << packed_bits_) - 1;
+    size_t bit = 0;
+    for (size_t i = 0; i < packed_count_; ++i, bit += packed_bits_) {
+        const size_t word = bit / 32, shift = bit % 32;
+        uint64_t v = uint64_t(w[word]) >> shift;
+        if (shift + packed_bits_ > 32) v |= uint64_t(w[word + 1]) << (32 - shift);
+        out[i] = uint32_t(v & mask);
+    }
+    UninitVector<uint32_t>().swap(packed_indices_);
+    packed_bits_ = packed_count_ = 0;
+    patch_indices(out, 0);  // the levels moved since it was packed
+}
+
 bool ProgressiveMesh::release_vertex_data() {
     if (vertices_released_) return true;
     if (decoded_splits_ != split_count_ || !base_ready_) return false;
@@ -170,7 +219,7 @@ void ProgressiveMesh::patch_position_codes(std::span<uint16_t> window, size_t fi
     // Each move is an XOR: the splits between the two levels in any order.
     const size_t n = window.size() / 3;
     for (size_t j = std::min(position_level_, level_); j < std::max(position_level_, level_); ++j) {
-        const size_t p = parents_[base_vertices_ + j];
+        const size_t p = split_parent(j);
         if (!moves_parent(j) || p < first || p - first >= n) continue;
         const uint16_t* move = parent_move(j);
         for (size_t k = 0; k < 3; ++k) window[(p - first) * 3 + k] ^= move[k];
@@ -196,7 +245,7 @@ void ProgressiveMesh::patch_indices(std::span<uint32_t> window, size_t first) {
     } else if (index_level_ > level_) {
         for (size_t j = level_; j < index_level_; ++j) at += patch_count_[j];
         for (size_t j = index_level_; j-- > level_;) {
-            const uint32_t parent = parents_[base_vertices_ + j];
+            const uint32_t parent = split_parent(j);
             for (const size_t b = at - patch_count_[j]; at > b;) put(patch_corner(--at), parent);
         }
     }
@@ -210,7 +259,7 @@ size_t ProgressiveMesh::morph_sources(size_t lo, std::vector<Vec3f>& out) const 
     // The lowest older vertex that a split since lo moves: the sources start there.
     size_t begin = lo_vc;
     for (size_t j = lo; j < level_; ++j) {
-        const uint32_t p = parents_[base_vertices_ + j];
+        const uint32_t p = split_parent(j);
         if (p < begin && moves_parent(j)) begin = p;
     }
     // Codes first, held exactly as floats (< 2^16): the older vertices where they
@@ -224,7 +273,7 @@ size_t ProgressiveMesh::morph_sources(size_t lo, std::vector<Vec3f>& out) const 
     };
     for (size_t v = begin; v < lo_vc; ++v) out[v - begin] = code(v);
     for (size_t j = lo; j < level_; ++j) {
-        const uint32_t p = parents_[base_vertices_ + j];
+        const uint32_t p = split_parent(j);
         if (p < begin || p >= lo_vc || !moves_parent(j)) continue;
         Vec3f& q = out[p - begin];
         const uint16_t* move = parent_move(j);
@@ -232,7 +281,7 @@ size_t ProgressiveMesh::morph_sources(size_t lo, std::vector<Vec3f>& out) const 
     }
     for (size_t j = lo; j < level_; ++j) {
         const size_t c = base_vertices_ + j;
-        const uint32_t p = parents_[c];
+        const uint32_t p = split_parent(j);
         out[c - begin] = p >= begin ? out[p - begin] : code(p);
     }
     for (Vec3f& q : out) {
@@ -387,7 +436,8 @@ Status BpmStream::parse_info(std::span<const uint8_t> payload, const std::string
     // Full capacity, uninitialised: each entry is written when its section
     // arrives, and only decoded entries are read (no page faults for the rest).
     m->positions_.resize(vertices * 3);
-    m->parents_.resize(vertices);
+    m->parent_bytes_ = vertices <= (uint64_t(1) << 24) ? 3 : 4;
+    m->split_parents_bytes_.resize(size_t(splits) * m->parent_bytes_);
     m->indices_.resize(size_t(faces) * 3);
     m->face_count_bits_.assign((size_t(splits) + 31) / 32, 0);
     m->face_sample_.resize(size_t(splits) / 64 + 1);
@@ -428,7 +478,6 @@ Status BpmStream::parse_base(ProgressiveMesh& m, std::span<const uint8_t> payloa
         }
         m.qoct_[v * 2] = verts[v].oct[0];
         m.qoct_[v * 2 + 1] = verts[v].oct[1];
-        m.parents_[v] = uint32_t(v);
     }
     std::copy(decoded_indices_.begin(), decoded_indices_.end(), m.indices_.begin());
     m.replay_.add_faces(0, decoded_indices_);
@@ -619,7 +668,8 @@ Status BpmStream::parse_splits(ProgressiveMesh& m, std::span<const uint8_t> payl
         }
         m.qoct_[size_t(child) * 2] = oct[0];
         m.qoct_[size_t(child) * 2 + 1] = oct[1];
-        m.parents_[child] = parent;
+        for (size_t k = 0; k < m.parent_bytes_; ++k)
+            m.split_parents_bytes_[j * m.parent_bytes_ + k] = uint8_t(parent >> (8 * k));
     }
     if (count > 0) {
         const size_t first_child = m.base_vertices_ + first;

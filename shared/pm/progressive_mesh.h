@@ -122,7 +122,8 @@ public:
         return has_normals_ ? std::span<const uint8_t>(qoct_) : std::span<const uint8_t>();
     }
     Vec3f normal(size_t v) const;  // unit; (0,0,1) when the file has none
-    std::span<const uint32_t> parents() const { return parents_; }
+    // The vertex a vertex was split off (itself for a base vertex).
+    uint32_t parent(size_t v) const { return v < base_vertices_ ? uint32_t(v) : split_parent(v - base_vertices_); }
     // Empty once release_indices() handed the array to a caller's copy.
     std::span<const uint32_t> indices() const { return indices_; }
 
@@ -145,6 +146,17 @@ public:
     // array as release_indices() does. Returns false (nothing done) where
     // release_indices() would.
     bool release_indices_upto(size_t end);
+    // Released with the array kept packed until the caller has its copy:
+    // pack_indices() packs the array of the current level in place to the
+    // fewest bits that hold max_vertex_count() - 1 (20 for a million vertices,
+    // the pages past the packed size handed back) and counts as released (as
+    // release_indices(); false where that would be). fill_indices() writes the
+    // whole array at the current level into the caller's `out` (>= 3 *
+    // max_triangle_count() entries): the packed array plus the patches of the
+    // levels moved since; then the packed array is freed.
+    bool pack_indices();
+    bool indices_packed() const { return packed_bits_ != 0; }
+    void fill_indices(std::span<uint32_t> out);
     // Index entries patch_indices() will write (a superset of the entries whose
     // value changes); empty when nothing is pending.
     DirtyRange pending_index_range() const { return pending_indices_; }
@@ -179,6 +191,8 @@ private:
     // Released indices: the level the caller's array is at, and the entries
     // its pending patches touch.
     bool indices_released_ = false, vertices_released_ = false;
+    UninitVector<uint32_t> packed_indices_;  // pack_indices(): packed_bits_ a entry, a bit stream
+    size_t packed_bits_ = 0, packed_count_ = 0;
     size_t position_level_ = 0;  // released vertex data: the level of the caller's codes
     DirtyRange pending_vertices_;
     size_t index_level_ = 0, index_pages_released_ = 0;  // bytes of indices_ handed back so far
@@ -188,7 +202,16 @@ private:
     // past the decoded vertices, faces and splits are indeterminate.
     double step_[3] = {0.0, 0.0, 0.0};  // dequantization step per axis
     UninitVector<uint16_t> positions_;  // 3 per vertex: codes at the current level
-    UninitVector<uint32_t> parents_, indices_;
+    UninitVector<uint32_t> indices_;
+    // Per split: its parent vertex, parent_bytes_ bytes, least significant
+    // first (3 when every vertex number fits 24 bits, else 4).
+    UninitVector<uint8_t> split_parents_bytes_;
+    size_t parent_bytes_ = 4;
+    uint32_t split_parent(size_t j) const {
+        const uint8_t* p = &split_parents_bytes_[j * parent_bytes_];
+        const uint32_t v = uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16;
+        return parent_bytes_ == 4 ? v | uint32_t(p[3]) << 24 : v;
+    }
     // Per split, 2 bits: the faces it adds (1 to 3), 32 splits a word; per 64
     // splits the triangle count at that level (face_sample_[b]: level 64 b), so
     // triangles_at is a sample plus two popcounts.

@@ -20,7 +20,7 @@ std::vector<Vec3f> sources_by_stepping(const ProgressiveMesh& pm, size_t lo, siz
     m.set_level(lo);
     std::vector<Vec3f> at(hi_vc);
     for (size_t v = 0; v < lo_vc; ++v) at[v] = m.position(v);
-    for (size_t v = lo_vc; v < hi_vc; ++v) at[v] = at[m.parents()[v]];  // parents come first
+    for (size_t v = lo_vc; v < hi_vc; ++v) at[v] = at[m.parent(v)];  // parents come first
     return at;
 }
 

@@ -419,7 +419,7 @@ TEST(Lod, LevelSelectionAndDirtyRanges) {
     std::vector<Vec3f> sources;
     for (size_t j = 0; j < m.max_level(); ++j) {
         const size_t child = m.base_vertex_count() + j;
-        const uint32_t parent = m.parents()[child];
+        const uint32_t parent = m.parent(child);
         ASSERT_LT(parent, child);
         const Vec3f before = m.position(parent);
         m.clear_dirty();

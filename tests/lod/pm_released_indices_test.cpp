@@ -123,6 +123,32 @@ TEST(PmReleasedIndices, ReleasedAPieceAtATimeWhileCopied) {
     EXPECT_EQ(copy, std::vector<uint32_t>(kept->indices().begin(), kept->indices().end()));
 }
 
+TEST(PmReleasedIndices, PackedArrayFillsTheCopyAtTheLevelReachedSince) {
+    const auto bytes = sphere_bpm(4);
+    auto kept = decode_one(bytes), given = decode_one(bytes);
+    ASSERT_TRUE(kept && given);
+    given->set_level(given->max_level());
+    ASSERT_TRUE(given->pack_indices());
+    EXPECT_TRUE(given->indices_packed());
+    EXPECT_TRUE(given->indices_released());
+    EXPECT_TRUE(given->indices().empty());
+    // Moves before the fill: the fill writes the array of the level reached.
+    const size_t level = given->max_level() / 3;
+    given->set_level(given->max_level() / 2);
+    given->set_level(level);
+    kept->set_level(level);
+    std::vector<uint32_t> copy(3 * given->max_triangle_count(), 0xdeadbeefu);
+    given->fill_indices(copy);
+    EXPECT_FALSE(given->indices_packed());
+    EXPECT_TRUE(given->pending_index_range().empty());
+    EXPECT_EQ(copy, std::vector<uint32_t>(kept->indices().begin(), kept->indices().end()));
+    // Patched as a released array afterwards.
+    given->set_level(given->max_level());
+    kept->set_level(kept->max_level());
+    patch(*given, copy);
+    EXPECT_EQ(copy, std::vector<uint32_t>(kept->indices().begin(), kept->indices().end()));
+}
+
 TEST(PmReleasedIndices, MovesOfParentsArePending) {
     // Some split moves its parent (optimal placement), so positions change
     // between levels and the pending vertex range is not empty.

@@ -1,6 +1,7 @@
 // A progressive mesh whose index array went to the renderer for good
-// (ModelSource::upload_mesh hands it over; the element buffer is the only copy
-// and level changes are patched into it in place, MeshData::index_patch):
+// (ModelSource::upload_mesh hands it over, packed until it fills the new
+// element buffer, MeshData::index_fill; the buffer is the only copy and level
+// changes are patched into it in place, MeshData::index_patch):
 // every level draws what a fresh upload of that level from a mesh that kept
 // its arrays draws, in the styles that read the element buffer back (lines,
 // wireframe) and those that only draw it.
@@ -45,8 +46,10 @@ TEST(RenderReleasedIndices, PatchedInPlaceDrawsLikeFreshUploads) {
     RenderFixture f(200, 200);
     REQUIRE_GL(f);
     const MeshData first = given.upload_mesh();
-    ASSERT_FALSE(first.indices.empty());
-    ASSERT_TRUE(static_cast<bool>(first.indices_uploaded));  // complete, with normals: handed over
+    // Complete, with normals: handed over, packed until it fills the new buffer.
+    ASSERT_TRUE(first.indices.empty());
+    ASSERT_TRUE(static_cast<bool>(first.index_fill));
+    ASSERT_EQ(first.index_fill_count, 3 * given.full_triangles());
     auto id = f.renderer().add_model(first, "torus");
     ASSERT_TRUE(id.ok()) << id.error().message;
     (void)given.take_dirty();
