@@ -70,10 +70,12 @@ size_t ProgressiveMesh::level_for_triangles(size_t triangles) const {
 }
 
 size_t ProgressiveMesh::level_for_error(float error) const {
-    auto end = split_error_.begin() + ptrdiff_t(decoded_splits_);
-    // split_error_ is non-increasing: the first entry <= error is the coarsest such level.
-    auto it = std::partition_point(split_error_.begin(), end, [&](uint16_t e) { return error_value(e) > error; });
-    return size_t(it - split_error_.begin());
+    // The values are non-increasing: the first level of the first value <= error
+    // is the coarsest such level (the decoded levels only).
+    auto it = std::partition_point(error_highs_.begin(), error_highs_.end(),
+                                   [&](uint16_t e) { return error_value(e) > error; });
+    if (it == error_highs_.end()) return decoded_splits_;
+    return std::min<size_t>(error_levels_[size_t(it - error_highs_.begin())], decoded_splits_);
 }
 
 size_t ProgressiveMesh::refine_to(size_t level) {
@@ -301,6 +303,8 @@ void ProgressiveMesh::release_decoding_state() {
     patch_corners_.shrink_to_fit();
     moves_.resize(move_count_ * 3);  // to the splits that move their parent
     moves_.shrink_to_fit();
+    error_levels_.shrink_to_fit();
+    error_highs_.shrink_to_fit();
 }
 
 // ---------------------------------------------------------------- reader
@@ -442,7 +446,10 @@ Status BpmStream::parse_info(std::span<const uint8_t> payload, const std::string
     m->face_count_bits_.assign((size_t(splits) + 31) / 32, 0);
     m->face_sample_.resize(size_t(splits) / 64 + 1);
     m->face_sample_[0] = bf;
-    m->split_error_.resize(splits);
+    // At most one entry per split and per value (non-increasing below 0x7f81):
+    // reserved so that decoding a split never allocates; shrunk once complete.
+    m->error_levels_.reserve(std::min<size_t>(splits, 0x7f81));
+    m->error_highs_.reserve(std::min<size_t>(splits, 0x7f81));
     m->move_bits_.assign(size_t(splits) / 64 + 1, 0);
     m->move_rank_.resize(size_t(splits) / 64 + 1);
     m->moves_.resize(size_t(splits) * 3);  // at most; shrunk to the moves once complete
@@ -647,7 +654,11 @@ Status BpmStream::parse_splits(ProgressiveMesh& m, std::span<const uint8_t> payl
         face_cursor += faces;
         m.face_count_bits_[j / 32] |= uint64_t(faces) << (j % 32 * 2);
         if ((j + 1) % 64 == 0) m.face_sample_[(j + 1) / 64] = uint32_t(m.decoded_faces_);
-        m.split_error_[j] = uint16_t(previous_error_bits >> 16);  // the low half is 0
+        if (const auto high = uint16_t(previous_error_bits >> 16);  // the low half is 0
+            m.error_highs_.empty() || high != m.error_highs_.back()) {
+            m.error_levels_.push_back(uint32_t(j));
+            m.error_highs_.push_back(high);
+        }
         {
             const size_t at = m.patch_corners_.size(), w = m.corner_bytes_, n = size_t(std::popcount(mask));
             m.patch_corners_.resize(at + n * w);
