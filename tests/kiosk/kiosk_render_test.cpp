@@ -9,31 +9,19 @@
 
 #include "../cli/cli_test.h"
 #include "kiosk/render/image.h"
+#include "shared/obj_io.h"
 #include "tests/common/test_dir.h"
+#include "tests/common/test_meshes.h"
 
 namespace body {
 namespace {
 
 namespace fs = std::filesystem;
 
+// A closed UV sphere (16 bands) centred at (cx, 0, 0), written as OBJ.
 void write_sphere(const fs::path& path, float cx, float r) {
-    std::ofstream f(path);
-    const int n = 16;
-    for (int i = 0; i <= n; ++i) {
-        for (int j = 0; j < 2 * n; ++j) {
-            const double th = M_PI * i / n, ph = M_PI * j / n;
-            f << "v " << cx + r * std::sin(th) * std::cos(ph) << " " << r * std::cos(th) << " "
-              << r * std::sin(th) * std::sin(ph) << "\n";
-        }
-    }
-    for (int i = 0; i < n; ++i) {
-        for (int j = 0; j < 2 * n; ++j) {
-            const int a = i * 2 * n + j + 1, b = i * 2 * n + (j + 1) % (2 * n) + 1;
-            const int c = a + 2 * n, d = b + 2 * n;
-            if (i > 0) f << "f " << a << " " << b << " " << c << "\n";
-            if (i < n - 1) f << "f " << b << " " << d << " " << c << "\n";
-        }
-    }
+    const Mesh sphere = test::uv_sphere(16, 2 * 16, Vec3(cx, 0.0, 0.0), r);
+    ASSERT_TRUE(write_obj(path.string(), std::span<const Mesh>(&sphere, 1)).ok());
 }
 
 class KioskReplay : public ::testing::Test {
