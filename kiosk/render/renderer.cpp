@@ -46,6 +46,7 @@ namespace {
 constexpr int kTextureWidth = 2048;
 constexpr GLuint kPosition = 0, kNormal = 1, kMorph = 2;
 constexpr GLuint kWireVertex = 3;  // `wireframe`: the index buffer read as a vertex attribute
+constexpr GLuint kNormalCode = 4;  // 8:8 octahedral normal codes (mesh.vert decodes them)
 
 // Software rasterizers (llvmpipe) bin every triangle of a frame before
 // rasterizing it, about 130 bytes per covered triangle plus 48 per varying, and
@@ -101,6 +102,11 @@ struct Model {
     ModelState state;
     GLuint vao = 0, vbo_position = 0, vbo_normal = 0, ebo = 0;
     GLuint vbo_morph = 0;  // geomorph sources (progressive meshes only)
+    // Normals in GL: the source's 8:8 octahedral codes as they are (2 bytes a
+    // vertex, decoded in mesh.vert) when add_model got codes, else
+    // GL_INT_2_10_10_10_REV (4 bytes).
+    bool normal_codes = false;
+    size_t normal_stride() const { return normal_codes ? 2 : 4; }
     // Positions (and morph sources) in GL: 16-bit codes per axis in a box fixed
     // at add_model (object = pos_origin + pos_scale * code, 6 bytes a vertex),
     // or floats (12 bytes) when the box is not known or a patch left it.
@@ -211,26 +217,52 @@ void release_scratch(std::vector<Vec3f>& computed) {
 #endif
 }
 
-// Packs normals [begin, end) into the GL_ARRAY_BUFFER bound (4 bytes each, at
-// their own element offsets) a piece at a time, so no packed copy of the whole
-// range is held. From octahedral `codes` (two per vertex) when given, else from
-// `normals`.
-void upload_packed_normals(std::span<const Vec3f> normals, std::span<const uint8_t> codes, size_t begin, size_t end) {
+// Unit vector -> the 8:8 octahedral code pm::oct_decode8 reads (the .bpm
+// writer's encoding: unorm bytes, the lower hemisphere folded).
+void oct_encode8(const Vec3f& n, uint8_t out[2]) {
+    const float l1 = std::abs(n.x) + std::abs(n.y) + std::abs(n.z);
+    glm::vec2 p = l1 > 0.0f ? glm::vec2(n.x, n.y) / l1 : glm::vec2(0.0f);
+    if (l1 > 0.0f && n.z < 0.0f) {
+        const glm::vec2 s(p.x < 0.0f ? -1.0f : 1.0f, p.y < 0.0f ? -1.0f : 1.0f);
+        p = (1.0f - glm::abs(glm::vec2(p.y, p.x))) * s;
+    }
+    for (int k = 0; k < 2; ++k)
+        out[k] = static_cast<uint8_t>(std::clamp(std::nearbyint((p[k] * 0.5f + 0.5f) * 255.0f), 0.0f, 255.0f));
+}
+
+// Writes normals [begin, end) into the GL_ARRAY_BUFFER bound in the model's
+// format (Model::normal_codes): octahedral `codes` (two per vertex) as they
+// are, anything else converted a piece at a time (no converted copy of the
+// whole range is held). From `codes` when given, else from `normals`.
+void upload_normals(const Model& m, std::span<const Vec3f> normals, std::span<const uint8_t> codes, size_t begin,
+                    size_t end) {
+    if (begin >= end) return;
+    if (m.normal_codes && !codes.empty()) {
+        glBufferSubData(GL_ARRAY_BUFFER, static_cast<GLintptr>(begin * 2), static_cast<GLsizeiptr>((end - begin) * 2),
+                        codes.data() + begin * 2);
+        return;
+    }
     constexpr size_t kPiece = 64 * 1024;
-    std::vector<uint32_t> packed(std::min(kPiece, end - begin));
+    const size_t stride = m.normal_stride();
+    std::vector<uint32_t> piece(std::min(kPiece, end - begin));  // 4 bytes a vertex holds either format
     for (size_t first = begin; first < end; first += kPiece) {
         const size_t n = std::min(kPiece, end - first);
-        if (codes.empty()) {
-            for (size_t i = 0; i < n; ++i) packed[i] = pack_normal(normals[first + i]);
-        } else {
-            for (size_t i = 0; i < n; ++i) {
-                float v[3];
-                pm::oct_decode8(&codes[(first + i) * 2], v);
-                packed[i] = pack_normal(Vec3f(v[0], v[1], v[2]));
+        for (size_t i = 0; i < n; ++i) {
+            Vec3f v;
+            if (codes.empty()) {
+                v = normals[first + i];
+            } else {
+                float d[3];
+                pm::oct_decode8(&codes[(first + i) * 2], d);
+                v = Vec3f(d[0], d[1], d[2]);
             }
+            if (m.normal_codes)
+                oct_encode8(v, reinterpret_cast<uint8_t*>(piece.data()) + i * 2);
+            else
+                piece[i] = pack_normal(v);
         }
-        glBufferSubData(GL_ARRAY_BUFFER, static_cast<GLintptr>(first * 4), static_cast<GLsizeiptr>(n * 4),
-                        packed.data());
+        glBufferSubData(GL_ARRAY_BUFFER, static_cast<GLintptr>(first * stride), static_cast<GLsizeiptr>(n * stride),
+                        piece.data());
     }
 }
 
@@ -350,7 +382,8 @@ Result<Program> link(const std::string& vert, const std::string& frag) {
     const char* fs = shader_source(frag);
     if (!vs || !fs) return runtime_error("shader " + (vs ? frag : vert) + ": not embedded in this build");
     const std::pair<unsigned, const char*> attributes[] = {
-        {kPosition, "a_position"}, {kNormal, "a_normal"}, {kMorph, "a_morph"}, {kWireVertex, "a_vertex"}};
+        {kPosition, "a_position"}, {kNormal, "a_normal"},         {kMorph, "a_morph"},
+        {kWireVertex, "a_vertex"}, {kNormalCode, "a_normal_code"}};
     auto id = link_program(vs, fs, vert + "+" + frag, attributes);
     if (!id) return id.error();
     Program p;
@@ -710,12 +743,19 @@ Result<ModelId> Renderer::add_model(const MeshData& mesh, const std::string& nam
             computed = area_normals(pos, mesh.indices.first(m.index_count), pos.size());
             normals = computed;
         }
+        m.normal_codes = !mesh.normal_codes.empty();
         glGenBuffers(1, &m.vbo_normal);
         glBindBuffer(GL_ARRAY_BUFFER, m.vbo_normal);
-        glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(m.vertex_capacity * 4), nullptr, GL_DYNAMIC_DRAW);
-        upload_packed_normals(normals, mesh.normal_codes, 0, vupload);
-        glVertexAttribPointer(kNormal, 4, GL_INT_2_10_10_10_REV, GL_TRUE, 4, nullptr);
-        glEnableVertexAttribArray(kNormal);
+        glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(m.vertex_capacity * m.normal_stride()), nullptr,
+                     GL_DYNAMIC_DRAW);
+        upload_normals(m, normals, mesh.normal_codes, 0, vupload);
+        if (m.normal_codes) {
+            glVertexAttribPointer(kNormalCode, 2, GL_UNSIGNED_BYTE, GL_FALSE, 2, nullptr);
+            glEnableVertexAttribArray(kNormalCode);
+        } else {
+            glVertexAttribPointer(kNormal, 4, GL_INT_2_10_10_10_REV, GL_TRUE, 4, nullptr);
+            glEnableVertexAttribArray(kNormal);
+        }
         release_scratch(computed);
     }
     glGenBuffers(1, &m.vbo_position);
@@ -833,7 +873,7 @@ Status Renderer::update_model(ModelId id, const MeshData& mesh, const Dirty& dir
             computed = area_normals(pos, mesh.indices.first(icount - icount % 3), pos.size());
         std::span<const Vec3f> normals = mesh.normals.empty() ? std::span<const Vec3f>(computed) : mesh.normals;
         glBindBuffer(GL_ARRAY_BUFFER, m.vbo_normal);
-        upload_packed_normals(normals, mesh.normal_codes, b, b + n);
+        upload_normals(m, normals, mesh.normal_codes, b, b + n);
         release_scratch(computed);
         set_bounds(m, pos, vcount);
     }
@@ -977,7 +1017,7 @@ size_t Renderer::gpu_bytes() const {
     size_t total = 0;
     constexpr size_t w = kTextureWidth;
     for (const auto& [id, m] : s_->models) {
-        total += m.vertex_capacity * (m.position_stride() + 4) + m.index_capacity * 4;
+        total += m.vertex_capacity * (m.position_stride() + m.normal_stride()) + m.index_capacity * 4;
         if (m.vbo_morph) total += m.vertex_capacity * m.position_stride();
         if (m.position_texture) total += (m.vertex_capacity + w - 1) / w * w * 6;
         if (m.edge_texture) total += (m.edge_capacity + w - 1) / w * w * sizeof(GpuEdge);
@@ -1003,6 +1043,7 @@ void set_matrices(Program& p, const Frame& f, const Model& m) {
     glUniformMatrix3fv(p.loc("u_normal_matrix"), 1, GL_FALSE, glm::value_ptr(nm));
     glUniform3fv(p.loc("u_pos_origin"), 1, glm::value_ptr(m.pos_origin));
     glUniform3fv(p.loc("u_pos_scale"), 1, glm::value_ptr(m.pos_scale));
+    glUniform1i(p.loc("u_normal_codes"), m.normal_codes ? 1 : 0);
     glUniform4fv(p.loc("u_view_ray"), 1, glm::value_ptr(f.view_ray));
     const bool morphing = m.vbo_morph && m.state.morph < 1.0f && m.state.morph_begin < m.vertex_count;
     glUniform1f(p.loc("u_morph"), morphing ? std::max(m.state.morph, 0.0f) : 1.0f);

@@ -13,9 +13,14 @@
 // Positions (and morph sources) may arrive as 16-bit codes in the model's box
 // (renderer.cpp, Model::quantized): object = u_pos_origin + u_pos_scale * code;
 // float positions come with origin 0 and scale 1.
+//
+// Normals arrive as GL_INT_2_10_10_10_REV (a_normal) or, for sources that keep
+// 8:8 octahedral codes (a .bpm), as those two bytes (a_normal_code, 0..255
+// each; u_normal_codes = 1), decoded here exactly as pm::oct_decode8 does.
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
 layout(location = 2) in vec3 a_morph;
+layout(location = 4) in vec2 a_normal_code;
 
 uniform mat4 u_model_view;
 uniform mat4 u_projection;
@@ -24,14 +29,24 @@ uniform vec3 u_pos_origin;
 uniform vec3 u_pos_scale;
 uniform float u_morph;     // 0: at the parents .. 1: at their own positions
 uniform int u_morph_begin;  // first morphing vertex
+uniform bool u_normal_codes;  // the normal comes from a_normal_code
 uniform float u_hatch_scale;  // hatching: texture repeats per object-space unit
 
 out vec3 v_view_normal;
 out vec3 v_hatch_pos;  // `hatching`: the object position in texture repeats
 
+// Meyer et al. 2010 octahedral decode; pm::oct_decode8 (shared/pm/bpm_format.cpp).
+vec3 oct_decode8(vec2 code) {
+    vec2 e = code * (2.0 / 255.0) - 1.0;
+    float z = 1.0 - abs(e.x) - abs(e.y);
+    float t = max(-z, 0.0);  // folding the lower hemisphere back
+    e += mix(vec2(t), vec2(-t), greaterThanEqual(e, vec2(0.0)));
+    return normalize(vec3(e, z));
+}
+
 void main() {
     vec3 p = u_pos_origin + u_pos_scale * (gl_VertexID >= u_morph_begin ? mix(a_morph, a_position, u_morph) : a_position);
-    v_view_normal = u_normal_matrix * a_normal;
+    v_view_normal = u_normal_matrix * (u_normal_codes ? oct_decode8(a_normal_code) : a_normal);
     v_hatch_pos = p * u_hatch_scale;
     gl_Position = u_projection * (u_model_view * vec4(p, 1.0));
 }
