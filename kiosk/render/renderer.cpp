@@ -119,7 +119,9 @@ struct Model {
     float radius = 0.0f;
     Vec3f box_min{0.0f}, box_max{0.0f};  // object space
     // Lazily created: the position texture for `wireframe`, the edge texture for `lines`.
-    GLuint position_texture = 0;                // RGB16UI per vertex
+    // `wireframe`: x and y codes in RG16UI, z in R16UI (6 bytes a vertex; an
+    // RGB16UI texture is padded to 8 by llvmpipe).
+    GLuint position_texture = 0, position_texture_z = 0;
     Vec3f wire_origin{0.0f}, wire_scale{0.0f};  // dequantization of the position texture
     bool wire_stale = true;
     GLuint edge_texture = 0;                    // RGBA32UI, one GpuEdge per texel
@@ -381,9 +383,11 @@ Result<Program> link(const std::string& vert, const std::string& frag) {
     const char* vs = shader_source(vert);
     const char* fs = shader_source(frag);
     if (!vs || !fs) return runtime_error("shader " + (vs ? frag : vert) + ": not embedded in this build");
-    const std::pair<unsigned, const char*> attributes[] = {
-        {kPosition, "a_position"}, {kNormal, "a_normal"},         {kMorph, "a_morph"},
-        {kWireVertex, "a_vertex"}, {kNormalCode, "a_normal_code"}};
+    const std::pair<unsigned, const char*> attributes[] = {{kPosition, "a_position"},
+                                                           {kNormal, "a_normal"},
+                                                           {kMorph, "a_morph"},
+                                                           {kWireVertex, "a_vertex"},
+                                                           {kNormalCode, "a_normal_code"}};
     auto id = link_program(vs, fs, vert + "+" + frag, attributes);
     if (!id) return id.error();
     Program p;
@@ -636,8 +640,8 @@ void free_model(Model& m) {
     GLuint buffers[] = {m.vbo_position, m.vbo_normal, m.ebo, m.vbo_morph};
     glDeleteBuffers(4, buffers);
     glDeleteVertexArrays(1, &m.vao);
-    GLuint textures[] = {m.position_texture, m.edge_texture};
-    glDeleteTextures(2, textures);
+    GLuint textures[] = {m.position_texture, m.position_texture_z, m.edge_texture};
+    glDeleteTextures(3, textures);
 }
 }  // namespace
 
@@ -1191,8 +1195,9 @@ static void set_bounds_from_buffer(Model& m) {
 // 6-26 MiB and 3 MiB). Switching back rebuilds them from the GL buffers.
 static void free_wire_textures(Model& m) {
     if (!m.position_texture) return;
-    glDeleteTextures(1, &m.position_texture);
-    m.position_texture = 0;
+    GLuint textures[] = {m.position_texture, m.position_texture_z};
+    glDeleteTextures(2, textures);
+    m.position_texture = m.position_texture_z = 0;
     m.wire_stale = true;
 #ifdef __GLIBC__
     malloc_trim(0);  // software drivers keep textures in host memory: hand it back before the other style builds
@@ -1311,23 +1316,42 @@ static void ensure_edges(Model& m) {
 #endif
 }
 
-// The `wireframe` position texture, rebuilt (in place) when the vertices
+// The `wireframe` position textures, rebuilt (in place) when the vertices
 // changed: per vertex its position as 16-bit codes in the box of the drawn
-// vertices (6 bytes). The indices need no texture (see draw_wire_chunks). Built
-// in pieces from the mapped buffer, so the only scratch is one piece.
+// vertices, x and y in an RG16UI texel and z in an R16UI one (6 bytes; one
+// RGB16UI texel is 8 on llvmpipe, which has no 48-bit format). The indices
+// need no texture (see draw_wire_chunks). Built in pieces from the mapped
+// buffer, so the only scratch is one piece.
 static void ensure_wire_positions(Model& m) {
     if (!m.wire_stale && m.position_texture) return;
     free_edge_texture(m);
-    if (!m.position_texture) m.position_texture = make_data_texture(GL_RGB16UI, m.vertex_capacity);
+    if (!m.position_texture) {
+        m.position_texture = make_data_texture(GL_RG16UI, m.vertex_capacity);
+        m.position_texture_z = make_data_texture(GL_R16UI, m.vertex_capacity);
+    }
     const MappedPositions positions(m);
     if (!positions.ok()) return;  // retried next frame
     constexpr size_t kPiece = 16 * kTextureWidth;
+    std::vector<uint16_t> xy(std::min(kPiece, positions.size()) * 2), z(xy.size() / 2);
+    const auto upload = [&](size_t first, size_t n) {
+        texture_rows(m.position_texture, first, first + n, GL_RG_INTEGER, GL_UNSIGNED_SHORT,
+                     reinterpret_cast<const uint8_t*>(xy.data()), 4);
+        texture_rows(m.position_texture_z, first, first + n, GL_RED_INTEGER, GL_UNSIGNED_SHORT,
+                     reinterpret_cast<const uint8_t*>(z.data()), 2);
+    };
     if (m.quantized) {  // the buffer's codes are the texture's
         m.wire_origin = m.pos_origin;
         m.wire_scale = m.pos_scale;
-        for (size_t first = 0; first < positions.size(); first += kPiece)
-            texture_rows(m.position_texture, first, std::min(first + kPiece, positions.size()), GL_RGB_INTEGER,
-                         GL_UNSIGNED_SHORT, reinterpret_cast<const uint8_t*>(positions.codes() + first * 3), 6);
+        for (size_t first = 0; first < positions.size(); first += kPiece) {
+            const size_t n = std::min(kPiece, positions.size() - first);
+            const uint16_t* c = positions.codes() + first * 3;
+            for (size_t i = 0; i < n; ++i) {
+                xy[i * 2] = c[i * 3];
+                xy[i * 2 + 1] = c[i * 3 + 1];
+                z[i] = c[i * 3 + 2];
+            }
+            upload(first, n);
+        }
         m.wire_stale = false;
         return;
     }
@@ -1336,19 +1360,20 @@ static void ensure_wire_positions(Model& m) {
     m.wire_origin = box.empty() ? Vec3f(0.0f) : Vec3f(box.min);
     const Vec3f extent = box.empty() ? Vec3f(0.0f) : Vec3f(box.max - box.min);
     m.wire_scale = extent / 65535.0f;
-    std::vector<uint16_t> codes(kPiece * 3);
+    const auto code = [&](size_t v, int k) {
+        return extent[k] > 0.0f
+                   ? static_cast<uint16_t>(std::lround(
+                         std::clamp((positions[v][k] - m.wire_origin[k]) / extent[k], 0.0f, 1.0f) * 65535.0f))
+                   : uint16_t{0};
+    };
     for (size_t first = 0; first < positions.size(); first += kPiece) {
         const size_t n = std::min(kPiece, positions.size() - first);
-        for (size_t i = 0; i < n; ++i)
-            for (int k = 0; k < 3; ++k)
-                codes[i * 3 + static_cast<size_t>(k)] =
-                    extent[k] > 0.0f
-                        ? static_cast<uint16_t>(std::lround(
-                              std::clamp((positions[first + i][k] - m.wire_origin[k]) / extent[k], 0.0f, 1.0f) *
-                              65535.0f))
-                        : uint16_t{0};
-        texture_rows(m.position_texture, first, first + n, GL_RGB_INTEGER, GL_UNSIGNED_SHORT,
-                     reinterpret_cast<const uint8_t*>(codes.data()), 6);
+        for (size_t i = 0; i < n; ++i) {
+            xy[i * 2] = code(first + i, 0);
+            xy[i * 2 + 1] = code(first + i, 1);
+            z[i] = code(first + i, 2);
+        }
+        upload(first, n);
     }
     m.wire_stale = false;
 }
@@ -1500,6 +1525,10 @@ void Renderer::render(const Camera& camera, const Lighting& lighting, const Fram
                 glActiveTexture(GL_TEXTURE0);
                 glBindTexture(GL_TEXTURE_2D, m.position_texture);
                 glUniform1i(p.loc("u_positions"), 0);
+                glActiveTexture(GL_TEXTURE1);
+                glBindTexture(GL_TEXTURE_2D, m.position_texture_z);
+                glUniform1i(p.loc("u_positions_z"), 1);
+                glActiveTexture(GL_TEXTURE0);
                 draw_wire_chunks(s.wire_vao, m.ebo, m.index_count);
                 break;
             }
