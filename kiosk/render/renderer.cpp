@@ -820,6 +820,30 @@ void to_float_positions(Model& m, const MeshData& mesh, size_t count) {
     glBindVertexArray(0);
     m.wire_stale = m.edges_stale = true;
 }
+
+// Writes a source's pending patches into `buffer`'s elements [first, first +
+// count) (`per_element` values of T each) in place. Mapped through
+// GL_COPY_WRITE_BUFFER, which is no VAO's state; the range is not invalidated,
+// so the entries the patch skips keep theirs. GL_FALSE from glUnmapBuffer means
+// the driver lost the store while mapped (e.g. a display mode change): an
+// error, the buffer's contents are undefined.
+template <typename T>
+Status patch_mapped(GLuint buffer, size_t first, size_t count, size_t per_element,
+                    const std::function<void(std::span<T>, size_t)>& patch, const std::string& what) {
+    const size_t bytes = per_element * sizeof(T);
+    glBindBuffer(GL_COPY_WRITE_BUFFER, buffer);
+    void* p = glMapBufferRange(GL_COPY_WRITE_BUFFER, static_cast<GLintptr>(first * bytes),
+                               static_cast<GLsizeiptr>(count * bytes), GL_MAP_WRITE_BIT);
+    if (!p) {
+        glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
+        return runtime_error(what + " could not be mapped for patching");
+    }
+    patch(std::span<T>(static_cast<T*>(p), count * per_element), first);
+    const bool kept = glUnmapBuffer(GL_COPY_WRITE_BUFFER) == GL_TRUE;
+    glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
+    if (!kept) return runtime_error(what + " was lost by the driver while mapped for patching");
+    return ok_status();
+}
 }  // namespace
 
 Status Renderer::update_model(ModelId id, const MeshData& mesh, const Dirty& dirty) {
@@ -853,14 +877,11 @@ Status Renderer::update_model(ModelId id, const MeshData& mesh, const Dirty& dir
                 return input_error(m.name + ": index " + std::to_string(i) + " out of range");
     const bool vertex_patched = vpatched && mesh.position_patch_begin < mesh.position_patch_end;
     if (vertex_patched) {
-        const size_t b = mesh.position_patch_begin, n = mesh.position_patch_end - mesh.position_patch_begin;
-        glBindBuffer(GL_COPY_WRITE_BUFFER, m.vbo_position);
-        void* p = glMapBufferRange(GL_COPY_WRITE_BUFFER, static_cast<GLintptr>(b * 6), static_cast<GLsizeiptr>(n * 6),
-                                   GL_MAP_WRITE_BIT);
-        if (!p) return runtime_error(m.name + ": the position buffer could not be mapped for patching");
-        mesh.position_patch(std::span<uint16_t>(static_cast<uint16_t*>(p), n * 3), b);
-        glUnmapBuffer(GL_COPY_WRITE_BUFFER);
-        glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
+        // Codes: 3 x 16 bits a vertex (the buffer's layout, Model::quantized).
+        Status st = patch_mapped<uint16_t>(m.vbo_position, mesh.position_patch_begin,
+                                           mesh.position_patch_end - mesh.position_patch_begin, 3, mesh.position_patch,
+                                           m.name + ": the position buffer");
+        if (!st.ok()) return st;
     } else if (!vpatched && dirty.vertex_begin < dirty.vertex_end) {
         const size_t b = dirty.vertex_begin, n = dirty.vertex_end - dirty.vertex_begin;
         if (m.quantized && !inside_position_box(m, pos, b, b + n))
@@ -885,16 +906,9 @@ Status Renderer::update_model(ModelId id, const MeshData& mesh, const Dirty& dir
     }
     const bool index_patched = patched && mesh.index_patch_begin < mesh.index_patch_end;
     if (index_patched) {
-        // Mapped through GL_COPY_WRITE_BUFFER, which is no VAO's state; the
-        // range is not invalidated, so the entries the patch skips keep theirs.
-        const size_t b = mesh.index_patch_begin, n = mesh.index_patch_end - mesh.index_patch_begin;
-        glBindBuffer(GL_COPY_WRITE_BUFFER, m.ebo);
-        void* p = glMapBufferRange(GL_COPY_WRITE_BUFFER, static_cast<GLintptr>(b * 4), static_cast<GLsizeiptr>(n * 4),
-                                   GL_MAP_WRITE_BIT);
-        if (!p) return runtime_error(m.name + ": the index buffer could not be mapped for patching");
-        mesh.index_patch(std::span<uint32_t>(static_cast<uint32_t*>(p), n), b);
-        glUnmapBuffer(GL_COPY_WRITE_BUFFER);
-        glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
+        Status st = patch_mapped<uint32_t>(m.ebo, mesh.index_patch_begin, mesh.index_patch_end - mesh.index_patch_begin,
+                                           1, mesh.index_patch, m.name + ": the index buffer");
+        if (!st.ok()) return st;
     } else if (!patched && dirty.index_begin < dirty.index_end) {
         glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m.ebo);
         upload_indices(mesh, dirty.index_begin, dirty.index_end);
