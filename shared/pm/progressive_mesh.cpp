@@ -662,8 +662,7 @@ Status BpmStream::parse_splits(ProgressiveMesh& m, std::span<const uint8_t> payl
         {
             const size_t at = m.patch_corners_.size(), w = m.corner_bytes_, n = size_t(std::popcount(mask));
             m.patch_corners_.resize(at + n * w);
-            for (size_t i = 0; i < n; ++i)
-                for (size_t k = 0; k < w; ++k) m.patch_corners_[at + i * w + k] = uint8_t(moved[i] >> (8 * k));
+            for (size_t i = 0; i < n; ++i) ProgressiveMesh::store_le(&m.patch_corners_[at + i * w], moved[i], w);
         }
         m.patch_count_[j] = uint8_t(std::popcount(mask));
         if (j % 64 == 0) m.move_rank_[j / 64] = uint32_t(m.move_count_);
@@ -679,8 +678,7 @@ Status BpmStream::parse_splits(ProgressiveMesh& m, std::span<const uint8_t> payl
         }
         m.qoct_[size_t(child) * 2] = oct[0];
         m.qoct_[size_t(child) * 2 + 1] = oct[1];
-        for (size_t k = 0; k < m.parent_bytes_; ++k)
-            m.split_parents_bytes_[j * m.parent_bytes_ + k] = uint8_t(parent >> (8 * k));
+        ProgressiveMesh::store_le(&m.split_parents_bytes_[j * m.parent_bytes_], parent, m.parent_bytes_);
     }
     if (count > 0) {
         const size_t first_child = m.base_vertices_ + first;

@@ -207,10 +207,14 @@ private:
     // first (3 when every vertex number fits 24 bits, else 4).
     UninitVector<uint8_t> split_parents_bytes_;
     size_t parent_bytes_ = 4;
-    uint32_t split_parent(size_t j) const {
-        const uint8_t* p = &split_parents_bytes_[j * parent_bytes_];
+    uint32_t split_parent(size_t j) const { return load_le(&split_parents_bytes_[j * parent_bytes_], parent_bytes_); }
+    // Vertex and entry numbers kept in 3 or 4 bytes, least significant first.
+    static uint32_t load_le(const uint8_t* p, size_t bytes) {
         const uint32_t v = uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16;
-        return parent_bytes_ == 4 ? v | uint32_t(p[3]) << 24 : v;
+        return bytes == 4 ? v | uint32_t(p[3]) << 24 : v;
+    }
+    static void store_le(uint8_t* p, uint32_t v, size_t bytes) {
+        for (size_t k = 0; k < bytes; ++k) p[k] = uint8_t(v >> (8 * k));
     }
     // Per split, 2 bits: the faces it adds (1 to 3), 32 splits a word; per 64
     // splits the triangle count at that level (face_sample_[b]: level 64 b), so
@@ -259,11 +263,7 @@ private:
     // number fits 24 bits: up to 5.59M triangles; else 4).
     UninitVector<uint8_t> patch_corners_;
     size_t corner_bytes_ = 4;
-    uint32_t patch_corner(size_t i) const {
-        const uint8_t* p = &patch_corners_[i * corner_bytes_];
-        const uint32_t c = uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16;
-        return corner_bytes_ == 4 ? c | uint32_t(p[3]) << 24 : c;
-    }
+    uint32_t patch_corner(size_t i) const { return load_le(&patch_corners_[i * corner_bytes_], corner_bytes_); }
     DirtyRange dirty_vertices_, dirty_indices_;
     // Decoding state, released when the structure is complete (qoct_ is kept as
     // the normals when the file has them).
