@@ -71,15 +71,9 @@ struct Part {
     size_t triangles() const { return pm ? pm->triangle_count() : source->triangles(); }
     render::MeshData mesh() const {
         if (!pm) return source->mesh();
+        // Once the indices are handed over, with the hook that patches the element buffer.
         render::MeshData m = render::mesh_data_of(*pm);
         m.morph_at_rest = true;  // at rest: nothing displaced
-        if (pm->indices_released()) {
-            // The element buffer is the index array: the level's patches go there.
-            pm::ProgressiveMesh* to = pm;
-            m.index_patch = [to](std::span<uint32_t> window, size_t first) { to->patch_indices(window, first); };
-            m.index_patch_begin = pm->pending_index_range().begin;
-            m.index_patch_end = pm->pending_index_range().end;
-        }
         return m;
     }
     // Once every split has arrived (with normals: the renderer needs no indices

@@ -120,7 +120,7 @@ std::span<const Vec3f> ModelSource::positions() const {
     return positions_;
 }
 
-MeshData mesh_data_of(const pm::ProgressiveMesh& pm) {
+MeshData mesh_data_of(pm::ProgressiveMesh& pm) {
     MeshData m;
     m.position_codes = pm.position_codes();
     m.has_position_box = true;
@@ -130,6 +130,24 @@ MeshData mesh_data_of(const pm::ProgressiveMesh& pm) {
     m.indices = pm.indices();
     m.vertex_count = pm.vertex_count();
     m.index_count = 3 * pm.triangle_count();
+    pm::ProgressiveMesh* p = &pm;
+    if (pm.vertex_data_released()) {
+        // The renderer's buffers are the positions and normals: the parents'
+        // moves are XORed into its codes, normals never change.
+        m.position_patch = [p](std::span<uint16_t> window, size_t first) { p->patch_position_codes(window, first); };
+        m.position_patch_begin = pm.pending_vertex_range().begin;
+        m.position_patch_end = pm.pending_vertex_range().end;
+    }
+    if (pm.indices_packed()) {
+        m.index_fill = [p](std::span<uint32_t> out) { p->fill_indices(out); };
+        m.index_fill_count = 3 * pm.max_triangle_count();
+    } else if (pm.indices_released()) {
+        // The renderer's element buffer is the index array: the level's
+        // patches are written into it.
+        m.index_patch = [p](std::span<uint32_t> window, size_t first) { p->patch_indices(window, first); };
+        m.index_patch_begin = pm.pending_index_range().begin;
+        m.index_patch_end = pm.pending_index_range().end;
+    }
     return m;
 }
 
@@ -148,27 +166,7 @@ MeshData ModelSource::upload_mesh_of(bool hand_over) const {
         // our copy hold 8 + 12.75 MiB at the upload's peak, not 12.75 + 12.75;
         // the buffer is filled from it and it is freed.
         if (hand_over && hands_over_indices()) pm->pack_indices();
-        MeshData m = mesh_data_of(*pm);
-        if (pm->vertex_data_released()) {
-            // The renderer's buffers are the positions and normals: the
-            // parents' moves are XORed into its codes, normals never change.
-            m.position_patch = [pm](std::span<uint16_t> window, size_t first) {
-                pm->patch_position_codes(window, first);
-            };
-            m.position_patch_begin = pm->pending_vertex_range().begin;
-            m.position_patch_end = pm->pending_vertex_range().end;
-        }
-        if (pm->indices_packed()) {
-            m.index_fill = [pm](std::span<uint32_t> out) { pm->fill_indices(out); };
-            m.index_fill_count = 3 * pm->max_triangle_count();
-        } else if (pm->indices_released()) {
-            // The renderer's element buffer is the index array: the level's
-            // patches are written into it.
-            m.index_patch = [pm](std::span<uint32_t> window, size_t first) { pm->patch_indices(window, first); };
-            m.index_patch_begin = pm->pending_index_range().begin;
-            m.index_patch_end = pm->pending_index_range().end;
-        }
-        return m;
+        return mesh_data_of(*pm);
     }
     MeshData m;
     m.position_codes = position_codes_;

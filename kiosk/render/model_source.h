@@ -107,11 +107,15 @@ private:
     MeshData upload_mesh_of(bool hand_over) const;  // hand_over: upload_mesh(), else mesh()
 };
 
-// Loads `.bpm` or `.obj` (by extension); errors name the file and the reason.
 // The renderer's view of a progressive mesh at its current level: its own
-// codes (positions in its box, octahedral normals), no float copy.
-MeshData mesh_data_of(const pm::ProgressiveMesh& pm);
+// codes (positions in its box, octahedral normals), no float copy. Once the pm
+// has handed arrays to the renderer (released or packed indices, released
+// vertex data), also the hooks that write its pending patches (or fill the
+// packed array) into the renderer's buffers; they refer to `pm`, which must
+// outlive the MeshData.
+MeshData mesh_data_of(pm::ProgressiveMesh& pm);
 
+// Loads `.bpm` or `.obj` (by extension); errors name the file and the reason.
 Result<std::vector<ModelSource>> load_model_file(const std::string& path);
 
 }  // namespace body::render

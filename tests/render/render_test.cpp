@@ -826,16 +826,8 @@ TEST(RenderGeomorph, ProgressiveMeshMorphStartsAtTheCoarserLevel) {
     const Camera cam = Camera::framing(Vec3f(0.0f), 1.1f, Vec3f(0.3f, 0.2f, 1.0f));
     const FrameOptions o = f.frame();
     auto mesh_now = [&] {
-        MeshData m;  // as the kiosk uploads a pm: its own codes
-        m.position_codes = pm.position_codes();
-        m.has_position_box = true;
-        m.position_box_min = pm.bounds_min();
-        m.position_box_max = pm.bounds_max();
-        m.normal_codes = pm.normal_codes();
-        m.indices = pm.indices();
+        MeshData m = mesh_data_of(pm);  // as the kiosk uploads a pm: its own codes
         m.morph_at_rest = true;
-        m.vertex_count = pm.vertex_count();
-        m.index_count = 3 * pm.triangle_count();
         return m;
     };
     const size_t lo = pm.level_for_triangles(300), hi = pm.level_for_triangles(3000);
