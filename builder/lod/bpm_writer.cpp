@@ -63,29 +63,6 @@ uint16_t quantize16(double x, float lo, float hi) {
     return uint16_t(std::clamp(t, 0.0, 65535.0));
 }
 
-double sign_not_zero(double v) { return v < 0.0 ? -1.0 : 1.0; }
-uint8_t unorm8(double v) { return uint8_t(std::clamp(std::nearbyint((v * 0.5 + 0.5) * 255.0), 0.0, 255.0)); }
-
-// Octahedral encoding of a unit vector, 8 bits per component (Meyer et al. 2010).
-void oct_encode8(double x, double y, double z, uint8_t out[2]) {
-    const double l1 = std::fabs(x) + std::fabs(y) + std::fabs(z);
-    if (!(l1 > 0.0)) {
-        out[0] = out[1] = 128;
-        return;
-    }
-    x /= l1;
-    y /= l1;
-    z /= l1;
-    if (z < 0.0) {
-        const double ox = (1.0 - std::fabs(y)) * sign_not_zero(x);
-        const double oy = (1.0 - std::fabs(x)) * sign_not_zero(y);
-        x = ox;
-        y = oy;
-    }
-    out[0] = unorm8(x);
-    out[1] = unorm8(y);
-}
-
 Quantized quantize(const ProgressiveBuild& pm, bool normals) {
     Quantized z;
     // Every position a vertex takes at some level: where it appears, and where the
@@ -104,7 +81,7 @@ Quantized quantize(const ProgressiveBuild& pm, bool normals) {
     z.oct.assign(n * 2, 0);
     for (size_t v = 0; v < n; ++v) {
         for (int k = 0; k < 3; ++k) z.q[v * 3 + k] = quantize16(pm.positions[v][k], z.lo[k], z.hi[k]);
-        if (normals) oct_encode8(pm.normals[v].x, pm.normals[v].y, pm.normals[v].z, &z.oct[v * 2]);
+        if (normals) pm::oct_encode8(pm.normals[v].x, pm.normals[v].y, pm.normals[v].z, &z.oct[v * 2]);
     }
     return z;
 }

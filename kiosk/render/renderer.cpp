@@ -221,19 +221,6 @@ void release_scratch(std::vector<Vec3f>& computed) {
 #endif
 }
 
-// Unit vector -> the 8:8 octahedral code pm::oct_decode8 reads (the .bpm
-// writer's encoding: unorm bytes, the lower hemisphere folded).
-void oct_encode8(const Vec3f& n, uint8_t out[2]) {
-    const float l1 = std::abs(n.x) + std::abs(n.y) + std::abs(n.z);
-    glm::vec2 p = l1 > 0.0f ? glm::vec2(n.x, n.y) / l1 : glm::vec2(0.0f);
-    if (l1 > 0.0f && n.z < 0.0f) {
-        const glm::vec2 s(p.x < 0.0f ? -1.0f : 1.0f, p.y < 0.0f ? -1.0f : 1.0f);
-        p = (1.0f - glm::abs(glm::vec2(p.y, p.x))) * s;
-    }
-    for (int k = 0; k < 2; ++k)
-        out[k] = static_cast<uint8_t>(std::clamp(std::nearbyint((p[k] * 0.5f + 0.5f) * 255.0f), 0.0f, 255.0f));
-}
-
 // Writes normals [begin, end) into the GL_ARRAY_BUFFER bound in the model's
 // format (Model::normal_codes): octahedral `codes` (two per vertex) as they
 // are, anything else converted a piece at a time (no converted copy of the
@@ -261,7 +248,7 @@ void upload_normals(const Model& m, std::span<const Vec3f> normals, std::span<co
                 v = Vec3f(d[0], d[1], d[2]);
             }
             if (m.normal_codes)
-                oct_encode8(v, reinterpret_cast<uint8_t*>(piece.data()) + i * 2);
+                pm::oct_encode8(v.x, v.y, v.z, reinterpret_cast<uint8_t*>(piece.data()) + i * 2);
             else
                 piece[i] = pack_normal(v);
         }

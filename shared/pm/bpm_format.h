@@ -108,13 +108,16 @@ private:
     size_t pos_ = 0;
 };
 
-// Dequantization of 16-bit coordinates in [lo, hi] and decoding of 8-bit
-// octahedral normals. The encoders live with the writer (builder/lod/bpm_writer.cpp),
-// compiled without floating-point contraction so the bytes match on every platform.
+// Dequantization of 16-bit coordinates in [lo, hi], and 8-bit octahedral
+// normals both ways (Meyer et al. 2010). The position quantizer lives with the
+// writer (builder/lod/bpm_writer.cpp); everything is compiled without
+// floating-point contraction so the bytes match on every platform.
 float dequantize16(uint16_t q, float lo, float hi);
 // The same with step = (double(hi) - double(lo)) / 65535.0 computed once (same result).
 inline float dequantize16(uint16_t q, float lo, double step) { return float(double(lo) + double(q) * step); }
 void oct_decode8(const uint8_t in[2], float out[3]);
+// Any nonzero vector (normalized by its L1 norm); the zero vector gives (128, 128).
+void oct_encode8(double x, double y, double z, uint8_t out[2]);
 
 // Zig-zag mapping of the wrap-around difference of two 16/8-bit codes.
 inline uint16_t zigzag16(uint16_t to, uint16_t from) {
