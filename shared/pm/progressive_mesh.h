@@ -147,9 +147,10 @@ public:
     // release_indices() would.
     bool release_indices_upto(size_t end);
     // Released with the array kept packed until the caller has its copy:
-    // pack_indices() packs the array of the current level in place to the
-    // fewest bits that hold max_vertex_count() - 1 (20 for a million vertices,
-    // the pages past the packed size handed back) and counts as released (as
+    // pack_indices() packs the array of the current level in place (each
+    // entry as a short difference code: 14.7 bits an entry for a million
+    // vertices where plain numbers take 20; the pages past the packed size
+    // handed back) and counts as released (as
     // release_indices(); false where that would be). fill_indices() writes the
     // whole array at the current level into the caller's `out` (>= 3 *
     // max_triangle_count() entries): the packed array plus the patches of the
@@ -191,8 +192,10 @@ private:
     // Released indices: the level the caller's array is at, and the entries
     // its pending patches touch.
     bool indices_released_ = false, vertices_released_ = false;
-    UninitVector<uint32_t> packed_indices_;  // pack_indices(): packed_bits_ a entry, a bit stream
-    size_t packed_bits_ = 0, packed_count_ = 0;
+    // pack_indices(): packed_count_ entries as a bit stream of packed_words_
+    // words (the code: progressive_mesh.cpp, above pack_indices).
+    UninitVector<uint32_t> packed_indices_;
+    size_t packed_bits_ = 0, packed_count_ = 0, packed_words_ = 0;
     size_t position_level_ = 0;  // released vertex data: the level of the caller's codes
     DirtyRange pending_vertices_;
     size_t index_level_ = 0, index_pages_released_ = 0;  // bytes of indices_ handed back so far
