@@ -161,9 +161,9 @@ MeshData ModelSource::upload_mesh_of(bool hand_over) const {
     if (pm_) {
         pm::ProgressiveMesh* pm = pm_.get();
         // Complete: the array going up to add_model is the last use of ours.
-        // Packed first, in place (20 bits an entry for the 1.1M bunny instead
+        // Packed first, in place (14.7 bits an entry for the 1.1M bunny instead
         // of 32), so the new element buffer (cleared at once by llvmpipe) and
-        // our copy hold 8 + 12.75 MiB at the upload's peak, not 12.75 + 12.75;
+        // our copy hold 5.9 + 12.75 MiB at the upload's peak, not 12.75 + 12.75;
         // the buffer is filled from it and it is freed.
         if (hand_over && hands_over_indices()) pm->pack_indices();
         return mesh_data_of(*pm);
