@@ -1,6 +1,7 @@
 // The renderer benchmark (see benchmark.h). Timing: glFinish after each frame,
-// steady_clock, median over the timed frames. The baseline is re-measured at
-// every LOD so ratios compare like with like.
+// steady_clock and process CPU time; the ratio to the baseline is the median
+// of per-pair ratios (see time_cell). The baseline is re-measured in every
+// cell so ratios compare like with like.
 #include "kiosk/render/benchmark.h"
 
 #include <GLES3/gl3.h>
@@ -84,10 +85,28 @@ Result<ModelSource> generated_model(size_t target_triangles) {
     return ModelSource(name, Vec3f(0.85f, 0.62f, 0.55f), std::move(p), {}, std::move(idx));
 }
 
-double median(std::vector<double> v) {
+// The q-quantile of v (0 <= q <= 1), linear between the order statistics.
+double quantile(std::vector<double> v, double q) {
+    if (v.empty()) return 0.0;
     std::sort(v.begin(), v.end());
-    return v.empty() ? 0.0 : v[v.size() / 2];
+    const double at = q * static_cast<double>(v.size() - 1);
+    const size_t i = static_cast<size_t>(at);
+    if (i + 1 >= v.size()) return v.back();
+    return v[i] + (at - static_cast<double>(i)) * (v[i + 1] - v[i]);
 }
+
+// The median and the interquartile range of a cell's pair ratios.
+struct Spread {
+    double median, q1, q3;
+    static Spread of(const std::vector<double>& v) { return {quantile(v, 0.5), quantile(v, 0.25), quantile(v, 0.75)}; }
+};
+
+// One style at one LOD: median frame times and the pair ratios' spread.
+struct Cell {
+    double style_ms, base_ms;
+    Spread wall, cpu;
+    size_t pairs;
+};
 
 // Linux: writing 5 to clear_refs resets VmHWM (the peak) to the current RSS.
 void reset_peak_rss() {
@@ -188,39 +207,61 @@ Status run_benchmark(platform::Surface& surface, const BenchmarkOptions& options
                 gl_renderer ? gl_renderer : "?");
     std::printf("model: %zu triangles (%s LOD)\n", source->full_triangles(),
                 source->progressive() ? "progressive-mesh" : "meshoptimizer preview");
-    std::printf("%-5s %-9s %-15s %10s %12s %8s %9s %s\n", "LOD", "triangles", "style", "median_ms", "baseline_ms",
-                "ratio", "cpu_ratio", "goal");
+    std::printf("%-5s %-9s %-15s %9s %11s %6s %11s %9s %11s %5s %s\n", "LOD", "triangles", "style", "median_ms",
+                "baseline_ms", "ratio", "ratio_IQR", "cpu_ratio", "cpu_IQR", "pairs", "goal");
 
-    // Frames of the style and of the baseline alternate, so load changes on a
-    // shared machine hit both sides of the ratio alike.
-    // cpu_ratio: the same pairs' median process CPU time (every rasterizer
-    // thread included), which other processes on a shared machine disturb much
-    // less than the wall time.
+    // Frames of the baseline and of the style alternate, B0 S0 B1 S1 ... Sn-1 Bn,
+    // and each style frame is divided by the mean of the two baseline frames
+    // around it: a load change on a shared machine that drifts linearly over
+    // the three frames cancels out of that pair ratio, and one that hits a
+    // single frame spoils one pair only. The printed ratio is the median of the
+    // pair ratios (not the ratio of medians, which mixes frames taken under
+    // different loads), with their interquartile range as the spread. Pairs
+    // are taken until the cell's time budget is spent (and at least
+    // options.frames of them), so short frames get more pairs.
+    // cpu_ratio: the same for process CPU time (every rasterizer thread
+    // included), which other processes on a shared machine disturb much less
+    // than the wall time.
     auto cpu_ms = [] {
         timespec t{};
         clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
         return static_cast<double>(t.tv_sec) * 1e3 + static_cast<double>(t.tv_nsec) * 1e-6;
     };
-    auto time_pair = [&](Style style, double& style_ms, double& base_ms, double& cpu_ratio) {
-        std::vector<double> a, b, ca, cb;
-        for (int i = 0; i < 2 + options.frames; ++i) {
-            for (int k = 0; k < 2; ++k) {
-                renderer.state(id.value())->style = k == 0 ? Style::Baseline : style;
-                auto t0 = std::chrono::steady_clock::now();
-                const double c0 = cpu_ms();
-                renderer.render(camera, lighting, frame);
-                glFinish();
-                auto t1 = std::chrono::steady_clock::now();
-                const double c1 = cpu_ms();
-                if (i >= 2) {
-                    (k == 0 ? b : a).push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
-                    (k == 0 ? cb : ca).push_back(c1 - c0);
-                }
-            }
+    struct Timed {
+        double wall_ms, cpu_ms;
+    };
+    auto time_frame = [&](Style style) {
+        renderer.state(id.value())->style = style;
+        const auto t0 = std::chrono::steady_clock::now();
+        const double c0 = cpu_ms();
+        renderer.render(camera, lighting, frame);
+        glFinish();
+        const double c1 = cpu_ms();
+        return Timed{std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count(), c1 - c0};
+    };
+    auto time_cell = [&](Style style) {
+        for (int i = 0; i < 2; ++i) {  // warm-up pairs: caches, the driver's shader variants
+            (void)time_frame(Style::Baseline);
+            (void)time_frame(style);
         }
-        style_ms = median(a);
-        base_ms = median(b);
-        cpu_ratio = median(ca) / median(cb);
+        std::vector<Timed> base{time_frame(Style::Baseline)}, styled;
+        const auto start = std::chrono::steady_clock::now();
+        const auto spent = [&] {
+            return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        };
+        while (styled.size() < static_cast<size_t>(std::max(options.frames, 1)) ||
+               (spent() < options.seconds_per_cell && styled.size() < options.max_pairs)) {
+            styled.push_back(time_frame(style));
+            base.push_back(time_frame(Style::Baseline));
+        }
+        std::vector<double> wall, cpu, style_ms, base_ms;
+        for (size_t i = 0; i < styled.size(); ++i) {
+            wall.push_back(styled[i].wall_ms / (0.5 * (base[i].wall_ms + base[i + 1].wall_ms)));
+            cpu.push_back(styled[i].cpu_ms / (0.5 * (base[i].cpu_ms + base[i + 1].cpu_ms)));
+            style_ms.push_back(styled[i].wall_ms);
+        }
+        for (const Timed& b : base) base_ms.push_back(b.wall_ms);
+        return Cell{quantile(style_ms, 0.5), quantile(base_ms, 0.5), Spread::of(wall), Spread::of(cpu), styled.size()};
     };
     const std::map<Style, double> goals = {{Style::Smooth, 1.1}, {Style::Hatching, 1.5}, {Style::Lines, 2.0}};
     long after_baseline = 0, after_baseline_current = 0, render_peak = 0, lod_peak = 0;
@@ -271,16 +312,17 @@ Status run_benchmark(platform::Surface& surface, const BenchmarkOptions& options
             renderer.render(camera, lighting, frame);
             glFinish();
             if (lod == 1.0) step((std::string("first frame in ") + style_name(s)).c_str());
-            double ms = 0, base = 0;
-            double cpu_ratio = 0;
-            time_pair(s, ms, base, cpu_ratio);
+            const Cell c = time_cell(s);
             if (lod == 1.0) style_added.emplace_back(s, peak_rss_kib() - before);
             auto g = goals.find(s);
-            char goal[32] = "";
+            char goal[48] = "";
             if (g != goals.end())
-                std::snprintf(goal, sizeof(goal), "<= %.1fx %s", g->second, ms / base <= g->second ? "ok" : "MISSED");
-            std::printf("%3.0f%%  %-9zu %-15s %10.2f %12.2f %8.2f %9.2f %s\n", lod * 100, source->triangles(),
-                        style_name(s), ms, base, ms / base, cpu_ratio, goal);
+                std::snprintf(goal, sizeof(goal), "<= %.1fx %s%s", g->second,
+                              c.wall.median <= g->second ? "ok" : "MISSED",
+                              c.wall.q1 <= g->second && g->second <= c.wall.q3 ? " (within the IQR)" : "");
+            std::printf("%3.0f%%  %-9zu %-15s %9.2f %11.2f %6.2f %5.2f-%-5.2f %9.2f %5.2f-%-5.2f %5zu %s\n", lod * 100,
+                        source->triangles(), style_name(s), c.style_ms, c.base_ms, c.wall.median, c.wall.q1, c.wall.q3,
+                        c.cpu.median, c.cpu.q1, c.cpu.q3, c.pairs, goal);
             std::fflush(stdout);
         }
         step(("every style drawn at LOD " + std::to_string(static_cast<int>(lod * 100)) + "%").c_str());

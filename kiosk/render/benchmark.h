@@ -1,9 +1,10 @@
 #pragma once
 // `bodyview --headless --benchmark`: per style and LOD, the median frame time
 // and its ratio to a minimal baseline drawn in the same run (the same buffers,
-// the flat-colour shader), plus peak RSS above the empty-context baseline and
-// above the empty scene (the renderer initialised and every style drawn once
-// on one triangle before the model is loaded: the driver's fixed cost apart).
+// the flat-colour shader): the median, first and third quartile of the ratios
+// of style frames to the baseline frames around them, in wall and CPU time; plus peak RSS above the empty-context
+// baseline and above the empty scene (the renderer initialised and every style drawn once on one triangle before the
+// model is loaded: the driver's fixed cost apart).
 #include <string>
 
 #include "platform/platform.h"
@@ -14,7 +15,9 @@ namespace body::render {
 struct BenchmarkOptions {
     std::string model;                  // .bpm/.obj; empty: a generated ~1M-triangle model
     size_t target_triangles = 1000000;  // for the generated model
-    int frames = 9;                     // timed style/baseline frame pairs per measurement (after 2 warm-up pairs)
+    int frames = 9;                 // at least this many timed style/baseline pairs per cell (after 2 warm-up pairs)
+    double seconds_per_cell = 3.0;  // then more pairs until a cell (style x LOD) has taken this long ...
+    size_t max_pairs = 200;         // ... or has this many
 };
 
 // Prints the table to stdout. The surface's context must be current.
