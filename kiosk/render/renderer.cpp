@@ -1066,6 +1066,9 @@ void set_lights(Program& p, const Lighting& l) {
     glUniform3fv(p.loc("u_rim_dir"), 1, glm::value_ptr(rim));
     glUniform4f(p.loc("u_light_levels"), l.key, l.fill, l.rim, l.ambient);
     glUniform3fv(p.loc("u_half_dir"), 1, glm::value_ptr(unit(key + Vec3f(0.0f, 0.0f, 1.0f))));
+    glUniform3fv(p.loc("u_key_light"), 1, glm::value_ptr(key * l.key));
+    glUniform3fv(p.loc("u_fill_light"), 1, glm::value_ptr(fill * l.fill));
+    glUniform2f(p.loc("u_spec_rim"), 0.25f * l.key, 0.5f * l.rim);
 }
 
 // `wireframe` draws the triangles unindexed, three vertices each, with the

@@ -4,6 +4,12 @@ uniform vec3 u_key_dir;
 uniform vec3 u_fill_dir;
 uniform vec3 u_rim_dir;
 uniform vec4 u_light_levels;  // key, fill, rim, ambient
+// `smooth`: the key and fill directions scaled by their levels, and the
+// specular and rim weights (0.25 key, 0.5 rim), so that each term costs no
+// multiply per fragment for its level.
+uniform vec3 u_key_light;
+uniform vec3 u_fill_light;
+uniform vec2 u_spec_rim;
 // The Blinn-Phong half vector of the key light for the view direction +z
 // (normalize(key + (0, 0, 1)), on the CPU): `smooth` takes the eye direction as
 // the view axis for its specular and rim terms (see smooth.frag).

@@ -17,14 +17,13 @@ out vec4 o_color;
 
 void main() {
     vec3 n = v_view_normal * inversesqrt(dot(v_view_normal, v_view_normal));
-    float diffuse = u_light_levels.x * max(dot(n, u_key_dir), 0.0) + u_light_levels.y * max(dot(n, u_fill_dir), 0.0) +
-                    u_light_levels.w;
+    float diffuse = max(dot(n, u_key_light), 0.0) + max(dot(n, u_fill_light), 0.0) + u_light_levels.w;
     // pow(x, 40) by squaring: six multiplies instead of a log2 and an exp2.
-    float x = max(dot(n, u_half_dir), 0.0), x2 = x * x, x4 = x2 * x2, x8 = x4 * x4, x32 = x8 * x8 * x8 * x8;
-    float specular = 0.25 * u_light_levels.x * x32 * x8;
+    float x = max(dot(n, u_half_dir), 0.0), x2 = x * x, x4 = x2 * x2, x8 = x4 * x4, x16 = x8 * x8, x32 = x16 * x16;
     float f = 1.0 - max(n.z, 0.0);
-    float rim = u_light_levels.z * f * f * f * (0.5 + 0.5 * max(dot(n, u_rim_dir), 0.0));
+    // Specular 0.25 key x^40 and rim rim f^3 (0.5 + 0.5 max(n.rim, 0)), their constant factors in u_spec_rim.
+    float white = u_spec_rim.x * (x32 * x8) + u_spec_rim.y * (f * f * f) * (1.0 + max(dot(n, u_rim_dir), 0.0));
     // No clamp: a fixed-point colour buffer clamps the output to [0, 1] before
     // blending and storing it (GLES 3.0: blending, conversion to fixed point).
-    o_color = vec4(u_color.rgb * diffuse + vec3(specular + rim), u_color.a);
+    o_color = vec4(u_color.rgb * diffuse + vec3(white), u_color.a);
 }
