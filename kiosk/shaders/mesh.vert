@@ -1,9 +1,10 @@
 #version 300 es
 // Shared vertex stage for the triangle styles (baseline, smooth, hatching,
 // paper fill, selection, x-ray): the view-space normal for lighting and, for
-// `hatching`, the object-space position in texture repeats; each program keeps
-// only the outputs its fragment stage reads (the view direction comes from
-// gl_FragCoord, see lighting.glsl).
+// `hatching`, the object-space position in texture repeats with the key light
+// level of the vertex in one vec4; each program keeps only the outputs its
+// fragment stage reads (the view direction comes from gl_FragCoord, see
+// lighting.glsl).
 //
 // Geomorph (progressive meshes): vertices with index >= u_morph_begin are drawn
 // at mix(a_morph, a_position, u_morph), a_morph being the parent's position
@@ -31,9 +32,16 @@ uniform float u_morph;     // 0: at the parents .. 1: at their own positions
 uniform int u_morph_begin;  // first morphing vertex
 uniform bool u_normal_codes;  // the normal comes from a_normal_code
 uniform float u_hatch_scale;  // hatching: texture repeats per object-space unit
+uniform vec3 u_key_dir;       // hatching: unit, toward the key light (view space)
+uniform vec4 u_light_levels;  // hatching: key, fill, rim, ambient
 
 out vec3 v_view_normal;
-out vec3 v_hatch_pos;  // `hatching`: the object position in texture repeats
+// `hatching`: xyz the object position in texture repeats, w the tone
+// coordinate of the vertex, 6 (1 - light) for the light level of the key light
+// and the ambient (0: white paper .. 6: the darkest tone), interpolated (Praun
+// et al. 2001 compute the tone per vertex; one varying with the position, as a
+// software rasterizer pays per triangle for every varying).
+out vec4 v_hatch;
 
 // Meyer et al. 2010 octahedral decode; pm::oct_decode8 (shared/pm/bpm_format.cpp).
 vec3 oct_decode8(vec2 code) {
@@ -47,6 +55,7 @@ vec3 oct_decode8(vec2 code) {
 void main() {
     vec3 p = u_pos_origin + u_pos_scale * (gl_VertexID >= u_morph_begin ? mix(a_morph, a_position, u_morph) : a_position);
     v_view_normal = u_normal_matrix * (u_normal_codes ? oct_decode8(a_normal_code) : a_normal);
-    v_hatch_pos = p * u_hatch_scale;
+    float key = max(dot(normalize(v_view_normal), u_key_dir), 0.0);
+    v_hatch = vec4(p * u_hatch_scale, 6.0 - 6.0 * clamp(u_light_levels.x * key + u_light_levels.w, 0.0, 1.0));
     gl_Position = u_projection * (u_model_view * vec4(p, 1.0));
 }
