@@ -1483,6 +1483,16 @@ void Renderer::render(const Camera& camera, const Lighting& lighting, const Fram
                 glBindTexture(GL_TEXTURE_2D_ARRAY, s.tam);
                 glUniform1i(p.loc("u_tam"), 0);
                 glUniform1f(p.loc("u_hatch_scale"), 1.6f / std::max(m.radius, 1e-6f));
+                {
+                    // The key light in object space: the view direction times the
+                    // inverse rotation R^T = cbrt(det M) M^-1 of M = mat3(model-view)
+                    // = s R, so that mesh.vert needs no normal matrix for it.
+                    const glm::mat3 mv(f.view * m.state.transform);
+                    const Vec3f key = glm::inverse(mv) * std::cbrt(glm::determinant(mv)) * lighting.key_dir;
+                    glUniform3fv(
+                        p.loc("u_hatch_key"), 1,
+                        glm::value_ptr(glm::length(key) > 0.0f ? glm::normalize(key) : Vec3f(0.0f, 0.0f, 1.0f)));
+                }
                 glUniform1i(p.loc("u_two_tone"), m.state.style == Style::Hatching2Tone ? 1 : 0);
                 draw_triangles(m);
                 break;

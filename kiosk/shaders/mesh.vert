@@ -32,7 +32,10 @@ uniform float u_morph;     // 0: at the parents .. 1: at their own positions
 uniform int u_morph_begin;  // first morphing vertex
 uniform bool u_normal_codes;  // the normal comes from a_normal_code
 uniform float u_hatch_scale;  // hatching: texture repeats per object-space unit
-uniform vec3 u_key_dir;       // hatching: unit, toward the key light (view space)
+// hatching: unit, toward the key light, in object space (renderer.cpp): no
+// normal matrix per vertex; exact for model-views made of a rotation, a uniform
+// scale and a translation (the scene's), normalize(N n) . L = n . R^T L.
+uniform vec3 u_hatch_key;
 uniform vec4 u_light_levels;  // hatching: key, fill, rim, ambient
 
 out vec3 v_view_normal;
@@ -54,8 +57,9 @@ vec3 oct_decode8(vec2 code) {
 
 void main() {
     vec3 p = u_pos_origin + u_pos_scale * (gl_VertexID >= u_morph_begin ? mix(a_morph, a_position, u_morph) : a_position);
-    v_view_normal = u_normal_matrix * (u_normal_codes ? oct_decode8(a_normal_code) : a_normal);
-    float key = max(dot(normalize(v_view_normal), u_key_dir), 0.0);
+    vec3 n = u_normal_codes ? oct_decode8(a_normal_code) : a_normal;  // unit (a_normal: to 10 bits)
+    v_view_normal = u_normal_matrix * n;
+    float key = max(dot(n, u_hatch_key), 0.0);
     v_hatch = vec4(p * u_hatch_scale, 6.0 - 6.0 * clamp(u_light_levels.x * key + u_light_levels.w, 0.0, 1.0));
     gl_Position = u_projection * (u_model_view * vec4(p, 1.0));
 }
