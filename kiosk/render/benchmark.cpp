@@ -207,6 +207,9 @@ Status run_benchmark(platform::Surface& surface, const BenchmarkOptions& options
                 gl_renderer ? gl_renderer : "?");
     std::printf("model: %zu triangles (%s LOD)\n", source->full_triangles(),
                 source->progressive() ? "progressive-mesh" : "meshoptimizer preview");
+    std::printf(
+        "ratio: median over the timed pairs of style frame / mean of the two baseline frames around it; ratio_IQR: "
+        "its quartiles; cpu_ratio, cpu_IQR: the same in process CPU time\n");
     std::printf("%-5s %-9s %-15s %9s %11s %6s %11s %9s %11s %5s %s\n", "LOD", "triangles", "style", "median_ms",
                 "baseline_ms", "ratio", "ratio_IQR", "cpu_ratio", "cpu_IQR", "pairs", "goal");
 
