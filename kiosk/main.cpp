@@ -58,7 +58,7 @@ void print_help(std::FILE* out) {
                  "  --kiosk-stats     scene: print time to first frame / full detail and frame times\n"
                  "  --benchmark       time every style at LOD 100/40/10%% against a flat baseline\n"
                  "  --bench-triangles N  size of the generated benchmark model (default 1000000)\n"
-                 "  --bench-frames N  at least N timed frame pairs per style and LOD, then more until 3 s or 200 (default 9)\n"
+                 "  --bench-frames N  at least N timed pairs per style and LOD, more up to 3 s (default 9)\n"
                  "  --help            this text\n  --version         print the version\n\n"
                  "A model that cannot be loaded is skipped with a one-line error (nothing drawn).\n"
                  "exit codes: 0 ok, 1 runtime failure, 2 bad usage or bad input\n");
