@@ -770,18 +770,44 @@ uint32_t face_across(const State& s, uint32_t a, uint32_t b) {
     return kNone;
 }
 
-// The distinct neighbours of v in walk order (marked instead of sorted): each gets
-// mark `stamp`; returns how many of them carried mark `other` before.
-size_t mark_ring(State& s, uint32_t v, std::vector<uint32_t>& ring, uint32_t stamp, uint32_t other) {
+// The live corners of a and of b (a != b: their lists share no link), both lists
+// walked in one loop: each walk is a chain of dependent loads, and two chains
+// interleaved take about the time of one. Compacts dead corners out as live_corners.
+void live_corners_of_both(State& s, uint32_t a, std::vector<uint32_t>& out_a, uint32_t b,
+                          std::vector<uint32_t>& out_b) {
+    out_a.clear();
+    out_b.clear();
+    uint32_t* link_a = &s.head[a];
+    uint32_t* link_b = &s.head[b];
+    for (;;) {
+        const uint32_t ca = *link_a, cb = *link_b;
+        if (ca == kNone && cb == kNone) break;
+        if (ca != kNone) {
+            if (!s.face_alive[ca / 3]) {
+                *link_a = s.next[ca];
+            } else {
+                out_a.push_back(ca);
+                link_a = &s.next[ca];
+            }
+        }
+        if (cb != kNone) {
+            if (!s.face_alive[cb / 3]) {
+                *link_b = s.next[cb];
+            } else {
+                out_b.push_back(cb);
+                link_b = &s.next[cb];
+            }
+        }
+    }
+}
+
+// The distinct neighbours of v in walk order (marked instead of sorted), from its live
+// corners: each gets mark `stamp`; returns how many of them carried mark `other` before.
+size_t mark_ring(State& s, uint32_t v, const std::vector<uint32_t>& corners, std::vector<uint32_t>& ring,
+                 uint32_t stamp, uint32_t other) {
     ring.clear();
     size_t common = 0;
-    uint32_t* link = &s.head[v];
-    while (*link != kNone) {
-        const uint32_t c = *link;
-        if (!s.face_alive[c / 3]) {
-            *link = s.next[c];  // drop corners of removed faces on the way
-            continue;
-        }
+    for (const uint32_t c : corners) {
         const uint32_t f = c / 3 * 3;
         for (int k = 0; k < 3; ++k) {
             const uint32_t x = s.idx[f + k];
@@ -790,15 +816,15 @@ size_t mark_ring(State& s, uint32_t v, std::vector<uint32_t>& ring, uint32_t sta
             s.mark[x] = stamp;
             ring.push_back(x);
         }
-        link = &s.next[c];
     }
     return common;
 }
 
-// Checks topology of the collapse u -> v (u disappears). Fills s.cu with u's live
-// corners; `shared` gets the faces removed.
+// Checks topology of the collapse u -> v (u disappears). Fills s.cu and s.cv with u's
+// and v's live corners (geometry_allowed and apply_collapse use them); `shared` gets
+// the faces removed.
 bool topology_allowed(State& s, uint32_t u, uint32_t v, uint32_t shared[2], uint32_t& shared_count) {
-    live_corners(s, u, s.cu);
+    live_corners_of_both(s, u, s.cu, v, s.cv);
     shared_count = 0;
     uint32_t opposite[2] = {kNone, kNone};
     for (uint32_t c : s.cu) {
@@ -814,8 +840,8 @@ bool topology_allowed(State& s, uint32_t u, uint32_t v, uint32_t shared[2], uint
     if (s.boundary[u] ? shared_count != 1 : shared_count != 2) return false;
     // Link condition: the common neighbours of u and v are exactly the opposite vertices.
     s.stamp += 2;
-    mark_ring(s, u, s.ring_u, s.stamp - 1, kNone);
-    if (mark_ring(s, v, s.ring_v, s.stamp, s.stamp - 1) != shared_count) return false;
+    mark_ring(s, u, s.cu, s.ring_u, s.stamp - 1, kNone);
+    if (mark_ring(s, v, s.cv, s.ring_v, s.stamp, s.stamp - 1) != shared_count) return false;
     // Opposite vertices lose a face; keep their fans valid (no structure collapses to nothing).
     for (uint32_t i = 0; i < shared_count; ++i) {
         const uint32_t a = opposite[i];
@@ -828,12 +854,12 @@ bool topology_allowed(State& s, uint32_t u, uint32_t v, uint32_t shared[2], uint
 
 // Checks geometry of the collapse u -> v with the merged vertex at `target`: no
 // face of u's fan (nor of v's, when v moves) may flip, fold or become a sliver.
+// Called right after topology_allowed(u, v) accepted: its fans s.cu and s.cv.
 bool geometry_allowed(State& s, uint32_t u, uint32_t v, const Vec3& target, const uint32_t shared[2],
                       uint32_t shared_count) {
     auto& fan = s.fan;
     fan = s.cu;
-    if (target != s.pos[v]) {
-        live_corners(s, v, s.cv);
+    if (target != s.pos[v]) {  // (s.cv: v's live corners, from topology_allowed)
         fan.insert(fan.end(), s.cv.begin(), s.cv.end());
     }
     auto removed = [&](uint32_t f) { return f == shared[0] || (shared_count == 2 && f == shared[1]); };
@@ -1035,6 +1061,13 @@ void collapse_loop(State& s, size_t target_faces) {
                 if (s.heap.empty()) break;
             }
             const uint32_t u = s.heap.top();
+            // apply_collapse's first loads (the error quadrics), requested while the checks run.
+            if (const uint32_t v = s.best_target[u]; v != kNone) {
+                for (const uint32_t w : {u, v}) {
+                    prefetch(&s.e[w]);
+                    prefetch(reinterpret_cast<const char*>(&s.e[w] + 1) - 1);
+                }
+            }
             const double limit = s.heap.second_key();
             // Fast path: the keyed collapse is usually the cheapest and legal.
             if (const uint32_t v = s.best_target[u]; v != kNone) {
