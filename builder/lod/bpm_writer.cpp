@@ -11,6 +11,7 @@
 #include <meshoptimizer.h>
 
 #include <algorithm>
+#include <bit>
 #include <cassert>
 #include <cmath>
 #include <cstring>
@@ -26,6 +27,15 @@ namespace {
 using pm::put_f32;
 using pm::put_u16;
 using pm::put_u32;
+
+// A cache hint (no effect on the bytes).
+inline void prefetch(const void* p) {
+#if defined(__GNUC__)
+    __builtin_prefetch(p);
+#else
+    (void)p;
+#endif
+}
 
 struct Quantized {
     float lo[3], hi[3];
@@ -121,9 +131,9 @@ std::vector<uint32_t> put_index_codec(std::vector<uint8_t>& out, const std::vect
 // Bit i: the i-th corner (ascending) of the split's parent belongs to a face the
 // split patches.
 // (file_face: the builder's face numbers as the file has them.)
-uint64_t mask_of(const pm::SplitReplay& replay, const ProgressiveBuild& pm, const std::vector<uint32_t>& file_face,
-                 size_t j, std::vector<uint32_t>& corners) {
-    replay.corners_of(pm.splits[j].parent, corners);
+// (corners: the parent's, as SplitReplay::corners_of lists them.)
+uint64_t mask_of(const ProgressiveBuild& pm, const std::vector<uint32_t>& file_face, size_t j,
+                 const std::vector<uint32_t>& corners) {
     uint64_t mask = 0;
     for (uint32_t i = pm.patch_begin[j]; i < pm.patch_begin[j + 1]; ++i) {
         const uint32_t f = file_face[pm.patch_faces[i]];
@@ -214,7 +224,8 @@ Result<StructureSections> encode_structure(const Mesh& mesh, const ProgressiveBu
     replay.add_faces(0, put_index_codec(out.base, base_idx, pm.base_vertices));
 
     // SPLT chunks
-    std::vector<uint32_t> scratch, moved;
+    std::vector<uint32_t> moved;
+    constexpr size_t kAhead0 = 32, kAhead1 = 20, kAhead2 = 12, kAhead3 = 6;
     // The file puts the two new faces of a fan split in one order (one symbol less
     // per split): the builder's face numbers as the file has them.
     std::vector<uint32_t> file_face(nf);
@@ -241,8 +252,21 @@ Result<StructureSections> encode_structure(const Mesh& mesh, const ProgressiveBu
         for (size_t j = first; j < first + count; ++j) {
             const VertexSplit& sp = pm.splits[j];
             const uint32_t child = uint32_t(pm.base_vertices + j), parent = sp.parent;
+            // The replay is bound by memory latency (a parent is anywhere in the mesh): the
+            // data of the splits a few steps ahead is requested in stages, as the reader does.
+            if (j + kAhead0 < ns) replay.prefetch(pm.splits[j + kAhead0].parent, 0);
+            if (j + kAhead1 < ns) {
+                const uint32_t p = pm.splits[j + kAhead1].parent;
+                replay.prefetch(p, 1);
+                prefetch(&cur[size_t(p) * 3]);
+                prefetch(&z.oct[size_t(p) * 2]);
+                for (uint32_t i = pm.patch_begin[j + kAhead1]; i < pm.patch_begin[j + kAhead1 + 1]; ++i)
+                    prefetch(&file_face[pm.patch_faces[i]]);
+            }
+            if (j + kAhead2 < ns) replay.prefetch(pm.splits[j + kAhead2].parent, 2);
+            if (j + kAhead3 < ns) replay.prefetch(pm.splits[j + kAhead3].parent, 3, cur.data());
             replay.corners_of(parent, parent_corners);
-            const uint64_t mask = mask_of(replay, pm, file_face, j, scratch);
+            const uint64_t mask = mask_of(pm, file_face, j, parent_corners);
             // New faces are (child, parent, a) or (child, a, parent), a a neighbour of the
             // parent before the split.
             faces.clear();
@@ -339,8 +363,10 @@ Result<StructureSections> encode_structure(const Mesh& mesh, const ProgressiveBu
                 for (int k = 0; k < 2; ++k)
                     values.put(pm::kCtxNormal0 + uint32_t(k), pm::zigzag8(z.oct[size_t(child) * 2 + k], predicted[k]));
             }
-            replay.apply_mask(parent, child, mask, scratch, moved);
-            if (moved.size() != pm.patch_begin[j + 1] - pm.patch_begin[j])
+            // (parent_corners are still the parent's: nothing changed the replay since.)
+            moved.resize(parent_corners.size());
+            if (!replay.apply_mask(parent, child, mask, parent_corners.data(), parent_corners.size(), moved.data()) ||
+                size_t(std::popcount(mask)) != pm.patch_begin[j + 1] - pm.patch_begin[j])
                 return split_error(mesh, j, "index patches do not replay");
             replay.add_faces(face, faces);
             face += sp.face_count;
