@@ -123,6 +123,10 @@ public:
     bool empty() const { return items_.empty(); }
     bool contains(uint32_t v) const { return pos_[v] != kNone; }
     void prefetch_entry(uint32_t v) const { prefetch(&pos_[v]); }
+    // The entry itself (after prefetch_entry had time to arrive).
+    void prefetch_item(uint32_t v) const {
+        if (pos_[v] != kNone) prefetch(&items_[pos_[v]]);
+    }
     uint32_t top() const { return items_[0].v; }
     // The key of a vertex in the heap.
     double key(uint32_t v) const { return items_[pos_[v]].key; }
@@ -131,6 +135,14 @@ public:
         double k = std::numeric_limits<double>::infinity();
         for (size_t c = 1; c <= kArity && c < items_.size(); ++c) k = std::min(k, items_[c].key);
         return k;
+    }
+    // The vertex most likely to be the top after it (kNone when there is none).
+    uint32_t second() const {
+        uint32_t best = kNone;
+        double k = std::numeric_limits<double>::infinity();
+        for (size_t c = 1; c <= kArity && c < items_.size(); ++c)
+            if (items_[c].key < k || best == kNone) k = items_[c].key, best = items_[c].v;
+        return best;
     }
     void set(uint32_t v, double key) {
         if (pos_[v] == kNone) {
@@ -221,14 +233,19 @@ struct State {
     std::vector<uint8_t> boundary, locked, alive;
     std::vector<Quadric> q, e;  // ordering quadric, error quadric
     VertexHeap heap;
-    std::vector<uint32_t> best_target;  // per vertex: the target of its heap key
-    std::vector<Vec3> best_pos;         // ... where that collapse puts the merged vertex
-    std::vector<uint8_t> best_valid;    // best_pos is the placement for exactly the heap key
-    // ... and the cheapest of its other collapses (kNone: not known), so that a vertex
-    // whose keyed collapse disappears is re-keyed without walking its fan again.
-    std::vector<uint32_t> second_target;
-    std::vector<double> second_cost;
-    std::vector<uint8_t> key_is_min;  // the key is the cheapest collapse (not one re-ranked past illegal ones)
+    // Per vertex, what its heap key stands for, in one cache line (update_neighbour
+    // reads most of it for every neighbour of every collapse).
+    struct alignas(64) Key {
+        Vec3 best_pos{0.0};            // where the keyed collapse puts the merged vertex
+        double second_cost = 0.0;      // (see second_target)
+        uint32_t best_target = kNone;  // the target of the heap key
+        // The cheapest of its other collapses (kNone: not known), so that a vertex whose
+        // keyed collapse disappears is re-keyed without walking its fan again.
+        uint32_t second_target = kNone;
+        uint8_t best_valid = 0;  // best_pos is the placement for exactly the heap key
+        uint8_t key_is_min = 0;  // the key is the cheapest collapse (not one re-ranked past illegal ones)
+    };
+    std::vector<Key> key;
     // The optimum of an edge is the same in both directions (Q_u + Q_v, the midpoint and
     // the edge length are symmetric in IEEE arithmetic): after u -> v, the placements
     // v -> x computed for v's key are reused for x -> v by v's neighbours.
@@ -635,6 +652,8 @@ void update_vertex(State& s, uint32_t u) {
         prefetch(&s.pos[x]);
         prefetch(&s.q[x]);
         prefetch(reinterpret_cast<const char*>(&s.q[x] + 1) - 1);
+        prefetch(&s.boundary[x]);  // placement's checks
+        prefetch(&s.locked[x]);
     }
     for (const uint32_t c : s.walk) {
         const uint32_t f = c / 3 * 3, at = c - f;
@@ -677,12 +696,12 @@ void update_vertex(State& s, uint32_t u) {
     }
     // A cost from the corner cache comes without its position: that is placed when
     // the vertex is popped (most keys are set again before).
-    s.best_target[u] = target;
-    s.best_pos[u] = best_p;
-    s.best_valid[u] = !best_cached;
-    s.second_target[u] = second_target;
-    s.second_cost[u] = second;
-    s.key_is_min[u] = 1;
+    s.key[u].best_target = target;
+    s.key[u].best_pos = best_p;
+    s.key[u].best_valid = !best_cached;
+    s.key[u].second_target = second_target;
+    s.key[u].second_cost = second;
+    s.key[u].key_is_min = 1;
     if (target == kNone)
         s.heap.erase(u);
     else
@@ -692,14 +711,14 @@ void update_vertex(State& s, uint32_t u) {
 // After u collapsed onto v, neighbour x of v only gained or changed its edge to v;
 // a full update is needed only when its cheapest collapse went to u or v.
 void update_neighbour(State& s, uint32_t x, uint32_t u, uint32_t v) {
-    if (!s.heap.contains(x) || s.best_target[x] == kNone) {
+    if (!s.heap.contains(x) || s.key[x].best_target == kNone) {
         update_vertex(s, x);
         return;
     }
-    const uint32_t w = s.second_target[x];
-    const double w_cost = s.second_cost[x];
-    if (w == u || w == v) s.second_target[x] = kNone;  // that collapse changed: the runner-up is not known
-    const bool lost = s.best_target[x] == u || s.best_target[x] == v;
+    const uint32_t w = s.key[x].second_target;
+    const double w_cost = s.key[x].second_cost;
+    if (w == u || w == v) s.key[x].second_target = kNone;  // that collapse changed: the runner-up is not known
+    const bool lost = s.key[x].best_target == u || s.key[x].best_target == v;
     // The keyed collapse changed: its successor is the better of the runner-up (the
     // cheapest of the others, none of which changed) and the new x -> v.
     if (lost && (w == kNone || w == u || w == v)) {
@@ -710,31 +729,32 @@ void update_neighbour(State& s, uint32_t x, uint32_t u, uint32_t v) {
     const Vec3 p = placement_cached(s, x, v, c);
     if (lost) {
         if (c < w_cost || (c == w_cost && s.rank[v] < s.rank[w])) {
-            s.best_target[x] = v;
-            s.best_pos[x] = p;
-            s.best_valid[x] = 1;
+            s.key[x].best_target = v;
+            s.key[x].best_pos = p;
+            s.key[x].best_valid = 1;
             s.heap.set(x, c);
         } else {
-            s.best_target[x] = w;
-            s.best_valid[x] = 0;  // placed when popped
-            s.second_target[x] = kNone;
+            s.key[x].best_target = w;
+            s.key[x].best_valid = 0;  // placed when popped
+            s.key[x].second_target = kNone;
             s.heap.set(x, w_cost);
         }
         return;
     }
     const double key = s.heap.key(x);
-    if (c < key || (c == key && s.rank[v] < s.rank[s.best_target[x]])) {
+    if (c < key || (c == key && s.rank[v] < s.rank[s.key[x].best_target])) {
         // The old key is the cheapest of the others only when it was the cheapest of all.
-        s.second_target[x] = s.key_is_min[x] ? s.best_target[x] : kNone;
-        s.second_cost[x] = key;
-        s.best_target[x] = v;
-        s.best_pos[x] = p;
-        s.best_valid[x] = 1;
+        s.key[x].second_target = s.key[x].key_is_min ? s.key[x].best_target : kNone;
+        s.key[x].second_cost = key;
+        s.key[x].best_target = v;
+        s.key[x].best_pos = p;
+        s.key[x].best_valid = 1;
         s.heap.set(x, c);
-    } else if (s.second_target[x] != kNone &&
-               (c < s.second_cost[x] || (c == s.second_cost[x] && s.rank[v] < s.rank[s.second_target[x]]))) {
-        s.second_target[x] = v;
-        s.second_cost[x] = c;
+    } else if (s.key[x].second_target != kNone &&
+               (c < s.key[x].second_cost ||
+                (c == s.key[x].second_cost && s.rank[v] < s.rank[s.key[x].second_target]))) {
+        s.key[x].second_target = v;
+        s.key[x].second_cost = c;
     }
 }
 
@@ -787,6 +807,7 @@ void live_corners_of_both(State& s, uint32_t a, std::vector<uint32_t>& out_a, ui
                 *link_a = s.next[ca];
             } else {
                 out_a.push_back(ca);
+                prefetch(&s.idx[ca]);  // topology_allowed's third_vertex
                 link_a = &s.next[ca];
             }
         }
@@ -795,6 +816,7 @@ void live_corners_of_both(State& s, uint32_t a, std::vector<uint32_t>& out_a, ui
                 *link_b = s.next[cb];
             } else {
                 out_b.push_back(cb);
+                prefetch(&s.idx[cb]);
                 link_b = &s.next[cb];
             }
         }
@@ -815,6 +837,9 @@ size_t mark_ring(State& s, uint32_t v, const std::vector<uint32_t>& corners, std
             common += s.mark[x] == other;
             s.mark[x] = stamp;
             ring.push_back(x);
+            prefetch(&s.pos[x]);  // geometry_allowed, then the updates after the collapse
+            prefetch(&s.q[x]);
+            prefetch(reinterpret_cast<const char*>(&s.q[x] + 1) - 1);
         }
     }
     return common;
@@ -1004,13 +1029,12 @@ void apply_collapse(State& s, uint32_t u, uint32_t v, const Vec3& target, const 
     }
     for (const uint32_t x : s.touched) {  // what update_neighbour reads first
         s.heap.prefetch_entry(x);
-        prefetch(&s.best_target[x]);
-        prefetch(&s.second_target[x]);
-        prefetch(&s.second_cost[x]);
+        prefetch(&s.key[x]);
     }
     s.sym_v = v;
     s.sym.clear();
     update_vertex(s, v);
+    for (const uint32_t x : s.touched) s.heap.prefetch_item(x);
     for (uint32_t x : s.touched) update_neighbour(s, x, u, v);
     s.sym_v = kNone;
 }
@@ -1046,12 +1070,7 @@ void collapse_loop(State& s, size_t target_faces) {
     std::vector<std::tuple<double, uint32_t, uint32_t, bool>> options;  // ... with the target's rank before it
     for (int pass = 0; pass < 16 && s.live_faces > target_faces; ++pass) {
         s.heap.reset(s.rank);
-        s.best_target.assign(n, kNone);
-        s.best_pos.assign(n, Vec3(0.0));
-        s.best_valid.assign(n, 0);
-        s.second_target.assign(n, kNone);
-        s.second_cost.assign(n, 0.0);
-        s.key_is_min.assign(n, 0);
+        s.key.assign(n, State::Key{});
         s.sym_v = kNone;
         for (uint32_t v = 0; v < n; ++v) update_vertex(s, v);
         size_t done = 0;
@@ -1062,19 +1081,26 @@ void collapse_loop(State& s, size_t target_faces) {
             }
             const uint32_t u = s.heap.top();
             // apply_collapse's first loads (the error quadrics), requested while the checks run.
-            if (const uint32_t v = s.best_target[u]; v != kNone) {
+            if (const uint32_t v = s.key[u].best_target; v != kNone) {
                 for (const uint32_t w : {u, v}) {
                     prefetch(&s.e[w]);
                     prefetch(reinterpret_cast<const char*>(&s.e[w] + 1) - 1);
                 }
             }
             const double limit = s.heap.second_key();
+            // The next vertex to be popped is most often the runner-up now: its first
+            // loads are requested while this one collapses.
+            if (const uint32_t w = s.heap.second(); w != kNone) {
+                prefetch(&s.head[w]);
+                prefetch(&s.key[w]);
+                prefetch(&s.pos[w]);
+            }
             // Fast path: the keyed collapse is usually the cheapest and legal.
-            if (const uint32_t v = s.best_target[u]; v != kNone) {
+            if (const uint32_t v = s.key[u].best_target; v != kNone) {
                 // The key and position are current unless the key was set from a
                 // re-ranked option below (best_valid cleared): recompute then.
                 double cost = s.heap.key(u);
-                const Vec3 target = s.best_valid[u] ? s.best_pos[u] : placement(s, u, v, cost);
+                const Vec3 target = s.key[u].best_valid ? s.key[u].best_pos : placement(s, u, v, cost);
                 uint32_t shared[2], shared_count = 0;
                 if (cost == s.heap.key(u) && topology_allowed(s, u, v, shared, shared_count) &&
                     geometry_allowed(s, u, v, target, shared, shared_count)) {
@@ -1091,10 +1117,10 @@ void collapse_loop(State& s, size_t target_faces) {
             for (size_t i = 0; i < options.size();) {
                 const auto [cost, rank, v, half_edge] = options[i];
                 if (cost > limit) {
-                    s.best_target[u] = v;
-                    s.best_valid[u] = 0;
-                    s.second_target[u] = kNone;  // the key is not the cheapest collapse
-                    s.key_is_min[u] = 0;
+                    s.key[u].best_target = v;
+                    s.key[u].best_valid = 0;
+                    s.key[u].second_target = kNone;  // the key is not the cheapest collapse
+                    s.key[u].key_is_min = 0;
                     s.heap.set(u, cost);  // cheaper work elsewhere first
                     handled = true;
                     break;
