@@ -840,6 +840,7 @@ size_t mark_ring(State& s, uint32_t v, const std::vector<uint32_t>& corners, std
             prefetch(&s.pos[x]);  // geometry_allowed, then the updates after the collapse
             prefetch(&s.q[x]);
             prefetch(reinterpret_cast<const char*>(&s.q[x] + 1) - 1);
+            s.heap.prefetch_entry(x);
         }
     }
     return common;
@@ -1027,14 +1028,14 @@ void apply_collapse(State& s, uint32_t u, uint32_t v, const Vec3& target, const 
     } else {
         ring_of(s, v, s.touched);
     }
-    for (const uint32_t x : s.touched) {  // what update_neighbour reads first
-        s.heap.prefetch_entry(x);
+    // What update_neighbour reads first (mark_ring requested the heap positions).
+    for (const uint32_t x : s.touched) {
+        s.heap.prefetch_item(x);
         prefetch(&s.key[x]);
     }
     s.sym_v = v;
     s.sym.clear();
     update_vertex(s, v);
-    for (const uint32_t x : s.touched) s.heap.prefetch_item(x);
     for (uint32_t x : s.touched) update_neighbour(s, x, u, v);
     s.sym_v = kNone;
 }
@@ -1200,6 +1201,7 @@ ProgressiveBuild emit_order(const State& s, const std::vector<Vec3>& normals) {
     }
     pm.splits.resize(splits);
     pm.patch_begin.assign(splits + 1, 0);
+    pm.patch_faces.reserve(s.patch_faces.size());
     for (size_t j = 0; j < splits; ++j) {
         const Collapse& c = s.collapses[splits - 1 - j];
         pm.splits[j] = {vid[c.to], c.removed_count, c.error, c.to_after, c.to_before};
@@ -1244,6 +1246,9 @@ Result<ProgressiveBuild> build_progressive_mesh(const Mesh& mesh, const LodOptio
     const Aabb box = mesh_bounds(s.pos);
     s.box_min = box.min;
     s.box_max = box.max;
+    // At most one collapse per vertex, each moving a few faces: no regrowth (copies) in the loop.
+    s.collapses.reserve(s.pos.size());
+    s.patch_faces.reserve(s.pos.size() * 8);
     collapse_loop(s, std::max<size_t>(options.min_triangles, 1));
     return emit_order(s, normals);
 }
