@@ -9,6 +9,7 @@
 #include "builder/lod/hausdorff.h"
 #include "builder/lod/simplify.h"
 #include "shared/obj_io.h"
+#include "shared/pm/bpm_format.h"
 #include "shared/pm/progressive_mesh.h"
 #include "tests/cli/cli_test.h"
 #include "tests/lod/lod_test_util.h"
@@ -67,6 +68,19 @@ TEST_F(LodBunny, EveryLevelIsAClosedManifoldWithinItsStoredError) {
     }
     std::printf("bunny: worst measured/stored Hausdorff %.3f\n", worst_ratio);
     EXPECT_GE(levels, 20);
+}
+
+// The bunny's .bpm bytes are pinned: speed work on the simplifier or the writer must
+// not change a collapse, a placement or a byte (the accuracy figures were measured on
+// these bytes, with little margin). The icosphere golden (test_lod) checks platforms;
+// this one checks a real mesh's collapse order.
+TEST_F(LodBunny, BytesArePinned) {
+    auto bytes = lod::encode_bpm(std::vector<Mesh>{bunny_});
+    ASSERT_TRUE(bytes.ok()) << bytes.error().message;
+    const uint32_t crc = pm::crc32(*bytes);
+    EXPECT_EQ(crc, BODY_LOD_BUNNY_GOLDEN_CRC)
+        << "the bunny's .bpm changed (" << bytes->size() << " bytes, crc32 " << std::hex << crc
+        << "): if intended, re-measure the accuracy (bench_pm) and update BODY_LOD_BUNNY_GOLDEN_CRC";
 }
 
 TEST_F(LodBunny, CommandsRoundTrip) {
