@@ -982,6 +982,9 @@ void apply_collapse(State& s, uint32_t u, uint32_t v, const Vec3& target, const 
     rec.removed[0] = shared[0];
     rec.removed[1] = shared_count == 2 ? shared[1] : kNone;
     rec.patch_begin = uint32_t(s.patch_faces.size());
+    // The merged fan is u's and v's: update_vertex(v) below reads their cost cache entries.
+    for (const uint32_t c : s.cu) prefetch(&s.corner_cost[c]);
+    for (const uint32_t c : s.cv) prefetch(&s.corner_cost[c]);
     const double err = std::sqrt(std::max(0.0, s.e[u].eval_sum(s.e[v], target)));
     rec.to_before = s.pos[v];
     rec.to_after = target;
