@@ -118,9 +118,16 @@ public:
     void reset(const std::vector<uint32_t>& rank) {
         rank_ = rank.data();
         pos_.assign(rank.size(), kNone);
-        items_.clear();
+        // Every vertex at most once: the storage never grows, so items_ stays valid.
+        // items_[i] = store_[shift + i] with &items_[1] on a 64-byte boundary: the four
+        // children of entry i (4i + 1 .. 4i + 4, 16 bytes each) share one cache line.
+        // (Addresses only: the heap and its order are the same.)
+        store_.assign(rank.size() + 4, Item{});
+        const size_t misalign = (reinterpret_cast<uintptr_t>(store_.data() + 1) % 64) / sizeof(Item);
+        items_ = store_.data() + (4 - misalign) % 4;
+        size_ = 0;
     }
-    bool empty() const { return items_.empty(); }
+    bool empty() const { return size_ == 0; }
     bool contains(uint32_t v) const { return pos_[v] != kNone; }
     void prefetch_entry(uint32_t v) const { prefetch(&pos_[v]); }
     // The entry itself (after prefetch_entry had time to arrive).
@@ -133,21 +140,21 @@ public:
     // The smallest key other than the top's (infinity when there is none).
     double second_key() const {
         double k = std::numeric_limits<double>::infinity();
-        for (size_t c = 1; c <= kArity && c < items_.size(); ++c) k = std::min(k, items_[c].key);
+        for (size_t c = 1; c <= kArity && c < size_; ++c) k = std::min(k, items_[c].key);
         return k;
     }
     // The vertex most likely to be the top after it (kNone when there is none).
     uint32_t second() const {
         uint32_t best = kNone;
         double k = std::numeric_limits<double>::infinity();
-        for (size_t c = 1; c <= kArity && c < items_.size(); ++c)
+        for (size_t c = 1; c <= kArity && c < size_; ++c)
             if (items_[c].key < k || best == kNone) k = items_[c].key, best = items_[c].v;
         return best;
     }
     void set(uint32_t v, double key) {
         if (pos_[v] == kNone) {
-            pos_[v] = uint32_t(items_.size());
-            items_.push_back({key, v, rank_[v]});
+            pos_[v] = uint32_t(size_);
+            items_[size_++] = {key, v, rank_[v]};
             sift_up(pos_[v]);
             return;
         }
@@ -162,8 +169,7 @@ public:
     void erase(uint32_t v) {
         const uint32_t i = pos_[v];
         if (i == kNone) return;
-        const Item last = items_.back();
-        items_.pop_back();
+        const Item last = items_[--size_];
         pos_[v] = kNone;
         if (last.v == v) return;
         place(i, last);
@@ -172,7 +178,7 @@ public:
     }
 
 private:
-    struct Item {
+    struct alignas(16) Item {
         double key;
         uint32_t v, rank;
     };
@@ -196,9 +202,9 @@ private:
         const Item item = items_[i];
         for (;;) {
             const size_t first = kArity * i + 1;
-            if (first >= items_.size()) break;
+            if (first >= size_) break;
             size_t c = first;
-            for (size_t d = first + 1; d < std::min(first + kArity, items_.size()); ++d)
+            for (size_t d = first + 1; d < std::min(first + kArity, size_); ++d)
                 if (before(items_[d], items_[c])) c = d;
             if (!before(items_[c], item)) break;
             place(i, items_[c]);
@@ -208,7 +214,9 @@ private:
     }
     const uint32_t* rank_ = nullptr;
     std::vector<uint32_t> pos_;
-    std::vector<Item> items_;
+    std::vector<Item> store_;
+    Item* items_ = nullptr;
+    size_t size_ = 0;
 };
 
 struct Collapse {
