@@ -15,6 +15,7 @@
 // ten such arrays wasted 10 MiB in a 1M-triangle structure). The tail gets 4 KiB
 // pages and only its used part is prefaulted.
 #include <algorithm>
+#include <atomic>
 #include <condition_variable>
 #include <cstdlib>
 #include <deque>
@@ -38,6 +39,10 @@ namespace {
 constexpr size_t kHugePage = size_t(2) << 20;
 
 #if defined(__linux__) && defined(MADV_POPULATE_WRITE)
+// Arrays may be freed during static destruction, after the Prefaulter's; a
+// trivially destructible flag says whether it still exists.
+std::atomic<bool> g_prefaulter_alive{false};
+
 class Prefaulter {
 public:
     static Prefaulter& instance() {
@@ -51,11 +56,18 @@ public:
         }
         cv_.notify_one();
     }
+    // A freed array is no longer prefaulted (nor listed: a program that never
+    // starts the thread, bodygen, would keep every range it ever allocated).
+    void remove(void* p) {
+        std::lock_guard guard(mutex_);
+        std::erase_if(ranges_, [p](const std::pair<char*, size_t>& r) { return r.first == p; });
+    }
     void start() {
         std::lock_guard guard(mutex_);
         if (!thread_.joinable()) thread_ = std::thread([this] { run(); });
     }
     ~Prefaulter() {
+        g_prefaulter_alive = false;
         {
             std::lock_guard guard(mutex_);
             stop_ = true;
@@ -65,7 +77,7 @@ public:
     }
 
 private:
-    Prefaulter() = default;
+    Prefaulter() { g_prefaulter_alive = true; }
     void run() {
         ::setpriority(PRIO_PROCESS, static_cast<id_t>(::gettid()), 19);  // idle cores only
         pthread_setname_np(pthread_self(), "bpm-prefault");
@@ -110,7 +122,12 @@ void* allocate_large_array(size_t bytes) {
     return p;
 }
 
-void free_large_array(void* p) { std::free(p); }
+void free_large_array(void* p) {
+#if defined(__linux__) && defined(MADV_POPULATE_WRITE)
+    if (p && g_prefaulter_alive) Prefaulter::instance().remove(p);
+#endif
+    std::free(p);
+}
 
 void start_background_prefault() {
 #if defined(__linux__) && defined(MADV_POPULATE_WRITE)
