@@ -237,12 +237,13 @@ Result<StructureSections> encode_structure(const Mesh& mesh, const ProgressiveBu
     pm::normal_axis_weights(z.lo, z.hi, axis_weight);
     pm::plane_axis_weights(z.lo, z.hi, plane_weight);
     uint32_t previous_error = kInfinityBits;
+    pm::SplitEncoder values;  // one per chunk, its storage reused
     for (size_t first = 0; first < ns; first += chunk) {
         const size_t count = std::min(chunk, ns - first);
         size_t chunk_faces = 0;
         for (size_t j = first; j < first + count; ++j) chunk_faces += pm.splits[j].face_count;
         std::vector<uint8_t> payload, topo;
-        pm::SplitEncoder values;
+        values.clear();
         // All parents of the chunk first: the reader prefetches their data splits ahead.
         for (size_t j = first; j < first + count; ++j)
             values.put(pm::kCtxParentDelta, uint32_t(pm.base_vertices + j) - pm.splits[j].parent - 1);
