@@ -512,6 +512,39 @@ struct Renderer::State {
     FrameStats stats;
 };
 
+// Tonal art map (Praun et al. 2001) with our own mip chain (tone matched per
+// level), packed so that every fragment needs one texture read: hatching
+// blends the two tones around its light level, and layer 0 holds tones 0-3,
+// layer 1 tones 2-5 (RGBA), so either layer covers any such pair (the shader
+// picks the layer per fragment); layer 2 holds the two tones of the two-tone
+// variant (1 and 4, in R and G). Made at the first hatching draw, not at init:
+// generating the tones is ~8 ms of the kiosk's start-up (first frame goal
+// 100 ms) that a scene without hatching never needs. The CPU tones are freed
+// when it returns.
+static void create_tonal_art_map(GLuint& texture) {
+    TonalArtMap tam = make_tonal_art_map(256, 6);
+    constexpr int kLayerTones[3][4] = {{0, 1, 2, 3}, {2, 3, 4, 5}, {1, 4, 4, 4}};
+    const auto levels = static_cast<GLsizei>(tam.levels.size());
+    glGenTextures(1, &texture);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, texture);
+    glTexStorage3D(GL_TEXTURE_2D_ARRAY, levels, GL_RGBA8, tam.size, tam.size, 3);
+    for (GLsizei l = 0; l < levels; ++l) {
+        const int size = std::max(1, tam.size >> l);
+        const auto& tones = tam.levels[static_cast<size_t>(l)];
+        std::vector<uint8_t> rgba(static_cast<size_t>(size) * static_cast<size_t>(size) * 4);
+        for (int layer = 0; layer < 3; ++layer) {
+            for (size_t i = 0; i < rgba.size() / 4; ++i)
+                for (size_t c = 0; c < 4; ++c) rgba[i * 4 + c] = tones[static_cast<size_t>(kLayerTones[layer][c])][i];
+            glTexSubImage3D(GL_TEXTURE_2D_ARRAY, l, 0, 0, layer, size, size, 1, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+        }
+    }
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, GL_REPEAT);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_T, GL_REPEAT);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
+}
+
 Renderer::Renderer() : s_(std::make_unique<State>()) {}
 Renderer::~Renderer() = default;
 
@@ -543,35 +576,7 @@ Status Renderer::init() {
         *w.p = std::move(p.value());
     }
 
-    // Tonal art map (Praun et al. 2001) with our own mip chain (tone matched
-    // per level), packed so that every fragment needs one texture read: hatching
-    // blends the two tones around its light level, and layer 0 holds tones 0-3,
-    // layer 1 tones 2-5 (RGBA), so either layer covers any such pair (the shader
-    // picks the layer per fragment); layer 2 holds the two tones of the
-    // two-tone variant (1 and 4, in R and G).
-    TonalArtMap tam = make_tonal_art_map(256, 6);
-    constexpr int kLayerTones[3][4] = {{0, 1, 2, 3}, {2, 3, 4, 5}, {1, 4, 4, 4}};
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    const auto levels = static_cast<GLsizei>(tam.levels.size());
-    glGenTextures(1, &s_->tam);
-    glBindTexture(GL_TEXTURE_2D_ARRAY, s_->tam);
-    glTexStorage3D(GL_TEXTURE_2D_ARRAY, levels, GL_RGBA8, tam.size, tam.size, 3);
-    for (GLsizei l = 0; l < levels; ++l) {
-        const int size = std::max(1, tam.size >> l);
-        const auto& tones = tam.levels[static_cast<size_t>(l)];
-        std::vector<uint8_t> rgba(static_cast<size_t>(size) * static_cast<size_t>(size) * 4);
-        for (int layer = 0; layer < 3; ++layer) {
-            for (size_t i = 0; i < rgba.size() / 4; ++i)
-                for (size_t c = 0; c < 4; ++c) rgba[i * 4 + c] = tones[static_cast<size_t>(kLayerTones[layer][c])][i];
-            glTexSubImage3D(GL_TEXTURE_2D_ARRAY, l, 0, 0, layer, size, size, 1, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
-        }
-    }
-    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, GL_REPEAT);
-    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_T, GL_REPEAT);
-    glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
-    tam = TonalArtMap{};  // the CPU tones freed now (and trimmed at the end of init)
 
     glGenVertexArrays(1, &s_->wire_vao);
     glBindVertexArray(s_->wire_vao);
@@ -1479,6 +1484,7 @@ void Renderer::render(const Camera& camera, const Lighting& lighting, const Fram
                 // Hatch paper tinted lightly by the structure colour.
                 Vec3f paper = glm::mix(o.paper, col, 0.25f);
                 glUniform4f(p.loc("u_color"), paper.r, paper.g, paper.b, 1.0f);
+                if (!s.tam) create_tonal_art_map(s.tam);
                 glActiveTexture(GL_TEXTURE0);
                 glBindTexture(GL_TEXTURE_2D_ARRAY, s.tam);
                 glUniform1i(p.loc("u_tam"), 0);
