@@ -28,14 +28,7 @@ using pm::put_f32;
 using pm::put_u16;
 using pm::put_u32;
 
-// A cache hint (no effect on the bytes).
-inline void prefetch(const void* p) {
-#if defined(__GNUC__)
-    __builtin_prefetch(p);
-#else
-    (void)p;
-#endif
-}
+using pm::prefetch;
 
 struct Quantized {
     float lo[3], hi[3];

@@ -34,16 +34,9 @@
 namespace body::lod {
 namespace {
 
-// A cache hint (no effect on results): the collapse loop is bound by memory latency,
-// and a fan's scattered lines are independent, so they are requested together
-// before the loop that uses them instead of one miss after another.
-inline void prefetch(const void* p) {
-#if defined(__GNUC__)
-    __builtin_prefetch(p);
-#else
-    (void)p;
-#endif
-}
+// A fan's scattered cache lines are requested together before the loop that uses
+// them instead of one miss after another (a hint: no effect on results).
+using pm::prefetch;
 
 constexpr uint32_t kNone = 0xffffffffu;
 constexpr uint32_t kUnknown = 0xfffffffeu;

@@ -27,6 +27,16 @@ namespace body::pm {
 // faults cost the streaming thread more time than half its decoding.
 void* allocate_large_array(size_t bytes);  // aligned to 2 MiB, huge pages advised; throws std::bad_alloc
 void free_large_array(void* p);
+// A cache hint, no effect on results: the split replay (reader and writer) and
+// the simplifier's collapse loop are bound by memory latency, and their
+// scattered lines are independent, so they are requested ahead of use.
+inline void prefetch(const void* p) {
+#if defined(__GNUC__)
+    __builtin_prefetch(p);
+#else
+    (void)p;
+#endif
+}
 // From now on a low-priority thread prefaults the large arrays allocated before
 // and after the call (see shared/pm/large_array.cpp). Without it, nothing runs.
 void start_background_prefault();

@@ -592,10 +592,8 @@ Status BpmStream::parse_splits(ProgressiveMesh& m, std::span<const uint8_t> payl
         if (i + kAhead1 < count) {
             const uint32_t p = parents[i + kAhead1];
             m.replay_.prefetch(p, 1);
-#if defined(__GNUC__)
-            __builtin_prefetch(&m.qpos_[size_t(p) * 3]);
-            __builtin_prefetch(&m.qoct_[size_t(p) * 2]);
-#endif
+            prefetch(&m.qpos_[size_t(p) * 3]);
+            prefetch(&m.qoct_[size_t(p) * 2]);
         }
         if (i + kAhead2 < count) m.replay_.prefetch(parents[i + kAhead2], 2);
         if (i + kAhead3 < count) m.replay_.prefetch(parents[i + kAhead3], 3, m.qpos_.data());
