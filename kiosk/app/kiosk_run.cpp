@@ -294,7 +294,8 @@ int run_kiosk(platform::Surface& surface, const scene::Scene& scene, const Kiosk
         }
         replay = std::move(r).value();
     }
-    // Start-up is timed from here: renderer init (shaders, tonal art map) included.
+    // Start-up is timed from here: renderer init (the shaders) included; the
+    // tonal art map is made later, at the first hatching draw.
     const auto load_start = std::chrono::steady_clock::now();
     // Every .bpm starts reading and decoding its base meshes at once, in
     // parallel and while the renderer compiles its shaders.

@@ -503,8 +503,8 @@ Camera Camera::framing_box(Vec3f lo, Vec3f hi, Vec3f direction, float aspect, fl
 struct Renderer::State {
     bool ready = false;
     Program baseline, smooth, hatching, xray, edges, wireframe;
-    GLuint tam = 0;                     // tonal art map: a 2D array texture, see init()
-    GLuint wire_vao = 0;                // `wireframe`: a model's index buffer as the kWireVertex attribute
+    GLuint tam = 0;       // tonal art map: a 2D array texture, made at the first hatching draw (create_tonal_art_map)
+    GLuint wire_vao = 0;  // `wireframe`: a model's index buffer as the kWireVertex attribute
     GLuint quad_vao = 0, quad_ebo = 0;  // `lines`: the shared edge-quad index buffer
     std::map<ModelId, Model> models;
     ModelId next_id = 1;
@@ -623,7 +623,7 @@ Status Renderer::init() {
     s_->sphere = sphere.value();
     s_->models[s_->sphere].internal = true;
 #ifdef __GLIBC__
-    malloc_trim(0);  // the tonal art map's CPU tones and upload scratch back to the system
+    malloc_trim(0);  // the shader compiler's and upload scratch back to the system
 #endif
     BODY_GL_CHECK("init");
     return ok_status();

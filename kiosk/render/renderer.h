@@ -200,7 +200,7 @@ public:
     Renderer(const Renderer&) = delete;
     Renderer& operator=(const Renderer&) = delete;
 
-    // Compiles the shaders and builds the tonal art map. Needs a current GLES 3
+    // Compiles the shaders (the tonal art map is made at the first hatching draw). Needs a current GLES 3
     // context. Errors carry the shader name and its info log.
     Status init();
     // Frees every GL object (call with the context current). Idempotent.
