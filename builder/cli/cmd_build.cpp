@@ -1,6 +1,6 @@
 // bodygen build INPUT -o OUT [--caps flat|dome|none]
 //   [--tiling optimal|multires] [--correspondence overlap|ellipse]
-//   [--branching partition|overlap] [--normals] [--quiet] [--json] [--jobs N]
+//   [--branching partition|overlap] [--smooth N] [--normals] [--quiet] [--json] [--jobs N]
 // INPUT: a contour stack (*.contours.json), or, with import support, a NIfTI
 // label volume or a DICOM RT-STRUCT (imported with the `contours` defaults).
 // OUT: OUT.obj (one `o NAME` per structure), OUT.bpm (progressive meshes), or
@@ -115,7 +115,7 @@ Status write_output(const std::string& output, const std::vector<StructureMesh>&
 
 int run_build(const Args& argv) {
     auto args = CliArgs::parse(argv,
-                               {"output", "caps", "tiling", "correspondence", "branching", "jobs",
+                               {"output", "caps", "tiling", "correspondence", "branching", "jobs", "smooth",
 #ifdef BODY_WITH_IMPORT
                                 "labels", "axis", "step", "only", "threshold", "tolerance", "min-area"
 #endif
@@ -137,6 +137,9 @@ int run_build(const Args& argv) {
             "  --correspondence overlap|ellipse   matching contours across slices (default overlap)\n"
             "  --branching partition|overlap      branches: closed manifold, or the thesis'\n"
             "                                     overlapping bands for comparison (default partition)\n"
+            "  --smooth N                         N Taubin lambda|mu smoothing steps per mesh (default 0):\n"
+            "                                     removes slice terraces and voxel stairs without shrinking;\n"
+            "                                     vertices leave their slice planes\n"
             "  --normals                          write vertex normals\n"
             "  --quiet                            no progress bar and no summary\n"
             "  --json                             statistics as JSON on stdout\n"
@@ -153,7 +156,11 @@ int run_build(const Args& argv) {
     auto jobs = args->get_long("jobs", 1);
     if (!jobs) return report(jobs.error());
     if (*jobs < 1 || *jobs > 256) return report(input_error("build: --jobs must be between 1 and 256"));
+    auto smooth = args->get_long("smooth", 0);
+    if (!smooth) return report(smooth.error());
+    if (*smooth < 0 || *smooth > 1000) return report(input_error("build: --smooth must be between 0 and 1000"));
     BuildOptions options;
+    options.fairing.iterations = int(*smooth);
     auto caps = pick<CapStyle>(
         *args, "caps", {{"flat", CapStyle::Flat}, {"dome", CapStyle::Dome}, {"none", CapStyle::None}}, CapStyle::Dome);
     if (!caps) return report(caps.error());
@@ -198,6 +205,7 @@ int run_build(const Args& argv) {
         j["tiling"] = tiling_method_name(options.tiling);
         j["correspondence"] = correspondence_method_name(options.correspondence);
         j["branching"] = branching_method_name(options.branching);
+        j["smooth"] = options.fairing.iterations;
         j["seconds"] = seconds;
         nlohmann::json list = nlohmann::json::array();
         for (const StructureMesh& s : *built)
@@ -211,6 +219,7 @@ int run_build(const Args& argv) {
                             {"genus", s.genus},
                             {"components", s.components},
                             {"closed_manifold", s.closed_manifold},
+                            {"smooth_vertices_kept", s.fairing_restored},
                             {"seconds", s.seconds}});
         j["structures"] = std::move(list);
         std::printf("%s\n", j.dump(2).c_str());

@@ -838,6 +838,7 @@ Result<StructureMesh> build_structure(const ContourStack& stack, const Grouping&
     sm.mesh.color = grouping.infos[i].color;
     sm.mesh.positions = std::move(builder.positions);
     sm.mesh.indices = std::move(builder.triangles);
+    sm.fairing_restored = taubin_smooth(sm.mesh.positions, sm.mesh.indices, options.fairing);
     const MeshTopology topo = analyze_topology(sm.mesh.positions, sm.mesh.indices);
     sm.triangles = sm.mesh.triangle_count();
     sm.volume = mesh_volume(sm.mesh.positions, sm.mesh.indices);

@@ -24,7 +24,8 @@
 // tiling/ and are only as fold-free as it makes them; branch geometry is built
 // to avoid crossings but not proven free of them for every input.
 // `--branching overlap` (thesis method) and `--caps none` leave open or
-// overlapping surfaces by design.
+// overlapping surfaces by design. Smoothing (`fairing.iterations` > 0) keeps the
+// connectivity, hence closedness and manifoldness, but not the re-slicing property.
 #include <functional>
 #include <string>
 #include <vector>
@@ -33,6 +34,7 @@
 #include "builder/caps/caps.h"
 #include "builder/contours/contour_stack.h"
 #include "builder/correspondence/correspondence.h"
+#include "builder/fairing/fairing.h"
 #include "builder/tiling/tiling.h"
 #include "shared/error.h"
 #include "shared/mesh.h"
@@ -44,6 +46,9 @@ struct BuildOptions {
     TilingMethod tiling = TilingMethod::Multires;  // bunny: same Hausdorff as optimal, lower mean, 4-8x faster
     CorrespondenceMethod correspondence = CorrespondenceMethod::Overlap;  // measured more accurate, see tests
     BranchingMethod branching = BranchingMethod::Partition;
+    // Optional Taubin smoothing of each finished mesh (off by default: it moves
+    // vertices off their slice planes; see fairing/fairing.h).
+    FairingOptions fairing;
     // Structures built at once (they are independent; the output does not depend on it).
     unsigned jobs = 1;
     // Called after each slice of each structure: (done, total) slices. With
@@ -63,7 +68,8 @@ struct StructureMesh {
     long genus = 0;       // sum over components; meaningful when closed_manifold
     size_t components = 0;
     bool closed_manifold = false;
-    double seconds = 0.0;  // wall time spent on this structure
+    size_t fairing_restored = 0;  // vertices smoothing left in place to avoid a self-intersection
+    double seconds = 0.0;         // wall time spent on this structure
 };
 
 // Builds one mesh per structure that has contours. Errors name `source_path`,

@@ -103,7 +103,36 @@ TEST_F(BuildCli, BadOptionsExitTwo) {
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_NE(r.output.find("--caps must be flat|dome|none"), std::string::npos) << r.output;
     EXPECT_EQ(run(bin("bodygen") + " build " + in).exit_code, 2);  // no -o
+    r = run(bin("bodygen") + " build " + in + " -o " + (dir / "x.obj").string() + " --smooth -3");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.output.find("--smooth must be between 0 and 1000"), std::string::npos) << r.output;
     EXPECT_FALSE(fs::exists(dir / "x.obj"));
+}
+
+// --smooth moves vertices and keeps the mesh closed;
+// --smooth 0 is the unsmoothed build, byte for byte.
+TEST_F(BuildCli, SmoothMovesVerticesAndKeepsTheMeshClosed) {
+    const std::string in = write("three.contours.json", R"({"format": "bodygen.contours", "version": 1, "slices": [
+      {"z": 0, "contours": [{"points": [[0,0],[10,0],[10,10],[0,10]]}]},
+      {"z": 2, "contours": [{"points": [[-2,-2],[12,-2],[12,12],[-2,12]]}]},
+      {"z": 4, "contours": [{"points": [[1,1],[9,1],[9,9],[1,9]]}]}]})");
+    const std::string raw = (dir / "raw.obj").string(), zero = (dir / "zero.obj").string(),
+                      smooth = (dir / "smooth.obj").string();
+    ASSERT_EQ(run(bin("bodygen") + " build " + in + " -o " + raw + " --quiet").exit_code, 0);
+    ASSERT_EQ(run(bin("bodygen") + " build " + in + " -o " + zero + " --quiet --smooth 0").exit_code, 0);
+    RunResult r = run(bin("bodygen") + " build " + in + " -o " + smooth + " --json --smooth 5");
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find("\"smooth\": 5"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("\"closed_manifold\": true"), std::string::npos) << r.output;
+    auto a = read_obj(raw), b = read_obj(zero), c = read_obj(smooth);
+    ASSERT_TRUE(a.ok() && b.ok() && c.ok());
+    EXPECT_EQ((*a)[0].positions, (*b)[0].positions);
+    ASSERT_EQ((*a)[0].indices, (*c)[0].indices);
+    size_t moved = 0;  // most vertices: only the contour corners' neighbourhoods are flat
+    for (size_t v = 0; v < (*c)[0].positions.size(); ++v)
+        moved += glm::length((*c)[0].positions[v] - (*a)[0].positions[v]) > 1e-3;
+    EXPECT_GT(moved, (*c)[0].positions.size() / 2);
+    EXPECT_TRUE(analyze_topology((*c)[0].positions, (*c)[0].indices).closed_manifold());
 }
 
 }  // namespace
