@@ -10,6 +10,7 @@
 #     BODYGEN  default build/bin/bodygen
 #     OUT_DIR  default build/sample
 #   JOBS=N     worker threads (default: all cores)
+#   SMOOTH=N   Taubin smoothing steps per region (default 10; 0: the raw contour meshes)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ROOT=$PWD
@@ -58,8 +59,12 @@ for s in stack["structures"]:
     part["slices"] = part["slices"][kept[0]:kept[-1] + 1] if kept else []
     json.dump(part, open(os.path.join(out, "regions", s["id"] + ".contours.json"), "w"))
 PY
+# --smooth: the atlas is 2 mm voxels; its contours follow voxel edges and the
+# slices are 2 mm apart, so unsmoothed regions show stairs and terraces.
+SMOOTH=${SMOOTH:-10}
 ls "$OUT"/regions/*.contours.json | xargs -P "$JOBS" -I{} sh -c \
-  'f={}; "$0" build "$f" -o "${f%.contours.json}.obj" --quiet 2> "${f%.contours.json}.err" || true' "$BODYGEN"
+  'f={}; "$0" build "$f" -o "${f%.contours.json}.obj" --smooth "$1" --quiet 2> "${f%.contours.json}.err" || true' \
+  "$BODYGEN" "$SMOOTH"
 failed=0
 for err in "$OUT"/regions/*.err; do
   if [ -s "$err" ] && [ ! -f "${err%.err}.obj" ]; then
