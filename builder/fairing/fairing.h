@@ -1,18 +1,19 @@
 #pragma once
 // Surface fairing for meshes built from traced or voxel contours: removes the
-// terraces that slice spacing and voxel staircases leave, without shrinking the
-// structure (a plain Laplacian flow shrinks it towards its centre).
+// terraces that slice spacing and voxel staircases leave, with far less shrinking
+// than a plain Laplacian flow (which pulls the structure towards its centre).
 //
 // Taubin's lambda|mu filter: each iteration moves every vertex by lambda x its
 // umbrella vector (the mean of its edge neighbours minus itself), then by mu
 // (negative) x the new umbrella vector. With lambda = 0.5 and the pass-band
 // frequency k = 0.1 (1/lambda + 1/mu = k), detail above the pass band (stair
-// steps, slice terraces) decays and a large shape keeps its volume to within a few
-// per cent; small thin ones lose more (the AAL atlas at 10 iterations: -1.3% in
-// all, -17.6% for its smallest vermis region). Connectivity is unchanged: a closed 2-manifold stays one. Vertices
-// on a boundary edge (an edge with one face) keep their positions, so open meshes
-// keep their rims. Vertices move off their slice planes: the pipeline's guarantee
-// that re-slicing at an input plane gives back its contour no longer holds exactly.
+// steps, slice terraces) decays and a large shape keeps its volume to within a
+// few per cent; small thin ones lose more (the AAL atlas at 10 iterations: -1.3%
+// in all, -17.6% for its smallest vermis region). Connectivity is unchanged: a
+// closed 2-manifold stays one. Vertices on a boundary edge (an edge with one face)
+// keep their positions, so open meshes keep their rims. Vertices move off their
+// slice planes: the pipeline's guarantee that re-slicing at an input plane gives
+// back its contour no longer holds exactly.
 #include <cstddef>
 #include <cstdint>
 #include <span>

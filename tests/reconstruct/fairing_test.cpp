@@ -1,4 +1,4 @@
-// Taubin smoothing (builder/fairing/): removes terraces without shrinking, keeps
+// Taubin smoothing (builder/fairing/): removes terraces while a sphere keeps its volume, keeps
 // connectivity and open rims, and does nothing with zero iterations.
 #include "builder/fairing/fairing.h"
 
