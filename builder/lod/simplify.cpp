@@ -12,9 +12,9 @@
 //   clean_input      drop degenerate triangles and unreferenced vertices
 //   build_adjacency  per-vertex corner lists (singly linked through corners), the face across each
 //                    edge (kept up to date by the collapses), boundary/non-manifold flags
-//   init_quadrics    area-weighted plane quadrics + boundary penalty planes (ordering) and unit-weight
-//                    quadrics (the stored object-space error)
 //   reorder_vertices, reorder_faces  renumber for cache locality (the output keeps the input numbering)
+//   init_quadrics    area-weighted plane quadrics + boundary penalty planes (ordering) and unit-weight
+//                    quadrics (the stored object-space error), gathered per vertex
 //   placement        optimal (quadric minimiser) or fallback position of a collapse
 //   collapse_loop    indexed 4-ary heap of vertices keyed by their cheapest outgoing collapse
 //                    (ordering cost per unit quadric weight)
@@ -30,6 +30,7 @@
 #include <type_traits>
 
 #include "shared/pm/bpm_format.h"
+#include "shared/prefaulted_array.h"
 
 namespace body::lod {
 namespace {
@@ -108,7 +109,7 @@ struct Quadric {
 // 16-byte siblings lie in one or two cache lines (half the depth of a binary heap).
 class VertexHeap {
 public:
-    void reset(const std::vector<uint32_t>& rank) {
+    void reset(const PrefaultedVector<uint32_t>& rank) {
         rank_ = rank.data();
         pos_.assign(rank.size(), kNone);
         // Every vertex at most once: the storage never grows, so items_ stays valid.
@@ -206,8 +207,8 @@ private:
         place(i, item);
     }
     const uint32_t* rank_ = nullptr;
-    std::vector<uint32_t> pos_;
-    std::vector<Item> store_;
+    PrefaultedVector<uint32_t> pos_;
+    PrefaultedVector<Item> store_;
     Item* items_ = nullptr;
     size_t size_ = 0;
 };
@@ -221,21 +222,22 @@ struct Collapse {
     Vec3 to_before, to_after;  // v's position before and after the collapse
 };
 
-// Plain std::vector storage: putting the large arrays in transparent huge pages
-// (madvise, as pm::allocate_large_array does; they were used) gave the same bytes no
-// measurable gain on the 1.1M-triangle build (2026-11-25, whole-process times within 2%).
+// The per-vertex and per-corner arrays are mapped when allocated (PrefaultedVector):
+// the build writes every page of them, and first-touch page faults took a quarter
+// of the bunny's build time on the benchmark VM (~5000 faults at 11-15 us; an earlier
+// trial of huge pages alone measured user time only, where faults do not show).
 struct State {
-    std::vector<Vec3> pos;
-    std::vector<uint32_t> idx;           // 3 per face, current
-    std::vector<uint8_t> face_alive;     // per face
-    std::vector<uint8_t> edge_boundary;  // per corner: edge corner -> next corner has one face
+    PrefaultedVector<Vec3> pos;
+    PrefaultedVector<uint32_t> idx;           // 3 per face, current
+    PrefaultedVector<uint8_t> face_alive;     // per face
+    PrefaultedVector<uint8_t> edge_boundary;  // per corner: edge corner -> next corner has one face
     // Per corner: the live face across the edge corner -> next corner (kNone: none;
     // kUnknown: a non-manifold or inconsistently oriented edge, looked up by walking).
-    std::vector<uint32_t> across;
-    std::vector<uint32_t> head, next;  // corner lists
-    std::vector<uint32_t> fcount;      // live faces per vertex
-    std::vector<uint8_t> boundary, locked, alive;
-    std::vector<Quadric> q, e;  // ordering quadric, error quadric
+    PrefaultedVector<uint32_t> across;
+    PrefaultedVector<uint32_t> head, next;  // corner lists
+    PrefaultedVector<uint32_t> fcount;      // live faces per vertex
+    PrefaultedVector<uint8_t> boundary, locked, alive;
+    PrefaultedVector<Quadric> q, e;  // ordering quadric, error quadric
     VertexHeap heap;
     // Per vertex, what its heap key stands for, in one cache line (update_neighbour
     // reads most of it for every neighbour of every collapse).
@@ -249,7 +251,7 @@ struct State {
         uint8_t best_valid = 0;  // best_pos is the placement for exactly the heap key
         uint8_t key_is_min = 0;  // the key is the cheapest collapse (not one re-ranked past illegal ones)
     };
-    std::vector<Key> key;
+    PrefaultedVector<Key> key;
     // The optimum of an edge is the same in both directions (Q_u + Q_v, the midpoint and
     // the edge length are symmetric in IEEE arithmetic): after u -> v, the placements
     // v -> x computed for v's key are reused for x -> v by v's neighbours.
@@ -271,15 +273,15 @@ struct State {
         double cost;
         uint32_t time;
     };
-    std::vector<CornerCost> corner_cost;  // one load for both
-    std::vector<uint32_t> last_changed;
+    PrefaultedVector<CornerCost> corner_cost;  // one load for both
+    PrefaultedVector<uint32_t> last_changed;
     uint32_t now = 1;
-    std::vector<uint32_t> face_of_input;  // input face (after clean_input) -> face here
+    PrefaultedVector<uint32_t> face_of_input;  // input face (after clean_input) -> face here
     // Vertex v here is input vertex rank[v] (after clean_input); ties between equal
     // costs go to the lower rank, so the result does not depend on the numbering here.
-    std::vector<uint32_t> rank, vertex_of_input;
-    std::vector<Collapse> collapses;
-    std::vector<uint32_t> patch_faces;
+    PrefaultedVector<uint32_t> rank, vertex_of_input;
+    PrefaultedVector<Collapse> collapses;
+    PrefaultedVector<uint32_t> patch_faces;
     size_t live_faces = 0;
     double running_error = 0.0;
     bool optimal = true;              // LodOptions::optimal_placement
@@ -290,7 +292,7 @@ struct State {
     // scratch
     std::vector<uint32_t> cu, cv, fan, ring_u, ring_v, touched, walk;
     // Per vertex: the last ring that listed it (topology_allowed: stamp - 1 for u's, stamp for v's).
-    std::vector<uint32_t> mark;
+    PrefaultedVector<uint32_t> mark;
     uint32_t stamp = 0;
     std::vector<Vec3> fan_old, fan_new;
 };
@@ -299,15 +301,18 @@ struct State {
 
 // Compacts the input: keeps non-degenerate triangles and the vertices they use,
 // in input order (kept_vertex[i] = input index of vertex i).
-void clean_input(const Mesh& mesh, State& s, std::vector<uint32_t>& kept_vertex) {
+void clean_input(const Mesh& mesh, State& s, PrefaultedVector<uint32_t>& kept_vertex) {
     const size_t n = mesh.positions.size();
-    std::vector<uint32_t> remap(n, kNone);
+    PrefaultedVector<uint32_t> remap(n, kNone);
+    s.idx.reserve(mesh.indices.size());
     for (size_t f = 0; f + 2 < mesh.indices.size(); f += 3) {
         const uint32_t a = mesh.indices[f], b = mesh.indices[f + 1], c = mesh.indices[f + 2];
         if (a >= n || b >= n || c >= n || a == b || b == c || a == c) continue;
         remap[a] = remap[b] = remap[c] = 0;
         s.idx.insert(s.idx.end(), {a, b, c});
     }
+    kept_vertex.reserve(n);
+    s.pos.reserve(n);
     for (size_t v = 0; v < n; ++v) {
         if (remap[v] == kNone) continue;
         remap[v] = uint32_t(kept_vertex.size());
@@ -371,41 +376,88 @@ void build_adjacency(State& s) {
     s.alive.assign(n, 1);
 }
 
-// The quadrics of the live faces; `ordering_only` recomputes the ordering quadrics alone
-// (restart_ordering).
-void init_quadrics(State& s, double boundary_weight, bool ordering_only = false) {
+// The plane of face f: unit normal, offset and twice the area (false: degenerate).
+bool face_plane(const State& s, size_t f, Vec3& nrm, double& d, double& len) {
+    const uint32_t* t = &s.idx[f * 3];
+    const Vec3 &p0 = s.pos[t[0]], &p1 = s.pos[t[1]], &p2 = s.pos[t[2]];
+    nrm = glm::cross(p1 - p0, p2 - p0);
+    len = glm::length(nrm);
+    if (!(len > 0.0)) return false;
+    nrm /= len;
+    d = -glm::dot(nrm, p0);
+    return true;
+}
+
+// The boundary-preserving plane through edge k of face f (normal `nrm`), perpendicular to
+// the face: unit weight in `unit`, boundary_weight x edge length^2 in `weighted`.
+bool boundary_planes(const State& s, size_t f, int k, const Vec3& nrm, double boundary_weight, Quadric& weighted,
+                     Quadric& unit) {
+    const uint32_t* t = &s.idx[f * 3];
+    const Vec3 &a = s.pos[t[k]], &b = s.pos[t[(k + 1) % 3]];
+    const Vec3 edge = b - a;
+    Vec3 bn = glm::cross(edge, nrm);
+    const double bl = glm::length(bn);
+    if (!(bl > 0.0)) return false;
+    bn /= bl;
+    const double bd = -glm::dot(bn, a);
+    weighted = Quadric::plane(bn, bd, boundary_weight * glm::dot(edge, edge));
+    unit = Quadric::plane(bn, bd, 1.0);
+    return true;
+}
+
+// The ordering and error quadrics of every vertex from the input faces. Gathered per
+// vertex over its corner list (the input's face order, which reorder_faces keeps), face
+// planes recomputed at each corner: each vertex's sums are written once, in Morton
+// order, where adding each face to its three vertices' sums in face order cost a
+// scattered read-modify-write of six quadrics per face (the input's face order is
+// unrelated to the vertex order; on the bunny this phase took 4x longer). The per-vertex
+// summation order is the same (area plane, then the face's boundary edges at that vertex
+// in edge order), so the sums are the same bit for bit.
+void init_quadrics(State& s, double boundary_weight) {
+    const size_t n = s.pos.size();
+    s.q.resize(n);
+    s.e.resize(n);
+    for (uint32_t v = 0; v < n; ++v) {
+        Quadric q, e;
+        for (uint32_t c = s.head[v]; c != kNone; c = s.next[c]) {
+            const uint32_t f = c / 3, at = c % 3;
+            Vec3 nrm;
+            double d = 0.0, len = 0.0;
+            if (!face_plane(s, f, nrm, d, len)) continue;
+            q.add(Quadric::plane(nrm, d, 0.5 * len));
+            e.add(Quadric::plane(nrm, d, 1.0));
+            // The face's edges at v (v -> next and previous -> v), in edge order.
+            const int out = int(at), in = int(at + 2) % 3;
+            for (const int k : {std::min(out, in), std::max(out, in)}) {
+                Quadric pen, upen;
+                if (!s.edge_boundary[f * 3 + k] || !boundary_planes(s, f, k, nrm, boundary_weight, pen, upen)) continue;
+                q.add(pen);
+                e.add(upen);
+            }
+        }
+        s.q[v] = q;
+        s.e[v] = e;
+    }
+}
+
+// The ordering quadrics again, from the live faces (restart_ordering); face by face (the
+// corner lists are no longer in face order).
+void rebuild_ordering_quadrics(State& s, double boundary_weight) {
     const size_t n = s.pos.size(), faces = s.idx.size() / 3;
     s.q.assign(n, Quadric{});
-    if (!ordering_only) s.e.assign(n, Quadric{});
     for (size_t f = 0; f < faces; ++f) {
         if (!s.face_alive[f]) continue;
+        Vec3 nrm;
+        double d = 0.0, len = 0.0;
+        if (!face_plane(s, f, nrm, d, len)) continue;
         const uint32_t* t = &s.idx[f * 3];
-        const Vec3 &p0 = s.pos[t[0]], &p1 = s.pos[t[1]], &p2 = s.pos[t[2]];
-        Vec3 nrm = glm::cross(p1 - p0, p2 - p0);
-        const double len = glm::length(nrm);
-        if (!(len > 0.0)) continue;
-        nrm /= len;
-        const double d = -glm::dot(nrm, p0);
-        const Quadric area = Quadric::plane(nrm, d, 0.5 * len), unit = Quadric::plane(nrm, d, 1.0);
+        const Quadric area = Quadric::plane(nrm, d, 0.5 * len);
+        for (int k = 0; k < 3; ++k) s.q[t[k]].add(area);
         for (int k = 0; k < 3; ++k) {
-            s.q[t[k]].add(area);
-            if (!ordering_only) s.e[t[k]].add(unit);
-        }
-        for (int k = 0; k < 3; ++k) {
-            if (!s.edge_boundary[f * 3 + k]) continue;
-            const Vec3 &a = s.pos[t[k]], &b = s.pos[t[(k + 1) % 3]];
-            const Vec3 edge = b - a;
-            Vec3 bn = glm::cross(edge, nrm);
-            const double bl = glm::length(bn);
-            if (!(bl > 0.0)) continue;
-            bn /= bl;
-            const double bd = -glm::dot(bn, a);
-            const Quadric pen = Quadric::plane(bn, bd, boundary_weight * glm::dot(edge, edge));
-            const Quadric upen = Quadric::plane(bn, bd, 1.0);
-            for (uint32_t v : {t[k], t[(k + 1) % 3]}) {
-                s.q[v].add(pen);
-                if (!ordering_only) s.e[v].add(upen);
-            }
+            Quadric pen, upen;
+            if (!s.edge_boundary[f * 3 + k] || !boundary_planes(s, f, k, nrm, boundary_weight, pen, upen)) continue;
+            s.q[t[k]].add(pen);
+            s.q[t[(k + 1) % 3]].add(pen);
         }
     }
 }
@@ -414,7 +466,7 @@ void init_quadrics(State& s, double boundary_weight, bool ordering_only = false)
 // axis, ties by input number) so that a neighbourhood's vertices share cache lines;
 // many inputs (subdivided meshes, merged OBJ objects) append vertices in an order
 // unrelated to the surface. The flags and normals move with their vertex (the quadrics are built after).
-void reorder_vertices(State& s, std::vector<Vec3>& normals) {
+void reorder_vertices(State& s, PrefaultedVector<Vec3>& normals) {
     const size_t n = s.pos.size();
     const Aabb box = mesh_bounds(s.pos);
     const Vec3 extent = box.max - box.min;
@@ -428,7 +480,7 @@ void reorder_vertices(State& s, std::vector<Vec3>& normals) {
         x = (x | (x << 2)) & 0x09249249ull;
         return x;
     };
-    std::vector<uint64_t> keys(n);
+    PrefaultedVector<uint64_t> keys(n);
     for (size_t v = 0; v < n; ++v) {
         const Vec3 d = s.pos[v] - box.min;
         const uint64_t x = cell(extent.x > 0.0 ? d.x / extent.x : 0.0), y = cell(extent.y > 0.0 ? d.y / extent.y : 0.0),
@@ -464,13 +516,13 @@ void reorder_vertices(State& s, std::vector<Vec3>& normals) {
 // numbers (emit_order restores the input order through face_of_input).
 void reorder_faces(State& s) {
     const size_t n = s.pos.size(), faces = s.idx.size() / 3;
-    std::vector<uint32_t> start(n + 1, 0);
+    PrefaultedVector<uint32_t> start(n + 1, 0);
     for (size_t f = 0; f < faces; ++f) ++start[std::min({s.idx[f * 3], s.idx[f * 3 + 1], s.idx[f * 3 + 2]}) + 1];
     for (size_t v = 0; v < n; ++v) start[v + 1] += start[v];
     s.face_of_input.resize(faces);
-    std::vector<uint32_t> idx(s.idx.size());
-    std::vector<uint8_t> edge_boundary(s.idx.size());
-    std::vector<uint32_t> across(s.idx.size());
+    PrefaultedVector<uint32_t> idx(s.idx.size());
+    PrefaultedVector<uint8_t> edge_boundary(s.idx.size());
+    PrefaultedVector<uint32_t> across(s.idx.size());
     for (size_t f = 0; f < faces; ++f) {
         const uint32_t g = start[std::min({s.idx[f * 3], s.idx[f * 3 + 1], s.idx[f * 3 + 2]})]++;
         s.face_of_input[f] = g;
@@ -1062,7 +1114,7 @@ void restart_ordering(State& s) {
     // left nearly every quadric as it was built; a restart would only cost a second
     // heap build.
     if (s.live_faces * 4 > s.idx.size() / 3 * 3) return;
-    init_quadrics(s, s.boundary_weight, true);
+    rebuild_ordering_quadrics(s, s.boundary_weight);
     for (State::CornerCost& c : s.corner_cost) c.time = 0;
     s.sym_v = kNone;
     for (uint32_t v = 0; v < uint32_t(s.pos.size()); ++v) update_vertex(s, v);
@@ -1171,8 +1223,8 @@ void collapse_loop(State& s, size_t target_faces) {
 
 // Area-weighted vertex normals, here rather than shared/mesh.h so that they are
 // computed without floating-point contraction (same bytes on every platform).
-std::vector<Vec3> area_weighted_normals(const std::vector<Vec3>& pos, const std::vector<uint32_t>& idx) {
-    std::vector<Vec3> n(pos.size(), Vec3(0.0));
+void area_weighted_normals(std::span<const Vec3> pos, std::span<const uint32_t> idx, std::span<Vec3> n) {
+    std::fill(n.begin(), n.end(), Vec3(0.0));
     for (size_t f = 0; f + 2 < idx.size(); f += 3) {
         const Vec3 c = glm::cross(pos[idx[f + 1]] - pos[idx[f]], pos[idx[f + 2]] - pos[idx[f]]);
         for (int k = 0; k < 3; ++k) n[idx[f + k]] += c;
@@ -1181,13 +1233,12 @@ std::vector<Vec3> area_weighted_normals(const std::vector<Vec3>& pos, const std:
         const double l = glm::length(v);
         v = l > 0.0 ? v / l : Vec3(0.0, 0.0, 1.0);
     }
-    return n;
 }
 
-ProgressiveBuild emit_order(const State& s, const std::vector<Vec3>& normals) {
+ProgressiveBuild emit_order(const State& s, const PrefaultedVector<Vec3>& normals) {
     ProgressiveBuild pm;
     const size_t n = s.pos.size(), faces = s.idx.size() / 3, splits = s.collapses.size();
-    std::vector<uint32_t> vid(n, kNone), fid(faces, kNone);
+    PrefaultedVector<uint32_t> vid(n, kNone), fid(faces, kNone);
     uint32_t next_v = 0, next_f = 0;
     for (const uint32_t v : s.vertex_of_input)
         if (s.alive[v]) vid[v] = next_v++;
@@ -1228,27 +1279,26 @@ ProgressiveBuild emit_order(const State& s, const std::vector<Vec3>& normals) {
 
 Result<ProgressiveBuild> build_progressive_mesh(const Mesh& mesh, const LodOptions& options) {
     State s;
-    std::vector<uint32_t> kept;
+    PrefaultedVector<uint32_t> kept;
     clean_input(mesh, s, kept);
     if (s.idx.empty()) return input_error("lod: mesh '" + mesh.name + "' has no non-degenerate triangles");
     if (s.pos.size() > pm::kMaxVertices || s.idx.size() / 3 > pm::kMaxFaces)
         return input_error("lod: mesh '" + mesh.name + "' has more than " + std::to_string(pm::kMaxVertices) +
                            " vertices or " + std::to_string(pm::kMaxFaces) + " triangles");
-    std::vector<Vec3> normals(s.pos.size());
+    PrefaultedVector<Vec3> normals(s.pos.size());
     if (mesh.normals.size() == mesh.positions.size()) {
         for (size_t i = 0; i < kept.size(); ++i) {
             const double l = glm::length(mesh.normals[kept[i]]);
             normals[i] = l > 0.0 ? mesh.normals[kept[i]] / l : Vec3(0, 0, 1);
         }
     } else {
-        normals = area_weighted_normals(s.pos, s.idx);
+        area_weighted_normals(s.pos, s.idx, normals);
     }
     build_adjacency(s);
     reorder_vertices(s, normals);
-    // After the renumbering (nothing to permute) and before the faces' (the sums keep
-    // the input's face order): the same quadrics bit for bit.
-    init_quadrics(s, options.boundary_weight);
+    // After both renumberings (nothing to permute), summed in the input's face order.
     reorder_faces(s);
+    init_quadrics(s, options.boundary_weight);
     s.optimal = options.optimal_placement;
     s.boundary_weight = options.boundary_weight;
     const double lossless = kLosslessDistance * mesh_bounds(s.pos).extent();

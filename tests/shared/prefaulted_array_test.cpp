@@ -1,0 +1,49 @@
+// PrefaultedVector behaves as std::vector whichever path its storage takes: small
+// arrays from operator new, large ones from mappings (huge-page advised when they span
+// 2 MiB); contents are value-initialised and survive growth across the threshold.
+#include "shared/prefaulted_array.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <numeric>
+
+namespace body {
+namespace {
+
+struct alignas(64) Line {
+    double value = 1.5;
+    uint32_t tag = 7;
+};
+
+TEST(PrefaultedArray, LargeArraysAreZeroedAndWritable) {
+    for (const size_t bytes : {kPrefaultMinBytes - 8, kPrefaultMinBytes, size_t(3) << 20, size_t(5) << 20}) {
+        PrefaultedVector<uint64_t> v(bytes / 8);
+        ASSERT_EQ(v.size(), bytes / 8);
+        EXPECT_EQ(std::accumulate(v.begin(), v.end(), uint64_t(0)), 0u) << bytes << " bytes";
+        for (size_t i = 0; i < v.size(); ++i) v[i] = i;
+        EXPECT_EQ(v.back(), v.size() - 1);
+        EXPECT_EQ(reinterpret_cast<uintptr_t>(v.data()) % alignof(uint64_t), 0u);
+    }
+}
+
+TEST(PrefaultedArray, GrowthAcrossTheThresholdKeepsContents) {
+    PrefaultedVector<uint32_t> v;
+    for (uint32_t i = 0; i < (3u << 20) / 4; ++i) v.push_back(i * 3u);  // operator new, then mappings
+    for (uint32_t i = 0; i < v.size(); i += 4099) ASSERT_EQ(v[i], i * 3u);
+    v.resize(10);
+    v.shrink_to_fit();
+    EXPECT_EQ(v[9], 27u);
+}
+
+TEST(PrefaultedArray, OverAlignedElementsKeepTheirAlignmentAndInitialisers) {
+    for (const size_t n : {size_t(3), kPrefaultMinBytes / sizeof(Line) + 1}) {
+        PrefaultedVector<Line> v(n);
+        EXPECT_EQ(reinterpret_cast<uintptr_t>(v.data()) % 64, 0u) << n;
+        EXPECT_EQ(v.front().value, 1.5);
+        EXPECT_EQ(v.back().tag, 7u);
+    }
+}
+
+}  // namespace
+}  // namespace body
