@@ -3,11 +3,12 @@
 // and per-corner state) whose every page is written: the pages are mapped in one
 // system call when the array is allocated rather than one page fault at a time as
 // it is first written. A first-touch 4 KiB page fault costs 0.2-0.5 us on bare
-// metal but 11-12 us on the virtual machines the benchmarks run on (measured
+// metal but 11-15 us on the virtual machines the benchmarks run on (measured
 // 2026-11-25), and a 70k-triangle simplification writes ~5000 fresh pages; mapped
-// ahead, in 2 MiB transparent huge pages where an array spans whole ones, the same
-// memory costs 0.3-1 us per 4 KiB. Contents are value-initialised as by
-// std::allocator (fresh mappings read as zeros): no effect on results.
+// ahead, the same pages cost 0.6-1.4 us each. Contents are value-initialised as by
+// std::allocator (fresh mappings read as zeros): no effect on results. Costs nothing
+// extra where the whole array is written; capacity reserved and never used is mapped
+// too (keep reserve() close to what is used).
 //
 // Small arrays (under kPrefaultMinBytes) come from operator new: the heap reuses
 // their pages. Thread-safe (no shared state). Throws std::bad_alloc like operator new.

@@ -224,8 +224,9 @@ struct Collapse {
 
 // The per-vertex and per-corner arrays are mapped when allocated (PrefaultedVector):
 // the build writes every page of them, and first-touch page faults took a quarter
-// of the bunny's build time on the benchmark VM (~5000 faults at 11-15 us; an earlier
-// trial of huge pages alone measured user time only, where faults do not show).
+// of the bunny's build time on the benchmark VM (~5000 faults at 11-15 us). (An earlier
+// trial of huge pages saw no gain because it measured user time only, where faults do
+// not show; huge pages are slower here anyway, see shared/prefaulted_array.cpp.)
 struct State {
     PrefaultedVector<Vec3> pos;
     PrefaultedVector<uint32_t> idx;           // 3 per face, current

@@ -1,6 +1,6 @@
 // PrefaultedVector behaves as std::vector whichever path its storage takes: small
-// arrays from operator new, large ones from mappings (huge-page advised when they span
-// 2 MiB); contents are value-initialised and survive growth across the threshold.
+// arrays from operator new, large ones from populated mappings; contents are
+// value-initialised and survive growth across the threshold.
 #include "shared/prefaulted_array.h"
 
 #include <gtest/gtest.h>
