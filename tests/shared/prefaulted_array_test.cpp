@@ -1,12 +1,16 @@
 // PrefaultedVector behaves as std::vector whichever path its storage takes: small
-// arrays from operator new, large ones from populated mappings; contents are
-// value-initialised and survive growth across the threshold.
+// arrays from operator new, large ones from populated or reused mappings; contents
+// are value-initialised and survive growth across the threshold.
 #include "shared/prefaulted_array.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <atomic>
 #include <cstdint>
 #include <numeric>
+#include <thread>
+#include <vector>
 
 namespace body {
 namespace {
@@ -43,6 +47,29 @@ TEST(PrefaultedArray, OverAlignedElementsKeepTheirAlignmentAndInitialisers) {
         EXPECT_EQ(v.front().value, 1.5);
         EXPECT_EQ(v.back().tag, 7u);
     }
+}
+
+// Freed mappings are kept and handed out again: a reused array must still start
+// value-initialised (std::vector's job, the allocator must not defeat it) and arrays
+// alive together must never share memory, from any number of threads.
+TEST(PrefaultedArray, ReusedMemoryIsNeverSharedBetweenLiveArrays) {
+    { PrefaultedVector<uint32_t> first(1 << 20, 7u); }
+    PrefaultedVector<uint32_t> again(1 << 20);
+    EXPECT_EQ(std::count(again.begin(), again.end(), 0u), ptrdiff_t(again.size()));
+
+    std::vector<std::thread> threads;
+    std::atomic<int> mismatches{0};
+    for (uint32_t t = 0; t < 4; ++t)
+        threads.emplace_back([t, &mismatches] {
+            for (uint32_t round = 0; round < 40; ++round) {
+                const size_t n = (size_t(64) << 10) + size_t((round * 7919 + t * 104729) % 400000);
+                PrefaultedVector<uint32_t> a(n, t * 1000 + round), b(n / 2 + 1, ~(t * 1000 + round));
+                for (const uint32_t x : a) mismatches += x != t * 1000 + round;
+                for (const uint32_t x : b) mismatches += x != ~(t * 1000 + round);
+            }
+        });
+    for (std::thread& th : threads) th.join();
+    EXPECT_EQ(mismatches.load(), 0);
 }
 
 }  // namespace
