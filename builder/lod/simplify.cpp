@@ -411,7 +411,8 @@ bool boundary_planes(const State& s, size_t f, int k, const Vec3& nrm, double bo
 // planes recomputed at each corner: each vertex's sums are written once, in Morton
 // order, where adding each face to its three vertices' sums in face order cost a
 // scattered read-modify-write of six quadrics per face (the input's face order is
-// unrelated to the vertex order; on the bunny this phase took 4x longer). The per-vertex
+// unrelated to the vertex order; the 1.1M-triangle bunny's took 210-239 ms that way,
+// 131-166 ms this way, the bunny's ~10 ms either way). The per-vertex
 // summation order is the same (area plane, then the face's boundary edges at that vertex
 // in edge order), so the sums are the same bit for bit.
 void init_quadrics(State& s, double boundary_weight) {
@@ -1130,6 +1131,12 @@ void restart_ordering(State& s) {
 // from 4.27 to 3.2 s but not the bunny's, and lost accuracy: bunny 10 % Hausdorff
 // 0.00549 -> 0.00595, 1.1M 10 % 1.000 -> 1.011x the better of meshopt/VTK on our grid
 // (the order among near-zero costs changes which lossless triangulation a level gets).
+// Also measured and dropped: ordering the lossless phase by vertex rank alone (costs
+// under lossless_cost read as 0, so the phase sweeps in Morton order): 1.1M-triangle
+// `bodygen lod` 4.7-4.9 -> 4.1 s user, but bunny 10 % Hausdorff 0.749 -> 0.819x the
+// better of meshopt/VTK and the 1.1M 10 % level's stored error 3.8e-7 -> 1.5e-4; and
+// deciding the re-key after a rejected keyed collapse from the runner-up alone (no
+// re-evaluation of u's other collapses): same bytes, no measurable gain.
 void collapse_loop(State& s, size_t target_faces) {
     const uint32_t n = uint32_t(s.pos.size());
     // (cost, target, half-edge only): a placement rejected by the geometry checks
