@@ -2,13 +2,14 @@
 // Storage for the large working arrays of batch kernels (the simplifier's per-vertex
 // and per-corner state) whose every page is written: the pages are mapped in one
 // system call when the array is allocated rather than one page fault at a time as
-// it is first written. A first-touch 4 KiB page fault costs 0.2-0.5 us on bare
-// metal but 11-15 us on the virtual machines the benchmarks run on (measured
-// 2026-11-25), and a 70k-triangle simplification writes ~5000 fresh pages; mapped
-// ahead, the same pages cost 0.6-1.4 us each. Contents are value-initialised as by
-// std::allocator (fresh mappings read as zeros): no effect on results. Costs nothing
-// extra where the whole array is written; capacity reserved and never used is mapped
-// too (keep reserve() close to what is used).
+// it is first written. A first-touch 4 KiB page fault costs 11-15 us on the virtual
+// machines the benchmarks run on (measured 2026-11-25; far less on bare metal), and a
+// 70k-triangle simplification writes ~5000 fresh pages; mapped ahead, the same pages
+// cost 0.9-1.4 us each. The allocator does not clear what it hands out (a reused
+// mapping holds old contents); std::vector value-initialises every element it
+// constructs, as with std::allocator, so results do not change. Costs nothing extra
+// where the whole array is written; capacity reserved and never used is mapped too
+// (keep reserve() close to what is used).
 //
 // Freed large arrays keep their pages for the next ones (up to 256 MB per process,
 // as malloc keeps freed memory): building structure after structure maps nothing new.
