@@ -50,6 +50,8 @@ struct Mapping {
 // Freed mappings kept for reuse (one lock: a few hundred large allocations per build).
 class MappingCache {
 public:
+    // The list never grows past its reserve: free_prefaulted (noexcept) must not allocate.
+    MappingCache() { kept_.reserve(kCachedMappings); }
     // The smallest kept mapping of `length` to 2 x `length` bytes, or nullptr.
     char* take(size_t length) {
         std::lock_guard guard(mutex_);

@@ -15,6 +15,10 @@
 // as malloc keeps freed memory): building structure after structure maps nothing new.
 // Small arrays (under kPrefaultMinBytes) come from operator new. Thread-safe. Throws
 // std::bad_alloc like operator new.
+//
+// Not for arrays whose capacity is reserved ahead of data that may never come (the
+// kiosk's streaming reader): those use pm::UninitAllocator (shared/pm/bpm_format.h),
+// whose pages are faulted lazily or by a background thread.
 #include <cstddef>
 #include <new>
 #include <vector>
