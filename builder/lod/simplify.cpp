@@ -109,7 +109,7 @@ struct Quadric {
 // 16-byte siblings lie in one or two cache lines (half the depth of a binary heap).
 class VertexHeap {
 public:
-    void reset(const PrefaultedVector<uint32_t>& rank) {
+    void reset(std::span<const uint32_t> rank) {
         rank_ = rank.data();
         pos_.assign(rank.size(), kNone);
         // Every vertex at most once: the storage never grows, so items_ stays valid.
@@ -227,7 +227,31 @@ struct Collapse {
 // of the bunny's build time on the benchmark VM (~5000 faults at 11-15 us). (An earlier
 // trial of huge pages saw no gain because it measured user time only, where faults do
 // not show; huge pages are slower here anyway, see shared/prefaulted_array.cpp.)
-struct State {
+// Per vertex, what its heap key stands for, in one cache line (update_neighbour
+// reads most of it for every neighbour of every collapse).
+struct alignas(64) VertexKey {
+    Vec3 best_pos{0.0};            // where the keyed collapse puts the merged vertex
+    double second_cost = 0.0;      // (see second_target)
+    uint32_t best_target = kNone;  // the target of the heap key
+    // The cheapest of its other collapses (kNone: not known), so that a vertex whose
+    // keyed collapse disappears is re-keyed without walking its fan again.
+    uint32_t second_target = kNone;
+    uint8_t best_valid = 0;  // best_pos is the placement for exactly the heap key
+    uint8_t key_is_min = 0;  // the key is the cheapest collapse (not one re-ranked past illegal ones)
+};
+
+// Per corner c: the cost of idx[c] -> the next vertex of its face, computed at
+// collapse number `time` (0: never); valid while both ends' last_changed
+// (the collapse that last moved them or grew their quadric) is not later.
+struct CornerCost {
+    double cost;
+    uint32_t time;
+};
+
+// The surface being simplified: everything indexed by vertex, face or corner. The setup
+// phases build it; the collapse loop works on it through State's views (so that
+// several loops can share it, each on its own part).
+struct Surface {
     PrefaultedVector<Vec3> pos;
     PrefaultedVector<uint32_t> idx;           // 3 per face, current
     PrefaultedVector<uint8_t> face_alive;     // per face
@@ -239,20 +263,54 @@ struct State {
     PrefaultedVector<uint32_t> fcount;      // live faces per vertex
     PrefaultedVector<uint8_t> boundary, locked, alive;
     PrefaultedVector<Quadric> q, e;  // ordering quadric, error quadric
+    PrefaultedVector<VertexKey> key;
+    PrefaultedVector<CornerCost> corner_cost;  // one load for both
+    PrefaultedVector<uint32_t> last_changed;
+    PrefaultedVector<uint32_t> face_of_input;  // input face (after clean_input) -> face here
+    // Vertex v here is input vertex rank[v] (after clean_input); ties between equal
+    // costs go to the lower rank, so the result does not depend on the numbering here.
+    PrefaultedVector<uint32_t> rank, vertex_of_input;
+    // Per vertex: the last ring that listed it (topology_allowed: stamp - 1 for u's, stamp for v's).
+    PrefaultedVector<uint32_t> mark;
+    size_t live_faces = 0;
+};
+
+// The collapse loop's state: views of the surface's arrays (the same names) and what
+// one greedy loop owns -- its heap, its collapse records, its scratch.
+struct State {
+    explicit State(Surface& m)
+        : pos(m.pos),
+          idx(m.idx),
+          face_alive(m.face_alive),
+          edge_boundary(m.edge_boundary),
+          across(m.across),
+          head(m.head),
+          next(m.next),
+          fcount(m.fcount),
+          boundary(m.boundary),
+          locked(m.locked),
+          alive(m.alive),
+          q(m.q),
+          e(m.e),
+          key(m.key),
+          corner_cost(m.corner_cost),
+          last_changed(m.last_changed),
+          face_of_input(m.face_of_input),
+          rank(m.rank),
+          vertex_of_input(m.vertex_of_input),
+          mark(m.mark),
+          live_faces(m.live_faces) {}
+    std::span<Vec3> pos;
+    std::span<uint32_t> idx;
+    std::span<uint8_t> face_alive, edge_boundary;
+    std::span<uint32_t> across, head, next, fcount;
+    std::span<uint8_t> boundary, locked, alive;
+    std::span<Quadric> q, e;
+    std::span<VertexKey> key;
+    std::span<CornerCost> corner_cost;
+    std::span<uint32_t> last_changed, face_of_input, rank, vertex_of_input, mark;
+
     VertexHeap heap;
-    // Per vertex, what its heap key stands for, in one cache line (update_neighbour
-    // reads most of it for every neighbour of every collapse).
-    struct alignas(64) Key {
-        Vec3 best_pos{0.0};            // where the keyed collapse puts the merged vertex
-        double second_cost = 0.0;      // (see second_target)
-        uint32_t best_target = kNone;  // the target of the heap key
-        // The cheapest of its other collapses (kNone: not known), so that a vertex whose
-        // keyed collapse disappears is re-keyed without walking its fan again.
-        uint32_t second_target = kNone;
-        uint8_t best_valid = 0;  // best_pos is the placement for exactly the heap key
-        uint8_t key_is_min = 0;  // the key is the cheapest collapse (not one re-ranked past illegal ones)
-    };
-    PrefaultedVector<Key> key;
     // The optimum of an edge is the same in both directions (Q_u + Q_v, the midpoint and
     // the edge length are symmetric in IEEE arithmetic): after u -> v, the placements
     // v -> x computed for v's key are reused for x -> v by v's neighbours.
@@ -267,20 +325,7 @@ struct State {
     std::vector<SymmetricPlacement> sym;
     std::vector<SymmetricPlacement> fresh;  // update_vertex scratch: optima computed this call
     std::vector<uint32_t> twins;            // ... and the corners before u in its faces
-    // Per corner c: the cost of idx[c] -> the next vertex of its face, computed at
-    // collapse number corner_time[c] (0: never); valid while both ends' last_changed
-    // (the collapse that last moved them or grew their quadric) is not later.
-    struct CornerCost {
-        double cost;
-        uint32_t time;
-    };
-    PrefaultedVector<CornerCost> corner_cost;  // one load for both
-    PrefaultedVector<uint32_t> last_changed;
-    uint32_t now = 1;
-    PrefaultedVector<uint32_t> face_of_input;  // input face (after clean_input) -> face here
-    // Vertex v here is input vertex rank[v] (after clean_input); ties between equal
-    // costs go to the lower rank, so the result does not depend on the numbering here.
-    PrefaultedVector<uint32_t> rank, vertex_of_input;
+    uint32_t now = 1;                       // collapses so far + 1 (CornerCost::time)
     PrefaultedVector<Collapse> collapses;
     PrefaultedVector<uint32_t> patch_faces;
     size_t live_faces = 0;
@@ -292,9 +337,7 @@ struct State {
     Vec3 box_min{0.0}, box_max{0.0};  // the input's bounds: placements stay inside
     // scratch
     std::vector<uint32_t> cu, cv, fan, ring_u, ring_v, touched, walk;
-    // Per vertex: the last ring that listed it (topology_allowed: stamp - 1 for u's, stamp for v's).
-    PrefaultedVector<uint32_t> mark;
-    uint32_t stamp = 0;
+    uint32_t stamp = 0;  // (see Surface::mark)
     std::vector<Vec3> fan_old, fan_new;
 };
 
@@ -302,7 +345,7 @@ struct State {
 
 // Compacts the input: keeps non-degenerate triangles and the vertices they use,
 // in input order (kept_vertex[i] = input index of vertex i).
-void clean_input(const Mesh& mesh, State& s, PrefaultedVector<uint32_t>& kept_vertex) {
+void clean_input(const Mesh& mesh, Surface& s, PrefaultedVector<uint32_t>& kept_vertex) {
     const size_t n = mesh.positions.size();
     PrefaultedVector<uint32_t> remap(n, kNone);
     s.idx.reserve(mesh.indices.size());
@@ -323,7 +366,7 @@ void clean_input(const Mesh& mesh, State& s, PrefaultedVector<uint32_t>& kept_ve
     for (uint32_t& v : s.idx) v = remap[v];
 }
 
-void build_adjacency(State& s) {
+void build_adjacency(Surface& s) {
     const size_t n = s.pos.size(), corners = s.idx.size(), faces = corners / 3;
     s.head.assign(n, kNone);
     s.next.assign(corners, kNone);
@@ -378,7 +421,8 @@ void build_adjacency(State& s) {
 }
 
 // The plane of face f: unit normal, offset and twice the area (false: degenerate).
-bool face_plane(const State& s, size_t f, Vec3& nrm, double& d, double& len) {
+template <class S>
+bool face_plane(const S& s, size_t f, Vec3& nrm, double& d, double& len) {
     const uint32_t* t = &s.idx[f * 3];
     const Vec3 &p0 = s.pos[t[0]], &p1 = s.pos[t[1]], &p2 = s.pos[t[2]];
     nrm = glm::cross(p1 - p0, p2 - p0);
@@ -391,7 +435,8 @@ bool face_plane(const State& s, size_t f, Vec3& nrm, double& d, double& len) {
 
 // The boundary-preserving plane through edge k of face f (normal `nrm`), perpendicular to
 // the face: unit weight in `unit`, boundary_weight x edge length^2 in `weighted`.
-bool boundary_planes(const State& s, size_t f, int k, const Vec3& nrm, double boundary_weight, Quadric& weighted,
+template <class S>
+bool boundary_planes(const S& s, size_t f, int k, const Vec3& nrm, double boundary_weight, Quadric& weighted,
                      Quadric& unit) {
     const uint32_t* t = &s.idx[f * 3];
     const Vec3 &a = s.pos[t[k]], &b = s.pos[t[(k + 1) % 3]];
@@ -415,7 +460,7 @@ bool boundary_planes(const State& s, size_t f, int k, const Vec3& nrm, double bo
 // 131-166 ms this way, the bunny's ~10 ms either way). The per-vertex
 // summation order is the same (area plane, then the face's boundary edges at that vertex
 // in edge order), so the sums are the same bit for bit.
-void init_quadrics(State& s, double boundary_weight) {
+void init_quadrics(Surface& s, double boundary_weight) {
     const size_t n = s.pos.size();
     s.q.resize(n);
     s.e.resize(n);
@@ -445,8 +490,8 @@ void init_quadrics(State& s, double boundary_weight) {
 // The ordering quadrics again, from the live faces (restart_ordering); face by face (the
 // corner lists are no longer in face order).
 void rebuild_ordering_quadrics(State& s, double boundary_weight) {
-    const size_t n = s.pos.size(), faces = s.idx.size() / 3;
-    s.q.assign(n, Quadric{});
+    const size_t faces = s.idx.size() / 3;
+    std::fill(s.q.begin(), s.q.end(), Quadric{});
     for (size_t f = 0; f < faces; ++f) {
         if (!s.face_alive[f]) continue;
         Vec3 nrm;
@@ -468,7 +513,7 @@ void rebuild_ordering_quadrics(State& s, double boundary_weight) {
 // axis, ties by input number) so that a neighbourhood's vertices share cache lines;
 // many inputs (subdivided meshes, merged OBJ objects) append vertices in an order
 // unrelated to the surface. The flags and normals move with their vertex (the quadrics are built after).
-void reorder_vertices(State& s, PrefaultedVector<Vec3>& normals) {
+void reorder_vertices(Surface& s, PrefaultedVector<Vec3>& normals) {
     const size_t n = s.pos.size();
     const Aabb box = mesh_bounds(s.pos);
     const Vec3 extent = box.max - box.min;
@@ -516,7 +561,7 @@ void reorder_vertices(State& s, PrefaultedVector<Vec3>& normals) {
 // vertices away), and the collapse loop is bound by memory latency. Runs after the
 // quadrics (their sums keep the input's order); the output does not depend on face
 // numbers (emit_order restores the input order through face_of_input).
-void reorder_faces(State& s) {
+void reorder_faces(Surface& s) {
     const size_t n = s.pos.size(), faces = s.idx.size() / 3;
     PrefaultedVector<uint32_t> start(n + 1, 0);
     for (size_t f = 0; f < faces; ++f) ++start[std::min({s.idx[f * 3], s.idx[f * 3 + 1], s.idx[f * 3 + 2]}) + 1];
@@ -1117,9 +1162,87 @@ void restart_ordering(State& s) {
     // heap build.
     if (s.live_faces * 4 > s.idx.size() / 3 * 3) return;
     rebuild_ordering_quadrics(s, s.boundary_weight);
-    for (State::CornerCost& c : s.corner_cost) c.time = 0;
+    for (CornerCost& c : s.corner_cost) c.time = 0;
     s.sym_v = kNone;
     for (uint32_t v = 0; v < uint32_t(s.pos.size()); ++v) update_vertex(s, v);
+}
+
+// (cost, target's rank, target, half-edge only): u's collapses in the order they are
+// tried when its keyed one is not taken.
+using CollapseOptions = std::vector<std::tuple<double, uint32_t, uint32_t, bool>>;
+
+// One step of the greedy loop on the heap's top vertex u: its keyed collapse when legal,
+// else its collapses in cost order while they stay no dearer than the next vertex (a
+// placement rejected by the geometry checks comes back as the half-edge collapse at
+// its own cost, re-ranked); u is re-keyed past them or, without a legal one, leaves the
+// heap. True when a collapse was applied.
+bool collapse_top(State& s, CollapseOptions& options) {
+    const uint32_t u = s.heap.top();
+    // apply_collapse's first loads (the error quadrics), requested while the checks run.
+    if (const uint32_t v = s.key[u].best_target; v != kNone) {
+        for (const uint32_t w : {u, v}) {
+            prefetch(&s.e[w]);
+            prefetch(reinterpret_cast<const char*>(&s.e[w] + 1) - 1);
+        }
+    }
+    const double limit = s.heap.second_key();
+    // The next vertex to be popped is most often the runner-up now: its first
+    // loads are requested while this one collapses.
+    if (const uint32_t w = s.heap.second(); w != kNone) {
+        prefetch(&s.head[w]);
+        prefetch(&s.key[w]);
+        prefetch(&s.pos[w]);
+    }
+    // Fast path: the keyed collapse is usually the cheapest and legal.
+    if (const uint32_t v = s.key[u].best_target; v != kNone) {
+        // The key and position are current unless the key was set from a
+        // re-ranked option below (best_valid cleared): recompute then.
+        double cost = s.heap.key(u);
+        const Vec3 target = s.key[u].best_valid ? s.key[u].best_pos : placement(s, u, v, cost);
+        uint32_t shared[2], shared_count = 0;
+        if (cost == s.heap.key(u) && topology_allowed(s, u, v, shared, shared_count) &&
+            geometry_allowed(s, u, v, target, shared, shared_count)) {
+            apply_collapse(s, u, v, target, shared, shared_count);
+            return true;
+        }
+    }
+    ring_of(s, u, s.ring_u);
+    options.clear();
+    for (uint32_t x : s.ring_u) options.push_back({collapse_cost(s, u, x), s.rank[x], x, false});
+    std::sort(options.begin(), options.end());
+    for (size_t i = 0; i < options.size();) {
+        const auto [cost, rank, v, half_edge] = options[i];
+        if (cost > limit) {
+            s.key[u].best_target = v;
+            s.key[u].best_valid = 0;
+            s.key[u].second_target = kNone;  // the key is not the cheapest collapse
+            s.key[u].key_is_min = 0;
+            s.heap.set(u, cost);  // cheaper work elsewhere first
+            return false;
+        }
+        uint32_t shared[2], shared_count = 0;
+        if (!topology_allowed(s, u, v, shared, shared_count)) {
+            ++i;
+            continue;
+        }
+        double unused = 0.0;
+        const Vec3 target = half_edge ? s.pos[v] : placement(s, u, v, unused);
+        if (geometry_allowed(s, u, v, target, shared, shared_count)) {
+            apply_collapse(s, u, v, target, shared, shared_count);
+            return true;
+        }
+        if (half_edge || target == s.pos[v]) {
+            ++i;
+            continue;
+        }
+        // The safe fallback: the half-edge collapse (v where it is), at its cost.
+        const Vec3& pv = s.pos[v];
+        const double w = weight(s.q[u]) + weight(s.q[v]);
+        options[i] = {std::max(s.q[u].eval(pv) + s.q[v].eval(pv), 0.0) / (w > 0.0 ? w : 1.0), rank, v, true};
+        std::sort(options.begin() + ptrdiff_t(i), options.end());
+    }
+    s.heap.erase(u);  // no legal collapse: back when its neighbourhood changes
+    return false;
 }
 
 // Greedy: take the vertex with the cheapest outgoing collapse; try its collapses in
@@ -1139,12 +1262,10 @@ void restart_ordering(State& s) {
 // re-evaluation of u's other collapses): same bytes, no measurable gain.
 void collapse_loop(State& s, size_t target_faces) {
     const uint32_t n = uint32_t(s.pos.size());
-    // (cost, target, half-edge only): a placement rejected by the geometry checks
-    // comes back as the half-edge collapse at its own cost, re-ranked.
-    std::vector<std::tuple<double, uint32_t, uint32_t, bool>> options;  // ... with the target's rank before it
+    CollapseOptions options;
     for (int pass = 0; pass < 16 && s.live_faces > target_faces; ++pass) {
         s.heap.reset(s.rank);
-        s.key.assign(n, State::Key{});
+        std::fill(s.key.begin(), s.key.end(), VertexKey{});
         s.sym_v = kNone;
         for (uint32_t v = 0; v < n; ++v) update_vertex(s, v);
         size_t done = 0;
@@ -1153,76 +1274,7 @@ void collapse_loop(State& s, size_t target_faces) {
                 restart_ordering(s);
                 if (s.heap.empty()) break;
             }
-            const uint32_t u = s.heap.top();
-            // apply_collapse's first loads (the error quadrics), requested while the checks run.
-            if (const uint32_t v = s.key[u].best_target; v != kNone) {
-                for (const uint32_t w : {u, v}) {
-                    prefetch(&s.e[w]);
-                    prefetch(reinterpret_cast<const char*>(&s.e[w] + 1) - 1);
-                }
-            }
-            const double limit = s.heap.second_key();
-            // The next vertex to be popped is most often the runner-up now: its first
-            // loads are requested while this one collapses.
-            if (const uint32_t w = s.heap.second(); w != kNone) {
-                prefetch(&s.head[w]);
-                prefetch(&s.key[w]);
-                prefetch(&s.pos[w]);
-            }
-            // Fast path: the keyed collapse is usually the cheapest and legal.
-            if (const uint32_t v = s.key[u].best_target; v != kNone) {
-                // The key and position are current unless the key was set from a
-                // re-ranked option below (best_valid cleared): recompute then.
-                double cost = s.heap.key(u);
-                const Vec3 target = s.key[u].best_valid ? s.key[u].best_pos : placement(s, u, v, cost);
-                uint32_t shared[2], shared_count = 0;
-                if (cost == s.heap.key(u) && topology_allowed(s, u, v, shared, shared_count) &&
-                    geometry_allowed(s, u, v, target, shared, shared_count)) {
-                    apply_collapse(s, u, v, target, shared, shared_count);
-                    ++done;
-                    continue;
-                }
-            }
-            ring_of(s, u, s.ring_u);
-            options.clear();
-            for (uint32_t x : s.ring_u) options.push_back({collapse_cost(s, u, x), s.rank[x], x, false});
-            std::sort(options.begin(), options.end());
-            bool handled = false;
-            for (size_t i = 0; i < options.size();) {
-                const auto [cost, rank, v, half_edge] = options[i];
-                if (cost > limit) {
-                    s.key[u].best_target = v;
-                    s.key[u].best_valid = 0;
-                    s.key[u].second_target = kNone;  // the key is not the cheapest collapse
-                    s.key[u].key_is_min = 0;
-                    s.heap.set(u, cost);  // cheaper work elsewhere first
-                    handled = true;
-                    break;
-                }
-                uint32_t shared[2], shared_count = 0;
-                if (!topology_allowed(s, u, v, shared, shared_count)) {
-                    ++i;
-                    continue;
-                }
-                double unused = 0.0;
-                const Vec3 target = half_edge ? s.pos[v] : placement(s, u, v, unused);
-                if (geometry_allowed(s, u, v, target, shared, shared_count)) {
-                    apply_collapse(s, u, v, target, shared, shared_count);
-                    ++done;
-                    handled = true;
-                    break;
-                }
-                if (half_edge || target == s.pos[v]) {
-                    ++i;
-                    continue;
-                }
-                // The safe fallback: the half-edge collapse (v where it is), at its cost.
-                const Vec3& pv = s.pos[v];
-                const double w = weight(s.q[u]) + weight(s.q[v]);
-                options[i] = {std::max(s.q[u].eval(pv) + s.q[v].eval(pv), 0.0) / (w > 0.0 ? w : 1.0), rank, v, true};
-                std::sort(options.begin() + ptrdiff_t(i), options.end());
-            }
-            if (!handled) s.heap.erase(u);
+            if (collapse_top(s, options)) ++done;
         }
         // Collapses rejected earlier may have become legal as their neighbourhoods changed.
         if (done == 0) break;
@@ -1286,42 +1338,45 @@ ProgressiveBuild emit_order(const State& s, const PrefaultedVector<Vec3>& normal
 }  // namespace
 
 Result<ProgressiveBuild> build_progressive_mesh(const Mesh& mesh, const LodOptions& options) {
-    State s;
+    Surface m;
     PrefaultedVector<uint32_t> kept;
-    clean_input(mesh, s, kept);
-    if (s.idx.empty()) return input_error("lod: mesh '" + mesh.name + "' has no non-degenerate triangles");
-    if (s.pos.size() > pm::kMaxVertices || s.idx.size() / 3 > pm::kMaxFaces)
+    clean_input(mesh, m, kept);
+    if (m.idx.empty()) return input_error("lod: mesh '" + mesh.name + "' has no non-degenerate triangles");
+    if (m.pos.size() > pm::kMaxVertices || m.idx.size() / 3 > pm::kMaxFaces)
         return input_error("lod: mesh '" + mesh.name + "' has more than " + std::to_string(pm::kMaxVertices) +
                            " vertices or " + std::to_string(pm::kMaxFaces) + " triangles");
-    PrefaultedVector<Vec3> normals(s.pos.size());
+    PrefaultedVector<Vec3> normals(m.pos.size());
     if (mesh.normals.size() == mesh.positions.size()) {
         for (size_t i = 0; i < kept.size(); ++i) {
             const double l = glm::length(mesh.normals[kept[i]]);
             normals[i] = l > 0.0 ? mesh.normals[kept[i]] / l : Vec3(0, 0, 1);
         }
     } else {
-        area_weighted_normals(s.pos, s.idx, normals);
+        area_weighted_normals(m.pos, m.idx, normals);
     }
-    build_adjacency(s);
-    reorder_vertices(s, normals);
+    build_adjacency(m);
+    reorder_vertices(m, normals);
     // After both renumberings (nothing to permute), summed in the input's face order.
-    reorder_faces(s);
-    init_quadrics(s, options.boundary_weight);
+    reorder_faces(m);
+    init_quadrics(m, options.boundary_weight);
+    m.key.resize(m.pos.size());
+    m.corner_cost.assign(m.idx.size(), {0.0, 0});
+    m.last_changed.assign(m.pos.size(), 0);
+    m.mark.assign(m.pos.size(), 0);
+
+    State s(m);
     s.optimal = options.optimal_placement;
     s.boundary_weight = options.boundary_weight;
-    const double lossless = kLosslessDistance * mesh_bounds(s.pos).extent();
+    const Aabb box = mesh_bounds(m.pos);
+    const double lossless = kLosslessDistance * box.extent();
     s.lossless_cost = lossless * lossless;
-    s.corner_cost.assign(s.idx.size(), {0.0, 0});
-    s.last_changed.assign(s.pos.size(), 0);
-    s.mark.assign(s.pos.size(), 0);
-    const Aabb box = mesh_bounds(s.pos);
     s.box_min = box.min;
     s.box_max = box.max;
     // At most one collapse per vertex, each moving a few faces: no regrowth (copies) in the loop.
-    s.collapses.reserve(s.pos.size());
+    s.collapses.reserve(m.pos.size());
     // (Patches move 3.5-3.8 faces per collapse on the bunny and its subdivision; the
     // storage is mapped when reserved, so the margin is kept small.)
-    s.patch_faces.reserve(s.pos.size() * 5);
+    s.patch_faces.reserve(m.pos.size() * 5);
     collapse_loop(s, std::max<size_t>(options.min_triangles, 1));
     return emit_order(s, normals);
 }
