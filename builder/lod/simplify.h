@@ -21,6 +21,10 @@
 // quarter of the faces, so that a mesh with redundant flat detail (a linearly subdivided
 // one) is simplified as its coarse original would be; the stored errors come from
 // unit-weight quadrics accumulated from the input all along.
+// The lossless phase of a large mesh (LodOptions::region_faces) runs first in regions,
+// compact runs of the vertices' Morton order, each on its own heap and thread with a
+// band two edges wide around the cuts frozen; the band and what is left go on in the
+// global order. The result does not depend on the number of threads.
 // Deterministic (no hash iteration, IEEE double arithmetic with contraction disabled
 // in this library) and independent of the internal renumbering done for cache locality.
 //
@@ -46,6 +50,11 @@ struct LodOptions {
     size_t chunk_splits = 4096;      // vertex splits per SPLT section (streaming granularity)
     bool normals = true;             // store octahedral normals (from the mesh, else area-weighted)
     bool optimal_placement = true;   // false: half-edge collapses only (the parent never moves)
+    // The lossless phase of a large mesh runs in regions of about this many faces, in
+    // parallel (at most 8 regions; none under twice this many faces). Changes the output.
+    size_t region_faces = size_t(1) << 18;
+    // Threads for those regions (0: one per hardware thread). The output is the same for any number.
+    unsigned threads = 0;
 };
 
 // A progressive mesh in refinement order, in the builder's precision.

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <map>
 #include <set>
 
@@ -263,6 +264,55 @@ TEST(Lod, SubdividedMeshIsSimplifiedLikeItsSource) {
         const double db = lod::symmetric_hausdorff(lb.positions, lb.indices, in.positions, in.indices);
         std::printf("%zu triangles: Hausdorff from the source %.4g, from the subdivided mesh %.4g\n", target, da, db);
         EXPECT_LE(db, 1.05 * da + 1e-9) << target << " triangles";
+    }
+}
+
+TEST(Lod, LosslessPhaseInRegionsIsTheSameOnAnyThreadCountAndKeepsTheGuarantees) {
+    // A large mesh's lossless phase runs in regions, in parallel. Small regions make the
+    // subdivided torus (9216 faces, a lossless phase of three quarters of them) run in 6.
+    const Mesh in = test::bumpy_torus(48, 24);
+    const Mesh sub = test::subdivide_linear(in);
+    lod::LodOptions regions;
+    regions.chunk_splits = 256;
+    regions.region_faces = 1536;
+    std::vector<std::vector<uint8_t>> bytes;
+    for (unsigned threads : {1u, 2u, 3u, 8u}) {
+        regions.threads = threads;
+        bytes.push_back(encode({sub}, regions));
+        ASSERT_FALSE(bytes.back().empty());
+        EXPECT_EQ(bytes.back(), bytes.front()) << threads << " threads";
+    }
+    // Same bytes on every platform too (the aarch64 cross run checks this value).
+    const uint32_t crc = pm::crc32(bytes.front());
+    std::printf("regions: %zu bytes, crc32 %08x\n", bytes.front().size(), crc);
+    EXPECT_EQ(crc, BODY_LOD_REGIONS_GOLDEN_CRC);
+    // The regions did run: their order is not the single heap's.
+    lod::LodOptions one_heap = regions;
+    one_heap.region_faces = SIZE_MAX;
+    const auto single = encode({sub}, one_heap);
+    ASSERT_NE(single, bytes.front());
+
+    auto pms = decode(bytes.front());
+    auto reference = decode(single);
+    ASSERT_EQ(pms.size(), 1u);
+    ASSERT_EQ(reference.size(), 1u);
+    expect_levels_closed_manifold(*pms[0], 1, "subdivided torus, lossless phase in regions");
+    ProgressiveMesh& m = *pms[0];
+    for (size_t k = 1; k <= m.max_level(); ++k) ASSERT_LE(m.error_at(k), m.error_at(k - 1));
+    // As close to the surface as the single heap's levels, and the stored error bounds the distance.
+    std::printf("quantization bound %.4g\n", m.quantization_bound());
+    for (double r : {0.7, 0.5, 0.2, 0.05}) {
+        const size_t target = size_t(r * double(sub.triangle_count()));
+        double d[2];
+        ProgressiveMesh* both[2] = {&m, reference[0].get()};
+        for (int i = 0; i < 2; ++i) {
+            both[i]->set_level(both[i]->level_for_triangles(target));
+            d[i] = lod::symmetric_hausdorff(positions_of(*both[i]), indices_of(*both[i]), sub.positions, sub.indices);
+        }
+        std::printf("%zu triangles: Hausdorff in regions %.4g, one heap %.4g\n", target, d[0], d[1]);
+        // (Inside the lossless phase both are the input surface up to quantization.)
+        EXPECT_LE(d[0], 1.05 * d[1] + m.quantization_bound()) << target << " triangles";
+        EXPECT_LE(d[0], m.error_at(m.level()) + m.quantization_bound()) << target << " triangles";
     }
 }
 
