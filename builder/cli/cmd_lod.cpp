@@ -1,4 +1,4 @@
-// bodygen lod IN.obj -o OUT.bpm [--min-triangles N] [--chunk-splits N] [--no-normals]:
+// bodygen lod IN.obj -o OUT.bpm [--min-triangles N] [--chunk-splits N] [--no-normals] [--jobs N]:
 // one progressive mesh per OBJ object, written as a .bpm file.
 #include <cstdio>
 
@@ -10,13 +10,14 @@
 namespace body::cli {
 
 int run_lod(const Args& argv) {
-    auto args = CliArgs::parse(argv, {"output", "min-triangles", "chunk-splits"}, {"help", "no-normals"});
+    auto args = CliArgs::parse(argv, {"output", "min-triangles", "chunk-splits", "jobs"}, {"help", "no-normals"});
     if (!args) return report(args.error());
     if (args->has("help")) {
         std::printf(
-            "usage: bodygen lod IN.obj -o OUT.bpm [--min-triangles N] [--chunk-splits N] [--no-normals]\n"
+            "usage: bodygen lod IN.obj -o OUT.bpm [--min-triangles N] [--chunk-splits N] [--no-normals] [--jobs N]\n"
             "  one progressive mesh per OBJ object; the base mesh keeps at least N triangles\n"
-            "  (default: as few as the topology allows)\n");
+            "  (default: as few as the topology allows)\n"
+            "  --jobs N   threads for a large mesh's first phase (default: one per CPU; same output for any N)\n");
         return kExitOk;
     }
     if (args->positional().size() != 1) return report(input_error("lod: expected one input OBJ file"));
@@ -26,10 +27,15 @@ int run_lod(const Args& argv) {
     auto chunk = args->get_long("chunk-splits", 4096);
     if (!chunk) return report(chunk.error());
     if (*min_tris < 0 || *chunk < 1) return report(input_error("lod: --min-triangles >= 0 and --chunk-splits >= 1"));
+    auto jobs = args->get_long("jobs", 0);
+    if (!jobs) return report(jobs.error());
+    if (args->has("jobs") && (*jobs < 1 || *jobs > 256))
+        return report(input_error("lod: --jobs must be between 1 and 256"));
     lod::LodOptions options;
     options.min_triangles = size_t(*min_tris);
     options.chunk_splits = size_t(*chunk);
     options.normals = !args->has("no-normals");
+    options.threads = unsigned(*jobs);
     auto meshes = read_obj(args->positional()[0]);
     if (!meshes) return report(meshes.error());
     const std::string out = *args->get("output");

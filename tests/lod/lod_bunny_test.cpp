@@ -106,6 +106,10 @@ TEST_F(LodBunny, CommandsRoundTrip) {
     // Bad usage and bad files exit 2 with a message.
     r = test::run(test::bin("bodygen") + " extract " + bpm + " -o " + obj);
     EXPECT_EQ(r.exit_code, 2) << r.output;
+    r = test::run(test::bin("bodygen") + " lod " + kBunny + " -o " + dir + "/bunny_jobs.bpm --jobs 0");
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find("--jobs"), std::string::npos) << r.output;
+    EXPECT_FALSE(std::filesystem::exists(dir + "/bunny_jobs.bpm"));
     const std::string cut = dir + "/bunny_cut.bpm";
     std::filesystem::copy_file(bpm, cut, std::filesystem::copy_options::overwrite_existing);
     std::filesystem::resize_file(cut, std::filesystem::file_size(bpm) / 2);
