@@ -5,7 +5,8 @@
 #   2. Release build (g++) and the CTest labels unit, cli, render; then the
 #      cross label (builds build-arm64/ and runs the smoke under qemu-aarch64)
 #   3. ASan+UBSan build (clang) with libFuzzer targets: unit + fuzz labels
-#   4. .deb packages for amd64 and arm64, architecture checked with dpkg-deb
+#   4. ThreadSanitizer build of the progressive-mesh tests (the simplifier's parallel regions)
+#   5. .deb packages for amd64 and arm64, architecture checked with dpkg-deb
 set -uo pipefail
 cd "$(dirname "$0")/.."
 ROOT=$PWD
@@ -40,6 +41,16 @@ run_ctest() { # dir label-regex
     ctest --test-dir "$1" -L "$2" -j "$JOBS" --output-on-failure --no-tests=error
 }
 
+# The progressive-mesh unit tests under ThreadSanitizer (only what they need is built).
+tsan_lod_tests() {
+    cmake -S "$ROOT" -B build-tsan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DBODY_SANITIZE_THREAD=ON \
+        -DBODY_BUILD_BENCH=OFF -DBODY_WITH_IMPORT=OFF >"$LOG_DIR/build-tsan-configure.log" 2>&1 \
+        || { tail -30 "$LOG_DIR/build-tsan-configure.log"; return 1; }
+    cmake --build build-tsan -j "$JOBS" --target test_lod 2>&1 | tail -20
+    [ "${PIPESTATUS[0]}" -eq 0 ] || return 1
+    TSAN_OPTIONS=halt_on_error=1 build-tsan/bin/test_lod --gtest_brief=1
+}
+
 check_debs() {
     local ok=0 deb arch
     (cd build && cpack -G DEB >/dev/null) || return 1
@@ -63,6 +74,7 @@ step "sanitizer build (clang, ASan+UBSan, libFuzzer)" configure_and_build build-
     -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DBODY_SANITIZE=ON -DBODY_FUZZ=ON -DBODY_BUILD_BENCH=OFF
 step "sanitizer tests (unit, fuzz)" env ASAN_OPTIONS=detect_leaks=1:abort_on_error=0 UBSAN_OPTIONS=print_stacktrace=1 \
     ctest --test-dir build-asan -L 'unit|fuzz' -j "$JOBS" --output-on-failure --no-tests=error
+step "thread sanitizer (progressive-mesh tests)" tsan_lod_tests
 step "debian packages (amd64, arm64)" check_debs
 
 echo
