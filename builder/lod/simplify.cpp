@@ -254,6 +254,15 @@ struct CornerCost {
     uint32_t time;
 };
 
+// What stays fixed through a simplification (from LodOptions and the input's bounds).
+struct LoopSettings {
+    bool optimal = true;              // LodOptions::optimal_placement
+    double boundary_weight = 100.0;   // LodOptions::boundary_weight
+    double lossless_distance = 0.0;   // kLosslessDistance x the bounding-box diagonal
+    double lossless_cost = 0.0;       // ordering cost (squared distance) of a collapse that loses nothing
+    Vec3 box_min{0.0}, box_max{0.0};  // the input's bounds: placements stay inside
+};
+
 // The surface being simplified: everything indexed by vertex, face or corner. The setup
 // phases build it; the collapse loop works on it through State's views, one State per
 // region in lossless_regions (each touches only its region's elements).
@@ -281,6 +290,7 @@ struct Surface {
     // Per vertex: the last ring that listed it (topology_allowed: stamp - 1 for u's, stamp for v's).
     PrefaultedVector<uint32_t> mark;
     size_t live_faces = 0;
+    LoopSettings settings;
 };
 
 // The collapse loop's state: views of the surface's arrays (the same names) and what
@@ -307,7 +317,8 @@ struct State {
           rank(m.rank),
           vertex_of_input(m.vertex_of_input),
           mark(m.mark),
-          live_faces(m.live_faces) {}
+          live_faces(m.live_faces),
+          settings(m.settings) {}
     std::span<Vec3> pos;
     std::span<uint32_t> idx;
     std::span<uint8_t> face_alive, edge_boundary;
@@ -338,13 +349,9 @@ struct State {
     PrefaultedVector<uint32_t> patch_faces;
     size_t live_faces = 0;
     double running_error = 0.0;
-    bool optimal = true;             // LodOptions::optimal_placement
-    double boundary_weight = 100.0;  // LodOptions::boundary_weight
-    double lossless_distance = 0.0;  // kLosslessDistance x the bounding-box diagonal
-    double lossless_cost = 0.0;      // ordering cost (squared distance) of a collapse that loses nothing
-    bool restarted = false;          // restart_ordering has run
+    LoopSettings settings;
+    bool restarted = false;                                      // restart_ordering has run
     double error_cap = std::numeric_limits<double>::infinity();  // lossless_regions' cap on a collapse's error
-    Vec3 box_min{0.0}, box_max{0.0};                             // the input's bounds: placements stay inside
     // scratch
     std::vector<uint32_t> cu, cv, fan, ring_u, ring_v, touched, walk;
     uint32_t stamp = 0;  // (see Surface::mark)
@@ -660,7 +667,7 @@ Vec3 placement(const State& s, uint32_t from, uint32_t to, double& cost, bool* o
 // placement() before the division by the weight.
 Vec3 placement_raw(const State& s, uint32_t from, uint32_t to, double& cost, bool* optimum) {
     const Vec3& pv = s.pos[to];
-    if (!s.optimal || s.boundary[from] || s.boundary[to] || s.locked[to]) {
+    if (!s.settings.optimal || s.boundary[from] || s.boundary[to] || s.locked[to]) {
         cost = std::max(s.q[from].eval(pv) + s.q[to].eval(pv), 0.0);
         return pv;
     }
@@ -670,7 +677,7 @@ Vec3 placement_raw(const State& s, uint32_t from, uint32_t to, double& cost, boo
     const Vec3 mid = (pu + pv) * 0.5;
     Vec3 p;
     if (sum.minimiser(p)) {
-        p = glm::clamp(p, s.box_min, s.box_max);
+        p = glm::clamp(p, s.settings.box_min, s.settings.box_max);
         const Vec3 d = p - mid, e = pv - pu;
         if (glm::dot(d, d) <= glm::dot(e, e)) {  // within an edge length of the midpoint
             cost = std::max(sum.eval(p), 0.0);
@@ -1181,7 +1188,7 @@ void restart_ordering(State& s) {
     // left nearly every quadric as it was built; a restart would only cost a second
     // heap build.
     if (s.live_faces * 4 > s.idx.size() / 3 * 3) return;
-    rebuild_ordering_quadrics(s, s.boundary_weight);
+    rebuild_ordering_quadrics(s, s.settings.boundary_weight);
     for (CornerCost& c : s.corner_cost) c.time = 0;
     s.sym_v = kNone;
     for (uint32_t v = 0; v < uint32_t(s.pos.size()); ++v) update_vertex(s, v);
@@ -1304,7 +1311,8 @@ void simplify_region(State& w, uint32_t lo, uint32_t hi, size_t budget, double b
     for (uint32_t v = lo; v < hi; ++v) update_vertex(w, v);
     const size_t start = w.live_faces;
     CollapseOptions options;
-    while (!w.heap.empty() && w.heap.key(w.heap.top()) <= w.lossless_cost && start - w.live_faces + 2 <= budget)
+    while (!w.heap.empty() && w.heap.key(w.heap.top()) <= w.settings.lossless_cost &&
+           start - w.live_faces + 2 <= budget)
         collapse_top(w, options);
     out.removed_faces = start - w.live_faces;
     out.collapses = std::move(w.collapses);
@@ -1329,7 +1337,6 @@ void lossless_regions(Surface& m, State& s, size_t target_faces, uint32_t region
         }
     }
     const size_t budget = (s.live_faces - std::min(s.live_faces, target_faces)) / regions;
-    std::fill(s.key.begin(), s.key.end(), VertexKey{});
     std::vector<RegionResult> results(regions);
     std::atomic<uint32_t> next_region{0};
     std::mutex mutex;
@@ -1341,13 +1348,7 @@ void lossless_regions(Surface& m, State& s, size_t target_faces, uint32_t region
     auto work = [&] {
         try {
             State w(m);
-            w.optimal = from.optimal;
-            w.boundary_weight = from.boundary_weight;
-            w.lossless_distance = from.lossless_distance;
-            w.lossless_cost = from.lossless_cost;
-            w.error_cap = from.lossless_distance;
-            w.box_min = from.box_min;
-            w.box_max = from.box_max;
+            w.error_cap = w.settings.lossless_distance;
             w.now = from.now;
             w.stamp = from.stamp;
             w.live_faces = from.live_faces;
@@ -1426,7 +1427,7 @@ void collapse_loop(Surface& m, State& s, size_t target_faces, const LodOptions& 
         for (uint32_t v = 0; v < n; ++v) update_vertex(s, v);
         size_t done = 0;
         while (!s.heap.empty() && s.live_faces > target_faces) {
-            if (!s.restarted && s.heap.key(s.heap.top()) > s.lossless_cost) {
+            if (!s.restarted && s.heap.key(s.heap.top()) > s.settings.lossless_cost) {
                 restart_ordering(s);
                 if (s.heap.empty()) break;
             }
@@ -1519,15 +1520,15 @@ Result<ProgressiveBuild> build_progressive_mesh(const Mesh& mesh, const LodOptio
     m.corner_cost.assign(m.idx.size(), {0.0, 0});
     m.last_changed.assign(m.pos.size(), 0);
     m.mark.assign(m.pos.size(), 0);
+    const Aabb box = mesh_bounds(m.pos);
+    m.settings.optimal = options.optimal_placement;
+    m.settings.boundary_weight = options.boundary_weight;
+    m.settings.lossless_distance = kLosslessDistance * box.extent();
+    m.settings.lossless_cost = m.settings.lossless_distance * m.settings.lossless_distance;
+    m.settings.box_min = box.min;
+    m.settings.box_max = box.max;
 
     State s(m);
-    s.optimal = options.optimal_placement;
-    s.boundary_weight = options.boundary_weight;
-    const Aabb box = mesh_bounds(m.pos);
-    s.lossless_distance = kLosslessDistance * box.extent();
-    s.lossless_cost = s.lossless_distance * s.lossless_distance;
-    s.box_min = box.min;
-    s.box_max = box.max;
     // At most one collapse per vertex, each moving a few faces: no regrowth (copies) in the loop.
     s.collapses.reserve(m.pos.size());
     // (Patches move 3.5-3.8 faces per collapse on the bunny and its subdivision; the
