@@ -28,13 +28,7 @@ std::string egl_error_string(EGLint error) {
     return "EGL error " + std::to_string(error);
 }
 
-namespace {
-
-Error egl_failure(const char* what) {
-    return runtime_error(std::string("EGL: ") + what + " failed (" + egl_error_string(eglGetError()) + ")");
-}
-
-bool has_extension(const char* list, const char* name) {
+bool egl_has_extension(const char* list, const char* name) {
     if (!list) return false;
     size_t n = std::strlen(name);
     for (const char* p = list; (p = std::strstr(p, name)) != nullptr; p += n)
@@ -42,10 +36,16 @@ bool has_extension(const char* list, const char* name) {
     return false;
 }
 
+namespace {
+
+Error egl_failure(const char* what) {
+    return runtime_error(std::string("EGL: ") + what + " failed (" + egl_error_string(eglGetError()) + ")");
+}
+
 EGLDisplay get_display(EGLenum platform, void* native_display) {
     if (platform == 0) return eglGetDisplay(static_cast<EGLNativeDisplayType>(native_display));
     const char* client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
-    if (!has_extension(client, "EGL_EXT_platform_base")) return EGL_NO_DISPLAY;
+    if (!egl_has_extension(client, "EGL_EXT_platform_base")) return EGL_NO_DISPLAY;
     auto get_platform_display =
         reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
     if (!get_platform_display) return EGL_NO_DISPLAY;
@@ -93,6 +93,38 @@ Result<std::unique_ptr<EglContext>> EglContext::open(EGLenum platform, void* nat
     ctx->context_ = eglCreateContext(ctx->display_, ctx->config_, EGL_NO_CONTEXT, context_attribs);
     if (ctx->context_ == EGL_NO_CONTEXT) return egl_failure("eglCreateContext(GLES 3.0)");
     return ctx;
+}
+
+Result<std::unique_ptr<EglContext>> EglContext::open_first_device() {
+    const char* client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
+    // EGL_EXT_device_base is the older name of enumeration + query together
+    // (NVIDIA's driver through libglvnd lists only that one).
+    if (!egl_has_extension(client, "EGL_EXT_platform_device") ||
+        !(egl_has_extension(client, "EGL_EXT_device_enumeration") || egl_has_extension(client, "EGL_EXT_device_base")))
+        return runtime_error("EGL: no device platform (EGL_EXT_platform_device, EGL_EXT_device_enumeration)");
+    auto query_devices = reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
+    if (!query_devices) return runtime_error("EGL: eglQueryDevicesEXT missing");
+    EGLDeviceEXT devices[16];
+    EGLint count = 0;
+    if (!query_devices(16, devices, &count) || count <= 0) return runtime_error("EGL: no EGL device");
+    Error last = runtime_error("EGL: no EGL device");
+    for (EGLint i = 0; i < count; ++i) {
+        auto ctx = open(EGL_PLATFORM_DEVICE_EXT, devices[i], 0, 0);
+        if (!ctx) {
+            last = ctx.error();
+            continue;
+        }
+        if (!egl_has_extension(eglQueryString(ctx.value()->display_, EGL_EXTENSIONS), "EGL_KHR_surfaceless_context")) {
+            last = runtime_error("EGL: device " + std::to_string(i) + " lacks EGL_KHR_surfaceless_context");
+            continue;
+        }
+        if (auto s = ctx.value()->make_current(); !s) {
+            last = s.error();
+            continue;
+        }
+        return ctx;
+    }
+    return last;
 }
 
 EglContext::~EglContext() {

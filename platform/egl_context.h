@@ -27,6 +27,13 @@ public:
     static Result<std::unique_ptr<EglContext>> open(EGLenum platform, void* native_display, EGLint surface_bits,
                                                     EGLint native_visual);
 
+    // Opens a surfaceless GLES 3 context on the first EGL device that gives one
+    // (EGL_EXT_platform_device) and makes it current: for drivers that offer
+    // EGL devices but not the Mesa surfaceless platform. (NVIDIA's 580 driver
+    // offers both; this path was checked on it.) Needs
+    // EGL_KHR_surfaceless_context on that device.
+    static Result<std::unique_ptr<EglContext>> open_first_device();
+
     Status create_window_surface(void* native_window);  // e.g. a gbm_surface*
     Status create_pbuffer_surface(int width, int height);
     Status make_current();
@@ -43,6 +50,9 @@ private:
     EGLContext context_ = EGL_NO_CONTEXT;
     EGLSurface surface_ = EGL_NO_SURFACE;
 };
+
+// Whether the space-separated extension `list` (may be null) holds `name`.
+bool egl_has_extension(const char* list, const char* name);
 
 // A short name for an EGL error code ("EGL_BAD_ALLOC").
 std::string egl_error_string(EGLint error);

@@ -1,6 +1,7 @@
 // Headless backend: EGL on the Mesa surfaceless platform (no display server, no
 // DRM master) with an offscreen RGBA8 + depth framebuffer; falls back to the
-// default display with a small pbuffer. Used for screenshots, tests, benchmarks.
+// first EGL device (drivers without that platform), then to the default display
+// with a small pbuffer. Used for screenshots, tests, benchmarks.
 #include <GLES3/gl3.h>
 
 #include <chrono>
@@ -25,6 +26,7 @@ public:
         width_ = options.width > 0 ? options.width : 1280;
         height_ = options.height > 0 ? options.height : 800;
         auto egl = EglContext::open(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, 0, 0);
+        if (!egl) egl = EglContext::open_first_device();
         if (!egl) {
             egl = EglContext::open(0, EGL_DEFAULT_DISPLAY, EGL_PBUFFER_BIT, 0);
             if (!egl) return runtime_error("headless: " + egl.error().message);

@@ -1,10 +1,14 @@
 // Backend names and parsing, sizes, and the failure of backends without devices.
 #include "platform/platform.h"
 
+#include <GLES3/gl3.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cstdlib>
+#include <string>
+
+#include "platform/egl_context.h"
 
 using namespace body::platform;
 
@@ -34,6 +38,37 @@ TEST(Platform, ParsesSizes) {
     EXPECT_EQ(s->second, 800);
     for (const char* bad : {"", "1280", "1280x", "0x800", "1280x800x3", "-1x5", "99999x10"})
         EXPECT_FALSE(parse_size(bad).ok()) << bad;
+}
+
+// The headless backend's second choice: a surfaceless GLES 3 context on an EGL
+// device. Mesa offers its software device there too, so the path runs on these
+// machines; it also passed on NVIDIA's 580 driver (an H200).
+TEST(Platform, HeadlessContextOpensOnAnEglDevice) {
+    if (!egl_has_extension(eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS), "EGL_EXT_platform_device"))
+        GTEST_SKIP() << "this EGL has no device platform";
+    auto ctx = EglContext::open_first_device();
+    ASSERT_TRUE(ctx.ok()) << ctx.error().message;
+    const char* version = reinterpret_cast<const char*>(glGetString(GL_VERSION));
+    ASSERT_NE(version, nullptr);
+    EXPECT_EQ(std::string(version).rfind("OpenGL ES 3", 0), 0u) << version;
+    // Drawable without a surface: a framebuffer object clears and reads back.
+    GLuint rb = 0, fbo = 0;
+    glGenRenderbuffers(1, &rb);
+    glBindRenderbuffer(GL_RENDERBUFFER, rb);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, 4, 4);
+    glGenFramebuffers(1, &fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, rb);
+    ASSERT_EQ(glCheckFramebufferStatus(GL_FRAMEBUFFER), static_cast<GLenum>(GL_FRAMEBUFFER_COMPLETE));
+    glClearColor(1.0f, 0.5f, 0.0f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    unsigned char pixel[4] = {};
+    glReadPixels(1, 1, 1, 1, GL_RGBA, GL_UNSIGNED_BYTE, pixel);
+    EXPECT_EQ(pixel[0], 255);
+    EXPECT_NEAR(pixel[1], 128, 1);
+    EXPECT_EQ(pixel[2], 0);
+    glDeleteFramebuffers(1, &fbo);
+    glDeleteRenderbuffers(1, &rb);
 }
 
 #ifdef BODY_WITH_DRM
