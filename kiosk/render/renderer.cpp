@@ -583,13 +583,11 @@ Status Renderer::init() {
     glEnableVertexAttribArray(kWireVertex);
     glBindVertexArray(0);
     {
-        std::vector<uint16_t> quads;
-        quads.reserve(kQuadEdges * 6);
+        std::vector<uint16_t> quads;  // one triangle per edge: corners 4e, 4e + 1, 4e + 2 (see edges.vert)
+        quads.reserve(kQuadEdges * 3);
         for (size_t e = 0; e < kQuadEdges; ++e) {
             const auto c = static_cast<uint16_t>(e * 4);
-            quads.insert(quads.end(),
-                         {c, static_cast<uint16_t>(c + 1), static_cast<uint16_t>(c + 2), static_cast<uint16_t>(c + 2),
-                          static_cast<uint16_t>(c + 1), static_cast<uint16_t>(c + 3)});
+            quads.insert(quads.end(), {c, static_cast<uint16_t>(c + 1), static_cast<uint16_t>(c + 2)});
         }
         glGenVertexArrays(1, &s_->quad_vao);
         glBindVertexArray(s_->quad_vao);
@@ -1101,9 +1099,9 @@ void draw_wire_chunks(GLuint vao, GLuint index_buffer, size_t vertices) {
     }
 }
 
-// Edge quads: four corners per edge, gl_VertexID = u_vertex_base + the index,
-// drawn in chunks of kQuadEdges through one shared 16-bit index buffer (two
-// triangles per edge) so that each corner is shaded once.
+// Edge rectangles: one triangle per edge (edges.vert), gl_VertexID =
+// u_vertex_base + the index, drawn in chunks of kQuadEdges through one shared
+// 16-bit index buffer.
 void draw_edge_quads(Program& p, GLuint quad_vao, size_t edges) {
     glBindVertexArray(quad_vao);
     const GLint base = p.loc("u_vertex_base");
@@ -1112,8 +1110,8 @@ void draw_edge_quads(Program& p, GLuint quad_vao, size_t edges) {
     for (size_t first = 0; first < edges; first += kQuadEdges) {
         const size_t n = std::min(kQuadEdges, edges - first);
         glUniform1i(base, static_cast<GLint>(first * 4));
-        glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(n * 6), GL_UNSIGNED_SHORT, nullptr);
-        since_flush += 2 * n;
+        glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(n * 3), GL_UNSIGNED_SHORT, nullptr);
+        since_flush += n;
         if (g_flush_large_draws && since_flush >= kFlushTriangles) {
             pacer.flush();  // bounds the software rasterizer's bins (see kFlushTriangles)
             since_flush = 0;
