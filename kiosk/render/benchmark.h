@@ -2,9 +2,11 @@
 // `bodyview --headless --benchmark`: per style and LOD, the median frame time
 // and its ratio to a minimal baseline drawn in the same run (the same buffers,
 // the flat-colour shader): the median, first and third quartile of the ratios
-// of style frames to the baseline frames around them, in wall and CPU time; plus peak RSS above the empty-context
-// baseline and above the empty scene (the renderer initialised and every style drawn once on one triangle before the
-// model is loaded: the driver's fixed cost apart).
+// of style frames to the baseline frames around them, in wall and CPU time and,
+// where the driver offers GL_EXT_disjoint_timer_query, in GPU time; plus peak
+// RSS above the empty-context baseline and above the empty scene (the renderer
+// initialised and every style drawn once on one triangle before the model is
+// loaded: the driver's fixed cost apart).
 #include <string>
 
 #include "platform/platform.h"
