@@ -1,7 +1,8 @@
 // The renderer benchmark (see benchmark.h). Timing: glFinish after each frame,
-// steady_clock and process CPU time; the ratio to the baseline is the median
-// of per-pair ratios (see time_cell). The baseline is re-measured in every
-// cell so ratios compare like with like.
+// steady_clock, process CPU time and, where offered, a GPU timer query
+// (GpuTimer); the ratio to the baseline is the median of per-pair ratios (see
+// time_cell). The baseline is re-measured in every cell so ratios compare like
+// with like.
 #include "kiosk/render/benchmark.h"
 
 #include <EGL/egl.h>

@@ -8,7 +8,8 @@
 // edges are not drawn, and on a real GPU their primitives and vertices are the
 // style's cost (an H200 took the same time whatever this shader computed;
 // one triangle instead of two took the style from 2.16x to 1.92x the baseline
-// there, and from 1.44x to 1.33x on llvmpipe, at 40 % of 1.1M triangles).
+// there, and from 1.41-1.47x to 1.32-1.33x on llvmpipe, at 40 % of 1.1M
+// triangles).
 // Vertices come from gl_VertexID = 4 * edge + corner, corner 0..2 (no
 // instancing, which software rasterizers run instance by instance; no vertex
 // attributes). One texel per edge (RGBA32UI, 16 bytes) holds all it needs:
