@@ -812,18 +812,20 @@ void to_float_positions(Model& m, const MeshData& mesh, size_t count) {
 }
 
 // Writes a source's pending patches into `buffer`'s elements [first, first +
-// count) (`per_element` values of T each) in place. Mapped through
-// GL_COPY_WRITE_BUFFER, which is no VAO's state; the range is not invalidated,
-// so the entries the patch skips keep theirs. GL_FALSE from glUnmapBuffer means
+// count) (`per_element` values of T each) in place, mapped with `access`
+// (GL_MAP_READ_BIT added for a patch that reads what it changes: reading a
+// write-only mapping is undefined). Mapped through GL_COPY_WRITE_BUFFER, which
+// is no VAO's state; the range is not invalidated, so the entries the patch
+// skips keep theirs. GL_FALSE from glUnmapBuffer means
 // the driver lost the store while mapped (e.g. a display mode change): an
 // error, the buffer's contents are undefined.
 template <typename T>
-Status patch_mapped(GLuint buffer, size_t first, size_t count, size_t per_element,
+Status patch_mapped(GLuint buffer, size_t first, size_t count, size_t per_element, GLbitfield access,
                     const std::function<void(std::span<T>, size_t)>& patch, const std::string& what) {
     const size_t bytes = per_element * sizeof(T);
     glBindBuffer(GL_COPY_WRITE_BUFFER, buffer);
     void* p = glMapBufferRange(GL_COPY_WRITE_BUFFER, static_cast<GLintptr>(first * bytes),
-                               static_cast<GLsizeiptr>(count * bytes), GL_MAP_WRITE_BIT);
+                               static_cast<GLsizeiptr>(count * bytes), access);
     if (!p) {
         glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
         return runtime_error(what + " could not be mapped for patching");
@@ -868,9 +870,10 @@ Status Renderer::update_model(ModelId id, const MeshData& mesh, const Dirty& dir
     const bool vertex_patched = vpatched && mesh.position_patch_begin < mesh.position_patch_end;
     if (vertex_patched) {
         // Codes: 3 x 16 bits a vertex (the buffer's layout, Model::quantized).
-        Status st = patch_mapped<uint16_t>(m.vbo_position, mesh.position_patch_begin,
-                                           mesh.position_patch_end - mesh.position_patch_begin, 3, mesh.position_patch,
-                                           m.name + ": the position buffer");
+        // The patch XORs the moves into the codes there: it reads them.
+        Status st = patch_mapped<uint16_t>(
+            m.vbo_position, mesh.position_patch_begin, mesh.position_patch_end - mesh.position_patch_begin, 3,
+            GL_MAP_READ_BIT | GL_MAP_WRITE_BIT, mesh.position_patch, m.name + ": the position buffer");
         if (!st.ok()) return st;
     } else if (!vpatched && dirty.vertex_begin < dirty.vertex_end) {
         const size_t b = dirty.vertex_begin, n = dirty.vertex_end - dirty.vertex_begin;
@@ -897,7 +900,7 @@ Status Renderer::update_model(ModelId id, const MeshData& mesh, const Dirty& dir
     const bool index_patched = patched && mesh.index_patch_begin < mesh.index_patch_end;
     if (index_patched) {
         Status st = patch_mapped<uint32_t>(m.ebo, mesh.index_patch_begin, mesh.index_patch_end - mesh.index_patch_begin,
-                                           1, mesh.index_patch, m.name + ": the index buffer");
+                                           1, GL_MAP_WRITE_BIT, mesh.index_patch, m.name + ": the index buffer");
         if (!st.ok()) return st;
     } else if (!patched && dirty.index_begin < dirty.index_end) {
         glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m.ebo);

@@ -111,7 +111,7 @@ struct MeshData {
     // source that keeps no vertex data of its own (pm::ProgressiveMesh::
     // release_vertex_data) XORs its position changes into the model's 16-bit
     // codes of the vertices [position_patch_begin, position_patch_end), mapped
-    // for writing (window: 3 codes a vertex, first = the first vertex); the
+    // for reading and writing (window: 3 codes a vertex, first = the first vertex); the
     // normals do not change. Only for a model whose positions are codes in
     // that box and that has no morph buffer.
     std::function<void(std::span<uint16_t> window, size_t first)> position_patch = {};
