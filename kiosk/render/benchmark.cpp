@@ -81,7 +81,7 @@ Result<ModelSource> generated_model(size_t target_triangles) {
         icosphere(p, idx);
         name = "bumpy sphere";
     }
-    while (idx.size() / 3 * 4 <= target_triangles * 5 / 4 && idx.size() / 3 < target_triangles) subdivide(p, idx);
+    for (int k = subdivisions_toward(idx.size() / 3, target_triangles); k > 0; --k) subdivide(p, idx);
     if (name == "bumpy sphere")
         for (Vec3f& v : p) {
             Vec3f n = glm::normalize(v);
@@ -182,6 +182,16 @@ void reset_peak_rss() {
 }
 
 }  // namespace
+
+int subdivisions_toward(size_t triangles, size_t target) {
+    if (triangles == 0 || target == 0) return 0;
+    // Each step multiplies the count by 4: taken while the count it gives is
+    // nearer the target by ratio than the count before.
+    int k = 0;
+    const double t = static_cast<double>(target);
+    for (double n = static_cast<double>(triangles); n * 4.0 / t < t / n; n *= 4.0) ++k;
+    return k;
+}
 
 long peak_rss_kib() { return status_field_kib("VmHWM"); }
 long current_rss_kib() { return status_field_kib("VmRSS"); }

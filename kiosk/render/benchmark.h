@@ -25,6 +25,11 @@ struct BenchmarkOptions {
 // Prints the table to stdout. The surface's context must be current.
 Status run_benchmark(platform::Surface& surface, const BenchmarkOptions& options);
 
+// How many 1-to-4 subdivisions take a mesh of `triangles` nearest (by ratio)
+// to `target`: the generated benchmark model (the bunny subdivided, or an
+// icosphere where the bunny is not installed).
+int subdivisions_toward(size_t triangles, size_t target);
+
 // Peak and current resident set size of this process in KiB (/proc/self/status).
 long peak_rss_kib();
 long current_rss_kib();
