@@ -51,6 +51,9 @@ void print_help(std::FILE* out) {
                  "  --view AZ,POLAR   camera azimuth and polar angle in degrees (default 20,75)\n"
                  "  --line-width PX   silhouette width in pixels (default 2)\n"
                  "  --ssaa N          headless: render N times larger and downsample the screenshot\n"
+                 "  --buffer-access A auto|in-place|staged: how GL buffers are read back and patched\n"
+                 "                    (auto: staged on NVIDIA and AMD, whose drivers draw a buffer they\n"
+                 "                    mapped from host memory for a while; in place elsewhere)\n"
                  "  --screenshot PNG  render one frame, write it as PNG and exit\n"
                  "  --frames N        interactive: exit after N frames\n"
                  "  --replay FILE     scene: play scripted touch/mouse input (kiosk/app/replay.h), then exit\n"
@@ -153,6 +156,12 @@ int run(const CliArgs& args) {
             return fail(input_error("--view expects AZIMUTH,POLAR in degrees, e.g. 20,75"));
         view_given = true;
     }
+    render::RendererOptions renderer_options;
+    if (auto a = args.get("buffer-access")) {
+        auto access = render::parse_buffer_access(*a);
+        if (!access) return fail(access.error());
+        renderer_options.buffer_access = access.value();
+    }
     std::string scene_path = args.get_or("scene", "");
     if (!args.positional().empty()) {
         if (args.positional().size() > 1 || !scene_path.empty())
@@ -184,6 +193,7 @@ int run(const CliArgs& args) {
     if (benchmark) {
         render::BenchmarkOptions bo;
         bo.model = model_path;
+        bo.renderer = renderer_options;
         auto tris = args.get_long("bench-triangles", 1000000);
         if (!tris) return fail(tris.error());
         if (tris.value() < 1000) return fail(input_error("--bench-triangles must be at least 1000"));
@@ -205,10 +215,11 @@ int run(const CliArgs& args) {
         ko.auto_lod = !args.has("no-auto-lod");
         ko.verbose = args.has("kiosk-stats");
         ko.touch_rotation = so.touch_rotation;
+        ko.renderer = renderer_options;
         return kiosk::run_kiosk(surf, *scene, ko);
     }
     render::Renderer renderer;
-    if (auto s = renderer.init(); !s) return fail(s.error());
+    if (auto s = renderer.init(renderer_options); !s) return fail(s.error());
 
     std::vector<Placed> placed;
     int exit_code = kExitOk;
@@ -340,7 +351,7 @@ int main(int argc, char** argv) {
     auto args = CliArgs::parse(
         argv_list,
         {"platform", "size", "mode", "device", "rotate", "model", "scene", "style", "lod", "select", "view",
-         "line-width", "ssaa", "screenshot", "frames", "replay", "bench-triangles", "bench-frames"},
+         "line-width", "ssaa", "screenshot", "frames", "replay", "bench-triangles", "bench-frames", "buffer-access"},
         {"headless", "windowed", "xray", "benchmark", "no-auto-lod", "kiosk-stats"});
     if (!args) return fail(args.error());
     return run(args.value());

@@ -305,7 +305,7 @@ int run_kiosk(platform::Surface& surface, const scene::Scene& scene, const Kiosk
             loaded[i].loader = std::make_unique<StreamLoader>(scene.models[i].path);
     }
     render::Renderer renderer;
-    if (auto s = renderer.init(); !s) {
+    if (auto s = renderer.init(options.renderer); !s) {
         std::fprintf(stderr, "bodyview: %s\n", s.error().message.c_str());
         return kExitRuntime;
     }

@@ -31,6 +31,7 @@ struct KioskRunOptions {
     // DRM backend: touch screens from /dev/input (platform/evdev_input.h), with the
     // panel turned this many degrees clockwise relative to the picture.
     int touch_rotation = 0;
+    render::RendererOptions renderer = {};  // --buffer-access
 };
 
 // A scene style as the renderer's style, and a scene transform as a model matrix

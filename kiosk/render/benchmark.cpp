@@ -225,7 +225,7 @@ Status run_benchmark(platform::Surface& surface, const BenchmarkOptions& options
     // adds over it is what the model costs; the empty scene itself is the
     // fixed cost of the renderer and the driver.
     Renderer renderer;
-    if (auto s = renderer.init(); !s) return s;
+    if (auto s = renderer.init(options.renderer); !s) return s;
     step("renderer init");
     {
         const Vec3f corners[] = {{-1.0f, -1.0f, 0.0f}, {1.0f, -1.0f, 0.0f}, {0.0f, 1.0f, 0.0f}};
@@ -282,8 +282,9 @@ Status run_benchmark(platform::Surface& surface, const BenchmarkOptions& options
 
     std::printf("bodyview benchmark: %s, %dx%d, GL_RENDERER %s\n", source->name().c_str(), frame.width, frame.height,
                 gl_renderer ? gl_renderer : "?");
-    std::printf("model: %zu triangles (%s LOD)\n", source->full_triangles(),
-                source->progressive() ? "progressive-mesh" : "meshoptimizer preview");
+    std::printf("model: %zu triangles (%s LOD); buffers read back and patched %s\n", source->full_triangles(),
+                source->progressive() ? "progressive-mesh" : "meshoptimizer preview",
+                buffer_access_name(renderer.buffer_access()));
     GpuTimer gpu_timer;
     std::printf(
         "ratio: median over the timed pairs of style frame / mean of the two baseline frames around it; ratio_IQR: "
@@ -477,6 +478,10 @@ Status run_benchmark(platform::Surface& surface, const BenchmarkOptions& options
         "  of which file-backed pages added since the empty context (library code; NVIDIA's driver also maps its "
         "buffer copies so): %.1f MiB at the end; private memory: %.1f MiB\n",
         mib(file_kib), mib(peak - empty_rss - file_kib));
+    const TransferStats& transfers = renderer.transfer_stats();
+    std::printf("buffer transfers (%s): %zu mapped in place, %.1f MiB staged\n",
+                buffer_access_name(renderer.buffer_access()), transfers.in_place_maps,
+                static_cast<double>(transfers.staged_bytes) / 1048576.0);
     std::printf(
         "peak RSS per style at LOD 100%% (MiB): added over what was resident before it | alone = drawn in "
         "baseline + added\n");

@@ -9,6 +9,7 @@
 // loaded: the driver's fixed cost apart).
 #include <string>
 
+#include "kiosk/render/renderer.h"
 #include "platform/platform.h"
 #include "shared/error.h"
 
@@ -20,6 +21,7 @@ struct BenchmarkOptions {
     int frames = 9;                 // at least this many timed style/baseline pairs per cell (after 2 warm-up pairs)
     double seconds_per_cell = 3.0;  // then more pairs until a cell (style x LOD) has taken this long ...
     size_t max_pairs = 200;         // ... or has this many
+    RendererOptions renderer = {};  // --buffer-access
 };
 
 // Prints the table to stdout. The surface's context must be current.

@@ -99,8 +99,16 @@ struct Program {
     }
 };
 
+// How models' buffers are read back and patched (Renderer::State holds one;
+// each model points to it).
+struct Transfers {
+    bool staged = false;  // BufferAccess::Staged, as init() resolved it
+    TransferStats stats;
+};
+
 struct Model {
     std::string name;
+    Transfers* transfers = nullptr;  // the renderer's (add_model)
     ModelState state;
     GLuint vao = 0, vbo_position = 0, vbo_normal = 0, ebo = 0;
     GLuint vbo_morph = 0;  // geomorph sources (progressive meshes only)
@@ -132,6 +140,83 @@ struct Model {
     size_t edge_count = 0;
     bool edges_stale = true;
     bool internal = false;  // the manipulation sphere
+};
+
+// A byte range of a model's GL buffer mapped for one scope, as
+// Transfers::staged says (see BufferAccess): the buffer itself, or a temporary
+// buffer that the range is copied into on the GPU first (unless the map
+// invalidates it) and out of when the map wrote, deleted after. Bound to
+// GL_COPY_READ_BUFFER / GL_COPY_WRITE_BUFFER only, which are no VAO's state,
+// and unbound after each step.
+class MappedRange {
+public:
+    MappedRange(Transfers& transfers, GLuint buffer, size_t offset, size_t bytes, GLbitfield access)
+        : transfers_(transfers), buffer_(buffer), offset_(offset), bytes_(bytes), access_(access) {
+        if (bytes == 0) return;
+        GLuint mapped = buffer;
+        size_t at = offset;
+        if (transfers.staged) {
+            const bool reads = (access & GL_MAP_READ_BIT) != 0;
+            const bool keeps = reads || (access & (GL_MAP_INVALIDATE_RANGE_BIT | GL_MAP_INVALIDATE_BUFFER_BIT)) == 0;
+            glGenBuffers(1, &staging_);
+            glBindBuffer(GL_COPY_WRITE_BUFFER, staging_);
+            glBufferData(GL_COPY_WRITE_BUFFER, static_cast<GLsizeiptr>(bytes), nullptr,
+                         reads ? GL_STREAM_READ : GL_STREAM_DRAW);
+            if (keeps) {
+                glBindBuffer(GL_COPY_READ_BUFFER, buffer);
+                glCopyBufferSubData(GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, static_cast<GLintptr>(offset), 0,
+                                    static_cast<GLsizeiptr>(bytes));
+                glBindBuffer(GL_COPY_READ_BUFFER, 0);
+                transfers.stats.staged_bytes += bytes;
+            }
+            mapped = staging_;
+            at = 0;
+        } else {
+            ++transfers.stats.in_place_maps;
+        }
+        glBindBuffer(GL_COPY_WRITE_BUFFER, mapped);
+        data_ =
+            glMapBufferRange(GL_COPY_WRITE_BUFFER, static_cast<GLintptr>(at), static_cast<GLsizeiptr>(bytes), access);
+        glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
+        if (!data_) release_staging();
+    }
+    ~MappedRange() { (void)unmap(); }
+    MappedRange(const MappedRange&) = delete;
+    MappedRange& operator=(const MappedRange&) = delete;
+
+    // Null when the mapping failed (or the range is empty).
+    void* data() const { return data_; }
+    // Ends the mapping (staged and written: copies the range back). False when
+    // the driver lost the store while mapped (GL_FALSE from glUnmapBuffer, e.g.
+    // a display mode change): the range's contents are undefined.
+    bool unmap() {
+        if (!data_) return true;
+        data_ = nullptr;
+        glBindBuffer(GL_COPY_WRITE_BUFFER, staging_ ? staging_ : buffer_);
+        const bool kept = glUnmapBuffer(GL_COPY_WRITE_BUFFER) == GL_TRUE;
+        if (staging_ && kept && (access_ & GL_MAP_WRITE_BIT)) {
+            glBindBuffer(GL_COPY_READ_BUFFER, staging_);
+            glBindBuffer(GL_COPY_WRITE_BUFFER, buffer_);
+            glCopyBufferSubData(GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, 0, static_cast<GLintptr>(offset_),
+                                static_cast<GLsizeiptr>(bytes_));
+            glBindBuffer(GL_COPY_READ_BUFFER, 0);
+            transfers_.stats.staged_bytes += bytes_;
+        }
+        glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
+        release_staging();
+        return kept;
+    }
+
+private:
+    void release_staging() {
+        if (staging_) glDeleteBuffers(1, &staging_);
+        staging_ = 0;
+    }
+    Transfers& transfers_;
+    GLuint buffer_, staging_ = 0;
+    size_t offset_, bytes_;
+    GLbitfield access_;
+    void* data_ = nullptr;
 };
 
 uint32_t pack_normal(const Vec3f& n) {
@@ -462,6 +547,21 @@ Result<Style> parse_style(const std::string& name) {
     return input_error("unknown style '" + name + "' (expected smooth, wireframe, lines, hatching, hatching-2tone)");
 }
 
+const char* buffer_access_name(BufferAccess access) {
+    switch (access) {
+        case BufferAccess::InPlace: return "in-place";
+        case BufferAccess::Staged: return "staged";
+        case BufferAccess::Auto: break;
+    }
+    return "auto";
+}
+
+Result<BufferAccess> parse_buffer_access(const std::string& name) {
+    for (BufferAccess a : {BufferAccess::Auto, BufferAccess::InPlace, BufferAccess::Staged})
+        if (name == buffer_access_name(a)) return a;
+    return input_error("unknown buffer access '" + name + "' (expected auto, in-place, staged)");
+}
+
 glm::mat4 Camera::view() const { return glm::lookAt(eye, target, up); }
 glm::mat4 Camera::projection(float aspect) const {
     return glm::perspective(glm::radians(fov_y_deg), aspect, near_plane, far_plane);
@@ -510,6 +610,7 @@ struct Renderer::State {
     ModelId next_id = 1;
     ModelId sphere = 0;
     FrameStats stats;
+    Transfers transfers;
 };
 
 // Tonal art map (Praun et al. 2001) with our own mip chain (tone matched per
@@ -548,7 +649,7 @@ static void create_tonal_art_map(GLuint& texture) {
 Renderer::Renderer() : s_(std::make_unique<State>()) {}
 Renderer::~Renderer() = default;
 
-Status Renderer::init() {
+Status Renderer::init(const RendererOptions& options) {
     if (s_->ready) return ok_status();
 #ifdef __GLIBC__
     // Blocks of 1 MiB and more (GL buffers and textures on software drivers,
@@ -599,6 +700,12 @@ Status Renderer::init() {
     }
     const char* gl_renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
     g_flush_large_draws = gl_renderer && (std::strstr(gl_renderer, "llvmpipe") || std::strstr(gl_renderer, "softpipe"));
+    const char* gl_vendor = reinterpret_cast<const char*>(glGetString(GL_VENDOR));
+    const bool own_memory = gl_vendor && (std::strstr(gl_vendor, "NVIDIA") || std::strstr(gl_vendor, "AMD") ||
+                                          std::strstr(gl_vendor, "ATI Technologies"));
+    s_->transfers.staged =
+        options.buffer_access == BufferAccess::Staged || (options.buffer_access == BufferAccess::Auto && own_memory);
+    s_->transfers.stats = {};
     s_->ready = true;
 
     // The manipulation sphere: a UV sphere of radius 1.
@@ -679,6 +786,7 @@ Result<ModelId> Renderer::add_model(const MeshData& mesh, const std::string& nam
 
     Model m;
     m.name = name;
+    m.transfers = &s_->transfers;
     m.vertex_capacity = pos.size();
     m.index_capacity = isize;
     m.vertex_count = vcount;
@@ -717,13 +825,10 @@ Result<ModelId> Renderer::add_model(const MeshData& mesh, const std::string& nam
         glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m.ebo);
         glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(m.index_capacity * 4), nullptr, GL_DYNAMIC_DRAW);
         if (filled) {
-            void* p = glMapBufferRange(GL_ELEMENT_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(m.index_capacity * 4),
-                                       GL_MAP_WRITE_BIT | GL_MAP_INVALIDATE_BUFFER_BIT);
-            if (p) {
-                mesh.index_fill(std::span<uint32_t>(static_cast<uint32_t*>(p), m.index_capacity));
-                glUnmapBuffer(GL_ELEMENT_ARRAY_BUFFER);
-            }
-            fill_failed = !p;
+            MappedRange out(*m.transfers, m.ebo, 0, m.index_capacity * 4,
+                            GL_MAP_WRITE_BIT | GL_MAP_INVALIDATE_BUFFER_BIT);
+            if (out.data()) mesh.index_fill(std::span<uint32_t>(static_cast<uint32_t*>(out.data()), m.index_capacity));
+            fill_failed = !out.data() || !out.unmap();
         }
         upload_indices(mesh, 0, iupload, mesh.prefix_only ? nullptr : mesh.indices_uploaded);
     };
@@ -776,7 +881,7 @@ Result<ModelId> Renderer::add_model(const MeshData& mesh, const std::string& nam
     glBindVertexArray(0);
     if (fill_failed) {
         free_model(m);
-        return runtime_error(name + ": the index buffer could not be mapped to fill it");
+        return runtime_error(name + ": the index buffer could not be mapped to fill it, or was lost while mapped");
     }
     BODY_GL_CHECK("add_model");
 
@@ -812,28 +917,19 @@ void to_float_positions(Model& m, const MeshData& mesh, size_t count) {
 }
 
 // Writes a source's pending patches into `buffer`'s elements [first, first +
-// count) (`per_element` values of T each) in place, mapped with `access`
-// (GL_MAP_READ_BIT added for a patch that reads what it changes: reading a
-// write-only mapping is undefined). Mapped through GL_COPY_WRITE_BUFFER, which
-// is no VAO's state; the range is not invalidated, so the entries the patch
-// skips keep theirs. GL_FALSE from glUnmapBuffer means
-// the driver lost the store while mapped (e.g. a display mode change): an
-// error, the buffer's contents are undefined.
+// count) (`per_element` values of T each), mapped with `access` (MappedRange;
+// GL_MAP_READ_BIT added for a patch that reads what it changes: reading a
+// write-only mapping is undefined). The range is not invalidated, so the
+// entries the patch skips keep theirs.
 template <typename T>
-Status patch_mapped(GLuint buffer, size_t first, size_t count, size_t per_element, GLbitfield access,
-                    const std::function<void(std::span<T>, size_t)>& patch, const std::string& what) {
+Status patch_mapped(Transfers& transfers, GLuint buffer, size_t first, size_t count, size_t per_element,
+                    GLbitfield access, const std::function<void(std::span<T>, size_t)>& patch,
+                    const std::string& what) {
     const size_t bytes = per_element * sizeof(T);
-    glBindBuffer(GL_COPY_WRITE_BUFFER, buffer);
-    void* p = glMapBufferRange(GL_COPY_WRITE_BUFFER, static_cast<GLintptr>(first * bytes),
-                               static_cast<GLsizeiptr>(count * bytes), access);
-    if (!p) {
-        glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
-        return runtime_error(what + " could not be mapped for patching");
-    }
-    patch(std::span<T>(static_cast<T*>(p), count * per_element), first);
-    const bool kept = glUnmapBuffer(GL_COPY_WRITE_BUFFER) == GL_TRUE;
-    glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
-    if (!kept) return runtime_error(what + " was lost by the driver while mapped for patching");
+    MappedRange range(transfers, buffer, first * bytes, count * bytes, access);
+    if (!range.data()) return runtime_error(what + " could not be mapped for patching");
+    patch(std::span<T>(static_cast<T*>(range.data()), count * per_element), first);
+    if (!range.unmap()) return runtime_error(what + " was lost by the driver while mapped for patching");
     return ok_status();
 }
 }  // namespace
@@ -871,9 +967,10 @@ Status Renderer::update_model(ModelId id, const MeshData& mesh, const Dirty& dir
     if (vertex_patched) {
         // Codes: 3 x 16 bits a vertex (the buffer's layout, Model::quantized).
         // The patch XORs the moves into the codes there: it reads them.
-        Status st = patch_mapped<uint16_t>(
-            m.vbo_position, mesh.position_patch_begin, mesh.position_patch_end - mesh.position_patch_begin, 3,
-            GL_MAP_READ_BIT | GL_MAP_WRITE_BIT, mesh.position_patch, m.name + ": the position buffer");
+        Status st = patch_mapped<uint16_t>(*m.transfers, m.vbo_position, mesh.position_patch_begin,
+                                           mesh.position_patch_end - mesh.position_patch_begin, 3,
+                                           GL_MAP_READ_BIT | GL_MAP_WRITE_BIT, mesh.position_patch,
+                                           m.name + ": the position buffer");
         if (!st.ok()) return st;
     } else if (!vpatched && dirty.vertex_begin < dirty.vertex_end) {
         const size_t b = dirty.vertex_begin, n = dirty.vertex_end - dirty.vertex_begin;
@@ -899,8 +996,9 @@ Status Renderer::update_model(ModelId id, const MeshData& mesh, const Dirty& dir
     }
     const bool index_patched = patched && mesh.index_patch_begin < mesh.index_patch_end;
     if (index_patched) {
-        Status st = patch_mapped<uint32_t>(m.ebo, mesh.index_patch_begin, mesh.index_patch_end - mesh.index_patch_begin,
-                                           1, GL_MAP_WRITE_BIT, mesh.index_patch, m.name + ": the index buffer");
+        Status st = patch_mapped<uint32_t>(*m.transfers, m.ebo, mesh.index_patch_begin,
+                                           mesh.index_patch_end - mesh.index_patch_begin, 1, GL_MAP_WRITE_BIT,
+                                           mesh.index_patch, m.name + ": the index buffer");
         if (!st.ok()) return st;
     } else if (!patched && dirty.index_begin < dirty.index_end) {
         glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m.ebo);
@@ -1026,6 +1124,11 @@ void Renderer::set_group_visible(int group, bool visible) {
 
 const FrameStats& Renderer::last_frame_stats() const { return s_->stats; }
 
+BufferAccess Renderer::buffer_access() const {
+    return s_->transfers.staged ? BufferAccess::Staged : BufferAccess::InPlace;
+}
+const TransferStats& Renderer::transfer_stats() const { return s_->transfers.stats; }
+
 size_t Renderer::gpu_bytes() const {
     size_t total = 0;
     constexpr size_t w = kTextureWidth;
@@ -1139,37 +1242,28 @@ void draw_triangles(const Model& m) {
 
 }  // namespace
 
-// A GL buffer mapped for reading for one scope (GLES 3.0 mapping; llvmpipe
-// hands out its storage, so nothing is copied). Bound to GL_COPY_READ_BUFFER,
-// which is no VAO's state.
+// A model's GL buffer mapped for reading for one scope, from its start
+// (MappedRange: in place, where llvmpipe hands out its storage and nothing is
+// copied, or staged).
 template <typename T>
 class MappedBuffer {
 public:
-    MappedBuffer(GLuint buffer, size_t count) : buffer_(buffer) {
-        if (count == 0) return;
-        glBindBuffer(GL_COPY_READ_BUFFER, buffer);
-        const void* p =
-            glMapBufferRange(GL_COPY_READ_BUFFER, 0, static_cast<GLsizeiptr>(count * sizeof(T)), GL_MAP_READ_BIT);
-        if (p) data_ = std::span<const T>(static_cast<const T*>(p), count);
+    MappedBuffer(const Model& m, GLuint buffer, size_t count)
+        : range_(*m.transfers, buffer, 0, count * sizeof(T), GL_MAP_READ_BIT) {
+        if (range_.data()) data_ = std::span<const T>(static_cast<const T*>(range_.data()), count);
     }
-    ~MappedBuffer() {
-        if (data_.empty()) return;
-        glBindBuffer(GL_COPY_READ_BUFFER, buffer_);
-        glUnmapBuffer(GL_COPY_READ_BUFFER);
-    }
-    MappedBuffer(const MappedBuffer&) = delete;
-    MappedBuffer& operator=(const MappedBuffer&) = delete;
     std::span<const T> data() const { return data_; }
 
 private:
-    GLuint buffer_;
+    MappedRange range_;
     std::span<const T> data_;
 };
 
 // A model's GL positions for reading, in either format (mapped in place).
 class MappedPositions {
 public:
-    explicit MappedPositions(const Model& m) : m_(m), map_(m.vbo_position, m.vertex_count * m.position_stride() / 2) {}
+    explicit MappedPositions(const Model& m)
+        : m_(m), map_(m, m.vbo_position, m.vertex_count * m.position_stride() / 2) {}
     bool ok() const { return map_.data().size() * 2 == m_.vertex_count * m_.position_stride(); }
     size_t size() const { return m_.vertex_count; }
     Vec3f operator[](size_t v) const {
@@ -1235,7 +1329,7 @@ static void ensure_edges(Model& m) {
     static_assert(sizeof(EdgeRecord) == sizeof(GpuEdge));
     free_wire_textures(m);
     // Mapping is per buffer: both stay mapped while the other target binding moves on.
-    MappedBuffer<uint32_t> index_map(m.ebo, m.index_count);
+    MappedBuffer<uint32_t> index_map(m, m.ebo, m.index_count);
     const MappedPositions positions(m);
     const std::span<const uint32_t> indices = index_map.data();
     if (indices.size() != m.index_count || !positions.ok()) {
@@ -1631,7 +1725,7 @@ bool Renderer::read_indices(ModelId id, size_t count,
         read({});
         return true;
     }
-    const MappedBuffer<uint32_t> map(it->second.ebo, count);
+    const MappedBuffer<uint32_t> map(it->second, it->second.ebo, count);
     if (map.data().size() != count) return false;
     read(map.data());
     return true;

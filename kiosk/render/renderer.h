@@ -100,7 +100,8 @@ struct MeshData {
     // its only copy, e.g. a progressive mesh after
     // pm::ProgressiveMesh::release_indices) writes its changes straight into the
     // buffer's elements [index_patch_begin, index_patch_end), mapped for writing
-    // (no copy on drivers that share memory with the CPU): window[i] is element
+    // (see BufferAccess: in place, no copy where the GPU shares memory with the
+    // CPU, or staged): window[i] is element
     // first + i; entries it does not write keep their values. Its values are
     // trusted (the source's own, checked when it was read). Needs normals or
     // normal codes (area normals need the indices).
@@ -111,15 +112,16 @@ struct MeshData {
     // source that keeps no vertex data of its own (pm::ProgressiveMesh::
     // release_vertex_data) XORs its position changes into the model's 16-bit
     // codes of the vertices [position_patch_begin, position_patch_end), mapped
-    // for reading and writing (window: 3 codes a vertex, first = the first vertex); the
-    // normals do not change. Only for a model whose positions are codes in
+    // for reading and writing (BufferAccess; window: 3 codes a vertex, first =
+    // the first vertex); the normals do not change. Only for a model whose positions are codes in
     // that box and that has no morph buffer.
     std::function<void(std::span<uint16_t> window, size_t first)> position_patch = {};
     size_t position_patch_begin = 0, position_patch_end = 0;
     // Optional, add_model only, in place of `indices` (left empty; not with
     // prefix_only; needs normals or normal codes): a source that keeps its
     // index array packed fills the whole new element buffer of
-    // index_fill_count entries, mapped for writing, and frees its copy.
+    // index_fill_count entries, mapped for writing (BufferAccess), and frees
+    // its copy.
     std::function<void(std::span<uint32_t> out)> index_fill = {};
     size_t index_fill_count = 0;
     // Optional, add_model only: told as `indices` go up in order (a piece at a
@@ -193,6 +195,39 @@ struct FrameStats {
     size_t models_drawn = 0, triangles = 0, edges = 0, draw_calls = 0;
 };
 
+// How the renderer reads its GL buffers back and patches them (the `lines` edge
+// list and the `wireframe` positions, picking, a progressive mesh's level
+// changes and its packed index fill): GLES 3.0 can only map them.
+enum class BufferAccess {
+    // Staged on the drivers of GPUs with memory of their own (GL_VENDOR
+    // NVIDIA, AMD or ATI), in place elsewhere.
+    Auto,
+    // The model's buffer is mapped: no copy where the GPU shares memory with
+    // the CPU (Raspberry Pi-class boards, Mesa's software rasterizers).
+    InPlace,
+    // The range is copied on the GPU into a temporary buffer, which is mapped,
+    // copied back when written and deleted, so the model's buffers are never
+    // mapped. A discrete GPU's driver draws a buffer it mapped from host
+    // memory for a while after (measured on an NVIDIA H200, 1.1M-triangle
+    // .bpm: the frames after a level change 7.3-7.5 ms instead of 0.93-0.95,
+    // `wireframe` at full detail 4.2-4.3 ms instead of 2.9; the AAL brain
+    // kiosk's first frame 41.0-41.4 ms instead of 31.0-33.2; peak RSS the
+    // same, 78.3 and 78.5 MiB).
+    Staged,
+};
+const char* buffer_access_name(BufferAccess access);  // "auto", "in-place", "staged"
+Result<BufferAccess> parse_buffer_access(const std::string& name);
+
+struct RendererOptions {
+    BufferAccess buffer_access = BufferAccess::Auto;
+};
+
+// What buffer reads and patches moved since init (tests, the benchmark).
+struct TransferStats {
+    size_t in_place_maps = 0;  // model buffers mapped in place
+    size_t staged_bytes = 0;   // bytes copied through temporary buffers, each way counted
+};
+
 class Renderer {
 public:
     Renderer();
@@ -202,7 +237,10 @@ public:
 
     // Compiles the shaders (the tonal art map is made at the first hatching draw). Needs a current GLES 3
     // context. Errors carry the shader name and its info log.
-    Status init();
+    Status init(const RendererOptions& options = {});
+    // The access init() chose (never Auto after a successful init).
+    BufferAccess buffer_access() const;
+    const TransferStats& transfer_stats() const;
     // Frees every GL object (call with the context current). Idempotent.
     void shutdown();
 
@@ -222,8 +260,7 @@ public:
     // Object-space bounding sphere of the uploaded vertices.
     bool bounds(ModelId id, Vec3f& center, float& radius) const;
     // Calls `read` with the model's index entries [0, count), read back from
-    // its element buffer (mapped for reading: no copy where the driver shares
-    // memory with the CPU), for sources that handed their array over
+    // its element buffer (mapped for reading as BufferAccess says), for sources that handed their array over
     // (MeshData::index_patch). False, without calling it, for an unknown
     // model, a count past the buffer or a failed mapping. Context current.
     bool read_indices(ModelId id, size_t count, const std::function<void(std::span<const uint32_t>)>& read) const;

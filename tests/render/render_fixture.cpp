@@ -62,7 +62,7 @@ GenMesh torus(int rings, int segments, float major, float minor) {
     return m;
 }
 
-RenderFixture::RenderFixture(int width, int height) {
+RenderFixture::RenderFixture(int width, int height, const render::RendererOptions& options) {
     platform::SurfaceOptions o;
     o.backend = platform::Backend::Headless;
     o.width = width;
@@ -73,7 +73,7 @@ RenderFixture::RenderFixture(int width, int height) {
         return;
     }
     surface_ = std::move(s.value());
-    if (auto r = renderer_.init(); !r) {
+    if (auto r = renderer_.init(options); !r) {
         why_ = r.error().message;
         return;
     }

@@ -23,7 +23,7 @@ GenMesh torus(int rings, int segments, float major, float minor);
 class RenderFixture {
 public:
     // Creates a headless surface; ok() is false (with why()) when EGL is unusable.
-    RenderFixture(int width = 320, int height = 200);
+    RenderFixture(int width = 320, int height = 200, const render::RendererOptions& options = {});
     bool ok() const { return ok_; }
     const std::string& why() const { return why_; }
     render::Renderer& renderer() { return renderer_; }

@@ -38,13 +38,15 @@ ModelSource source_of(const std::vector<uint8_t>& bytes) {
     return ModelSource(std::move(meshes->front()));
 }
 
-TEST(RenderReleasedIndices, PatchedInPlaceDrawsLikeFreshUploads) {
+// The buffer filled, patched and read back (lines, wireframe) with `access`.
+void patched_buffer_draws_like_fresh_uploads(BufferAccess access) {
     const std::vector<uint8_t> bytes = torus_bpm();
     ASSERT_FALSE(bytes.empty());
     ModelSource given = source_of(bytes), kept = source_of(bytes);
     ASSERT_TRUE(given.progressive());
-    RenderFixture f(200, 200);
+    RenderFixture f(200, 200, RendererOptions{access});
     REQUIRE_GL(f);
+    ASSERT_EQ(f.renderer().buffer_access(), access);
     const MeshData first = given.upload_mesh();
     // Complete, with normals: handed over, packed until it fills the new buffer.
     ASSERT_TRUE(first.indices.empty());
@@ -102,6 +104,25 @@ TEST(RenderReleasedIndices, PatchedInPlaceDrawsLikeFreshUploads) {
     ASSERT_TRUE(fresh.ok()) << fresh.error().message;
     g.renderer().state(fresh.value())->style = Style::Smooth;
     EXPECT_GT(test::compare(stale, g.draw(cam), 4).bad_block_fraction, 0.0);
+    // Every transfer went the way asked: staged, the fill alone copied the
+    // whole element buffer out of its temporary buffer.
+    const TransferStats& t = f.renderer().transfer_stats();
+    if (access == BufferAccess::Staged) {
+        EXPECT_EQ(t.in_place_maps, 0u);
+        EXPECT_GE(t.staged_bytes, 4 * first.index_fill_count);
+    } else {
+        EXPECT_GT(t.in_place_maps, lods.size());
+        EXPECT_EQ(t.staged_bytes, 0u);
+    }
+}
+
+TEST(RenderReleasedIndices, PatchedInPlaceDrawsLikeFreshUploads) {
+    patched_buffer_draws_like_fresh_uploads(BufferAccess::InPlace);
+}
+
+// Staged (what a discrete GPU gets): the same images through temporary buffers.
+TEST(RenderReleasedIndices, PatchedThroughStagingBuffersDrawsLikeFreshUploads) {
+    patched_buffer_draws_like_fresh_uploads(BufferAccess::Staged);
 }
 
 TEST(RenderReleasedIndices, UpdateWithoutNormalsOrBeyondTheBufferIsRefused) {
