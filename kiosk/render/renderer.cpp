@@ -1323,8 +1323,9 @@ static void free_edge_texture(Model& m) {
 // The edge texture of the `lines` style, rebuilt when the mesh changed. The
 // index and position buffers are mapped (MappedBuffer: in place or staged) and
 // the records are streamed: built, converted to GpuEdges and uploaded
-// kEdgeChunk at a time, so the transient CPU memory is the edge walk's 4 bytes
-// per corner and vertex (and, staged, the driver's copy of the two buffers).
+// kEdgeChunk at a time, so the transient CPU memory is the edge walk's window
+// scratch (about 1 MiB, EdgeStream) and one chunk (and, staged, the driver's
+// copy of the two buffers).
 static void ensure_edges(Model& m) {
     if (!m.edges_stale && m.edge_texture) return;
     static_assert(sizeof(EdgeRecord) == sizeof(GpuEdge));
