@@ -479,8 +479,8 @@ Status run_benchmark(platform::Surface& surface, const BenchmarkOptions& options
         "buffer copies so): %.1f MiB at the end; private memory: %.1f MiB\n",
         mib(file_kib), mib(peak - empty_rss - file_kib));
     const TransferStats& transfers = renderer.transfer_stats();
-    std::printf("buffer transfers (%s): %zu mapped in place, %.1f MiB staged\n",
-                buffer_access_name(renderer.buffer_access()), transfers.in_place_maps,
+    std::printf("buffer transfers (%s): %zu mapped in place (%zu of them for writing), %.1f MiB staged\n",
+                buffer_access_name(renderer.buffer_access()), transfers.in_place_maps, transfers.in_place_writes,
                 static_cast<double>(transfers.staged_bytes) / 1048576.0);
     std::printf(
         "peak RSS per style at LOD 100%% (MiB): added over what was resident before it | alone = drawn in "

@@ -143,9 +143,10 @@ struct Model {
 };
 
 // A byte range of a model's GL buffer mapped for one scope, as
-// Transfers::staged says (see BufferAccess): the buffer itself, or a temporary
-// buffer that the range is copied into on the GPU first (unless the map
-// invalidates it) and out of when the map wrote, deleted after. Bound to
+// Transfers::staged says (see BufferAccess): the buffer itself, or, for a map
+// that writes, a temporary buffer that the range is copied into on the GPU
+// first (unless the map invalidates it) and out of at the end, deleted after
+// (reads map in place either way). Bound to
 // GL_COPY_READ_BUFFER / GL_COPY_WRITE_BUFFER only, which are no VAO's state,
 // and unbound after each step.
 class MappedRange {
@@ -155,7 +156,7 @@ public:
         if (bytes == 0) return;
         GLuint mapped = buffer;
         size_t at = offset;
-        if (transfers.staged) {
+        if (transfers.staged && (access & GL_MAP_WRITE_BIT)) {
             const bool reads = (access & GL_MAP_READ_BIT) != 0;
             const bool keeps = reads || (access & (GL_MAP_INVALIDATE_RANGE_BIT | GL_MAP_INVALIDATE_BUFFER_BIT)) == 0;
             glGenBuffers(1, &staging_);
@@ -173,6 +174,7 @@ public:
             at = 0;
         } else {
             ++transfers.stats.in_place_maps;
+            if (access & GL_MAP_WRITE_BIT) ++transfers.stats.in_place_writes;
         }
         glBindBuffer(GL_COPY_WRITE_BUFFER, mapped);
         data_ =
@@ -1242,9 +1244,9 @@ void draw_triangles(const Model& m) {
 
 }  // namespace
 
-// A model's GL buffer mapped for reading for one scope, from its start
-// (MappedRange: in place, where llvmpipe hands out its storage and nothing is
-// copied, or staged).
+// A model's GL buffer mapped for reading for one scope, from its start (a
+// MappedRange: in place, where llvmpipe hands out its storage and nothing is
+// copied).
 template <typename T>
 class MappedBuffer {
 public:
@@ -1321,11 +1323,11 @@ static void free_edge_texture(Model& m) {
 }
 
 // The edge texture of the `lines` style, rebuilt when the mesh changed. The
-// index and position buffers are mapped (MappedBuffer: in place or staged) and
-// the records are streamed: built, converted to GpuEdges and uploaded
-// kEdgeChunk at a time, so the transient CPU memory is the edge walk's window
-// scratch (about 1 MiB, EdgeStream) and one chunk (and, staged, the driver's
-// copy of the two buffers).
+// index and position buffers are mapped for reading (MappedBuffer) and the
+// records are streamed: built, converted to GpuEdges and uploaded kEdgeChunk
+// at a time, so the transient CPU memory is the edge walk's window scratch
+// (about 1 MiB, EdgeStream) and one chunk (plus, on a discrete GPU, the
+// driver's host copy of the two buffers).
 static void ensure_edges(Model& m) {
     if (!m.edges_stale && m.edge_texture) return;
     static_assert(sizeof(EdgeRecord) == sizeof(GpuEdge));

@@ -195,9 +195,9 @@ struct FrameStats {
     size_t models_drawn = 0, triangles = 0, edges = 0, draw_calls = 0;
 };
 
-// How the renderer reads its GL buffers back and patches them (the `lines` edge
-// list and the `wireframe` positions, picking, a progressive mesh's level
-// changes and its packed index fill): GLES 3.0 can only map them.
+// How the renderer writes into its GL buffers (a progressive mesh's packed
+// index fill and level-change patches) and reads them back (the `lines` edge
+// list and the `wireframe` positions, picking): GLES 3.0 can only map them.
 enum class BufferAccess {
     // Staged on the drivers of GPUs with memory of their own (GL_VENDOR
     // NVIDIA, AMD or ATI), in place elsewhere.
@@ -205,14 +205,16 @@ enum class BufferAccess {
     // The model's buffer is mapped: no copy where the GPU shares memory with
     // the CPU (Raspberry Pi-class boards, Mesa's software rasterizers).
     InPlace,
-    // The range is copied on the GPU into a temporary buffer, which is mapped,
-    // copied back when written and deleted, so the model's buffers are never
-    // mapped. A discrete GPU's driver draws a buffer it mapped from host
-    // memory for a while after (measured on an NVIDIA H200, 1.1M-triangle
-    // .bpm: the frames after a level change 7.3-7.5 ms instead of 0.93-0.95,
-    // `wireframe` at full detail 4.2-4.3 ms instead of 2.9; the AAL brain
-    // kiosk's first frame 41.0-41.4 ms instead of 31.0-33.2; peak RSS the
-    // same, 78.3 and 78.5 MiB).
+    // A map that writes goes through a temporary buffer: the range is copied
+    // into it on the GPU, mapped there, copied back and the buffer deleted, so
+    // the model's buffer is never mapped for writing. A discrete GPU's driver
+    // draws a buffer mapped for writing from host memory for a while after
+    // (measured on an NVIDIA H200, 1.1M-triangle .bpm: the frames after a
+    // level change 7.3-7.5 ms instead of 0.93-0.95, `wireframe` at full detail
+    // 4.2-4.3 ms instead of 2.9; the AAL brain kiosk's first frame 41.0-41.4 ms
+    // instead of 31.0-33.2). Reads map in place: staging them too changed no
+    // frame time there and kept 14 MiB more of the driver's staging memory
+    // (peak RSS of the OBJ path 59.5 MiB against 45.1-45.5).
     Staged,
 };
 const char* buffer_access_name(BufferAccess access);  // "auto", "in-place", "staged"
@@ -222,10 +224,11 @@ struct RendererOptions {
     BufferAccess buffer_access = BufferAccess::Auto;
 };
 
-// What buffer reads and patches moved since init (tests, the benchmark).
+// What buffer reads and writes moved since init (tests, the benchmark).
 struct TransferStats {
-    size_t in_place_maps = 0;  // model buffers mapped in place
-    size_t staged_bytes = 0;   // bytes copied through temporary buffers, each way counted
+    size_t in_place_maps = 0;    // model buffers mapped in place (reads and writes)
+    size_t in_place_writes = 0;  // of which mapped for writing
+    size_t staged_bytes = 0;     // bytes copied through temporary buffers, each way counted
 };
 
 class Renderer {

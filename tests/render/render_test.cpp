@@ -572,25 +572,29 @@ TEST(RenderCli, BadModelRendersNothingAndLogsOneLine) {
     EXPECT_NE(all.find("broken.obj"), std::string::npos) << all;
 }
 
-// --buffer-access reaches the renderer: `lines` and `wireframe` read the
-// buffers back, and staged they draw what in place draws; an unknown value is
-// refused in one line.
+// --buffer-access reaches the renderer: a .bpm's index fill and level patches
+// written through temporary buffers draw what they draw written in place, in
+// the styles that read the buffers back too; an unknown value is refused in
+// one line.
 TEST(RenderCli, BufferAccessIsChosenOnTheCommandLine) {
+    const BunnyBpm made = make_bunny_bpm("access_bunny.bpm");
+    if (!made.skip.empty()) GTEST_SKIP() << made.skip;
+    ASSERT_FALSE(made.path.empty()) << "bodygen lod failed";
     auto dir = temp_dir();
-    std::string obj = shapes_obj();
     std::string a = (dir / "in_place.png").string(), b = (dir / "staged.png").string(),
                 log = (dir / "access.log").string();
-    for (const char* style : {"lines", "wireframe"}) {
-        std::string args = std::string(" --headless --size 240x150 --style ") + style + " --model " + obj;
+    for (const char* style : {"smooth", "lines", "wireframe"}) {
+        std::string args =
+            std::string(" --headless --size 240x150 --lod 0.3 --style ") + style + " --model " + made.path;
         ASSERT_EQ(run(bodyview() + args + " --buffer-access in-place --screenshot " + a), 0);
         ASSERT_EQ(run(bodyview() + args + " --buffer-access staged --screenshot " + b), 0);
         auto ia = read_png(a), ib = read_png(b);
         ASSERT_TRUE(ia.ok() && ib.ok());
         EXPECT_EQ(test::compare(ia.value(), ib.value(), 4).bad_block_fraction, 0.0) << style;
     }
-    EXPECT_EQ(
-        run(bodyview() + " --headless --buffer-access sideways --model " + obj + " --screenshot " + a + " 2>" + log),
-        2);
+    EXPECT_EQ(run(bodyview() + " --headless --buffer-access sideways --model " + made.path + " --screenshot " + a +
+                  " 2>" + log),
+              2);
     std::ifstream in(log);
     std::string all((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     EXPECT_EQ(std::count(all.begin(), all.end(), '\n'), 1) << all;
