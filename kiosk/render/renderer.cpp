@@ -146,9 +146,9 @@ struct Model {
 // Transfers::staged says (see BufferAccess): the buffer itself, or, for a map
 // that writes, a temporary buffer that the range is copied into on the GPU
 // first (unless the map invalidates it) and out of at the end, deleted after
-// (reads map in place either way). Bound to
-// GL_COPY_READ_BUFFER / GL_COPY_WRITE_BUFFER only, which are no VAO's state,
-// and unbound after each step.
+// (reads map in place either way). Bound to GL_COPY_READ_BUFFER /
+// GL_COPY_WRITE_BUFFER only, which are no VAO's state, and unbound after each
+// step.
 class MappedRange {
 public:
     MappedRange(Transfers& transfers, GLuint buffer, size_t offset, size_t bytes, GLbitfield access)

@@ -210,9 +210,9 @@ enum class BufferAccess {
     // the model's buffer is never mapped for writing. A discrete GPU's driver
     // draws a buffer mapped for writing from host memory for a while after
     // (measured on an NVIDIA H200, 1.1M-triangle .bpm: the frames after a
-    // level change 7.3-7.5 ms instead of 0.93-0.95, `wireframe` at full detail
+    // level change 7.3-7.5 ms instead of 0.93-0.98, `wireframe` at full detail
     // 4.2-4.3 ms instead of 2.9; the AAL brain kiosk's first frame 41.0-41.4 ms
-    // instead of 31.0-33.2). Reads map in place: staging them too changed no
+    // instead of 31.0-37.5). Reads map in place: staging them too changed no
     // frame time there and kept 14 MiB more of the driver's staging memory
     // (peak RSS of the OBJ path 59.5 MiB against 45.1-45.5).
     Staged,
