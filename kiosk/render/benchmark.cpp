@@ -282,7 +282,7 @@ Status run_benchmark(platform::Surface& surface, const BenchmarkOptions& options
 
     std::printf("bodyview benchmark: %s, %dx%d, GL_RENDERER %s\n", source->name().c_str(), frame.width, frame.height,
                 gl_renderer ? gl_renderer : "?");
-    std::printf("model: %zu triangles (%s LOD); buffers read back and patched %s\n", source->full_triangles(),
+    std::printf("model: %zu triangles (%s LOD); buffer writes %s\n", source->full_triangles(),
                 source->progressive() ? "progressive-mesh" : "meshoptimizer preview",
                 buffer_access_name(renderer.buffer_access()));
     GpuTimer gpu_timer;

@@ -99,8 +99,8 @@ struct Program {
     }
 };
 
-// How models' buffers are read back and patched (Renderer::State holds one;
-// each model points to it).
+// How models' buffers are written (BufferAccess), and what the maps moved
+// (Renderer::State holds one; each model points to it).
 struct Transfers {
     bool staged = false;  // BufferAccess::Staged, as init() resolved it
     TransferStats stats;
@@ -152,7 +152,7 @@ struct Model {
 class MappedRange {
 public:
     MappedRange(Transfers& transfers, GLuint buffer, size_t offset, size_t bytes, GLbitfield access)
-        : transfers_(transfers), buffer_(buffer), offset_(offset), bytes_(bytes), access_(access) {
+        : transfers_(transfers), buffer_(buffer), offset_(offset), bytes_(bytes) {
         if (bytes == 0) return;
         GLuint mapped = buffer;
         size_t at = offset;
@@ -196,7 +196,7 @@ public:
         data_ = nullptr;
         glBindBuffer(GL_COPY_WRITE_BUFFER, staging_ ? staging_ : buffer_);
         const bool kept = glUnmapBuffer(GL_COPY_WRITE_BUFFER) == GL_TRUE;
-        if (staging_ && kept && (access_ & GL_MAP_WRITE_BIT)) {
+        if (staging_ && kept) {  // (only maps that write are staged)
             glBindBuffer(GL_COPY_READ_BUFFER, staging_);
             glBindBuffer(GL_COPY_WRITE_BUFFER, buffer_);
             glCopyBufferSubData(GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, 0, static_cast<GLintptr>(offset_),
@@ -217,7 +217,6 @@ private:
     Transfers& transfers_;
     GLuint buffer_, staging_ = 0;
     size_t offset_, bytes_;
-    GLbitfield access_;
     void* data_ = nullptr;
 };
 

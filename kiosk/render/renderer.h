@@ -263,9 +263,10 @@ public:
     // Object-space bounding sphere of the uploaded vertices.
     bool bounds(ModelId id, Vec3f& center, float& radius) const;
     // Calls `read` with the model's index entries [0, count), read back from
-    // its element buffer (mapped for reading as BufferAccess says), for sources that handed their array over
-    // (MeshData::index_patch). False, without calling it, for an unknown
-    // model, a count past the buffer or a failed mapping. Context current.
+    // its element buffer (mapped for reading, in place in either BufferAccess),
+    // for sources that handed their array over (MeshData::index_patch). False,
+    // without calling it, for an unknown model, a count past the buffer or a
+    // failed mapping. Context current.
     bool read_indices(ModelId id, size_t count, const std::function<void(std::span<const uint32_t>)>& read) const;
     // World-space bounding sphere of all visible models (radius 0 when none).
     void scene_bounds(Vec3f& center, float& radius) const;
