@@ -53,7 +53,9 @@ struct LodOptions {
     // The lossless phase of a large mesh runs in regions of about this many faces, in
     // parallel (at most 8 regions; none under twice this many faces). Changes the output.
     size_t region_faces = size_t(1) << 18;
-    // Threads for those regions (0: one per hardware thread). The output is the same for any number.
+    // Threads for those regions, and (2 or more) for the setup: the adjacency beside the
+    // collapse loop's arrays, the quadrics in two halves (0: one per hardware thread).
+    // The output is the same for any number.
     unsigned threads = 0;
 };
 
