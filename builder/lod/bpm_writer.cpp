@@ -216,7 +216,12 @@ Result<StructureSections> encode_structure(const Mesh& mesh, const ProgressiveBu
     replay.reset(nv, nf);
     replay.add_faces(0, put_index_codec(out.base, base_idx, pm.base_vertices));
 
-    // SPLT chunks
+    // SPLT chunks, on one thread. Measured 2026-11-26 and dropped: the topology (replay,
+    // masks, fans) of chunk c + 1 on a second thread while the values of chunk c were
+    // coded here (same bytes). On the benchmark VM each pass ran 1.5-2.2x slower beside
+    // the other (both are bound by memory latency, and the two vCPUs share the cache):
+    // bunny encode 23-25 ms either way, 1.1M-triangle bunny 0.50-0.63 -> 0.41-0.50 s,
+    // about 3% of its build, for a second copy of the chunk's topology and a thread per chunk.
     std::vector<uint32_t> moved;
     constexpr size_t kAhead0 = 32, kAhead1 = 20, kAhead2 = 12, kAhead3 = 6;
     // The file puts the two new faces of a fan split in one order (one symbol less

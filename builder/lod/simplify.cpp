@@ -1451,6 +1451,9 @@ void area_weighted_normals(std::span<const Vec3> pos, std::span<const uint32_t> 
     }
 }
 
+// (Measured 2026-11-26 and dropped: the vertex and face numbering, then the indices
+// beside the positions and splits, on two threads: 1.1M-triangle bunny 0.11-0.14 ->
+// 0.08-0.10 s, the bunny 1.5 -> 2-3 ms.)
 ProgressiveBuild emit_order(const State& s, const PrefaultedVector<Vec3>& normals) {
     ProgressiveBuild pm;
     const size_t n = s.pos.size(), faces = s.idx.size() / 3, splits = s.collapses.size();
