@@ -17,7 +17,8 @@ int run_lod(const Args& argv) {
             "usage: bodygen lod IN.obj -o OUT.bpm [--min-triangles N] [--chunk-splits N] [--no-normals] [--jobs N]\n"
             "  one progressive mesh per OBJ object; the base mesh keeps at least N triangles\n"
             "  (default: as few as the topology allows)\n"
-            "  --jobs N   threads for a large mesh's first phase (default: one per CPU; same output for any N)\n");
+            "  --jobs N   threads for the setup and a large mesh's first phase\n"
+            "             (default: one per CPU; the same output for any N)\n");
         return kExitOk;
     }
     if (args->positional().size() != 1) return report(input_error("lod: expected one input OBJ file"));
