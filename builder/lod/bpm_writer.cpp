@@ -27,6 +27,7 @@ namespace {
 using pm::put_f32;
 using pm::put_u16;
 using pm::put_u32;
+using pm::quantize16;
 
 using pm::prefetch;
 
@@ -36,34 +37,17 @@ struct Quantized {
     std::vector<uint8_t> oct;  // 2 per vertex
 };
 
-float round_down(double x) {
-    float f = float(x);
-    return double(f) > x ? std::nextafter(f, -std::numeric_limits<float>::infinity()) : f;
-}
-float round_up(double x) {
-    float f = float(x);
-    return double(f) < x ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
-}
-
 // Rounds a non-negative error up to 8 significant bits (the low 16 bits of the
 // binary32 become zero: the file codes the high 16 bits' steps down); still an
 // upper bound, still monotonic.
 float round_up_coarse(double x) {
-    const float f = round_up(x);
+    const float f = pm::float_at_or_above(x);
     uint32_t u;
     std::memcpy(&u, &f, 4);
     if (u & 0xffffu) u = (u | 0xffffu) + 1;
     float r;
     std::memcpy(&r, &u, 4);
     return r;
-}
-
-// q = round((x - lo) / (hi - lo) * 65535): at most half a step from x.
-uint16_t quantize16(double x, float lo, float hi) {
-    const double range = double(hi) - double(lo);
-    if (!(range > 0.0)) return 0;
-    const double t = std::nearbyint((x - double(lo)) / range * 65535.0);
-    return uint16_t(std::clamp(t, 0.0, 65535.0));
 }
 
 Quantized quantize(const ProgressiveBuild& pm, bool normals) {
@@ -76,8 +60,8 @@ Quantized quantize(const ProgressiveBuild& pm, bool normals) {
         box.extend(sp.parent_to);
     }
     for (int k = 0; k < 3; ++k) {
-        z.lo[k] = round_down(box.min[k]);
-        z.hi[k] = round_up(box.max[k]);
+        z.lo[k] = pm::float_at_or_below(box.min[k]);
+        z.hi[k] = pm::float_at_or_above(box.max[k]);
     }
     const size_t n = pm.positions.size();
     z.q.resize(n * 3);

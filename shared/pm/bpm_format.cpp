@@ -7,6 +7,7 @@
 #include <climits>
 #include <cmath>
 #include <cstring>
+#include <limits>
 
 namespace body::pm {
 
@@ -110,6 +111,20 @@ bool ByteReader::bytes(size_t n, std::span<const uint8_t>& out) {
 
 float dequantize16(uint16_t q, float lo, float hi) {
     return float(double(lo) + double(q) * ((double(hi) - double(lo)) / 65535.0));
+}
+
+float float_at_or_below(double x) {
+    const float f = float(x);
+    return double(f) > x ? std::nextafter(f, -std::numeric_limits<float>::infinity()) : f;
+}
+
+float float_at_or_above(double x) {
+    const float f = float(x);
+    return double(f) < x ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
+}
+
+double quantization_step(double min, double max) {
+    return (double(float_at_or_above(max)) - double(float_at_or_below(min))) / 65535.0;
 }
 
 void oct_encode8(double x, double y, double z, uint8_t out[2]) {

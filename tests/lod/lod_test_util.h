@@ -1,5 +1,6 @@
 #pragma once
 // Synthetic meshes and level checks shared by the progressive-mesh tests.
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <utility>
