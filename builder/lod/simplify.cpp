@@ -263,9 +263,10 @@ struct LoopSettings {
     double lossless_distance = 0.0;   // kLosslessDistance x the bounding-box diagonal
     double lossless_cost = 0.0;       // ordering cost (squared distance) of a collapse that loses nothing
     Vec3 box_min{0.0}, box_max{0.0};  // the input's bounds: placements stay inside
-    // The .bpm's grid: 16-bit codes over [grid_lo, grid_hi] per axis, grid_step apart.
+    // The .bpm's grid: 16-bit codes over [grid_lo, grid_hi] per axis, and the squared
+    // height (two step diagonals) above which a face keeps its area there (flat_on_grid).
     float grid_lo[3] = {0, 0, 0}, grid_hi[3] = {0, 0, 0};
-    Vec3 grid_step{0.0};
+    double grid_reach2 = 0.0;
 };
 
 // The surface being simplified: everything indexed by vertex, face or corner. The setup
@@ -1006,8 +1007,7 @@ bool topology_allowed(State& s, uint32_t u, uint32_t v, uint32_t shared[2], uint
 // edge exceeds two step diagonals keeps its area (the common case: no division); a
 // thinner one is quantized as the writer does.
 bool flat_on_grid(const Vec3 t[3], const Vec3& n, double l2, const LoopSettings& grid) {
-    const double reach = 2.0 * glm::length(grid.grid_step);
-    if (glm::dot(n, n) > reach * reach * l2) return false;
+    if (glm::dot(n, n) > grid.grid_reach2 * l2) return false;
     int64_t q[3][3];
     for (int i = 0; i < 3; ++i)
         for (int k = 0; k < 3; ++k) q[i][k] = pm::quantize16(t[i][k], grid.grid_lo[k], grid.grid_hi[k]);
@@ -1426,6 +1426,11 @@ uint32_t lossless_region_count(size_t faces, size_t region_faces) {
     return uint32_t(std::min<size_t>(8, faces / region_faces));
 }
 
+// The threads a build may use (LodOptions::threads; 0: one per hardware thread).
+unsigned thread_count(const LodOptions& lod) {
+    return lod.threads ? lod.threads : std::max(1u, std::thread::hardware_concurrency());
+}
+
 // Greedy: take the vertex with the cheapest outgoing collapse; try its collapses in
 // cost order while they stay no dearer than the next vertex; the first legal one
 // is applied. A vertex without a legal collapse waits until its neighbourhood changes.
@@ -1445,9 +1450,7 @@ void collapse_loop(Surface& m, State& s, size_t target_faces, const LodOptions& 
     const uint32_t n = uint32_t(s.pos.size());
     CollapseOptions options;
     const uint32_t regions = lossless_region_count(s.live_faces, lod.region_faces);
-    if (regions > 1)
-        lossless_regions(m, s, target_faces, regions,
-                         lod.threads ? lod.threads : std::max(1u, std::thread::hardware_concurrency()));
+    if (regions > 1) lossless_regions(m, s, target_faces, regions, thread_count(lod));
     for (int pass = 0; pass < 16 && s.live_faces > target_faces; ++pass) {
         s.heap.reset(s.rank);
         std::fill(s.key.begin(), s.key.end(), VertexKey{});
@@ -1542,7 +1545,7 @@ Result<ProgressiveBuild> build_progressive_mesh(const Mesh& mesh, const LodOptio
     } else {
         area_weighted_normals(m.pos, m.idx, normals);
     }
-    const unsigned threads = options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());
+    const unsigned threads = thread_count(options);
     // Runs `side` on a second thread while the caller runs `here` (both in turn on one
     // thread). Measured (bench_pm, alternating in one session): the 1.1M-triangle bunny's
     // setup 0.45-0.68 -> 0.31-0.36 s, its simplification 2.32-2.33 -> 2.10-2.15 s; the
@@ -1592,11 +1595,13 @@ Result<ProgressiveBuild> build_progressive_mesh(const Mesh& mesh, const LodOptio
     m.settings.lossless_cost = m.settings.lossless_distance * m.settings.lossless_distance;
     m.settings.box_min = box.min;
     m.settings.box_max = box.max;
+    Vec3 grid_step{0.0};
     for (int k = 0; k < 3; ++k) {
         m.settings.grid_lo[k] = pm::float_at_or_below(box.min[k]);
         m.settings.grid_hi[k] = pm::float_at_or_above(box.max[k]);
-        m.settings.grid_step[k] = pm::quantization_step(box.min[k], box.max[k]);
+        grid_step[k] = pm::quantization_step(m.settings.grid_lo[k], m.settings.grid_hi[k]);
     }
+    m.settings.grid_reach2 = 4.0 * glm::dot(grid_step, grid_step);
 
     State s(m);
     s.collapses.swap(collapses);

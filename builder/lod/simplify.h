@@ -28,10 +28,11 @@
 // Deterministic (no hash iteration, IEEE double arithmetic with contraction disabled
 // in this library) and independent of the internal renumbering done for cache locality.
 //
-// Rejected collapses: triangle flips and folds (a normal turning by more than 78 degrees), and
-// near-degenerate results (also on the .bpm's 16-bit grid: no face whose codes are collinear), link-condition
-// violations (would make the surface non-manifold), interior-to-boundary pulls, and anything that would reduce a closed
-// component below a tetrahedron or an open one below one triangle.
+// Rejected collapses: triangle flips and folds (a normal turning by more than 78 degrees),
+// near-degenerate results (also on the .bpm's 16-bit grid: no face whose codes are
+// collinear), link-condition violations (would make the surface non-manifold),
+// interior-to-boundary pulls, and anything that would reduce a closed component below a
+// tetrahedron or an open one below one triangle.
 #include <cstdint>
 #include <span>
 #include <string>

@@ -109,9 +109,7 @@ bool ByteReader::bytes(size_t n, std::span<const uint8_t>& out) {
     return true;
 }
 
-float dequantize16(uint16_t q, float lo, float hi) {
-    return float(double(lo) + double(q) * ((double(hi) - double(lo)) / 65535.0));
-}
+float dequantize16(uint16_t q, float lo, float hi) { return dequantize16(q, lo, quantization_step(lo, hi)); }
 
 float float_at_or_below(double x) {
     const float f = float(x);
@@ -121,10 +119,6 @@ float float_at_or_below(double x) {
 float float_at_or_above(double x) {
     const float f = float(x);
     return double(f) < x ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
-}
-
-double quantization_step(double min, double max) {
-    return (double(float_at_or_above(max)) - double(float_at_or_below(min))) / 65535.0;
 }
 
 void oct_encode8(double x, double y, double z, uint8_t out[2]) {

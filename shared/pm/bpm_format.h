@@ -125,12 +125,12 @@ private:
 // floating-point contraction so the bytes match on every platform.
 float dequantize16(uint16_t q, float lo, float hi);
 // The nearest float at or below / at or above x. An axis whose positions span [min, max]
-// is quantized in [float_at_or_below(min), float_at_or_above(max)].
+// is quantized in [lo, hi] = [float_at_or_below(min), float_at_or_above(max)].
 float float_at_or_below(double x);
 float float_at_or_above(double x);
-// The distance between adjacent codes along that axis. Two values at least this far
-// apart always get different codes (rounding is monotonic).
-double quantization_step(double min, double max);
+// The distance between adjacent codes in [lo, hi]. Two values at least this far apart
+// always get different codes (rounding is monotonic).
+inline double quantization_step(float lo, float hi) { return (double(hi) - double(lo)) / 65535.0; }
 // The writer's quantizer: q = round((x - lo) / (hi - lo) * 65535), at most half a step from x.
 inline uint16_t quantize16(double x, float lo, float hi) {
     const double range = double(hi) - double(lo);
@@ -138,7 +138,7 @@ inline uint16_t quantize16(double x, float lo, float hi) {
     const double t = std::nearbyint((x - double(lo)) / range * 65535.0);
     return uint16_t(std::clamp(t, 0.0, 65535.0));
 }
-// The same with step = (double(hi) - double(lo)) / 65535.0 computed once (same result).
+// The same with step = quantization_step(lo, hi) computed once (same result).
 inline float dequantize16(uint16_t q, float lo, double step) { return float(double(lo) + double(q) * step); }
 void oct_decode8(const uint8_t in[2], float out[3]);
 // Any nonzero vector (normalized by its L1 norm); the zero vector gives (128, 128).

@@ -476,7 +476,7 @@ Status BpmStream::parse_info(std::span<const uint8_t> payload, const std::string
     m->bbox_min_ = Vec3f(f[3], f[4], f[5]);
     m->bbox_max_ = Vec3f(f[6], f[7], f[8]);
     m->has_normals_ = flags & 1;
-    for (int k = 0; k < 3; ++k) m->step_[k] = (double(m->bbox_max_[k]) - double(m->bbox_min_[k])) / 65535.0;
+    for (int k = 0; k < 3; ++k) m->step_[k] = quantization_step(m->bbox_min_[k], m->bbox_max_[k]);
     m->base_vertices_ = bv;
     m->base_faces_ = bf;
     m->split_count_ = splits;
