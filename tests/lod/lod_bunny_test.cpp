@@ -6,13 +6,12 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "builder/lod/hausdorff.h"
 #include "builder/lod/simplify.h"
 #include "shared/obj_io.h"
 #include "shared/pm/bpm_format.h"
 #include "shared/pm/progressive_mesh.h"
 #include "tests/cli/cli_test.h"
-#include "tests/lod/lod_test_util.h"
+#include "tests/lod/level_checks.h"
 
 namespace body {
 namespace {
@@ -42,32 +41,10 @@ TEST_F(LodBunny, EveryLevelIsAClosedManifoldWithinItsStoredError) {
     EXPECT_LE(m.base_triangle_count(), bunny_.triangle_count() / 100);
     std::printf("bunny: %zu bytes, %zu splits, %.2f bytes/split, base %zu triangles\n", bytes->size(), m.max_level(),
                 double(bytes->size()) / double(m.max_level()), m.base_triangle_count());
-    // The scan itself has a few back-to-back neighbours; no level may be worse (0.01:
-    // quantization turns those near-degenerate normals a little).
-    const double input_fold =
-        std::min(-0.95, test::min_adjacent_normal_cosine(bunny_.positions, bunny_.indices) - 0.01);
-    int levels = 0;
-    double worst_ratio = 0.0;
-    for (int i = 0; i < 22; ++i) {
-        const double r = std::pow(2.0, -7.0 + 7.0 * i / 21.0);
-        m.set_level(m.level_for_triangles(size_t(r * double(m.max_triangle_count()))));
-        std::vector<Vec3> pos;
-        for (size_t v = 0; v < m.vertex_count(); ++v) pos.push_back(Vec3(m.position(v)));
-        std::vector<uint32_t> idx(m.indices().begin(), m.indices().begin() + ptrdiff_t(m.triangle_count() * 3));
-        const MeshTopology t = analyze_topology(pos, idx);
-        EXPECT_TRUE(t.closed_manifold()) << "level " << m.level();
-        EXPECT_EQ(t.genus(), input.genus());
-        EXPECT_GE(test::min_adjacent_normal_cosine(pos, idx), input_fold) << "fold at level " << m.level();
-        if (i % 4 == 0) {
-            const double measured = lod::symmetric_hausdorff(pos, idx, bunny_.positions, bunny_.indices);
-            const double stored = m.error_at(m.level()) + m.quantization_bound();
-            worst_ratio = std::max(worst_ratio, measured / stored);
-            EXPECT_LE(measured, stored) << "level " << m.level() << " triangles " << m.triangle_count();
-        }
-        ++levels;
-    }
-    std::printf("bunny: worst measured/stored Hausdorff %.3f\n", worst_ratio);
-    EXPECT_GE(levels, 20);
+    // (The scan itself has a few back-to-back neighbours: no level may be worse.)
+    const test::SampledLevels checked = test::expect_sampled_levels_within_stored_error(m, bunny_);
+    std::printf("bunny: worst measured/stored Hausdorff %.3f\n", checked.worst_ratio);
+    EXPECT_GE(checked.levels, 20);
 }
 
 // The bunny's .bpm bytes are pinned: speed work on the simplifier or the writer must

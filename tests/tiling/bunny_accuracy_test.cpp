@@ -22,7 +22,7 @@
 #include "shared/mesh_intersect.h"
 #include "shared/obj_io.h"
 #include "shared/pm/progressive_mesh.h"
-#include "tests/lod/lod_test_util.h"
+#include "tests/lod/level_checks.h"
 
 namespace {
 
@@ -197,36 +197,10 @@ TEST(BunnyAccuracy, RebuiltMeshLevelsAreClosedManifoldsWithinTheirStoredError) {
     ASSERT_EQ(pms->size(), 1u);
     body::pm::ProgressiveMesh& m = *(*pms)[0];
     EXPECT_EQ(m.max_triangle_count(), r.mesh.triangle_count());
-    // The rebuilt surface's own near-folds (flat caps meet steep bands) bound what a level may show.
-    const double input_fold =
-        std::min(-0.95, body::test::min_adjacent_normal_cosine(r.mesh.positions, r.mesh.indices) - 0.01);
-    int levels = 0;
-    double worst_ratio = 0.0;
-    for (int i = 0; i < 22; ++i) {
-        const double ratio = std::pow(2.0, -7.0 + 7.0 * i / 21.0);
-        m.set_level(m.level_for_triangles(size_t(ratio * double(m.max_triangle_count()))));
-        std::vector<body::Vec3> pos;
-        for (size_t v = 0; v < m.vertex_count(); ++v) pos.push_back(body::Vec3(m.position(v)));
-        std::vector<uint32_t> idx(m.indices().begin(), m.indices().begin() + ptrdiff_t(m.triangle_count() * 3));
-        const body::MeshTopology t = body::analyze_topology(pos, idx);
-        EXPECT_TRUE(t.closed_manifold()) << "level " << m.level() << ": boundary " << t.boundary_edges
-                                         << " non-manifold " << t.nonmanifold_edges << " misoriented "
-                                         << t.misoriented_edges << " degenerate " << t.degenerate_triangles;
-        EXPECT_EQ(t.genus(), r.topology.genus()) << "level " << m.level();
-        EXPECT_EQ(t.components, r.topology.components) << "level " << m.level();
-        EXPECT_GT(body::mesh_volume(pos, idx), 0.0) << "level " << m.level() << " turned inside out";
-        EXPECT_GE(body::test::min_adjacent_normal_cosine(pos, idx), input_fold) << "fold at level " << m.level();
-        if (i % 4 == 0) {
-            const double measured = body::lod::symmetric_hausdorff(pos, idx, r.mesh.positions, r.mesh.indices);
-            const double stored = m.error_at(m.level()) + m.quantization_bound();
-            worst_ratio = std::max(worst_ratio, measured / stored);
-            EXPECT_LE(measured, stored) << "level " << m.level() << " triangles " << m.triangle_count();
-        }
-        ++levels;
-    }
+    const body::test::SampledLevels checked = body::test::expect_sampled_levels_within_stored_error(m, r.mesh);
     std::printf("rebuilt bunny (%zu triangles, genus %ld): %d levels checked, worst measured/stored Hausdorff %.3f\n",
-                r.mesh.triangle_count(), r.topology.genus(), levels, worst_ratio);
-    EXPECT_GE(levels, 20);
+                r.mesh.triangle_count(), r.topology.genus(), checked.levels, checked.worst_ratio);
+    EXPECT_GE(checked.levels, 20);
 }
 
 TEST(BunnyAccuracy, Planes40Multires) { check(40, body::TilingMethod::Multires); }
