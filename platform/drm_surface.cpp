@@ -1,6 +1,8 @@
 // DRM/KMS backend: mode setting, GBM surface, EGL on GBM and page flipping with
 // at most one flip in flight; the original CRTC is restored on exit and after
-// SIGINT/SIGTERM. Structure after kmscube (drm-common.c, drm-legacy.c).
+// SIGINT/SIGTERM. Structure after kmscube (drm-common.c, drm-legacy.c). Touch:
+// the panels under SurfaceOptions::touch_directory through the evdev layer
+// (platform/evdev_input.h, hot-plugged), in display pixels, from poll_events().
 #include <GLES3/gl3.h>
 #include <fcntl.h>
 #include <gbm.h>
@@ -11,10 +13,12 @@
 
 #include <chrono>
 #include <csignal>
+#include <cstdio>
 #include <cstring>
 
 #include "platform/drm_select.h"
 #include "platform/egl_context.h"
+#include "platform/evdev_input.h"
 #include "platform/platform.h"
 
 namespace body::platform {
@@ -108,6 +112,7 @@ public:
             return runtime_error("drm: drmModeSetCrtc failed (" + std::string(std::strerror(errno)) + ")");
         mode_set_ = true;
         front_ = bo;
+        open_touch(options);
         return ok_status();
     }
 
@@ -127,7 +132,8 @@ public:
             out.push_back(quit);
             return false;
         }
-        return true;  // touch comes from the evdev input layer
+        if (touch_) touch_->poll(time(), out);
+        return true;
     }
 
     // Swap, queue a flip of the new front buffer, wait for it (so at most one
@@ -162,6 +168,18 @@ public:
     }
 
 private:
+    // Touchscreens through evdev, in display pixels. Absent or unreadable
+    // devices are not an error: one line, and a panel plugged in later is found.
+    void open_touch(const SurfaceOptions& options) {
+        auto input = EvdevInput::open(
+            EvdevOptions{options.touch_directory, mode_.hdisplay, mode_.vdisplay, options.touch_rotation});
+        if (!input) {
+            std::fprintf(stderr, "bodyview: drm: no touch input (%s)\n", input.error().message.c_str());
+            return;
+        }
+        touch_ = std::move(input).value();
+    }
+
     Status open_device(const std::string& requested) {
         std::vector<std::string> candidates;
         if (!requested.empty()) {
@@ -242,6 +260,7 @@ private:
     gbm_bo* front_ = nullptr;
     std::unique_ptr<EglContext> egl_;
     std::chrono::steady_clock::time_point start_;
+    std::unique_ptr<EvdevInput> touch_;
 };
 
 }  // namespace

@@ -59,10 +59,10 @@ struct SurfaceOptions {
     std::string mode;           // drm: "WxH" or "WxH@Hz"; empty for the preferred mode
     std::string drm_device;     // drm: e.g. /dev/dri/card0; empty to try card0..card9
     std::string title = "bodyview";
-    // glfw: touchscreens are read from here (evdev, platform/evdev_window.h) and
-    // mapped into the window; `touch_rotation` is the panel's rotation (0, 90,
-    // 180, 270) as in platform/evdev_input.h. (drm leaves touch to the caller's
-    // EvdevInput.)
+    // glfw and drm: touchscreens are read from here (evdev, platform/evdev_input.h,
+    // hot-plugged) and delivered by poll_events() in surface pixels (glfw maps them
+    // into the window, platform/evdev_window.h); `touch_rotation` is the panel's
+    // rotation (0, 90, 180, 270) against the picture.
     std::string touch_directory = "/dev/input";
     int touch_rotation = 0;
 };
