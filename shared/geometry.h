@@ -21,6 +21,12 @@ struct Aabb {
     double extent() const { return empty() ? 0.0 : glm::length(max - min); }
 };
 
+// A ray in world space (picking): origin and unit direction.
+struct Ray {
+    glm::vec3 origin{0.0f};
+    glm::vec3 direction{0.0f, 0.0f, -1.0f};  // unit length
+};
+
 // Twice the signed area of a closed 2-D polygon (counter-clockwise positive).
 inline double signed_area2(const Vec2* points, size_t count) {
     double a = 0.0;

@@ -7,6 +7,8 @@
 // Angles are radians, lengths scene units (mm), screen deltas pixels.
 #include <glm/glm.hpp>
 
+#include "shared/geometry.h"
+
 namespace body::kiosk {
 
 struct CameraPose {
@@ -14,11 +16,6 @@ struct CameraPose {
     float azimuth = 0.0f;
     float polar = 1.5707964f;
     float distance = 1.0f;
-};
-
-struct Ray {
-    glm::vec3 origin{0.0f};
-    glm::vec3 direction{0.0f, 0.0f, -1.0f};  // unit length
 };
 
 class OrbitCamera {

@@ -109,7 +109,7 @@ glm::vec2 KioskApp::drift(double now) const {
 
 bool KioskApp::lod_auto() const {
     if (selected_ >= 0) return !models_[static_cast<size_t>(selected_)].manual_lod;
-    return std::all_of(models_.begin(), models_.end(), [](const ModelState& m) { return !m.manual_lod; });
+    return std::all_of(models_.begin(), models_.end(), [](const ModelSettings& m) { return !m.manual_lod; });
 }
 
 UiState KioskApp::ui_state() const {
@@ -267,7 +267,7 @@ void KioskApp::activate(const Control& c, double now) {
             const int dir = c.id == ControlId::LodUp ? 1 : -1;
             for (int i = 0; i < model_count(); ++i) {
                 if (selected_ >= 0 && i != selected_) continue;
-                ModelState& m = models_[static_cast<size_t>(i)];
+                ModelSettings& m = models_[static_cast<size_t>(i)];
                 const float from = m.manual_lod ? *m.manual_lod
                                    : info_[static_cast<size_t>(i)].full_triangles
                                        ? static_cast<float>(m.triangles) /
@@ -377,7 +377,7 @@ void KioskApp::reset() {
     }
     for (int i = 0; i < model_count(); ++i) {
         const scene::Model& m = scene_.models[static_cast<size_t>(i)];
-        ModelState& s = models_[static_cast<size_t>(i)];
+        ModelSettings& s = models_[static_cast<size_t>(i)];
         const int g = group_index(i);
         const scene::Group* group = g >= 0 ? &scene_.groups[static_cast<size_t>(g)] : nullptr;
         s.style = group && group->style ? *group->style : m.style;
@@ -396,7 +396,7 @@ void KioskApp::reset() {
 
 // ---- per frame -----------------------------------------------------------------
 
-void KioskApp::plan_lod(double now) {
+void KioskApp::plan_lod() {
     std::vector<LodModelInput> inputs(models_.size());
     const int selected_group = selected_ >= 0 ? group_index(selected_) : -1;
     for (int i = 0; i < model_count(); ++i) {
@@ -411,14 +411,13 @@ void KioskApp::plan_lod(double now) {
     }
     const std::vector<size_t> counts = lod_.allocate(inputs);
     for (size_t i = 0; i < models_.size(); ++i) {
-        ModelState& m = models_[i];
+        ModelSettings& m = models_[i];
         const size_t full = info_[i].full_triangles;
         const size_t next = counts[i];
         // Small refinements wait (no geomorph churn); coarsening is never delayed.
         const bool change = next < m.triangles || static_cast<double>(next - m.triangles) > 0.02 * full ||
                             (next == full && next != m.triangles);
         if (!change || next == m.triangles) continue;
-        if (inputs[i].visible && m.triangles > 0) m.morph.start(now, m.triangles, next);
         m.triangles = next;
     }
 }
@@ -440,7 +439,7 @@ void KioskApp::update(double now) {
     gestures_.flush(gestures);
     for (const Gesture& g : gestures) apply_gesture(g);
     camera_.update(now);
-    plan_lod(now);
+    plan_lod();
     relayout();
 }
 

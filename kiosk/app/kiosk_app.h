@@ -23,25 +23,17 @@
 #include "kiosk/app/input.h"
 #include "kiosk/app/lod_controller.h"
 #include "kiosk/app/ui.h"
+#include "kiosk/scene/scene_models.h"
 #include "shared/scene/scene.h"
 
 namespace body::kiosk {
 
-// What the app knows about a loaded model (in scene space, after its transform).
-struct ModelInfo {
-    bool loaded = false;  // false: failed to load (skipped, never drawn or picked)
-    glm::vec3 center{0.0f};
-    float radius = 1.0f;
-    size_t full_triangles = 0;
-    size_t base_triangles = 0;
-};
-
-struct ModelState {
+// What the visitor has set for one model.
+struct ModelSettings {
     scene::Style style = scene::Style::Smooth;
     std::optional<float> manual_lod;  // nullopt: automatic
     glm::vec3 offset{0.0f};           // moved with the manipulation sphere
-    size_t triangles = 0;             // current level (triangle count)
-    Geomorph morph;
+    size_t triangles = 0;             // the level the LOD plan chose (triangle count)
 };
 
 struct GroupState {
@@ -76,7 +68,7 @@ public:
     const OrbitCamera& camera() const { return camera_; }
     OrbitCamera& camera() { return camera_; }
     int selected() const { return selected_; }
-    const ModelState& model(int i) const { return models_[static_cast<size_t>(i)]; }
+    const ModelSettings& model(int i) const { return models_[static_cast<size_t>(i)]; }
     const ModelInfo& info(int i) const { return info_[static_cast<size_t>(i)]; }
     int model_count() const { return static_cast<int>(models_.size()); }
     const GroupState& group(int i) const { return groups_[static_cast<size_t>(i)]; }
@@ -114,13 +106,13 @@ private:
     void apply_gesture(const Gesture& g);
     void activate(const Control& c, double now);
     void admin_tap(float x, float y, double now);
-    void plan_lod(double now);
+    void plan_lod();
     void relayout();
     int group_index(int model) const;
 
     scene::Scene scene_;
     std::vector<ModelInfo> info_;
-    std::vector<ModelState> models_;
+    std::vector<ModelSettings> models_;
     std::vector<GroupState> groups_;
     OrbitCamera camera_;
     CameraPose home_pose_;

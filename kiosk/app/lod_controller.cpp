@@ -117,17 +117,4 @@ float lod_step(float ratio, int direction) {
     return std::clamp(next, 1.0f, 10.0f) / 10.0f;
 }
 
-void Geomorph::start(double now, size_t from_triangles, size_t to_triangles) {
-    started_ = true;
-    start_ = now;
-    from_ = from_triangles;
-    to_ = to_triangles;
-}
-
-float Geomorph::factor(double now) const {
-    if (!started_) return 1.0f;
-    const float t = static_cast<float>(std::clamp((now - start_) / kSeconds, 0.0, 1.0));
-    return t * t * (3.0f - 2.0f * t);
-}
-
 }  // namespace body::kiosk

@@ -65,22 +65,4 @@ private:
 // Ten 10% steps for the manual LOD buttons: the next step up or down from `ratio`.
 float lod_step(float ratio, int direction);
 
-// Geomorph timing: a level change blends over `seconds` (~150 ms) instead of
-// popping. factor() goes 0 -> 1 with a smoothstep; the renderer mixes each vertex
-// between its parent (geomorph source) and its own position by it.
-class Geomorph {
-public:
-    static constexpr double kSeconds = 0.15;
-    void start(double now, size_t from_triangles, size_t to_triangles);
-    float factor(double now) const;
-    bool active(double now) const { return started_ && now - start_ < kSeconds; }
-    size_t from() const { return from_; }
-    size_t to() const { return to_; }
-
-private:
-    bool started_ = false;
-    double start_ = 0.0;
-    size_t from_ = 0, to_ = 0;
-};
-
 }  // namespace body::kiosk

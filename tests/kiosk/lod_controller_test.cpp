@@ -6,6 +6,8 @@
 
 #include <numeric>
 
+#include "kiosk/scene/model_part.h"
+
 namespace body::kiosk {
 namespace {
 

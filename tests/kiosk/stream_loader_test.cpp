@@ -1,7 +1,7 @@
 // The streaming loader decodes a .bpm on its own thread: the base meshes at
 // once, the detail only after release_detail(), everything in the end exactly
 // as a one-shot read; failures keep what arrived and name the section.
-#include "kiosk/app/stream_loader.h"
+#include "kiosk/scene/stream_loader.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>

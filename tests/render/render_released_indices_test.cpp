@@ -10,10 +10,11 @@
 #include <vector>
 
 #include "builder/lod/simplify.h"
-#include "kiosk/render/model_source.h"
+#include "kiosk/scene/model_source.h"
 #include "tests/render/render_fixture.h"
 
 namespace body::render {
+using kiosk::ModelSource;
 namespace {
 
 using test::RenderFixture;

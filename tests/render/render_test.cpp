@@ -13,13 +13,16 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <span>
 
-#include "kiosk/render/model_source.h"
+#include "kiosk/scene/model_source.h"
 #include "shared/obj_io.h"
 #include "shared/pm/progressive_mesh.h"
 #include "tests/render/render_fixture.h"
 
 using namespace body;
 using namespace body::render;
+using body::kiosk::load_model_file;
+using body::kiosk::mesh_data_of;
+using body::kiosk::ModelSource;
 using body::test::RenderFixture;
 
 namespace {

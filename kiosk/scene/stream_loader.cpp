@@ -1,5 +1,5 @@
 // A reader-and-decoder thread per streamed .bpm (contract in stream_loader.h).
-#include "kiosk/app/stream_loader.h"
+#include "kiosk/scene/stream_loader.h"
 
 #include <pthread.h>
 

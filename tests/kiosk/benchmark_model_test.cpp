@@ -3,9 +3,9 @@
 // with or without the bunny installed).
 #include <gtest/gtest.h>
 
-#include "kiosk/render/benchmark.h"
+#include "kiosk/modes/benchmark.h"
 
-namespace body::render {
+namespace body::kiosk {
 namespace {
 
 TEST(BenchmarkModel, SubdivisionsGiveTheCountNearestTheTargetByRatio) {
@@ -23,4 +23,4 @@ TEST(BenchmarkModel, SubdivisionsGiveTheCountNearestTheTargetByRatio) {
 }
 
 }  // namespace
-}  // namespace body::render
+}  // namespace body::kiosk

@@ -30,7 +30,7 @@
 #include "shared/error.h"
 #include "shared/pm/progressive_mesh.h"
 
-namespace body::render {
+namespace body::kiosk {
 
 class ModelSource {
 public:
@@ -50,17 +50,17 @@ public:
     // Current arrays and drawn counts (float positions and, for progressive
     // meshes, normals decoded from the kept codes when first asked for, plus
     // the codes themselves).
-    MeshData mesh() const;
-    // The same for an upload: positions as codes only (MeshData::position_codes)
+    render::MeshData mesh() const;
+    // The same for an upload: positions as codes only (render::MeshData::position_codes)
     // and a progressive mesh's normals as its octahedral codes
-    // (MeshData::normal_codes), so no float copy is made. A complete
+    // (render::MeshData::normal_codes), so no float copy is made. A complete
     // progressive mesh with normals hands its index array over to the
     // add_model it goes to: packed in place now, it fills the new element
-    // buffer and is freed (MeshData::index_fill; see release_arrays() for what
+    // buffer and is freed (render::MeshData::index_fill; see release_arrays() for what
     // follows).
-    MeshData upload_mesh() const;
+    render::MeshData upload_mesh() const;
     // Ranges changed since the last call (everything on the first call).
-    Dirty take_dirty();
+    render::Dirty take_dirty();
     // Plain meshes: frees the current level's index array and the float
     // positions once uploaded (the renderer keeps its own copy); a later
     // mesh() decodes them again from the codes, with the same triangles (a
@@ -71,7 +71,7 @@ public:
     // release_indices, ::release_vertex_data; upload_mesh() already hands the
     // index array over to add_model, freeing it as it goes up): the renderer's
     // buffers become the only copy, upload_mesh() then carries the level's
-    // patches (MeshData::index_patch, ::position_patch) instead of arrays, and
+    // patches (render::MeshData::index_patch, ::position_patch) instead of arrays, and
     // mesh() has none. Call it only after add_model(upload_mesh()) of one
     // renderer model, and use upload_mesh() for every later update of it.
     void release_arrays();
@@ -101,10 +101,10 @@ private:
     size_t current_index_count() const { return simplified_ ? level_index_count_ : full_index_count_; }
     std::span<const uint32_t> current_indices() const;  // decodes the current level when released
     bool first_ = true;
-    Dirty pending_;
+    render::Dirty pending_;
     // A complete progressive mesh with normals, its index array still its own.
     bool hands_over_indices() const;
-    MeshData upload_mesh_of(bool hand_over) const;  // hand_over: upload_mesh(), else mesh()
+    render::MeshData upload_mesh_of(bool hand_over) const;  // hand_over: upload_mesh(), else mesh()
 };
 
 // The renderer's view of a progressive mesh at its current level: its own
@@ -112,10 +112,10 @@ private:
 // has handed arrays to the renderer (released or packed indices, released
 // vertex data), also the hooks that write its pending patches (or fill the
 // packed array) into the renderer's buffers; they refer to `pm`, which must
-// outlive the MeshData.
-MeshData mesh_data_of(pm::ProgressiveMesh& pm);
+// outlive the render::MeshData.
+render::MeshData mesh_data_of(pm::ProgressiveMesh& pm);
 
 // Loads `.bpm` or `.obj` (by extension); errors name the file and the reason.
 Result<std::vector<ModelSource>> load_model_file(const std::string& path);
 
-}  // namespace body::render
+}  // namespace body::kiosk

@@ -10,10 +10,11 @@
 #include <string>
 
 #include "kiosk/render/renderer.h"
+#include "kiosk/scene/model_source.h"
 #include "platform/platform.h"
 #include "shared/error.h"
 
-namespace body::render {
+namespace body::kiosk {
 
 struct BenchmarkOptions {
     std::string model;                  // .bpm/.obj; empty: a generated ~1M-triangle model
@@ -21,19 +22,20 @@ struct BenchmarkOptions {
     int frames = 9;                 // at least this many timed style/baseline pairs per cell (after 2 warm-up pairs)
     double seconds_per_cell = 3.0;  // then more pairs until a cell (style x LOD) has taken this long ...
     size_t max_pairs = 200;         // ... or has this many
-    RendererOptions renderer = {};  // --buffer-access
+    render::RendererOptions renderer = {};  // --buffer-access
 };
 
 // Prints the table to stdout. The surface's context must be current.
 Status run_benchmark(platform::Surface& surface, const BenchmarkOptions& options);
 
-// How many 1-to-4 subdivisions take a mesh of `triangles` nearest (by ratio)
-// to `target`: the generated benchmark model (the bunny subdivided, or an
-// icosphere where the bunny is not installed).
+// The generated benchmark model (benchmark_model.cpp): the bunny subdivided, or
+// a bumpy icosphere where the bunny is not installed, nearest `target_triangles`.
+Result<ModelSource> generated_model(size_t target_triangles);
+// How many 1-to-4 subdivisions take a mesh of `triangles` nearest (by ratio) to `target`.
 int subdivisions_toward(size_t triangles, size_t target);
 
 // Peak and current resident set size of this process in KiB (/proc/self/status).
 long peak_rss_kib();
 long current_rss_kib();
 
-}  // namespace body::render
+}  // namespace body::kiosk

@@ -1,7 +1,7 @@
 // Model files for the renderer (see model_source.h). References: Hoppe 1996,
 // "Progressive meshes" (the .bpm runtime in shared/pm); meshoptimizer's
 // meshopt_simplify for the OBJ preview LOD only.
-#include "kiosk/render/model_source.h"
+#include "kiosk/scene/model_source.h"
 
 #include <meshoptimizer.h>
 #ifdef __GLIBC__
@@ -14,7 +14,7 @@
 
 #include "shared/obj_io.h"
 
-namespace body::render {
+namespace body::kiosk {
 
 namespace {
 
@@ -120,8 +120,8 @@ std::span<const Vec3f> ModelSource::positions() const {
     return positions_;
 }
 
-MeshData mesh_data_of(pm::ProgressiveMesh& pm) {
-    MeshData m;
+render::MeshData mesh_data_of(pm::ProgressiveMesh& pm) {
+    render::MeshData m;
     m.position_codes = pm.position_codes();
     m.has_position_box = true;
     m.position_box_min = pm.bounds_min();
@@ -155,9 +155,9 @@ bool ModelSource::hands_over_indices() const {
     return pm_ && pm_->has_normals() && !pm_->indices_released() && pm_->available_level() == pm_->max_level();
 }
 
-MeshData ModelSource::upload_mesh() const { return upload_mesh_of(true); }
+render::MeshData ModelSource::upload_mesh() const { return upload_mesh_of(true); }
 
-MeshData ModelSource::upload_mesh_of(bool hand_over) const {
+render::MeshData ModelSource::upload_mesh_of(bool hand_over) const {
     if (pm_) {
         pm::ProgressiveMesh* pm = pm_.get();
         // Complete: the array going up to add_model is the last use of ours.
@@ -168,7 +168,7 @@ MeshData ModelSource::upload_mesh_of(bool hand_over) const {
         if (hand_over && hands_over_indices()) pm->pack_indices();
         return mesh_data_of(*pm);
     }
-    MeshData m;
+    render::MeshData m;
     m.position_codes = position_codes_;
     m.has_position_box = true;
     m.position_box_min = box_min_;
@@ -256,10 +256,10 @@ void ModelSource::set_lod(double ratio) {
     pending_.index_end = std::max(pending_.index_end, std::min(size, std::max(old_size, size)));
 }
 
-MeshData ModelSource::mesh() const {
+render::MeshData ModelSource::mesh() const {
     // What an upload gets, plus floats for CPU readers; the arrays stay ours
     // (an upload of these does not hand the index array over).
-    MeshData m = upload_mesh_of(false);
+    render::MeshData m = upload_mesh_of(false);
     m.positions = positions();
     if (pm_ && !pm_->vertex_data_released()) {
         if (pm_->has_normals() && pm_normals_.empty()) {
@@ -271,8 +271,8 @@ MeshData ModelSource::mesh() const {
     return m;
 }
 
-Dirty ModelSource::take_dirty() {
-    Dirty d;
+render::Dirty ModelSource::take_dirty() {
+    render::Dirty d;
     if (pm_) {
         if (first_) {
             d = {0, pm_->max_vertex_count(), 0, 3 * pm_->max_triangle_count()};
@@ -282,11 +282,11 @@ Dirty ModelSource::take_dirty() {
         }
         pm_->clear_dirty();
     } else {
-        d = first_ ? Dirty{0, vertex_count_, 0, current_index_count()} : pending_;
+        d = first_ ? render::Dirty{0, vertex_count_, 0, current_index_count()} : pending_;
         d.index_end = std::min(d.index_end, current_index_count());
     }
     first_ = false;
-    pending_ = Dirty{};
+    pending_ = render::Dirty{};
     return d;
 }
 
@@ -320,4 +320,4 @@ Result<std::vector<ModelSource>> load_model_file(const std::string& path) {
     return out;
 }
 
-}  // namespace body::render
+}  // namespace body::kiosk

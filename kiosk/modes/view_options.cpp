@@ -1,0 +1,174 @@
+// bodyview's command line (contract in view_options.h).
+#include "kiosk/modes/view_options.h"
+
+#include <cstdio>
+#include <filesystem>
+
+#include "kiosk/modes/modes.h"
+#include "platform/evdev_input.h"
+
+namespace body::kiosk {
+
+int report(const Error& error) {
+    std::fprintf(stderr, "bodyview: %s\n", error.message.c_str());
+    return error.exit_code;
+}
+
+const std::set<std::string>& view_value_options() {
+    static const std::set<std::string> names = {"platform",
+                                                "size",
+                                                "mode",
+                                                "device",
+                                                "rotate",
+                                                "model",
+                                                "scene",
+                                                "style",
+                                                "lod",
+                                                "select",
+                                                "view",
+                                                "line-width",
+                                                "ssaa",
+                                                "screenshot",
+                                                "frames",
+                                                "replay",
+                                                "bench-triangles",
+                                                "bench-frames",
+                                                "buffer-access"};
+    return names;
+}
+
+const std::set<std::string>& view_flag_options() {
+    static const std::set<std::string> names = {"headless",  "windowed",    "xray",
+                                                "benchmark", "no-auto-lod", "kiosk-stats"};
+    return names;
+}
+
+namespace {
+
+Status parse_surface(const CliArgs& args, platform::SurfaceOptions& so) {
+    if (args.has("headless")) so.backend = platform::Backend::Headless;
+    if (auto p = args.get("platform")) {
+        auto b = platform::parse_backend(*p);
+        if (!b) return b.error();
+        if (args.has("headless") && b.value() != platform::Backend::Headless)
+            return input_error("--headless contradicts --platform " + *p);
+        so.backend = b.value();
+    }
+    if (auto s = args.get("size")) {
+        auto wh = platform::parse_size(*s);
+        if (!wh) return wh.error();
+        so.width = wh->first;
+        so.height = wh->second;
+    }
+    so.fullscreen = !args.has("windowed");
+    so.mode = args.get_or("mode", "");
+    so.drm_device = args.get_or("device", "");
+    if (auto r = args.get("rotate")) {
+        auto deg = platform::parse_rotation(*r);
+        if (!deg) return deg.error();
+        so.touch_rotation = deg.value();
+    }
+    return ok_status();
+}
+
+Status parse_picture(const CliArgs& args, ViewOptions& o) {
+    auto lod = args.get_double("lod", 1.0);
+    if (!lod) return lod.error();
+    if (!(lod.value() > 0.0 && lod.value() <= 1.0)) return input_error("--lod must be in (0, 1]");
+    if (args.has("lod")) o.lod = lod.value();
+    auto ssaa = args.get_long("ssaa", 1);
+    if (!ssaa) return ssaa.error();
+    if (ssaa.value() < 1 || ssaa.value() > 4) return input_error("--ssaa must be 1..4");
+    o.ssaa = static_cast<int>(ssaa.value());
+    auto line_width = args.get_double("line-width", 2.0);
+    if (!line_width) return line_width.error();
+    o.line_width = line_width.value();
+    auto frames = args.get_long("frames", 0);
+    if (!frames) return frames.error();
+    o.frames = frames.value();
+    if (auto s = args.get("style")) {
+        auto st = render::parse_style(*s);
+        if (!st) return st.error();
+        o.style = st.value();
+    }
+    if (auto v = args.get("view")) {
+        float azimuth = 0, polar = 0;
+        if (std::sscanf(v->c_str(), "%f,%f", &azimuth, &polar) != 2)
+            return input_error("--view expects AZIMUTH,POLAR in degrees, e.g. 20,75");
+        o.view_deg = std::make_pair(azimuth, polar);
+    }
+    if (auto a = args.get("buffer-access")) {
+        auto access = render::parse_buffer_access(*a);
+        if (!access) return access.error();
+        o.renderer.buffer_access = access.value();
+    }
+    return ok_status();
+}
+
+Status parse_what_to_show(const CliArgs& args, ViewOptions& o) {
+    o.scene_path = args.get_or("scene", "");
+    if (!args.positional().empty()) {
+        if (args.positional().size() > 1 || !o.scene_path.empty()) return input_error("one scene or bundle at most");
+        o.scene_path = (std::filesystem::path(args.positional()[0]) / "scene.json").string();
+    }
+    o.model_path = args.get_or("model", "");
+    o.benchmark = args.has("benchmark");
+    if (!o.benchmark && o.model_path.empty() && o.scene_path.empty())
+        return input_error("nothing to show: give --model FILE, --scene FILE or a BUNDLE/ (see --help)");
+    if (!o.model_path.empty() && !o.scene_path.empty()) return input_error("--model and --scene exclude each other");
+    return ok_status();
+}
+
+Status parse_benchmark(const CliArgs& args, ViewOptions& o) {
+    auto tris = args.get_long("bench-triangles", o.bench_triangles);
+    if (!tris) return tris.error();
+    if (tris.value() < 1000) return input_error("--bench-triangles must be at least 1000");
+    o.bench_triangles = tris.value();
+    auto frames = args.get_long("bench-frames", o.bench_frames);
+    if (!frames) return frames.error();
+    if (frames.value() < 1) return input_error("--bench-frames must be at least 1");
+    o.bench_frames = frames.value();
+    return ok_status();
+}
+
+}  // namespace
+
+Result<ViewOptions> parse_view_options(const CliArgs& args) {
+    ViewOptions o;
+    if (auto s = parse_surface(args, o.surface); !s) return s.error();
+    if (auto s = parse_picture(args, o); !s) return s.error();
+    if (auto s = parse_what_to_show(args, o); !s) return s.error();
+    if (o.benchmark)
+        if (auto s = parse_benchmark(args, o); !s) return s.error();
+    o.select = args.get("select");
+    o.xray = args.has("xray");
+    o.screenshot = args.get_or("screenshot", "");
+    o.replay = args.get_or("replay", "");
+    o.auto_lod = !args.has("no-auto-lod");
+    o.kiosk_stats = args.has("kiosk-stats");
+    if (o.surface.backend == platform::Backend::Headless) {
+        if (o.surface.width == 0) o.surface.width = 1280, o.surface.height = 800;
+        o.surface.width *= o.ssaa;
+        o.surface.height *= o.ssaa;
+    }
+    return o;
+}
+
+Result<scene::Scene> scene_to_show(const ViewOptions& o) {
+    if (!o.scene_path.empty()) return scene::read_scene(o.scene_path);
+    scene::Scene s;
+    s.source = o.model_path;
+    scene::Model m;
+    m.name = std::filesystem::path(o.model_path).stem().string();
+    m.file = m.path = o.model_path;
+    if (o.style) m.style = scene::parse_style(render::style_name(*o.style)).value_or(scene::Style::Smooth);
+    if (o.lod) m.lod = scene::Lod{false, static_cast<float>(*o.lod)};
+    m.labels.push_back({"en", m.name, ""});
+    s.models.push_back(std::move(m));
+    s.camera.azimuth_deg = 20.0f;
+    s.camera.polar_deg = 75.0f;
+    s.camera.fov_deg = 35.0f;
+    return s;
+}
+
+}  // namespace body::kiosk

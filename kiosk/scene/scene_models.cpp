@@ -1,0 +1,213 @@
+// A scene's models on the GPU (contract in scene_models.h).
+#include "kiosk/scene/scene_models.h"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace body::kiosk {
+
+render::Style to_render_style(scene::Style s) {
+    switch (s) {
+        case scene::Style::Wireframe: return render::Style::Wireframe;
+        case scene::Style::Smooth: return render::Style::Smooth;
+        case scene::Style::Lines: return render::Style::Lines;
+        case scene::Style::Hatching: return render::Style::Hatching;
+        case scene::Style::Hatching2Tone: return render::Style::Hatching2Tone;
+    }
+    return render::Style::Smooth;
+}
+
+glm::mat4 to_model_matrix(const scene::Transform& t) {
+    glm::mat4 m = glm::translate(glm::mat4(1.0f), glm::vec3(t.translate[0], t.translate[1], t.translate[2]));
+    m = glm::rotate(m, glm::radians(t.rotate_deg[2]), glm::vec3(0, 0, 1));
+    m = glm::rotate(m, glm::radians(t.rotate_deg[1]), glm::vec3(0, 1, 0));
+    m = glm::rotate(m, glm::radians(t.rotate_deg[0]), glm::vec3(1, 0, 0));
+    return glm::scale(m, glm::vec3(t.scale));
+}
+
+SceneModels::SceneModels(const scene::Scene& scene)
+    : scene_(scene), models_(scene.models.size()), info_(scene.models.size()) {
+    for (size_t i = 0; i < scene.models.size(); ++i)
+        if (std::filesystem::path(scene.models[i].path).extension() == ".bpm")
+            models_[i].loader = std::make_unique<StreamLoader>(scene.models[i].path);
+}
+
+SceneModels::~SceneModels() = default;
+
+namespace {
+
+// Notes, under the loader's lock, that a stream has ended, logging why when it
+// ended early (what arrived before stays usable).
+void check_stream(StreamLoader& loader, bool& streaming, const std::string& name) {
+    if (!streaming || !loader.done()) return;
+    streaming = false;
+    if (!loader.error().empty())
+        std::fprintf(stderr, "bodyview: %s: %s (keeping what arrived)\n", name.c_str(), loader.error().c_str());
+}
+
+// The parts of a .bpm whose base meshes are in (under the loader's lock).
+Status stream_parts(StreamLoader& loader, std::vector<ModelPart>& parts) {
+    if (!loader.bases_ready()) {
+        const std::string& why = loader.error();
+        return input_error(why.empty() ? loader.path() + ": ended before every base mesh arrived" : why);
+    }
+    pm::BpmStream& stream = loader.stream();
+    for (size_t i = 0; i < stream.structure_count(); ++i) parts.emplace_back(stream.structure(i));
+    return ok_status();
+}
+
+Status file_parts(const std::string& path, std::vector<ModelPart>& parts) {
+    auto sources = load_model_file(path);
+    if (!sources) return sources.error();
+    for (auto& src : sources.value()) parts.emplace_back(std::make_unique<ModelSource>(std::move(src)));
+    return ok_status();
+}
+
+// The colour a part is drawn in: the manifest's, or with file_colours the file's
+// own (none where it has the default grey: the renderer's default stays).
+std::optional<Vec3f> part_colour(const ModelPart& part, const scene::Model& m, const LoadOptions& options) {
+    if (!options.file_colours) return Vec3f(m.colour[0], m.colour[1], m.colour[2]);
+    const Vec3f c = part.pm() ? part.pm()->color() : part.source()->color();
+    if (c == Vec3f(0.8f)) return std::nullopt;
+    return c;
+}
+
+}  // namespace
+
+Status SceneModels::load_model(size_t index, const LoadOptions& options) {
+    const scene::Model& m = scene_.models[index];
+    Model& model = models_[index];
+    std::unique_lock<std::mutex> stream_lock;
+    if (model.loader) {
+        model.loader->wait_for_bases();
+        stream_lock = model.loader->lock();
+        if (auto s = stream_parts(*model.loader, model.parts); !s) return s;
+        model.streaming = true;
+        check_stream(*model.loader, model.streaming, m.name);  // a file that failed after its bases: show them
+    } else if (auto s = file_parts(m.path, model.parts); !s) {
+        return s;
+    }
+    if (model.parts.empty()) return input_error(m.path + ": no structures");
+    for (ModelPart& p : model.parts) {
+        if (auto s = p.upload(*renderer_, m.name); !s) return s;
+        if (auto c = part_colour(p, m, options)) renderer_->state(p.id())->color = *c;
+    }
+    return ok_status();
+}
+
+// The world bounding sphere and triangle counts over a model's parts.
+void SceneModels::measure(size_t index) {
+    const scene::Model& m = scene_.models[index];
+    const glm::mat4 transform = to_model_matrix(m.transform);
+    glm::vec3 lo(1e30f), hi(-1e30f);
+    ModelInfo& mi = info_[index];
+    for (const ModelPart& p : models_[index].parts) {
+        Vec3f c;
+        float r = 0.0f;
+        if (!p.bounds(*renderer_, c, r)) continue;
+        const glm::vec3 wc = glm::vec3(transform * glm::vec4(c, 1.0f));
+        const float wr = r * m.transform.scale;
+        lo = glm::min(lo, wc - glm::vec3(wr));
+        hi = glm::max(hi, wc + glm::vec3(wr));
+        mi.full_triangles += p.full_triangles();
+        mi.base_triangles += p.base_triangles();
+    }
+    mi.loaded = lo.x <= hi.x;
+    mi.center = (lo + hi) * 0.5f;
+    mi.radius = std::max(glm::length(hi - lo) * 0.5f / std::sqrt(3.0f), 1e-3f);
+}
+
+size_t SceneModels::load(render::Renderer& renderer, const LoadOptions& options) {
+    renderer_ = &renderer;
+    size_t ok = 0;
+    for (size_t i = 0; i < models_.size(); ++i) {
+        if (Status st = load_model(i, options); !st) {
+            std::fprintf(stderr, "bodyview: %s: skipped: %s\n", scene_.models[i].name.c_str(),
+                         st.error().message.c_str());
+            for (ModelPart& p : models_[i].parts)
+                if (p.id()) renderer.remove_model(p.id());
+            models_[i] = Model{};
+            continue;
+        }
+        measure(i);
+        if (info_[i].loaded) ++ok;
+    }
+    return ok;
+}
+
+std::vector<std::string> SceneModels::structure_names(size_t model) const {
+    std::vector<std::string> names;
+    for (const ModelPart& p : models_[model].parts) names.push_back(p.pm() ? p.pm()->name() : p.source()->name());
+    return names;
+}
+
+void SceneModels::release_detail(bool wait) {
+    for (Model& m : models_) {
+        if (!m.loader) continue;
+        if (wait)
+            m.loader->wait_until_done();
+        else
+            m.loader->release_detail();
+    }
+}
+
+std::vector<std::unique_lock<std::mutex>> SceneModels::lock() const {
+    std::vector<std::unique_lock<std::mutex>> locks;
+    for (const Model& m : models_)
+        if (m.streaming) locks.push_back(m.loader->lock());
+    return locks;
+}
+
+bool SceneModels::poll_streams() {
+    bool any = false;
+    for (size_t i = 0; i < models_.size(); ++i) {
+        Model& m = models_[i];
+        if (!m.streaming) continue;
+        check_stream(*m.loader, m.streaming, scene_.models[i].name);
+        any = any || m.streaming;
+    }
+    return any;
+}
+
+void SceneModels::wait_until(std::chrono::steady_clock::time_point deadline) const {
+    for (const Model& m : models_)
+        if (m.streaming && !m.loader->wait_done_until(deadline)) return;
+}
+
+bool SceneModels::bind(size_t model, const ModelBinding& b, double now) {
+    Model& m = models_[model];
+    bool at_detail = true;
+    for (ModelPart& p : m.parts) {
+        render::ModelState* st = renderer_->state(p.id());
+        st->style = b.style;
+        st->visible = b.visible;
+        st->selected = b.selected;
+        st->transform = b.transform;
+        if (b.hold_level)
+            at_detail = at_detail && !p.progressive();
+        else
+            at_detail = p.head_for(*renderer_, b.lod_ratio, b.lod_automatic, b.glide, m.streaming, now) && at_detail;
+        if (!m.streaming) p.hand_over_indices(*renderer_);
+        p.apply_morph(*st);
+    }
+    return at_detail;
+}
+
+size_t SceneModels::triangles(size_t model) const {
+    size_t n = 0;
+    for (const ModelPart& p : models_[model].parts) n += p.triangles();
+    return n;
+}
+
+std::optional<float> SceneModels::pick(size_t model, const glm::mat4& transform, const Ray& ray) const {
+    std::optional<float> best;
+    for (const ModelPart& p : models_[model].parts) {
+        auto hit = p.pick(*renderer_, transform, ray);
+        if (hit && (!best || *hit < *best)) best = hit;
+    }
+    return best;
+}
+
+}  // namespace body::kiosk

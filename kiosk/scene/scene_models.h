@@ -1,0 +1,121 @@
+#pragma once
+// The one path from a scene's model files to the GPU, shared by every bodyview
+// mode (kiosk, screenshot, benchmark): loading (a model that fails is skipped
+// with a logged reason), level of detail (a ratio of the full triangles ->
+// a level, one rule for .bpm and OBJ), the binding of scene properties
+// (colour, transform, style, visibility, selection) to the renderer's model
+// states, and picking.
+//
+//   SceneModels models(scene);                 // .bpm files start decoding their base meshes
+//   renderer.init();  models.load(renderer);   // uploads; skipped models are logged
+//   models.release_detail(false);              // after the first frame (true: decode all now)
+//   per frame: auto lock = models.lock(); models.poll_streams();
+//              models.bind(i, binding, now) for each model; lock = {}; renderer.render(...)
+//
+// Threads: a .bpm streams on its own loader thread (scene/stream_loader.h); its
+// structures are touched only under lock(), which bind() and pick() need.
+#include <chrono>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "kiosk/render/renderer.h"
+#include "kiosk/scene/model_part.h"
+#include "kiosk/scene/stream_loader.h"
+#include "shared/geometry.h"
+#include "shared/scene/scene.h"
+
+namespace body::kiosk {
+
+// What is known of a loaded model, in scene space (after its transform).
+struct ModelInfo {
+    bool loaded = false;  // false: failed to load (skipped, never drawn or picked)
+    glm::vec3 center{0.0f};
+    float radius = 1.0f;
+    size_t full_triangles = 0;
+    size_t base_triangles = 0;
+};
+
+// A scene style as the renderer's style, and a scene transform as a model matrix
+// (translate * Rz * Ry * Rx * scale: Euler X first, as SCENE.md says).
+render::Style to_render_style(scene::Style style);
+glm::mat4 to_model_matrix(const scene::Transform& transform);
+
+// A model's properties for one frame.
+struct ModelBinding {
+    render::Style style = render::Style::Smooth;
+    bool visible = true;
+    bool selected = false;
+    glm::mat4 transform{1.0f};   // object -> world
+    double lod_ratio = 1.0;      // of the full triangles, in (0, 1]
+    bool lod_automatic = false;  // chosen by the kiosk's LOD controller (OBJ: full detail)
+    bool glide = true;           // geomorph level changes (false: jump, e.g. a screenshot)
+    bool hold_level = false;     // keep the current level (the kiosk's first frame: base meshes)
+};
+
+struct LoadOptions {
+    // A model shown alone (`--model`) keeps the colour its file gives, and the
+    // renderer's default where the file gives none; else the manifest's colour.
+    bool file_colours = false;
+};
+
+class SceneModels {
+public:
+    // Starts a loader for every .bpm at once (base meshes decode in parallel,
+    // while the caller initialises the renderer).
+    explicit SceneModels(const scene::Scene& scene);
+    ~SceneModels();
+    SceneModels(const SceneModels&) = delete;
+    SceneModels& operator=(const SceneModels&) = delete;
+
+    // Uploads every model (a .bpm once its base meshes are in). A model that
+    // fails is logged ("bodyview: NAME: skipped: reason") and left out.
+    // Returns how many models loaded.
+    size_t load(render::Renderer& renderer, const LoadOptions& options = {});
+    size_t size() const { return models_.size(); }
+    const ModelInfo& info(size_t model) const { return info_[model]; }
+    const std::vector<ModelInfo>& infos() const { return info_; }
+    const scene::Scene& scene() const { return scene_; }
+    // The names of a model's structures (a file may hold several).
+    std::vector<std::string> structure_names(size_t model) const;
+
+    // Lets the loaders decode past the base meshes; `wait`: blocks until every
+    // file is decoded (frames then do not depend on the machine's speed).
+    void release_detail(bool wait);
+    // Holds every streaming loader's lock (needed by bind() and pick()).
+    std::vector<std::unique_lock<std::mutex>> lock() const;
+    // Under lock(): notes streams that ended (logging why one ended early).
+    // True while any model still streams.
+    bool poll_streams();
+    // Blocks until every stream has ended or `deadline` passed (gives the loaders the CPU).
+    void wait_until(std::chrono::steady_clock::time_point deadline) const;
+
+    // Under lock(): applies `binding` to every structure of `model` and heads
+    // for its level of detail. Returns whether the model is at the detail the
+    // whole file would give (false while streaming or gliding towards it).
+    bool bind(size_t model, const ModelBinding& binding, double now);
+    // Triangles of a model at its current levels.
+    size_t triangles(size_t model) const;
+    // Under lock(): the ray's world distance to the model's surface placed by `transform`.
+    std::optional<float> pick(size_t model, const glm::mat4& transform, const Ray& ray) const;
+
+private:
+    // A scene model: its parts (a file may hold several structures) and, for a
+    // .bpm, the loader still decoding its detail.
+    struct Model {
+        std::vector<ModelPart> parts;
+        std::unique_ptr<StreamLoader> loader;
+        bool streaming = false;
+    };
+    Status load_model(size_t index, const LoadOptions& options);
+    void measure(size_t index);
+
+    const scene::Scene& scene_;
+    render::Renderer* renderer_ = nullptr;
+    std::vector<Model> models_;
+    std::vector<ModelInfo> info_;
+};
+
+}  // namespace body::kiosk
