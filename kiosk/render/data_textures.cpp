@@ -2,6 +2,7 @@
 #include "kiosk/render/data_textures.h"
 
 #include <algorithm>
+#include <glm/gtc/type_ptr.hpp>
 
 #include "kiosk/render/gl_util.h"
 
@@ -38,6 +39,17 @@ void texture_rows(GLuint tex, size_t begin, size_t end, GLenum format, GLenum ty
                         1, format, type, src + (begin - begin0) * element_size);
         begin += count;
     }
+}
+
+void bind_data_texture(Program& p, const char* sampler, GLuint texture, int unit) {
+    glActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + unit));
+    glBindTexture(GL_TEXTURE_2D, texture);
+    glUniform1i(p.loc(sampler), unit);
+}
+
+void set_quantization(Program& p, const Vec3f& origin, const Vec3f& scale) {
+    glUniform3fv(p.loc("u_quant_origin"), 1, glm::value_ptr(origin));
+    glUniform3fv(p.loc("u_quant_scale"), 1, glm::value_ptr(scale));
 }
 
 // A model is drawn in one style at a time, so it keeps the lazily built data of

@@ -9,6 +9,7 @@
 #include <cstdint>
 
 #include "kiosk/render/model.h"
+#include "kiosk/render/programs.h"
 
 namespace body::render {
 
@@ -23,6 +24,11 @@ GLuint make_data_texture(GLenum internal, size_t capacity);
 // `src` holds element `begin` first.
 void texture_rows(GLuint tex, size_t begin, size_t end, GLenum format, GLenum type, const uint8_t* src,
                   size_t element_size);
+
+// Binds `texture` to unit `unit` as the program's sampler `sampler`.
+void bind_data_texture(Program& p, const char* sampler, GLuint texture, int unit);
+// The dequantization of a data texture's 16-bit codes: object = origin + scale * code.
+void set_quantization(Program& p, const Vec3f& origin, const Vec3f& scale);
 
 // Frees the model's `wireframe` position textures / `lines` edge texture
 // (marked stale, rebuilt from the GL buffers when the style returns) and

@@ -49,6 +49,14 @@ void set_lights(Program& p, const Lighting& l) {
     glUniform2f(p.loc("u_spec_rim"), 0.25f * l.key, 0.5f * l.rim);
 }
 
+void draw_coloured(Frame& f, Program& p, const Model& m, const Vec3f& color, bool lit) {
+    f.use(p);
+    set_matrices(p, f, m);
+    if (lit) set_lights(p, *f.lighting);
+    glUniform4f(p.loc("u_color"), color.r, color.g, color.b, 1.0f);
+    draw_triangles(f, m);
+}
+
 void draw_triangles(const Frame& f, const Model& m) {
     glBindVertexArray(m.vao);
     const size_t chunk = 3 * kFlushTriangles;

@@ -60,6 +60,9 @@ struct Frame {
 void set_matrices(Program& p, const Frame& f, const Model& m);
 // lighting.glsl's uniforms; directions are normalized here once, not per fragment.
 void set_lights(Program& p, const Lighting& l);
+// Draws the model's triangles with a mesh.vert program in one colour
+// (u_color), lit by the frame's lights (lighting.glsl) when `lit`.
+void draw_coloured(Frame& f, Program& p, const Model& m, const Vec3f& color, bool lit);
 // The model's triangles (its element buffer, index_count entries).
 void draw_triangles(const Frame& f, const Model& m);
 

@@ -5,12 +5,7 @@
 namespace body::render {
 
 void draw_baseline(RendererState& s, Frame& f, Model& m) {
-    Program& p = s.programs.baseline;
-    const Vec3f col = m.state.color;
-    f.use(p);
-    set_matrices(p, f, m);
-    glUniform4f(p.loc("u_color"), col.r, col.g, col.b, 1.0f);
-    draw_triangles(f, m);
+    draw_coloured(f, s.programs.baseline, m, m.state.color, false);
 }
 
 }  // namespace body::render

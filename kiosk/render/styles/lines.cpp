@@ -177,13 +177,9 @@ void create_edge_quads(RendererState& s) {
 
 void draw_lines(RendererState& s, Frame& f, Model& m) {
     const FrameOptions& o = *f.options;
-    Program& fill = s.programs.baseline;
-    f.use(fill);
-    set_matrices(fill, f, m);
-    glUniform4f(fill.loc("u_color"), o.paper.r, o.paper.g, o.paper.b, 1.0f);
-    glEnable(GL_POLYGON_OFFSET_FILL);
+    glEnable(GL_POLYGON_OFFSET_FILL);  // the paper fill behind the edges it outlines
     glPolygonOffset(1.0f, 1.0f);
-    draw_triangles(f, m);
+    draw_coloured(f, s.programs.baseline, m, o.paper, false);
     glDisable(GL_POLYGON_OFFSET_FILL);
     ensure_edges(m);
     Program& p = s.programs.lines;
@@ -196,11 +192,8 @@ void draw_lines(RendererState& s, Frame& f, Model& m) {
     glUniform2f(p.loc("u_viewport"), static_cast<float>(o.width), static_cast<float>(o.height));
     glUniform1f(p.loc("u_width_px"), o.line_width_px);
     glUniform4f(p.loc("u_color"), o.ink.r, o.ink.g, o.ink.b, 1.0f);
-    glUniform3fv(p.loc("u_quant_origin"), 1, glm::value_ptr(m.edge_origin));
-    glUniform3fv(p.loc("u_quant_scale"), 1, glm::value_ptr(m.edge_scale));
-    glActiveTexture(GL_TEXTURE0);
-    glBindTexture(GL_TEXTURE_2D, m.edge_texture);
-    glUniform1i(p.loc("u_edges"), 0);
+    set_quantization(p, m.edge_origin, m.edge_scale);
+    bind_data_texture(p, "u_edges", m.edge_texture, 0);
     glDisable(GL_CULL_FACE);
     draw_edge_quads(f, p, s.quad_vao, m.edge_count);
     glEnable(GL_CULL_FACE);

@@ -4,14 +4,6 @@
 
 namespace body::render {
 
-void draw_smooth(RendererState& s, Frame& f, Model& m) {
-    Program& p = s.programs.smooth;
-    const Vec3f col = m.state.color;
-    f.use(p);
-    set_matrices(p, f, m);
-    set_lights(p, *f.lighting);
-    glUniform4f(p.loc("u_color"), col.r, col.g, col.b, 1.0f);
-    draw_triangles(f, m);
-}
+void draw_smooth(RendererState& s, Frame& f, Model& m) { draw_coloured(f, s.programs.smooth, m, m.state.color, true); }
 
 }  // namespace body::render

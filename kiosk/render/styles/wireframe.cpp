@@ -113,14 +113,9 @@ void draw_wireframe(RendererState& s, Frame& f, Model& m) {
     set_lights(p, *f.lighting);
     glUniform4f(p.loc("u_color"), col.r, col.g, col.b, 1.0f);
     glUniform1f(p.loc("u_width_px"), o.line_width_px * 0.75f);
-    glUniform3fv(p.loc("u_quant_origin"), 1, glm::value_ptr(m.wire_origin));
-    glUniform3fv(p.loc("u_quant_scale"), 1, glm::value_ptr(m.wire_scale));
-    glActiveTexture(GL_TEXTURE0);
-    glBindTexture(GL_TEXTURE_2D, m.position_texture);
-    glUniform1i(p.loc("u_positions"), 0);
-    glActiveTexture(GL_TEXTURE1);
-    glBindTexture(GL_TEXTURE_2D, m.position_texture_z);
-    glUniform1i(p.loc("u_positions_z"), 1);
+    set_quantization(p, m.wire_origin, m.wire_scale);
+    bind_data_texture(p, "u_positions", m.position_texture, 0);
+    bind_data_texture(p, "u_positions_z", m.position_texture_z, 1);
     glActiveTexture(GL_TEXTURE0);
     draw_wire_chunks(f, s.wire_vao, m.ebo, m.index_count);
 }
