@@ -2,8 +2,8 @@
 // One draw function per style, one file each in kiosk/render/styles/ next to
 // the shaders of the same name in kiosk/shaders/: smooth, wireframe, lines,
 // hatching (both variants), baseline; transparent.cpp draws the selection and
-// x-ray passes. Each draws one visible model whose triangles the frame
-// (kiosk/render/frame.cpp) has counted already, with the context current.
+// x-ray passes. An opaque style draws one visible model whose triangles the
+// frame (kiosk/render/frame.cpp) has counted already; the context is current.
 #include "kiosk/render/draw.h"
 #include "kiosk/render/renderer_state.h"
 
