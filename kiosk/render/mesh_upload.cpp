@@ -245,6 +245,31 @@ Status patch_mapped(Transfers& transfers, GLuint buffer, size_t first, size_t co
     return ok_status();
 }
 
+// Uploads the positions, morph sources and normals of the vertices [b, e)
+// from the full arrays (turning the model's positions to floats when they
+// leave its box) and takes the bounds of the vcount drawn vertices.
+void upload_dirty_vertices(Model& m, const MeshData& mesh, const PositionView& pos, size_t b, size_t e, size_t vcount,
+                           size_t icount) {
+    if (m.quantized && !inside_position_box(m, pos, b, e)) to_float_positions(m, mesh, std::max(vcount, e));
+    glBindBuffer(GL_ARRAY_BUFFER, m.vbo_position);
+    upload_positions(m, pos, b, e);
+    if (m.vbo_morph && mesh.morph_sources.size() >= e) {
+        glBindBuffer(GL_ARRAY_BUFFER, m.vbo_morph);
+        upload_positions(m, PositionView(mesh.morph_sources), b, e);
+    } else if (m.vbo_morph && mesh.morph_at_rest) {
+        glBindBuffer(GL_ARRAY_BUFFER, m.vbo_morph);
+        upload_positions(m, pos, b, e);
+    }
+    std::vector<Vec3f> computed;
+    if (mesh.normals.empty() && mesh.normal_codes.empty())
+        computed = area_normals(pos, mesh.indices.first(icount), pos.size());
+    std::span<const Vec3f> normals = mesh.normals.empty() ? std::span<const Vec3f>(computed) : mesh.normals;
+    glBindBuffer(GL_ARRAY_BUFFER, m.vbo_normal);
+    upload_normals(m, normals, mesh.normal_codes, b, e);
+    release_scratch(computed);
+    set_bounds(m, pos, vcount);
+}
+
 // The sizes of one add_model upload.
 struct UploadPlan {
     bool filled = false;              // MeshData::index_fill writes the whole element buffer
@@ -449,26 +474,7 @@ Status Renderer::update_model(ModelId id, const MeshData& mesh, const Dirty& dir
                                            m.name + ": the position buffer");
         if (!st.ok()) return st;
     } else if (!vpatched && dirty.vertex_begin < dirty.vertex_end) {
-        const size_t b = dirty.vertex_begin, n = dirty.vertex_end - dirty.vertex_begin;
-        if (m.quantized && !inside_position_box(m, pos, b, b + n))
-            to_float_positions(m, mesh, std::max(vcount, dirty.vertex_end));
-        glBindBuffer(GL_ARRAY_BUFFER, m.vbo_position);
-        upload_positions(m, pos, b, b + n);
-        if (m.vbo_morph && mesh.morph_sources.size() >= dirty.vertex_end) {
-            glBindBuffer(GL_ARRAY_BUFFER, m.vbo_morph);
-            upload_positions(m, PositionView(mesh.morph_sources), b, b + n);
-        } else if (m.vbo_morph && mesh.morph_at_rest) {
-            glBindBuffer(GL_ARRAY_BUFFER, m.vbo_morph);
-            upload_positions(m, pos, b, b + n);
-        }
-        std::vector<Vec3f> computed;
-        if (mesh.normals.empty() && mesh.normal_codes.empty())
-            computed = area_normals(pos, mesh.indices.first(icount - icount % 3), pos.size());
-        std::span<const Vec3f> normals = mesh.normals.empty() ? std::span<const Vec3f>(computed) : mesh.normals;
-        glBindBuffer(GL_ARRAY_BUFFER, m.vbo_normal);
-        upload_normals(m, normals, mesh.normal_codes, b, b + n);
-        release_scratch(computed);
-        set_bounds(m, pos, vcount);
+        upload_dirty_vertices(m, mesh, pos, dirty.vertex_begin, dirty.vertex_end, vcount, icount - icount % 3);
     }
     const bool index_patched = patched && mesh.index_patch_begin < mesh.index_patch_end;
     if (index_patched) {
