@@ -24,7 +24,7 @@ struct EdgeRecord {
 // What the GPU gets per edge, one RGBA32UI texel (16 bytes, no position
 // texture to fetch from): both endpoints as 16-bit codes in a box (x0 y0 | z0 x1
 // | y1 z1, low half first) and the two unit face normals as 8:8 octahedral
-// codes (n0 low, n1 high; a boundary edge carries -n0 as n1). See edges.vert.
+// codes (n0 low, n1 high; a boundary edge carries -n0 as n1). See lines.vert.
 struct GpuEdge {
     uint32_t xy0, z0x1, y1z1;
     uint32_t normals;

@@ -12,8 +12,8 @@
 //   r.state(id)->style = Style::Hatching;
 //   r.render(camera, lighting, frame);  surface->present();
 //
-// Models: positions/normals/indices are copied into GL buffers sized once at
-// the given capacity (MeshData::capacity_*), then patched with update_model()
+// Models: positions/normals/indices are copied into GL buffers sized once to
+// the given arrays (their capacity; see MeshData), then patched with update_model()
 // and the dirty ranges of a progressive mesh (shared/pm), drawing the current
 // prefixes vertex_count/index_count. Units are object space; ModelState::transform
 // places a model in the world. The renderer keeps no CPU copy of the mesh: the
@@ -28,6 +28,12 @@
 // purple, x-ray/faded unselected) sorted back to front, each with a depth
 // pre-pass so only its nearest layer blends. The white manipulation sphere of a
 // selected model sits at its centre (opaque, seen through the purple).
+//
+// Inside (kiosk/render/): renderer.cpp init/shutdown and the model table
+// around RendererState (renderer_state.h); programs.* the shader table;
+// buffer_access.* mapping GL buffers; mesh_upload.cpp add_model/update_model;
+// quantize.* the 16-bit codes and normal packings; frame.cpp render();
+// styles/<style>.cpp each style's draw and data, next to kiosk/shaders/<style>.*.
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -36,6 +42,8 @@
 #include <utility>
 #include <vector>
 
+#include "kiosk/render/camera.h"
+#include "kiosk/render/mesh_data.h"
 #include "shared/error.h"
 #include "shared/geometry.h"
 
@@ -54,90 +62,6 @@ inline constexpr Style kAllStyles[] = {Style::Smooth, Style::Wireframe, Style::L
 const char* style_name(Style style);  // "smooth", "wireframe", "lines", "hatching", "hatching-2tone", "baseline"
 Result<Style> parse_style(const std::string& name);
 
-// A mesh to upload: the first vertex_count positions (and normals, or empty to
-// have area-weighted normals computed) and the first index_count indices
-// (triangles, counter-clockwise from outside) are drawn. capacity_* (>= the
-// counts; 0 = the span size) size the GL buffers for later growth.
-struct MeshData {
-    std::span<const Vec3f> positions;
-    std::span<const Vec3f> normals;
-    std::span<const uint32_t> indices;
-    // Optional geomorph sources, one per position, uploaded with the same dirty
-    // vertex ranges; their presence gives the model a morph buffer. At rest they
-    // equal the positions (the kiosk passes the positions and patches a morph's
-    // range with set_morph_sources, see pm::ProgressiveMesh::morph_sources);
-    // see ModelState::morph.
-    std::span<const Vec3f> morph_sources = {};
-    size_t vertex_count = SIZE_MAX;  // SIZE_MAX: positions.size()
-    size_t index_count = SIZE_MAX;   // SIZE_MAX: indices.size()
-    // add_model only: the arrays are written up to vertex_count/index_count and
-    // the rest is capacity for later update_model calls (a progressive mesh
-    // still streaming). Buffers are sized to the arrays but only the counted
-    // prefix is read and uploaded. False: the whole arrays are uploaded.
-    bool prefix_only = false;
-    // Optional box holding every position and morph source the model will
-    // have (a progressive mesh's bounds). The renderer keeps positions as
-    // 16-bit codes in a box (6 bytes a vertex instead of 12; exact for .bpm
-    // positions, which are 16-bit codes in their box): this one, or without it
-    // the box of the arrays when they are all written (not prefix_only); else
-    // floats. A patch that leaves the box turns the model's positions to floats.
-    bool has_position_box = false;
-    Vec3f position_box_min{0.0f}, position_box_max{0.0f};
-    // Optional, in place of `positions`: three 16-bit codes per vertex in the
-    // position box (has_position_box needed), position = min + code * (max -
-    // min) / 65535; uploaded as they are (a source that keeps its positions so
-    // needs no float copy).
-    std::span<const uint16_t> position_codes = {};
-    // Optional, in place of `normals`: two 8-bit octahedral codes per vertex, as
-    // a .bpm keeps them (pm::oct_decode8); packed for GL as they are uploaded.
-    std::span<const uint8_t> normal_codes = {};
-    // Without morph_sources: true gives the model a morph buffer holding its
-    // positions (the sources at rest), patched with the same dirty vertex
-    // ranges, so a source that keeps only codes needs no float copy.
-    bool morph_at_rest = false;
-    // Optional, for update_model in place of `indices` (left empty): a source
-    // that keeps no index array of its own (the model's GL element buffer is
-    // its only copy, e.g. a progressive mesh after
-    // pm::ProgressiveMesh::release_indices) writes its changes straight into the
-    // buffer's elements [index_patch_begin, index_patch_end), mapped for writing
-    // (see BufferAccess: in place, no copy where the GPU shares memory with the
-    // CPU, or staged): window[i] is element
-    // first + i; entries it does not write keep their values. Its values are
-    // trusted (the source's own, checked when it was read). Needs normals or
-    // normal codes (area normals need the indices).
-    std::function<void(std::span<uint32_t> window, size_t first)> index_patch = {};
-    size_t index_patch_begin = 0, index_patch_end = 0;
-    // Optional, for update_model in place of the positions and normals (both
-    // left empty; has_position_box set to the box of the model's codes): a
-    // source that keeps no vertex data of its own (pm::ProgressiveMesh::
-    // release_vertex_data) XORs its position changes into the model's 16-bit
-    // codes of the vertices [position_patch_begin, position_patch_end), mapped
-    // for reading and writing (BufferAccess; window: 3 codes a vertex, first =
-    // the first vertex); the normals do not change. Only for a model whose positions are codes in
-    // that box and that has no morph buffer.
-    std::function<void(std::span<uint16_t> window, size_t first)> position_patch = {};
-    size_t position_patch_begin = 0, position_patch_end = 0;
-    // Optional, add_model only, in place of `indices` (left empty; not with
-    // prefix_only; needs normals or normal codes): a source that keeps its
-    // index array packed fills the whole new element buffer of
-    // index_fill_count entries, mapped for writing (BufferAccess), and frees
-    // its copy.
-    std::function<void(std::span<uint32_t> out)> index_fill = {};
-    size_t index_fill_count = 0;
-    // Optional, add_model only: told as `indices` go up in order (a piece at a
-    // time) that the entries [0, end) are in the GL buffer, so a source handing
-    // its array over for good can free it while it goes up (the two copies
-    // never coexist in full). Not called for a prefix_only upload.
-    std::function<void(size_t end)> indices_uploaded = {};
-};
-
-// Half-open element ranges changed since the last upload (vertices: positions
-// and normals; indices: index entries).
-struct Dirty {
-    size_t vertex_begin = 0, vertex_end = 0;
-    size_t index_begin = 0, index_end = 0;
-};
-
 using ModelId = uint32_t;
 
 struct ModelState {
@@ -146,27 +70,12 @@ struct ModelState {
     glm::mat4 transform{1.0f};  // object -> world
     bool visible = true;
     bool selected = false;  // transparent purple + the white manipulation sphere
-    int group = 0;          // for set_group_* (e.g. "organs", "skeleton")
     // Geomorph, done in the vertex shader: vertices [morph_begin, vertex_count)
     // are drawn at mix(morph source, position, morph); the others (and models
     // uploaded without morph sources) at their positions. morph = 1: no morph.
     // The `lines` and `wireframe` styles draw the positions as they are.
     size_t morph_begin = SIZE_MAX;
     float morph = 1.0f;
-};
-
-struct Camera {
-    Vec3f eye{0.0f, 0.0f, 3.0f}, target{0.0f}, up{0.0f, 1.0f, 0.0f};
-    float fov_y_deg = 35.0f;
-    float near_plane = 0.01f, far_plane = 100.0f;
-    glm::mat4 view() const;
-    glm::mat4 projection(float aspect) const;
-    // A camera looking at the sphere (center, radius) from `direction` (world,
-    // toward the eye) so that it fills the view; near/far hug the sphere.
-    static Camera framing(Vec3f center, float radius, Vec3f direction = {0.35f, 0.25f, 1.0f});
-    // A camera looking at the box [lo, hi] from `direction` at the smallest
-    // distance where all eight corners fit the view of the given aspect.
-    static Camera framing_box(Vec3f lo, Vec3f hi, Vec3f direction, float aspect, float fov_y_deg = 35.0f);
 };
 
 // Lights are attached to the camera: directions in view space, toward the light.
@@ -207,14 +116,9 @@ enum class BufferAccess {
     InPlace,
     // A map that writes goes through a temporary buffer: the range is copied
     // into it on the GPU, mapped there, copied back and the buffer deleted, so
-    // the model's buffer is never mapped for writing. A discrete GPU's driver
-    // draws a buffer mapped for writing from host memory for a while after
-    // (measured on an NVIDIA H200, 1.1M-triangle .bpm: the frames after a
-    // level change 7.3-7.5 ms instead of 0.93-0.98, `wireframe` at full detail
-    // 4.2-4.3 ms instead of 2.9; the AAL brain kiosk's first frame 41.0-41.4 ms
-    // instead of 31.0-37.5). Reads map in place: staging them too changed no
-    // frame time there and kept 14 MiB more of the driver's staging memory
-    // (peak RSS of the OBJ path 59.5 MiB against 45.1-45.5).
+    // the model's buffer is never mapped for writing (a discrete GPU's driver
+    // draws such a buffer from host memory for a while after; bench/RESULTS.md).
+    // Reads map in place.
     Staged,
 };
 const char* buffer_access_name(BufferAccess access);  // "auto", "in-place", "staged"
@@ -230,6 +134,8 @@ struct TransferStats {
     size_t in_place_writes = 0;  // of which mapped for writing
     size_t staged_bytes = 0;     // bytes copied through temporary buffers, each way counted
 };
+
+struct RendererState;
 
 class Renderer {
 public:
@@ -273,9 +179,6 @@ public:
     // World-space bounding box of all visible models; false when none.
     bool scene_box(Vec3f& lo, Vec3f& hi) const;
 
-    void set_group_style(int group, Style style);
-    void set_group_visible(int group, bool visible);
-
     // Draws one frame into options.framebuffer.
     void render(const Camera& camera, const Lighting& lighting, const FrameOptions& options);
     const FrameStats& last_frame_stats() const;
@@ -283,10 +186,8 @@ public:
     // built edge lists and data textures, the tonal art map).
     size_t gpu_bytes() const;
 
-    struct State;  // defined in renderer.cpp
-
 private:
-    std::unique_ptr<State> s_;
+    std::unique_ptr<RendererState> s_;  // kiosk/render/renderer_state.h
 };
 
 // Embedded GLSL sources (kiosk/shaders/, generated into the build at compile

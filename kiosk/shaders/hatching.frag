@@ -13,14 +13,10 @@
 // 2000: a light (tone 1) and a dark (tone 4) hatch texture switched at
 // N.L = 0.5, both in layer 2 (R, G).
 // Cost on a software rasterizer (llvmpipe shades whole 4x4 blocks per small
-// triangle, so every operation here counts per triangle): the texture read
-// dominates (~0.3 of the baseline at 10 % LOD). One varying: the position and
-// the tone coordinate share a vec4, instead of the normal interpolated and
-// normalized per fragment (1.64 -> 1.51 and 1.57 -> 1.47 the baseline at 10 %
-// LOD of the 1.1M bunny, style frames of both alternating in one run; no
-// change measurable at 100 %). The price: the tone is linear across a
-// triangle, so very coarse meshes (an 8-vertex cube) look darker mid-face;
-// at a few pixels per triangle (the 2 % LOD of the bunny) no difference shows.
+// triangle, so every operation here counts per triangle): one varying, the
+// position and the tone coordinate sharing a vec4, instead of the normal
+// interpolated and normalized per fragment (bench/RESULTS.md). The price: the
+// tone is linear across a triangle, so very coarse meshes look darker mid-face.
 // Back faces are culled (no view ray to flip them); the projection plane comes
 // from the position's derivatives, so the object normal is not needed.
 precision highp float;

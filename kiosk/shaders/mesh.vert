@@ -12,7 +12,7 @@
 // own position. gl_VertexID is the index value in an indexed draw.
 //
 // Positions (and morph sources) may arrive as 16-bit codes in the model's box
-// (renderer.cpp, Model::quantized): object = u_pos_origin + u_pos_scale * code;
+// (kiosk/render/model.h, Model::quantized): object = u_pos_origin + u_pos_scale * code;
 // float positions come with origin 0 and scale 1.
 //
 // Normals arrive as GL_INT_2_10_10_10_REV (a_normal) or, for sources that keep
@@ -32,7 +32,7 @@ uniform float u_morph;     // 0: at the parents .. 1: at their own positions
 uniform int u_morph_begin;  // first morphing vertex
 uniform bool u_normal_codes;  // the normal comes from a_normal_code
 uniform float u_hatch_scale;  // hatching: texture repeats per object-space unit
-// hatching: unit, toward the key light, in object space (renderer.cpp): no
+// hatching: unit, toward the key light, in object space (styles/hatching.cpp): no
 // normal matrix per vertex; exact for model-views made of a rotation, a uniform
 // scale and a translation (the scene's), normalize(N n) . L = n . R^T L.
 uniform vec3 u_hatch_key;

@@ -12,7 +12,7 @@ precision highp usampler2D;
 layout(location = 3) in highp uint a_vertex;
 uniform usampler2D u_positions;    // RG16UI: x, y
 uniform usampler2D u_positions_z;  // R16UI: z
-const int kTextureWidthLog2 = 11;  // texels per row, renderer.cpp's kTextureWidth (shift, not division)
+const int kTextureWidthLog2 = 11;  // texels per row, kiosk/render/data_textures.h's kTextureWidth (shift, not division)
 uniform vec3 u_quant_origin;  // object space of code 0
 uniform vec3 u_quant_scale;   // object units per code step
 uniform mat4 u_model_view;

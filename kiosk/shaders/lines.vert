@@ -1,15 +1,12 @@
 #version 300 es
 // `lines`: silhouette, boundary and crease edges as screen-space rectangles of
 // constant pixel width (McGuire & Hughes 2004, without geometry shaders).
-// One triangle per mesh edge, twice the rectangle's size, that edges.frag trims
+// One triangle per mesh edge, twice the rectangle's size, that lines.frag trims
 // to the rectangle: its right angle is at one corner of the rectangle and its
 // legs are twice the rectangle's sides, so its hypotenuse passes through the
 // opposite corner. A quad would take two triangles and four vertices; most
 // edges are not drawn, and on a real GPU their primitives and vertices are the
-// style's cost (an H200 took the same time whatever this shader computed;
-// one triangle instead of two took the style from 2.16x to 1.92x the baseline
-// there, and from 1.41-1.47x to 1.32-1.33x on llvmpipe, at 40 % of 1.1M
-// triangles).
+// style's cost, so one triangle each (bench/RESULTS.md).
 // Vertices come from gl_VertexID = 4 * edge + corner, corner 0..2 (no
 // instancing, which software rasterizers run instance by instance; no vertex
 // attributes). One texel per edge (RGBA32UI, 16 bytes) holds all it needs:
@@ -24,7 +21,7 @@ precision highp int;
 precision highp usampler2D;
 
 uniform usampler2D u_edges;  // RGBA32UI, one edge per texel
-// Texels per row of the edge texture (renderer.cpp's kTextureWidth = 2^11): a
+// Texels per row of the edge texture (kTextureWidth = 2^11, kiosk/render/data_textures.h): a
 // constant shift and mask, since a division by a uniform is per-lane integer
 // division on a software rasterizer.
 const int kTextureWidthLog2 = 11;
@@ -47,7 +44,7 @@ vec3 unpack_normal(uint bits) {
     return normalize(n);
 }
 
-out highp vec2 v_rect;  // (1, 1) is the rectangle's far corner; edges.frag discards beyond
+out highp vec2 v_rect;  // (1, 1) is the rectangle's far corner; lines.frag discards beyond
 
 void main() {
     int vid = u_vertex_base + gl_VertexID;

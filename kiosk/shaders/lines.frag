@@ -1,5 +1,5 @@
 #version 300 es
-// Ink for the `lines` style edges: the triangle edges.vert draws, trimmed to
+// Ink for the `lines` style edges: the triangle lines.vert draws, trimmed to
 // its rectangle (highp: a long edge is hundreds of pixels).
 precision mediump float;
 uniform vec4 u_color;

@@ -1,0 +1,69 @@
+#pragma once
+// What every style's draw shares: the frame's matrices and options, program
+// use, the uniforms of mesh.vert and lighting.glsl, and draw calls that a
+// software rasterizer gets in flushed pieces.
+#include <GLES3/gl3.h>
+
+#include <cstddef>
+#include <glm/glm.hpp>
+
+#include "kiosk/render/model.h"
+#include "kiosk/render/programs.h"
+#include "kiosk/render/renderer.h"
+
+namespace body::render {
+
+// Software rasterizers (llvmpipe) bin every triangle of a frame before
+// rasterizing it and keep that memory: large draws are flushed every
+// kFlushTriangles, waiting for the scene before (FlushPacer), which bounds the
+// bins to two scenes of that size (tilers on real GPUs would pay a tile
+// resolve per flush, so only software drivers do it; bench/RESULTS.md).
+inline constexpr size_t kFlushTriangles = 4 * 1024;
+
+// A flush alone lets the application run ahead of the rasterizer threads, and
+// every queued scene keeps its bins: how many depends on the machine's load.
+// Waiting for the scene before the last one keeps at most two in flight (one
+// binning, one rasterizing), so the working memory no longer depends on timing.
+class FlushPacer {
+public:
+    FlushPacer() = default;
+    FlushPacer(const FlushPacer&) = delete;
+    FlushPacer& operator=(const FlushPacer&) = delete;
+    ~FlushPacer();
+    void flush();
+
+private:
+    GLsync previous_ = nullptr;
+};
+
+// One frame being drawn (Renderer::render, kiosk/render/frame.cpp).
+struct Frame {
+    glm::mat4 view, projection;
+    glm::vec4 view_ray;  // gl_FragCoord -> view ray (lighting.glsl)
+    const Camera* camera;
+    const Lighting* lighting;
+    const FrameOptions* options;
+    bool flush_large_draws = false;  // RendererState::flush_large_draws
+    // Drivers compile a program's shaders at its first draw (llvmpipe: LLVM)
+    // and free the compiler's scratch into the heap: a frame that drew a
+    // program for the first time trims the heap at its end.
+    bool first_use = false;
+    void use(Program& p) {
+        glUseProgram(p.id);
+        first_use |= !p.drawn;
+        p.drawn = true;
+    }
+};
+
+// mesh.vert's uniforms for model `m`: matrices, position dequantization,
+// normal format, view ray and geomorph.
+void set_matrices(Program& p, const Frame& f, const Model& m);
+// lighting.glsl's uniforms; directions are normalized here once, not per fragment.
+void set_lights(Program& p, const Lighting& l);
+// Draws the model's triangles with a mesh.vert program in one colour
+// (u_color), lit by the frame's lights (lighting.glsl) when `lit`.
+void draw_coloured(Frame& f, Program& p, const Model& m, const Vec3f& color, bool lit);
+// The model's triangles (its element buffer, index_count entries).
+void draw_triangles(const Frame& f, const Model& m);
+
+}  // namespace body::render

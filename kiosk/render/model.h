@@ -1,0 +1,58 @@
+#pragma once
+// One uploaded model inside the renderer: its GL buffers and formats, drawn
+// counts, bounds and the lazily built data textures of the line styles.
+#include <GLES3/gl3.h>
+
+#include <cstddef>
+#include <string>
+
+#include "kiosk/render/renderer.h"
+
+namespace body::render {
+
+struct Transfers;  // kiosk/render/buffer_access.h
+
+struct Model {
+    std::string name;
+    Transfers* transfers = nullptr;  // the renderer's (add_model)
+    ModelState state;
+    GLuint vao = 0, vbo_position = 0, vbo_normal = 0, ebo = 0;
+    GLuint vbo_morph = 0;  // geomorph sources (progressive meshes only)
+    // Normals in GL: the source's 8:8 octahedral codes as they are (2 bytes a
+    // vertex, decoded in mesh.vert) when add_model got codes, else
+    // GL_INT_2_10_10_10_REV (4 bytes).
+    bool normal_codes = false;
+    size_t normal_stride() const { return normal_codes ? 2 : 4; }
+    // Positions (and morph sources) in GL: 16-bit codes per axis in a box fixed
+    // at add_model (object = pos_origin + pos_scale * code, 6 bytes a vertex),
+    // or floats (12 bytes) when the box is not known or a patch left it.
+    bool quantized = false;
+    Vec3f pos_origin{0.0f}, pos_scale{1.0f};
+    size_t position_stride() const { return quantized ? 6 : sizeof(Vec3f); }
+    size_t vertex_capacity = 0, index_capacity = 0;
+    size_t vertex_count = 0, index_count = 0;
+    Vec3f center{0.0f};
+    float radius = 0.0f;
+    Vec3f box_min{0.0f}, box_max{0.0f};  // object space
+    // Lazily created: the position texture for `wireframe`, the edge texture for `lines`
+    // (kiosk/render/styles/wireframe.cpp, lines.cpp; a model keeps one at a time).
+    // `wireframe`: x and y codes in RG16UI, z in R16UI (6 bytes a vertex; an
+    // RGB16UI texture is padded to 8 by llvmpipe).
+    GLuint position_texture = 0, position_texture_z = 0;
+    Vec3f wire_origin{0.0f}, wire_scale{0.0f};  // dequantization of the position texture
+    bool wire_stale = true;
+    GLuint edge_texture = 0;                    // RGBA32UI, one GpuEdge per texel
+    Vec3f edge_origin{0.0f}, edge_scale{0.0f};  // dequantization of the GpuEdge endpoints
+    size_t edge_capacity = 0;
+    size_t edge_count = 0;
+    bool edges_stale = true;
+    bool internal = false;  // the manipulation sphere
+};
+
+// Deletes the model's GL buffers, vertex array and data textures.
+void free_model(Model& m);
+
+// World-space bounding sphere of a model (the largest axis scale of the transform).
+void world_sphere(const Model& m, Vec3f& center, float& radius);
+
+}  // namespace body::render

@@ -1,0 +1,115 @@
+// Shader compile and link (link_program, also the kiosk overlay's) and the
+// renderer's program table.
+#include "kiosk/render/programs.h"
+
+#include <algorithm>
+#include <utility>
+
+#include "kiosk/render/renderer.h"
+
+namespace body::render {
+namespace {
+
+// A shader's or program's info log on one line; the object is deleted.
+std::string take_info_log(GLuint id, bool program) {
+    char log[2048] = {};
+    if (program) {
+        glGetProgramInfoLog(id, sizeof(log), nullptr, log);
+        glDeleteProgram(id);
+    } else {
+        glGetShaderInfoLog(id, sizeof(log), nullptr, log);
+        glDeleteShader(id);
+    }
+    std::string one_line(log);
+    std::replace(one_line.begin(), one_line.end(), '\n', ' ');
+    return one_line;
+}
+
+Result<GLuint> compile(GLenum type, const char* src, const std::string& label) {
+    GLuint s = glCreateShader(type);
+    glShaderSource(s, 1, &src, nullptr);
+    glCompileShader(s);
+    GLint ok = 0;
+    glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
+    if (!ok) return runtime_error("shader " + label + ": compile failed: " + take_info_log(s, false));
+    return s;
+}
+
+Result<Program> link(const std::string& vert, const std::string& frag) {
+    const char* vs = shader_source(vert);
+    const char* fs = shader_source(frag);
+    if (!vs || !fs) return runtime_error("shader " + (vs ? frag : vert) + ": not embedded in this build");
+    const std::pair<unsigned, const char*> attributes[] = {{kPosition, "a_position"},
+                                                           {kNormal, "a_normal"},
+                                                           {kMorph, "a_morph"},
+                                                           {kWireVertex, "a_vertex"},
+                                                           {kNormalCode, "a_normal_code"}};
+    auto id = link_program(vs, fs, vert + "+" + frag, attributes);
+    if (!id) return id.error();
+    Program p;
+    p.id = id.value();
+    return p;
+}
+
+}  // namespace
+
+GLint Program::loc(const char* name) {
+    auto it = locations.find(name);
+    if (it != locations.end()) return it->second;
+    GLint l = glGetUniformLocation(id, name);
+    locations.emplace(name, l);
+    return l;
+}
+
+Result<unsigned> link_program(const char* vertex_source, const char* fragment_source, const std::string& name,
+                              std::span<const std::pair<unsigned, const char*>> attributes) {
+    auto vs = compile(GL_VERTEX_SHADER, vertex_source, name + " (vertex)");
+    if (!vs) return vs.error();
+    auto fs = compile(GL_FRAGMENT_SHADER, fragment_source, name + " (fragment)");
+    if (!fs) {
+        glDeleteShader(vs.value());
+        return fs.error();
+    }
+    const GLuint id = glCreateProgram();
+    glAttachShader(id, vs.value());
+    glAttachShader(id, fs.value());
+    for (const auto& [location, attribute] : attributes) glBindAttribLocation(id, location, attribute);
+    glLinkProgram(id);
+    glDeleteShader(vs.value());
+    glDeleteShader(fs.value());
+    GLint ok = 0;
+    glGetProgramiv(id, GL_LINK_STATUS, &ok);
+    if (!ok) return runtime_error("program " + name + ": link failed: " + take_info_log(id, true));
+    return id;
+}
+
+Status link_programs(Programs& programs) {
+    struct Want {
+        Program* p;
+        const char* vert;
+        const char* frag;
+    };
+    for (Want w :
+         {Want{&programs.baseline, "mesh.vert", "baseline.frag"}, Want{&programs.smooth, "mesh.vert", "smooth.frag"},
+          Want{&programs.hatching, "mesh.vert", "hatching.frag"}, Want{&programs.xray, "mesh.vert", "xray.frag"},
+          Want{&programs.lines, "lines.vert", "lines.frag"},
+          Want{&programs.wireframe, "wireframe.vert", "wireframe.frag"}}) {
+        auto p = link(w.vert, w.frag);
+        if (!p) {
+            delete_programs(programs);
+            return p.error();
+        }
+        *w.p = std::move(p.value());
+    }
+    return ok_status();
+}
+
+void delete_programs(Programs& programs) {
+    for (Program* p : {&programs.baseline, &programs.smooth, &programs.hatching, &programs.xray, &programs.lines,
+                       &programs.wireframe}) {
+        if (p->id) glDeleteProgram(p->id);
+        *p = Program{};
+    }
+}
+
+}  // namespace body::render

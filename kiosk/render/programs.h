@@ -1,0 +1,41 @@
+#pragma once
+// The renderer's GLSL programs: one per shader pair of kiosk/shaders/, linked
+// at init with the vertex attribute locations below, uniform locations looked
+// up once and cached.
+#include <GLES3/gl3.h>
+
+#include <map>
+#include <string>
+
+#include "shared/error.h"
+
+namespace body::render {
+
+// Vertex attribute locations (mesh.vert, wireframe.vert).
+inline constexpr GLuint kPosition = 0, kNormal = 1, kMorph = 2;
+inline constexpr GLuint kWireVertex = 3;  // `wireframe`: the index buffer read as a vertex attribute
+inline constexpr GLuint kNormalCode = 4;  // 8:8 octahedral normal codes (mesh.vert decodes them)
+
+struct Program {
+    GLuint id = 0;
+    bool drawn = false;  // used by a frame already (its shader variants compiled)
+    std::map<std::string, GLint> locations;
+    GLint loc(const char* name);
+};
+
+// The program table. The `lines` paper fill draws with `baseline`; a selected
+// model with `smooth`.
+struct Programs {
+    Program baseline;   // mesh.vert + baseline.frag
+    Program smooth;     // mesh.vert + smooth.frag
+    Program hatching;   // mesh.vert + hatching.frag (both hatching styles)
+    Program xray;       // mesh.vert + xray.frag
+    Program lines;      // lines.vert + lines.frag (the edges of `lines`)
+    Program wireframe;  // wireframe.vert + wireframe.frag
+};
+
+// Links every program of the table; on an error the ones linked are deleted.
+Status link_programs(Programs& programs);
+void delete_programs(Programs& programs);
+
+}  // namespace body::render

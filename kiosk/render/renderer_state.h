@@ -1,0 +1,32 @@
+#pragma once
+// The renderer's one private state struct (Dear ImGui backend shape): the
+// program table, the shared vertex arrays of the line styles, the tonal art
+// map, the models and the frame's statistics.
+#include <GLES3/gl3.h>
+
+#include <map>
+
+#include "kiosk/render/buffer_access.h"
+#include "kiosk/render/model.h"
+#include "kiosk/render/programs.h"
+#include "kiosk/render/renderer.h"
+
+namespace body::render {
+
+struct RendererState {
+    bool ready = false;
+    Programs programs;
+    GLuint tam = 0;       // tonal art map: a 2D array texture, made at the first hatching draw (styles/hatching.cpp)
+    GLuint wire_vao = 0;  // `wireframe`: a model's index buffer as the kWireVertex attribute
+    GLuint quad_vao = 0, quad_ebo = 0;  // `lines`: the shared edge-quad index buffer
+    std::map<ModelId, Model> models;
+    ModelId next_id = 1;
+    ModelId sphere = 0;
+    FrameStats stats;
+    Transfers transfers;
+    // Software rasterizers (GL_RENDERER llvmpipe, softpipe): large draws are
+    // split and flushed (draw.h, kFlushTriangles).
+    bool flush_large_draws = false;
+};
+
+}  // namespace body::render
