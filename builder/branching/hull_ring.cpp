@@ -55,13 +55,7 @@ Status connect_hull_ring(StructureSurface& surface, size_t s, std::span<const ui
         for (const Vec2& p : hull) centre += p;
         centre /= double(hull.size());
         for (Vec2& p : hull) p = centre + (p - centre) * 1.01;
-        const std::vector<uint32_t> mid = lifted_copy(surface, hull, zm);
-        std::vector<const Loop*> below, above;
-        for (uint32_t k : gl) below.push_back(&surface.loops[s][k]);
-        for (uint32_t k : gu) above.push_back(&surface.loops[s + 1][k]);
-        auto status = nested_region(surface, hull, mid, zm, below, zl, hole, first_lower);
-        if (!status) return status;
-        return nested_region(surface, hull, mid, zm, above, zu, hole, first_lower);
+        return connect_through_ring(surface, s, gl, gu, hull, hole, 1.0 / 3);
     }
     std::vector<uint32_t> mid = lifted_copy(surface, hull, zm);
     auto status = split_into_bands(surface, mid, surface.loops[s], gl, 0.5 * (zl + zm), false, first_lower);

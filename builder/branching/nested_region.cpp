@@ -57,6 +57,20 @@ Status nested_region(StructureSurface& surface, std::span<const Vec2> outer_xy, 
     return ok_status();
 }
 
+Status connect_through_ring(StructureSurface& surface, size_t s, std::span<const uint32_t> gl,
+                            std::span<const uint32_t> gu, std::span<const Vec2> ring_xy, bool hole,
+                            double wall_at_ring) {
+    const Loop& first_lower = surface.loops[s][gl[0]];
+    const double zl = surface.z[s], zu = surface.z[s + 1], zm = 0.5 * (zl + zu);
+    const std::vector<uint32_t> mid = lifted_copy(surface, ring_xy, zm);
+    std::vector<const Loop*> below, above;
+    for (uint32_t k : gl) below.push_back(&surface.loops[s][k]);
+    for (uint32_t k : gu) above.push_back(&surface.loops[s + 1][k]);
+    auto status = nested_region(surface, ring_xy, mid, zm, below, zl, hole, first_lower, wall_at_ring);
+    if (!status) return status;
+    return nested_region(surface, ring_xy, mid, zm, above, zu, hole, first_lower, wall_at_ring);
+}
+
 bool loops_nested(const StructureSurface& surface, size_t ss, uint32_t single, size_t bs,
                   std::span<const uint32_t> branches, bool holes_matter) {
     const std::vector<Loop>& loops_s = surface.loops[ss];

@@ -23,6 +23,13 @@ Status nested_region(StructureSurface& surface, std::span<const Vec2> outer_xy, 
                      double z_outer, std::span<const Loop* const> inner, double z_inner, bool hole, const Loop& blame,
                      double wall_outer = 1.0 / 3, double wall_inner = 1.0 / 3);
 
+// A ring at mid-slice between slices s and s+1 (`ring_xy`, appended here as
+// vertices) with the group's loops `gl` below and `gu` above, each side a
+// nested region around it; `wall_at_ring` is the ring's wall fraction.
+Status connect_through_ring(StructureSurface& surface, size_t s, std::span<const uint32_t> gl,
+                            std::span<const uint32_t> gu, std::span<const Vec2> ring_xy, bool hole,
+                            double wall_at_ring);
+
 // Do `branches` on slice `bs` lie strictly inside loop `single` on slice `ss`
 // (seen from above), with no other loop of the structure inside them or inside
 // the single loop on its own slice? With `holes_matter` false only the

@@ -197,8 +197,6 @@ std::vector<Vec2> union_ring(std::span<const std::span<const Vec2>> loops, doubl
 
 Status connect_union_ring(StructureSurface& surface, size_t s, std::span<const uint32_t> gl,
                           std::span<const uint32_t> gu, bool hole) {
-    const Loop& first_lower = surface.loops[s][gl[0]];
-    const double zl = surface.z[s], zu = surface.z[s + 1], zm = 0.5 * (zl + zu);
     std::vector<std::span<const Vec2>> all;
     for (uint32_t k : gl) all.emplace_back(surface.loops[s][k].xy);
     for (uint32_t k : gu) all.emplace_back(surface.loops[s + 1][k].xy);
@@ -208,15 +206,9 @@ Status connect_union_ring(StructureSurface& surface, size_t s, std::span<const u
     for (const auto& l : all)
         for (const Vec2& p : l)
             if (!point_in_polygon(p, ring)) return input_error("union ring misses a contour");
-    const std::vector<uint32_t> mid = lifted_copy(surface, ring, zm);
-    std::vector<const Loop*> below, above;
-    for (uint32_t k : gl) below.push_back(&surface.loops[s][k]);
-    for (uint32_t k : gu) above.push_back(&surface.loops[s + 1][k]);
     // Short walls at the ring: the ring is the widest outline of the pair, and
     // the sheets reach the contours sooner.
-    auto status = nested_region(surface, ring, mid, zm, below, zl, hole, first_lower, 0.1);
-    if (!status) return status;
-    return nested_region(surface, ring, mid, zm, above, zu, hole, first_lower, 0.1);
+    return connect_through_ring(surface, s, gl, gu, ring, hole, 0.1);
 }
 
 }  // namespace body
