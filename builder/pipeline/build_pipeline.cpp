@@ -1,4 +1,15 @@
-// The contour-stack -> mesh pipeline, written as its stages in order.
+// The contour-stack -> mesh pipeline, written as its stages in order:
+//   1. validation and repair (contours/validate.h);
+//   2. contours grouped into structures (correspondence/grouping.h);
+//   3. per structure, on a StructureSurface (branching/structure_surface.h):
+//      a. loops per slice, nested and oriented;
+//      b. per slice pair: correspondence, then per link group a band
+//         (tiling/) for 1:1, unless a hole opens into a notch
+//         (branching/open_holes.h), else the branching cascade
+//         (branching/branch_cascade.h);
+//      c. caps where nothing continues, slabs for contours linked to nothing
+//         (caps/);
+//   then smoothing (fairing/) and the mesh's statistics.
 //
 // References:
 //   BodyGen/BodyView thesis, sections 2.3-2.6 (the stage structure).
