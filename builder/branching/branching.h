@@ -19,6 +19,8 @@
 // a branch vertex, so tiling a piece with its branch makes no flat triangle.
 // The thesis method (`Overlap`) tiles every linked pair independently and
 // leaves overlapping open bands; it is kept for comparison only.
+// The partition is one of several constructions for a branch; which one a
+// group gets, and in what order they are tried: branch_cascade.h.
 #include <cstdint>
 #include <span>
 #include <vector>

@@ -22,17 +22,6 @@ struct Run {
     uint32_t owner = 0;
 };
 
-double distance_to_polygon(const Vec2& p, std::span<const Vec2> poly) {
-    double best = 1e300;
-    for (size_t i = 0; i < poly.size(); ++i) {
-        const Vec2 a = poly[i], ab = poly[(i + 1) % poly.size()] - a;
-        const double l2 = glm::dot(ab, ab);
-        const double t = l2 > 0 ? std::clamp(glm::dot(p - a, ab) / l2, 0.0, 1.0) : 0.0;
-        best = std::min(best, glm::length(a + ab * t - p));
-    }
-    return best;
-}
-
 Vec2 closest_on_polygon(const Vec2& p, std::span<const Vec2> poly) {
     double best = 1e300;
     Vec2 out = poly[0];
@@ -45,6 +34,10 @@ Vec2 closest_on_polygon(const Vec2& p, std::span<const Vec2> poly) {
         if (d < best) best = d, out = q;
     }
     return out;
+}
+
+double distance_to_polygon(const Vec2& p, std::span<const Vec2> poly) {
+    return glm::length(closest_on_polygon(p, poly) - p);
 }
 
 // Moves a chord point onto the bisector between two branches (equal distance

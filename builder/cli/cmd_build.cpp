@@ -111,6 +111,108 @@ Status write_output(const std::string& output, const std::vector<StructureMesh>&
     return ok_status();
 }
 
+void print_usage() {
+    std::printf(
+        "usage: bodygen build INPUT -o OUT [options]\n"
+        "  INPUT: STACK.contours.json"
+#ifdef BODY_WITH_IMPORT
+        ", a NIfTI label volume (.nii/.nii.gz) or a DICOM RT-STRUCT (.dcm)"
+#endif
+        "\n  OUT:   OUT.obj (one object per structure), OUT.bpm (progressive meshes)\n"
+        "         or OUT/ (a directory: one OBJ per structure)\n"
+        "  --caps flat|dome|none              closing the ends (default dome)\n"
+        "  --tiling optimal|multires          band tiling (default multires: on the sliced bunny as\n"
+        "                                     accurate as optimal, 4-8x faster)\n"
+        "  --correspondence overlap|ellipse   matching contours across slices (default overlap)\n"
+        "  --branching partition|overlap      branches: closed manifold, or the thesis'\n"
+        "                                     overlapping bands for comparison (default partition)\n"
+        "  --smooth N                         N Taubin lambda|mu smoothing steps per mesh (default 0):\n"
+        "                                     removes slice terraces and voxel stairs with little shrinking\n"
+        "                                     (small thin structures lose the most volume);\n"
+        "                                     vertices leave their slice planes\n"
+        "  --normals                          write vertex normals\n"
+        "  --quiet                            no progress bar and no summary\n"
+        "  --json                             statistics as JSON on stdout\n"
+        "  --jobs N                           structures built on N threads (default 1)\n"
+#ifdef BODY_WITH_IMPORT
+        "  --labels, --axis, --step, --only, --threshold, --tolerance, --min-area\n"
+        "                                     import options for label volumes (see bodygen contours --help)\n"
+#endif
+    );
+}
+
+// The pipeline's options from the command line; errors name the bad option.
+Result<BuildOptions> build_options_from_args(const CliArgs& args) {
+    auto jobs = args.get_long("jobs", 1);
+    if (!jobs) return jobs.error();
+    if (*jobs < 1 || *jobs > 256) return input_error("build: --jobs must be between 1 and 256");
+    auto smooth = args.get_long("smooth", 0);
+    if (!smooth) return smooth.error();
+    if (*smooth < 0 || *smooth > 1000) return input_error("build: --smooth must be between 0 and 1000");
+    BuildOptions options;
+    options.fairing.iterations = int(*smooth);
+    auto caps = pick<CapStyle>(
+        args, "caps", {{"flat", CapStyle::Flat}, {"dome", CapStyle::Dome}, {"none", CapStyle::None}}, CapStyle::Dome);
+    if (!caps) return caps.error();
+    auto tiling =
+        pick<TilingMethod>(args, "tiling", {{"optimal", TilingMethod::Optimal}, {"multires", TilingMethod::Multires}},
+                           TilingMethod::Multires);
+    if (!tiling) return tiling.error();
+    auto corr = pick<CorrespondenceMethod>(
+        args, "correspondence",
+        {{"overlap", CorrespondenceMethod::Overlap}, {"ellipse", CorrespondenceMethod::Ellipse}},
+        CorrespondenceMethod::Overlap);
+    if (!corr) return corr.error();
+    auto branching = pick<BranchingMethod>(
+        args, "branching", {{"partition", BranchingMethod::Partition}, {"overlap", BranchingMethod::Overlap}},
+        BranchingMethod::Partition);
+    if (!branching) return branching.error();
+    options.caps = *caps;
+    options.tiling = *tiling;
+    options.correspondence = *corr;
+    options.branching = *branching;
+    options.jobs = static_cast<unsigned>(*jobs);
+    return options;
+}
+
+void print_json(const std::string& input, const std::string& output, const BuildOptions& options, double seconds,
+                const std::vector<StructureMesh>& built) {
+    nlohmann::json j;
+    j["input"] = input;
+    j["output"] = output;
+    j["caps"] = cap_style_name(options.caps);
+    j["tiling"] = tiling_method_name(options.tiling);
+    j["correspondence"] = correspondence_method_name(options.correspondence);
+    j["branching"] = branching_method_name(options.branching);
+    j["smooth"] = options.fairing.iterations;
+    j["seconds"] = seconds;
+    nlohmann::json list = nlohmann::json::array();
+    for (const StructureMesh& s : built)
+        list.push_back({{"id", s.id},
+                        {"name", s.mesh.name},
+                        {"contours", s.contours},
+                        {"vertices", s.mesh.vertex_count()},
+                        {"triangles", s.triangles},
+                        {"volume", s.volume},
+                        {"area", s.area},
+                        {"genus", s.genus},
+                        {"components", s.components},
+                        {"closed_manifold", s.closed_manifold},
+                        {"smooth_vertices_kept", s.fairing_restored},
+                        {"seconds", s.seconds}});
+    j["structures"] = std::move(list);
+    std::printf("%s\n", j.dump(2).c_str());
+}
+
+void print_summary(const std::string& output, double seconds, const std::vector<StructureMesh>& built) {
+    std::fprintf(stderr, "%-24s %10s %14s %14s %6s %9s\n", "structure", "triangles", "volume", "area", "genus",
+                 "seconds");
+    for (const StructureMesh& s : built)
+        std::fprintf(stderr, "%-24s %10zu %14.6g %14.6g %6ld %9.3f%s\n", s.mesh.name.c_str(), s.triangles, s.volume,
+                     s.area, s.genus, s.seconds, s.closed_manifold ? "" : "  (not closed)");
+    std::fprintf(stderr, "wrote %s: %zu structures in %.3f s\n", output.c_str(), built.size(), seconds);
+}
+
 }  // namespace body::cli
 
 int run_build(const Args& argv) {
@@ -123,116 +225,30 @@ int run_build(const Args& argv) {
                                {"help", "quiet", "json", "normals"});
     if (!args) return report(args.error());
     if (args->has("help")) {
-        std::printf(
-            "usage: bodygen build INPUT -o OUT [options]\n"
-            "  INPUT: STACK.contours.json"
-#ifdef BODY_WITH_IMPORT
-            ", a NIfTI label volume (.nii/.nii.gz) or a DICOM RT-STRUCT (.dcm)"
-#endif
-            "\n  OUT:   OUT.obj (one object per structure), OUT.bpm (progressive meshes)\n"
-            "         or OUT/ (a directory: one OBJ per structure)\n"
-            "  --caps flat|dome|none              closing the ends (default dome)\n"
-            "  --tiling optimal|multires          band tiling (default multires: on the sliced bunny as\n"
-            "                                     accurate as optimal, 4-8x faster)\n"
-            "  --correspondence overlap|ellipse   matching contours across slices (default overlap)\n"
-            "  --branching partition|overlap      branches: closed manifold, or the thesis'\n"
-            "                                     overlapping bands for comparison (default partition)\n"
-            "  --smooth N                         N Taubin lambda|mu smoothing steps per mesh (default 0):\n"
-            "                                     removes slice terraces and voxel stairs with little shrinking\n"
-            "                                     (small thin structures lose the most volume);\n"
-            "                                     vertices leave their slice planes\n"
-            "  --normals                          write vertex normals\n"
-            "  --quiet                            no progress bar and no summary\n"
-            "  --json                             statistics as JSON on stdout\n"
-            "  --jobs N                           structures built on N threads (default 1)\n"
-#ifdef BODY_WITH_IMPORT
-            "  --labels, --axis, --step, --only, --threshold, --tolerance, --min-area\n"
-            "                                     import options for label volumes (see bodygen contours --help)\n"
-#endif
-        );
+        print_usage();
         return kExitOk;
     }
     if (args->positional().size() != 1) return report(input_error("build: expected one contour stack file"));
     if (!args->has("output")) return report(input_error("build: missing -o OUT.obj|OUT.bpm|OUT/"));
-    auto jobs = args->get_long("jobs", 1);
-    if (!jobs) return report(jobs.error());
-    if (*jobs < 1 || *jobs > 256) return report(input_error("build: --jobs must be between 1 and 256"));
-    auto smooth = args->get_long("smooth", 0);
-    if (!smooth) return report(smooth.error());
-    if (*smooth < 0 || *smooth > 1000) return report(input_error("build: --smooth must be between 0 and 1000"));
-    BuildOptions options;
-    options.fairing.iterations = int(*smooth);
-    auto caps = pick<CapStyle>(
-        *args, "caps", {{"flat", CapStyle::Flat}, {"dome", CapStyle::Dome}, {"none", CapStyle::None}}, CapStyle::Dome);
-    if (!caps) return report(caps.error());
-    auto tiling =
-        pick<TilingMethod>(*args, "tiling", {{"optimal", TilingMethod::Optimal}, {"multires", TilingMethod::Multires}},
-                           TilingMethod::Multires);
-    if (!tiling) return report(tiling.error());
-    auto corr = pick<CorrespondenceMethod>(
-        *args, "correspondence",
-        {{"overlap", CorrespondenceMethod::Overlap}, {"ellipse", CorrespondenceMethod::Ellipse}},
-        CorrespondenceMethod::Overlap);
-    if (!corr) return report(corr.error());
-    auto branching = pick<BranchingMethod>(
-        *args, "branching", {{"partition", BranchingMethod::Partition}, {"overlap", BranchingMethod::Overlap}},
-        BranchingMethod::Partition);
-    if (!branching) return report(branching.error());
-    options.caps = *caps;
-    options.tiling = *tiling;
-    options.correspondence = *corr;
-    options.branching = *branching;
+    auto options = build_options_from_args(*args);
+    if (!options) return report(options.error());
     const bool quiet = args->has("quiet"), json_out = args->has("json");
     const std::string input = args->positional()[0], output = *args->get("output");
     if (!quiet)
-        options.warning = [](const std::string& w) { std::fprintf(stderr, "bodygen: warning: %s\n", w.c_str()); };
-    if (!quiet && isatty(STDERR_FILENO)) options.progress = draw_progress;
+        options->warning = [](const std::string& w) { std::fprintf(stderr, "bodygen: warning: %s\n", w.c_str()); };
+    if (!quiet && isatty(STDERR_FILENO)) options->progress = draw_progress;
 
     const auto start = std::chrono::steady_clock::now();
     auto stack = load_input(input, *args, quiet);
     if (!stack) return report(stack.error());
-    options.jobs = static_cast<unsigned>(*jobs);
-    auto built = build_structures(*stack, options, input);
+    auto built = build_structures(*stack, *options, input);
     if (!built) return report(built.error());
     Status written = write_output(output, *built, args->has("normals"));
     if (!written) return report(written.error());
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-    if (json_out) {
-        nlohmann::json j;
-        j["input"] = input;
-        j["output"] = output;
-        j["caps"] = cap_style_name(options.caps);
-        j["tiling"] = tiling_method_name(options.tiling);
-        j["correspondence"] = correspondence_method_name(options.correspondence);
-        j["branching"] = branching_method_name(options.branching);
-        j["smooth"] = options.fairing.iterations;
-        j["seconds"] = seconds;
-        nlohmann::json list = nlohmann::json::array();
-        for (const StructureMesh& s : *built)
-            list.push_back({{"id", s.id},
-                            {"name", s.mesh.name},
-                            {"contours", s.contours},
-                            {"vertices", s.mesh.vertex_count()},
-                            {"triangles", s.triangles},
-                            {"volume", s.volume},
-                            {"area", s.area},
-                            {"genus", s.genus},
-                            {"components", s.components},
-                            {"closed_manifold", s.closed_manifold},
-                            {"smooth_vertices_kept", s.fairing_restored},
-                            {"seconds", s.seconds}});
-        j["structures"] = std::move(list);
-        std::printf("%s\n", j.dump(2).c_str());
-    }
-    if (!quiet) {
-        std::fprintf(stderr, "%-24s %10s %14s %14s %6s %9s\n", "structure", "triangles", "volume", "area", "genus",
-                     "seconds");
-        for (const StructureMesh& s : *built)
-            std::fprintf(stderr, "%-24s %10zu %14.6g %14.6g %6ld %9.3f%s\n", s.mesh.name.c_str(), s.triangles, s.volume,
-                         s.area, s.genus, s.seconds, s.closed_manifold ? "" : "  (not closed)");
-        std::fprintf(stderr, "wrote %s: %zu structures in %.3f s\n", output.c_str(), built->size(), seconds);
-    }
+    if (json_out) print_json(input, output, *options, seconds, *built);
+    if (!quiet) print_summary(output, seconds, *built);
     return kExitOk;
 }
 

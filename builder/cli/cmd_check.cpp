@@ -17,11 +17,7 @@ int run_contours_check(const Args& argv) {
     if (args->positional().size() != 1) return report(input_error("check: expected one contour stack file"));
     auto stack = read_contour_stack(args->positional()[0]);
     if (!stack) return report(stack.error());
-    size_t contours = 0, points = 0;
-    for (const Slice& s : stack->slices) {
-        contours += s.contours.size();
-        for (const Contour& c : s.contours) points += c.points.size();
-    }
+    const auto [contours, points] = count_contours(*stack);
     std::printf("%s: %zu slices, %zu contours, %zu points, %zu structures (units %s)\n", args->positional()[0].c_str(),
                 stack->slices.size(), contours, points, stack->structures.size(), stack->units.c_str());
     return kExitOk;

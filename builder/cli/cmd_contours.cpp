@@ -137,11 +137,7 @@ int run_contours(const Args& argv) {
     auto stack = load_any_contour_source(input, *options);
     if (!stack) return report(stack.error());
     if (auto written = write_contour_stack(*output, *stack); !written) return report(written.error());
-    size_t contours = 0, points = 0;
-    for (const Slice& s : stack->slices) {
-        contours += s.contours.size();
-        for (const Contour& c : s.contours) points += c.points.size();
-    }
+    const auto [contours, points] = count_contours(*stack);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::printf("%s: %zu structures, %zu slices, %zu contours, %zu points in %.2f s\n", output->c_str(),
                 stack->structures.size(), stack->slices.size(), contours, points, seconds);

@@ -55,11 +55,7 @@ int run_slice(const Args& argv) {
     if (!stack) return report(input_error(input + ": " + stack.error().message));
     if (auto s = write_contour_stack(output, *stack); !s) return report(s.error());
     if (!args->has("quiet")) {
-        size_t contours = 0, points = 0;
-        for (const Slice& s : stack->slices) {
-            contours += s.contours.size();
-            for (const Contour& c : s.contours) points += c.points.size();
-        }
+        const auto [contours, points] = count_contours(*stack);
         std::fprintf(stderr, "%s: %zu slices, %zu contours, %zu points -> %s\n", input.c_str(), stack->slices.size(),
                      contours, points, output.c_str());
     }

@@ -44,6 +44,19 @@ struct ContourStack {
     std::vector<Slice> slices;  // sorted by increasing z after reading
 };
 
+// Contours and points in a stack, over all slices (for summaries).
+struct StackCounts {
+    size_t contours = 0, points = 0;
+};
+inline StackCounts count_contours(const ContourStack& stack) {
+    StackCounts n;
+    for (const Slice& s : stack.slices) {
+        n.contours += s.contours.size();
+        for (const Contour& c : s.contours) n.points += c.points.size();
+    }
+    return n;
+}
+
 // Parses a contour stack. Errors (exit code 2) are one line naming `path`, the
 // place in the file and the reason: "PATH: slice S contour C: point K must be
 // [x, y]"; a number too large for a double (1e999) as "PATH: slice S contour C:

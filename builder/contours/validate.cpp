@@ -156,6 +156,12 @@ Nesting compute_nesting(std::span<const std::span<const Vec2>> contours) {
     return n;
 }
 
+Nesting compute_nesting(const Slice& slice, std::span<const uint32_t> members) {
+    std::vector<std::span<const Vec2>> loops;
+    for (uint32_t c : members) loops.emplace_back(slice.contours[c].points);
+    return compute_nesting(loops);
+}
+
 Crossing find_crossing(std::span<const std::span<const Vec2>> loops) {
     std::vector<Segment> segs;
     for (uint32_t l = 0; l < loops.size(); ++l) {

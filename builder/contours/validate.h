@@ -44,6 +44,8 @@ struct Nesting {
     std::vector<int> depth;
 };
 Nesting compute_nesting(std::span<const std::span<const Vec2>> contours);
+// The same among the contours `members` (indices) of `slice`.
+Nesting compute_nesting(const Slice& slice, std::span<const uint32_t> members);
 
 // Point-in-polygon (even-odd). Points on the boundary may go either way.
 bool point_in_polygon(const Vec2& p, std::span<const Vec2> polygon);

@@ -8,8 +8,7 @@
 // (negative) x the new umbrella vector. With lambda = 0.5 and the pass-band
 // frequency k = 0.1 (1/lambda + 1/mu = k), detail above the pass band (stair
 // steps, slice terraces) decays and a large shape keeps its volume to within a
-// few per cent; small thin ones lose more (the AAL atlas at 10 iterations: -1.3%
-// in all, -17.6% for its smallest vermis region). Connectivity is unchanged: a
+// few per cent; small thin ones lose more. Connectivity is unchanged: a
 // closed 2-manifold stays one. Vertices on a boundary edge (an edge with one face)
 // keep their positions, so open meshes keep their rims. Vertices move off their
 // slice planes: the pipeline's guarantee that re-slicing at an input plane gives

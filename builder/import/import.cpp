@@ -1,9 +1,19 @@
 // Input-type dispatch for bodygen contours / bodygen build.
 #include "builder/import/import.h"
 
+#include <cctype>
 #include <fstream>
 
 namespace body {
+
+std::string structure_id_from_name(const std::string& name) {
+    std::string id;
+    for (char c : name) {
+        const bool keep = std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';
+        id += keep ? c : '_';
+    }
+    return id;
+}
 
 SourceKind detect_source_kind(const std::string& path) {
     auto ends = [&](const char* suffix) {

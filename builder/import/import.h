@@ -61,6 +61,10 @@ enum class SourceKind { ContourStack, Nifti, RtStruct, Unknown };
 // the "DICM" preamble or a .dcm extension.
 SourceKind detect_source_kind(const std::string& path);
 
+// A structure id from a display name: every character other than a letter,
+// digit, '_', '-' or '.' becomes '_'.
+std::string structure_id_from_name(const std::string& name);
+
 Result<ContourStack> import_nifti_labels(const std::string& path, const ImportOptions& options);
 Result<ContourStack> import_rtstruct(const std::string& path, const ImportOptions& options);
 

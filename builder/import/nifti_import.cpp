@@ -277,15 +277,6 @@ void extract_label(const LabelVolume& vol, const SliceFrame& f, int32_t label, c
     }
 }
 
-std::string structure_id(const std::string& name) {
-    std::string id;
-    for (char c : name) {
-        const bool keep = std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';
-        id += keep ? c : '_';
-    }
-    return id;
-}
-
 // Distinct colours for labels the table does not colour (golden-ratio hues).
 Vec3 palette_color(int64_t label) {
     const double h = std::fmod(static_cast<double>(label) * 0.618033988749895, 1.0) * 6.0;
@@ -331,6 +322,140 @@ Result<LabelTable> find_label_table(const std::string& path, const ImportOptions
     return table;
 }
 
+// Extents of every label in one pass.
+std::map<int32_t, Extent> label_extents(const LabelVolume& vol) {
+    std::map<int32_t, Extent> extents;
+    for (size_t k = 0; k < vol.dim[2]; ++k) {
+        for (size_t j = 0; j < vol.dim[1]; ++j) {
+            for (size_t i = 0; i < vol.dim[0]; ++i) {
+                const int32_t l = vol.labels[vol.index(i, j, k)];
+                if (l == 0) continue;
+                Extent& e = extents[l];
+                const size_t at[3] = {i, j, k};
+                for (int d = 0; d < 3; ++d) e.lo[d] = std::min(e.lo[d], at[d]), e.hi[d] = std::max(e.hi[d], at[d]);
+                ++e.voxels;
+            }
+        }
+    }
+    return extents;
+}
+
+// The labels to extract, increasing: `--only` (each must occur) or every
+// label present, with a note for named table labels that have no voxels.
+Result<std::vector<int32_t>> labels_to_extract(const std::string& path, const ImportOptions& options,
+                                               const std::map<int32_t, Extent>& extents, const LabelTable& table) {
+    std::vector<int32_t> labels;
+    if (!options.only.empty()) {
+        for (int64_t l : options.only) {
+            if (l <= 0 || l > std::numeric_limits<int32_t>::max() || !extents.count(static_cast<int32_t>(l))) {
+                return input_error(path + ": label " + std::to_string(l) + " (--only) does not occur in the volume");
+            }
+            labels.push_back(static_cast<int32_t>(l));
+        }
+        std::sort(labels.begin(), labels.end());
+        labels.erase(std::unique(labels.begin(), labels.end()), labels.end());
+    } else {
+        for (const auto& [l, e] : extents) labels.push_back(l);
+        if (options.note && !options.threshold) {
+            for (const auto& [l, entry] : table.entries) {
+                if (l > 0 && !entry.name.empty() && !extents.count(static_cast<int32_t>(l))) {
+                    options.note(path + ": label " + std::to_string(l) + " (" + entry.name + ") has no voxels");
+                }
+            }
+        }
+    }
+    if (labels.empty()) return input_error(path + ": no labelled voxels (every voxel is 0)");
+    return labels;
+}
+
+// Phase 4: structures in parallel; results in label order, progress reported
+// from the calling thread.
+std::vector<LabelResult> extract_labels(const LabelVolume& vol, const SliceFrame& frame,
+                                        const std::vector<int32_t>& labels, std::map<int32_t, Extent>& extents,
+                                        const ImportOptions& options) {
+    std::vector<LabelResult> results(labels.size());
+    std::atomic<size_t> next{0};
+    size_t done = 0;
+    std::mutex mutex;
+    std::condition_variable cv;
+    auto work = [&] {
+        for (size_t i = next++; i < labels.size(); i = next++) {
+            extract_label(vol, frame, labels[i], extents[labels[i]], options.step, options.tolerance, options.min_area,
+                          results[i]);
+            std::lock_guard lock(mutex);
+            ++done;
+            cv.notify_one();
+        }
+    };
+    const size_t jobs = std::clamp<size_t>(static_cast<size_t>(std::max(options.jobs, 1)), 1, labels.size());
+    std::vector<std::thread> threads;
+    for (size_t t = 0; jobs > 1 && t < jobs; ++t) threads.emplace_back(work);
+    if (jobs == 1) {
+        for (size_t i = 0; i < labels.size(); ++i) {
+            extract_label(vol, frame, labels[i], extents[labels[i]], options.step, options.tolerance, options.min_area,
+                          results[i]);
+            if (options.progress) options.progress(i + 1, labels.size());
+        }
+    } else {
+        std::unique_lock lock(mutex);
+        size_t reported = 0;
+        while (reported < labels.size()) {
+            cv.wait(lock, [&] { return done > reported; });
+            reported = done;
+            if (options.progress) {
+                lock.unlock();
+                options.progress(reported, labels.size());
+                lock.lock();
+            }
+        }
+    }
+    for (auto& t : threads) t.join();
+    return results;
+}
+
+// Phase 5: assemble the stack.
+ContourStack assemble_stack(const std::string& path, const ImportOptions& options,
+                            const std::vector<LabelResult>& results, const LabelTable& table, const SliceFrame& frame) {
+    ContourStack stack;
+    std::map<size_t, Slice> slices;
+    std::map<std::string, int> used_ids;
+    for (const LabelResult& r : results) {
+        if (r.slices.empty()) {
+            if (options.note) {
+                options.note(path + ": label " + std::to_string(r.label) + " has no voxels on the sampled slices");
+            }
+            continue;
+        }
+        StructureInfo s;
+        auto it = table.entries.find(r.label);
+        const bool named = it != table.entries.end() && !it->second.name.empty();
+        if (options.threshold && !named)
+            s.name = "mask";
+        else
+            s.name = named ? it->second.name : "label " + std::to_string(r.label);
+        s.id = named ? structure_id_from_name(it->second.name)
+                     : (options.threshold ? "mask" : "label_" + std::to_string(r.label));
+        if (used_ids[s.id]++ > 0) s.id += "_" + std::to_string(r.label);
+        s.color = (it != table.entries.end() && it->second.color) ? *it->second.color : palette_color(r.label);
+        for (const auto& [k, rings] : r.slices) {
+            Slice& slice = slices[k];
+            slice.z = frame.z(static_cast<double>(k));
+            for (const auto& ring : rings) slice.contours.push_back(Contour{ring, s.id, 0, 0});
+        }
+        stack.structures.push_back(std::move(s));
+    }
+    for (auto& [k, s] : slices) stack.slices.push_back(std::move(s));
+    std::sort(stack.slices.begin(), stack.slices.end(), [](const Slice& a, const Slice& b) { return a.z < b.z; });
+    for (size_t si = 0; si < stack.slices.size(); ++si) {
+        stack.slices[si].source_index = si;
+        for (size_t ci = 0; ci < stack.slices[si].contours.size(); ++ci) {
+            stack.slices[si].contours[ci].source_slice = si;
+            stack.slices[si].contours[ci].source_contour = ci;
+        }
+    }
+    return stack;
+}
+
 }  // namespace
 
 Result<ContourStack> import_nifti_labels(const std::string& path, const ImportOptions& options) {
@@ -351,121 +476,11 @@ Result<ContourStack> import_nifti_labels(const std::string& path, const ImportOp
     if (frame->oblique && options.note) {
         options.note(path + ": slice planes are oblique to the scanner axes; output is in a rigid slice frame");
     }
-
-    // Extents of every label in one pass.
-    std::map<int32_t, Extent> extents;
-    for (size_t k = 0; k < vol->dim[2]; ++k) {
-        for (size_t j = 0; j < vol->dim[1]; ++j) {
-            for (size_t i = 0; i < vol->dim[0]; ++i) {
-                const int32_t l = vol->labels[vol->index(i, j, k)];
-                if (l == 0) continue;
-                Extent& e = extents[l];
-                const size_t at[3] = {i, j, k};
-                for (int d = 0; d < 3; ++d) e.lo[d] = std::min(e.lo[d], at[d]), e.hi[d] = std::max(e.hi[d], at[d]);
-                ++e.voxels;
-            }
-        }
-    }
-    std::vector<int32_t> labels;
-    if (!options.only.empty()) {
-        for (int64_t l : options.only) {
-            if (l <= 0 || l > std::numeric_limits<int32_t>::max() || !extents.count(static_cast<int32_t>(l))) {
-                return input_error(path + ": label " + std::to_string(l) + " (--only) does not occur in the volume");
-            }
-            labels.push_back(static_cast<int32_t>(l));
-        }
-        std::sort(labels.begin(), labels.end());
-        labels.erase(std::unique(labels.begin(), labels.end()), labels.end());
-    } else {
-        for (const auto& [l, e] : extents) labels.push_back(l);
-        if (options.note && !options.threshold) {
-            for (const auto& [l, entry] : table->entries) {
-                if (l > 0 && !entry.name.empty() && !extents.count(static_cast<int32_t>(l))) {
-                    options.note(path + ": label " + std::to_string(l) + " (" + entry.name + ") has no voxels");
-                }
-            }
-        }
-    }
-    if (labels.empty()) return input_error(path + ": no labelled voxels (every voxel is 0)");
-
-    // Phase 4: structures in parallel; results in label order.
-    std::vector<LabelResult> results(labels.size());
-    std::atomic<size_t> next{0};
-    size_t done = 0;
-    std::mutex mutex;
-    std::condition_variable cv;
-    auto work = [&] {
-        for (size_t i = next++; i < labels.size(); i = next++) {
-            extract_label(*vol, *frame, labels[i], extents[labels[i]], options.step, options.tolerance,
-                          options.min_area, results[i]);
-            std::lock_guard lock(mutex);
-            ++done;
-            cv.notify_one();
-        }
-    };
-    const size_t jobs = std::clamp<size_t>(static_cast<size_t>(std::max(options.jobs, 1)), 1, labels.size());
-    std::vector<std::thread> threads;
-    for (size_t t = 0; jobs > 1 && t < jobs; ++t) threads.emplace_back(work);
-    if (jobs == 1) {
-        for (size_t i = 0; i < labels.size(); ++i) {
-            extract_label(*vol, *frame, labels[i], extents[labels[i]], options.step, options.tolerance,
-                          options.min_area, results[i]);
-            if (options.progress) options.progress(i + 1, labels.size());
-        }
-    } else {
-        std::unique_lock lock(mutex);
-        size_t reported = 0;
-        while (reported < labels.size()) {
-            cv.wait(lock, [&] { return done > reported; });
-            reported = done;
-            if (options.progress) {
-                lock.unlock();
-                options.progress(reported, labels.size());
-                lock.lock();
-            }
-        }
-    }
-    for (auto& t : threads) t.join();
-
-    // Phase 5: assemble the stack.
-    ContourStack stack;
-    std::map<size_t, Slice> slices;
-    std::map<std::string, int> used_ids;
-    for (const LabelResult& r : results) {
-        if (r.slices.empty()) {
-            if (options.note) {
-                options.note(path + ": label " + std::to_string(r.label) + " has no voxels on the sampled slices");
-            }
-            continue;
-        }
-        StructureInfo s;
-        auto it = table->entries.find(r.label);
-        const bool named = it != table->entries.end() && !it->second.name.empty();
-        if (options.threshold && !named)
-            s.name = "mask";
-        else
-            s.name = named ? it->second.name : "label " + std::to_string(r.label);
-        s.id =
-            named ? structure_id(it->second.name) : (options.threshold ? "mask" : "label_" + std::to_string(r.label));
-        if (used_ids[s.id]++ > 0) s.id += "_" + std::to_string(r.label);
-        s.color = (it != table->entries.end() && it->second.color) ? *it->second.color : palette_color(r.label);
-        for (const auto& [k, rings] : r.slices) {
-            Slice& slice = slices[k];
-            slice.z = frame->z(static_cast<double>(k));
-            for (const auto& ring : rings) slice.contours.push_back(Contour{ring, s.id, 0, 0});
-        }
-        stack.structures.push_back(std::move(s));
-    }
-    for (auto& [k, s] : slices) stack.slices.push_back(std::move(s));
-    std::sort(stack.slices.begin(), stack.slices.end(), [](const Slice& a, const Slice& b) { return a.z < b.z; });
-    for (size_t si = 0; si < stack.slices.size(); ++si) {
-        stack.slices[si].source_index = si;
-        for (size_t ci = 0; ci < stack.slices[si].contours.size(); ++ci) {
-            stack.slices[si].contours[ci].source_slice = si;
-            stack.slices[si].contours[ci].source_contour = ci;
-        }
-    }
-    return stack;
+    std::map<int32_t, Extent> extents = label_extents(*vol);
+    auto labels = labels_to_extract(path, options, extents, *table);
+    if (!labels) return labels.error();
+    const std::vector<LabelResult> results = extract_labels(*vol, *frame, *labels, extents, options);
+    return assemble_stack(path, options, results, *table, *frame);
 }
 
 }  // namespace body

@@ -15,11 +15,7 @@ namespace body {
 namespace {
 
 std::string structure_id(const std::string& name, long number) {
-    std::string id;
-    for (char c : name) {
-        const bool keep = std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';
-        id += keep ? c : '_';
-    }
+    const std::string id = structure_id_from_name(name);
     return id.empty() ? "roi_" + std::to_string(number) : id;
 }
 

@@ -42,9 +42,10 @@
 namespace body {
 
 struct BuildOptions {
-    CapStyle caps = CapStyle::Dome;  // measured closer to the original than flat (bench/reconstruct_vs_vtk.sh)
-    TilingMethod tiling = TilingMethod::Multires;  // bunny: same Hausdorff as optimal, lower mean, 4-8x faster
-    CorrespondenceMethod correspondence = CorrespondenceMethod::Overlap;  // measured more accurate, see tests
+    // The defaults are the most accurate choices measured (bench/RESULTS.md).
+    CapStyle caps = CapStyle::Dome;
+    TilingMethod tiling = TilingMethod::Multires;
+    CorrespondenceMethod correspondence = CorrespondenceMethod::Overlap;
     BranchingMethod branching = BranchingMethod::Partition;
     // Optional Taubin smoothing of each finished mesh (off by default: it moves
     // vertices off their slice planes; see fairing/fairing.h).

@@ -36,8 +36,7 @@ constexpr size_t kCoarseVertices = 48;
 
 // Pairs with at most this many vertex pairs get the optimal tiling through the
 // multiresolution path's first spanning edge when the multiresolution one is
-// left with a fold (one start of the dynamic programme, O(m n): a 2000 x 2000
-// pair in about 0.05 s).
+// left with a fold (one start of the dynamic programme, O(m n)).
 constexpr double kOptimalFallbackCells = 4e6;
 
 // Phase 1: the filter-bank pyramid; levels[0] is the input.
@@ -119,8 +118,8 @@ void tile_multires(std::span<const Vec3> lower, std::span<const Vec3> upper, std
     tiling.split_full_fans();
     // Local swaps cannot undo a fold the coarse levels committed to; where one
     // is left and the pair is small enough, the optimal path through the same
-    // first spanning edge decides (the full search over starts cost 4-8x more
-    // on the sliced bunny for the same Hausdorff and mean distance).
+    // first spanning edge decides (one start: the search over all starts costs
+    // more for the same accuracy).
     if (tiling.total().folds > 0 && depth > 0 && double(lower.size()) * double(upper.size()) <= kOptimalFallbackCells) {
         std::vector<uint32_t> optimal;
         tile_optimal_from(lower, upper, tiling.ei[0], tiling.ej[0], optimal);

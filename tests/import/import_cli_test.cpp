@@ -196,8 +196,7 @@ TEST(AalAtlas, SmoothedRegionsStayClosedAndGainNoSelfIntersection) {
         ASSERT_EQ(a.mesh.indices, b.mesh.indices) << b.id;  // connectivity unchanged
         EXPECT_TRUE(b.closed_manifold) << b.id;
         EXPECT_LT(b.area, 0.95 * a.area) << b.id;
-        // Small, thin regions lose the most (Vermis_6 7.9%, the worst of the atlas
-        // Vermis_1_2 17.6%); the whole atlas loses 1.3%.
+        // Small, thin regions lose the most volume (figures in bench/RESULTS.md).
         EXPECT_NEAR(b.volume, a.volume, 0.1 * a.volume) << b.id;
         std::vector<std::pair<uint32_t, uint32_t>> before, after;
         (void)count_self_intersections(a.mesh.positions, a.mesh.indices, 0, &before);

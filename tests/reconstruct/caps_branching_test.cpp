@@ -4,7 +4,10 @@
 #include <map>
 
 #include "builder/branching/branching.h"
+#include "builder/branching/hull_ring.h"
+#include "builder/branching/union_ring.h"
 #include "builder/caps/caps.h"
+#include "builder/contours/validate.h"
 #include "tests/reconstruct/recon_test_util.h"
 
 namespace body {
@@ -184,6 +187,32 @@ TEST(Partition, ChordEndsOffTheFanSegmentsOnVoxelGrids) {
             }
         EXPECT_GE(chord_ends, 4u);
     }
+}
+
+TEST(UnionRing, HoldsOverlappingLoopsInsideOneSimpleRing) {
+    const auto a = circle(-1.5, 0, 2, 24), b = circle(1.5, 1, 2, 24);
+    const std::vector<std::span<const Vec2>> loops{a, b};
+    const std::vector<Vec2> ring = union_ring(loops, 0.2);
+    ASSERT_GE(ring.size(), 3u);
+    EXPECT_GT(signed_area2(ring.data(), ring.size()), 0.0);  // counter-clockwise
+    const std::vector<std::span<const Vec2>> alone{ring};
+    EXPECT_FALSE(find_crossing(alone).found);
+    for (const auto& loop : loops)
+        for (const Vec2& p : loop) EXPECT_TRUE(point_in_polygon(p, ring));
+}
+
+TEST(UnionRing, EmptyWhenTheUnionIsTwoPieces) {
+    const auto a = circle(-10, 0, 2, 24), b = circle(10, 0, 2, 24);
+    const std::vector<std::span<const Vec2>> loops{a, b};
+    EXPECT_TRUE(union_ring(loops, 0.2).empty());
+}
+
+TEST(ConvexHull, CornersOnlyCounterClockwise) {
+    const std::vector<Vec2> points{{0, 0}, {2, 0}, {1, 0}, {2, 2}, {1, 1}, {0, 2}, {0, 1}, {2, 2}};
+    const std::vector<Vec2> hull = convex_hull(points);
+    ASSERT_EQ(hull.size(), 4u);
+    EXPECT_GT(signed_area2(hull.data(), hull.size()), 0.0);
+    EXPECT_DOUBLE_EQ(signed_area2(hull.data(), hull.size()), 8.0);
 }
 
 }  // namespace

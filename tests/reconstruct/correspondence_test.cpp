@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include "builder/correspondence/grouping.h"
 #include "tests/reconstruct/recon_test_util.h"
 
 namespace body {
@@ -88,6 +89,46 @@ TEST(CorrespondenceAccuracy, OverlapIsAtLeastAsAccurateAsTheThesisWeight) {
     std::printf("correspondence accuracy on %zu cases: overlap %d, ellipse %d\n", cases.size(), correct[0], correct[1]);
     EXPECT_EQ(correct[0], int(cases.size()));
     EXPECT_GE(correct[0], correct[1]);
+}
+
+TEST(Grouping, LinkGroupsAreConnectedComponents) {
+    const std::vector<ContourLink> links{{0, 0}, {1, 0}, {2, 1}, {2, 2}};
+    const auto groups = group_links(links, 3, 3);
+    ASSERT_EQ(groups.size(), 2u);
+    const auto& merge = groups[0].lower.size() == 2 ? groups[0] : groups[1];
+    const auto& split = groups[0].lower.size() == 2 ? groups[1] : groups[0];
+    EXPECT_EQ(merge.lower, (std::vector<uint32_t>{0, 1}));
+    EXPECT_EQ(merge.upper, (std::vector<uint32_t>{0}));
+    EXPECT_EQ(merge.links, (std::vector<ContourLink>{{0, 0}, {1, 0}}));
+    EXPECT_EQ(split.lower, (std::vector<uint32_t>{2}));
+    EXPECT_EQ(split.upper, (std::vector<uint32_t>{1, 2}));
+}
+
+TEST(Grouping, UnlabelledContoursFollowCorrespondenceAndHolesTheirParent) {
+    ContourStack stack;
+    stack.structures.push_back({"kidney", "Kidney", Vec3(0.5)});
+    stack.slices.resize(2);
+    stack.slices[0].z = 0;
+    stack.slices[1].z = 1;
+    auto add = [&](size_t s, std::vector<Vec2> points, std::string structure = "") {
+        stack.slices[s].contours.push_back(Contour{std::move(points), std::move(structure), s, 0});
+    };
+    add(0, circle(0, 0, 5));             // auto_1
+    add(0, circle(0, 0, 2));             // its hole
+    add(0, circle(20, 0, 3));            // auto_2 (no partner above)
+    add(0, circle(40, 0, 3), "kidney");  // labelled
+    add(1, circle(0.5, 0, 4));           // auto_1 continues
+    const StructureGroups g = group_structures(stack, CorrespondenceMethod::Overlap);
+    ASSERT_EQ(g.infos.size(), 3u);
+    EXPECT_EQ(g.infos[0].id, "kidney");
+    EXPECT_EQ(g.infos[1].id, "auto_1");
+    EXPECT_EQ(g.infos[1].name, "structure 1");
+    EXPECT_EQ(g.infos[2].id, "auto_2");
+    EXPECT_EQ(g.members[0][0], (std::vector<uint32_t>{3}));
+    EXPECT_EQ(g.members[1][0], (std::vector<uint32_t>{0, 1}));
+    EXPECT_EQ(g.members[1][1], (std::vector<uint32_t>{0}));
+    EXPECT_EQ(g.members[2][0], (std::vector<uint32_t>{2}));
+    EXPECT_TRUE(g.members[2][1].empty());
 }
 
 }  // namespace

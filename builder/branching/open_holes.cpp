@@ -1,0 +1,73 @@
+// Open holes: a notched contour split between a solid contour and its holes.
+#include "builder/branching/open_holes.h"
+
+#include "builder/branching/partition_bands.h"
+#include "builder/contours/validate.h"
+
+namespace body {
+namespace {
+
+// Holes of `parent` (slice `ps`) that end towards slice `os` (no hole there
+// links to them) and lie partly outside `other` there.
+std::vector<uint32_t> open_holes(const StructureSurface& surface, size_t ps, uint32_t parent, size_t os,
+                                 uint32_t other) {
+    const std::vector<Loop>& here_loops = surface.loops[ps];
+    const std::vector<Loop>& there_loops = surface.loops[os];
+    std::vector<uint32_t> holes_here, holes_there;
+    for (uint32_t k = 0; k < here_loops.size(); ++k)
+        if (here_loops[k].hole()) holes_here.push_back(k);
+    for (uint32_t k = 0; k < there_loops.size(); ++k)
+        if (there_loops[k].hole()) holes_there.push_back(k);
+    std::vector<bool> linked(holes_here.size(), false);
+    if (!holes_there.empty() && !holes_here.empty()) {
+        std::vector<PolygonSpan> here, there;
+        for (uint32_t k : holes_here) here.emplace_back(here_loops[k].xy);
+        for (uint32_t k : holes_there) there.emplace_back(there_loops[k].xy);
+        const bool up = os > ps;
+        for (const ContourLink& l :
+             correspond_contours(up ? std::span<const PolygonSpan>(here) : there,
+                                 up ? std::span<const PolygonSpan>(there) : here, surface.correspondence))
+            linked[up ? l.lower : l.upper] = true;
+    }
+    std::vector<uint32_t> open;
+    for (size_t h = 0; h < holes_here.size(); ++h) {
+        const Loop& loop = here_loops[holes_here[h]];
+        if (linked[h] || loop.parent != int(parent)) continue;
+        size_t outside = 0;
+        for (const Vec2& p : loop.xy) outside += !point_in_polygon(p, there_loops[other].xy);
+        if (4 * outside >= loop.xy.size()) open.push_back(holes_here[h]);
+    }
+    return open;
+}
+
+}  // namespace
+
+Result<bool> connect_open_holes(StructureSurface& surface, size_t s, uint32_t lower, uint32_t upper) {
+    for (int side = 0; side < 2; ++side) {
+        const size_t ps = side == 0 ? s : s + 1, os = side == 0 ? s + 1 : s;
+        const uint32_t parent = side == 0 ? lower : upper, other = side == 0 ? upper : lower;
+        std::vector<uint32_t> branches = open_holes(surface, ps, parent, os, other);
+        if (branches.empty()) continue;
+        branches.insert(branches.begin(), parent);
+        // The hole's band has room to climb before it meets chords nearer the
+        // notched contour.
+        for (const double w : {0.5, 0.7, 0.85, 0.95}) {
+            const size_t tri0 = surface.triangles.size(), pos0 = surface.positions.size();
+            auto status =
+                split_into_bands(surface, surface.loops[os][other].ids, surface.loops[ps], branches,
+                                 w * surface.z[os] + (1 - w) * surface.z[ps], side == 1, surface.loops[ps][parent]);
+            if (status && crossings_since(surface, tri0) == 0) {
+                for (size_t b = 1; b < branches.size(); ++b) {
+                    Loop& hole = surface.loops[ps][branches[b]];
+                    (side == 0 ? hole.linked_up : hole.linked_down) = true;
+                }
+                return true;
+            }
+            surface.triangles.resize(tri0);
+            surface.positions.resize(pos0);
+        }
+    }
+    return false;
+}
+
+}  // namespace body
