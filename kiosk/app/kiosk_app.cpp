@@ -9,14 +9,13 @@ namespace body::kiosk {
 
 namespace {
 
-constexpr scene::Style kStyleCycle[] = {scene::Style::Smooth, scene::Style::Lines, scene::Style::Hatching,
-                                        scene::Style::Hatching2Tone, scene::Style::Wireframe};
+constexpr Style kStyleCycle[] = {Style::Smooth, Style::Lines, Style::Hatching, Style::Hatching2Tone, Style::Wireframe};
 
-scene::Style next_style(scene::Style s) {
+Style next_style(Style s) {
     for (size_t i = 0; i < std::size(kStyleCycle); ++i) {
         if (kStyleCycle[i] == s) return kStyleCycle[(i + 1) % std::size(kStyleCycle)];
     }
-    return scene::Style::Smooth;
+    return Style::Smooth;
 }
 
 std::optional<float> manual(const scene::Lod& lod) {
@@ -122,11 +121,11 @@ UiState KioskApp::ui_state() const {
     s.lod_auto = lod_auto();
     s.isolated = isolated_;
     if (selected_ >= 0) {
-        const scene::Style style = models_[static_cast<size_t>(selected_)].style;
-        s.style_name = scene::style_name(style);
+        const Style style = models_[static_cast<size_t>(selected_)].style;
+        s.style_name = style_name(style);
         const int g = group_index(selected_);
         const auto& gs = g >= 0 ? groups_[static_cast<size_t>(g)].style : std::nullopt;
-        s.group_style_name = scene::style_name(gs ? *gs : style);
+        s.group_style_name = style_name(gs ? *gs : style);
     }
     for (size_t i = 0; i < groups_.size(); ++i) {
         s.group_names.push_back(scene_.groups[i].name);
@@ -318,9 +317,9 @@ void KioskApp::focus(int model, double now) {
     camera_.focus(model_center(model), info_[static_cast<size_t>(model)].radius, now);
 }
 
-void KioskApp::set_model_style(int model, scene::Style style) { models_[static_cast<size_t>(model)].style = style; }
+void KioskApp::set_model_style(int model, Style style) { models_[static_cast<size_t>(model)].style = style; }
 
-void KioskApp::set_group_style(int group, scene::Style style) {
+void KioskApp::set_group_style(int group, Style style) {
     groups_[static_cast<size_t>(group)].style = style;
     for (int i = 0; i < model_count(); ++i) {
         if (group_index(i) == group) models_[static_cast<size_t>(i)].style = style;

@@ -30,7 +30,7 @@ namespace body::kiosk {
 
 // What the visitor has set for one model.
 struct ModelSettings {
-    scene::Style style = scene::Style::Smooth;
+    Style style = Style::Smooth;
     std::optional<float> manual_lod;  // nullopt: automatic
     glm::vec3 offset{0.0f};           // moved with the manipulation sphere
     size_t triangles = 0;             // the level the LOD plan chose (triangle count)
@@ -38,7 +38,7 @@ struct ModelSettings {
 
 struct GroupState {
     bool visible = true;
-    std::optional<scene::Style> style;  // last style set for the whole group
+    std::optional<Style> style;  // last style set for the whole group
 };
 
 enum class KioskMode { Interactive, Attract };
@@ -90,8 +90,8 @@ public:
     // Actions (also reachable through the controls).
     void select(int model);  // -1 deselects
     void focus(int model, double now);
-    void set_model_style(int model, scene::Style style);
-    void set_group_style(int group, scene::Style style);
+    void set_model_style(int model, Style style);
+    void set_group_style(int group, Style style);
     void set_model_lod(int model, std::optional<float> ratio);
     void set_group_lod(int group, std::optional<float> ratio);
     void set_group_visible(int group, bool visible);

@@ -140,7 +140,7 @@ bool KioskLoop::bind_models(long frame, double now, size_t& triangles) {
         const ModelSettings& ms = app_->model(i);
         const ModelInfo& mi = app_->info(i);
         ModelBinding b;
-        b.style = to_render_style(ms.style);
+        b.style = ms.style;
         b.visible = app_->visible(i);
         b.selected = i == app_->selected();
         b.transform = glm::translate(glm::mat4(1.0f), ms.offset) * transforms_[m];

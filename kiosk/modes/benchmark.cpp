@@ -23,8 +23,6 @@
 namespace body::kiosk {
 namespace {
 
-using render::Style;
-
 long status_field_kib(const char* field) {
     std::ifstream in("/proc/self/status");
     std::string line;
@@ -289,7 +287,7 @@ void Benchmark::print_cell(double lod, Style s, const Cell& c) const {
         std::snprintf(gpu, sizeof(gpu), "%7.3f %8.3f %9.2f %5.2f-%-5.2f", c.style_gpu_ms, c.base_gpu_ms, c.gpu.median,
                       c.gpu.q1, c.gpu.q3);
     std::printf("%3.0f%%  %-9zu %-15s %9.2f %11.2f %6.2f %5.2f-%-5.2f %9.2f %5.2f-%-5.2f %s %5zu %s\n", lod * 100,
-                source_->triangles(), render::style_name(s), c.style_ms, c.base_ms, c.wall.median, c.wall.q1, c.wall.q3,
+                source_->triangles(), style_name(s), c.style_ms, c.base_ms, c.wall.median, c.wall.q1, c.wall.q3,
                 c.cpu.median, c.cpu.q1, c.cpu.q3, gpu, c.pairs, goal);
     std::fflush(stdout);
 }
@@ -327,7 +325,7 @@ Status Benchmark::run_lod(double lod) {
     // Per style: its first frame (building the lazily created edge list /
     // textures outside the timed frames), then its timed frames. At full detail
     // the peak restarts before each style, so the RSS each adds is known.
-    for (Style s : render::kAllStyles) {
+    for (Style s : kAllStyles) {
         const long before = current_rss_kib();
         if (lod == 1.0) {
             render_peak_ = std::max(render_peak_, peak_rss_kib());
@@ -336,7 +334,7 @@ Status Benchmark::run_lod(double lod) {
         renderer_.state(id_)->style = s;
         renderer_.render(camera_, render::Lighting{}, frame_);
         glFinish();
-        if (lod == 1.0) step((std::string("first frame in ") + render::style_name(s)).c_str());
+        if (lod == 1.0) step((std::string("first frame in ") + style_name(s)).c_str());
         const Cell c = time_cell(s);
         if (lod == 1.0) style_added_.emplace_back(s, peak_rss_kib() - before);
         print_cell(lod, s, c);
@@ -384,7 +382,7 @@ void Benchmark::print_memory() const {
         "peak RSS per style at LOD 100%% (MiB): added over what was resident before it | alone = drawn in "
         "baseline + added\n");
     for (const auto& [s, added] : style_added_)
-        std::printf("  %-15s %7.1f | %7.1f\n", render::style_name(s), mib(added),
+        std::printf("  %-15s %7.1f | %7.1f\n", style_name(s), mib(added),
                     mib(std::max(after_baseline_, after_baseline_current_ + added) - empty_rss_));
 }
 

@@ -24,7 +24,7 @@ ModelBinding binding_of(const SceneModels& models, size_t i, const ViewOptions& 
     b.lod_ratio = o.lod ? *o.lod : (lod.automatic ? 1.0 : lod.ratio);
     b.glide = false;
     b.transform = to_model_matrix(m.transform);
-    b.style = o.style ? *o.style : to_render_style(g && g->style ? *g->style : m.style);
+    b.style = o.style ? *o.style : (g && g->style ? *g->style : m.style);
     b.visible = g ? g->visible : true;
     if (o.select) {
         // One model file: its name, one of its structures' names, or "all".

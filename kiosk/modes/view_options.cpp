@@ -87,9 +87,10 @@ Status parse_picture(const CliArgs& args, ViewOptions& o) {
     if (!frames) return frames.error();
     o.frames = frames.value();
     if (auto s = args.get("style")) {
-        auto st = render::parse_style(*s);
-        if (!st) return st.error();
-        o.style = st.value();
+        o.style = parse_style(*s);
+        if (!o.style)
+            return input_error("unknown style '" + *s +
+                               "' (expected smooth, wireframe, lines, hatching, hatching-2tone)");
     }
     if (auto v = args.get("view")) {
         float azimuth = 0, polar = 0;
@@ -161,7 +162,7 @@ Result<scene::Scene> scene_to_show(const ViewOptions& o) {
     scene::Model m;
     m.name = std::filesystem::path(o.model_path).stem().string();
     m.file = m.path = o.model_path;
-    if (o.style) m.style = scene::parse_style(render::style_name(*o.style)).value_or(scene::Style::Smooth);
+    if (o.style) m.style = *o.style;
     if (o.lod) m.lod = scene::Lod{false, static_cast<float>(*o.lod)};
     m.labels.push_back({"en", m.name, ""});
     s.models.push_back(std::move(m));

@@ -20,7 +20,7 @@ struct ViewOptions {
     std::string scene_path;                           // --scene, or BUNDLE/scene.json
     std::string model_path;                           // --model
     std::optional<double> lod;                        // --lod: every model at this ratio
-    std::optional<render::Style> style;               // --style: every model in this style
+    std::optional<Style> style;                       // --style: every model in this style
     std::optional<std::string> select;                // --select
     bool xray = false;                                // --xray
     std::optional<std::pair<float, float>> view_deg;  // --view: azimuth, polar

@@ -24,25 +24,6 @@
 
 namespace body::render {
 
-const char* style_name(Style style) {
-    switch (style) {
-        case Style::Smooth: return "smooth";
-        case Style::Wireframe: return "wireframe";
-        case Style::Lines: return "lines";
-        case Style::Hatching: return "hatching";
-        case Style::Hatching2Tone: return "hatching-2tone";
-        case Style::Baseline: return "baseline";
-    }
-    return "?";
-}
-
-Result<Style> parse_style(const std::string& name) {
-    for (Style s :
-         {Style::Smooth, Style::Wireframe, Style::Lines, Style::Hatching, Style::Hatching2Tone, Style::Baseline})
-        if (name == style_name(s)) return s;
-    return input_error("unknown style '" + name + "' (expected smooth, wireframe, lines, hatching, hatching-2tone)");
-}
-
 const char* buffer_access_name(BufferAccess access) {
     switch (access) {
         case BufferAccess::InPlace: return "in-place";

@@ -46,21 +46,9 @@
 #include "kiosk/render/mesh_data.h"
 #include "shared/error.h"
 #include "shared/geometry.h"
+#include "shared/style.h"
 
 namespace body::render {
-
-enum class Style : uint8_t {
-    Smooth,         // per-pixel Blinn-Phong, key/fill/rim
-    Wireframe,      // barycentric edges in the fragment shader, constant pixel width
-    Lines,          // paper-white fill + silhouette/boundary/crease edges (thesis "hand-drawn 1")
-    Hatching,       // 6-tone tonal art map (thesis "hand-drawn 2", Praun/Webb)
-    Hatching2Tone,  // the thesis' two-texture threshold variant (Lake et al.)
-    Baseline,       // one flat colour: the benchmark's minimal baseline
-};
-inline constexpr Style kAllStyles[] = {Style::Smooth, Style::Wireframe, Style::Lines, Style::Hatching,
-                                       Style::Hatching2Tone};
-const char* style_name(Style style);  // "smooth", "wireframe", "lines", "hatching", "hatching-2tone", "baseline"
-Result<Style> parse_style(const std::string& name);
 
 using ModelId = uint32_t;
 

@@ -8,17 +8,6 @@
 
 namespace body::kiosk {
 
-render::Style to_render_style(scene::Style s) {
-    switch (s) {
-        case scene::Style::Wireframe: return render::Style::Wireframe;
-        case scene::Style::Smooth: return render::Style::Smooth;
-        case scene::Style::Lines: return render::Style::Lines;
-        case scene::Style::Hatching: return render::Style::Hatching;
-        case scene::Style::Hatching2Tone: return render::Style::Hatching2Tone;
-    }
-    return render::Style::Smooth;
-}
-
 glm::mat4 to_model_matrix(const scene::Transform& t) {
     glm::mat4 m = glm::translate(glm::mat4(1.0f), glm::vec3(t.translate[0], t.translate[1], t.translate[2]));
     m = glm::rotate(m, glm::radians(t.rotate_deg[2]), glm::vec3(0, 0, 1));

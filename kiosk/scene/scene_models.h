@@ -38,14 +38,13 @@ struct ModelInfo {
     size_t base_triangles = 0;
 };
 
-// A scene style as the renderer's style, and a scene transform as a model matrix
-// (translate * Rz * Ry * Rx * scale: Euler X first, as SCENE.md says).
-render::Style to_render_style(scene::Style style);
+// A scene transform as a model matrix (translate * Rz * Ry * Rx * scale: Euler
+// X first, as SCENE.md says).
 glm::mat4 to_model_matrix(const scene::Transform& transform);
 
 // A model's properties for one frame.
 struct ModelBinding {
-    render::Style style = render::Style::Smooth;
+    Style style = Style::Smooth;
     bool visible = true;
     bool selected = false;
     glm::mat4 transform{1.0f};   // object -> world

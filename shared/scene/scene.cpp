@@ -23,8 +23,6 @@ std::string fmt(double v) {
     return buf;
 }
 
-constexpr const char* kStyleNames[kStyleCount] = {"wireframe", "smooth", "lines", "hatching", "hatching-2tone"};
-
 // Carries the file name and the first error; each reader returns false after failing.
 struct Reader {
     std::string source;
@@ -283,15 +281,6 @@ bool check_references(Reader& r, Scene& s) {
 }
 
 }  // namespace
-
-const char* style_name(Style style) { return kStyleNames[static_cast<int>(style)]; }
-
-std::optional<Style> parse_style(const std::string& name) {
-    for (int i = 0; i < kStyleCount; ++i) {
-        if (name == kStyleNames[i]) return static_cast<Style>(i);
-    }
-    return std::nullopt;
-}
 
 const Group* Scene::find_group(const std::string& name) const {
     for (const Group& g : groups) {

@@ -13,14 +13,9 @@
 #include <vector>
 
 #include "shared/error.h"
+#include "shared/style.h"
 
 namespace body::scene {
-
-// The renderer's styles (issue 6), by their manifest names.
-enum class Style { Wireframe, Smooth, Lines, Hatching, Hatching2Tone };
-inline constexpr int kStyleCount = 5;
-const char* style_name(Style style);
-std::optional<Style> parse_style(const std::string& name);
 
 // Level of detail: a fixed ratio of the full triangle count in (0, 1], or automatic
 // (the kiosk's LOD controller decides).

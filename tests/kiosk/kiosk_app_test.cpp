@@ -147,13 +147,13 @@ TEST(KioskApp, GroupStyleButtonRestylesTheSelectionsGroup) {
     run_replay(app, replay("0.0 down 1 640 400\n0.1 up 1 640 400\n"));
     ASSERT_EQ(app.selected(), 1);
     run_replay(app, replay(tap_on(control(app, ControlId::GroupStyle), 0.5)), 60.0, 0.5);
-    EXPECT_EQ(app.model(0).style, scene::Style::Lines);
-    EXPECT_EQ(app.model(1).style, scene::Style::Lines);
-    EXPECT_EQ(app.model(2).style, scene::Style::Hatching);  // the other group is untouched
-    EXPECT_EQ(app.selected(), 1);                           // tapping a control does not deselect
+    EXPECT_EQ(app.model(0).style, Style::Lines);
+    EXPECT_EQ(app.model(1).style, Style::Lines);
+    EXPECT_EQ(app.model(2).style, Style::Hatching);  // the other group is untouched
+    EXPECT_EQ(app.selected(), 1);                    // tapping a control does not deselect
     run_replay(app, replay(tap_on(control(app, ControlId::Style), 1.0)), 60.0, 1.0);
-    EXPECT_EQ(app.model(1).style, scene::Style::Hatching);
-    EXPECT_EQ(app.model(0).style, scene::Style::Lines);
+    EXPECT_EQ(app.model(1).style, Style::Hatching);
+    EXPECT_EQ(app.model(0).style, Style::Lines);
 }
 
 TEST(KioskApp, GroupToggleIsolateAndLanguage) {
@@ -184,7 +184,7 @@ TEST(KioskApp, IdleAttractThenFullReset) {
     run_replay(app, replay("0.0 down 1 640 400\n0.1 up 1 640 400\n"                         // select middle
                            "0.5 down 1 300 150\n0.6 move 1 400 150\n0.7 up 1 400 150\n"));  // orbit
     ASSERT_EQ(app.selected(), 1);
-    app.set_group_style(0, scene::Style::Wireframe);
+    app.set_group_style(0, Style::Wireframe);
     app.next_language();
     const float orbited = app.camera().pose().azimuth;
     EXPECT_NEAR(orbited, -1.0f, 1e-4f);
@@ -202,8 +202,8 @@ TEST(KioskApp, IdleAttractThenFullReset) {
     run_replay(app, replay("10.8 end\n"), 60.0, 7.8);
     EXPECT_EQ(app.resets(), 1);
     EXPECT_EQ(app.selected(), -1);
-    EXPECT_EQ(app.model(0).style, scene::Style::Smooth);
-    EXPECT_EQ(app.model(2).style, scene::Style::Hatching);
+    EXPECT_EQ(app.model(0).style, Style::Smooth);
+    EXPECT_EQ(app.model(2).style, Style::Hatching);
     EXPECT_EQ(app.language(), "en");
     EXPECT_NEAR(app.camera().pose().azimuth, KioskApp::kAttractRadiansPerSecond * 0.1f, 0.02f);  // home + attract
     // Still attracting, reset only once per idle period; a touch wakes it up.
