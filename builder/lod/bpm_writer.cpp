@@ -19,7 +19,12 @@
 
 #include "builder/lod/simplify.h"
 #include "shared/atomic_file.h"
-#include "shared/pm/bpm_format.h"
+#include "shared/pm/bpm_container.h"
+#include "shared/pm/large_array.h"
+#include "shared/pm/prediction.h"
+#include "shared/pm/quantize.h"
+#include "shared/pm/split_codec.h"
+#include "shared/pm/split_replay.h"
 
 namespace body::lod {
 namespace {

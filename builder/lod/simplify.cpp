@@ -36,14 +36,16 @@
 #include <tuple>
 #include <type_traits>
 
-#include "shared/pm/bpm_format.h"
-#include "shared/prefaulted_array.h"
+#include "shared/pm/bpm_container.h"
+#include "shared/pm/large_array.h"
+#include "shared/pm/quantize.h"
 
 namespace body::lod {
 namespace {
 
 // A fan's scattered cache lines are requested together before the loop that uses
 // them instead of one miss after another (a hint: no effect on results).
+using pm::PrefaultedVector;
 using pm::prefetch;
 
 constexpr uint32_t kNone = 0xffffffffu;

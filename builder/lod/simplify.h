@@ -41,7 +41,7 @@
 #include "shared/error.h"
 #include "shared/geometry.h"
 #include "shared/mesh.h"
-#include "shared/prefaulted_array.h"
+#include "shared/pm/large_array.h"
 
 namespace body::lod {
 
@@ -71,17 +71,17 @@ struct VertexSplit {
     Vec3 parent_to{0.0};      // ... and after it (equal for a half-edge collapse)
 };
 
-// (Prefaulted storage: a 1M-triangle build writes ~40 MB here, see shared/prefaulted_array.h.)
+// (Prefaulted storage: a 1M-triangle build writes ~40 MB here, see shared/pm/large_array.h.)
 struct ProgressiveBuild {
-    PrefaultedVector<Vec3> positions;    // all vertices in PM order, each where it appears (base: coarsest)
-    PrefaultedVector<Vec3> normals;      // one per vertex
-    PrefaultedVector<uint32_t> indices;  // all faces in PM order, as they are when each face appears
+    pm::PrefaultedVector<Vec3> positions;    // all vertices in PM order, each where it appears (base: coarsest)
+    pm::PrefaultedVector<Vec3> normals;      // one per vertex
+    pm::PrefaultedVector<uint32_t> indices;  // all faces in PM order, as they are when each face appears
     size_t base_vertices = 0, base_faces = 0;
-    PrefaultedVector<VertexSplit> splits;
+    pm::PrefaultedVector<VertexSplit> splits;
     // Faces whose corner at the parent moves to the child when split j is applied:
     // patch_faces[patch_begin[j] .. patch_begin[j + 1]).
-    PrefaultedVector<uint32_t> patch_begin;
-    PrefaultedVector<uint32_t> patch_faces;
+    pm::PrefaultedVector<uint32_t> patch_begin;
+    pm::PrefaultedVector<uint32_t> patch_faces;
 };
 
 // Simplifies `mesh` as far as options allow and returns the refinement sequence.

@@ -19,6 +19,7 @@
 #include "kiosk/render/model_source.h"
 #include "kiosk/render/renderer.h"
 #include "platform/evdev_input.h"
+#include "shared/pm/bpm_reader.h"
 #include "shared/pm/progressive_mesh.h"
 
 namespace body::kiosk {

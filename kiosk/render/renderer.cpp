@@ -23,7 +23,7 @@
 
 #include "kiosk/render/edge_list.h"
 #include "kiosk/render/tonal_art_map.h"
-#include "shared/pm/bpm_format.h"
+#include "shared/pm/quantize.h"
 
 namespace body::render {
 

@@ -1,6 +1,6 @@
 #pragma once
-// Progressive meshes at run time: the `.bpm` reader and the ProgressiveMesh the
-// kiosk draws. Format: shared/pm/FORMAT.md. Background: thesis section 3.3.
+// Progressive meshes at run time: the ProgressiveMesh the kiosk draws, as the
+// `.bpm` reader (bpm_reader.h) fills it. Format: shared/pm/FORMAT.md. Background: thesis section 3.3.
 //
 // A level is "k vertex splits applied on top of the base mesh". At level k the
 // mesh is exactly
@@ -39,7 +39,9 @@
 
 #include "shared/error.h"
 #include "shared/geometry.h"
-#include "shared/pm/bpm_format.h"
+#include "shared/pm/large_array.h"
+#include "shared/pm/quantize.h"
+#include "shared/pm/split_replay.h"
 
 namespace body::pm {
 
@@ -110,13 +112,13 @@ public:
     // the current prefix are valid once decoded but are not part of this level.
     // Three codes per vertex in [bounds_min(), bounds_max()]: axis k of vertex v
     // is dequantize16(code, bounds_min()[k], step) with step = (double(max) -
-    // double(min)) / 65535 (bpm_format.h), what position() returns.
+    // double(min)) / 65535 (quantize.h), what position() returns.
     std::span<const uint16_t> position_codes() const { return positions_; }
     Vec3f position(size_t v) const { return dequantize(&positions_[v * 3]); }
     // Dequantizes the positions of the vertices [begin, begin + out.size()) into
     // `out` (caller-owned; no allocation).
     void positions(size_t begin, std::span<Vec3f> out) const;
-    // Two octahedral codes per vertex (oct_decode8 in bpm_format.h); empty when the
+    // Two octahedral codes per vertex (oct_decode8 in quantize.h); empty when the
     // file has none.
     std::span<const uint8_t> normal_codes() const {
         return has_normals_ ? std::span<const uint8_t>(qoct_) : std::span<const uint8_t>();
@@ -289,48 +291,5 @@ private:
                      dequantize16(q[2], bbox_min_.z, step_[2]));
     }
 };
-
-// Reads a .bpm file from byte chunks as they arrive (network, disk, a test).
-// Every complete section is decoded at once; a structure is drawable as soon as
-// its BASE section is in, and refines up to its last complete SPLT chunk.
-class BpmStream {
-public:
-    explicit BpmStream(std::string source_name = "<stream>");
-    // Appends bytes. Returns an error (and stays failed) on a corrupt header or
-    // section, naming the section, the structure and the byte offset in the file.
-    Status feed(std::span<const uint8_t> bytes);
-    // True when the END section arrived and was valid.
-    bool complete() const { return complete_; }
-    // Structures whose INFO has arrived (their declared count is structure_count_declared()).
-    size_t structure_count() const { return meshes_.size(); }
-    size_t structure_count_declared() const { return declared_structures_; }
-    ProgressiveMesh& structure(size_t i) { return *meshes_[i]; }
-    const ProgressiveMesh& structure(size_t i) const { return *meshes_[i]; }
-    size_t bytes_consumed() const { return consumed_; }
-    // Error for a stream that ended early: names the section being received and its offset.
-    Status finish() const;
-
-private:
-    Status parse_section(uint32_t tag, uint32_t structure, std::span<const uint8_t> payload, size_t offset);
-    Status parse_info(std::span<const uint8_t> payload, const std::string& where);
-    Status parse_base(ProgressiveMesh& m, std::span<const uint8_t> payload, const std::string& where);
-    Status parse_splits(ProgressiveMesh& m, std::span<const uint8_t> payload, const std::string& where);
-
-    std::string source_;
-    std::vector<uint8_t> pending_;  // bytes of the section being received
-    size_t consumed_ = 0;           // file offset of pending_[0]
-    bool header_done_ = false, complete_ = false, failed_ = false;
-    std::string failure_;
-    size_t declared_structures_ = 0;
-    std::vector<std::unique_ptr<ProgressiveMesh>> meshes_;
-    std::vector<uint32_t> decoded_indices_;
-    std::vector<uint32_t> split_parents_;  // parse_splits: the parents of a chunk's splits (reused)
-};
-
-// Reads a whole file; errors name the path, section and byte offset.
-Result<std::vector<std::unique_ptr<ProgressiveMesh>>> read_bpm(const std::string& path);
-// Reads from memory (the same checks as a file).
-Result<std::vector<std::unique_ptr<ProgressiveMesh>>> read_bpm_bytes(std::span<const uint8_t> bytes,
-                                                                     const std::string& source_name);
 
 }  // namespace body::pm

@@ -6,6 +6,7 @@
 #include <random>
 
 #include "builder/lod/simplify.h"
+#include "shared/pm/bpm_reader.h"
 #include "shared/pm/progressive_mesh.h"
 #include "tests/common/test_meshes.h"
 

@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "builder/lod/simplify.h"
+#include "shared/pm/bpm_reader.h"
 #include "tests/common/test_meshes.h"
 
 namespace body::kiosk {

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "builder/lod/simplify.h"
+#include "shared/pm/bpm_reader.h"
 #include "shared/pm/progressive_mesh.h"
 #include "tests/lod/lod_test_util.h"
 

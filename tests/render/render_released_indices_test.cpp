@@ -11,6 +11,7 @@
 
 #include "builder/lod/simplify.h"
 #include "kiosk/render/model_source.h"
+#include "shared/pm/bpm_reader.h"
 #include "tests/render/render_fixture.h"
 
 namespace body::render {

@@ -21,6 +21,7 @@
 #include "shared/mesh.h"
 #include "shared/mesh_intersect.h"
 #include "shared/obj_io.h"
+#include "shared/pm/bpm_reader.h"
 #include "shared/pm/progressive_mesh.h"
 #include "tests/lod/level_checks.h"
 
