@@ -204,19 +204,200 @@ Status BpmStream::parse_base(ProgressiveMesh& m, std::span<const uint8_t> payloa
     return ok_status();
 }
 
-Status BpmStream::parse_splits(ProgressiveMesh& m, std::span<const uint8_t> payload, const std::string& where) {
+namespace {
+
+// What the splits of one SPLT chunk decode against: the replay and the codes at
+// the finest decoded level (the structure's decoding state) and the box's weights.
+struct ChunkContext {
+    SplitReplay& replay;
+    const uint16_t* qpos;  // 3 per vertex
+    const uint8_t* qoct;   // 2 per vertex
+    bool normals;
+    int32_t axis_weight[3], plane_weight[3];
+};
+
+// One split as it decodes: its topology (the parent's corners, those moving to
+// the child, the new faces), its predictions and its decoded codes.
+struct DecodedSplit {
+    uint32_t child = 0, parent = 0;
+    uint32_t corners[64];
+    size_t corner_count = 0;
+    uint64_t mask = 0;
+    uint32_t faces = 0, faces_at[9];
+    uint32_t fan = 0;               // fan form: the size of the parent's fan
+    uint16_t from[3], q[3], to[3];  // the parent before and after, the child
+    uint8_t oct[2];
+    FanPrediction pred;  // the general form: child at the parent, no scaling
+};
+
+// The replay is bound by memory latency (a parent is anywhere in the mesh): the
+// data of the splits a few steps ahead is pulled into the cache in stages.
+[[gnu::always_inline]] inline void prefetch_ahead(const ChunkContext& c, const std::vector<uint32_t>& parents,
+                                                  uint32_t i) {
+    constexpr uint32_t kAhead0 = 32, kAhead1 = 20, kAhead2 = 12, kAhead3 = 6;
+    const size_t count = parents.size();
+    if (i + kAhead0 < count) c.replay.prefetch(parents[i + kAhead0], 0);
+    if (i + kAhead1 < count) {
+        const uint32_t p = parents[i + kAhead1];
+        c.replay.prefetch(p, 1);
+        prefetch(&c.qpos[size_t(p) * 3]);
+        prefetch(&c.qoct[size_t(p) * 2]);
+    }
+    if (i + kAhead2 < count) c.replay.prefetch(parents[i + kAhead2], 2);
+    if (i + kAhead3 < count) c.replay.prefetch(parents[i + kAhead3], 3, c.qpos);
+}
+
+// Fan form (a manifold split): the fan faces from ring[start] to ring[start + length]
+// move to the child; the new faces are (c, p, ring[start]), (c, ring[start + length], p).
+[[gnu::always_inline]] inline const char* decode_fan(const ChunkContext& c, SplitDecoder::Cursor& values,
+                                                     DecodedSplit& s) {
+    uint32_t ring[64];
+    uint8_t fan_at[64];
+    s.fan = uint32_t(c.replay.ordered_fan(s.corners, s.corner_count, ring, fan_at));
+    const uint32_t start = values.get(kCtxFanStart), length = values.get(kCtxFanLength) + 1;
+    if (s.fan == 0 || start >= s.fan || length >= s.fan) return "fan split of a vertex without such a fan";
+    uint32_t at = start;
+    for (uint32_t t = 0; t < length; ++t, at = at + 1 == s.fan ? 0 : at + 1) s.mask |= uint64_t(1) << fan_at[at];
+    s.faces = 2;
+    const uint32_t f[6] = {s.child, s.parent, ring[start], s.child, ring[at], s.parent};
+    std::copy_n(f, 6, s.faces_at);
+    // The plane through the parent: its normal (when the file has normals).
+    int64_t plane[3];
+    plane_normal(&c.qoct[size_t(s.parent) * 2], c.plane_weight, plane);
+    predict_fan(c.qpos, ring, s.fan, start, length, s.from, c.normals ? plane : nullptr, s.pred);
+    return nullptr;
+}
+
+// General form: the patch mask, then each new face's third vertex as a neighbour
+// number over the parent's corners before the split, from the topology bytes.
+[[gnu::always_inline]] inline const char* decode_general(const ChunkContext& c, ByteReader& topo, DecodedSplit& s) {
+    uint64_t head = 0;
+    if (!topo.varint(head)) return "topology record truncated";
+    s.faces = uint32_t(head & 3);
+    s.mask = head >> 2;
+    for (uint32_t f = 0; f < s.faces && f < 3; ++f) {
+        uint64_t code = 0;
+        if (!topo.varint(code) || (code >> 1) >= 2 * s.corner_count) return "a new face names a missing neighbour";
+        const uint32_t third = c.replay.neighbour(s.corners, size_t(code >> 1));
+        uint32_t* t = s.faces_at + 3 * f;
+        t[0] = s.child;
+        t[1] = (code & 1) ? third : s.parent;
+        t[2] = (code & 1) ? s.parent : third;
+    }
+    return nullptr;
+}
+
+// The split's topology in its kind's form; an error text, or nullptr.
+[[gnu::always_inline]] inline const char* decode_topology(const ChunkContext& c, SplitDecoder::Cursor& values,
+                                                          ByteReader& topo, uint32_t form, DecodedSplit& s) {
+    s.corner_count = c.replay.corners_of(s.parent, s.corners, 64);
+    if (s.corner_count == SIZE_MAX) return "parent has more than 64 corners";
+    for (int k = 0; k < 3; ++k) s.from[k] = c.qpos[size_t(s.parent) * 3 + k];
+    s.pred = FanPrediction{{s.from[0], s.from[1], s.from[2]}, {0, 0, 0}, {0, 0, 0}};
+    if (form == kTopoFan) return decode_fan(c, values, s);
+    if (form == kTopoGeneral) return decode_general(c, topo, s);
+    return "unknown split kind";
+}
+
+// The child's position and the parent's move (0 to 1 positions), as residuals of
+// their predictions; with a plane, its axis last.
+[[gnu::always_inline]] inline void decode_positions(SplitDecoder::Cursor& values, bool moves, DecodedSplit& s) {
+    const FanPrediction& pred = s.pred;
+    uint32_t order[3] = {0, 1, 2};
+    if (pred.axis < 3) {
+        plane_axes(pred.axis, order[0], order[1]);
+        order[2] = pred.axis;
+    }
+    for (uint32_t i = 0; i < 2; ++i)
+        s.q[order[i]] =
+            unzigzag16(uint16_t(values.get_scaled(kCtxChild0 + i, pred.shift[order[i]])), pred.child[order[i]]);
+    if (pred.axis < 3)
+        s.q[order[2]] = unzigzag16(uint16_t(values.get_scaled(kCtxChild0 + 2, pred.axis_shift)),
+                                   plane_coordinate(pred, s.from, s.q, pred.child_dot, 4));
+    else
+        s.q[2] = unzigzag16(uint16_t(values.get_scaled(kCtxChild0 + 2, pred.shift[2])), pred.child[2]);
+    for (int k = 0; k < 3; ++k) s.to[k] = s.from[k];
+    if (!moves) return;
+    for (uint32_t i = 0; i < (pred.axis < 3 ? 2u : 3u); ++i) {
+        const uint32_t k = order[i];
+        const uint16_t reflected = reflect16(s.from[k], s.q[k]);
+        const uint16_t predicted = s.fan != 0 ? midpoint16(reflected, pred.parent_centroid[k]) : reflected;
+        s.to[k] = unzigzag16(uint16_t(values.get_scaled(kCtxParent0 + i, pred.shift[k])), predicted);
+    }
+    if (pred.axis < 3) {
+        const int64_t offset = pred.parent_dot - 4 * plane_dot(pred, s.from, s.q);
+        s.to[order[2]] = unzigzag16(uint16_t(values.get_scaled(kCtxParent0 + 2, pred.axis_shift)),
+                                    plane_coordinate(pred, s.from, s.to, offset, 8));
+    }
+}
+
+// The child's normal: predicted from its faces after the split (fan form), else
+// the parent's; the parent's when the file has none.
+[[gnu::always_inline]] inline void decode_normal(const ChunkContext& c, SplitDecoder::Cursor& values, DecodedSplit& s) {
+    s.oct[0] = c.qoct[size_t(s.parent) * 2];
+    s.oct[1] = c.qoct[size_t(s.parent) * 2 + 1];
+    if (!c.normals) return;
+    if (s.fan != 0) predict_normal(s.pred, s.from, s.to, c.axis_weight, s.oct);
+    for (int k = 0; k < 2; ++k) s.oct[k] = unzigzag8(uint8_t(values.get(kCtxNormal0 + uint32_t(k))), s.oct[k]);
+}
+
+// A SPLT payload's framing.
+struct ChunkHeader {
+    uint32_t first = 0, count = 0, new_faces = 0;
+    std::span<const uint8_t> values, topology;
+};
+
+bool read_chunk_header(std::span<const uint8_t> payload, ChunkHeader& h) {
     ByteReader r(payload);
-    uint32_t first = 0, count = 0, new_faces = 0, vbytes = 0, tbytes = 0;
-    std::span<const uint8_t> vbuf, tbuf;
-    if (!r.u32(first) || !r.u32(count) || !r.u32(new_faces) || !r.u32(vbytes) || !r.bytes(vbytes, vbuf) ||
-        !r.u32(tbytes) || !r.bytes(tbytes, tbuf) || r.left() != 0)
-        return input_error(where + ": SPLT payload sizes do not add up");
+    uint32_t vbytes = 0, tbytes = 0;
+    return r.u32(h.first) && r.u32(h.count) && r.u32(h.new_faces) && r.u32(vbytes) && r.bytes(vbytes, h.values) &&
+           r.u32(tbytes) && r.bytes(tbytes, h.topology) && r.left() == 0;
+}
+
+}  // namespace
+
+void BpmStream::record_split(ProgressiveMesh& m, size_t j, uint32_t parent, uint32_t child,
+                             std::span<const uint32_t> faces, std::span<const uint32_t> moved, const uint16_t from[3],
+                             const uint16_t to[3], const uint16_t q[3], const uint8_t oct[2], uint16_t error_high) {
+    m.replay_.add_faces(m.decoded_faces_, faces);
+    std::copy(faces.begin(), faces.end(), m.indices_.begin() + ptrdiff_t(m.decoded_faces_ * 3));
+    m.decoded_faces_ += faces.size() / 3;
+    m.face_count_bits_[j / 32] |= uint64_t(faces.size() / 3) << (j % 32 * 2);
+    if ((j + 1) % 64 == 0) m.face_sample_[(j + 1) / 64] = uint32_t(m.decoded_faces_);
+    if (m.error_highs_.empty() || error_high != m.error_highs_.back()) {
+        m.error_levels_.push_back(uint32_t(j));
+        m.error_highs_.push_back(error_high);
+    }
+    const size_t at = m.patch_corners_.size(), w = m.corner_bytes_;
+    m.patch_corners_.resize(at + moved.size() * w);
+    for (size_t i = 0; i < moved.size(); ++i) ProgressiveMesh::store_le(&m.patch_corners_[at + i * w], moved[i], w);
+    m.patch_count_[j] = uint8_t(moved.size());
+    if (j % 64 == 0) m.move_rank_[j / 64] = uint32_t(m.move_count_);
+    if ((from[0] ^ to[0]) | (from[1] ^ to[1]) | (from[2] ^ to[2])) {
+        m.move_bits_[j / 64] |= uint64_t(1) << (j % 64);
+        for (int k = 0; k < 3; ++k) m.moves_[m.move_count_ * 3 + size_t(k)] = uint16_t(from[k] ^ to[k]);
+        ++m.move_count_;
+    }
+    for (int k = 0; k < 3; ++k) {
+        m.qpos_[size_t(child) * 3 + k] = q[k];
+        m.qpos_[size_t(parent) * 3 + k] = to[k];
+        m.positions_[size_t(child) * 3 + k] = q[k];
+    }
+    m.qoct_[size_t(child) * 2] = oct[0];
+    m.qoct_[size_t(child) * 2 + 1] = oct[1];
+    ProgressiveMesh::store_le(&m.split_parents_bytes_[j * m.parent_bytes_], parent, m.parent_bytes_);
+}
+
+Status BpmStream::parse_splits(ProgressiveMesh& m, std::span<const uint8_t> payload, const std::string& where) {
+    ChunkHeader h;
+    if (!read_chunk_header(payload, h)) return input_error(where + ": SPLT payload sizes do not add up");
+    const uint32_t first = h.first, count = h.count;
     if (first != m.decoded_splits_ || count == 0 || count > m.split_count_ - m.decoded_splits_ ||
-        new_faces > m.face_count_ - m.decoded_faces_)
+        h.new_faces > m.face_count_ - m.decoded_faces_)
         return input_error(where + ": split range " + std::to_string(first) + "+" + std::to_string(count) +
                            " does not follow split " + std::to_string(m.decoded_splits_));
     SplitDecoder decoder;
-    if (!decoder.init(vbuf)) return input_error(where + ": split value tables do not decode");
+    if (!decoder.init(h.values)) return input_error(where + ": split value tables do not decode");
     SplitDecoder::Cursor values = decoder.begin();
     // The chunk's parents come first (the loop below prefetches their data).
     std::vector<uint32_t>& parents = split_parents_;
@@ -229,169 +410,49 @@ Status BpmStream::parse_splits(ProgressiveMesh& m, std::span<const uint8_t> payl
     }
     // Everything below runs per split: no allocation (the message is built on failure only).
     // Geometric growth: reserving the exact need per section would copy the whole
-    // array at every section (quadratic: 0.5 GB of copying for a 1M-triangle file).
+    // array at every section (quadratic in the file's size).
     if (const size_t need = m.patch_corners_.size() + size_t(count) * 4 * m.corner_bytes_;
         need > m.patch_corners_.capacity())
         m.patch_corners_.reserve(std::max(need, 2 * m.patch_corners_.capacity()));
-    ByteReader topo(tbuf);
+    ByteReader topo(h.topology);
     size_t face_cursor = 0;
     float previous_error = first == 0 ? INFINITY : m.error_at(first - 1);
     uint32_t previous_error_bits;
     std::memcpy(&previous_error_bits, &previous_error, 4);
-    const Vec3f lo = m.bbox_min_, hi = m.bbox_max_;
-    int32_t axis_weight[3], plane_weight[3];
-    {
-        const float box_lo[3] = {lo.x, lo.y, lo.z}, box_hi[3] = {hi.x, hi.y, hi.z};
-        normal_axis_weights(box_lo, box_hi, axis_weight);
-        plane_axis_weights(box_lo, box_hi, plane_weight);
-    }
-    uint32_t corners[64], moved[64], faces_at[9], ring[64];
-    uint8_t fan_at[64];
-    // The replay is bound by memory latency (a parent is anywhere in the mesh):
-    // pull the data of the splits a few steps ahead into the cache in stages.
-    constexpr uint32_t kAhead0 = 32, kAhead1 = 20, kAhead2 = 12, kAhead3 = 6;
+    ChunkContext ctx{m.replay_, m.qpos_.data(), m.qoct_.data(), m.has_normals_, {}, {}};
+    const float box_lo[3] = {m.bbox_min_.x, m.bbox_min_.y, m.bbox_min_.z},
+                box_hi[3] = {m.bbox_max_.x, m.bbox_max_.y, m.bbox_max_.z};
+    normal_axis_weights(box_lo, box_hi, ctx.axis_weight);
+    plane_axis_weights(box_lo, box_hi, ctx.plane_weight);
+    uint32_t moved[64];
     for (uint32_t i = 0; i < count; ++i) {
-        if (i + kAhead0 < count) m.replay_.prefetch(parents[i + kAhead0], 0);
-        if (i + kAhead1 < count) {
-            const uint32_t p = parents[i + kAhead1];
-            m.replay_.prefetch(p, 1);
-            prefetch(&m.qpos_[size_t(p) * 3]);
-            prefetch(&m.qoct_[size_t(p) * 2]);
-        }
-        if (i + kAhead2 < count) m.replay_.prefetch(parents[i + kAhead2], 2);
-        if (i + kAhead3 < count) m.replay_.prefetch(parents[i + kAhead3], 3, m.qpos_.data());
+        prefetch_ahead(ctx, parents, i);
         const size_t j = first + i;
-        const uint32_t child = uint32_t(m.base_vertices_ + j), parent = parents[i];
+        DecodedSplit s;
+        s.child = uint32_t(m.base_vertices_ + j);
+        s.parent = parents[i];
         auto fail = [&](const char* what) { return input_error(where + ": split " + std::to_string(j) + ": " + what); };
-        const uint32_t kind = values.get(kCtxKind), form = kind >> 1;
-        const bool moves = kind & 1;
+        const uint32_t kind = values.get(kCtxKind);
         // Errors are non-increasing by construction: each is a step down from the previous.
         const uint32_t error_step = values.get(kCtxErrorStep);
         if (error_step > (previous_error_bits >> 16)) return fail("error not monotonic");
         previous_error_bits -= error_step << 16;
-        const size_t corner_count = m.replay_.corners_of(parent, corners, 64);
-        if (corner_count == SIZE_MAX) return fail("parent has more than 64 corners");
-        uint32_t faces = 0;
-        uint64_t mask = 0;
-        uint16_t from[3];
-        for (int k = 0; k < 3; ++k) from[k] = m.qpos_[size_t(parent) * 3 + k];
-        // Predictions (the general form: child at the parent, no scaling).
-        FanPrediction pred{{from[0], from[1], from[2]}, {0, 0, 0}, {0, 0, 0}};
-        uint32_t fan = 0;
-        if (form == kTopoFan) {
-            // Manifold split: the fan faces from ring[start] to ring[start + length] move to the child.
-            fan = uint32_t(m.replay_.ordered_fan(corners, corner_count, ring, fan_at));
-            const uint32_t start = values.get(kCtxFanStart), length = values.get(kCtxFanLength) + 1;
-            if (fan == 0 || start >= fan || length >= fan) return fail("fan split of a vertex without such a fan");
-            uint32_t at = start;
-            for (uint32_t t = 0; t < length; ++t, at = at + 1 == fan ? 0 : at + 1) mask |= uint64_t(1) << fan_at[at];
-            faces = 2;
-            const uint32_t f[6] = {child, parent, ring[start], child, ring[at], parent};
-            std::copy_n(f, 6, faces_at);
-            // The plane through the parent: its normal (when the file has normals).
-            int64_t plane[3];
-            plane_normal(&m.qoct_[size_t(parent) * 2], plane_weight, plane);
-            predict_fan(m.qpos_.data(), ring, fan, start, length, from, m.has_normals_ ? plane : nullptr, pred);
-        } else if (form == kTopoGeneral) {
-            uint64_t head = 0;
-            if (!topo.varint(head)) return fail("topology record truncated");
-            faces = uint32_t(head & 3);
-            mask = head >> 2;
-            // New faces name their third vertex as a neighbour over the parent's corners
-            // before the split.
-            for (uint32_t f = 0; f < faces && f < 3; ++f) {
-                uint64_t code = 0;
-                if (!topo.varint(code) || (code >> 1) >= 2 * corner_count)
-                    return fail("a new face names a missing neighbour");
-                const uint32_t third = m.replay_.neighbour(corners, size_t(code >> 1));
-                uint32_t* t = faces_at + 3 * f;
-                t[0] = child;
-                t[1] = (code & 1) ? third : parent;
-                t[2] = (code & 1) ? parent : third;
-            }
-        } else {
-            return fail("unknown split kind");
-        }
-        if (faces == 0 || face_cursor + faces > new_faces) return fail("face count out of range");
-        // The child's position and the parent's move (0 to 1 positions), as residuals
-        // of their predictions.
-        uint16_t q[3], to[3];
-        uint32_t order[3] = {0, 1, 2};
-        if (pred.axis < 3) {
-            plane_axes(pred.axis, order[0], order[1]);
-            order[2] = pred.axis;
-        }
-        for (uint32_t i = 0; i < 2; ++i)
-            q[order[i]] =
-                unzigzag16(uint16_t(values.get_scaled(kCtxChild0 + i, pred.shift[order[i]])), pred.child[order[i]]);
-        if (pred.axis < 3)
-            q[order[2]] = unzigzag16(uint16_t(values.get_scaled(kCtxChild0 + 2, pred.axis_shift)),
-                                     plane_coordinate(pred, from, q, pred.child_dot, 4));
-        else
-            q[2] = unzigzag16(uint16_t(values.get_scaled(kCtxChild0 + 2, pred.shift[2])), pred.child[2]);
-        for (int k = 0; k < 3; ++k) to[k] = from[k];
-        if (moves) {
-            for (uint32_t i = 0; i < (pred.axis < 3 ? 2u : 3u); ++i) {
-                const uint32_t k = order[i];
-                const uint16_t reflected = reflect16(from[k], q[k]);
-                const uint16_t predicted = fan != 0 ? midpoint16(reflected, pred.parent_centroid[k]) : reflected;
-                to[k] = unzigzag16(uint16_t(values.get_scaled(kCtxParent0 + i, pred.shift[k])), predicted);
-            }
-            if (pred.axis < 3) {
-                const int64_t offset = pred.parent_dot - 4 * plane_dot(pred, from, q);
-                to[order[2]] = unzigzag16(uint16_t(values.get_scaled(kCtxParent0 + 2, pred.axis_shift)),
-                                          plane_coordinate(pred, from, to, offset, 8));
-            }
-        }
-        uint8_t oct[2] = {m.qoct_[size_t(parent) * 2], m.qoct_[size_t(parent) * 2 + 1]};
-        if (m.has_normals_) {
-            // Predicted from the child's faces after the split (fan form), else the parent's normal.
-            if (fan != 0) predict_normal(pred, from, to, axis_weight, oct);
-            for (int k = 0; k < 2; ++k) oct[k] = unzigzag8(uint8_t(values.get(kCtxNormal0 + uint32_t(k))), oct[k]);
-        }
+        if (const char* error = decode_topology(ctx, values, topo, kind >> 1, s)) return fail(error);
+        if (s.faces == 0 || face_cursor + s.faces > h.new_faces) return fail("face count out of range");
+        decode_positions(values, kind & 1, s);
+        decode_normal(ctx, values, s);
         if (values.past_end()) return fail("values truncated");
         // Index patches first (on the level before the split), then the new faces.
-        if (!m.replay_.apply_mask(parent, child, mask, corners, corner_count, moved))
+        if (!m.replay_.apply_mask(s.parent, s.child, s.mask, s.corners, s.corner_count, moved))
             return fail("patch mask names a missing corner");
-        const std::span<const uint32_t> fi(faces_at, faces * 3);
-        m.replay_.add_faces(m.decoded_faces_, fi);
-        std::copy(fi.begin(), fi.end(), m.indices_.begin() + ptrdiff_t(m.decoded_faces_ * 3));
-        m.decoded_faces_ += faces;
-        face_cursor += faces;
-        m.face_count_bits_[j / 32] |= uint64_t(faces) << (j % 32 * 2);
-        if ((j + 1) % 64 == 0) m.face_sample_[(j + 1) / 64] = uint32_t(m.decoded_faces_);
-        if (const auto high = uint16_t(previous_error_bits >> 16);  // the low half is 0
-            m.error_highs_.empty() || high != m.error_highs_.back()) {
-            m.error_levels_.push_back(uint32_t(j));
-            m.error_highs_.push_back(high);
-        }
-        {
-            const size_t at = m.patch_corners_.size(), w = m.corner_bytes_, n = size_t(std::popcount(mask));
-            m.patch_corners_.resize(at + n * w);
-            for (size_t i = 0; i < n; ++i) ProgressiveMesh::store_le(&m.patch_corners_[at + i * w], moved[i], w);
-        }
-        m.patch_count_[j] = uint8_t(std::popcount(mask));
-        if (j % 64 == 0) m.move_rank_[j / 64] = uint32_t(m.move_count_);
-        if ((from[0] ^ to[0]) | (from[1] ^ to[1]) | (from[2] ^ to[2])) {
-            m.move_bits_[j / 64] |= uint64_t(1) << (j % 64);
-            for (int k = 0; k < 3; ++k) m.moves_[m.move_count_ * 3 + size_t(k)] = uint16_t(from[k] ^ to[k]);
-            ++m.move_count_;
-        }
-        for (int k = 0; k < 3; ++k) {
-            m.qpos_[size_t(child) * 3 + k] = q[k];
-            m.qpos_[size_t(parent) * 3 + k] = to[k];
-            m.positions_[size_t(child) * 3 + k] = q[k];
-        }
-        m.qoct_[size_t(child) * 2] = oct[0];
-        m.qoct_[size_t(child) * 2 + 1] = oct[1];
-        ProgressiveMesh::store_le(&m.split_parents_bytes_[j * m.parent_bytes_], parent, m.parent_bytes_);
+        record_split(m, j, s.parent, s.child, {s.faces_at, s.faces * 3}, {moved, size_t(std::popcount(s.mask))}, s.from,
+                     s.to, s.q, s.oct, uint16_t(previous_error_bits >> 16));  // the low half is 0
+        face_cursor += s.faces;
     }
-    if (count > 0) {
-        const size_t first_child = m.base_vertices_ + first;
-        m.dirty_vertices_.add(first_child, first_child + count);
-        m.dirty_indices_.add((m.decoded_faces_ - face_cursor) * 3, m.decoded_faces_ * 3);
-    }
-    if (face_cursor != new_faces || topo.left() != 0)
+    const size_t first_child = m.base_vertices_ + first;
+    m.dirty_vertices_.add(first_child, first_child + count);
+    m.dirty_indices_.add((m.decoded_faces_ - face_cursor) * 3, m.decoded_faces_ * 3);
+    if (face_cursor != h.new_faces || topo.left() != 0)
         return input_error(where + ": split face count does not match its records");
     if (!values.ok()) return input_error(where + ": split values do not end where the chunk does");
     m.decoded_splits_ += count;

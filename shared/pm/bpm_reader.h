@@ -40,6 +40,11 @@ private:
     Status parse_info(std::span<const uint8_t> payload, const std::string& where);
     Status parse_base(ProgressiveMesh& m, std::span<const uint8_t> payload, const std::string& where);
     Status parse_splits(ProgressiveMesh& m, std::span<const uint8_t> payload, const std::string& where);
+    // Appends a decoded split to m's arrays: its new faces, the corners it moved to
+    // the child, its parent's move, the child's codes and the level's error.
+    static void record_split(ProgressiveMesh& m, size_t j, uint32_t parent, uint32_t child,
+                             std::span<const uint32_t> faces, std::span<const uint32_t> moved, const uint16_t from[3],
+                             const uint16_t to[3], const uint16_t q[3], const uint8_t oct[2], uint16_t error_high);
 
     std::string source_;
     std::vector<uint8_t> pending_;  // bytes of the section being received
