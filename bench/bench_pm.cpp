@@ -39,6 +39,7 @@
 #include <string>
 #include <vector>
 
+#include "builder/lod/bpm_writer.h"
 #include "builder/lod/hausdorff.h"
 #include "builder/lod/simplify.h"
 #include "shared/atomic_file.h"

@@ -1,6 +1,6 @@
 #pragma once
 // Progressive-mesh construction: quadric-error edge collapses (Garland & Heckbert
-// 1997) recorded as vertex splits (Hoppe 1996), and the .bpm writer.
+// 1997) recorded as vertex splits (Hoppe 1996). The .bpm writer: bpm_writer.h.
 //
 // Placement (Garland-Heckbert "optimal placement with a safe fallback"): an edge
 // u -> v between two interior vertices puts the merged vertex v at the minimiser
@@ -90,10 +90,5 @@ Result<ProgressiveBuild> build_progressive_mesh(const Mesh& mesh, const LodOptio
 
 // The mesh at level `level` (0 = base, splits.size() = full), in PM vertex order.
 Mesh extract_level(const ProgressiveBuild& pm, size_t level);
-
-// Serializes meshes (one structure each: name, colour, bounds) as a .bpm file image.
-Result<std::vector<uint8_t>> encode_bpm(std::span<const Mesh> meshes, const LodOptions& options = {});
-// Builds the progressive meshes and writes them atomically to `path`.
-Status write_bpm_from_meshes(const std::string& path, std::span<const Mesh> meshes, const LodOptions& options = {});
 
 }  // namespace body::lod

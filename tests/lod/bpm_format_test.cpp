@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "builder/lod/bpm_writer.h"
 #include "builder/lod/simplify.h"
 #include "shared/pm/bpm_container.h"
 #include "shared/pm/bpm_reader.h"

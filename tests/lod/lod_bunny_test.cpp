@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "builder/lod/bpm_writer.h"
 #include "builder/lod/simplify.h"
 #include "shared/obj_io.h"
 #include "shared/pm/bpm_container.h"

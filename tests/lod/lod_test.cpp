@@ -9,6 +9,7 @@
 #include <map>
 #include <set>
 
+#include "builder/lod/bpm_writer.h"
 #include "builder/lod/hausdorff.h"
 #include "builder/lod/simplify.h"
 #include "shared/pm/bpm_container.h"

@@ -9,6 +9,7 @@
 
 #include <vector>
 
+#include "builder/lod/bpm_writer.h"
 #include "builder/lod/simplify.h"
 #include "kiosk/render/model_source.h"
 #include "shared/pm/bpm_reader.h"

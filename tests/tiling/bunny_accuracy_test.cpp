@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <vector>
 
+#include "builder/lod/bpm_writer.h"
 #include "builder/lod/hausdorff.h"
 #include "builder/lod/simplify.h"
 #include "builder/pipeline/build_pipeline.h"
