@@ -403,7 +403,7 @@ Status encode_split(SplitWriter& w, size_t j) {
 }
 
 // One SPLT payload: splits [first, first + count). On one thread: a second one for
-// the topology did not pay (bench/RESULTS.md).
+// the topology did not pay (bench/RESULTS.md, 2026-11-26).
 Result<std::vector<uint8_t>> encode_chunk(SplitWriter& w, size_t first, size_t count) {
     size_t chunk_faces = 0;
     for (size_t j = first; j < first + count; ++j) chunk_faces += w.pm.splits[j].face_count;

@@ -491,14 +491,8 @@ static bool collapse_top(State& s, CollapseOptions& options) {
 // band and what the regions could not collapse go on in the global loop.
 // The order differs from the global heap's near the cuts, and a region's heap can let a
 // vertex that has swallowed a large flat area take a crease that the area-weighted
-// ordering cost dilutes (measured: stored errors up to 1.1e-4 where the global order
-// stays below 1e-6); so a collapse here must also keep its stored error under the
-// lossless distance (error_cap).
-// Measured on the 1.1M-triangle bunny (4 regions, 19.5k of its 557k vertices in the band,
-// the regions take it to 106k faces): simplification 3.6-3.7 -> 2.3 s wall on this 2-core
-// VM (2.6 s of CPU on one thread: the regions are more cache-local than one heap; two
-// threads run each region ~1.5x slower than one does alone, the VM's memory being shared);
-// Hausdorff at 10 % and 2 % unchanged, bytes per split 7.48 -> 7.41.
+// ordering cost dilutes; so a collapse here must also keep its stored error under the
+// lossless distance (error_cap). Figures: bench/RESULTS.md.
 struct RegionResult {
     PrefaultedVector<Collapse> collapses;
     PrefaultedVector<uint32_t> patch_faces;
@@ -612,18 +606,8 @@ unsigned thread_count(const LodOptions& lod) {
 // Greedy: take the vertex with the cheapest outgoing collapse; try its collapses in
 // cost order while they stay no dearer than the next vertex; the first legal one
 // is applied. A vertex without a legal collapse waits until its neighbourhood changes.
-// Why a heap and not meshoptimizer-style threshold sweeps (measured 2026-11-25, then
-// dropped): sweeping the vertices in Morton order, collapsing every one keyed under the
-// 1/32 quantile of the candidates (1/128 and 1/256 alike), cut the 1.1M-triangle build
-// from 4.27 to 3.2 s but not the bunny's, and lost accuracy: bunny 10 % Hausdorff
-// 0.00549 -> 0.00595, 1.1M 10 % 1.000 -> 1.011x the better of meshopt/VTK on our grid
-// (the order among near-zero costs changes which lossless triangulation a level gets).
-// Also measured and dropped: ordering the lossless phase by vertex rank alone (costs
-// under lossless_cost read as 0, so the phase sweeps in Morton order): 1.1M-triangle
-// `bodygen lod` 4.7-4.9 -> 4.1 s user, but bunny 10 % Hausdorff 0.749 -> 0.819x the
-// better of meshopt/VTK and the 1.1M 10 % level's stored error 3.8e-7 -> 1.5e-4; and
-// deciding the re-key after a rejected keyed collapse from the runner-up alone (no
-// re-evaluation of u's other collapses): same bytes, no measurable gain.
+// A heap rather than threshold sweeps: the order among near-zero costs decides which
+// lossless triangulation a level gets, and sweeps lost accuracy (bench/RESULTS.md).
 void collapse_loop(Surface& m, State& s, size_t target_faces, const LodOptions& lod) {
     const uint32_t n = uint32_t(s.pos.size());
     CollapseOptions options;

@@ -58,9 +58,6 @@ void area_weighted_normals(std::span<const Vec3> pos, std::span<const uint32_t> 
     }
 }
 
-// (Measured 2026-11-26 and dropped: the vertex and face numbering, then the indices
-// beside the positions and splits, on two threads: 1.1M-triangle bunny 0.11-0.14 ->
-// 0.08-0.10 s, the bunny 1.5 -> 2-3 ms.)
 ProgressiveBuild emit_order(const State& s, const PrefaultedVector<Vec3>& normals) {
     ProgressiveBuild pm;
     const size_t n = s.pos.size(), faces = s.idx.size() / 3, splits = s.collapses.size();
@@ -122,10 +119,7 @@ Result<ProgressiveBuild> build_progressive_mesh(const Mesh& mesh, const LodOptio
     }
     const unsigned threads = thread_count(options);
     // Runs `side` on a second thread while the caller runs `here` (both in turn on one
-    // thread). Measured (bench_pm, alternating in one session): the 1.1M-triangle bunny's
-    // setup 0.45-0.68 -> 0.31-0.36 s, its simplification 2.32-2.33 -> 2.10-2.15 s; the
-    // bunny's setup 11.2-17.3 -> 10.0-11.6 ms, within the noise of its build. The output is
-    // the same bytes.
+    // thread). The output is the same bytes.
     auto beside = [threads](auto&& here, auto&& side) {
         if (threads < 2) {
             here();

@@ -71,7 +71,7 @@ struct VertexSplit {
     Vec3 parent_to{0.0};      // ... and after it (equal for a half-edge collapse)
 };
 
-// (Prefaulted storage: a 1M-triangle build writes ~40 MB here, see shared/pm/large_array.h.)
+// (Prefaulted storage, every page written: see shared/pm/large_array.h.)
 struct ProgressiveBuild {
     pm::PrefaultedVector<Vec3> positions;    // all vertices in PM order, each where it appears (base: coarsest)
     pm::PrefaultedVector<Vec3> normals;      // one per vertex

@@ -122,8 +122,7 @@ static bool boundary_planes(const S& s, size_t f, int k, const Vec3& nrm, double
 // planes recomputed at each corner: each vertex's sums are written once, in Morton
 // order, where adding each face to its three vertices' sums in face order cost a
 // scattered read-modify-write of six quadrics per face (the input's face order is
-// unrelated to the vertex order; the 1.1M-triangle bunny's took 210-239 ms that way,
-// 131-166 ms this way, the bunny's ~10 ms either way). The per-vertex
+// unrelated to the vertex order). The per-vertex
 // summation order is the same (area plane, then the face's boundary edges at that vertex
 // in edge order), so the sums are the same bit for bit.
 void init_quadrics(Surface& s, double boundary_weight, uint32_t first, uint32_t end) {

@@ -206,10 +206,8 @@ struct Collapse {
 };
 
 // The per-vertex and per-corner arrays are mapped when allocated (PrefaultedVector):
-// the build writes every page of them, and first-touch page faults took a quarter
-// of the bunny's build time on the benchmark VM (~5000 faults at 11-15 us). (An earlier
-// trial of huge pages saw no gain because it measured user time only, where faults do
-// not show; huge pages are slower here anyway, see shared/prefaulted_array.cpp.)
+// the build writes every page of them, and first-touch page faults were a large part
+// of the build's time (bench/RESULTS.md).
 // Per vertex, what its heap key stands for, in one cache line (update_neighbour
 // reads most of it for every neighbour of every collapse).
 struct alignas(64) VertexKey {

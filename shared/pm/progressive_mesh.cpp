@@ -155,9 +155,7 @@ bool ProgressiveMesh::release_indices_upto(size_t end) {
 // zigzag difference to a reference, corner 0 of a face against corner 0 of the
 // face before, corners 1 and 2 against their face's corner 0 (a split's new
 // faces share its child and parent, whose numbers are close); a difference
-// below 4 takes 1 + 2 bits, any other 1 + packed_bits_ bits. The 1.1M-triangle
-// bunny: 14.7 bits an entry instead of 20 for the plain vertex number (38% of
-// its entries are small, the rest spread over the whole vertex range).
+// below 4 takes 1 + 2 bits, any other 1 + packed_bits_ bits.
 namespace {
 constexpr uint32_t kSmallIndexBits = 2;
 // In-place packing needs every entry's code within its own 32 bits.

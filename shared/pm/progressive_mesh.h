@@ -25,8 +25,7 @@
 // Allocation: arrays are sized when a structure's INFO section arrives; feeding
 // chunks decodes into them; refine_to/coarsen_to never allocate. Once complete
 // (decoding state freed) a structure keeps about 57 bytes a vertex split, 24 of
-// them the index array (1.1M-triangle bunny: 30 MiB; 17.7 MiB once the index
-// array is released to a renderer, see release_indices()).
+// them the index array (which can be released to a renderer: release_indices()).
 #include <algorithm>
 #include <bit>
 #include <cstddef>
@@ -130,7 +129,7 @@ public:
     std::span<const uint32_t> indices() const { return indices_; }
 
     // --- the index array kept by the caller only (a renderer's element buffer
-    // is its one full copy: a 1.1M-triangle structure saves 12.75 MiB).
+    // is its one full copy).
     // release_indices() frees indices(); false (nothing freed) until every split
     // is decoded (streaming writes new faces there). Afterwards refine_to and
     // coarsen_to keep moving the level, the positions and the dirty ranges but
@@ -230,8 +229,7 @@ private:
     // Per split: the error of the level before it, the high half of its float
     // (the file codes errors as steps of 2^16 in the float's bits: exact), kept
     // where it changes only: the levels where a new value starts and the values
-    // (non-increasing, so at most 32641 of them; the 1.1M-triangle bunny has 276
-    // for 557K splits: 2 KiB instead of 1.06 MiB).
+    // (non-increasing, so at most 32641 of them; typically a few hundred).
     std::vector<uint32_t> error_levels_;
     std::vector<uint16_t> error_highs_;
     uint16_t error_high(size_t level) const {
@@ -249,11 +247,10 @@ private:
     UninitVector<uint8_t> patch_count_;
     size_t patch_at_level_ = 0;
     // Per split that moves its parent (a bit each, 64 a word, with the count of
-    // such splits before every word: ~70% of the splits of an optimal-placement
-    // file), 3 per axis in moves_: the parent's position code before it XOR
+    // such splits before every word: most splits of an optimal-placement file),
+    // 3 per axis in moves_: the parent's position code before it XOR
     // after it, so refining and coarsening apply the same XOR and morph_sources
-    // undoes the moves since a level. Splits that move nothing store nothing
-    // (1.1M-triangle bunny: 2.4 instead of 3.2 MiB).
+    // undoes the moves since a level. Splits that move nothing store nothing.
     UninitVector<uint64_t> move_bits_;
     UninitVector<uint32_t> move_rank_;
     UninitVector<uint16_t> moves_;

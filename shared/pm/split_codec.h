@@ -85,8 +85,7 @@ public:
     }
     void finish(std::vector<uint8_t>& out) const;
     // Empties the encoder for the next chunk, keeping its storage (a chunk
-    // holds some hundred thousand values: regrowing them cost the bunny's
-    // encoder ~14% of its time).
+    // holds some hundred thousand values: regrowing them was costly).
     void clear() { values_.clear(); }
 
 private:
