@@ -305,9 +305,9 @@ void put_positions(pm::SplitEncoder& values, const pm::FanPrediction& pred, cons
         const uint32_t k = order[i];
         if (i == 2 && pred.axis < 3) {
             const uint16_t predicted = pm::plane_coordinate(pred, from, at, pred.child_dot, 4);
-            values.put_scaled(pm::kCtxChild0 + i, pm::zigzag16(at[k], predicted), pred.axis_shift);
+            values.put_scaled(pm::kCtxChild0 + i, pm::zigzag(at[k], predicted), pred.axis_shift);
         } else {
-            values.put_scaled(pm::kCtxChild0 + i, pm::zigzag16(at[k], pred.child[k]), pred.shift[k]);
+            values.put_scaled(pm::kCtxChild0 + i, pm::zigzag(at[k], pred.child[k]), pred.shift[k]);
         }
     }
     if (!moves) return;
@@ -316,12 +316,12 @@ void put_positions(pm::SplitEncoder& values, const pm::FanPrediction& pred, cons
         const uint32_t k = order[i];
         if (i == 2 && pred.axis < 3) {
             const uint16_t predicted = pm::plane_coordinate(pred, from, to, offset, 8);
-            values.put_scaled(pm::kCtxParent0 + i, pm::zigzag16(to[k], predicted), pred.axis_shift);
+            values.put_scaled(pm::kCtxParent0 + i, pm::zigzag(to[k], predicted), pred.axis_shift);
             continue;
         }
         const uint16_t reflected = pm::reflect16(from[k], at[k]);
         const uint16_t predicted = fan ? pm::midpoint16(reflected, pred.parent_centroid[k]) : reflected;
-        values.put_scaled(pm::kCtxParent0 + i, pm::zigzag16(to[k], predicted), pred.shift[k]);
+        values.put_scaled(pm::kCtxParent0 + i, pm::zigzag(to[k], predicted), pred.shift[k]);
     }
 }
 
@@ -333,7 +333,7 @@ void put_normal(SplitWriter& w, const pm::FanPrediction& pred, const uint16_t fr
     uint8_t predicted[2] = {oct[size_t(parent) * 2], oct[size_t(parent) * 2 + 1]};
     if (fan) pm::predict_normal(pred, from, to, w.axis_weight, predicted);
     for (int k = 0; k < 2; ++k)
-        w.values.put(pm::kCtxNormal0 + uint32_t(k), pm::zigzag8(oct[size_t(child) * 2 + k], predicted[k]));
+        w.values.put(pm::kCtxNormal0 + uint32_t(k), pm::zigzag(oct[size_t(child) * 2 + k], predicted[k]));
 }
 
 // Split j's positions as codes: the parent's before (as the replayed level has

@@ -310,24 +310,24 @@ struct DecodedSplit {
     }
     for (uint32_t i = 0; i < 2; ++i)
         s.q[order[i]] =
-            unzigzag16(uint16_t(values.get_scaled(kCtxChild0 + i, pred.shift[order[i]])), pred.child[order[i]]);
+            unzigzag(uint16_t(values.get_scaled(kCtxChild0 + i, pred.shift[order[i]])), pred.child[order[i]]);
     if (pred.axis < 3)
-        s.q[order[2]] = unzigzag16(uint16_t(values.get_scaled(kCtxChild0 + 2, pred.axis_shift)),
-                                   plane_coordinate(pred, s.from, s.q, pred.child_dot, 4));
+        s.q[order[2]] = unzigzag(uint16_t(values.get_scaled(kCtxChild0 + 2, pred.axis_shift)),
+                                 plane_coordinate(pred, s.from, s.q, pred.child_dot, 4));
     else
-        s.q[2] = unzigzag16(uint16_t(values.get_scaled(kCtxChild0 + 2, pred.shift[2])), pred.child[2]);
+        s.q[2] = unzigzag(uint16_t(values.get_scaled(kCtxChild0 + 2, pred.shift[2])), pred.child[2]);
     for (int k = 0; k < 3; ++k) s.to[k] = s.from[k];
     if (!moves) return;
     for (uint32_t i = 0; i < (pred.axis < 3 ? 2u : 3u); ++i) {
         const uint32_t k = order[i];
         const uint16_t reflected = reflect16(s.from[k], s.q[k]);
         const uint16_t predicted = s.fan != 0 ? midpoint16(reflected, pred.parent_centroid[k]) : reflected;
-        s.to[k] = unzigzag16(uint16_t(values.get_scaled(kCtxParent0 + i, pred.shift[k])), predicted);
+        s.to[k] = unzigzag(uint16_t(values.get_scaled(kCtxParent0 + i, pred.shift[k])), predicted);
     }
     if (pred.axis < 3) {
         const int64_t offset = pred.parent_dot - 4 * plane_dot(pred, s.from, s.q);
-        s.to[order[2]] = unzigzag16(uint16_t(values.get_scaled(kCtxParent0 + 2, pred.axis_shift)),
-                                    plane_coordinate(pred, s.from, s.to, offset, 8));
+        s.to[order[2]] = unzigzag(uint16_t(values.get_scaled(kCtxParent0 + 2, pred.axis_shift)),
+                                  plane_coordinate(pred, s.from, s.to, offset, 8));
     }
 }
 
@@ -338,7 +338,7 @@ struct DecodedSplit {
     s.oct[1] = c.qoct[size_t(s.parent) * 2 + 1];
     if (!c.normals) return;
     if (s.fan != 0) predict_normal(s.pred, s.from, s.to, c.axis_weight, s.oct);
-    for (int k = 0; k < 2; ++k) s.oct[k] = unzigzag8(uint8_t(values.get(kCtxNormal0 + uint32_t(k))), s.oct[k]);
+    for (int k = 0; k < 2; ++k) s.oct[k] = unzigzag(uint8_t(values.get(kCtxNormal0 + uint32_t(k))), s.oct[k]);
 }
 
 // A SPLT payload's framing.

@@ -8,26 +8,23 @@
 #include <cstdint>
 #include <cstring>
 #include <span>
+#include <type_traits>
 #include <vector>
 
 namespace body::pm {
 
-// Zig-zag mapping of the wrap-around difference of two 16/8-bit codes.
-inline uint16_t zigzag16(uint16_t to, uint16_t from) {
-    int16_t d = int16_t(uint16_t(to - from));
-    return uint16_t((uint16_t(d) << 1) ^ uint16_t(d >> 15));
+// Zig-zag mapping of the wrap-around difference of two codes of one width
+// (uint16_t positions, uint8_t normals; FORMAT.md's zigzag16 and zigzag8).
+template <class Code>
+inline Code zigzag(Code to, Code from) {
+    using Signed = std::make_signed_t<Code>;
+    const Signed d = Signed(Code(to - from));
+    return Code((Code(d) << 1) ^ Code(d >> (8 * sizeof(Code) - 1)));
 }
-inline uint16_t unzigzag16(uint16_t z, uint16_t from) {
-    uint16_t d = uint16_t((z >> 1) ^ uint16_t(-(z & 1)));
-    return uint16_t(from + d);
-}
-inline uint8_t zigzag8(uint8_t to, uint8_t from) {
-    int8_t d = int8_t(uint8_t(to - from));
-    return uint8_t((uint8_t(d) << 1) ^ uint8_t(d >> 7));
-}
-inline uint8_t unzigzag8(uint8_t z, uint8_t from) {
-    uint8_t d = uint8_t((z >> 1) ^ uint8_t(-(z & 1)));
-    return uint8_t(from + d);
+template <class Code>
+inline Code unzigzag(Code z, Code from) {
+    const Code d = Code((z >> 1) ^ Code(-(z & 1)));
+    return Code(from + d);
 }
 
 // Every value of a split is an unsigned integer coded in one of the contexts
