@@ -227,7 +227,7 @@ struct DecodedSplit {
     uint32_t fan = 0;               // fan form: the size of the parent's fan
     uint16_t from[3], q[3], to[3];  // the parent before and after, the child
     uint8_t oct[2];
-    FanPrediction pred;  // the general form: child at the parent, no scaling
+    FanPrediction pred;  // the general form: child at the parent, no scaling (decode_topology)
 };
 
 // The replay is bound by memory latency (a parent is anywhere in the mesh): the
@@ -292,8 +292,12 @@ struct DecodedSplit {
                                                           ByteReader& topo, uint32_t form, DecodedSplit& s) {
     s.corner_count = c.replay.corners_of(s.parent, s.corners, 64);
     if (s.corner_count == SIZE_MAX) return "parent has more than 64 corners";
-    for (int k = 0; k < 3; ++k) s.from[k] = c.qpos[size_t(s.parent) * 3 + k];
-    s.pred = FanPrediction{{s.from[0], s.from[1], s.from[2]}, {0, 0, 0}, {0, 0, 0}};
+    for (int k = 0; k < 3; ++k) {
+        s.from[k] = c.qpos[size_t(s.parent) * 3 + k];
+        s.pred.child[k] = s.from[k];
+        s.pred.parent_centroid[k] = 0;
+        s.pred.shift[k] = 0;
+    }
     if (form == kTopoFan) return decode_fan(c, values, s);
     if (form == kTopoGeneral) return decode_general(c, topo, s);
     return "unknown split kind";
