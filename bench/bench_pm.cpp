@@ -39,12 +39,15 @@
 #include <string>
 #include <vector>
 
+#include "builder/lod/bpm_writer.h"
 #include "builder/lod/hausdorff.h"
 #include "builder/lod/simplify.h"
 #include "shared/atomic_file.h"
 #include "shared/obj_io.h"
-#include "shared/pm/bpm_format.h"
+#include "shared/pm/bpm_container.h"
+#include "shared/pm/bpm_reader.h"
 #include "shared/pm/progressive_mesh.h"
+#include "shared/pm/quantize.h"
 
 namespace {
 

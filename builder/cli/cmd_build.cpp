@@ -17,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "builder/cli/commands.h"
+#include "builder/lod/bpm_writer.h"
 #include "builder/lod/simplify.h"
 #include "builder/pipeline/build_pipeline.h"
 #ifdef BODY_WITH_IMPORT

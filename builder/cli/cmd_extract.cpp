@@ -6,6 +6,7 @@
 #include "builder/cli/commands.h"
 #include "shared/cli_args.h"
 #include "shared/obj_io.h"
+#include "shared/pm/bpm_reader.h"
 #include "shared/pm/progressive_mesh.h"
 
 namespace body::cli {

@@ -4,6 +4,7 @@
 #include "builder/cli/commands.h"
 #include "shared/atomic_file.h"
 #include "shared/cli_args.h"
+#include "shared/pm/bpm_reader.h"
 #include "shared/pm/progressive_mesh.h"
 
 namespace body::cli {

@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "builder/cli/commands.h"
+#include "builder/lod/bpm_writer.h"
 #include "builder/lod/simplify.h"
 #include "shared/cli_args.h"
 #include "shared/obj_io.h"

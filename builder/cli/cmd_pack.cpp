@@ -15,6 +15,7 @@
 #include "shared/atomic_file.h"
 #include "shared/cli_args.h"
 #include "shared/obj_io.h"
+#include "shared/pm/bpm_reader.h"
 #include "shared/pm/progressive_mesh.h"
 #include "shared/scene/scene.h"
 

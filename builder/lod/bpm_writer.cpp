@@ -1,4 +1,4 @@
-// The .bpm writer: progressive meshes -> sections (shared/pm/FORMAT.md).
+// The .bpm writer (bpm_writer.h): progressive meshes -> sections (shared/pm/FORMAT.md).
 //
 // Phases: quantize (16-bit positions in a float bounding box, 8-bit octahedral
 // normals), encode the base chunk (meshoptimizer vertex and index codecs), encode
@@ -8,6 +8,8 @@
 // the reader makes too -- ring centroids, and along the parent's normal the plane
 // through it; the child's normal as a residual of its faces' normal after the
 // split; all values through pm::SplitEncoder), frame sections with CRCs.
+#include "builder/lod/bpm_writer.h"
+
 #include <meshoptimizer.h>
 
 #include <algorithm>
@@ -17,9 +19,13 @@
 #include <cstring>
 #include <limits>
 
-#include "builder/lod/simplify.h"
 #include "shared/atomic_file.h"
-#include "shared/pm/bpm_format.h"
+#include "shared/pm/bpm_container.h"
+#include "shared/pm/large_array.h"
+#include "shared/pm/prediction.h"
+#include "shared/pm/quantize.h"
+#include "shared/pm/split_codec.h"
+#include "shared/pm/split_replay.h"
 
 namespace body::lod {
 namespace {
@@ -173,201 +179,265 @@ struct StructureSections {
     std::vector<std::vector<uint8_t>> chunks;
 };
 
-Result<StructureSections> encode_structure(const Mesh& mesh, const ProgressiveBuild& pm, const LodOptions& options) {
-    StructureSections out;
-    const Quantized z = quantize(pm, options.normals);
-    const size_t nv = pm.positions.size(), nf = pm.indices.size() / 3, ns = pm.splits.size();
-    const size_t chunk = std::max<size_t>(options.chunk_splits, 1);
-
-    // INFO
+// INFO: name, colour, the quantization box, flags and counts.
+std::vector<uint8_t> info_section(const Mesh& mesh, const ProgressiveBuild& pm, const Quantized& z, bool normals,
+                                  size_t chunk) {
+    std::vector<uint8_t> info;
     std::string name = mesh.name.substr(0, 65535);
-    put_u16(out.info, uint16_t(name.size()));
-    out.info.insert(out.info.end(), name.begin(), name.end());
-    for (int k = 0; k < 3; ++k) put_f32(out.info, float(mesh.color[k]));
-    for (int k = 0; k < 3; ++k) put_f32(out.info, z.lo[k]);
-    for (int k = 0; k < 3; ++k) put_f32(out.info, z.hi[k]);
-    put_u32(out.info, options.normals ? 1u : 0u);
-    for (size_t v : {pm.base_vertices, pm.base_faces, ns, nf, chunk}) put_u32(out.info, uint32_t(v));
+    put_u16(info, uint16_t(name.size()));
+    info.insert(info.end(), name.begin(), name.end());
+    for (int k = 0; k < 3; ++k) put_f32(info, float(mesh.color[k]));
+    for (int k = 0; k < 3; ++k) put_f32(info, z.lo[k]);
+    for (int k = 0; k < 3; ++k) put_f32(info, z.hi[k]);
+    put_u32(info, normals ? 1u : 0u);
+    for (size_t v : {pm.base_vertices, pm.base_faces, pm.splits.size(), pm.indices.size() / 3, chunk})
+        put_u32(info, uint32_t(v));
+    return info;
+}
 
-    // BASE
+// BASE: the base mesh through meshoptimizer's codecs; its faces go to the replay
+// as the reader will decode them.
+std::vector<uint8_t> base_section(const ProgressiveBuild& pm, const Quantized& z, pm::SplitReplay& replay) {
+    std::vector<uint8_t> base_bytes;
     std::vector<pm::BaseVertex> base(pm.base_vertices);
     for (size_t v = 0; v < pm.base_vertices; ++v) {
         base[v] = {{z.q[v * 3], z.q[v * 3 + 1], z.q[v * 3 + 2]}, {z.oct[v * 2], z.oct[v * 2 + 1]}};
     }
-    put_vertex_codec(out.base, base);
+    put_vertex_codec(base_bytes, base);
     std::vector<uint32_t> base_idx(pm.indices.begin(), pm.indices.begin() + ptrdiff_t(pm.base_faces * 3));
-    pm::SplitReplay replay;
-    replay.reset(nv, nf);
-    replay.add_faces(0, put_index_codec(out.base, base_idx, pm.base_vertices));
+    replay.add_faces(0, put_index_codec(base_bytes, base_idx, pm.base_vertices));
+    return base_bytes;
+}
 
-    // SPLT chunks, on one thread. Measured 2026-11-26 and dropped: the topology (replay,
-    // masks, fans) of chunk c + 1 on a second thread while the values of chunk c were
-    // coded here (same bytes). On the benchmark VM each pass ran 1.5-2.2x slower beside
-    // the other (both are bound by memory latency, and the two vCPUs share the cache):
-    // bunny encode 23-25 ms either way, 1.1M-triangle bunny 0.50-0.63 -> 0.41-0.50 s,
-    // about 3% of its build, for a second copy of the chunk's topology and a thread per chunk.
-    std::vector<uint32_t> moved;
-    constexpr size_t kAhead0 = 32, kAhead1 = 20, kAhead2 = 12, kAhead3 = 6;
+// What encoding the SPLT chunks carries from split to split: the replay and the
+// codes at the level being encoded (the reader tracks the same), and the scratch
+// of one split.
+struct SplitWriter {
+    SplitWriter(const Mesh& m, const ProgressiveBuild& p, const Quantized& q, bool with_normals)
+        : mesh(m), pm(p), z(q), normals(with_normals), file_face(p.indices.size() / 3), cur(q.q), face(p.base_faces) {
+        replay.reset(p.positions.size(), p.indices.size() / 3);
+        for (size_t f = 0; f < file_face.size(); ++f) file_face[f] = uint32_t(f);
+        pm::normal_axis_weights(z.lo, z.hi, axis_weight);
+        pm::plane_axis_weights(z.lo, z.hi, plane_weight);
+    }
+    const Mesh& mesh;
+    const ProgressiveBuild& pm;
+    const Quantized& z;
+    const bool normals;
+    pm::SplitReplay replay;
     // The file puts the two new faces of a fan split in one order (one symbol less
     // per split): the builder's face numbers as the file has them.
-    std::vector<uint32_t> file_face(nf);
-    for (size_t f = 0; f < nf; ++f) file_face[f] = uint32_t(f);
-    size_t face = pm.base_faces;
-    // Quantized positions at the level being encoded (the reader tracks the same).
-    std::vector<uint16_t> cur = z.q;
+    std::vector<uint32_t> file_face;
+    std::vector<uint16_t> cur;  // 3 per vertex: codes at the level being encoded
     int32_t axis_weight[3], plane_weight[3];
-    pm::normal_axis_weights(z.lo, z.hi, axis_weight);
-    pm::plane_axis_weights(z.lo, z.hi, plane_weight);
     uint32_t previous_error = kInfinityBits;
-    pm::SplitEncoder values;  // one per chunk, its storage reused
-    for (size_t first = 0; first < ns; first += chunk) {
-        const size_t count = std::min(chunk, ns - first);
-        size_t chunk_faces = 0;
-        for (size_t j = first; j < first + count; ++j) chunk_faces += pm.splits[j].face_count;
-        std::vector<uint8_t> payload, topo;
-        values.clear();
-        // All parents of the chunk first: the reader prefetches their data splits ahead.
-        for (size_t j = first; j < first + count; ++j)
-            values.put(pm::kCtxParentDelta, uint32_t(pm.base_vertices + j) - pm.splits[j].parent - 1);
-        std::vector<uint32_t> parent_corners, faces;
-        uint32_t ring[64];
-        uint8_t fan_at[64];
-        for (size_t j = first; j < first + count; ++j) {
-            const VertexSplit& sp = pm.splits[j];
-            const uint32_t child = uint32_t(pm.base_vertices + j), parent = sp.parent;
-            // The replay is bound by memory latency (a parent is anywhere in the mesh): the
-            // data of the splits a few steps ahead is requested in stages, as the reader does.
-            if (j + kAhead0 < ns) replay.prefetch(pm.splits[j + kAhead0].parent, 0);
-            if (j + kAhead1 < ns) {
-                const uint32_t p = pm.splits[j + kAhead1].parent;
-                replay.prefetch(p, 1);
-                prefetch(&cur[size_t(p) * 3]);
-                prefetch(&z.oct[size_t(p) * 2]);
-                for (uint32_t i = pm.patch_begin[j + kAhead1]; i < pm.patch_begin[j + kAhead1 + 1]; ++i)
-                    prefetch(&file_face[pm.patch_faces[i]]);
-            }
-            if (j + kAhead2 < ns) replay.prefetch(pm.splits[j + kAhead2].parent, 2);
-            if (j + kAhead3 < ns) replay.prefetch(pm.splits[j + kAhead3].parent, 3, cur.data());
-            replay.corners_of(parent, parent_corners);
-            const uint64_t mask = mask_of(pm, file_face, j, parent_corners);
-            // New faces are (child, parent, a) or (child, a, parent), a a neighbour of the
-            // parent before the split.
-            faces.clear();
-            for (uint32_t f = 0; f < sp.face_count; ++f) {
-                const uint32_t* t = &pm.indices[(face + f) * 3];
-                int k = 0;
-                while (k < 3 && t[k] != child) ++k;
-                if (k == 3) return split_error(mesh, j, "adds a face without its child");
-                const uint32_t b = t[(k + 1) % 3], a = t[(k + 2) % 3];
-                if (b == parent)
-                    faces.insert(faces.end(), {child, parent, a});
-                else if (a == parent)
-                    faces.insert(faces.end(), {child, b, parent});
-                else
-                    return split_error(mesh, j, "adds a face without its parent");
-            }
-            const FanSplit fan = fan_split(replay, parent, parent_corners, faces, mask, ring, fan_at);
-            if (fan.swapped) {
-                std::rotate(faces.begin(), faces.begin() + 3, faces.end());
-                std::swap(file_face[face], file_face[face + 1]);
-            }
-            // Positions: the parent's before (cur) and after the split, the child's.
-            uint16_t from[3], to[3], at[3];
-            for (int k = 0; k < 3; ++k) {
-                from[k] = cur[size_t(parent) * 3 + k];
-                if (from[k] != quantize16(sp.parent_from[k], z.lo[k], z.hi[k]))
-                    return split_error(mesh, j, "moves its parent from elsewhere than it is");
-                to[k] = quantize16(sp.parent_to[k], z.lo[k], z.hi[k]);
-                at[k] = z.q[size_t(child) * 3 + k];
-            }
-            const bool moves = from[0] != to[0] || from[1] != to[1] || from[2] != to[2];
-            const uint32_t form = fan.length == 0 ? pm::kTopoGeneral : pm::kTopoFan;
-            values.put(pm::kCtxKind, form * 2 + (moves ? 1 : 0));
-            const uint32_t error = error_bits(round_up_coarse(sp.error));
-            if (error > previous_error) return split_error(mesh, j, "has a larger error than the split before it");
-            values.put(pm::kCtxErrorStep, (previous_error - error) >> 16);
-            previous_error = error;
-            pm::FanPrediction pred{{from[0], from[1], from[2]}, {0, 0, 0}, {0, 0, 0}};
-            if (form == pm::kTopoGeneral) {
-                // Neighbour numbers over the parent's corners and the patch mask.
-                pm::put_varint(topo, (mask << 2) | sp.face_count);
-                for (size_t f = 0; f < faces.size(); f += 3) {
-                    const bool flipped = faces[f + 2] == parent;  // (child, a, parent)
-                    const uint32_t third = flipped ? faces[f + 1] : faces[f + 2];
-                    size_t n = 0;
-                    while (n < 2 * parent_corners.size() && replay.neighbour(parent_corners.data(), n) != third) ++n;
-                    if (n == 2 * parent_corners.size())
-                        return split_error(mesh, j, "adds a face outside the parent's ring");
-                    pm::put_varint(topo, uint64_t(n) * 2 + (flipped ? 1 : 0));
-                }
-            } else {
-                values.put(pm::kCtxFanStart, fan.start);
-                values.put(pm::kCtxFanLength, fan.length - 1);
-                // The plane through the parent: its normal (when the file has normals).
-                int64_t plane[3];
-                pm::plane_normal(&z.oct[size_t(parent) * 2], plane_weight, plane);
-                pm::predict_fan(cur.data(), ring, fan.fan, fan.start, fan.length, from,
-                                options.normals ? plane : nullptr, pred);
-            }
-            // Positions: with a plane, the two other axes first, then the plane's axis.
-            uint32_t order[3] = {0, 1, 2};
-            if (pred.axis < 3) {
-                pm::plane_axes(pred.axis, order[0], order[1]);
-                order[2] = pred.axis;
-            }
-            for (uint32_t i = 0; i < 3; ++i) {
-                const uint32_t k = order[i];
-                if (i == 2 && pred.axis < 3) {
-                    const uint16_t predicted = pm::plane_coordinate(pred, from, at, pred.child_dot, 4);
-                    values.put_scaled(pm::kCtxChild0 + i, pm::zigzag16(at[k], predicted), pred.axis_shift);
-                } else {
-                    values.put_scaled(pm::kCtxChild0 + i, pm::zigzag16(at[k], pred.child[k]), pred.shift[k]);
-                }
-            }
-            if (moves) {
-                const int64_t offset = pred.axis < 3 ? pred.parent_dot - 4 * pm::plane_dot(pred, from, at) : 0;
-                for (uint32_t i = 0; i < 3; ++i) {
-                    const uint32_t k = order[i];
-                    if (i == 2 && pred.axis < 3) {
-                        const uint16_t predicted = pm::plane_coordinate(pred, from, to, offset, 8);
-                        values.put_scaled(pm::kCtxParent0 + i, pm::zigzag16(to[k], predicted), pred.axis_shift);
-                        continue;
-                    }
-                    const uint16_t reflected = pm::reflect16(from[k], at[k]);
-                    const uint16_t predicted =
-                        fan.length != 0 ? pm::midpoint16(reflected, pred.parent_centroid[k]) : reflected;
-                    values.put_scaled(pm::kCtxParent0 + i, pm::zigzag16(to[k], predicted), pred.shift[k]);
-                }
-            }
-            if (options.normals) {
-                // The child's normal: from its faces after the split (fan form), else the parent's.
-                uint8_t predicted[2] = {z.oct[size_t(parent) * 2], z.oct[size_t(parent) * 2 + 1]};
-                if (form == pm::kTopoFan) pm::predict_normal(pred, from, to, axis_weight, predicted);
-                for (int k = 0; k < 2; ++k)
-                    values.put(pm::kCtxNormal0 + uint32_t(k), pm::zigzag8(z.oct[size_t(child) * 2 + k], predicted[k]));
-            }
-            // (parent_corners are still the parent's: nothing changed the replay since.)
-            moved.resize(parent_corners.size());
-            if (!replay.apply_mask(parent, child, mask, parent_corners.data(), parent_corners.size(), moved.data()) ||
-                size_t(std::popcount(mask)) != pm.patch_begin[j + 1] - pm.patch_begin[j])
-                return split_error(mesh, j, "index patches do not replay");
-            replay.add_faces(face, faces);
-            face += sp.face_count;
-            for (int k = 0; k < 3; ++k) {
-                cur[size_t(parent) * 3 + k] = to[k];
-                cur[size_t(child) * 3 + k] = at[k];
-            }
+    size_t face;                // the next split's first new face
+    pm::SplitEncoder values;    // one chunk's values, its storage reused
+    std::vector<uint8_t> topo;  // one chunk's topology records
+    std::vector<uint32_t> parent_corners, faces, moved;
+};
+
+// The replay is bound by memory latency (a parent is anywhere in the mesh): the
+// data of the splits a few steps ahead is requested in stages, as the reader does.
+void prefetch_ahead(const SplitWriter& w, size_t j) {
+    constexpr size_t kAhead0 = 32, kAhead1 = 20, kAhead2 = 12, kAhead3 = 6;
+    const ProgressiveBuild& pm = w.pm;
+    const size_t ns = pm.splits.size();
+    if (j + kAhead0 < ns) w.replay.prefetch(pm.splits[j + kAhead0].parent, 0);
+    if (j + kAhead1 < ns) {
+        const uint32_t p = pm.splits[j + kAhead1].parent;
+        w.replay.prefetch(p, 1);
+        prefetch(&w.cur[size_t(p) * 3]);
+        prefetch(&w.z.oct[size_t(p) * 2]);
+        for (uint32_t i = pm.patch_begin[j + kAhead1]; i < pm.patch_begin[j + kAhead1 + 1]; ++i)
+            prefetch(&w.file_face[pm.patch_faces[i]]);
+    }
+    if (j + kAhead2 < ns) w.replay.prefetch(pm.splits[j + kAhead2].parent, 2);
+    if (j + kAhead3 < ns) w.replay.prefetch(pm.splits[j + kAhead3].parent, 3, w.cur.data());
+}
+
+// Split j's new faces into w.faces as (child, parent, a) or (child, a, parent), a a
+// neighbour of the parent before the split.
+Status new_faces(SplitWriter& w, size_t j, uint32_t child, uint32_t parent) {
+    w.faces.clear();
+    for (uint32_t f = 0; f < w.pm.splits[j].face_count; ++f) {
+        const uint32_t* t = &w.pm.indices[(w.face + f) * 3];
+        int k = 0;
+        while (k < 3 && t[k] != child) ++k;
+        if (k == 3) return split_error(w.mesh, j, "adds a face without its child");
+        const uint32_t b = t[(k + 1) % 3], a = t[(k + 2) % 3];
+        if (b == parent)
+            w.faces.insert(w.faces.end(), {child, parent, a});
+        else if (a == parent)
+            w.faces.insert(w.faces.end(), {child, b, parent});
+        else
+            return split_error(w.mesh, j, "adds a face without its parent");
+    }
+    return ok_status();
+}
+
+// The general form's topology record: the patch mask, then per new face its third
+// vertex as a neighbour number over the parent's corners.
+Status put_general_topology(SplitWriter& w, size_t j, uint64_t mask, uint32_t parent) {
+    pm::put_varint(w.topo, (mask << 2) | w.pm.splits[j].face_count);
+    const std::vector<uint32_t>& corners = w.parent_corners;
+    for (size_t f = 0; f < w.faces.size(); f += 3) {
+        const bool flipped = w.faces[f + 2] == parent;  // (child, a, parent)
+        const uint32_t third = flipped ? w.faces[f + 1] : w.faces[f + 2];
+        size_t n = 0;
+        while (n < 2 * corners.size() && w.replay.neighbour(corners.data(), n) != third) ++n;
+        if (n == 2 * corners.size()) return split_error(w.mesh, j, "adds a face outside the parent's ring");
+        pm::put_varint(w.topo, uint64_t(n) * 2 + (flipped ? 1 : 0));
+    }
+    return ok_status();
+}
+
+// The child's position and the parent's move as residuals of their predictions;
+// with a plane, the two other axes first, then the plane's axis.
+void put_positions(pm::SplitEncoder& values, const pm::FanPrediction& pred, const uint16_t from[3],
+                   const uint16_t to[3], const uint16_t at[3], bool moves, bool fan) {
+    uint32_t order[3] = {0, 1, 2};
+    if (pred.axis < 3) {
+        pm::plane_axes(pred.axis, order[0], order[1]);
+        order[2] = pred.axis;
+    }
+    for (uint32_t i = 0; i < 3; ++i) {
+        const uint32_t k = order[i];
+        if (i == 2 && pred.axis < 3) {
+            const uint16_t predicted = pm::plane_coordinate(pred, from, at, pred.child_dot, 4);
+            values.put_scaled(pm::kCtxChild0 + i, pm::zigzag(at[k], predicted), pred.axis_shift);
+        } else {
+            values.put_scaled(pm::kCtxChild0 + i, pm::zigzag(at[k], pred.child[k]), pred.shift[k]);
         }
-        put_u32(payload, uint32_t(first));
-        put_u32(payload, uint32_t(count));
-        put_u32(payload, uint32_t(chunk_faces));
-        std::vector<uint8_t> coded;
-        values.finish(coded);
-        put_u32(payload, uint32_t(coded.size()));
-        payload.insert(payload.end(), coded.begin(), coded.end());
-        put_u32(payload, uint32_t(topo.size()));
-        payload.insert(payload.end(), topo.begin(), topo.end());
-        out.chunks.push_back(std::move(payload));
+    }
+    if (!moves) return;
+    const int64_t offset = pred.axis < 3 ? pred.parent_dot - 4 * pm::plane_dot(pred, from, at) : 0;
+    for (uint32_t i = 0; i < 3; ++i) {
+        const uint32_t k = order[i];
+        if (i == 2 && pred.axis < 3) {
+            const uint16_t predicted = pm::plane_coordinate(pred, from, to, offset, 8);
+            values.put_scaled(pm::kCtxParent0 + i, pm::zigzag(to[k], predicted), pred.axis_shift);
+            continue;
+        }
+        const uint16_t reflected = pm::reflect16(from[k], at[k]);
+        const uint16_t predicted = fan ? pm::midpoint16(reflected, pred.parent_centroid[k]) : reflected;
+        values.put_scaled(pm::kCtxParent0 + i, pm::zigzag(to[k], predicted), pred.shift[k]);
+    }
+}
+
+// The child's normal: a residual of its faces' normal after the split (fan form),
+// else of the parent's.
+void put_normal(SplitWriter& w, const pm::FanPrediction& pred, const uint16_t from[3], const uint16_t to[3],
+                uint32_t parent, uint32_t child, bool fan) {
+    const uint8_t* oct = w.z.oct.data();
+    uint8_t predicted[2] = {oct[size_t(parent) * 2], oct[size_t(parent) * 2 + 1]};
+    if (fan) pm::predict_normal(pred, from, to, w.axis_weight, predicted);
+    for (int k = 0; k < 2; ++k)
+        w.values.put(pm::kCtxNormal0 + uint32_t(k), pm::zigzag(oct[size_t(child) * 2 + k], predicted[k]));
+}
+
+// Split j's positions as codes: the parent's before (as the replayed level has
+// it) and after, and the child's.
+Status split_codes(const SplitWriter& w, size_t j, uint16_t from[3], uint16_t to[3], uint16_t at[3]) {
+    const VertexSplit& sp = w.pm.splits[j];
+    const uint32_t child = uint32_t(w.pm.base_vertices + j);
+    for (int k = 0; k < 3; ++k) {
+        from[k] = w.cur[size_t(sp.parent) * 3 + k];
+        if (from[k] != quantize16(sp.parent_from[k], w.z.lo[k], w.z.hi[k]))
+            return split_error(w.mesh, j, "moves its parent from elsewhere than it is");
+        to[k] = quantize16(sp.parent_to[k], w.z.lo[k], w.z.hi[k]);
+        at[k] = w.z.q[size_t(child) * 3 + k];
+    }
+    return ok_status();
+}
+
+// Split j into the chunk's values and topology records, then onto the replay.
+Status encode_split(SplitWriter& w, size_t j) {
+    const VertexSplit& sp = w.pm.splits[j];
+    const uint32_t child = uint32_t(w.pm.base_vertices + j), parent = sp.parent;
+    prefetch_ahead(w, j);
+    w.replay.corners_of(parent, w.parent_corners);
+    const uint64_t mask = mask_of(w.pm, w.file_face, j, w.parent_corners);
+    if (Status st = new_faces(w, j, child, parent); !st) return st;
+    uint32_t ring[64];
+    uint8_t fan_at[64];
+    const FanSplit fan = fan_split(w.replay, parent, w.parent_corners, w.faces, mask, ring, fan_at);
+    if (fan.swapped) {
+        std::rotate(w.faces.begin(), w.faces.begin() + 3, w.faces.end());
+        std::swap(w.file_face[w.face], w.file_face[w.face + 1]);
+    }
+    uint16_t from[3], to[3], at[3];
+    if (Status st = split_codes(w, j, from, to, at); !st) return st;
+    const bool moves = from[0] != to[0] || from[1] != to[1] || from[2] != to[2];
+    const uint32_t form = fan.length == 0 ? pm::kTopoGeneral : pm::kTopoFan;
+    w.values.put(pm::kCtxKind, form * 2 + (moves ? 1 : 0));
+    const uint32_t error = error_bits(round_up_coarse(sp.error));
+    if (error > w.previous_error) return split_error(w.mesh, j, "has a larger error than the split before it");
+    w.values.put(pm::kCtxErrorStep, (w.previous_error - error) >> 16);
+    w.previous_error = error;
+    pm::FanPrediction pred{{from[0], from[1], from[2]}, {0, 0, 0}, {0, 0, 0}};
+    if (form == pm::kTopoGeneral) {
+        if (Status st = put_general_topology(w, j, mask, parent); !st) return st;
+    } else {
+        w.values.put(pm::kCtxFanStart, fan.start);
+        w.values.put(pm::kCtxFanLength, fan.length - 1);
+        // The plane through the parent: its normal (when the file has normals).
+        int64_t plane[3];
+        pm::plane_normal(&w.z.oct[size_t(parent) * 2], w.plane_weight, plane);
+        pm::predict_fan(w.cur.data(), ring, fan.fan, fan.start, fan.length, from, w.normals ? plane : nullptr, pred);
+    }
+    put_positions(w.values, pred, from, to, at, moves, fan.length != 0);
+    if (w.normals) put_normal(w, pred, from, to, parent, child, form == pm::kTopoFan);
+    // (parent_corners are still the parent's: nothing changed the replay since.)
+    w.moved.resize(w.parent_corners.size());
+    if (!w.replay.apply_mask(parent, child, mask, w.parent_corners.data(), w.parent_corners.size(), w.moved.data()) ||
+        size_t(std::popcount(mask)) != w.pm.patch_begin[j + 1] - w.pm.patch_begin[j])
+        return split_error(w.mesh, j, "index patches do not replay");
+    w.replay.add_faces(w.face, w.faces);
+    w.face += sp.face_count;
+    for (int k = 0; k < 3; ++k) {
+        w.cur[size_t(parent) * 3 + k] = to[k];
+        w.cur[size_t(child) * 3 + k] = at[k];
+    }
+    return ok_status();
+}
+
+// One SPLT payload: splits [first, first + count). On one thread: a second one for
+// the topology did not pay (bench/RESULTS.md, 2026-11-26).
+Result<std::vector<uint8_t>> encode_chunk(SplitWriter& w, size_t first, size_t count) {
+    size_t chunk_faces = 0;
+    for (size_t j = first; j < first + count; ++j) chunk_faces += w.pm.splits[j].face_count;
+    w.values.clear();
+    w.topo.clear();
+    // All parents of the chunk first: the reader prefetches their data splits ahead.
+    for (size_t j = first; j < first + count; ++j)
+        w.values.put(pm::kCtxParentDelta, uint32_t(w.pm.base_vertices + j) - w.pm.splits[j].parent - 1);
+    for (size_t j = first; j < first + count; ++j)
+        if (Status st = encode_split(w, j); !st) return st.error();
+    std::vector<uint8_t> payload;
+    put_u32(payload, uint32_t(first));
+    put_u32(payload, uint32_t(count));
+    put_u32(payload, uint32_t(chunk_faces));
+    std::vector<uint8_t> coded;
+    w.values.finish(coded);
+    put_u32(payload, uint32_t(coded.size()));
+    payload.insert(payload.end(), coded.begin(), coded.end());
+    put_u32(payload, uint32_t(w.topo.size()));
+    payload.insert(payload.end(), w.topo.begin(), w.topo.end());
+    return payload;
+}
+
+Result<StructureSections> encode_structure(const Mesh& mesh, const ProgressiveBuild& pm, const LodOptions& options) {
+    StructureSections out;
+    const Quantized z = quantize(pm, options.normals);
+    const size_t ns = pm.splits.size(), chunk = std::max<size_t>(options.chunk_splits, 1);
+    out.info = info_section(mesh, pm, z, options.normals, chunk);
+    SplitWriter w(mesh, pm, z, options.normals);
+    out.base = base_section(pm, z, w.replay);
+    for (size_t first = 0; first < ns; first += chunk) {
+        auto payload = encode_chunk(w, first, std::min(chunk, ns - first));
+        if (!payload) return payload.error();
+        out.chunks.push_back(std::move(*payload));
     }
     return out;
 }

@@ -1,6 +1,6 @@
 #pragma once
 // Progressive-mesh construction: quadric-error edge collapses (Garland & Heckbert
-// 1997) recorded as vertex splits (Hoppe 1996), and the .bpm writer.
+// 1997) recorded as vertex splits (Hoppe 1996). The .bpm writer: bpm_writer.h.
 //
 // Placement (Garland-Heckbert "optimal placement with a safe fallback"): an edge
 // u -> v between two interior vertices puts the merged vertex v at the minimiser
@@ -41,7 +41,7 @@
 #include "shared/error.h"
 #include "shared/geometry.h"
 #include "shared/mesh.h"
-#include "shared/prefaulted_array.h"
+#include "shared/pm/large_array.h"
 
 namespace body::lod {
 
@@ -71,17 +71,17 @@ struct VertexSplit {
     Vec3 parent_to{0.0};      // ... and after it (equal for a half-edge collapse)
 };
 
-// (Prefaulted storage: a 1M-triangle build writes ~40 MB here, see shared/prefaulted_array.h.)
+// (Prefaulted storage, every page written: see shared/pm/large_array.h.)
 struct ProgressiveBuild {
-    PrefaultedVector<Vec3> positions;    // all vertices in PM order, each where it appears (base: coarsest)
-    PrefaultedVector<Vec3> normals;      // one per vertex
-    PrefaultedVector<uint32_t> indices;  // all faces in PM order, as they are when each face appears
+    pm::PrefaultedVector<Vec3> positions;    // all vertices in PM order, each where it appears (base: coarsest)
+    pm::PrefaultedVector<Vec3> normals;      // one per vertex
+    pm::PrefaultedVector<uint32_t> indices;  // all faces in PM order, as they are when each face appears
     size_t base_vertices = 0, base_faces = 0;
-    PrefaultedVector<VertexSplit> splits;
+    pm::PrefaultedVector<VertexSplit> splits;
     // Faces whose corner at the parent moves to the child when split j is applied:
     // patch_faces[patch_begin[j] .. patch_begin[j + 1]).
-    PrefaultedVector<uint32_t> patch_begin;
-    PrefaultedVector<uint32_t> patch_faces;
+    pm::PrefaultedVector<uint32_t> patch_begin;
+    pm::PrefaultedVector<uint32_t> patch_faces;
 };
 
 // Simplifies `mesh` as far as options allow and returns the refinement sequence.
@@ -90,10 +90,5 @@ Result<ProgressiveBuild> build_progressive_mesh(const Mesh& mesh, const LodOptio
 
 // The mesh at level `level` (0 = base, splits.size() = full), in PM vertex order.
 Mesh extract_level(const ProgressiveBuild& pm, size_t level);
-
-// Serializes meshes (one structure each: name, colour, bounds) as a .bpm file image.
-Result<std::vector<uint8_t>> encode_bpm(std::span<const Mesh> meshes, const LodOptions& options = {});
-// Builds the progressive meshes and writes them atomically to `path`.
-Status write_bpm_from_meshes(const std::string& path, std::span<const Mesh> meshes, const LodOptions& options = {});
 
 }  // namespace body::lod

@@ -12,7 +12,7 @@
 #include "kiosk/app/replay.h"
 #include "kiosk/render/image.h"
 #include "kiosk/scene/scene_models.h"
-#include "shared/pm/progressive_mesh.h"
+#include "shared/pm/large_array.h"
 
 namespace body::kiosk {
 namespace {

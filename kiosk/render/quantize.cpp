@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "shared/pm/bpm_format.h"
+#include "shared/pm/quantize.h"
 
 namespace body::render {
 

@@ -13,6 +13,7 @@
 #include <span>
 
 #include "shared/obj_io.h"
+#include "shared/pm/bpm_reader.h"
 
 namespace body::kiosk {
 

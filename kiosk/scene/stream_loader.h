@@ -24,6 +24,7 @@
 #include <string>
 #include <thread>
 
+#include "shared/pm/bpm_reader.h"
 #include "shared/pm/progressive_mesh.h"
 
 namespace body::kiosk {

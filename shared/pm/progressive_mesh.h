@@ -1,6 +1,6 @@
 #pragma once
-// Progressive meshes at run time: the `.bpm` reader and the ProgressiveMesh the
-// kiosk draws. Format: shared/pm/FORMAT.md. Background: thesis section 3.3.
+// Progressive meshes at run time: the ProgressiveMesh the kiosk draws, as the
+// `.bpm` reader (bpm_reader.h) fills it. Format: shared/pm/FORMAT.md. Background: thesis section 3.3.
 //
 // A level is "k vertex splits applied on top of the base mesh". At level k the
 // mesh is exactly
@@ -25,8 +25,7 @@
 // Allocation: arrays are sized when a structure's INFO section arrives; feeding
 // chunks decodes into them; refine_to/coarsen_to never allocate. Once complete
 // (decoding state freed) a structure keeps about 57 bytes a vertex split, 24 of
-// them the index array (1.1M-triangle bunny: 30 MiB; 17.7 MiB once the index
-// array is released to a renderer, see release_indices()).
+// them the index array (which can be released to a renderer: release_indices()).
 #include <algorithm>
 #include <bit>
 #include <cstddef>
@@ -39,7 +38,9 @@
 
 #include "shared/error.h"
 #include "shared/geometry.h"
-#include "shared/pm/bpm_format.h"
+#include "shared/pm/large_array.h"
+#include "shared/pm/quantize.h"
+#include "shared/pm/split_replay.h"
 
 namespace body::pm {
 
@@ -110,13 +111,13 @@ public:
     // the current prefix are valid once decoded but are not part of this level.
     // Three codes per vertex in [bounds_min(), bounds_max()]: axis k of vertex v
     // is dequantize16(code, bounds_min()[k], step) with step = (double(max) -
-    // double(min)) / 65535 (bpm_format.h), what position() returns.
+    // double(min)) / 65535 (quantize.h), what position() returns.
     std::span<const uint16_t> position_codes() const { return positions_; }
     Vec3f position(size_t v) const { return dequantize(&positions_[v * 3]); }
     // Dequantizes the positions of the vertices [begin, begin + out.size()) into
     // `out` (caller-owned; no allocation).
     void positions(size_t begin, std::span<Vec3f> out) const;
-    // Two octahedral codes per vertex (oct_decode8 in bpm_format.h); empty when the
+    // Two octahedral codes per vertex (oct_decode8 in quantize.h); empty when the
     // file has none.
     std::span<const uint8_t> normal_codes() const {
         return has_normals_ ? std::span<const uint8_t>(qoct_) : std::span<const uint8_t>();
@@ -128,7 +129,7 @@ public:
     std::span<const uint32_t> indices() const { return indices_; }
 
     // --- the index array kept by the caller only (a renderer's element buffer
-    // is its one full copy: a 1.1M-triangle structure saves 12.75 MiB).
+    // is its one full copy).
     // release_indices() frees indices(); false (nothing freed) until every split
     // is decoded (streaming writes new faces there). Afterwards refine_to and
     // coarsen_to keep moving the level, the positions and the dirty ranges but
@@ -228,8 +229,7 @@ private:
     // Per split: the error of the level before it, the high half of its float
     // (the file codes errors as steps of 2^16 in the float's bits: exact), kept
     // where it changes only: the levels where a new value starts and the values
-    // (non-increasing, so at most 32641 of them; the 1.1M-triangle bunny has 276
-    // for 557K splits: 2 KiB instead of 1.06 MiB).
+    // (non-increasing, so at most 32641 of them; typically a few hundred).
     std::vector<uint32_t> error_levels_;
     std::vector<uint16_t> error_highs_;
     uint16_t error_high(size_t level) const {
@@ -247,11 +247,10 @@ private:
     UninitVector<uint8_t> patch_count_;
     size_t patch_at_level_ = 0;
     // Per split that moves its parent (a bit each, 64 a word, with the count of
-    // such splits before every word: ~70% of the splits of an optimal-placement
-    // file), 3 per axis in moves_: the parent's position code before it XOR
+    // such splits before every word: most splits of an optimal-placement file),
+    // 3 per axis in moves_: the parent's position code before it XOR
     // after it, so refining and coarsening apply the same XOR and morph_sources
-    // undoes the moves since a level. Splits that move nothing store nothing
-    // (1.1M-triangle bunny: 2.4 instead of 3.2 MiB).
+    // undoes the moves since a level. Splits that move nothing store nothing.
     UninitVector<uint64_t> move_bits_;
     UninitVector<uint32_t> move_rank_;
     UninitVector<uint16_t> moves_;
@@ -289,48 +288,5 @@ private:
                      dequantize16(q[2], bbox_min_.z, step_[2]));
     }
 };
-
-// Reads a .bpm file from byte chunks as they arrive (network, disk, a test).
-// Every complete section is decoded at once; a structure is drawable as soon as
-// its BASE section is in, and refines up to its last complete SPLT chunk.
-class BpmStream {
-public:
-    explicit BpmStream(std::string source_name = "<stream>");
-    // Appends bytes. Returns an error (and stays failed) on a corrupt header or
-    // section, naming the section, the structure and the byte offset in the file.
-    Status feed(std::span<const uint8_t> bytes);
-    // True when the END section arrived and was valid.
-    bool complete() const { return complete_; }
-    // Structures whose INFO has arrived (their declared count is structure_count_declared()).
-    size_t structure_count() const { return meshes_.size(); }
-    size_t structure_count_declared() const { return declared_structures_; }
-    ProgressiveMesh& structure(size_t i) { return *meshes_[i]; }
-    const ProgressiveMesh& structure(size_t i) const { return *meshes_[i]; }
-    size_t bytes_consumed() const { return consumed_; }
-    // Error for a stream that ended early: names the section being received and its offset.
-    Status finish() const;
-
-private:
-    Status parse_section(uint32_t tag, uint32_t structure, std::span<const uint8_t> payload, size_t offset);
-    Status parse_info(std::span<const uint8_t> payload, const std::string& where);
-    Status parse_base(ProgressiveMesh& m, std::span<const uint8_t> payload, const std::string& where);
-    Status parse_splits(ProgressiveMesh& m, std::span<const uint8_t> payload, const std::string& where);
-
-    std::string source_;
-    std::vector<uint8_t> pending_;  // bytes of the section being received
-    size_t consumed_ = 0;           // file offset of pending_[0]
-    bool header_done_ = false, complete_ = false, failed_ = false;
-    std::string failure_;
-    size_t declared_structures_ = 0;
-    std::vector<std::unique_ptr<ProgressiveMesh>> meshes_;
-    std::vector<uint32_t> decoded_indices_;
-    std::vector<uint32_t> split_parents_;  // parse_splits: the parents of a chunk's splits (reused)
-};
-
-// Reads a whole file; errors name the path, section and byte offset.
-Result<std::vector<std::unique_ptr<ProgressiveMesh>>> read_bpm(const std::string& path);
-// Reads from memory (the same checks as a file).
-Result<std::vector<std::unique_ptr<ProgressiveMesh>>> read_bpm_bytes(std::span<const uint8_t> bytes,
-                                                                     const std::string& source_name);
 
 }  // namespace body::pm

@@ -5,7 +5,9 @@
 
 #include <random>
 
+#include "builder/lod/bpm_writer.h"
 #include "builder/lod/simplify.h"
+#include "shared/pm/bpm_reader.h"
 #include "shared/pm/progressive_mesh.h"
 #include "tests/common/test_meshes.h"
 

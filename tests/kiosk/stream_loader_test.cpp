@@ -10,7 +10,9 @@
 #include <fstream>
 #include <thread>
 
+#include "builder/lod/bpm_writer.h"
 #include "builder/lod/simplify.h"
+#include "shared/pm/bpm_reader.h"
 #include "tests/common/test_meshes.h"
 
 namespace body::kiosk {

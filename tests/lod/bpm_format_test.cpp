@@ -1,15 +1,18 @@
-// The version-4 split predictions of the .bpm format (shared/pm/bpm_format.h,
+// The version-4 split predictions of the .bpm format (shared/pm/prediction.h,
 // FORMAT.md "Predictions"): the plane through the parent, the child's normal from
 // its faces after the split, and what a file with or without normals decodes to.
-#include "shared/pm/bpm_format.h"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstring>
 
+#include "builder/lod/bpm_writer.h"
 #include "builder/lod/simplify.h"
+#include "shared/pm/bpm_container.h"
+#include "shared/pm/bpm_reader.h"
+#include "shared/pm/prediction.h"
 #include "shared/pm/progressive_mesh.h"
+#include "shared/pm/quantize.h"
 #include "tests/lod/lod_test_util.h"
 
 namespace body {

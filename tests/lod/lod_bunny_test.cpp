@@ -6,9 +6,11 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "builder/lod/bpm_writer.h"
 #include "builder/lod/simplify.h"
 #include "shared/obj_io.h"
-#include "shared/pm/bpm_format.h"
+#include "shared/pm/bpm_container.h"
+#include "shared/pm/bpm_reader.h"
 #include "shared/pm/progressive_mesh.h"
 #include "tests/cli/cli_test.h"
 #include "tests/lod/level_checks.h"

@@ -9,9 +9,13 @@
 #include <map>
 #include <set>
 
+#include "builder/lod/bpm_writer.h"
 #include "builder/lod/hausdorff.h"
 #include "builder/lod/simplify.h"
+#include "shared/pm/bpm_container.h"
+#include "shared/pm/bpm_reader.h"
 #include "shared/pm/progressive_mesh.h"
+#include "shared/pm/split_codec.h"
 #include "tests/lod/lod_test_util.h"
 
 namespace body {

@@ -5,7 +5,9 @@
 
 #include <vector>
 
+#include "builder/lod/bpm_writer.h"
 #include "builder/lod/simplify.h"
+#include "shared/pm/bpm_reader.h"
 #include "shared/pm/progressive_mesh.h"
 #include "tests/lod/lod_test_util.h"
 

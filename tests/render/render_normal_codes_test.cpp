@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "shared/pm/bpm_format.h"
+#include "shared/pm/quantize.h"
 #include "tests/render/render_fixture.h"
 
 namespace body::render {

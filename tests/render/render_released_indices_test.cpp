@@ -9,8 +9,10 @@
 
 #include <vector>
 
+#include "builder/lod/bpm_writer.h"
 #include "builder/lod/simplify.h"
 #include "kiosk/scene/model_source.h"
+#include "shared/pm/bpm_reader.h"
 #include "tests/render/render_fixture.h"
 
 namespace body::render {

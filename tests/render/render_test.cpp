@@ -15,6 +15,7 @@
 
 #include "kiosk/scene/model_source.h"
 #include "shared/obj_io.h"
+#include "shared/pm/bpm_reader.h"
 #include "shared/pm/progressive_mesh.h"
 #include "tests/render/render_fixture.h"
 

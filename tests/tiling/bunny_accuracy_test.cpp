@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <vector>
 
+#include "builder/lod/bpm_writer.h"
 #include "builder/lod/hausdorff.h"
 #include "builder/lod/simplify.h"
 #include "builder/pipeline/build_pipeline.h"
@@ -21,6 +22,7 @@
 #include "shared/mesh.h"
 #include "shared/mesh_intersect.h"
 #include "shared/obj_io.h"
+#include "shared/pm/bpm_reader.h"
 #include "shared/pm/progressive_mesh.h"
 #include "tests/lod/level_checks.h"
 

@@ -1,7 +1,7 @@
 // PrefaultedVector behaves as std::vector whichever path its storage takes: small
 // arrays from operator new, large ones from populated or reused mappings; contents
 // are value-initialised and survive growth across the threshold.
-#include "shared/prefaulted_array.h"
+#include "shared/pm/large_array.h"
 
 #include <gtest/gtest.h>
 
@@ -12,7 +12,7 @@
 #include <thread>
 #include <vector>
 
-namespace body {
+namespace body::pm {
 namespace {
 
 struct alignas(64) Line {
@@ -73,4 +73,4 @@ TEST(PrefaultedArray, ReusedMemoryIsNeverSharedBetweenLiveArrays) {
 }
 
 }  // namespace
-}  // namespace body
+}  // namespace body::pm

@@ -1,0 +1,491 @@
+// See bpm_reader.h. Progressive meshes after H. Hoppe, "Progressive meshes",
+// SIGGRAPH 1996; the BASE section's codecs are meshoptimizer's (A. Kapoulkine,
+// meshopt_decodeVertexBuffer / meshopt_decodeIndexBuffer).
+#include "shared/pm/bpm_reader.h"
+
+#include <meshoptimizer.h>
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstring>
+
+#include "shared/atomic_file.h"
+#include "shared/pm/bpm_container.h"
+#include "shared/pm/prediction.h"
+#include "shared/pm/split_codec.h"
+
+namespace body::pm {
+
+BpmStream::BpmStream(std::string source_name) : source_(std::move(source_name)) {}
+
+namespace {
+
+std::string where_of(const std::string& source, uint32_t tag, uint32_t structure, size_t offset) {
+    return source + ": section " + tag_name(tag) + " of structure " + std::to_string(structure) + " at byte " +
+           std::to_string(offset);
+}
+
+}  // namespace
+
+Status BpmStream::feed(std::span<const uint8_t> bytes) {
+    if (failed_) return input_error(failure_);
+    pending_.insert(pending_.end(), bytes.begin(), bytes.end());
+    auto fail = [&](std::string message) -> Status {
+        failed_ = true;
+        failure_ = std::move(message);
+        return input_error(failure_);
+    };
+    size_t pos = 0;
+    if (!header_done_) {
+        if (pending_.size() < kFileHeaderSize) return ok_status();
+        const uint8_t* h = pending_.data();
+        if (std::memcmp(h, kMagic, 4) != 0)
+            return fail(source_ + ": file header at byte 0: not a .bpm file (bad magic)");
+        if (crc32({h, 12}) != get_u32(h + 12)) return fail(source_ + ": file header at byte 0: checksum mismatch");
+        if (get_u16(h + 4) != kVersion)
+            return fail(source_ + ": file header at byte 4: unsupported version " + std::to_string(get_u16(h + 4)));
+        declared_structures_ = get_u32(h + 8);
+        if (declared_structures_ > 65535) return fail(source_ + ": file header at byte 8: too many structures");
+        header_done_ = true;
+        pos = kFileHeaderSize;
+    }
+    while (pending_.size() - pos >= kSectionHeaderSize) {
+        const uint8_t* s = pending_.data() + pos;
+        const size_t offset = consumed_ + pos;
+        const uint32_t tag = get_u32(s), structure = get_u16(s + 4), length = get_u32(s + 8);
+        const std::string where = where_of(source_, tag, structure, offset);
+        if (complete_) return fail(where + ": data after the END section");
+        if (tag != kTagInfo && tag != kTagBase && tag != kTagSplits && tag != kTagEnd)
+            return fail(where + ": unknown section tag");
+        if (length > (1u << 30)) return fail(where + ": section length " + std::to_string(length) + " too large");
+        const size_t total = kSectionHeaderSize + size_t(length) + kSectionTrailerSize;
+        if (pending_.size() - pos < total) break;
+        if (crc32({s, kSectionHeaderSize + length}) != get_u32(s + kSectionHeaderSize + length))
+            return fail(where + ": checksum mismatch");
+        Status st = parse_section(tag, structure, {s + kSectionHeaderSize, length}, offset);
+        if (!st) return fail(st.error().message);
+        pos += total;
+    }
+    pending_.erase(pending_.begin(), pending_.begin() + ptrdiff_t(pos));
+    consumed_ += pos;
+    return ok_status();
+}
+
+Status BpmStream::finish() const {
+    if (failed_) return input_error(failure_);
+    if (complete_) return ok_status();
+    if (!header_done_)
+        return input_error(source_ + ": file header at byte 0: truncated (" + std::to_string(pending_.size()) +
+                           " of 16 bytes)");
+    if (pending_.size() >= kSectionHeaderSize) {
+        const uint32_t tag = get_u32(pending_.data()), structure = get_u16(pending_.data() + 4);
+        return input_error(
+            where_of(source_, tag, structure, consumed_) + ": truncated (" + std::to_string(pending_.size()) + " of " +
+            std::to_string(kSectionHeaderSize + get_u32(pending_.data() + 8) + kSectionTrailerSize) + " bytes)");
+    }
+    return input_error(source_ + ": truncated at byte " + std::to_string(consumed_ + pending_.size()) +
+                       ": the END section is missing");
+}
+
+Status BpmStream::parse_section(uint32_t tag, uint32_t structure, std::span<const uint8_t> payload, size_t offset) {
+    const std::string where = where_of(source_, tag, structure, offset);
+    if (tag == kTagEnd) {
+        ByteReader r(payload);
+        uint32_t count = 0;
+        if (!r.u32(count) || count != meshes_.size() || count != declared_structures_)
+            return input_error(where + ": structure count does not match");
+        for (auto& m : meshes_) {
+            if (m->decoded_splits_ != m->split_count_ || !m->base_ready_)
+                return input_error(where + ": structure '" + m->name_ + "' is incomplete");
+        }
+        complete_ = true;
+        return ok_status();
+    }
+    if (tag == kTagInfo) {
+        if (structure != meshes_.size() || structure >= declared_structures_)
+            return input_error(where + ": INFO out of order");
+        return parse_info(payload, where);
+    }
+    if (structure >= meshes_.size()) return input_error(where + ": section before the structure's INFO");
+    ProgressiveMesh& m = *meshes_[structure];
+    if (tag == kTagBase) {
+        if (m.base_ready_) return input_error(where + ": second BASE section");
+        return parse_base(m, payload, where);
+    }
+    if (!m.base_ready_) return input_error(where + ": SPLT before BASE");
+    return parse_splits(m, payload, where);
+}
+
+Status BpmStream::parse_info(std::span<const uint8_t> payload, const std::string& where) {
+    ByteReader r(payload);
+    auto m = std::make_unique<ProgressiveMesh>();
+    uint16_t name_length = 0;
+    std::span<const uint8_t> name;
+    float f[9];
+    uint32_t flags, bv, bf, splits, faces, chunk;
+    bool ok = r.u16(name_length) && r.bytes(name_length, name);
+    for (float& x : f) ok = ok && r.f32(x);
+    ok = ok && r.u32(flags) && r.u32(bv) && r.u32(bf) && r.u32(splits) && r.u32(faces) && r.u32(chunk);
+    if (!ok) return input_error(where + ": INFO payload too short");
+    for (float x : f)
+        if (!std::isfinite(x)) return input_error(where + ": non-finite colour or bounds");
+    const uint64_t vertices = uint64_t(bv) + splits;
+    if (bv == 0 || bf == 0 || faces < bf || vertices > kMaxVertices || faces > kMaxFaces || chunk == 0 ||
+        uint64_t(faces - bf) > 3ull * splits)
+        return input_error(where + ": inconsistent counts");
+    m->name_.assign(name.begin(), name.end());
+    m->color_ = Vec3f(f[0], f[1], f[2]);
+    m->bbox_min_ = Vec3f(f[3], f[4], f[5]);
+    m->bbox_max_ = Vec3f(f[6], f[7], f[8]);
+    m->has_normals_ = flags & 1;
+    for (int k = 0; k < 3; ++k) m->step_[k] = quantization_step(m->bbox_min_[k], m->bbox_max_[k]);
+    m->base_vertices_ = bv;
+    m->base_faces_ = bf;
+    m->split_count_ = splits;
+    m->face_count_ = faces;
+    m->chunk_splits_ = chunk;
+    // Full capacity, uninitialised: each entry is written when its section
+    // arrives, and only decoded entries are read (no page faults for the rest).
+    m->positions_.resize(vertices * 3);
+    m->parent_bytes_ = vertices <= (uint64_t(1) << 24) ? 3 : 4;
+    m->split_parents_bytes_.resize(size_t(splits) * m->parent_bytes_);
+    m->indices_.resize(size_t(faces) * 3);
+    m->face_count_bits_.assign((size_t(splits) + 31) / 32, 0);
+    m->face_sample_.resize(size_t(splits) / 64 + 1);
+    m->face_sample_[0] = bf;
+    // At most one entry per split and per value (non-increasing below 0x7f81):
+    // reserved so that decoding a split never allocates; shrunk once complete.
+    m->error_levels_.reserve(std::min<size_t>(splits, 0x7f81));
+    m->error_highs_.reserve(std::min<size_t>(splits, 0x7f81));
+    m->move_bits_.assign(size_t(splits) / 64 + 1, 0);
+    m->move_rank_.resize(size_t(splits) / 64 + 1);
+    m->moves_.resize(size_t(splits) * 3);  // at most; shrunk to the moves once complete
+    m->move_count_ = 0;
+    m->patch_count_.resize(splits);
+    m->patch_corners_.clear();
+    m->corner_bytes_ = uint64_t(faces) * 3 <= (uint64_t(1) << 24) ? 3 : 4;
+    m->qpos_.resize(vertices * 3);
+    m->qoct_.resize(vertices * 2);
+    m->replay_.reset(vertices, faces);
+    meshes_.push_back(std::move(m));
+    return ok_status();
+}
+
+Status BpmStream::parse_base(ProgressiveMesh& m, std::span<const uint8_t> payload, const std::string& where) {
+    ByteReader r(payload);
+    uint32_t vbytes = 0, ibytes = 0;
+    std::span<const uint8_t> vbuf, ibuf;
+    if (!r.u32(vbytes) || !r.bytes(vbytes, vbuf) || !r.u32(ibytes) || !r.bytes(ibytes, ibuf) || r.left() != 0)
+        return input_error(where + ": BASE payload sizes do not add up");
+    std::vector<BaseVertex> verts(m.base_vertices_);
+    if (meshopt_decodeVertexBuffer(verts.data(), verts.size(), sizeof(BaseVertex), vbuf.data(), vbuf.size()) != 0)
+        return input_error(where + ": vertex data does not decode");
+    decoded_indices_.resize(m.base_faces_ * 3);
+    if (meshopt_decodeIndexBuffer(decoded_indices_.data(), decoded_indices_.size(), 4, ibuf.data(), ibuf.size()) != 0)
+        return input_error(where + ": index data does not decode");
+    for (uint32_t v : decoded_indices_)
+        if (v >= m.base_vertices_) return input_error(where + ": base index " + std::to_string(v) + " out of range");
+    for (size_t v = 0; v < verts.size(); ++v) {
+        for (int k = 0; k < 3; ++k) {
+            m.qpos_[v * 3 + k] = verts[v].q[k];
+            m.positions_[v * 3 + k] = verts[v].q[k];
+        }
+        m.qoct_[v * 2] = verts[v].oct[0];
+        m.qoct_[v * 2 + 1] = verts[v].oct[1];
+    }
+    std::copy(decoded_indices_.begin(), decoded_indices_.end(), m.indices_.begin());
+    m.replay_.add_faces(0, decoded_indices_);
+    m.decoded_faces_ = m.base_faces_;
+    m.base_ready_ = true;
+    m.dirty_vertices_.add(0, m.base_vertices_);
+    m.dirty_indices_.add(0, m.base_faces_ * 3);
+    if (m.split_count_ == 0) m.release_decoding_state();
+    return ok_status();
+}
+
+namespace {
+
+// What the splits of one SPLT chunk decode against: the replay and the codes at
+// the finest decoded level (the structure's decoding state) and the box's weights.
+struct ChunkContext {
+    SplitReplay& replay;
+    const uint16_t* qpos;  // 3 per vertex
+    const uint8_t* qoct;   // 2 per vertex
+    bool normals;
+    int32_t axis_weight[3], plane_weight[3];
+};
+
+// One split as it decodes: its topology (the parent's corners, those moving to
+// the child, the new faces), its predictions and its decoded codes.
+struct DecodedSplit {
+    uint32_t child = 0, parent = 0;
+    uint32_t corners[64];
+    size_t corner_count = 0;
+    uint64_t mask = 0;
+    uint32_t faces = 0, faces_at[9];
+    uint32_t fan = 0;               // fan form: the size of the parent's fan
+    uint16_t from[3], q[3], to[3];  // the parent before and after, the child
+    uint8_t oct[2];
+    FanPrediction pred;  // the general form: child at the parent, no scaling (decode_topology)
+};
+
+// The replay is bound by memory latency (a parent is anywhere in the mesh): the
+// data of the splits a few steps ahead is pulled into the cache in stages.
+[[gnu::always_inline]] inline void prefetch_ahead(const ChunkContext& c, const std::vector<uint32_t>& parents,
+                                                  uint32_t i) {
+    constexpr uint32_t kAhead0 = 32, kAhead1 = 20, kAhead2 = 12, kAhead3 = 6;
+    const size_t count = parents.size();
+    if (i + kAhead0 < count) c.replay.prefetch(parents[i + kAhead0], 0);
+    if (i + kAhead1 < count) {
+        const uint32_t p = parents[i + kAhead1];
+        c.replay.prefetch(p, 1);
+        prefetch(&c.qpos[size_t(p) * 3]);
+        prefetch(&c.qoct[size_t(p) * 2]);
+    }
+    if (i + kAhead2 < count) c.replay.prefetch(parents[i + kAhead2], 2);
+    if (i + kAhead3 < count) c.replay.prefetch(parents[i + kAhead3], 3, c.qpos);
+}
+
+// Fan form (a manifold split): the fan faces from ring[start] to ring[start + length]
+// move to the child; the new faces are (c, p, ring[start]), (c, ring[start + length], p).
+[[gnu::always_inline]] inline const char* decode_fan(const ChunkContext& c, SplitDecoder::Cursor& values,
+                                                     DecodedSplit& s) {
+    uint32_t ring[64];
+    uint8_t fan_at[64];
+    s.fan = uint32_t(c.replay.ordered_fan(s.corners, s.corner_count, ring, fan_at));
+    const uint32_t start = values.get(kCtxFanStart), length = values.get(kCtxFanLength) + 1;
+    if (s.fan == 0 || start >= s.fan || length >= s.fan) return "fan split of a vertex without such a fan";
+    uint32_t at = start;
+    for (uint32_t t = 0; t < length; ++t, at = at + 1 == s.fan ? 0 : at + 1) s.mask |= uint64_t(1) << fan_at[at];
+    s.faces = 2;
+    const uint32_t f[6] = {s.child, s.parent, ring[start], s.child, ring[at], s.parent};
+    std::copy_n(f, 6, s.faces_at);
+    // The plane through the parent: its normal (when the file has normals).
+    int64_t plane[3];
+    plane_normal(&c.qoct[size_t(s.parent) * 2], c.plane_weight, plane);
+    predict_fan(c.qpos, ring, s.fan, start, length, s.from, c.normals ? plane : nullptr, s.pred);
+    return nullptr;
+}
+
+// General form: the patch mask, then each new face's third vertex as a neighbour
+// number over the parent's corners before the split, from the topology bytes.
+[[gnu::always_inline]] inline const char* decode_general(const ChunkContext& c, ByteReader& topo, DecodedSplit& s) {
+    uint64_t head = 0;
+    if (!topo.varint(head)) return "topology record truncated";
+    s.faces = uint32_t(head & 3);
+    s.mask = head >> 2;
+    for (uint32_t f = 0; f < s.faces && f < 3; ++f) {
+        uint64_t code = 0;
+        if (!topo.varint(code) || (code >> 1) >= 2 * s.corner_count) return "a new face names a missing neighbour";
+        const uint32_t third = c.replay.neighbour(s.corners, size_t(code >> 1));
+        uint32_t* t = s.faces_at + 3 * f;
+        t[0] = s.child;
+        t[1] = (code & 1) ? third : s.parent;
+        t[2] = (code & 1) ? s.parent : third;
+    }
+    return nullptr;
+}
+
+// The split's topology in its kind's form; an error text, or nullptr.
+[[gnu::always_inline]] inline const char* decode_topology(const ChunkContext& c, SplitDecoder::Cursor& values,
+                                                          ByteReader& topo, uint32_t form, DecodedSplit& s) {
+    s.corner_count = c.replay.corners_of(s.parent, s.corners, 64);
+    if (s.corner_count == SIZE_MAX) return "parent has more than 64 corners";
+    for (int k = 0; k < 3; ++k) {
+        s.from[k] = c.qpos[size_t(s.parent) * 3 + k];
+        s.pred.child[k] = s.from[k];
+        s.pred.parent_centroid[k] = 0;
+        s.pred.shift[k] = 0;
+    }
+    if (form == kTopoFan) return decode_fan(c, values, s);
+    if (form == kTopoGeneral) return decode_general(c, topo, s);
+    return "unknown split kind";
+}
+
+// The child's position and the parent's move (0 to 1 positions), as residuals of
+// their predictions; with a plane, its axis last.
+[[gnu::always_inline]] inline void decode_positions(SplitDecoder::Cursor& values, bool moves, DecodedSplit& s) {
+    const FanPrediction& pred = s.pred;
+    uint32_t order[3] = {0, 1, 2};
+    if (pred.axis < 3) {
+        plane_axes(pred.axis, order[0], order[1]);
+        order[2] = pred.axis;
+    }
+    for (uint32_t i = 0; i < 2; ++i)
+        s.q[order[i]] =
+            unzigzag(uint16_t(values.get_scaled(kCtxChild0 + i, pred.shift[order[i]])), pred.child[order[i]]);
+    if (pred.axis < 3)
+        s.q[order[2]] = unzigzag(uint16_t(values.get_scaled(kCtxChild0 + 2, pred.axis_shift)),
+                                 plane_coordinate(pred, s.from, s.q, pred.child_dot, 4));
+    else
+        s.q[2] = unzigzag(uint16_t(values.get_scaled(kCtxChild0 + 2, pred.shift[2])), pred.child[2]);
+    for (int k = 0; k < 3; ++k) s.to[k] = s.from[k];
+    if (!moves) return;
+    for (uint32_t i = 0; i < (pred.axis < 3 ? 2u : 3u); ++i) {
+        const uint32_t k = order[i];
+        const uint16_t reflected = reflect16(s.from[k], s.q[k]);
+        const uint16_t predicted = s.fan != 0 ? midpoint16(reflected, pred.parent_centroid[k]) : reflected;
+        s.to[k] = unzigzag(uint16_t(values.get_scaled(kCtxParent0 + i, pred.shift[k])), predicted);
+    }
+    if (pred.axis < 3) {
+        const int64_t offset = pred.parent_dot - 4 * plane_dot(pred, s.from, s.q);
+        s.to[order[2]] = unzigzag(uint16_t(values.get_scaled(kCtxParent0 + 2, pred.axis_shift)),
+                                  plane_coordinate(pred, s.from, s.to, offset, 8));
+    }
+}
+
+// The child's normal: predicted from its faces after the split (fan form), else
+// the parent's; the parent's when the file has none.
+[[gnu::always_inline]] inline void decode_normal(const ChunkContext& c, SplitDecoder::Cursor& values, DecodedSplit& s) {
+    s.oct[0] = c.qoct[size_t(s.parent) * 2];
+    s.oct[1] = c.qoct[size_t(s.parent) * 2 + 1];
+    if (!c.normals) return;
+    if (s.fan != 0) predict_normal(s.pred, s.from, s.to, c.axis_weight, s.oct);
+    for (int k = 0; k < 2; ++k) s.oct[k] = unzigzag(uint8_t(values.get(kCtxNormal0 + uint32_t(k))), s.oct[k]);
+}
+
+// A SPLT payload's framing.
+struct ChunkHeader {
+    uint32_t first = 0, count = 0, new_faces = 0;
+    std::span<const uint8_t> values, topology;
+};
+
+bool read_chunk_header(std::span<const uint8_t> payload, ChunkHeader& h) {
+    ByteReader r(payload);
+    uint32_t vbytes = 0, tbytes = 0;
+    return r.u32(h.first) && r.u32(h.count) && r.u32(h.new_faces) && r.u32(vbytes) && r.bytes(vbytes, h.values) &&
+           r.u32(tbytes) && r.bytes(tbytes, h.topology) && r.left() == 0;
+}
+
+}  // namespace
+
+void BpmStream::record_split(ProgressiveMesh& m, size_t j, uint32_t parent, uint32_t child,
+                             std::span<const uint32_t> faces, std::span<const uint32_t> moved, const uint16_t from[3],
+                             const uint16_t to[3], const uint16_t q[3], const uint8_t oct[2], uint16_t error_high) {
+    m.replay_.add_faces(m.decoded_faces_, faces);
+    std::copy(faces.begin(), faces.end(), m.indices_.begin() + ptrdiff_t(m.decoded_faces_ * 3));
+    m.decoded_faces_ += faces.size() / 3;
+    m.face_count_bits_[j / 32] |= uint64_t(faces.size() / 3) << (j % 32 * 2);
+    if ((j + 1) % 64 == 0) m.face_sample_[(j + 1) / 64] = uint32_t(m.decoded_faces_);
+    if (m.error_highs_.empty() || error_high != m.error_highs_.back()) {
+        m.error_levels_.push_back(uint32_t(j));
+        m.error_highs_.push_back(error_high);
+    }
+    const size_t at = m.patch_corners_.size(), w = m.corner_bytes_;
+    m.patch_corners_.resize(at + moved.size() * w);
+    for (size_t i = 0; i < moved.size(); ++i) ProgressiveMesh::store_le(&m.patch_corners_[at + i * w], moved[i], w);
+    m.patch_count_[j] = uint8_t(moved.size());
+    if (j % 64 == 0) m.move_rank_[j / 64] = uint32_t(m.move_count_);
+    if ((from[0] ^ to[0]) | (from[1] ^ to[1]) | (from[2] ^ to[2])) {
+        m.move_bits_[j / 64] |= uint64_t(1) << (j % 64);
+        for (int k = 0; k < 3; ++k) m.moves_[m.move_count_ * 3 + size_t(k)] = uint16_t(from[k] ^ to[k]);
+        ++m.move_count_;
+    }
+    for (int k = 0; k < 3; ++k) {
+        m.qpos_[size_t(child) * 3 + k] = q[k];
+        m.qpos_[size_t(parent) * 3 + k] = to[k];
+        m.positions_[size_t(child) * 3 + k] = q[k];
+    }
+    m.qoct_[size_t(child) * 2] = oct[0];
+    m.qoct_[size_t(child) * 2 + 1] = oct[1];
+    ProgressiveMesh::store_le(&m.split_parents_bytes_[j * m.parent_bytes_], parent, m.parent_bytes_);
+}
+
+Status BpmStream::parse_splits(ProgressiveMesh& m, std::span<const uint8_t> payload, const std::string& where) {
+    ChunkHeader h;
+    if (!read_chunk_header(payload, h)) return input_error(where + ": SPLT payload sizes do not add up");
+    const uint32_t first = h.first, count = h.count;
+    if (first != m.decoded_splits_ || count == 0 || count > m.split_count_ - m.decoded_splits_ ||
+        h.new_faces > m.face_count_ - m.decoded_faces_)
+        return input_error(where + ": split range " + std::to_string(first) + "+" + std::to_string(count) +
+                           " does not follow split " + std::to_string(m.decoded_splits_));
+    SplitDecoder decoder;
+    if (!decoder.init(h.values)) return input_error(where + ": split value tables do not decode");
+    SplitDecoder::Cursor values = decoder.begin();
+    // The chunk's parents come first (the loop below prefetches their data).
+    std::vector<uint32_t>& parents = split_parents_;
+    parents.resize(count);
+    for (uint32_t i = 0; i < count; ++i) {
+        const uint32_t child = uint32_t(m.base_vertices_ + first + i), delta = values.get(kCtxParentDelta);
+        if (delta >= child || values.past_end())
+            return input_error(where + ": split " + std::to_string(first + i) + ": parent out of range");
+        parents[i] = child - 1 - delta;
+    }
+    // Everything below runs per split: no allocation (the message is built on failure only).
+    // Geometric growth: reserving the exact need per section would copy the whole
+    // array at every section (quadratic in the file's size).
+    if (const size_t need = m.patch_corners_.size() + size_t(count) * 4 * m.corner_bytes_;
+        need > m.patch_corners_.capacity())
+        m.patch_corners_.reserve(std::max(need, 2 * m.patch_corners_.capacity()));
+    ByteReader topo(h.topology);
+    size_t face_cursor = 0;
+    float previous_error = first == 0 ? INFINITY : m.error_at(first - 1);
+    uint32_t previous_error_bits;
+    std::memcpy(&previous_error_bits, &previous_error, 4);
+    ChunkContext ctx{m.replay_, m.qpos_.data(), m.qoct_.data(), m.has_normals_, {}, {}};
+    const float box_lo[3] = {m.bbox_min_.x, m.bbox_min_.y, m.bbox_min_.z},
+                box_hi[3] = {m.bbox_max_.x, m.bbox_max_.y, m.bbox_max_.z};
+    normal_axis_weights(box_lo, box_hi, ctx.axis_weight);
+    plane_axis_weights(box_lo, box_hi, ctx.plane_weight);
+    uint32_t moved[64];
+    for (uint32_t i = 0; i < count; ++i) {
+        prefetch_ahead(ctx, parents, i);
+        const size_t j = first + i;
+        DecodedSplit s;
+        s.child = uint32_t(m.base_vertices_ + j);
+        s.parent = parents[i];
+        auto fail = [&](const char* what) { return input_error(where + ": split " + std::to_string(j) + ": " + what); };
+        const uint32_t kind = values.get(kCtxKind);
+        // Errors are non-increasing by construction: each is a step down from the previous.
+        const uint32_t error_step = values.get(kCtxErrorStep);
+        if (error_step > (previous_error_bits >> 16)) return fail("error not monotonic");
+        previous_error_bits -= error_step << 16;
+        if (const char* error = decode_topology(ctx, values, topo, kind >> 1, s)) return fail(error);
+        if (s.faces == 0 || face_cursor + s.faces > h.new_faces) return fail("face count out of range");
+        decode_positions(values, kind & 1, s);
+        decode_normal(ctx, values, s);
+        if (values.past_end()) return fail("values truncated");
+        // Index patches first (on the level before the split), then the new faces.
+        if (!m.replay_.apply_mask(s.parent, s.child, s.mask, s.corners, s.corner_count, moved))
+            return fail("patch mask names a missing corner");
+        record_split(m, j, s.parent, s.child, {s.faces_at, s.faces * 3}, {moved, size_t(std::popcount(s.mask))}, s.from,
+                     s.to, s.q, s.oct, uint16_t(previous_error_bits >> 16));  // the low half is 0
+        face_cursor += s.faces;
+    }
+    const size_t first_child = m.base_vertices_ + first;
+    m.dirty_vertices_.add(first_child, first_child + count);
+    m.dirty_indices_.add((m.decoded_faces_ - face_cursor) * 3, m.decoded_faces_ * 3);
+    if (face_cursor != h.new_faces || topo.left() != 0)
+        return input_error(where + ": split face count does not match its records");
+    if (!values.ok()) return input_error(where + ": split values do not end where the chunk does");
+    m.decoded_splits_ += count;
+    if (m.decoded_splits_ == m.split_count_) {
+        if (m.decoded_faces_ != m.face_count_) return input_error(where + ": face count does not match INFO");
+        m.release_decoding_state();
+    }
+    return ok_status();
+}
+
+Result<std::vector<std::unique_ptr<ProgressiveMesh>>> read_bpm_bytes(std::span<const uint8_t> bytes,
+                                                                     const std::string& source_name) {
+    BpmStream stream(source_name);
+    Status st = stream.feed(bytes);
+    if (!st) return st.error();
+    st = stream.finish();
+    if (!st) return st.error();
+    std::vector<std::unique_ptr<ProgressiveMesh>> out;
+    for (size_t i = 0; i < stream.structure_count(); ++i) {
+        auto m = std::make_unique<ProgressiveMesh>(std::move(stream.structure(i)));
+        out.push_back(std::move(m));
+    }
+    return out;
+}
+
+Result<std::vector<std::unique_ptr<ProgressiveMesh>>> read_bpm(const std::string& path) {
+    auto data = read_file(path);
+    if (!data) return data.error();
+    return read_bpm_bytes({reinterpret_cast<const uint8_t*>(data->data()), data->size()}, path);
+}
+
+}  // namespace body::pm

@@ -1,0 +1,66 @@
+#pragma once
+// The `.bpm` reader: a file (or bytes as they arrive) -> ProgressiveMesh per
+// structure. Every section is checked (CRC, framing, every decoded value bounded)
+// before it is used; errors name the section, the structure and the byte offset.
+// Format: shared/pm/FORMAT.md; the decoder of a SPLT section is parse_splits.
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "shared/error.h"
+#include "shared/pm/progressive_mesh.h"
+
+namespace body::pm {
+
+// Reads a .bpm file from byte chunks as they arrive (network, disk, a test).
+// Every complete section is decoded at once; a structure is drawable as soon as
+// its BASE section is in, and refines up to its last complete SPLT chunk.
+class BpmStream {
+public:
+    explicit BpmStream(std::string source_name = "<stream>");
+    // Appends bytes. Returns an error (and stays failed) on a corrupt header or
+    // section, naming the section, the structure and the byte offset in the file.
+    Status feed(std::span<const uint8_t> bytes);
+    // True when the END section arrived and was valid.
+    bool complete() const { return complete_; }
+    // Structures whose INFO has arrived (their declared count is structure_count_declared()).
+    size_t structure_count() const { return meshes_.size(); }
+    size_t structure_count_declared() const { return declared_structures_; }
+    ProgressiveMesh& structure(size_t i) { return *meshes_[i]; }
+    const ProgressiveMesh& structure(size_t i) const { return *meshes_[i]; }
+    size_t bytes_consumed() const { return consumed_; }
+    // Error for a stream that ended early: names the section being received and its offset.
+    Status finish() const;
+
+private:
+    Status parse_section(uint32_t tag, uint32_t structure, std::span<const uint8_t> payload, size_t offset);
+    Status parse_info(std::span<const uint8_t> payload, const std::string& where);
+    Status parse_base(ProgressiveMesh& m, std::span<const uint8_t> payload, const std::string& where);
+    Status parse_splits(ProgressiveMesh& m, std::span<const uint8_t> payload, const std::string& where);
+    // Appends a decoded split to m's arrays: its new faces, the corners it moved to
+    // the child, its parent's move, the child's codes and the level's error.
+    static void record_split(ProgressiveMesh& m, size_t j, uint32_t parent, uint32_t child,
+                             std::span<const uint32_t> faces, std::span<const uint32_t> moved, const uint16_t from[3],
+                             const uint16_t to[3], const uint16_t q[3], const uint8_t oct[2], uint16_t error_high);
+
+    std::string source_;
+    std::vector<uint8_t> pending_;  // bytes of the section being received
+    size_t consumed_ = 0;           // file offset of pending_[0]
+    bool header_done_ = false, complete_ = false, failed_ = false;
+    std::string failure_;
+    size_t declared_structures_ = 0;
+    std::vector<std::unique_ptr<ProgressiveMesh>> meshes_;
+    std::vector<uint32_t> decoded_indices_;
+    std::vector<uint32_t> split_parents_;  // parse_splits: the parents of a chunk's splits (reused)
+};
+
+// Reads a whole file; errors name the path, section and byte offset.
+Result<std::vector<std::unique_ptr<ProgressiveMesh>>> read_bpm(const std::string& path);
+// Reads from memory (the same checks as a file).
+Result<std::vector<std::unique_ptr<ProgressiveMesh>>> read_bpm_bytes(std::span<const uint8_t> bytes,
+                                                                     const std::string& source_name);
+
+}  // namespace body::pm
