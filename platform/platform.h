@@ -27,8 +27,12 @@ Result<Backend> parse_backend(const std::string& name);
 // Keyboard modifiers held when an input event happened (InputEvent::modifiers).
 enum Modifier : uint32_t { kModShift = 1, kModCtrl = 2, kModAlt = 4 };
 
+// Mouse buttons as InputEvent::id numbers them.
+enum class MouseButton : uint8_t { Left = 0, Right = 1, Middle = 2 };
+
 // One input event in surface pixels (origin top-left). Backends and the evdev
-// touch layer (platform/evdev_*) produce these; the kiosk app consumes them.
+// touch layer (platform/evdev_*) produce these, replay files too
+// (kiosk/app/replay.h); the kiosk app consumes them as they are.
 struct InputEvent {
     enum class Type : uint8_t {
         TouchDown,
@@ -49,6 +53,10 @@ struct InputEvent {
     bool pressed = false;    // Key: down (true) or up
     double time = 0;         // seconds, the same clock as Surface::time()
     uint32_t modifiers = 0;  // kMod* bits held (glfw: mouse, scroll, key); 0 for touch and headless
+
+    MouseButton button() const {
+        return id == 1 ? MouseButton::Right : id == 2 ? MouseButton::Middle : MouseButton::Left;
+    }
 };
 inline constexpr int kKeyEscape = 256;
 

@@ -46,20 +46,22 @@ void GestureRecognizer::flush(std::vector<Gesture>& out) {
 }
 
 void GestureRecognizer::feed(const InputEvent& e, std::vector<Gesture>& out) {
-    if (pending_ && (e.time != pending_time_ || e.kind == InputKind::TouchDown || e.kind == InputKind::TouchUp)) {
+    if (pending_ &&
+        (e.time != pending_time_ || e.type == InputEvent::Type::TouchDown || e.type == InputEvent::Type::TouchUp)) {
         flush(out);
     }
-    switch (e.kind) {
-        case InputKind::TouchDown:
-        case InputKind::TouchMove:
-        case InputKind::TouchUp: touch(e, out); break;
-        case InputKind::Key: break;
+    switch (e.type) {
+        case InputEvent::Type::TouchDown:
+        case InputEvent::Type::TouchMove:
+        case InputEvent::Type::TouchUp: touch(e, out); break;
+        case InputEvent::Type::Key:
+        case InputEvent::Type::Quit: break;
         default: mouse(e, out); break;
     }
 }
 
 void GestureRecognizer::touch(const InputEvent& e, std::vector<Gesture>& out) {
-    if (e.kind == InputKind::TouchDown) {
+    if (e.type == InputEvent::Type::TouchDown) {
         if (touches_.empty()) moved_ = multi_ = false;
         touches_[e.id] = Touch{e.x, e.y, e.x, e.y, e.time};
         if (touches_.size() >= 2) multi_ = true;
@@ -69,7 +71,7 @@ void GestureRecognizer::touch(const InputEvent& e, std::vector<Gesture>& out) {
     }
     auto it = touches_.find(e.id);
     if (it == touches_.end()) return;  // a contact we never saw go down
-    if (e.kind == InputKind::TouchMove) {
+    if (e.type == InputEvent::Type::TouchMove) {
         if (touches_.size() == 1) {
             Touch& t = it->second;
             if (!moved_ && distance(e.x, e.y, t.start_x, t.start_y) < settings_.slop_px) return;
@@ -117,17 +119,17 @@ void GestureRecognizer::touch(const InputEvent& e, std::vector<Gesture>& out) {
 }
 
 void GestureRecognizer::mouse(const InputEvent& e, std::vector<Gesture>& out) {
-    if (e.kind == InputKind::Wheel) {
+    if (e.type == InputEvent::Type::Scroll) {
         Gesture g{GestureKind::Zoom, e.time, e.x, e.y};
-        g.factor = std::pow(settings_.wheel_zoom, e.wheel);
+        g.factor = std::pow(settings_.wheel_zoom, e.dy);
         out.push_back(Gesture{GestureKind::Begin, e.time, e.x, e.y});
         out.push_back(g);
         return;
     }
-    if (e.kind == InputKind::MouseDown) {
+    if (e.type == InputEvent::Type::MouseDown) {
         if (mouse_down_) return;  // one button at a time, like the thesis viewer
         mouse_down_ = true;
-        mouse_button_ = e.button;
+        mouse_button_ = e.button();
         mouse_shift_ = (e.modifiers & kModShift) != 0;
         mouse_dragging_ = false;
         mouse_x_ = mouse_start_x_ = e.x;
@@ -136,7 +138,7 @@ void GestureRecognizer::mouse(const InputEvent& e, std::vector<Gesture>& out) {
         return;
     }
     if (!mouse_down_) return;
-    if (e.kind == InputKind::MouseMove) {
+    if (e.type == InputEvent::Type::MouseMove) {
         if (!mouse_dragging_ && distance(e.x, e.y, mouse_start_x_, mouse_start_y_) < 3.0f) return;
         const float dx = e.x - mouse_x_, dy = e.y - mouse_y_;
         mouse_x_ = e.x;
@@ -167,7 +169,7 @@ void GestureRecognizer::mouse(const InputEvent& e, std::vector<Gesture>& out) {
         }
         return;
     }
-    if (e.kind == InputKind::MouseUp && e.button == mouse_button_) {
+    if (e.type == InputEvent::Type::MouseUp && e.button() == mouse_button_) {
         mouse_down_ = false;
         if (mouse_dragging_ && mouse_shift_) {
             Gesture g{GestureKind::DragEnd, e.time, e.x, e.y};

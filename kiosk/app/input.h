@@ -1,24 +1,15 @@
 #pragma once
-// The kiosk's input events, independent of where they come from (evdev touch,
-// GLFW mouse, a replay file). Positions are screen pixels, origin top-left, y
-// down; time is seconds on the caller's monotonic clock.
-#include <cstdint>
+// The kiosk takes the platform's input events as they are (platform/platform.h:
+// touch, mouse, Scroll with dy in notches positive away from the user, keys,
+// modifiers); replay files (replay.h) produce the same events.
+#include "platform/platform.h"
 
 namespace body::kiosk {
 
-enum class InputKind : uint8_t { TouchDown, TouchMove, TouchUp, MouseDown, MouseMove, MouseUp, Wheel, Key };
-enum class MouseButton : uint8_t { Left, Middle, Right };
-enum Modifier : uint32_t { kModShift = 1, kModCtrl = 2, kModAlt = 4 };
-
-struct InputEvent {
-    InputKind kind = InputKind::TouchMove;
-    double time = 0.0;
-    int id = 0;  // touch contact id (unique while the finger is down)
-    float x = 0.0f, y = 0.0f;
-    MouseButton button = MouseButton::Left;
-    uint32_t modifiers = 0;
-    float wheel = 0.0f;  // notches, positive away from the user (zoom in)
-    int key = 0;         // platform key code (unused by the kiosk except the admin build's Escape)
-};
+using platform::InputEvent;
+using platform::kModAlt;
+using platform::kModCtrl;
+using platform::kModShift;
+using platform::MouseButton;
 
 }  // namespace body::kiosk

@@ -172,9 +172,9 @@ void KioskApp::handle(const InputEvent& e) {
     last_input_ = e.time;
     reset_done_ = false;
     mode_ = KioskMode::Interactive;
-    const bool down = e.kind == InputKind::TouchDown || e.kind == InputKind::MouseDown;
-    const bool up = e.kind == InputKind::TouchUp || e.kind == InputKind::MouseUp;
-    const bool is_mouse = e.kind == InputKind::MouseDown || e.kind == InputKind::MouseUp;
+    const bool down = e.type == InputEvent::Type::TouchDown || e.type == InputEvent::Type::MouseDown;
+    const bool up = e.type == InputEvent::Type::TouchUp || e.type == InputEvent::Type::MouseUp;
+    const bool is_mouse = e.type == InputEvent::Type::MouseDown || e.type == InputEvent::Type::MouseUp;
     const int touch_id = is_mouse ? -1 : e.id;
     if (down) admin_tap(e.x, e.y, e.time);
 
@@ -188,7 +188,7 @@ void KioskApp::handle(const InputEvent& e) {
     }
     for (size_t i = 0; i < ui_touches_.size(); ++i) {
         if (ui_touches_[i].first != touch_id) continue;
-        if (e.kind == InputKind::TouchMove || e.kind == InputKind::MouseMove) return;
+        if (e.type == InputEvent::Type::TouchMove || e.type == InputEvent::Type::MouseMove) return;
         if (up) {
             const ControlId id = ui_touches_[i].second;
             ui_touches_.erase(ui_touches_.begin() + static_cast<long>(i));

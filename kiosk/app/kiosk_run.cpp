@@ -8,7 +8,6 @@
 
 #include "kiosk/app/kiosk_app.h"
 #include "kiosk/app/overlay.h"
-#include "kiosk/app/platform_input.h"
 #include "kiosk/app/replay.h"
 #include "kiosk/render/image.h"
 #include "kiosk/scene/scene_models.h"
@@ -124,9 +123,12 @@ bool KioskLoop::feed_input(double now) {
         return keep;
     }
     for (const auto& e : events_) {
-        if (e.type == platform::InputEvent::Type::Quit) keep = false;
-        // Modifiers included (Shift+click selects, thesis B.2); keys as in a replay.
-        if (auto k = from_platform(e)) app_->handle(*k);
+        // Quit is the loop's business; the rest, modifiers included (Shift+click
+        // selects, thesis B.2), goes to the app as a replay's events do.
+        if (e.type == InputEvent::Type::Quit)
+            keep = false;
+        else
+            app_->handle(e);
     }
     return keep;
 }

@@ -19,7 +19,9 @@ namespace {
 constexpr std::pair<const char*, uint32_t> kModifierNames[] = {
     {"shift", kModShift}, {"ctrl", kModCtrl}, {"alt", kModAlt}};
 
-bool parse_button(const std::string& s, MouseButton& b) {
+// A mouse event's button, kept in its id as the platform numbers buttons.
+bool parse_button(const std::string& s, InputEvent& e) {
+    MouseButton b;
     if (s == "left")
         b = MouseButton::Left;
     else if (s == "middle")
@@ -28,15 +30,16 @@ bool parse_button(const std::string& s, MouseButton& b) {
         b = MouseButton::Right;
     else
         return false;
+    e.id = static_cast<int>(b);
     return true;
 }
 
-bool parse_kind(const std::string& s, InputKind& k) {
-    static const std::pair<const char*, InputKind> kinds[] = {
-        {"down", InputKind::TouchDown},       {"move", InputKind::TouchMove},
-        {"up", InputKind::TouchUp},           {"mouse-down", InputKind::MouseDown},
-        {"mouse-move", InputKind::MouseMove}, {"mouse-up", InputKind::MouseUp},
-        {"wheel", InputKind::Wheel},          {"key", InputKind::Key},
+bool parse_kind(const std::string& s, InputEvent::Type& k) {
+    static const std::pair<const char*, InputEvent::Type> kinds[] = {
+        {"down", InputEvent::Type::TouchDown},       {"move", InputEvent::Type::TouchMove},
+        {"up", InputEvent::Type::TouchUp},           {"mouse-down", InputEvent::Type::MouseDown},
+        {"mouse-move", InputEvent::Type::MouseMove}, {"mouse-up", InputEvent::Type::MouseUp},
+        {"wheel", InputEvent::Type::Scroll},         {"key", InputEvent::Type::Key},
     };
     for (const auto& [name, kind] : kinds) {
         if (s == name) {
@@ -80,21 +83,22 @@ Result<Replay> parse_text(const std::string& text, const std::string& source) {
         }
         InputEvent e;
         e.time = t;
-        if (!parse_kind(word, e.kind)) return input_error(where + "unknown event type '" + word + "'");
+        if (!parse_kind(word, e.type)) return input_error(where + "unknown event type '" + word + "'");
         bool ok = true;
-        switch (e.kind) {
-            case InputKind::TouchDown:
-            case InputKind::TouchMove:
-            case InputKind::TouchUp: ok = static_cast<bool>(ls >> e.id >> e.x >> e.y); break;
-            case InputKind::MouseDown:
-            case InputKind::MouseUp: {
+        switch (e.type) {
+            case InputEvent::Type::TouchDown:
+            case InputEvent::Type::TouchMove:
+            case InputEvent::Type::TouchUp: ok = static_cast<bool>(ls >> e.id >> e.x >> e.y); break;
+            case InputEvent::Type::MouseDown:
+            case InputEvent::Type::MouseUp: {
                 std::string b;
-                ok = (ls >> b >> e.x >> e.y) && parse_button(b, e.button);
+                ok = (ls >> b >> e.x >> e.y) && parse_button(b, e);
                 break;
             }
-            case InputKind::MouseMove: ok = static_cast<bool>(ls >> e.x >> e.y); break;
-            case InputKind::Wheel: ok = static_cast<bool>(ls >> e.x >> e.y >> e.wheel); break;
-            case InputKind::Key: ok = static_cast<bool>(ls >> e.key); break;
+            case InputEvent::Type::MouseMove: ok = static_cast<bool>(ls >> e.x >> e.y); break;
+            case InputEvent::Type::Scroll: ok = static_cast<bool>(ls >> e.x >> e.y >> e.dy); break;
+            case InputEvent::Type::Key: ok = static_cast<bool>(ls >> e.key); break;
+            case InputEvent::Type::Quit: ok = false; break;  // not a replay event
         }
         if (!ok) return input_error(where + "bad arguments for '" + word + "' (see kiosk/app/replay.h)");
         std::string mod;
@@ -106,6 +110,7 @@ Result<Replay> parse_text(const std::string& text, const std::string& source) {
             }
             e.modifiers |= it->second;
         }
+        e.pressed = e.type == InputEvent::Type::Key;  // a replayed key is a press
         r.events.push_back(e);
         r.end_time = std::max(r.end_time, t);
     }
@@ -146,14 +151,14 @@ Result<Replay> parse_json(const std::string& text, const std::string& source) {
         if (!std::isfinite(e.time) || e.time < last) return input_error(where + ".t: time goes backwards");
         last = e.time;
         const std::string type = v["type"].get<std::string>();
-        if (!parse_kind(type, e.kind)) return input_error(where + ".type: unknown event type '" + type + "'");
+        if (!parse_kind(type, e.type)) return input_error(where + ".type: unknown event type '" + type + "'");
         auto num = [&](const char* key, float& out) {
             if (!v.contains(key)) return true;
             if (!v[key].is_number()) return false;
             out = v[key].get<float>();
             return true;
         };
-        if (!num("x", e.x) || !num("y", e.y) || !num("wheel", e.wheel)) {
+        if (!num("x", e.x) || !num("y", e.y) || !num("wheel", e.dy)) {
             return input_error(where + ": x, y and wheel must be numbers");
         }
         if (v.contains("id")) {
@@ -164,8 +169,7 @@ Result<Replay> parse_json(const std::string& text, const std::string& source) {
             if (!v["key"].is_number_integer()) return input_error(where + ".key: expected an integer");
             e.key = v["key"].get<int>();
         }
-        if (v.contains("button") &&
-            (!v["button"].is_string() || !parse_button(v["button"].get<std::string>(), e.button))) {
+        if (v.contains("button") && (!v["button"].is_string() || !parse_button(v["button"].get<std::string>(), e))) {
             return input_error(where + ".button: expected left, middle or right");
         }
         for (const auto& [name, bit] : kModifierNames) {
@@ -173,6 +177,7 @@ Result<Replay> parse_json(const std::string& text, const std::string& source) {
             if (!v[name].is_boolean()) return input_error(where + "." + name + ": expected true or false");
             if (v[name].get<bool>()) e.modifiers |= bit;
         }
+        e.pressed = e.type == InputEvent::Type::Key;  // a replayed key is a press
         r.events.push_back(e);
         r.end_time = std::max(r.end_time, e.time);
     }

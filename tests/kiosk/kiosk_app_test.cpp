@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "kiosk_test_scene.h"
+#include "tests/platform/input_events.h"
 
 namespace body::kiosk {
 namespace {
@@ -351,6 +352,32 @@ TEST(KioskApp, ModelsThatFailedToLoadAreSkipped) {
     EXPECT_FALSE(app.visible(1));
     EXPECT_EQ(app.pick(640, 400), -1);  // nothing where the missing model would be
     EXPECT_EQ(app.model(1).triangles, 0u);
+}
+
+// The platform's events reach the app as they are: a Shift+click from the
+// backend selects (thesis B.2), a plain or Ctrl+click does not.
+TEST(KioskApp, ShiftClickFromTheBackendSelectsAPlainOneDoesNot) {
+    using T = InputEvent::Type;
+    KioskApp app = make_app();
+    app.update(0.0);
+    auto click = [&](double t, uint32_t modifiers) {
+        for (T type : {T::MouseDown, T::MouseUp})
+            app.handle(platform::test::input_event(type, 0, 640, 400, t, modifiers));
+        app.update(t + 0.1);
+    };
+    click(1.0, 0);
+    EXPECT_EQ(app.selected(), -1);
+    click(2.0, kModCtrl);
+    EXPECT_EQ(app.selected(), -1);
+    click(3.0, kModShift);
+    EXPECT_EQ(app.selected(), 1);
+}
+
+TEST(KioskApp, MouseButtonsAreNumberedAsThePlatformNumbersThem) {
+    using T = InputEvent::Type;
+    EXPECT_EQ(platform::test::input_event(T::MouseDown, 0, 0, 0, 0).button(), MouseButton::Left);
+    EXPECT_EQ(platform::test::input_event(T::MouseDown, 1, 0, 0, 0).button(), MouseButton::Right);
+    EXPECT_EQ(platform::test::input_event(T::MouseDown, 2, 0, 0, 0).button(), MouseButton::Middle);
 }
 
 }  // namespace

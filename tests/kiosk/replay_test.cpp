@@ -25,13 +25,13 @@ TEST(Replay, TextAndJsonAgree) {
         EXPECT_EQ(r->height, 480);
         EXPECT_DOUBLE_EQ(r->end_time, 3.5);
         ASSERT_EQ(r->events.size(), 6u);
-        EXPECT_EQ(r->events[1].kind, InputKind::TouchMove);
+        EXPECT_EQ(r->events[1].type, InputEvent::Type::TouchMove);
         EXPECT_FLOAT_EQ(r->events[1].x, 11.5f);
-        EXPECT_EQ(r->events[2].button, MouseButton::Middle);
+        EXPECT_EQ(r->events[2].button(), MouseButton::Middle);
         EXPECT_EQ(r->events[2].modifiers, kModShift | kModCtrl);
-        EXPECT_FLOAT_EQ(r->events[3].wheel, -1.0f);
+        EXPECT_FLOAT_EQ(r->events[3].dy, -1.0f);
         EXPECT_EQ(r->events[4].key, 65);
-        EXPECT_EQ(r->events[5].kind, InputKind::TouchUp);
+        EXPECT_EQ(r->events[5].type, InputEvent::Type::TouchUp);
     }
 }
 
