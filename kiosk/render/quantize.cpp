@@ -17,8 +17,7 @@ glm::u16vec3 position_code(const Vec3f& origin, const Vec3f& scale, const Vec3f&
 }
 
 uint16_t box_code(float p, float origin, float extent) {
-    return extent > 0.0f ? static_cast<uint16_t>(std::lround(std::clamp((p - origin) / extent, 0.0f, 1.0f) * 65535.0f))
-                         : uint16_t{0};
+    return extent > 0.0f ? pm::quantize16(p, origin, origin + extent) : uint16_t{0};
 }
 
 uint32_t pack_normal(const Vec3f& n) {
@@ -29,17 +28,10 @@ uint32_t pack_normal(const Vec3f& n) {
     return q(n.x) | (q(n.y) << 10) | (q(n.z) << 20);
 }
 
-uint32_t pack_octahedral(const Vec3f& n) {
-    const float l1 = std::abs(n.x) + std::abs(n.y) + std::abs(n.z);
-    glm::vec2 p = l1 > 0.0f ? glm::vec2(n.x, n.y) / l1 : glm::vec2(0.0f);
-    if (n.z < 0.0f) {
-        const glm::vec2 s(p.x >= 0.0f ? 1.0f : -1.0f, p.y >= 0.0f ? 1.0f : -1.0f);
-        p = (1.0f - glm::abs(glm::vec2(p.y, p.x))) * s;
-    }
-    auto q = [](float v) {
-        return static_cast<uint32_t>(static_cast<int>(std::lround(std::clamp(v, -1.0f, 1.0f) * 127.0f))) & 0xffu;
-    };
-    return q(p.x) | (q(p.y) << 8);
+uint32_t pack_normal_code(const Vec3f& n) {
+    uint8_t c[2];
+    encode_normal_code(n, c);
+    return uint32_t{c[0]} | (uint32_t{c[1]} << 8);
 }
 
 void encode_normal_code(const Vec3f& n, uint8_t out[2]) { pm::oct_encode8(n.x, n.y, n.z, out); }

@@ -73,14 +73,10 @@ ModelSource::ModelSource(std::string name, Vec3f color, std::vector<Vec3f> posit
         box_min_ = glm::min(box_min_, p);
         box_max_ = glm::max(box_max_, p);
     }
-    const Vec3f extent = box_max_ - box_min_;
     position_codes_.resize(positions.size() * 3);
     for (size_t v = 0; v < positions.size(); ++v)
         for (int k = 0; k < 3; ++k)
-            position_codes_[v * 3 + static_cast<size_t>(k)] =
-                extent[k] > 0.0f ? static_cast<uint16_t>(std::lround(
-                                       std::clamp((positions[v][k] - box_min_[k]) / extent[k], 0.0f, 1.0f) * 65535.0f))
-                                 : uint16_t{0};
+            position_codes_[v * 3 + static_cast<size_t>(k)] = pm::quantize16(positions[v][k], box_min_[k], box_max_[k]);
     std::vector<Vec3f>().swap(positions);
     full_code_ = encode_triangles(indices_);
 }
@@ -110,6 +106,7 @@ std::span<const Vec3f> ModelSource::positions() const {
         pm_->positions(0, std::span<Vec3f>(positions_).first(pm_->available_level() + pm_->base_vertex_count()));
         positions_decoded_ = true;
     } else if (!positions_decoded_) {
+        // Decoded in single precision as mesh.vert decodes them: the positions the GPU draws.
         const Vec3f scale = (box_max_ - box_min_) / 65535.0f;
         positions_.resize(vertex_count_);
         for (size_t v = 0; v < vertex_count_; ++v) {

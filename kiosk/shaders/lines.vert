@@ -34,15 +34,10 @@ uniform float u_cos_crease;  // cosine of the crease threshold
 uniform vec2 u_viewport;     // pixels
 uniform float u_width_px;    // silhouette width; creases 0.7 of it
 
-// 8:8 signed octahedral code (x low byte) to a unit vector (Meyer et al. 2010).
-vec3 unpack_normal(uint bits) {
-    vec2 e = vec2(uvec2(bits, bits >> 8u) & uvec2(255u));
-    e -= step(128.0, e) * 256.0;
-    e = max(e / 127.0, vec2(-1.0));
-    vec3 n = vec3(e, 1.0 - abs(e.x) - abs(e.y));
-    if (n.z < 0.0) n.xy = (1.0 - abs(n.yx)) * vec2(n.x >= 0.0 ? 1.0 : -1.0, n.y >= 0.0 ? 1.0 : -1.0);
-    return normalize(n);
-}
+#include "normal_code.glsl"
+
+// A face normal as its 8:8 octahedral code, x in the low byte.
+vec3 unpack_normal(uint bits) { return oct_decode8(vec2(uvec2(bits, bits >> 8u) & uvec2(255u))); }
 
 out highp vec2 v_rect;  // (1, 1) is the rectangle's far corner; lines.frag discards beyond
 

@@ -46,14 +46,7 @@ out vec3 v_view_normal;
 // software rasterizer pays per triangle for every varying).
 out vec4 v_hatch;
 
-// Meyer et al. 2010 octahedral decode; pm::oct_decode8 (shared/pm/bpm_format.cpp).
-vec3 oct_decode8(vec2 code) {
-    vec2 e = code * (2.0 / 255.0) - 1.0;
-    float z = 1.0 - abs(e.x) - abs(e.y);
-    float t = max(-z, 0.0);  // folding the lower hemisphere back
-    e += mix(vec2(t), vec2(-t), greaterThanEqual(e, vec2(0.0)));
-    return normalize(vec3(e, z));
-}
+#include "normal_code.glsl"
 
 void main() {
     vec3 p = u_pos_origin + u_pos_scale * (gl_VertexID >= u_morph_begin ? mix(a_morph, a_position, u_morph) : a_position);

@@ -41,8 +41,8 @@ struct EdgeEncoder {
     }
     CodedEdge classify(const EdgeRecord& e) const {
         const Vec3f n0 = face_normal(e.v0, e.v1, e.a);
-        const uint32_t c0 = pack_octahedral(n0);
-        const uint32_t c1 = pack_octahedral(e.b == kNoVertex ? -n0 : face_normal(e.v1, e.v0, e.b));
+        const uint32_t c0 = pack_normal_code(n0);
+        const uint32_t c1 = pack_normal_code(e.b == kNoVertex ? -n0 : face_normal(e.v1, e.v0, e.b));
         return CodedEdge{e, c0, c1};
     }
     // Edges between coplanar faces can never be drawn: both faces face the eye
