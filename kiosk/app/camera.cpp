@@ -115,6 +115,22 @@ glm::vec3 OrbitCamera::eye() const {
 
 glm::mat4 OrbitCamera::view() const { return glm::lookAt(eye(), pose_.target, glm::vec3(0.0f, 1.0f, 0.0f)); }
 
+render::View OrbitCamera::render_view(const glm::vec2& shift_px, const glm::vec3& scene_center,
+                                      float scene_radius) const {
+    const float units_per_px = 2.0f * pose_.distance * std::tan(fov_y_ * 0.5f) / static_cast<float>(height_);
+    const glm::mat4 v = view();
+    const glm::vec3 right(v[0][0], v[1][0], v[2][0]), up(v[0][1], v[1][1], v[2][1]);
+    const glm::vec3 shift = (-shift_px.x * right + shift_px.y * up) * units_per_px;
+    render::View rv;
+    rv.eye = eye() + shift;
+    rv.target = pose_.target + shift;
+    rv.fov_y_deg = glm::degrees(fov_y_);
+    const float dist = glm::length(rv.eye - scene_center);
+    rv.near_plane = std::max(dist - scene_radius * 1.5f, pose_.distance * 0.01f);
+    rv.far_plane = dist + scene_radius * 1.5f + pose_.distance;
+    return rv;
+}
+
 glm::mat4 OrbitCamera::projection() const {
     const float aspect = static_cast<float>(width_) / static_cast<float>(height_);
     return glm::perspective(fov_y_, aspect, std::max(pose_.distance * 0.01f, 1e-4f), pose_.distance * 20.0f);

@@ -7,6 +7,7 @@
 // Angles are radians, lengths scene units (mm), screen deltas pixels.
 #include <glm/glm.hpp>
 
+#include "kiosk/render/view.h"
 #include "shared/geometry.h"
 
 namespace body::kiosk {
@@ -52,6 +53,10 @@ public:
     int height() const { return height_; }
     glm::vec3 eye() const;
     glm::mat4 view() const;
+    // What the renderer draws from: this camera with its target and eye moved
+    // by `shift_px` screen pixels (right, up; the kiosk's anti burn-in drift),
+    // near and far hugging the sphere (center, radius) of what is drawn.
+    render::View render_view(const glm::vec2& shift_px, const glm::vec3& scene_center, float scene_radius) const;
     glm::mat4 projection() const;
     // The ray through pixel (x, y) (origin top-left).
     Ray ray(float x, float y) const;

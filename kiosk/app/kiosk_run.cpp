@@ -35,7 +35,7 @@ private:
     void start_app();
     bool feed_input(double now);
     bool bind_models(long frame, double now, size_t& triangles);
-    render::Camera camera_view(double now) const;
+    render::View camera_view(double now) const;
     void draw_overlay(const render::FrameOptions& frame);
     bool write_screenshot(const render::FrameOptions& frame);
     void after_first_frame();
@@ -158,25 +158,11 @@ bool KioskLoop::bind_models(long frame, double now, size_t& triangles) {
 }
 
 // The app's orbit camera as the renderer's view, with the anti burn-in drift as a pan of a few pixels.
-render::Camera KioskLoop::camera_view(double now) const {
-    const OrbitCamera& cam = app_->camera();
-    const glm::vec2 drift = app_->drift(now);
-    const float units_per_px =
-        2.0f * cam.pose().distance * std::tan(cam.fov_y() * 0.5f) / static_cast<float>(surface_.height());
-    const glm::mat4 view = cam.view();
-    const glm::vec3 right(view[0][0], view[1][0], view[2][0]), up(view[0][1], view[1][1], view[2][1]);
-    const glm::vec3 shift = (-drift.x * right + drift.y * up) * units_per_px;
-    render::Camera rc;
-    rc.eye = cam.eye() + shift;
-    rc.target = cam.pose().target + shift;
-    rc.fov_y_deg = glm::degrees(cam.fov_y());
-    Vec3f sc;
-    float sr = 0.0f;
-    renderer_.scene_bounds(sc, sr);
-    const float dist = glm::length(rc.eye - sc);
-    rc.near_plane = std::max(dist - sr * 1.5f, cam.pose().distance * 0.01f);
-    rc.far_plane = dist + sr * 1.5f + cam.pose().distance;
-    return rc;
+render::View KioskLoop::camera_view(double now) const {
+    Vec3f center;
+    float radius = 0.0f;
+    renderer_.scene_bounds(center, radius);
+    return app_->camera().render_view(app_->drift(now), center, radius);
 }
 
 // The controls and the selected model's label card.
@@ -247,7 +233,7 @@ int KioskLoop::run() {
         fo.width = surface_.width();
         fo.height = surface_.height();
         fo.framebuffer = surface_.framebuffer();
-        const render::Camera view = camera_view(now);
+        const render::View view = camera_view(now);
         stream_locks.clear();  // drawing needs only the GL buffers
         renderer_.render(view, render::Lighting{}, fo);
         draw_overlay(fo);

@@ -131,7 +131,7 @@ private:
     const BenchmarkOptions& options_;
     render::Renderer renderer_;
     render::FrameOptions frame_;
-    render::Camera camera_;
+    render::View camera_;
     GpuTimer* gpu_timer_ = nullptr;
     std::vector<ModelSource> loaded_;
     ModelSource* source_ = nullptr;
@@ -162,7 +162,7 @@ Status Benchmark::draw_empty_scene() {
     const uint32_t triangle[] = {0, 1, 2};
     auto one = renderer_.add_model({corners, {}, triangle}, "one triangle");
     if (!one) return one.error();
-    const render::Camera camera = render::Camera::framing(Vec3f(0.0f), 1.5f);
+    const render::View camera = render::View::framing(Vec3f(0.0f), 1.5f);
     for (Style s :
          {Style::Baseline, Style::Smooth, Style::Wireframe, Style::Lines, Style::Hatching, Style::Hatching2Tone}) {
         renderer_.state(one.value())->style = s;
@@ -206,7 +206,7 @@ Status Benchmark::load_model() {
     Vec3f center;
     float radius = 0;
     renderer_.bounds(id_, center, radius);
-    camera_ = render::Camera::framing(center, radius);
+    camera_ = render::View::framing(center, radius);
     return ok_status();
 }
 

@@ -36,8 +36,7 @@ ModelBinding binding_of(const SceneModels& models, size_t i, const ViewOptions& 
 }
 
 // The camera framing the visible models' box from the scene's direction.
-render::Camera framing(const render::Renderer& renderer, const scene::Scene& scene, const ViewOptions& o,
-                       float aspect) {
+render::View framing(const render::Renderer& renderer, const scene::Scene& scene, const ViewOptions& o, float aspect) {
     const auto [azimuth, polar] = o.view_deg.value_or(std::make_pair(scene.camera.azimuth_deg, scene.camera.polar_deg));
     Vec3f center;
     float radius = 0;
@@ -46,7 +45,7 @@ render::Camera framing(const render::Renderer& renderer, const scene::Scene& sce
     const Vec3f dir(std::sin(po) * std::sin(az), std::cos(po), std::sin(po) * std::cos(az));
     Vec3f lo(-1.0f), hi(1.0f);
     if (renderer.scene_box(lo, hi)) radius = 0.5f * glm::length(hi - lo);
-    render::Camera camera = render::Camera::framing_box(lo, hi, dir, aspect, scene.camera.fov_deg);
+    render::View camera = render::View::framing_box(lo, hi, dir, aspect, scene.camera.fov_deg);
     if (scene.camera.distance > 0) {
         camera.target = Vec3f(scene.camera.target[0], scene.camera.target[1], scene.camera.target[2]);
         camera.eye = camera.target + dir * scene.camera.distance;
@@ -57,8 +56,7 @@ render::Camera framing(const render::Renderer& renderer, const scene::Scene& sce
 }
 
 // Draws, reads back (before presenting: after a swap the back buffer is undefined), downsamples and writes.
-Status shoot(platform::Surface& surface, render::Renderer& renderer, const render::Camera& camera,
-             const ViewOptions& o) {
+Status shoot(platform::Surface& surface, render::Renderer& renderer, const render::View& camera, const ViewOptions& o) {
     render::FrameOptions fo;
     fo.line_width_px = static_cast<float>(o.line_width) * static_cast<float>(o.ssaa);
     fo.xray_unselected = o.xray;

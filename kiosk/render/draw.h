@@ -40,7 +40,7 @@ private:
 struct Frame {
     glm::mat4 view, projection;
     glm::vec4 view_ray;  // gl_FragCoord -> view ray (lighting.glsl)
-    const Camera* camera;
+    const View* camera;
     const Lighting* lighting;
     const FrameOptions* options;
     bool flush_large_draws = false;  // RendererState::flush_large_draws

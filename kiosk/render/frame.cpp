@@ -28,7 +28,7 @@ static_assert(static_cast<size_t>(Style::Smooth) == 0 && static_cast<size_t>(Sty
 // Clears the target and sets the GL state every style starts from; the frame's
 // matrices and the view ray through pixel (x, y): ((2x/w - 1) / P00, (2y/h -
 // 1) / P11, -1) for a symmetric perspective.
-Frame begin_frame(const RendererState& s, const Camera& camera, const Lighting& lighting, const FrameOptions& o) {
+Frame begin_frame(const RendererState& s, const View& camera, const Lighting& lighting, const FrameOptions& o) {
     glBindFramebuffer(GL_FRAMEBUFFER, o.framebuffer);
     glViewport(0, 0, o.width, o.height);
     glClearColor(o.background.r, o.background.g, o.background.b, 1.0f);
@@ -117,7 +117,7 @@ void draw_transparent(RendererState& s, Frame& f, const std::vector<Model*>& tra
 
 }  // namespace
 
-void Renderer::render(const Camera& camera, const Lighting& lighting, const FrameOptions& o) {
+void Renderer::render(const View& camera, const Lighting& lighting, const FrameOptions& o) {
     RendererState& s = *s_;
     s.stats = FrameStats{};
     Frame f = begin_frame(s, camera, lighting, o);

@@ -10,7 +10,7 @@
 //   Renderer r;  r.init();
 //   ModelId id = r.add_model({positions, normals, indices}, "liver").value();
 //   r.state(id)->style = Style::Hatching;
-//   r.render(camera, lighting, frame);  surface->present();
+//   r.render(view, lighting, frame);  surface->present();
 //
 // Models: positions/normals/indices are copied into GL buffers sized once to
 // the given arrays (their capacity; see MeshData), then patched with update_model()
@@ -42,8 +42,8 @@
 #include <utility>
 #include <vector>
 
-#include "kiosk/render/camera.h"
 #include "kiosk/render/mesh_data.h"
+#include "kiosk/render/view.h"
 #include "shared/error.h"
 #include "shared/geometry.h"
 #include "shared/style.h"
@@ -168,7 +168,7 @@ public:
     bool scene_box(Vec3f& lo, Vec3f& hi) const;
 
     // Draws one frame into options.framebuffer.
-    void render(const Camera& camera, const Lighting& lighting, const FrameOptions& options);
+    void render(const View& view, const Lighting& lighting, const FrameOptions& options);
     const FrameStats& last_frame_stats() const;
     // Bytes of GL buffers and textures this renderer created (models, lazily
     // built edge lists and data textures, the tonal art map).

@@ -88,11 +88,11 @@ render::FrameOptions RenderFixture::frame() const {
     return o;
 }
 
-render::Image RenderFixture::draw(const render::Camera& camera, const render::Lighting& lighting) {
+render::Image RenderFixture::draw(const render::View& camera, const render::Lighting& lighting) {
     return draw(camera, lighting, frame());
 }
 
-render::Image RenderFixture::draw(const render::Camera& camera, const render::Lighting& lighting,
+render::Image RenderFixture::draw(const render::View& camera, const render::Lighting& lighting,
                                   const render::FrameOptions& o) {
     surface_->make_current();  // another fixture may have been current
     renderer_.render(camera, lighting, o);

@@ -28,8 +28,8 @@ public:
     const std::string& why() const { return why_; }
     render::Renderer& renderer() { return renderer_; }
     render::FrameOptions frame() const;
-    render::Image draw(const render::Camera& camera, const render::Lighting& lighting = {});
-    render::Image draw(const render::Camera& camera, const render::Lighting& lighting, const render::FrameOptions& o);
+    render::Image draw(const render::View& camera, const render::Lighting& lighting = {});
+    render::Image draw(const render::View& camera, const render::Lighting& lighting, const render::FrameOptions& o);
 
 private:
     std::unique_ptr<platform::Surface> surface_;

@@ -139,7 +139,7 @@ TEST(RenderNormalCodes, CodesDrawLikeTheirDecodedFloats) {
         pm::oct_decode8(&codes[v * 2], n);
         decoded[v] = Vec3f(n[0], n[1], n[2]);
     }
-    const Camera cam = Camera::framing(Vec3f(0.0f), 1.05f, Vec3f(0.3f, 0.5f, 1.0f));
+    const View cam = View::framing(Vec3f(0.0f), 1.05f, Vec3f(0.3f, 0.5f, 1.0f));
     auto draw_one = [&](const MeshData& mesh) {
         auto id = f.renderer().add_model(mesh, "sphere");
         EXPECT_TRUE(id.ok());

@@ -61,7 +61,7 @@ void patched_buffer_draws_like_fresh_uploads(BufferAccess access) {
     given.release_arrays();
     // The source keeps no indices now: its uploads patch the buffer.
     EXPECT_TRUE(given.mesh().indices.empty());
-    const Camera cam = Camera::framing(Vec3f(0.0f), 1.05f, Vec3f(0.3f, 0.6f, 1.0f));
+    const View cam = View::framing(Vec3f(0.0f), 1.05f, Vec3f(0.3f, 0.6f, 1.0f));
     constexpr Style kStyles[] = {Style::Smooth, Style::Lines, Style::Wireframe};
     const std::vector<double> lods = {0.1, 0.5, 0.02, 1.0, 0.3, 0.3, 0.05};
     std::vector<Image> patched;  // per LOD, per style
@@ -155,7 +155,7 @@ TEST(RenderReleasedIndices, UpdateWithoutNormalsOrBeyondTheBufferIsRefused) {
         called = window.size() == s.indices.size() - 3 && first == 3;
         for (uint32_t& i : window) i = 0;  // degenerate triangles: only the first one is left
     };
-    const Camera cam = Camera::framing(Vec3f(0.0f), 1.0f);
+    const View cam = View::framing(Vec3f(0.0f), 1.0f);
     const Image before = f.draw(cam);
     ASSERT_TRUE(f.renderer().update_model(id.value(), m, Dirty{}).ok());
     EXPECT_TRUE(called);

@@ -75,15 +75,15 @@ std::vector<ModelId> two_shapes(Renderer& r, Style style) {
     return {a.value(), b.value()};
 }
 
-Camera scene_camera(Renderer& r) {
+View scene_camera(Renderer& r) {
     Vec3f c;
     float radius = 0;
     r.scene_bounds(c, radius);
-    return Camera::framing(c, radius, Vec3f(0.0f, 0.2f, 1.0f));
+    return View::framing(c, radius, Vec3f(0.0f, 0.2f, 1.0f));
 }
 
 // The two shapes in one style and the camera that frames them.
-Camera two_shapes_framed(Renderer& r, Style style) {
+View two_shapes_framed(Renderer& r, Style style) {
     two_shapes(r, style);
     return scene_camera(r);
 }
@@ -183,7 +183,7 @@ TEST(RenderGolden, SelectionAndXray) {
 TEST(RenderGolden, MetricCatchesAMissingLinePass) {
     RenderFixture f;
     REQUIRE_GL(f);
-    const Camera cam = two_shapes_framed(f.renderer(), Style::Lines);
+    const View cam = two_shapes_framed(f.renderer(), Style::Lines);
     Image with = f.draw(cam);
     FrameOptions o = f.frame();
     o.ink = o.paper;  // edges drawn invisibly = no line pass
@@ -197,7 +197,7 @@ TEST(RenderGolden, MetricCatchesAMissingLinePass) {
 TEST(RenderGolden, MetricCatchesAWrongTone) {
     RenderFixture f;
     REQUIRE_GL(f);
-    const Camera cam = two_shapes_framed(f.renderer(), Style::Hatching);
+    const View cam = two_shapes_framed(f.renderer(), Style::Hatching);
     Image right = f.draw(cam);
     Lighting darker;
     darker.key -= 0.15f;  // about one tone darker
@@ -212,7 +212,7 @@ TEST(RenderProperty, SilhouettePixelsLieOnTheOutline) {
     test::GenMesh sphere = test::icosphere(4);
     auto id = f.renderer().add_model(sphere.data(), "sphere");
     ASSERT_TRUE(id.ok());
-    Camera cam = Camera::framing(Vec3f(0.0f), 1.3f, Vec3f(0.3f, 0.2f, 1.0f));
+    View cam = View::framing(Vec3f(0.0f), 1.3f, Vec3f(0.3f, 0.2f, 1.0f));
     FrameOptions o = f.frame();
     // The object's outline from a flat fill.
     f.renderer().state(id.value())->style = Style::Baseline;
@@ -264,7 +264,7 @@ TEST(RenderProperty, CubeCreasesAreDrawnInside) {
     ASSERT_TRUE(id.ok());
     f.renderer().state(id.value())->style = Style::Lines;
     // Looking at a corner: the three visible creases meet in the middle.
-    Image img = f.draw(Camera::framing(Vec3f(0.0f), 1.75f, Vec3f(1.0f, 1.0f, 1.0f)));
+    Image img = f.draw(View::framing(Vec3f(0.0f), 1.75f, Vec3f(1.0f, 1.0f, 1.0f)));
     int dark_near_centre = 0;
     for (int y = 120; y < 136; ++y)
         for (int x = 120; x < 136; ++x) dark_near_centre += test::luma(img.at(x, y)) < 128;
@@ -272,7 +272,7 @@ TEST(RenderProperty, CubeCreasesAreDrawnInside) {
     // With a 100 degree threshold the 90 degree creases disappear.
     FrameOptions o = f.frame();
     o.crease_angle_deg = 100.0f;
-    Image none = f.draw(Camera::framing(Vec3f(0.0f), 1.75f, Vec3f(1.0f, 1.0f, 1.0f)), {}, o);
+    Image none = f.draw(View::framing(Vec3f(0.0f), 1.75f, Vec3f(1.0f, 1.0f, 1.0f)), {}, o);
     int dark = 0;
     for (int y = 120; y < 136; ++y)
         for (int x = 120; x < 136; ++x) dark += test::luma(none.at(x, y)) < 128;
@@ -295,7 +295,7 @@ TEST(RenderProperty, LinesLeaveOutEdgesBetweenCoplanarFaces) {
             const uint32_t a = y * kRow + x, b = a + 1, c = a + kRow, d = c + 1;
             grid.indices.insert(grid.indices.end(), {a, b, d, a, d, c});
         }
-    const Camera camera = Camera::framing(Vec3f(0.0f), 3.0f, Vec3f(0.2f, 0.3f, 1.0f));
+    const View camera = View::framing(Vec3f(0.0f), 3.0f, Vec3f(0.2f, 0.3f, 1.0f));
     auto flat = f.renderer().add_model(grid.data(), "flat grid");
     ASSERT_TRUE(flat.ok());
     f.renderer().state(flat.value())->style = Style::Lines;
@@ -342,7 +342,7 @@ TEST(RenderProperty, LinesLeaveOutEdgesOfAPlaneThatOnlyRoundingTilts) {
     auto id = f.renderer().add_model(plane.data(), "rounded plane");
     ASSERT_TRUE(id.ok());
     f.renderer().state(id.value())->style = Style::Lines;
-    (void)f.draw(Camera::framing(Vec3f(5.0f), 10.0f, Vec3f(0.2f, 0.3f, 1.0f)));
+    (void)f.draw(View::framing(Vec3f(5.0f), 10.0f, Vec3f(0.2f, 0.3f, 1.0f)));
     EXPECT_EQ(f.renderer().last_frame_stats().edges, 4u * kQuads + 3u);  // the grid's boundary and the far triangle's
 }
 
@@ -352,7 +352,7 @@ TEST(RenderProperty, LineDataIsGivenBackInAnotherStyleAndRebuiltTheSame) {
     test::GenMesh sphere = test::icosphere(3);
     auto id = f.renderer().add_model(sphere.data(), "sphere");
     ASSERT_TRUE(id.ok());
-    const Camera cam = Camera::framing(Vec3f(0.0f), 1.1f, Vec3f(0.2f, 0.3f, 1.0f));
+    const View cam = View::framing(Vec3f(0.0f), 1.1f, Vec3f(0.2f, 0.3f, 1.0f));
     const size_t without = f.renderer().gpu_bytes();
     for (Style line_style : {Style::Lines, Style::Wireframe}) {
         f.renderer().state(id.value())->style = line_style;
@@ -383,7 +383,7 @@ TEST(RenderProperty, HatchingDarkensMonotonicallyAsTheLightMovesAway) {
         ASSERT_TRUE(id.ok());
         f.renderer().state(id.value())->style = style;
         f.renderer().state(id.value())->color = Vec3f(1.0f);
-        Camera cam = Camera::framing(Vec3f(0.0f), 1.2f, Vec3f(0.0f, 0.0f, 1.0f));
+        View cam = View::framing(Vec3f(0.0f), 1.2f, Vec3f(0.0f, 0.0f, 1.0f));
         std::vector<double> darkness;
         for (int deg = 0; deg <= 180; deg += 20) {
             Lighting l;
@@ -453,7 +453,7 @@ TEST(RenderLod, DirtyRangeUpdatesMatchAFreshUpload) {
         auto id = f.renderer().add_model({sphere.positions, sphere.positions, sphere.indices}, "full");
         ASSERT_TRUE(id.ok());
         f.renderer().state(id.value())->style = style;
-        Camera cam = Camera::framing(Vec3f(0.0f), 1.1f, Vec3f(0.2f, 0.3f, 1.0f));
+        View cam = View::framing(Vec3f(0.0f), 1.1f, Vec3f(0.2f, 0.3f, 1.0f));
         (void)f.draw(cam);  // builds the lazily created data for the full mesh
         // Drop the second half of the triangles and flip one triangle's corner in place.
         std::vector<uint32_t> patched = sphere.indices;
@@ -667,7 +667,7 @@ TEST(RenderLod, PrefixOnlyAddLeavesCapacityForLaterUpdates) {
     partial.prefix_only = true;
     auto id = f.renderer().add_model(partial, "streaming");
     ASSERT_TRUE(id.ok()) << id.error().message;
-    const Camera cam = Camera::framing(Vec3f(0.0f), 1.1f, Vec3f(0.2f, 0.3f, 1.0f));
+    const View cam = View::framing(Vec3f(0.0f), 1.1f, Vec3f(0.2f, 0.3f, 1.0f));
     Image first = f.draw(cam);
     // The rest arrives (while f's context is current).
     std::copy(sphere.indices.begin(), sphere.indices.end(), indices.begin());
@@ -693,7 +693,7 @@ TEST(RenderLod, PatchOutsideThePositionBoxStillDrawsTheMovedVertices) {
     test::GenMesh sphere = test::icosphere(3);
     auto id = f.renderer().add_model({sphere.positions, sphere.positions, sphere.indices}, "sphere");
     ASSERT_TRUE(id.ok());
-    const Camera cam = Camera::framing(Vec3f(0.0f), 1.6f, Vec3f(0.2f, 0.3f, 1.0f));
+    const View cam = View::framing(Vec3f(0.0f), 1.6f, Vec3f(0.2f, 0.3f, 1.0f));
     const Image small = f.draw(cam);
     // Every vertex moves 1.5x out: beyond the box the positions were coded in.
     std::vector<Vec3f> grown = sphere.positions;
@@ -719,7 +719,7 @@ TEST(RenderLod, PositionCodesDrawLikeTheirFloats) {
     REQUIRE_GL(f);
     test::GenMesh sphere = test::icosphere(3);
     ModelSource src("s", Vec3f(1.0f), sphere.positions, {}, sphere.indices);
-    const Camera cam = Camera::framing(Vec3f(0.0f), 1.1f, Vec3f(0.2f, 0.3f, 1.0f));
+    const View cam = View::framing(Vec3f(0.0f), 1.1f, Vec3f(0.2f, 0.3f, 1.0f));
     MeshData codes_only = src.upload_mesh();
     ASSERT_TRUE(codes_only.positions.empty());
     ASSERT_EQ(codes_only.position_codes.size(), sphere.positions.size() * 3);
@@ -754,7 +754,7 @@ TEST(RenderLod, ProgressiveMeshPatchesMatchFreshUploads) {
     auto id = f.renderer().add_model(src.mesh(), "bunny");
     ASSERT_TRUE(id.ok());
     (void)src.take_dirty();
-    const Camera cam = Camera::framing(Vec3f(0.0f), 1.1f, Vec3f(0.3f, 0.2f, 1.0f));
+    const View cam = View::framing(Vec3f(0.0f), 1.1f, Vec3f(0.3f, 0.2f, 1.0f));
     struct Level {
         Style style;
         double lod;
@@ -808,7 +808,7 @@ TEST(RenderGeomorph, MidMorphLiesBetweenCoarseAndFine) {
     ASSERT_TRUE(id.ok()) << id.error().message;
     ModelState& st = *f.renderer().state(id.value());
     st.style = Style::Baseline;
-    const Camera cam = Camera::framing(Vec3f(0.3f, 0, 0), 0.9f, Vec3f(0, 0, 1));
+    const View cam = View::framing(Vec3f(0.3f, 0, 0), 0.9f, Vec3f(0, 0, 1));
     const FrameOptions o = f.frame();
     auto mask_at = [&](float morph, size_t begin) {
         st.morph = morph;
@@ -856,7 +856,7 @@ TEST(RenderGeomorph, ProgressiveMeshMorphStartsAtTheCoarserLevel) {
     pm::ProgressiveMesh& pm = *meshes.value().front();
     RenderFixture f(240, 240);
     REQUIRE_GL(f);
-    const Camera cam = Camera::framing(Vec3f(0.0f), 1.1f, Vec3f(0.3f, 0.2f, 1.0f));
+    const View cam = View::framing(Vec3f(0.0f), 1.1f, Vec3f(0.3f, 0.2f, 1.0f));
     const FrameOptions o = f.frame();
     auto mesh_now = [&] {
         MeshData m = mesh_data_of(pm);  // as the kiosk uploads a pm: its own codes

@@ -1,6 +1,5 @@
-// The renderer's camera: view and projection matrices, and framings that fit
-// a sphere or a box into the view.
-#include "kiosk/render/camera.h"
+// The renderer's view: matrices, and the framings that fit a sphere or a box (contract in view.h).
+#include "kiosk/render/view.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,12 +7,12 @@
 
 namespace body::render {
 
-glm::mat4 Camera::view() const { return glm::lookAt(eye, target, up); }
-glm::mat4 Camera::projection(float aspect) const {
+glm::mat4 View::view() const { return glm::lookAt(eye, target, up); }
+glm::mat4 View::projection(float aspect) const {
     return glm::perspective(glm::radians(fov_y_deg), aspect, near_plane, far_plane);
 }
-Camera Camera::framing(Vec3f center, float radius, Vec3f direction) {
-    Camera c;
+View View::framing(Vec3f center, float radius, Vec3f direction) {
+    View c;
     radius = std::max(radius, 1e-6f);
     float d = radius / std::sin(glm::radians(c.fov_y_deg) * 0.5f) * 1.02f;
     c.target = center;
@@ -23,8 +22,8 @@ Camera Camera::framing(Vec3f center, float radius, Vec3f direction) {
     return c;
 }
 
-Camera Camera::framing_box(Vec3f lo, Vec3f hi, Vec3f direction, float aspect, float fov_y_deg) {
-    Camera c;
+View View::framing_box(Vec3f lo, Vec3f hi, Vec3f direction, float aspect, float fov_y_deg) {
+    View c;
     c.fov_y_deg = fov_y_deg;
     c.target = (lo + hi) * 0.5f;
     const Vec3f back = glm::normalize(direction);  // from target toward the eye
