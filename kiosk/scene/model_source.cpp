@@ -49,10 +49,9 @@ ModelSource::ModelSource(std::string name, Vec3f color, std::vector<Vec3f> posit
     full_index_count_ = indices_.size();
     // Triangles in vertex-cache order and vertices in the order the triangles
     // first use them (meshoptimizer's Forsyth-like and fetch optimizers; unused
-    // vertices keep their place at the end): the index codec then needs 1.3
-    // instead of 4.6 bytes a triangle (1.1M triangles: 1.3 instead of 4.9 MiB
-    // kept), and a draw's nearby triangles share nearby vertices. The image
-    // is the same; vertex numbers change.
+    // vertices keep their place at the end): the index codec then needs about
+    // a third of the bytes (bench/RESULTS.md), and a draw's nearby triangles
+    // share nearby vertices. The image is the same; vertex numbers change.
     if (!indices_.empty() && *std::max_element(indices_.begin(), indices_.end()) < vertex_count_) {
         meshopt_optimizeVertexCache(indices_.data(), indices_.data(), indices_.size(), vertex_count_);
         std::vector<uint32_t> remap(vertex_count_);
@@ -159,10 +158,9 @@ render::MeshData ModelSource::upload_mesh_of(bool hand_over) const {
     if (pm_) {
         pm::ProgressiveMesh* pm = pm_.get();
         // Complete: the array going up to add_model is the last use of ours.
-        // Packed first, in place (14.7 bits an entry for the 1.1M bunny instead
-        // of 32), so the new element buffer (cleared at once by llvmpipe) and
-        // our copy hold 5.9 + 12.75 MiB at the upload's peak, not 12.75 + 12.75;
-        // the buffer is filled from it and it is freed.
+        // Packed first, in place, so the new element buffer (which a driver
+        // may clear at once) and our copy never hold two full arrays at the
+        // upload's peak; the buffer is filled from it and it is freed.
         if (hand_over && hands_over_indices()) pm->pack_indices();
         return mesh_data_of(*pm);
     }
