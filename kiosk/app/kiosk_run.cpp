@@ -167,16 +167,7 @@ render::View KioskLoop::camera_view(double now) const {
 
 // The controls and the selected model's label card.
 void KioskLoop::draw_overlay(const render::FrameOptions& frame) {
-    LabelCard card;
-    if (app_->selected() >= 0) {
-        const scene::Model& m = scene_.models[static_cast<size_t>(app_->selected())];
-        const scene::LabelText& t = scene_.label(m, app_->language());
-        card.visible = true;
-        card.rect = label_card_rect(app_->ui_state());
-        card.title = t.title;
-        card.description = t.description;
-    }
-    overlay_.draw(app_->controls(), card, frame.framebuffer, frame.width, frame.height);
+    overlay_.draw(app_->controls(), label_card(*app_), frame.framebuffer, frame.width, frame.height);
 }
 
 bool KioskLoop::write_screenshot(const render::FrameOptions& frame) {

@@ -7,18 +7,12 @@
 #include <string>
 #include <vector>
 
+#include "kiosk/app/label_card.h"
 #include "kiosk/app/text.h"
 #include "kiosk/app/ui.h"
 #include "shared/error.h"
 
 namespace body::kiosk {
-
-struct LabelCard {
-    bool visible = false;
-    Rect rect;
-    std::string title;        // UTF-8
-    std::string description;  // UTF-8
-};
 
 class Overlay {
 public:

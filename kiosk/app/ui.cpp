@@ -23,11 +23,11 @@ constexpr Word kWords[] = {
     {"auto", "Auto", "Auto", "Auto", "Auto"},        {"isolate", "Isolate", "Isolieren", "Isoler", "Aislar"},
 };
 
+}  // namespace
+
 float button_size(const UiState& s) {
     return std::max(kMinButtonPx, std::floor(static_cast<float>(std::min(s.width, s.height)) / 11.0f));
 }
-
-}  // namespace
 
 std::string ui_text(const std::string& key, const std::string& language) {
     for (const Word& w : kWords) {
@@ -125,14 +125,6 @@ const Control* hit_test(const std::vector<Control>& controls, float x, float y) 
         }
     }
     return best;
-}
-
-Rect label_card_rect(const UiState& s) {
-    const float b = button_size(s);
-    const float gap = std::floor(b * 0.15f);
-    const float w = std::min(static_cast<float>(s.width) * 0.45f, 560.0f);
-    const float h = std::min(static_cast<float>(s.height) * 0.3f, 240.0f);
-    return Rect{gap + s.drift_x, static_cast<float>(s.height) - b - 2 * gap - h + s.drift_y, w, h};
 }
 
 }  // namespace body::kiosk

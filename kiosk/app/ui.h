@@ -50,8 +50,8 @@ inline constexpr float kTouchSlopPx = 8.0f;
 std::vector<Control> layout_controls(const UiState& state);
 // The control at (x, y), or nullptr; disabled controls are never hit.
 const Control* hit_test(const std::vector<Control>& controls, float x, float y);
-// The label card's rectangle (bottom-left, above the group row).
-Rect label_card_rect(const UiState& state);
+// The side of a control in pixels: a finger's size, at least kMinButtonPx.
+float button_size(const UiState& state);
 // A UI word in `language` ("home", "language", "style", "group", "lod", "auto", "isolate"); English fallback.
 std::string ui_text(const std::string& key, const std::string& language);
 
