@@ -2,7 +2,7 @@
 // at most one flip in flight; the original CRTC is restored on exit and after
 // SIGINT/SIGTERM. Structure after kmscube (drm-common.c, drm-legacy.c). Touch:
 // the panels under SurfaceOptions::touch_directory through the evdev layer
-// (platform/evdev_input.h, hot-plugged), in display pixels, from poll_events().
+// (platform/evdev_touch.h, hot-plugged), in display pixels, from poll_events().
 #include <GLES3/gl3.h>
 #include <fcntl.h>
 #include <gbm.h>
@@ -18,7 +18,7 @@
 
 #include "platform/drm_select.h"
 #include "platform/egl_context.h"
-#include "platform/evdev_input.h"
+#include "platform/evdev_touch.h"
 #include "platform/platform.h"
 
 namespace body::platform {

@@ -1,5 +1,5 @@
 #pragma once
-// Touchscreens on a desktop: evdev touch (platform/evdev_input.h) delivered into
+// Touchscreens on a desktop: evdev touch (platform/evdev_touch.h) delivered into
 // a window that covers only part of the touch monitor. GLFW 3.3 has no touch
 // API, so the glfw backend reads the panels itself and passes their contacts
 // through these pure functions.
@@ -20,7 +20,7 @@
 #include <set>
 #include <vector>
 
-#include "platform/evdev_input.h"
+#include "platform/evdev_touch.h"
 #include "platform/platform.h"
 
 namespace body::platform {

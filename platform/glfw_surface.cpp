@@ -3,7 +3,7 @@
 // GLES code runs on desktops, under Xvfb and on boards. Mouse events map to
 // MouseDown/Move/Up/Scroll, Escape and printable keys to Key, each with the
 // Shift/Ctrl/Alt modifiers held. GLFW 3.3 has no touch API: touchscreens are
-// read through the evdev layer (platform/evdev_input.h, hot-plugged) when
+// read through the evdev layer (platform/evdev_touch.h, hot-plugged) when
 // /dev/input is readable and mapped into the window (platform/evdev_window.h);
 // otherwise one line is logged and input is mouse only.
 #define GLFW_INCLUDE_NONE
@@ -12,7 +12,7 @@
 #include <csignal>
 #include <cstdio>
 
-#include "platform/evdev_input.h"
+#include "platform/evdev_touch.h"
 #include "platform/evdev_window.h"
 #include "platform/platform.h"
 

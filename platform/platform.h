@@ -67,7 +67,7 @@ struct SurfaceOptions {
     std::string mode;           // drm: "WxH" or "WxH@Hz"; empty for the preferred mode
     std::string drm_device;     // drm: e.g. /dev/dri/card0; empty to try card0..card9
     std::string title = "bodyview";
-    // glfw and drm: touchscreens are read from here (evdev, platform/evdev_input.h,
+    // glfw and drm: touchscreens are read from here (evdev, platform/evdev_touch.h,
     // hot-plugged) and delivered by poll_events() in surface pixels (glfw maps them
     // into the window, platform/evdev_window.h); `touch_rotation` is the panel's
     // rotation (0, 90, 180, 270) against the picture.

@@ -5,7 +5,7 @@
 #include <filesystem>
 
 #include "kiosk/modes/modes.h"
-#include "platform/evdev_input.h"
+#include "platform/evdev_touch.h"
 
 namespace body::kiosk {
 

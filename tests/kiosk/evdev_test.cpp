@@ -5,7 +5,7 @@
 
 #include <cstdio>
 
-#include "platform/evdev_input.h"
+#include "platform/evdev_touch.h"
 #include "tests/platform/input_events.h"
 
 namespace body::platform {

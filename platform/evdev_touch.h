@@ -1,6 +1,6 @@
 #pragma once
-// Touch input from Linux evdev devices (multitouch protocol B) for boards
-// without a display server (the DRM backend), with libevdev.
+// Touch input from Linux evdev devices (multitouch protocol B), with libevdev:
+// the touchscreens of the DRM and GLFW backends (platform.h: poll_events).
 //
 // Split in two so the protocol logic is testable without a device:
 //   - MtProtocolB: a pure state machine fed kernel `input_event`s. It keeps the

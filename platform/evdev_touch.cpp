@@ -1,6 +1,6 @@
 // evdev multitouch (protocol B, Documentation/input/multi-touch-protocol.rst)
 // with SYN_DROPPED resync (Documentation/input/event-codes.rst) and hotplug.
-#include "platform/evdev_input.h"
+#include "platform/evdev_touch.h"
 
 #include <fcntl.h>
 #include <libevdev/libevdev.h>
