@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The whole test suite, as CI runs it (README: ./setup.sh test). Expects the
 # dependencies installed (setup.sh does that before calling this script).
-#   1. format check
+#   1. format check, structure check (scripts/structure_check.py)
 #   2. Release build (g++) and the CTest labels unit, cli, render; then the
 #      cross label (builds build-arm64/ and runs the smoke under qemu-aarch64)
 #   3. ASan+UBSan build (clang) with libFuzzer targets: unit + fuzz labels
@@ -66,6 +66,7 @@ check_debs() {
 }
 
 step "format check" scripts/format.sh --check
+step "structure check (file and function sizes)" python3 scripts/structure_check.py
 step "release build" configure_and_build build -DCMAKE_BUILD_TYPE=Release -DBODY_BUILD_BENCH=ON
 step "release tests (unit, cli, render)" run_ctest build 'unit|cli|render'
 # -V: the log shows the `file` line of every arm64 binary and each comparison.
