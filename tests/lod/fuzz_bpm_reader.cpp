@@ -7,6 +7,7 @@
 #include <span>
 #include <vector>
 
+#include "shared/pm/bpm_container.h"
 #include "shared/pm/bpm_reader.h"
 #include "shared/pm/progressive_mesh.h"
 
