@@ -217,8 +217,7 @@ bool ModelPart::head_for(render::Renderer& renderer, double ratio, bool automati
     return true;
 }
 
-std::optional<float> ModelPart::pick(const render::Renderer& renderer, const glm::mat4& transform,
-                                     const Ray& ray) const {
+std::optional<float> ModelPart::pick(const render::Renderer& renderer, const glm::mat4& transform, const Ray& ray) {
     const glm::mat4 inv = glm::inverse(transform);
     const glm::vec3 o = glm::vec3(inv * glm::vec4(ray.origin, 1.0f));
     const glm::vec3 d = glm::vec3(inv * glm::vec4(ray.direction, 0.0f));

@@ -73,8 +73,9 @@ public:
     // renderer (its element buffer becomes the only copy; picking reads it back).
     void hand_over_indices(render::Renderer& renderer);
 
-    // Ray (world) against the current level placed by `transform`; world distance.
-    std::optional<float> pick(const render::Renderer& renderer, const glm::mat4& transform, const Ray& ray) const;
+    // Ray (world) against the current level placed by `transform`; world
+    // distance. An OBJ's arrays are decoded for it and freed again.
+    std::optional<float> pick(const render::Renderer& renderer, const glm::mat4& transform, const Ray& ray);
 
 private:
     void upload_dirty(render::Renderer& renderer);

@@ -190,9 +190,9 @@ size_t SceneModels::triangles(size_t model) const {
     return n;
 }
 
-std::optional<float> SceneModels::pick(size_t model, const glm::mat4& transform, const Ray& ray) const {
+std::optional<float> SceneModels::pick(size_t model, const glm::mat4& transform, const Ray& ray) {
     std::optional<float> best;
-    for (const ModelPart& p : models_[model].parts) {
+    for (ModelPart& p : models_[model].parts) {
         auto hit = p.pick(*renderer_, transform, ray);
         if (hit && (!best || *hit < *best)) best = hit;
     }

@@ -97,8 +97,9 @@ public:
     bool bind(size_t model, const ModelBinding& binding, double now);
     // Triangles of a model at its current levels.
     size_t triangles(size_t model) const;
-    // Under lock(): the ray's world distance to the model's surface placed by `transform`.
-    std::optional<float> pick(size_t model, const glm::mat4& transform, const Ray& ray) const;
+    // Under lock(): the ray's world distance to the model's surface placed by
+    // `transform` (an OBJ's arrays are decoded for it and freed again).
+    std::optional<float> pick(size_t model, const glm::mat4& transform, const Ray& ray);
 
 private:
     // A scene model: its parts (a file may hold several structures) and, for a
