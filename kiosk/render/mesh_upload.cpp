@@ -15,9 +15,9 @@
 
 #include "kiosk/render/buffer_access.h"
 #include "kiosk/render/data_textures.h"
+#include "kiosk/render/gl_formats.h"
 #include "kiosk/render/gl_util.h"
 #include "kiosk/render/programs.h"
-#include "kiosk/render/quantize.h"
 #include "kiosk/render/renderer_state.h"
 
 namespace body::render {

@@ -32,7 +32,7 @@
 // Inside (kiosk/render/): renderer.cpp init/shutdown and the model table
 // around RendererState (renderer_state.h); programs.* the shader table;
 // buffer_access.* mapping GL buffers; mesh_upload.cpp add_model/update_model;
-// quantize.* the 16-bit codes and normal packings; frame.cpp render();
+// gl_formats.* the 16-bit codes and normal packings; frame.cpp render();
 // styles/<style>.cpp each style's draw and data, next to kiosk/shaders/<style>.*.
 #include <cstdint>
 #include <functional>

@@ -13,8 +13,8 @@
 
 #include "kiosk/render/data_textures.h"
 #include "kiosk/render/edge_list.h"
+#include "kiosk/render/gl_formats.h"
 #include "kiosk/render/gl_util.h"
-#include "kiosk/render/quantize.h"
 #include "kiosk/render/styles/styles.h"
 
 namespace body::render {

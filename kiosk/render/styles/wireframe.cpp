@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "kiosk/render/data_textures.h"
-#include "kiosk/render/quantize.h"
+#include "kiosk/render/gl_formats.h"
 #include "kiosk/render/styles/styles.h"
 
 namespace body::render {

@@ -1,5 +1,5 @@
-// The renderer's 16-bit position codes and packed normals (see quantize.h).
-#include "kiosk/render/quantize.h"
+// The GL formats of the renderer's position codes and normals (contract in gl_formats.h).
+#include "kiosk/render/gl_formats.h"
 
 #include <algorithm>
 #include <cmath>
