@@ -39,6 +39,11 @@ private:
     void draw_overlay(const render::FrameOptions& frame);
     bool write_screenshot(const render::FrameOptions& frame);
     void after_first_frame();
+    // A model's world placement: its manifest transform, moved by the visitor.
+    glm::mat4 placement(int model) const {
+        return glm::translate(glm::mat4(1.0f), app_->model(model).offset) *
+               models_.transform(static_cast<size_t>(model));
+    }
     void yield_to_loaders(double frame_ms);
 
     platform::Surface& surface_;
@@ -54,7 +59,6 @@ private:
     Clock::time_point load_start_ = Clock::now();
     render::Renderer renderer_;
     SceneModels models_;
-    std::vector<glm::mat4> transforms_;  // each model's manifest transform
     std::unique_ptr<KioskApp> app_;
     Overlay overlay_;
     std::vector<platform::InputEvent> events_;
@@ -77,7 +81,6 @@ int KioskLoop::start() {
     }
     init_ms_ = ms_since(load_start_);
     ok_models_ = models_.load(renderer_, options_.load);
-    for (const scene::Model& m : scene_.models) transforms_.push_back(to_model_matrix(m.transform));
     load_ms_ = ms_since(load_start_);
     if (ok_models_ == 0) {
         std::fprintf(stderr, "bodyview: %s: no model could be loaded\n", scene_.source.c_str());
@@ -90,9 +93,7 @@ int KioskLoop::start() {
 void KioskLoop::start_app() {
     app_ = std::make_unique<KioskApp>(scene_, models_.infos(), surface_.width(), surface_.height());
     app_->set_picker([this](int model, const Ray& ray) -> std::optional<float> {
-        const auto i = static_cast<size_t>(model);
-        const glm::mat4 t = glm::translate(glm::mat4(1.0f), app_->model(model).offset) * transforms_[i];
-        return models_.pick(i, t, ray);
+        return models_.pick(static_cast<size_t>(model), placement(model), ray);
     });
     std::string label_text;
     for (const scene::Model& m : scene_.models)
@@ -145,7 +146,7 @@ bool KioskLoop::bind_models(long frame, double now, size_t& triangles) {
         b.style = ms.style;
         b.visible = app_->visible(i);
         b.selected = i == app_->selected();
-        b.transform = glm::translate(glm::mat4(1.0f), ms.offset) * transforms_[m];
+        b.transform = placement(i);
         b.lod_automatic = options_.auto_lod;
         b.lod_ratio = !options_.auto_lod  ? (ms.manual_lod ? *ms.manual_lod : 1.0)
                       : mi.full_triangles ? static_cast<double>(ms.triangles) / static_cast<double>(mi.full_triangles)

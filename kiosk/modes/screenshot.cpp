@@ -23,7 +23,7 @@ ModelBinding binding_of(const SceneModels& models, size_t i, const ViewOptions& 
     const scene::Lod lod = g && g->lod ? *g->lod : m.lod;
     b.lod_ratio = o.lod ? *o.lod : (lod.automatic ? 1.0 : lod.ratio);
     b.glide = false;
-    b.transform = to_model_matrix(m.transform);
+    b.transform = models.transform(i);
     b.style = o.style ? *o.style : (g && g->style ? *g->style : m.style);
     b.visible = g ? g->visible : true;
     if (o.select) {

@@ -18,6 +18,7 @@ glm::mat4 to_model_matrix(const scene::Transform& t) {
 
 SceneModels::SceneModels(const scene::Scene& scene)
     : scene_(scene), models_(scene.models.size()), info_(scene.models.size()) {
+    for (const scene::Model& m : scene.models) transforms_.push_back(to_model_matrix(m.transform));
     for (size_t i = 0; i < scene.models.size(); ++i)
         if (std::filesystem::path(scene.models[i].path).extension() == ".bpm")
             models_[i].loader = std::make_unique<StreamLoader>(scene.models[i].path);
@@ -89,7 +90,7 @@ Status SceneModels::load_model(size_t index, const LoadOptions& options) {
 // The world bounding sphere and triangle counts over a model's parts.
 void SceneModels::measure(size_t index) {
     const scene::Model& m = scene_.models[index];
-    const glm::mat4 transform = to_model_matrix(m.transform);
+    const glm::mat4& transform = transforms_[index];
     glm::vec3 lo(1e30f), hi(-1e30f);
     ModelInfo& mi = info_[index];
     for (const ModelPart& p : models_[index].parts) {

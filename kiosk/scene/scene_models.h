@@ -76,6 +76,8 @@ public:
     size_t size() const { return models_.size(); }
     const ModelInfo& info(size_t model) const { return info_[model]; }
     const std::vector<ModelInfo>& infos() const { return info_; }
+    // A model's manifest transform as a matrix (to_model_matrix).
+    const glm::mat4& transform(size_t model) const { return transforms_[model]; }
     const scene::Scene& scene() const { return scene_; }
     // The names of a model's structures (a file may hold several).
     std::vector<std::string> structure_names(size_t model) const;
@@ -116,6 +118,7 @@ private:
     render::Renderer* renderer_ = nullptr;
     std::vector<Model> models_;
     std::vector<ModelInfo> info_;
+    std::vector<glm::mat4> transforms_;
 };
 
 }  // namespace body::kiosk
