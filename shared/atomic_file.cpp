@@ -9,6 +9,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "shared/input_file.h"
+
 namespace body {
 
 Status write_file_atomically(const std::string& path, const std::function<std::string(std::ostream&)>& write) {
@@ -39,6 +41,7 @@ Status write_file_atomically(const std::string& path, std::span<const uint8_t> b
 }
 
 Result<std::string> read_file(const std::string& path) {
+    if (auto regular = check_regular_file(path); !regular) return regular.error();
     std::ifstream in(path, std::ios::binary);
     if (!in) return input_error(path + ": cannot open: " + std::strerror(errno));
     std::ostringstream buffer;

@@ -9,6 +9,7 @@
 #include <unordered_map>
 
 #include "shared/atomic_file.h"
+#include "shared/input_file.h"
 
 namespace body {
 namespace {
@@ -51,7 +52,7 @@ Status write_obj(const std::string& path, std::span<const Mesh> meshes, const Ob
 }
 
 Result<std::vector<Mesh>> read_obj(const std::string& path) {
-    if (!std::filesystem::is_regular_file(path)) return input_error(path + ": no such file");
+    if (auto regular = check_regular_file(path); !regular) return regular.error();
     tinyobj::ObjReaderConfig config;
     config.triangulate = true;
     config.vertex_color = false;

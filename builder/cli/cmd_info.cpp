@@ -2,8 +2,8 @@
 #include <cstdio>
 
 #include "builder/cli/commands.h"
-#include "shared/atomic_file.h"
 #include "shared/cli_args.h"
+#include "shared/input_file.h"
 #include "shared/pm/bpm_reader.h"
 #include "shared/pm/progressive_mesh.h"
 
@@ -18,14 +18,15 @@ int run_info(const Args& argv) {
     }
     if (args->positional().size() != 1) return report(input_error("info: expected one input .bpm file"));
     const std::string& path = args->positional()[0];
-    auto bytes = read_file(path);
-    if (!bytes) return report(bytes.error());
-    auto pms = pm::read_bpm_bytes({reinterpret_cast<const uint8_t*>(bytes->data()), bytes->size()}, path);
+    auto pms = pm::read_bpm(path);  // checks the file type and the 16-byte header before reading on
     if (!pms) return report(pms.error());
+    auto file_size = regular_file_size(path);
+    if (!file_size) return report(file_size.error());
+    const size_t size = size_t(*file_size);
     size_t splits = 0;
     for (auto& p : *pms) splits += p->max_level();
-    std::printf("%s: %zu bytes, %zu structures, %zu vertex splits (%.2f bytes per split overall)\n", path.c_str(),
-                bytes->size(), pms->size(), splits, splits ? double(bytes->size()) / double(splits) : 0.0);
+    std::printf("%s: %zu bytes, %zu structures, %zu vertex splits (%.2f bytes per split overall)\n", path.c_str(), size,
+                pms->size(), splits, splits ? double(size) / double(splits) : 0.0);
     for (size_t s = 0; s < pms->size(); ++s) {
         const pm::ProgressiveMesh& p = *(*pms)[s];
         const Vec3f c = p.color(), lo = p.bounds_min(), hi = p.bounds_max();

@@ -23,6 +23,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -31,6 +32,7 @@
 
 #include "builder/contours/contour_stack.h"
 #include "shared/atomic_file.h"
+#include "shared/input_file.h"
 
 namespace body {
 namespace {
@@ -598,13 +600,40 @@ private:
 
 }  // namespace
 
+Status check_coordinate_range(const ContourStack& stack, const std::string& path) {
+    auto outside = [](double v) { return !(std::fabs(v) <= kMaxCoordinate); };
+    auto num = [](double v) {
+        char b[32];
+        std::snprintf(b, sizeof b, "%g", v);
+        return std::string(b);
+    };
+    const std::string range = " is outside the coordinate range +-1e7 (mm)";
+    for (const Slice& s : stack.slices) {
+        if (outside(s.z)) return input_error(place(path, s.source_index) + ": z = " + num(s.z) + range);
+        for (const Contour& c : s.contours) {
+            for (size_t k = 0; k < c.points.size(); ++k) {
+                const Vec2 p = c.points[k];
+                if (outside(p.x) || outside(p.y))
+                    return input_error(place(path, c.source_slice, c.source_contour) + ": point " + std::to_string(k) +
+                                       " (" + num(p.x) + ", " + num(p.y) + ")" + range);
+            }
+        }
+    }
+    return ok_status();
+}
+
 Result<ContourStack> parse_contour_stack(const std::string& json_text, const std::string& path) {
     StackReader reader(path);
     const bool parsed = json::sax_parse(json_text, &reader);
-    return reader.finish(parsed);
+    auto stack = reader.finish(parsed);
+    if (stack) {
+        if (auto range = check_coordinate_range(*stack, path); !range) return range.error();
+    }
+    return stack;
 }
 
 Result<ContourStack> read_contour_stack(const std::string& path) {
+    if (auto regular = check_regular_file(path); !regular) return regular.error();
     std::ifstream in;
     std::vector<char> buffer(1 << 20);
     in.rdbuf()->pubsetbuf(buffer.data(), std::streamsize(buffer.size()));
@@ -613,7 +642,11 @@ Result<ContourStack> read_contour_stack(const std::string& path) {
     StackReader reader(path);
     const bool parsed = json::sax_parse(in, &reader);
     if (in.bad()) return input_error(path + ": read failed");
-    return reader.finish(parsed);
+    auto stack = reader.finish(parsed);
+    if (stack) {
+        if (auto range = check_coordinate_range(*stack, path); !range) return range.error();
+    }
+    return stack;
 }
 
 std::string contour_stack_to_json(const ContourStack& stack) {

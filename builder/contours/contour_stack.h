@@ -19,6 +19,12 @@ namespace body {
 
 inline constexpr double kSliceMergeTolerance = 1e-3;
 
+// Coordinates (x, y and slice z) must lie within +-kMaxCoordinate (10 km in
+// mm): far beyond any body, and small enough that products of coordinate
+// differences (areas, cross products, squared distances) stay finite, so no
+// NaN or infinity can reach an index in caps or tiling.
+inline constexpr double kMaxCoordinate = 1e7;
+
 struct Contour {
     std::vector<Vec2> points;
     std::string structure;      // structure id; empty when unlabelled
@@ -72,8 +78,14 @@ inline StackCounts count_contours(const ContourStack& stack) {
 // Parsing streams (SAX, no document tree): memory is the stack itself plus
 // the longest token; read_contour_stack reads the file through a 1 MiB buffer
 // instead of loading it.
+// Coordinates outside +-kMaxCoordinate are refused: "PATH: slice S contour C:
+// point K (x, y) is outside the coordinate range +-1e7" or "PATH: slice S: z
+// = Z is outside ..." (S, C: source indices).
 Result<ContourStack> parse_contour_stack(const std::string& json_text, const std::string& path);
 Result<ContourStack> read_contour_stack(const std::string& path);
+
+// The range check above for a stack from any source (imports, slicing).
+Status check_coordinate_range(const ContourStack& stack, const std::string& path);
 
 // Serialises a stack (atomically when writing to a file).
 std::string contour_stack_to_json(const ContourStack& stack);

@@ -17,12 +17,16 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <new>
+#include <optional>
 #include <thread>
 
 #include "builder/import/import.h"
 #include "builder/import/label_table.h"
 #include "builder/import/marching_squares.h"
+#include "builder/import/nifti_header.h"
 #include "builder/import/ring_simplify.h"
+#include "shared/input_file.h"
 
 namespace body {
 namespace {
@@ -39,11 +43,26 @@ struct NiftiDeleter {
 };
 using NiftiPtr = std::unique_ptr<nifti_image, NiftiDeleter>;
 
+// Raw voxels straight to int32 labels (no double copy of the volume): value
+// * slope + inter must be a non-negative integer, or with a threshold the
+// label is value >= threshold. Returns the first bad voxel or SIZE_MAX.
 template <typename T>
-void convert_labels(const void* data, size_t count, double slope, double inter, std::vector<double>& out) {
+size_t convert_labels(const void* data, size_t count, double slope, double inter,
+                      const std::optional<double>& threshold, std::vector<int32_t>& out, double& bad_value) {
     const T* p = static_cast<const T*>(data);
-    out.resize(count);
-    for (size_t i = 0; i < count; ++i) out[i] = static_cast<double>(p[i]) * slope + inter;
+    for (size_t i = 0; i < count; ++i) {
+        const double v = static_cast<double>(p[i]) * slope + inter;
+        if (threshold) {
+            out[i] = v >= *threshold ? 1 : 0;
+            continue;
+        }
+        if (!std::isfinite(v) || v != std::floor(v) || v < 0.0 || v > std::numeric_limits<int32_t>::max()) {
+            bad_value = v;
+            return i;
+        }
+        out[i] = static_cast<int32_t>(v);
+    }
+    return SIZE_MAX;
 }
 
 bool is_integer_type(int datatype) {
@@ -98,7 +117,22 @@ std::string check_data_length(const nifti_image& nim) {
 // Phase 1: header, dimensions, data and the voxel -> scanner transform.
 Result<LabelVolume> read_label_volume(const std::string& path, const ImportOptions& options) {
     const std::string where = path + ": ";
-    if (!std::filesystem::exists(path)) return input_error(where + "no such file");
+    auto header = read_nifti_header(path);
+    if (!header) return header.error();
+    const uint64_t voxels = header->data_bytes / uint64_t(header->bytes_per_voxel);
+    const uint64_t need = header->data_bytes + 4 * voxels, budget = label_volume_memory_budget();
+    if (need > budget) {
+        return runtime_error(where + "the volume (" + std::to_string(header->dim[0]) + "x" +
+                             std::to_string(header->dim[1]) + "x" + std::to_string(header->dim[2]) + ") needs " +
+                             std::to_string(need >> 20) + " MiB, over the memory budget of " +
+                             std::to_string(budget >> 20) + " MiB");
+    }
+    // Deflate expands at most ~1032:1, so a .gz cannot hold more than that.
+    if (auto size = regular_file_size(path);
+        size && path.ends_with(".gz") && header->single_file && header->data_bytes / 1100 > *size) {
+        return input_error(where + "declares " + std::to_string(header->data_bytes) + " bytes of voxels, more than " +
+                           std::to_string(*size) + " compressed bytes can hold");
+    }
     nifti_set_debug_level(0);
     NiftiPtr nim(nifti_image_read(path.c_str(), 0));
     if (!nim) return input_error(where + "not a readable NIfTI-1/ANALYZE header (corrupt, truncated or wrong dims)");
@@ -133,31 +167,36 @@ Result<LabelVolume> read_label_volume(const std::string& path, const ImportOptio
 
     double slope = nim->scl_slope, inter = nim->scl_inter;
     if (slope == 0.0 || !std::isfinite(slope) || !std::isfinite(inter)) slope = 1.0, inter = 0.0;
-    std::vector<double> values;
-    switch (nim->datatype) {
-        case DT_UINT8: convert_labels<uint8_t>(nim->data, count, slope, inter, values); break;
-        case DT_INT8: convert_labels<int8_t>(nim->data, count, slope, inter, values); break;
-        case DT_INT16: convert_labels<int16_t>(nim->data, count, slope, inter, values); break;
-        case DT_UINT16: convert_labels<uint16_t>(nim->data, count, slope, inter, values); break;
-        case DT_INT32: convert_labels<int32_t>(nim->data, count, slope, inter, values); break;
-        case DT_UINT32: convert_labels<uint32_t>(nim->data, count, slope, inter, values); break;
-        case DT_INT64: convert_labels<int64_t>(nim->data, count, slope, inter, values); break;
-        case DT_UINT64: convert_labels<uint64_t>(nim->data, count, slope, inter, values); break;
-        case DT_FLOAT32: convert_labels<float>(nim->data, count, slope, inter, values); break;
-        default: convert_labels<double>(nim->data, count, slope, inter, values); break;
+    try {
+        vol.labels.resize(count);
+    } catch (const std::bad_alloc&) {
+        return runtime_error(where + "out of memory for " + std::to_string(count) + " voxels");
     }
-    vol.labels.resize(count);
-    for (size_t i = 0; i < count; ++i) {
-        const double v = values[i];
-        if (options.threshold) {
-            vol.labels[i] = v >= *options.threshold ? 1 : 0;
-            continue;
-        }
-        if (!std::isfinite(v) || v != std::floor(v) || v < 0.0 || v > std::numeric_limits<int32_t>::max()) {
-            return input_error(where + "voxel " + std::to_string(i) + " has value " + std::to_string(v) +
-                               ", not a label (non-negative integer); use --threshold for masks");
-        }
-        vol.labels[i] = static_cast<int32_t>(v);
+    double bad_value = 0.0;
+    size_t bad = SIZE_MAX;
+    const auto& th = options.threshold;
+    switch (nim->datatype) {
+        case DT_UINT8: bad = convert_labels<uint8_t>(nim->data, count, slope, inter, th, vol.labels, bad_value); break;
+        case DT_INT8: bad = convert_labels<int8_t>(nim->data, count, slope, inter, th, vol.labels, bad_value); break;
+        case DT_INT16: bad = convert_labels<int16_t>(nim->data, count, slope, inter, th, vol.labels, bad_value); break;
+        case DT_UINT16:
+            bad = convert_labels<uint16_t>(nim->data, count, slope, inter, th, vol.labels, bad_value);
+            break;
+        case DT_INT32: bad = convert_labels<int32_t>(nim->data, count, slope, inter, th, vol.labels, bad_value); break;
+        case DT_UINT32:
+            bad = convert_labels<uint32_t>(nim->data, count, slope, inter, th, vol.labels, bad_value);
+            break;
+        case DT_INT64: bad = convert_labels<int64_t>(nim->data, count, slope, inter, th, vol.labels, bad_value); break;
+        case DT_UINT64:
+            bad = convert_labels<uint64_t>(nim->data, count, slope, inter, th, vol.labels, bad_value);
+            break;
+        case DT_FLOAT32: bad = convert_labels<float>(nim->data, count, slope, inter, th, vol.labels, bad_value); break;
+        default: bad = convert_labels<double>(nim->data, count, slope, inter, th, vol.labels, bad_value); break;
+    }
+    nifti_image_unload(nim.get());  // the raw data is no longer needed
+    if (bad != SIZE_MAX) {
+        return input_error(where + "voxel " + std::to_string(bad) + " has value " + std::to_string(bad_value) +
+                           ", not a label (non-negative integer); use --threshold for masks");
     }
 
     const mat44* m = nullptr;

@@ -73,6 +73,7 @@ Result<Replay> parse_text(const std::string& text, const std::string& source) {
         char* end = nullptr;
         const double t = std::strtod(first.c_str(), &end);
         if (*end != '\0' || !std::isfinite(t) || t < 0.0) return input_error(where + "expected a time in seconds");
+        if (t > kMaxReplaySeconds) return input_error(where + "time " + first + " is over the 3600 s limit");
         if (t < last) return input_error(where + "time goes backwards");
         last = t;
         std::string word;
@@ -149,6 +150,7 @@ Result<Replay> parse_json(const std::string& text, const std::string& source) {
         InputEvent e;
         e.time = v["t"].get<double>();
         if (!std::isfinite(e.time) || e.time < last) return input_error(where + ".t: time goes backwards");
+        if (e.time > kMaxReplaySeconds) return input_error(where + ".t: over the 3600 s limit");
         last = e.time;
         const std::string type = v["type"].get<std::string>();
         if (!parse_kind(type, e.type)) return input_error(where + ".type: unknown event type '" + type + "'");
@@ -183,6 +185,8 @@ Result<Replay> parse_json(const std::string& text, const std::string& source) {
     }
     if (root.contains("end")) {
         if (!root["end"].is_number()) return input_error(source + ": end: expected a time");
+        const double end = root["end"].get<double>();
+        if (!(end >= 0.0 && end <= kMaxReplaySeconds)) return input_error(source + ": end: not in 0..3600 s");
         r.end_time = std::max(r.end_time, root["end"].get<double>());
     }
     return r;

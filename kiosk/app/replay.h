@@ -20,7 +20,9 @@
 // Modifiers (shift, ctrl, alt; the keys held, as the glfw backend reports them)
 // may follow any event's arguments in text and are boolean members in JSON; files
 // without them stay valid and mean no modifier held.
-// Events must be in non-decreasing time order. Errors name the file and line (or event index).
+// Events must be in non-decreasing time order, times (and `end`) within
+// 0..kMaxReplaySeconds, so a replay always ends. Errors name the file and line
+// (or event index).
 #include <string>
 #include <vector>
 
@@ -28,6 +30,8 @@
 #include "shared/error.h"
 
 namespace body::kiosk {
+
+inline constexpr double kMaxReplaySeconds = 3600.0;
 
 struct Replay {
     int width = 0, height = 0;  // 0: not given

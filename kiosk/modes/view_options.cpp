@@ -82,9 +82,12 @@ Status parse_picture(const CliArgs& args, ViewOptions& o) {
     o.ssaa = static_cast<int>(ssaa.value());
     auto line_width = args.get_double("line-width", 2.0);
     if (!line_width) return line_width.error();
+    if (!(line_width.value() > 0.0 && line_width.value() <= 64.0))
+        return input_error("--line-width must be in (0, 64] pixels");
     o.line_width = line_width.value();
     auto frames = args.get_long("frames", 0);
     if (!frames) return frames.error();
+    if (args.has("frames") && frames.value() < 1) return input_error("--frames must be at least 1");
     o.frames = frames.value();
     if (auto s = args.get("style")) {
         o.style = parse_style(*s);
@@ -134,6 +137,8 @@ Status parse_benchmark(const CliArgs& args, ViewOptions& o) {
 
 }  // namespace
 
+constexpr long kMaxPictureSide = 8192, kMaxPicturePixels = 64l << 20;
+
 Result<ViewOptions> parse_view_options(const CliArgs& args) {
     ViewOptions o;
     if (auto s = parse_surface(args, o.surface); !s) return s.error();
@@ -152,6 +157,12 @@ Result<ViewOptions> parse_view_options(const CliArgs& args) {
         o.surface.width *= o.ssaa;
         o.surface.height *= o.ssaa;
     }
+    // The picture is read back whole (screenshots) and GL limits renderbuffers:
+    // past 8192 on a side or 64 Mpixel, refuse instead of failing to allocate.
+    const long w = o.surface.width, h = o.surface.height;
+    if (w > kMaxPictureSide || h > kMaxPictureSide || w * h > kMaxPicturePixels)
+        return input_error("--size " + std::to_string(w) + "x" + std::to_string(h) +
+                           " (after --ssaa) is over the limit of 8192 per side and 64 Mpixel");
     return o;
 }
 

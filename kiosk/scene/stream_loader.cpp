@@ -13,6 +13,8 @@
 #include <thread>
 #include <vector>
 
+#include "shared/input_file.h"
+
 namespace body::kiosk {
 
 namespace {
@@ -95,7 +97,11 @@ void StreamLoader::finish(std::string error) {
 }
 
 void StreamLoader::run() {
-    pthread_setname_np(pthread_self(), "bodyview-load");  // for top and perf
+    pthread_setname_np(pthread_self(), "bodyview-load");       // for top and perf
+    if (auto regular = check_regular_file(path_); !regular) {  // a FIFO would block fopen
+        std::lock_guard guard(mutex_);
+        return finish(regular.error().message);
+    }
     const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path_.c_str(), "rb"), &std::fclose);
     std::FILE* f = file.get();
     if (!f) {

@@ -7,10 +7,14 @@
 
 #include <algorithm>
 #include <bit>
+#include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
+#include <memory>
 
 #include "shared/atomic_file.h"
+#include "shared/input_file.h"
 #include "shared/pm/bpm_container.h"
 #include "shared/pm/prediction.h"
 #include "shared/pm/split_codec.h"
@@ -45,6 +49,7 @@ Status BpmStream::feed(std::span<const uint8_t> bytes) {
         if (crc32({h, 12}) != get_u32(h + 12)) return fail(source_ + ": file header at byte 0: checksum mismatch");
         if (get_u16(h + 4) != kVersion)
             return fail(source_ + ": file header at byte 4: unsupported version " + std::to_string(get_u16(h + 4)));
+        if (get_u16(h + 6) != 0) return fail(source_ + ": file header at byte 6: flags must be 0");
         declared_structures_ = get_u32(h + 8);
         if (declared_structures_ > 65535) return fail(source_ + ": file header at byte 8: too many structures");
         header_done_ = true;
@@ -58,6 +63,8 @@ Status BpmStream::feed(std::span<const uint8_t> bytes) {
         if (complete_) return fail(where + ": data after the END section");
         if (tag != kTagInfo && tag != kTagBase && tag != kTagSplits && tag != kTagEnd)
             return fail(where + ": unknown section tag");
+        if (get_u16(s + 6) != 0)
+            return fail(where + ": reserved field (byte " + std::to_string(offset + 6) + ") not 0");
         if (length > (1u << 30)) return fail(where + ": section length " + std::to_string(length) + " too large");
         const size_t total = kSectionHeaderSize + size_t(length) + kSectionTrailerSize;
         if (pending_.size() - pos < total) break;
@@ -74,6 +81,9 @@ Status BpmStream::feed(std::span<const uint8_t> bytes) {
 
 Status BpmStream::finish() const {
     if (failed_) return input_error(failure_);
+    if (complete_ && !pending_.empty())
+        return input_error(source_ + ": byte " + std::to_string(consumed_) + ": " + std::to_string(pending_.size()) +
+                           " bytes after the END section");
     if (complete_) return ok_status();
     if (!header_done_)
         return input_error(source_ + ": file header at byte 0: truncated (" + std::to_string(pending_.size()) +
@@ -130,6 +140,9 @@ Status BpmStream::parse_info(std::span<const uint8_t> payload, const std::string
     if (!ok) return input_error(where + ": INFO payload too short");
     for (float x : f)
         if (!std::isfinite(x)) return input_error(where + ": non-finite colour or bounds");
+    for (int k = 0; k < 3; ++k)
+        if (!(f[k] >= 0.0f && f[k] <= 1.0f)) return input_error(where + ": colour component outside 0..1");
+    if (flags & ~1u) return input_error(where + ": unknown INFO flags");
     const uint64_t vertices = uint64_t(bv) + splits;
     if (bv == 0 || bf == 0 || faces < bf || vertices > kMaxVertices || faces > kMaxFaces || chunk == 0 ||
         uint64_t(faces - bf) > 3ull * splits)
@@ -483,9 +496,23 @@ Result<std::vector<std::unique_ptr<ProgressiveMesh>>> read_bpm_bytes(std::span<c
 }
 
 Result<std::vector<std::unique_ptr<ProgressiveMesh>>> read_bpm(const std::string& path) {
-    auto data = read_file(path);
-    if (!data) return data.error();
-    return read_bpm_bytes({reinterpret_cast<const uint8_t*>(data->data()), data->size()}, path);
+    // Streamed in chunks: a wrong header fails after 16 bytes, not after the whole file.
+    if (auto regular = check_regular_file(path); !regular) return regular.error();
+    const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), &std::fclose);
+    if (!file) return input_error(path + ": cannot open: " + std::strerror(errno));
+    BpmStream stream(path);
+    std::vector<uint8_t> chunk(1 << 20);
+    size_t n = std::fread(chunk.data(), 1, kFileHeaderSize, file.get());
+    while (n > 0) {
+        if (Status st = stream.feed({chunk.data(), n}); !st) return st.error();
+        n = std::fread(chunk.data(), 1, chunk.size(), file.get());
+    }
+    if (std::ferror(file.get())) return input_error(path + ": read failed");
+    if (Status st = stream.finish(); !st) return st.error();
+    std::vector<std::unique_ptr<ProgressiveMesh>> out;
+    for (size_t i = 0; i < stream.structure_count(); ++i)
+        out.push_back(std::make_unique<ProgressiveMesh>(std::move(stream.structure(i))));
+    return out;
 }
 
 }  // namespace body::pm

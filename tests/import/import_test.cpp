@@ -475,5 +475,36 @@ TEST(RtStructImport, PydicomSampleHasTheRightRoisAndContours) {
     EXPECT_TRUE(parsed.ok()) << parsed.error().message;
 }
 
+// A header niftilib would "repair" or read anyway is refused at its byte.
+TEST(NiftiImport, HeaderFieldsOutsideTheFormatAreRefusedAtTheirByte) {
+    Grid g(8, 8, 8);
+    g.fill(1, [](int x, int y, int z) { return x > 2 && y > 2 && z > 2; });
+    const std::string good = g.write("hdr_good.nii");
+    auto bytes = read_file(good);
+    ASSERT_TRUE(bytes.ok());
+    struct Case {
+        const char* name;
+        size_t at;
+        std::vector<uint8_t> patch;
+        const char* expect;
+    };
+    const Case cases[] = {
+        {"negative_dim.nii", 42, {0xfe, 0xff}, "header byte 42: wrong dims: dim[1] = -2"},
+        {"zero_dim.nii", 44, {0, 0}, "header byte 44: wrong dims: dim[2] = 0"},
+        {"magic.nii", 344, {'x', 'y', 'z', 0}, "header byte 344: magic is 'xyz\\x00'"},
+        {"sizeof_hdr.nii", 0, {0, 0, 0, 0}, "header byte 0: sizeof_hdr is 0, not 348"},
+    };
+    for (const Case& c : cases) {
+        std::string b = *bytes;
+        for (size_t k = 0; k < c.patch.size(); ++k) b[c.at + k] = char(c.patch[k]);
+        const std::string path = test::temp_path(c.name);
+        std::ofstream(path, std::ios::binary).write(b.data(), std::streamsize(b.size()));
+        auto r = import_nifti_labels(path, {});
+        ASSERT_FALSE(r.ok()) << c.name;
+        EXPECT_EQ(r.error().exit_code, kExitBadInput);
+        EXPECT_EQ(r.error().message.rfind(path + ": " + c.expect, 0), 0u) << r.error().message;
+    }
+}
+
 }  // namespace
 }  // namespace body

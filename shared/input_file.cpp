@@ -1,0 +1,52 @@
+#include "shared/input_file.h"
+
+#include <sys/stat.h>
+
+#include <cerrno>
+#include <cstring>
+
+namespace body {
+
+Result<uint64_t> regular_file_size(const std::string& path) {
+    struct stat st {};
+    if (::stat(path.c_str(), &st) != 0) {
+        if (errno == ENOENT) return input_error(path + ": no such file");
+        return input_error(path + ": cannot open: " + std::strerror(errno));
+    }
+    if (S_ISREG(st.st_mode)) return uint64_t(st.st_size);
+    if (S_ISDIR(st.st_mode)) return input_error(path + ": is a directory, not a file");
+    if (S_ISFIFO(st.st_mode)) return input_error(path + ": is a FIFO, not a regular file");
+    if (S_ISCHR(st.st_mode) || S_ISBLK(st.st_mode)) return input_error(path + ": is a device, not a regular file");
+    if (S_ISSOCK(st.st_mode)) return input_error(path + ": is a socket, not a regular file");
+    return input_error(path + ": not a regular file");
+}
+
+Status check_regular_file(const std::string& path) {
+    auto size = regular_file_size(path);
+    if (!size) return size.error();
+    return ok_status();
+}
+
+std::string escape_for_message(std::string_view text, size_t max) {
+    static const char* hex = "0123456789abcdef";
+    std::string out;
+    for (size_t i = 0; i < text.size(); ++i) {
+        if (out.size() >= max) {
+            out += "...";
+            break;
+        }
+        const auto c = static_cast<unsigned char>(text[i]);
+        if (c == '\\') {
+            out += "\\\\";
+        } else if (c < 0x20 || c >= 0x7f) {
+            out += "\\x";
+            out += hex[c >> 4];
+            out += hex[c & 15];
+        } else {
+            out += char(c);
+        }
+    }
+    return out;
+}
+
+}  // namespace body

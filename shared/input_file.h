@@ -1,0 +1,26 @@
+#pragma once
+// Input files before they are opened: only regular files are read (a FIFO
+// would block the reader, a device never ends), and text taken from a file is
+// escaped before it is echoed in a message.
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+#include "shared/error.h"
+
+namespace body {
+
+// ok when `path` (symlinks followed) is a regular file. Otherwise an input
+// error naming the path and what it is: "no such file", "is a directory",
+// "is a FIFO", "is a device", "is a socket", or the stat error. Does not open
+// the file, so it never blocks.
+Status check_regular_file(const std::string& path);
+
+// Size in bytes of a regular file (after check_regular_file).
+Result<uint64_t> regular_file_size(const std::string& path);
+
+// `text` with control characters, DEL and bytes >= 0x80 written as \xHH (and
+// '\\' as "\\\\"), cut to `max` characters with "..." after: safe to print.
+std::string escape_for_message(std::string_view text, size_t max = 80);
+
+}  // namespace body
