@@ -8,8 +8,12 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <string>
+#include <unordered_map>
 
+#include "builder/caps/boundary_distance.h"
 #include "builder/caps/caps.h"
+#include "builder/caps/monotone_cap.h"
 
 namespace body {
 namespace {
@@ -135,17 +139,28 @@ bool flat(const Vec2& a, const Vec2& b, const Vec2& c) {
     return std::abs(cross3(a, b, c)) <= 1e-10 * scale * scale;
 }
 
-// Collinear points left at the end of ear clipping make a flat triangle
+// Collinear points left at the end of a triangulation make a flat triangle
 // (u, w, m) with m between u and w. The triangle (w, u, x) across its long
 // edge is replaced, together with it, by (w, m, x) and (m, u, x): the same
-// area, the same boundary, nothing flat (Lawson-style edge flip).
+// area, the same boundary, nothing flat (Lawson-style edge flip). A flip never
+// makes a flat triangle, so passes repeat only while some flip succeeds; each
+// pass is one scan of the triangles against a hash of the long edges wanted.
 Status flip_flat_triangles(const std::vector<Vec2>& at, std::vector<uint32_t>& tris, size_t begin) {
-    for (int round = 0; round < 64; ++round) {
-        bool changed = false, any_flat = false;
-        for (size_t t = begin; t < tris.size(); t += 3) {
+    auto key = [](uint32_t a, uint32_t b) { return (uint64_t(a) << 32) | b; };
+    std::vector<size_t> flats;
+    for (size_t t = begin; t < tris.size(); t += 3)
+        if (flat(at[tris[t]], at[tris[t + 1]], at[tris[t + 2]])) flats.push_back(t);
+    std::unordered_map<uint64_t, size_t> across;  // long edge (w, u) reversed -> triangle holding it
+    std::vector<uint8_t> touched((tris.size() - begin) / 3, 0);
+    for (int pass = 0; pass < 64 && !flats.empty(); ++pass) {
+        struct Flat {
+            size_t t;
+            uint32_t m, u, w;
+        };
+        std::vector<Flat> wanted;
+        across.clear();
+        for (size_t t : flats) {
             const uint32_t* v = &tris[t];
-            if (!flat(at[v[0]], at[v[1]], at[v[2]])) continue;
-            any_flat = true;
             // m: the vertex between the other two (the long edge is opposite it).
             int mk = 0;
             double longest = -1;
@@ -153,29 +168,40 @@ Status flip_flat_triangles(const std::vector<Vec2>& at, std::vector<uint32_t>& t
                 const double len = glm::length(at[v[(k + 1) % 3]] - at[v[(k + 2) % 3]]);
                 if (len > longest) longest = len, mk = k;
             }
-            const uint32_t m = v[mk], u = v[(mk + 1) % 3], w = v[(mk + 2) % 3];
-            for (size_t o = begin; o < tris.size(); o += 3) {
-                if (o == t) continue;
-                const uint32_t* q = &tris[o];
-                for (int k = 0; k < 3; ++k) {
-                    if (q[k] != w || q[(k + 1) % 3] != u) continue;
-                    const uint32_t x = q[(k + 2) % 3];
-                    if (flat(at[w], at[m], at[x]) || flat(at[m], at[u], at[x])) continue;
-                    tris[t] = w, tris[t + 1] = m, tris[t + 2] = x;
-                    tris[o] = m, tris[o + 1] = u, tris[o + 2] = x;
-                    changed = true;
-                    break;
-                }
-                if (changed) break;
-            }
-            if (changed) break;
+            wanted.push_back({t, v[mk], v[(mk + 1) % 3], v[(mk + 2) % 3]});
+            across.emplace(key(v[(mk + 2) % 3], v[(mk + 1) % 3]), SIZE_MAX);
         }
-        if (!any_flat || !changed) break;
+        for (size_t t = begin; t < tris.size(); t += 3)
+            for (int k = 0; k < 3; ++k)
+                if (auto it = across.find(key(tris[t + k], tris[t + (k + 1) % 3])); it != across.end()) it->second = t;
+        std::fill(touched.begin(), touched.end(), uint8_t(0));
+        std::vector<size_t> left;
+        for (const Flat& f : wanted) {
+            const size_t o = across[key(f.w, f.u)];
+            if (o == SIZE_MAX || o == f.t || touched[(f.t - begin) / 3] || touched[(o - begin) / 3]) {
+                left.push_back(f.t);
+                continue;
+            }
+            const uint32_t* q = &tris[o];
+            const uint32_t x = q[0] + q[1] + q[2] - f.w - f.u;  // the third vertex of (w, u, x)
+            if (flat(at[f.w], at[f.m], at[x]) || flat(at[f.m], at[f.u], at[x])) {
+                left.push_back(f.t);
+                continue;
+            }
+            tris[f.t] = f.w, tris[f.t + 1] = f.m, tris[f.t + 2] = x;
+            tris[o] = f.m, tris[o + 1] = f.u, tris[o + 2] = x;
+            touched[(f.t - begin) / 3] = touched[(o - begin) / 3] = 1;
+        }
+        if (left.size() == flats.size()) break;
+        flats = std::move(left);
     }
     // A flat triangle that no flip removes (its long edge on the boundary: a
     // vertex touching another loop) stays; the cap is still closed.
     return ok_status();
 }
+
+constexpr size_t kEarClippingLimit = 20000;
+Status ear_clip(std::span<const std::span<const Vec2>> loops, std::vector<uint32_t>& triangles);
 
 }  // namespace
 
@@ -190,6 +216,24 @@ const char* cap_style_name(CapStyle style) {
 
 Status triangulate_polygon_with_holes(std::span<const std::span<const Vec2>> loops, std::vector<uint32_t>& triangles) {
     if (loops.empty() || loops[0].size() < 3) return input_error("cap: outer loop has fewer than 3 points");
+    size_t total = 0;
+    for (const auto& loop : loops) total += loop.size();
+    std::vector<Vec2> at;
+    at.reserve(total);
+    for (const auto& loop : loops) at.insert(at.end(), loop.begin(), loop.end());
+    const size_t begin = triangles.size();
+    if (triangulate_monotone(loops, triangles)) return flip_flat_triangles(at, triangles, begin);
+    triangles.resize(begin);
+    // Loops that touch or cross: ear clipping copes with more of them, but is
+    // quadratic, so only small regions get it.
+    if (total > kEarClippingLimit)
+        return input_error("cap: region of " + std::to_string(total) + " points has touching or crossing loops");
+    return ear_clip(loops, triangles);
+}
+
+namespace {
+
+Status ear_clip(std::span<const std::span<const Vec2>> loops, std::vector<uint32_t>& triangles) {
     const size_t triangles_begin = triangles.size();
     uint32_t first = uint32_t(loops[0].size());
     std::vector<Vert> poly = oriented_loop(loops[0], 0, true);
@@ -257,6 +301,8 @@ Status triangulate_polygon_with_holes(std::span<const std::span<const Vec2>> loo
     return flip_flat_triangles(at, triangles, triangles_begin);
 }
 
+}  // namespace
+
 Status build_cap(std::span<const std::span<const Vec2>> loops, std::span<const std::span<const uint32_t>> ids, double z,
                  bool up, CapStyle style, double dome_height, std::vector<Vec3>& positions,
                  std::vector<uint32_t>& triangles) {
@@ -283,21 +329,13 @@ Status build_cap(std::span<const std::span<const Vec2>> loops, std::span<const s
     // Dome: every triangle gets its centroid lifted by a height that grows with the
     // centroid's distance to the boundary (a height field over the flat cap, so it
     // cannot fold onto itself).
+    const BoundaryDistance distance(loops);
     std::vector<double> dist(local.size() / 3, 0.0);
     double dmax = 0;
     for (size_t t = 0; t < local.size(); t += 3) {
         const Vec2 c = (flat[local[t]] + flat[local[t + 1]] + flat[local[t + 2]]) / 3.0;
-        double d = 1e300;
-        for (const auto& loop : loops) {
-            for (size_t i = 0; i < loop.size(); ++i) {
-                const Vec2 a = loop[i], b = loop[(i + 1) % loop.size()], ab = b - a;
-                const double l2 = glm::dot(ab, ab);
-                const double s = l2 > 0 ? std::clamp(glm::dot(c - a, ab) / l2, 0.0, 1.0) : 0.0;
-                d = std::min(d, glm::length(a + ab * s - c));
-            }
-        }
-        dist[t / 3] = d;
-        dmax = std::max(dmax, d);
+        dist[t / 3] = distance(c);
+        dmax = std::max(dmax, dist[t / 3]);
     }
     for (size_t t = 0; t < local.size(); t += 3) {
         const Vec2 c = (flat[local[t]] + flat[local[t + 1]] + flat[local[t + 2]]) / 3.0;

@@ -7,6 +7,7 @@
 #include "builder/branching/hull_ring.h"
 #include "builder/branching/union_ring.h"
 #include "builder/caps/caps.h"
+#include "builder/caps/monotone_cap.h"
 #include "builder/contours/validate.h"
 #include "tests/reconstruct/recon_test_util.h"
 
@@ -40,6 +41,46 @@ TEST(FlatCap, PolygonWithTwoHoles) {
         2;
     EXPECT_NEAR(triangles_area(all, tris), expect, 1e-9 * expect);
     EXPECT_EQ(tris.size() / 3, all.size() + 2 * 2 - 2);  // n + 2h - 2 triangles
+}
+
+// The sweep itself (no ear-clipping fallback): every region of the contract
+// gives n + 2h - 2 counter-clockwise triangles covering exactly its area.
+TEST(MonotoneCap, CoversEachRegionExactly) {
+    std::vector<Vec2> comb = {{0, 0}, {10, 0}, {10, 5}, {9, 5}, {9, 1}, {7, 1},
+                              {7, 5}, {5, 5},  {5, 1},  {3, 1}, {3, 5}, {0, 5}};
+    std::vector<Vec2> stairs;  // a voxel outline: many horizontal and vertical runs, collinear points
+    for (int i = 0; i < 20; ++i)
+        stairs.insert(stairs.end(), {{double(i), double(i)}, {double(i) + 0.5, double(i)}, {double(i) + 1, double(i)}});
+    stairs.insert(stairs.end(), {{20, 20}, {20, 21}, {10, 21}, {0, 21}, {0, 10}});
+    std::vector<Vec2> star;  // strongly non-convex
+    for (int i = 0; i < 2000; ++i) {
+        const double a = 2 * M_PI * i / 2000, r = i % 2 ? 10.0 : 3.0 + (i % 7);
+        star.emplace_back(r * std::cos(a), r * std::sin(a));
+    }
+    auto outer = circle(0, 0, 10, 40), h1 = circle(-4, 0, 2, 12), h2 = reversed(circle(4, 1, 2.5, 14));
+    std::vector<std::vector<std::vector<Vec2>>> regions = {{comb}, {stairs}, {star}, {outer, h1, h2}, {reversed(star)}};
+    for (size_t c = 0; c < regions.size(); ++c) {
+        std::vector<std::span<const Vec2>> loops;
+        std::vector<Vec2> all;
+        double area = 0;
+        for (size_t k = 0; k < regions[c].size(); ++k) {
+            const auto& l = regions[c][k];
+            loops.emplace_back(l);
+            all.insert(all.end(), l.begin(), l.end());
+            area += (k == 0 ? 0.5 : -0.5) * std::abs(signed_area2(l.data(), l.size()));
+        }
+        std::vector<uint32_t> tris;
+        ASSERT_TRUE(triangulate_monotone(loops, tris)) << "region " << c;
+        EXPECT_EQ(tris.size() / 3, all.size() + 2 * (loops.size() - 1) - 2) << "region " << c;
+        double sum = 0;
+        for (size_t t = 0; t < tris.size(); t += 3) {
+            const Vec2 p = all[tris[t]], q = all[tris[t + 1]], r = all[tris[t + 2]];
+            const double s2 = (q.x - p.x) * (r.y - p.y) - (q.y - p.y) * (r.x - p.x);
+            EXPECT_GE(s2, 0.0) << "region " << c;
+            sum += s2 / 2;
+        }
+        EXPECT_NEAR(sum, area, 1e-9 * area) << "region " << c;
+    }
 }
 
 TEST(FlatCap, NonConvexComb) {
