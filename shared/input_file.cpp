@@ -4,6 +4,7 @@
 
 #include <cerrno>
 #include <cstring>
+#include <filesystem>
 
 namespace body {
 
@@ -24,6 +25,30 @@ Result<uint64_t> regular_file_size(const std::string& path) {
 Status check_regular_file(const std::string& path) {
     auto size = regular_file_size(path);
     if (!size) return size.error();
+    return ok_status();
+}
+
+Status check_output_apart(const std::string& output, std::initializer_list<std::string> inputs) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    struct stat out_st {};
+    const bool out_exists = ::stat(output.c_str(), &out_st) == 0;
+    fs::path out_path = fs::weakly_canonical(fs::path(output), ec);
+    if (ec) out_path = fs::absolute(fs::path(output), ec).lexically_normal();
+    const std::string out_dir = out_path.string() + "/";
+    for (const std::string& input : inputs) {
+        if (input.empty()) continue;
+        struct stat in_st {};
+        const bool same_inode = out_exists && ::stat(input.c_str(), &in_st) == 0 && in_st.st_dev == out_st.st_dev &&
+                                in_st.st_ino == out_st.st_ino;
+        std::error_code ec2;
+        const fs::path in_path = fs::weakly_canonical(fs::path(input), ec2);
+        const bool same_path = !ec2 && in_path == out_path;
+        const bool inside = !ec2 && in_path.string().starts_with(out_dir) &&
+                            (output.ends_with("/") || (out_exists && S_ISDIR(out_st.st_mode)));
+        if (same_inode || same_path) return input_error(output + ": is the input " + input + "; not overwriting it");
+        if (inside) return input_error(output + ": contains the input " + input + "; not replacing it");
+    }
     return ok_status();
 }
 

@@ -3,6 +3,7 @@
 // would block the reader, a device never ends), and text taken from a file is
 // escaped before it is echoed in a message.
 #include <cstdint>
+#include <initializer_list>
 #include <string>
 #include <string_view>
 
@@ -18,6 +19,12 @@ Status check_regular_file(const std::string& path);
 
 // Size in bytes of a regular file (after check_regular_file).
 Result<uint64_t> regular_file_size(const std::string& path);
+
+// Refuses an output that would destroy an input: `output` naming the same
+// file as one of `inputs` (same path after resolving links, or same inode
+// through a hard link), or a directory output that contains an input (it
+// is replaced whole). "OUT: is the input INPUT; not overwriting it".
+Status check_output_apart(const std::string& output, std::initializer_list<std::string> inputs);
 
 // `text` with control characters, DEL and bytes >= 0x80 written as \xHH (and
 // '\\' as "\\\\"), cut to `max` characters with "..." after: safe to print.

@@ -21,8 +21,9 @@ enum class CapStyle {
 
 const char* cap_style_name(CapStyle style);
 
-// Triangulates a polygon with holes (ear clipping after bridging each hole to
-// the outer boundary). Triangle ids index the loops concatenated in order
+// Triangulates a polygon with holes: up to 4096 points by ear clipping after
+// bridging each hole to the outer boundary, above that by the O(n log n)
+// monotone sweep (monotone_cap.h). Triangle ids index the loops concatenated in order
 // (loops[0] first). Triangles are counter-clockwise seen from +z. No new
 // vertices. Fails when the region cannot be triangulated without degenerate
 // triangles (e.g. zero area).

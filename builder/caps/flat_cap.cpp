@@ -200,7 +200,7 @@ Status flip_flat_triangles(const std::vector<Vec2>& at, std::vector<uint32_t>& t
     return ok_status();
 }
 
-constexpr size_t kEarClippingLimit = 20000;
+constexpr size_t kEarClippingLimit = 4096;
 Status ear_clip(std::span<const std::span<const Vec2>> loops, std::vector<uint32_t>& triangles);
 
 }  // namespace
@@ -218,17 +218,17 @@ Status triangulate_polygon_with_holes(std::span<const std::span<const Vec2>> loo
     if (loops.empty() || loops[0].size() < 3) return input_error("cap: outer loop has fewer than 3 points");
     size_t total = 0;
     for (const auto& loop : loops) total += loop.size();
+    // Small regions: ear clipping (quadratic, but its ears are better shaped
+    // than the sweep's fans, and it copes with touching loops). Large ones:
+    // the O(n log n) sweep.
+    if (total <= kEarClippingLimit) return ear_clip(loops, triangles);
     std::vector<Vec2> at;
     at.reserve(total);
     for (const auto& loop : loops) at.insert(at.end(), loop.begin(), loop.end());
     const size_t begin = triangles.size();
     if (triangulate_monotone(loops, triangles)) return flip_flat_triangles(at, triangles, begin);
     triangles.resize(begin);
-    // Loops that touch or cross: ear clipping copes with more of them, but is
-    // quadratic, so only small regions get it.
-    if (total > kEarClippingLimit)
-        return input_error("cap: region of " + std::to_string(total) + " points has touching or crossing loops");
-    return ear_clip(loops, triangles);
+    return input_error("cap: region of " + std::to_string(total) + " points has touching or crossing loops");
 }
 
 namespace {

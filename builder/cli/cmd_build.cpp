@@ -23,7 +23,9 @@
 #ifdef BODY_WITH_IMPORT
 #include "builder/import/import.h"
 #endif
+#include "shared/atomic_file.h"
 #include "shared/cli_args.h"
+#include "shared/input_file.h"
 #include "shared/obj_io.h"
 
 namespace body::cli {
@@ -56,12 +58,13 @@ void draw_progress(size_t done, size_t total) {
     std::fflush(stderr);
 }
 
-enum class OutputKind { Obj, Bpm, Directory };
+enum class OutputKind { Obj, Bpm, Directory, Unknown };
 
 OutputKind output_kind(const std::string& path) {
     if (path.ends_with("/") || std::filesystem::is_directory(path)) return OutputKind::Directory;
     if (path.ends_with(".bpm")) return OutputKind::Bpm;
-    return OutputKind::Obj;
+    if (path.ends_with(".obj")) return OutputKind::Obj;
+    return OutputKind::Unknown;
 }
 
 Result<ContourStack> load_input(const std::string& path, const CliArgs& args, bool quiet) {
@@ -95,19 +98,30 @@ Status write_output(const std::string& output, const std::vector<StructureMesh>&
         case OutputKind::Obj: return write_obj(output, meshes, obj);
         case OutputKind::Bpm: return lod::write_bpm_from_meshes(output, meshes);
         case OutputKind::Directory: {
-            std::error_code ec;
-            std::filesystem::create_directories(output, ec);
-            if (ec) return runtime_error(output + ": cannot create directory: " + ec.message());
-            std::map<std::string, int> used;
-            for (const StructureMesh& s : built) {
-                std::string stem = file_stem(s);
-                if (int n = used[stem]++) stem.append(1, '_').append(std::to_string(n));
-                std::span<const Mesh> one(&s.mesh, 1);
-                Status st = write_obj((std::filesystem::path(output) / (stem + ".obj")).string(), one, obj);
-                if (!st) return st;
-            }
-            return ok_status();
+            // Staged and swapped in whole, as file outputs are; an existing
+            // directory is replaced only when it holds nothing but OBJ files.
+            auto fill = [&](const std::string& staged) -> Status {
+                std::map<std::string, int> used;
+                for (const StructureMesh& s : built) {
+                    std::string stem = file_stem(s);
+                    if (int n = used[stem]++) stem.append(1, '_').append(std::to_string(n));
+                    std::span<const Mesh> one(&s.mesh, 1);
+                    Status st = write_obj((std::filesystem::path(staged) / (stem + ".obj")).string(), one, obj);
+                    if (!st) return runtime_error(output + ": " + st.error().message);
+                }
+                return ok_status();
+            };
+            auto replaceable = [](const std::string& dir) -> std::string {
+                std::error_code ec;
+                for (std::filesystem::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
+                    if (!it->is_regular_file() || it->path().extension() != ".obj")
+                        return "holds " + it->path().filename().string() + ", not only OBJ files";
+                return {};
+            };
+            return write_directory_atomically(output, fill, replaceable);
         }
+        case OutputKind::Unknown:
+            return input_error(output + ": unknown output type (expected OUT.obj, OUT.bpm or OUT/)");
     }
     return ok_status();
 }
@@ -235,6 +249,10 @@ int run_build(const Args& argv) {
     if (!options) return report(options.error());
     const bool quiet = args->has("quiet"), json_out = args->has("json");
     const std::string input = args->positional()[0], output = *args->get("output");
+    if (output_kind(output) == OutputKind::Unknown)
+        return report(input_error(output + ": unknown output type (expected OUT.obj, OUT.bpm or OUT/)"));
+    if (Status apart = check_output_apart(output, {input, args->get_or("labels", "")}); !apart)
+        return report(apart.error());
     if (!quiet)
         options->warning = [](const std::string& w) { std::fprintf(stderr, "bodygen: warning: %s\n", w.c_str()); };
     if (!quiet && isatty(STDERR_FILENO)) options->progress = draw_progress;

@@ -13,6 +13,7 @@
 #include "builder/contours/contour_stack.h"
 #include "builder/import/import.h"
 #include "shared/cli_args.h"
+#include "shared/input_file.h"
 #endif
 
 namespace body::cli {
@@ -129,6 +130,8 @@ int run_contours(const Args& argv) {
         if (::isatty(2)) options->progress = draw_progress;
     }
     const std::string& input = args->positional()[0];
+    if (Status apart = check_output_apart(*output, {input, args->get_or("labels", "")}); !apart)
+        return report(apart.error());
     const SourceKind kind = detect_source_kind(input);
     if (kind == SourceKind::ContourStack) {
         return report(input_error(input + ": already a contour stack (use bodygen check)"));

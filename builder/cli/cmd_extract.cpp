@@ -5,6 +5,7 @@
 
 #include "builder/cli/commands.h"
 #include "shared/cli_args.h"
+#include "shared/input_file.h"
 #include "shared/obj_io.h"
 #include "shared/pm/bpm_reader.h"
 #include "shared/pm/progressive_mesh.h"
@@ -34,6 +35,8 @@ int run_extract(const Args& argv) {
     if (!error) return report(error.error());
     if (!(*ratio >= 0.0 && *ratio <= 1.0) || *triangles < 0 || !(*error >= 0.0))
         return report(input_error("extract: --ratio must be in [0, 1], --triangles and --error >= 0"));
+    if (Status apart = check_output_apart(*args->get("output"), {args->positional()[0]}); !apart)
+        return report(apart.error());
     auto pms = pm::read_bpm(args->positional()[0]);
     if (!pms) return report(pms.error());
     std::vector<Mesh> meshes;

@@ -6,6 +6,7 @@
 #include "builder/lod/bpm_writer.h"
 #include "builder/lod/simplify.h"
 #include "shared/cli_args.h"
+#include "shared/input_file.h"
 #include "shared/obj_io.h"
 
 namespace body::cli {
@@ -38,6 +39,8 @@ int run_lod(const Args& argv) {
     options.chunk_splits = size_t(*chunk);
     options.normals = !args->has("no-normals");
     options.threads = unsigned(*jobs);
+    if (Status apart = check_output_apart(*args->get("output"), {args->positional()[0]}); !apart)
+        return report(apart.error());
     auto meshes = read_obj(args->positional()[0]);
     if (!meshes) return report(meshes.error());
     const std::string out = *args->get("output");

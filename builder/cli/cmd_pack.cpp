@@ -53,31 +53,6 @@ Status check_model(const scene::Scene& s, size_t index, size_t& triangles) {
     return input_error(where + ": not a model (expected .bpm or .obj)");
 }
 
-// Replaces `bundle` by the complete directory `staged`; an existing bundle is
-// moved aside first and removed last.
-Status swap_into_place(const fs::path& staged, const fs::path& bundle) {
-    std::error_code ec;
-    fs::path old;
-    if (fs::exists(bundle, ec)) {
-        const bool replaceable =
-            fs::is_directory(bundle, ec) && (fs::is_empty(bundle, ec) || fs::exists(bundle / "scene.json", ec));
-        if (!replaceable) {
-            return input_error(bundle.string() + ": exists and is not a bundle (no scene.json); not replacing it");
-        }
-        old = bundle;
-        old += ".old-" + std::to_string(::getpid());
-        fs::rename(bundle, old, ec);
-        if (ec) return runtime_error(bundle.string() + ": cannot move the old bundle aside: " + ec.message());
-    }
-    fs::rename(staged, bundle, ec);
-    if (ec) {
-        if (!old.empty()) fs::rename(old, bundle, ec);
-        return runtime_error(bundle.string() + ": cannot rename the new bundle into place: " + ec.message());
-    }
-    if (!old.empty()) fs::remove_all(old, ec);
-    return ok_status();
-}
-
 }  // namespace
 
 int run_pack(const Args& argv) {
@@ -118,34 +93,35 @@ int run_pack(const Args& argv) {
         manifest["models"][i]["file"] = "models/" + name;
     }
 
-    // Stage next to the destination so the final rename stays on one file system.
+    // Staged next to the destination so the final rename stays on one file system.
     fs::path bundle = fs::path(*out).lexically_normal();
     if (bundle.filename().empty()) bundle = bundle.parent_path();
-    fs::path staged = bundle;
-    staged += ".tmp-" + std::to_string(::getpid());
-    std::error_code ec;
-    fs::remove_all(staged, ec);
-    fs::create_directories(staged / "models", ec);
-    if (ec) return report(runtime_error(staged.string() + ": cannot create the bundle directory: " + ec.message()));
-    auto fail = [&](const Error& e) {
-        std::error_code ignored;
-        fs::remove_all(staged, ignored);
-        return report(e);
+    auto fill = [&](const std::string& staged_dir) -> Status {
+        const fs::path staged(staged_dir);
+        std::error_code ec;
+        fs::create_directories(staged / "models", ec);
+        if (ec) return runtime_error(bundle.string() + ": cannot create the bundle directory: " + ec.message());
+        for (size_t i = 0; i < names.size(); ++i) {
+            fs::copy_file(scene->models[i].path, staged / "models" / names[i], ec);
+            if (ec) return runtime_error(bundle.string() + ": cannot write models/" + names[i] + ": " + ec.message());
+        }
+        const std::string json_text = manifest.dump(2) + "\n";
+        Status written = write_file_atomically(
+            (staged / "scene.json").string(),
+            std::span<const uint8_t>(reinterpret_cast<const uint8_t*>(json_text.data()), json_text.size()));
+        if (!written) return written.error();
+        // The staged manifest must read back as the same scene.
+        auto check = scene::read_scene((staged / "scene.json").string());
+        if (!check) return runtime_error("pack: the written manifest does not parse: " + check.error().message);
+        return ok_status();
     };
-    for (size_t i = 0; i < names.size(); ++i) {
-        fs::copy_file(scene->models[i].path, staged / "models" / names[i], ec);
-        if (ec) return fail(runtime_error(scene->models[i].path + ": cannot copy into the bundle: " + ec.message()));
-    }
-    const std::string json_text = manifest.dump(2) + "\n";
-    Status written = write_file_atomically(
-        (staged / "scene.json").string(),
-        std::span<const uint8_t>(reinterpret_cast<const uint8_t*>(json_text.data()), json_text.size()));
-    if (!written) return fail(written.error());
-    // The staged manifest must read back as the same scene.
-    auto check = scene::read_scene((staged / "scene.json").string());
-    if (!check) return fail(runtime_error("pack: the written manifest does not parse: " + check.error().message));
-    Status swapped = swap_into_place(staged, bundle);
-    if (!swapped) return fail(swapped.error());
+    auto replaceable = [](const std::string& dir) -> std::string {
+        std::error_code ec;
+        return fs::is_empty(dir, ec) || fs::exists(fs::path(dir) / "scene.json", ec)
+                   ? std::string()
+                   : "exists and is not a bundle (no scene.json)";
+    };
+    if (Status st = write_directory_atomically(bundle.string(), fill, replaceable); !st) return report(st.error());
     std::printf("%s: %zu models, %zu groups%s -> %s\n", scene_path.c_str(), scene->models.size(), scene->groups.size(),
                 (", " + std::to_string(triangles_total) + " triangles at full detail").c_str(),
                 bundle.string().c_str());

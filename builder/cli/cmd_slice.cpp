@@ -8,6 +8,7 @@
 #include "builder/contours/contour_stack.h"
 #include "builder/slicing/mesh_slicer.h"
 #include "shared/cli_args.h"
+#include "shared/input_file.h"
 #include "shared/obj_io.h"
 
 namespace body::cli {
@@ -36,6 +37,7 @@ int run_slice(const Args& argv) {
     const std::string output = args->get_or("o", args->get_or("output", ""));
     if (output.empty()) return report(input_error("slice: -o OUT.contours.json is required"));
     const std::string& input = args->positional()[0];
+    if (Status apart = check_output_apart(output, {input}); !apart) return report(apart.error());
 
     auto mesh = read_obj_merged(input);
     if (!mesh) return report(mesh.error());

@@ -6,6 +6,7 @@
 
 #include "body/version.h"
 #include "builder/cli/commands.h"
+#include "shared/atomic_file.h"
 #include "shared/error.h"
 
 namespace body::cli {
@@ -70,6 +71,7 @@ int main(int argc, char** argv) {
         std::printf("bodygen %s\n", BODY_VERSION_STRING);
         return body::kExitOk;
     }
+    body::remove_temporaries_on_signal();
     for (const Command& c : kCommands) {
         if (first == c.name) return c.run(body::cli::Args(argv + 2, argv + argc));
     }

@@ -10,6 +10,7 @@
 #include "kiosk/modes/modes.h"
 #include "kiosk/render/image.h"
 #include "kiosk/scene/scene_models.h"
+#include "shared/input_file.h"
 
 namespace body::kiosk {
 namespace {
@@ -86,6 +87,8 @@ Status shoot(platform::Surface& surface, render::Renderer& renderer, const rende
 }  // namespace
 
 int run_screenshot_mode(platform::Surface& surface, const ViewOptions& o, const scene::Scene& scene) {
+    if (Status apart = check_output_apart(o.screenshot, {o.model_path, o.scene_path, o.replay}); !apart)
+        return report(apart.error());
     SceneModels models(scene);
     render::Renderer renderer;
     if (auto s = renderer.init(o.renderer); !s) return report(s.error());
