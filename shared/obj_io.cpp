@@ -2,10 +2,14 @@
 
 #include <tiny_obj_loader.h>
 
+#include <cctype>
+#include <cerrno>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <map>
 #include <ostream>
+#include <string_view>
 #include <unordered_map>
 
 #include "shared/atomic_file.h"
@@ -45,6 +49,63 @@ std::string write_meshes(std::ostream& out, std::span<const Mesh> meshes, const 
     return {};
 }
 
+// tinyobjloader reads "nan", "one" or a missing coordinate as 0, keeps any
+// face index and drops 2-vertex faces; this pass refuses those first, naming
+// the line: "PATH: line N: reason".
+Status check_obj_text(const std::string& text, const std::string& path) {
+    size_t vertices = 0, line_no = 0, pos = 0;
+    auto fail = [&](const std::string& why) {
+        return input_error(path + ": line " + std::to_string(line_no) + ": " + why);
+    };
+    while (pos < text.size()) {
+        size_t end = text.find('\n', pos);
+        if (end == std::string::npos) end = text.size();
+        std::string_view line(text.data() + pos, end - pos);
+        pos = end + 1;
+        ++line_no;
+        if (const size_t hash = line.find('#'); hash != std::string_view::npos) line = line.substr(0, hash);
+        std::vector<std::string_view> tok;
+        for (size_t i = 0; i < line.size();) {
+            while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
+            size_t j = i;
+            while (j < line.size() && !std::isspace(static_cast<unsigned char>(line[j]))) ++j;
+            if (j > i) tok.push_back(line.substr(i, j - i));
+            i = j;
+        }
+        if (tok.empty()) continue;
+        if (tok[0] == "v") {
+            if (tok.size() < 4) return fail("vertex needs x y z, got " + std::to_string(tok.size() - 1) + " values");
+            for (size_t k = 1; k < tok.size() && k <= 3; ++k) {
+                const std::string number(tok[k]);
+                char* stop = nullptr;
+                const double v = std::strtod(number.c_str(), &stop);
+                if (stop == number.c_str() || *stop != '\0')
+                    return fail("vertex coordinate '" + escape_for_message(number, 40) + "' is not a number");
+                if (!std::isfinite(v) || std::fabs(v) > 3.0e38)
+                    return fail("vertex coordinate '" + escape_for_message(number, 40) + "' is not a finite float");
+            }
+            ++vertices;
+        } else if (tok[0] == "f") {
+            if (tok.size() < 4)
+                return fail("face has " + std::to_string(tok.size() - 1) + " vertices, at least 3 needed");
+            for (size_t k = 1; k < tok.size(); ++k) {
+                const std::string ref(tok[k].substr(0, tok[k].find('/')));
+                char* stop = nullptr;
+                errno = 0;
+                const long long i = std::strtoll(ref.c_str(), &stop, 10);
+                if (stop == ref.c_str() || *stop != '\0' || errno == ERANGE)
+                    return fail("face vertex '" + escape_for_message(tok[k], 40) + "' is not an index");
+                const unsigned long long magnitude =
+                    i < 0 ? 0ull - static_cast<unsigned long long>(i) : static_cast<unsigned long long>(i);
+                if (i == 0 || magnitude > vertices)
+                    return fail("face vertex index " + ref + " is outside 1.." + std::to_string(vertices) +
+                                " (the vertices defined so far)");
+            }
+        }
+    }
+    return ok_status();
+}
+
 }  // namespace
 
 Status write_obj(const std::string& path, std::span<const Mesh> meshes, const ObjWriteOptions& options) {
@@ -56,8 +117,11 @@ Result<std::vector<Mesh>> read_obj(const std::string& path) {
     tinyobj::ObjReaderConfig config;
     config.triangulate = true;
     config.vertex_color = false;
+    auto text = read_file(path);
+    if (!text) return text.error();
+    if (Status valid = check_obj_text(*text, path); !valid) return valid.error();
     tinyobj::ObjReader reader;
-    if (!reader.ParseFromFile(path, config)) {
+    if (!reader.ParseFromString(*text, "", config)) {
         std::string why = reader.Error();
         while (!why.empty() && (why.back() == '\n' || why.back() == '\r')) why.pop_back();
         for (char& c : why)

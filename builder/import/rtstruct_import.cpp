@@ -69,6 +69,13 @@ std::string read_contour(DcmItem& item, const std::string& place, PlanarContour&
     const unsigned long values = data->getVM();
     if (values % 3 != 0) return place + ": Contour Data has " + std::to_string(values) + " values, not x/y/z triples";
     const size_t n = values / 3;
+    // Number of Contour Points must agree with the data (PS3.3 C.8.8.6.1).
+    Sint32 declared = 0;
+    if (item.findAndGetSint32(DCM_NumberOfContourPoints, declared).good() &&
+        (declared < 0 || static_cast<size_t>(declared) != n)) {
+        return place + ": Number of Contour Points (3006,0046) is " + std::to_string(declared) +
+               " but Contour Data holds " + std::to_string(n) + " points";
+    }
     std::vector<Vec3> pts(n);
     for (size_t i = 0; i < n; ++i) {
         for (size_t c = 0; c < 3; ++c) {

@@ -58,6 +58,22 @@ TEST(RtStructImport, NonAxialContourPlaneIsAClearError) {
     EXPECT_NE(r.error().message.find("patient"), std::string::npos) << r.error().message;
 }
 
+TEST(RtStructImport, PointCountThatDisagreesWithTheDataIsRefused) {
+    if (!std::filesystem::exists(kRtStruct)) GTEST_SKIP() << "needs Debian package python3-pydicom";
+    const std::string path = derive("count.dcm", [](DcmDataset& ds) {
+        DcmItem* c = first_contour(ds);
+        ASSERT_NE(c, nullptr);
+        ASSERT_TRUE(c->putAndInsertString(DCM_ContourData, "0\\0\\5\\10\\0\\5\\10\\10\\5").good());
+        ASSERT_TRUE(c->putAndInsertString(DCM_NumberOfContourPoints, "7").good());
+    });
+    auto r = import_rtstruct(path, {});
+    ASSERT_FALSE(r.ok());
+    EXPECT_EQ(r.error().exit_code, kExitBadInput);
+    EXPECT_NE(r.error().message.find("Number of Contour Points (3006,0046) is 7 but Contour Data holds 3 points"),
+              std::string::npos)
+        << r.error().message;
+}
+
 TEST(RtStructImport, OtherModalitiesAndGarbageAreRejected) {
     if (!std::filesystem::exists(kRtStruct)) GTEST_SKIP() << "needs Debian package python3-pydicom";
     const std::string ct = derive("ct.dcm", [](DcmDataset& ds) { ds.putAndInsertString(DCM_Modality, "CT"); });
