@@ -113,15 +113,18 @@ Status write_obj(const std::string& path, std::span<const Mesh> meshes, const Ob
 }
 
 Result<std::vector<Mesh>> read_obj(const std::string& path) {
-    if (auto regular = check_regular_file(path); !regular) return regular.error();
+    auto text = read_file(path);  // checks for a regular file first
+    if (!text) return text.error();
+    return parse_obj(*text, path);
+}
+
+Result<std::vector<Mesh>> parse_obj(const std::string& text, const std::string& path) {
     tinyobj::ObjReaderConfig config;
     config.triangulate = true;
     config.vertex_color = false;
-    auto text = read_file(path);
-    if (!text) return text.error();
-    if (Status valid = check_obj_text(*text, path); !valid) return valid.error();
+    if (Status valid = check_obj_text(text, path); !valid) return valid.error();
     tinyobj::ObjReader reader;
-    if (!reader.ParseFromString(*text, "", config)) {
+    if (!reader.ParseFromString(text, "", config)) {
         std::string why = reader.Error();
         while (!why.empty() && (why.back() == '\n' || why.back() == '\r')) why.pop_back();
         for (char& c : why)

@@ -20,6 +20,9 @@ Status write_obj(const std::string& path, std::span<const Mesh> meshes, const Ob
 // Reads all objects; polygons are fan-triangulated, vertices welded by index.
 // An object without a name takes the file's stem ("bunny" for bunny.obj).
 Result<std::vector<Mesh>> read_obj(const std::string& path);
+// The same from OBJ text already in memory; `path` names it in messages
+// ("PATH: line N: reason") and names unnamed objects.
+Result<std::vector<Mesh>> parse_obj(const std::string& text, const std::string& path);
 
 // Reads all objects and merges them into one mesh (welding identical positions).
 Result<Mesh> read_obj_merged(const std::string& path);
