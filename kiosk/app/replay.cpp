@@ -10,6 +10,7 @@
 
 #include "kiosk/app/kiosk_app.h"
 #include "shared/atomic_file.h"
+#include "shared/input_file.h"
 
 namespace body::kiosk {
 
@@ -125,6 +126,8 @@ Result<Replay> parse_json(const std::string& text, const std::string& source) {
         root = json::parse(text);
     } catch (const json::parse_error& e) {
         return input_error(source + ": byte " + std::to_string(e.byte) + ": not valid JSON");
+    } catch (const json::exception& e) {  // 406: a number too large for a double (found by fuzzing)
+        return input_error(source + ": not valid JSON: " + escape_for_message(e.what(), 120));
     }
     Replay r;
     if (!root.is_object() || !root.contains("events") || !root["events"].is_array()) {

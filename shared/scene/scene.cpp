@@ -10,6 +10,7 @@
 #include <set>
 
 #include "shared/atomic_file.h"
+#include "shared/input_file.h"
 
 namespace body::scene {
 
@@ -313,6 +314,8 @@ Result<Scene> parse_scene(const std::string& text, const std::string& source, co
         root = json::parse(text);
     } catch (const json::parse_error& e) {
         return input_error(source + ": byte " + std::to_string(e.byte) + ": not valid JSON");
+    } catch (const json::exception& e) {  // 406: a number too large for a double (found by fuzzing)
+        return input_error(source + ": not valid JSON: " + escape_for_message(e.what(), 120));
     }
     Reader r{source, {}};
     Scene s;

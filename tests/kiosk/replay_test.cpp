@@ -57,6 +57,16 @@ TEST(Replay, ModifiersAreOptionalAndFollowAnyEvent) {
     }
 }
 
+// Found by fuzz_replay_parser: nlohmann throws out_of_range (not parse_error) for 9e99999.
+TEST(Replay, NumberOverflowIsAnErrorNotACrash) {
+    auto r = parse_replay(R"({"events": [{"t": 9e99999999, "type": "down"}]})", "x.replay");
+    ASSERT_FALSE(r.ok());
+    EXPECT_EQ(r.error().message.rfind("x.replay: not valid JSON: ", 0), 0u) << r.error().message;
+    auto end = parse_replay("0.0 move 1 1 1\n1e9 end\n", "y.replay");
+    ASSERT_FALSE(end.ok());
+    EXPECT_EQ(end.error().message, "y.replay: line 2: time 1e9 is over the 3600 s limit");
+}
+
 TEST(Replay, ErrorsNameTheLine) {
     auto bad = [](const std::string& text) {
         auto r = parse_replay(text, "x.replay");

@@ -56,6 +56,13 @@ std::string error_of(const std::string& text) {
     return s ? std::string("(parsed)") : s.error().message;
 }
 
+// Found by fuzz_scene_parser: nlohmann throws out_of_range (not parse_error) for 1e99999.
+TEST(Scene, NumberOverflowIsAnErrorNotACrash) {
+    auto s = parse_scene(R"({"version": 1, "models": [], "camera": {"fov_deg": 1e99999}})", "scene.json", "");
+    ASSERT_FALSE(s.ok());
+    EXPECT_EQ(s.error().message.rfind("scene.json: not valid JSON: ", 0), 0u) << s.error().message;
+}
+
 TEST(Scene, ErrorsNameFileAndPath) {
     EXPECT_EQ(error_of(R"({"models": [{"name": "a"}]})"), "scene.json: models[0].file: missing");
     EXPECT_EQ(error_of(R"({"models": [{"name": "a", "file": "a.obj", "colour": [1, 2, 0]}]})"),
