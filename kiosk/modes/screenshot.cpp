@@ -97,7 +97,8 @@ int run_screenshot_mode(platform::Surface& surface, const ViewOptions& o, const 
     // Nothing to show (every model failed, each reported): no picture, bad input.
     if (loaded == 0) {
         renderer.shutdown();
-        return report(input_error(o.screenshot + ": not written: no model could be loaded"));
+        if (!scene.models.empty()) return kExitBadInput;  // each failure has its line already
+        return report(input_error(o.screenshot + ": not written: the scene has no models"));
     }
     if (o.select && !select_matches(models, o)) {
         renderer.shutdown();

@@ -566,10 +566,7 @@ TEST(RenderCli, BadModelRendersNothingAndLogsOneLine) {
     std::ofstream(bad) << "v 0 0 0\nf 1 2 3\n";
     int rc = run(bodyview() + " --headless --size 160x100 --model " + bad + " --screenshot " + png + " 2>" + log);
     EXPECT_EQ(rc, 2);
-    auto img = read_png(png);
-    ASSERT_TRUE(img.ok()) << "no screenshot written";
-    auto mask = test::foreground_mask(img.value(), FrameOptions{}.background, 2);
-    EXPECT_EQ(std::count(mask.begin(), mask.end(), true), 0);
+    EXPECT_FALSE(std::filesystem::exists(png)) << "a picture of nothing was written";  // issue 30
     std::ifstream in(log);
     std::string all((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     EXPECT_EQ(std::count(all.begin(), all.end(), '\n'), 1) << all;
