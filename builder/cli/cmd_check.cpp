@@ -89,8 +89,8 @@ int run_contours_check(const Args& argv) {
     RepairLog log;
     const double tolerance = repair_tolerance(*stack, *repair);
     Status valid = validate_contour_stack(*stack, input, *repair, log);
+    if (!valid) return report(valid.error());  // the one line, as build shows it
     print_repairs(log);
-    if (!valid) return report(valid.error());
     const auto [contours, points] = count_contours(*stack);
     if (args->has("json")) {
         nlohmann::json j = {{"input", input},

@@ -148,8 +148,8 @@ int run_contours(const Args& argv) {
     // The same validation and repair as check and build: the written stack needs none.
     RepairLog log;
     Status valid = validate_contour_stack(*stack, input, *repair, log);
-    if (!quiet) print_repairs(log);
     if (!valid) return report(valid.error());
+    if (!quiet) print_repairs(log);
     if (auto written = write_contour_stack(*output, *stack); !written) return report(written.error());
     const auto [contours, points] = count_contours(*stack);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

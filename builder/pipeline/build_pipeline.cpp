@@ -279,9 +279,9 @@ Result<std::vector<StructureMesh>> build_structures(const ContourStack& input, c
     ContourStack stack = input;
     RepairLog log;
     auto valid = validate_contour_stack(stack, source_path, options.repair, log);
+    if (!valid) return valid.error();  // the one line to show; repairs before it do not matter then
     if (options.warning)
         for (const auto& w : log.lines) options.warning(w);
-    if (!valid) return valid.error();  // after the repairs before it, as `bodygen check` prints them
     if (options.repair_counts) options.repair_counts(log.counts);
 
     // Stage 2: structures (labels, or correspondence for unlabelled contours).
