@@ -63,12 +63,15 @@ bool on_segment(const Vec2& a, const Vec2& b, const Vec2& p) {
            p.y <= std::max(a.y, b.y);
 }
 
-// Intersection (crossing or touching) of segments ab and cd; writes the point.
-bool segments_meet(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d, Vec2& at) {
+// Intersection (crossing or touching) of segments ab and cd; writes the point
+// and whether they cross properly.
+bool segments_meet(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d, Vec2& at, bool& crosses) {
     double d1 = orient(c, d, a), d2 = orient(c, d, b), d3 = orient(a, b, c), d4 = orient(a, b, d);
+    crosses = false;
     if (((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0))) {
         double t = d1 / (d1 - d2);
         at = a + (b - a) * t;
+        crosses = true;
         return true;
     }
     if (d1 == 0 && on_segment(c, d, a)) return at = a, true;
@@ -81,7 +84,8 @@ bool segments_meet(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d, V
 bool lower(const Vec2& p, const Vec2& q) { return p.x < q.x || (p.x == q.x && p.y < q.y); }
 
 // Whether edges u and v meet where they should not; writes the point.
-bool edges_meet(std::span<const std::span<const Vec2>> loops, const Edge& u, const Edge& v, Vec2& at) {
+bool edges_meet(std::span<const std::span<const Vec2>> loops, const Edge& u, const Edge& v, Vec2& at, bool& crosses) {
+    crosses = false;
     const auto &lu = loops[u.loop], &lv = loops[v.loop];
     const Vec2 &a = lu[u.index], &b = lu[(u.index + 1) % lu.size()];
     const Vec2 &c = lv[v.index], &d = lv[(v.index + 1) % lv.size()];
@@ -100,7 +104,7 @@ bool edges_meet(std::span<const std::span<const Vec2>> loops, const Edge& u, con
             return false;
         }
     }
-    return segments_meet(a, b, c, d, at);
+    return segments_meet(a, b, c, d, at, crosses);
 }
 
 }  // namespace
@@ -114,7 +118,7 @@ std::vector<Crossing> find_crossings(std::span<const std::span<const Vec2>> loop
             t.edges.push_back({{std::min(a.x, b.x), std::min(a.y, b.y), std::max(a.x, b.x), std::max(a.y, b.y)}, l, i});
         }
     }
-    std::map<std::pair<size_t, size_t>, Vec2> found;
+    std::map<std::pair<size_t, size_t>, Crossing> found;
     if (t.edges.empty()) return {};
     build_node(t, 0, 0, t.edges.size());
     // Edge order after the build is the tree's; a pair is tested once, from the
@@ -139,15 +143,17 @@ std::vector<Crossing> find_crossings(std::span<const std::span<const Vec2>> loop
             for (size_t k = std::max(begin, s + 1); k < end; ++k) {
                 const Edge& v = t.edges[k];
                 Vec2 at;
-                if (!v.box.overlaps(u.box) || !edges_meet(loops, u, v, at)) continue;
+                bool crosses = false;
+                if (!v.box.overlaps(u.box) || !edges_meet(loops, u, v, at, crosses)) continue;
                 const std::pair<size_t, size_t> key{std::min(u.loop, v.loop), std::max(u.loop, v.loop)};
-                auto [it, inserted] = found.emplace(key, at);
-                if (!inserted && lower(at, it->second)) it->second = at;
+                auto [it, inserted] = found.emplace(key, Crossing{true, key.first, key.second, at, crosses});
+                if (!inserted && lower(at, it->second.point)) it->second.point = at;
+                it->second.crosses |= crosses;
             }
         }
     }
     std::vector<Crossing> out;
-    for (const auto& [key, at] : found) out.push_back({true, key.first, key.second, at});
+    for (const auto& [key, x] : found) out.push_back(x);
     return out;
 }
 

@@ -19,7 +19,8 @@
 //     their lobes, curls merge and overlapping contours of one structure are unioned; pieces
 //     of the result whose every point lies within the tolerance of the rest (the slivers of
 //     zig-zags) are dropped. A repair that would move a point further is refused.
-//   - contours of different structures that cross          -> warning, both kept.
+//   - contours of different structures that cross (touching is normal: label maps) -> one
+//     warning per pair of structures (first place, number of slices), both kept.
 // Each repair is one line "PATH: slice S contour C: at (x, y): what, points moved up to D"
 // naming the input file's slice and contour (Contour::source_slice / source_contour).
 //
@@ -96,6 +97,7 @@ struct Crossing {
     bool found = false;
     size_t loop_a = 0, loop_b = 0;
     Vec2 point{0.0};
+    bool crosses = false;  // some pair of edges crosses (not only touches or overlaps along a line)
 };
 // Every pair of loops (a <= b) that meets, once, with the lowest such point
 // (by x, then y); sorted by (a, b). Segments are found through a bounding-box
