@@ -211,6 +211,19 @@ RegionUnion union_regions(std::span<const std::vector<Vec2>> loops, double toler
     for (size_t i = 0; i < kept.size(); ++i)
         if (kept[i]) keep.push_back(std::move(result.loops[i]));
     result.loops = std::move(keep);
+    // Input points the union swallowed (inside a curl) moved to the boundary.
+    if (loops.size() == 1 && !result.loops.empty()) {
+        std::unordered_map<IntPoint, bool, KeyHash, KeyEq> present;
+        for (const auto& l : result.loops)
+            for (const Vec2& p : l)
+                present.emplace(IntPoint(cInt(std::llround(p.x * scale)), cInt(std::llround(p.y * scale))), true);
+        std::vector<Vec2> gone;
+        for (const Vec2& p : loops[0])
+            if (!present.count(IntPoint(cInt(std::llround(p.x * scale)), cInt(std::llround(p.y * scale)))))
+                gone.push_back(p);
+        const std::vector<bool> all(result.loops.size(), true);
+        if (!gone.empty()) result.moved = std::max(result.moved, distance_to_kept(gone, result.loops, all));
+    }
     return result;
 }
 

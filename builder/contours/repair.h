@@ -36,7 +36,9 @@ CleanupResult clean_contour(std::vector<Vec2>& points, double noise);
 // (Clipper, strictly simple output: no self-touching), as closed loops. Input
 // points reappear bit for bit; crossing points are new. Output loops whose every
 // point lies within `tolerance` of the other output loops' boundary (or, alone,
-// whose extent is within it) are dropped; `moved` is the largest such distance.
+// whose extent is within it) are dropped; `moved` is the largest such distance
+// and, for one input loop, also the largest distance from an input point the
+// union swallowed (inside a curl) to the result's boundary.
 struct RegionUnion {
     std::vector<std::vector<Vec2>> loops;
     size_t dropped = 0;
