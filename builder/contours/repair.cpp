@@ -152,7 +152,8 @@ RegionUnion union_regions(std::span<const std::vector<Vec2>> loops, double toler
     for (const auto& l : loops)
         for (const Vec2& p : l) m = std::max({m, std::abs(p.x), std::abs(p.y)});
     // A power of two keeps the scaling exact; 2^50 leaves Clipper's 62-bit range room.
-    const double scale = m > 0 ? std::exp2(std::floor(std::log2(std::exp2(50.0) / m))) : 1.0;
+    // (The exponent is clamped so tiny or huge coordinates cannot make it overflow.)
+    const double scale = m > 0 ? std::exp2(std::clamp(std::floor(50.0 - std::log2(m)), -1000.0, 1000.0)) : 1.0;
     std::unordered_map<IntPoint, Vec2, KeyHash, KeyEq> original;
     Paths paths;
     for (const auto& l : loops) {
