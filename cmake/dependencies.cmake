@@ -9,6 +9,8 @@ find_package(tinyobjloader REQUIRED)
 pkg_check_modules(EGL REQUIRED IMPORTED_TARGET egl)
 pkg_check_modules(GLESV2 REQUIRED IMPORTED_TARGET glesv2)
 pkg_check_modules(EVDEV REQUIRED IMPORTED_TARGET libevdev)
+# Clipper: polygon unions for contour repair (builder/contours/repair.cpp).
+pkg_check_modules(POLYCLIPPING REQUIRED IMPORTED_TARGET polyclipping)
 if(BODY_WITH_GLFW)
   pkg_check_modules(GLFW REQUIRED IMPORTED_TARGET glfw3)
 endif()

@@ -33,6 +33,7 @@ namespace body::cli {
 #ifdef BODY_WITH_IMPORT
 Result<ImportOptions> import_options_from_args(const CliArgs& args);  // cmd_contours.cpp
 #endif
+Result<RepairOptions> repair_options_from_args(const CliArgs& args);  // cmd_check.cpp
 
 namespace {
 
@@ -145,6 +146,9 @@ void print_usage() {
         "                                     removes slice terraces and voxel stairs with little shrinking\n"
         "                                     (small thin structures lose the most volume);\n"
         "                                     vertices leave their slice planes\n"
+        "  --strict                           refuse contours with any problem instead of repairing them\n"
+        "  --repair-tolerance D               largest distance a contour repair may move a point, in stack\n"
+        "                                     units (default 0.001 x the stack's x-y extent; see bodygen check)\n"
         "  --normals                          write vertex normals\n"
         "  --quiet                            no progress bar and no summary\n"
         "  --json                             statistics as JSON on stdout\n"
@@ -187,11 +191,14 @@ Result<BuildOptions> build_options_from_args(const CliArgs& args) {
     options.correspondence = *corr;
     options.branching = *branching;
     options.jobs = static_cast<unsigned>(*jobs);
+    auto repair = repair_options_from_args(args);
+    if (!repair) return repair.error();
+    options.repair = *repair;
     return options;
 }
 
 void print_json(const std::string& input, const std::string& output, const BuildOptions& options, double seconds,
-                const std::vector<StructureMesh>& built) {
+                const std::vector<StructureMesh>& built, const std::map<std::string, size_t>& repairs) {
     nlohmann::json j;
     j["input"] = input;
     j["output"] = output;
@@ -201,6 +208,7 @@ void print_json(const std::string& input, const std::string& output, const Build
     j["branching"] = branching_method_name(options.branching);
     j["smooth"] = options.fairing.iterations;
     j["seconds"] = seconds;
+    j["repairs"] = repairs;
     nlohmann::json list = nlohmann::json::array();
     for (const StructureMesh& s : built)
         list.push_back({{"id", s.id},
@@ -231,13 +239,14 @@ void print_summary(const std::string& output, double seconds, const std::vector<
 }  // namespace body::cli
 
 int run_build(const Args& argv) {
-    auto args = CliArgs::parse(argv,
-                               {"output", "caps", "tiling", "correspondence", "branching", "jobs", "smooth",
+    auto args =
+        CliArgs::parse(argv,
+                       {"output", "caps", "tiling", "correspondence", "branching", "jobs", "smooth", "repair-tolerance",
 #ifdef BODY_WITH_IMPORT
-                                "labels", "axis", "step", "only", "threshold", "tolerance", "min-area"
+                        "labels", "axis", "step", "only", "threshold", "tolerance", "min-area"
 #endif
-                               },
-                               {"help", "quiet", "json", "normals"});
+                       },
+                       {"help", "quiet", "json", "normals", "strict"});
     if (!args) return report(args.error());
     if (args->has("help")) {
         print_usage();
@@ -256,6 +265,8 @@ int run_build(const Args& argv) {
     if (!quiet)
         options->warning = [](const std::string& w) { std::fprintf(stderr, "bodygen: warning: %s\n", w.c_str()); };
     if (!quiet && isatty(STDERR_FILENO)) options->progress = draw_progress;
+    std::map<std::string, size_t> repairs;
+    options->repair_counts = [&repairs](const std::map<std::string, size_t>& counts) { repairs = counts; };
 
     const auto start = std::chrono::steady_clock::now();
     auto stack = load_input(input, *args, quiet);
@@ -266,7 +277,7 @@ int run_build(const Args& argv) {
     if (!written) return report(written.error());
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-    if (json_out) print_json(input, output, *options, seconds, *built);
+    if (json_out) print_json(input, output, *options, seconds, *built, repairs);
     if (!quiet) print_summary(output, seconds, *built);
     return kExitOk;
 }

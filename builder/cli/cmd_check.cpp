@@ -1,25 +1,112 @@
-// bodygen check STACK.contours.json: parse a contour stack and summarise it.
+// bodygen check INPUT: read a contour source, validate and repair it exactly as
+// `bodygen build` does (same code path, same options), print each repair and
+// a summary; exit 2 with the one line `build` would refuse with.
 #include <cstdio>
+#include <nlohmann/json.hpp>
 
 #include "builder/cli/commands.h"
 #include "builder/contours/contour_stack.h"
+#include "builder/contours/validate.h"
+#ifdef BODY_WITH_IMPORT
+#include "builder/import/import.h"
+#endif
 #include "shared/cli_args.h"
 
 namespace body::cli {
 
+#ifdef BODY_WITH_IMPORT
+Result<ImportOptions> import_options_from_args(const CliArgs& args);  // cmd_contours.cpp
+#endif
+
+// The repair options of check, build and contours (--strict, --repair-tolerance).
+Result<RepairOptions> repair_options_from_args(const CliArgs& args) {
+    RepairOptions o;
+    o.strict = args.has("strict");
+    auto tol = args.get_double("repair-tolerance", 0.0);
+    if (!tol) return tol.error();
+    if (!(*tol >= 0.0) || *tol > 1e9) return input_error("option --repair-tolerance: must be a distance >= 0");
+    o.tolerance = *tol;
+    return o;
+}
+
+// One "bodygen: warning:" line per repair, as build prints them.
+void print_repairs(const RepairLog& log) {
+    for (const std::string& line : log.lines) std::fprintf(stderr, "bodygen: warning: %s\n", line.c_str());
+}
+
+namespace {
+
+constexpr const char* kUsage =
+    "usage: bodygen check INPUT [options]\n"
+    "  INPUT: STACK.contours.json"
+#ifdef BODY_WITH_IMPORT
+    ", a NIfTI label volume or a DICOM RT-STRUCT"
+#endif
+    "\n  Validates and repairs the contours exactly as `bodygen build` would, prints one line\n"
+    "  per repair (file, slice, contour, place, what, how far points moved), exit 2 on a refusal.\n"
+    "  --strict                  refuse on the first problem instead of repairing\n"
+    "  --repair-tolerance D      largest distance a repair may move a point, in stack units\n"
+    "                            (default 0.001 x the stack's x-y extent)\n"
+    "  --json                    the summary and repair counts as JSON on stdout\n"
+#ifdef BODY_WITH_IMPORT
+    "  --labels, --axis, --step, --only, --threshold, --tolerance, --min-area\n"
+    "                            import options for label volumes (see bodygen contours --help)\n"
+#endif
+    ;
+
+Result<ContourStack> load(const std::string& path, const CliArgs& args) {
+#ifdef BODY_WITH_IMPORT
+    auto import = import_options_from_args(args);
+    if (!import) return import.error();
+    return load_any_contour_source(path, *import);
+#else
+    (void)args;
+    return read_contour_stack(path);
+#endif
+}
+
+}  // namespace
+
 int run_contours_check(const Args& argv) {
-    auto args = CliArgs::parse(argv, {}, {"help"});
+    auto args = CliArgs::parse(argv,
+                               {"repair-tolerance",
+#ifdef BODY_WITH_IMPORT
+                                "labels", "axis", "step", "only", "threshold", "tolerance", "min-area"
+#endif
+                               },
+                               {"help", "strict", "json"});
     if (!args) return report(args.error());
     if (args->has("help")) {
-        std::printf("usage: bodygen check STACK.contours.json\n");
+        std::printf("%s", kUsage);
         return kExitOk;
     }
     if (args->positional().size() != 1) return report(input_error("check: expected one contour stack file"));
-    auto stack = read_contour_stack(args->positional()[0]);
+    auto repair = repair_options_from_args(*args);
+    if (!repair) return report(repair.error());
+    const std::string& input = args->positional()[0];
+    auto stack = load(input, *args);
     if (!stack) return report(stack.error());
+    RepairLog log;
+    const double tolerance = repair_tolerance(*stack, *repair);
+    Status valid = validate_contour_stack(*stack, input, *repair, log);
+    if (!valid) return report(valid.error());  // the one line, as build shows it
+    print_repairs(log);
     const auto [contours, points] = count_contours(*stack);
-    std::printf("%s: %zu slices, %zu contours, %zu points, %zu structures (units %s)\n", args->positional()[0].c_str(),
-                stack->slices.size(), contours, points, stack->structures.size(), stack->units.c_str());
+    if (args->has("json")) {
+        nlohmann::json j = {{"input", input},
+                            {"slices", stack->slices.size()},
+                            {"contours", contours},
+                            {"points", points},
+                            {"structures", stack->structures.size()},
+                            {"units", stack->units},
+                            {"repair_tolerance", tolerance},
+                            {"repairs", log.counts}};
+        std::printf("%s\n", j.dump(2).c_str());
+        return kExitOk;
+    }
+    std::printf("%s: %zu slices, %zu contours, %zu points, %zu structures (units %s), %zu repair(s) or warning(s)\n",
+                input.c_str(), stack->slices.size(), contours, points, stack->structures.size(), stack->units.c_str(),
+                log.lines.size());
     return kExitOk;
 }
 

@@ -11,6 +11,7 @@
 
 #ifdef BODY_WITH_IMPORT
 #include "builder/contours/contour_stack.h"
+#include "builder/contours/validate.h"
 #include "builder/import/import.h"
 #include "shared/cli_args.h"
 #include "shared/input_file.h"
@@ -31,11 +32,16 @@ constexpr const char* kUsage =
     "  --tolerance V     simplification tolerance in voxels (default 0.5; 0 keeps every vertex)\n"
     "  --min-area A      drop islands and fill holes smaller than A voxels per slice (0-8, default 0)\n"
     "  --jobs N          structures extracted in parallel (default 1)\n"
+    "  --strict          refuse extracted contours with any problem instead of repairing them\n"
+    "  --repair-tolerance D  largest distance a contour repair may move a point (see bodygen check)\n"
     "  --quiet           no progress bar or notes\n";
 
 }  // namespace
 
 #ifdef BODY_WITH_IMPORT
+
+Result<RepairOptions> repair_options_from_args(const CliArgs& args);  // cmd_check.cpp
+void print_repairs(const RepairLog& log);                             // cmd_check.cpp
 
 namespace {
 
@@ -111,9 +117,10 @@ Result<ImportOptions> import_options_from_args(const CliArgs& args) {
 }
 
 int run_contours(const Args& argv) {
-    auto args =
-        CliArgs::parse(argv, {"labels", "axis", "step", "only", "threshold", "tolerance", "min-area", "jobs", "output"},
-                       {"help", "quiet"});
+    auto args = CliArgs::parse(
+        argv,
+        {"labels", "axis", "step", "only", "threshold", "tolerance", "min-area", "jobs", "output", "repair-tolerance"},
+        {"help", "quiet", "strict"});
     if (!args) return report(args.error());
     if (args->has("help")) {
         std::printf("%s", kUsage);
@@ -137,8 +144,15 @@ int run_contours(const Args& argv) {
         return report(input_error(input + ": already a contour stack (use bodygen check)"));
     }
     const auto start = std::chrono::steady_clock::now();
+    auto repair = repair_options_from_args(*args);
+    if (!repair) return report(repair.error());
     auto stack = load_any_contour_source(input, *options);
     if (!stack) return report(stack.error());
+    // The same validation and repair as check and build: the written stack needs none.
+    RepairLog log;
+    Status valid = validate_contour_stack(*stack, input, *repair, log);
+    if (!valid) return report(valid.error());
+    if (!quiet) print_repairs(log);
     if (auto written = write_contour_stack(*output, *stack); !written) return report(written.error());
     const auto [contours, points] = count_contours(*stack);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

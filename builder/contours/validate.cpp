@@ -1,9 +1,8 @@
-// Contour validation and repair: finiteness, duplicate points, keyhole cuts,
-// zero area, self-intersection and crossings, and even-odd nesting.
+// Contour validation and repair (the contract is in validate.h): per contour
+// finiteness, point clean-up, degenerate contours and keyhole cuts; per slice
+// the crossings (crossings.cpp), repaired by union (repair.cpp); even-odd nesting.
 //
 // References:
-//   M. I. Shamos, D. Hoey, "Geometric intersection problems", FOCS 1976
-//     (sweep for segment intersection; here a sort-and-sweep on x intervals).
 //   W. R. Franklin, "PNPOLY - point inclusion in polygon test" (even-odd rule).
 #include "builder/contours/validate.h"
 
@@ -11,6 +10,9 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <set>
+
+#include "builder/contours/repair.h"
 
 namespace body {
 namespace {
@@ -36,43 +38,6 @@ double extent_of(std::span<const Vec2> pts) {
 
 double orient(const Vec2& a, const Vec2& b, const Vec2& c) {
     return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
-}
-
-bool on_segment(const Vec2& a, const Vec2& b, const Vec2& p) {
-    return std::min(a.x, b.x) <= p.x && p.x <= std::max(a.x, b.x) && std::min(a.y, b.y) <= p.y &&
-           p.y <= std::max(a.y, b.y);
-}
-
-// Intersection (crossing or touching) of segments ab and cd; writes the point.
-bool segments_meet(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d, Vec2& at) {
-    double d1 = orient(c, d, a), d2 = orient(c, d, b), d3 = orient(a, b, c), d4 = orient(a, b, d);
-    if (((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0))) {
-        double t = d1 / (d1 - d2);
-        at = a + (b - a) * t;
-        return true;
-    }
-    if (d1 == 0 && on_segment(c, d, a)) return at = a, true;
-    if (d2 == 0 && on_segment(c, d, b)) return at = b, true;
-    if (d3 == 0 && on_segment(a, b, c)) return at = c, true;
-    if (d4 == 0 && on_segment(a, b, d)) return at = d, true;
-    return false;
-}
-
-struct Segment {
-    double xmin, xmax, ymin, ymax;
-    uint32_t loop, index;
-};
-
-// Removes consecutive duplicates (cyclically); returns how many were removed.
-size_t remove_duplicates(std::vector<Vec2>& pts) {
-    size_t before = pts.size();
-    std::vector<Vec2> out;
-    out.reserve(pts.size());
-    for (const Vec2& p : pts)
-        if (out.empty() || out.back() != p) out.push_back(p);
-    while (out.size() > 1 && out.back() == out.front()) out.pop_back();
-    pts = std::move(out);
-    return before - pts.size();
 }
 
 bool collinear(std::span<const Vec2> pts) {
@@ -162,105 +127,246 @@ Nesting compute_nesting(const Slice& slice, std::span<const uint32_t> members) {
     return compute_nesting(loops);
 }
 
-Crossing find_crossing(std::span<const std::span<const Vec2>> loops) {
-    std::vector<Segment> segs;
-    for (uint32_t l = 0; l < loops.size(); ++l) {
-        const auto& pts = loops[l];
-        for (uint32_t i = 0; i < pts.size(); ++i) {
-            const Vec2 &a = pts[i], &b = pts[(i + 1) % pts.size()];
-            segs.push_back({std::min(a.x, b.x), std::max(a.x, b.x), std::min(a.y, b.y), std::max(a.y, b.y), l, i});
+// ------------------------------------------------------------ validation
+
+namespace {
+
+struct Context {
+    const std::string& path;
+    const RepairOptions& options;
+    RepairLog& log;
+    double tolerance = 0.0;
+    double noise = 0.0;  // points closer than this are one point (rounding noise)
+    // Crossings between two structures: the first line and the number of slices, per pair.
+    std::map<std::pair<std::string, std::string>, std::pair<std::string, size_t>> structure_overlaps;
+};
+
+std::string distance_text(double d) {
+    char buf[48];
+    std::snprintf(buf, sizeof buf, "%.3g", d);
+    return buf;
+}
+
+void note_repair(Context& cx, const Contour& c, const char* kind, const Vec2& at, const std::string& what,
+                 double moved) {
+    cx.log.add(kind, where(cx.path, c) + ": at " + format_point(at) + ": " + what + ", points moved up to " +
+                         distance_text(moved));
+}
+
+std::string too_far(const Context& cx, double moved) {
+    return "; repairing it would move points by " + distance_text(moved) + " (more than the repair tolerance " +
+           distance_text(cx.tolerance) + ")";
+}
+
+// Point clean-up of one contour (repair mode); an error when a spike is too long.
+Status clean_points(Context& cx, Contour& c) {
+    const CleanupResult r = clean_contour(c.points, cx.noise);
+    const std::pair<const PointRepair*, const char*> kinds[] = {
+        {&r.near_duplicate, "near_duplicate"}, {&r.collinear, "collinear"}, {&r.spike, "spike"}};
+    for (const auto& [repair, kind] : kinds) {
+        if (!repair->count) continue;
+        if (repair->moved > cx.tolerance)
+            return input_error(where(cx.path, c) + ": zero-width spike at " + format_point(repair->at) +
+                               too_far(cx, repair->moved));
+        const std::string what = std::string("removed ") + std::to_string(repair->count) +
+                                 (repair == &r.spike       ? " zero-width spike tip(s)"
+                                  : repair == &r.collinear ? " collinear point(s)"
+                                                           : " near-duplicate point(s)");
+        note_repair(cx, c, kind, repair->at, what, repair->moved);
+    }
+    return ok_status();
+}
+
+// Checks and repairs one contour; appends what remains of it to `out`.
+Status validate_contour(Context& cx, Contour& c, std::vector<Contour>& out) {
+    const bool strict = cx.options.strict;
+    for (size_t k = 0; k < c.points.size(); ++k)
+        if (!std::isfinite(c.points[k].x) || !std::isfinite(c.points[k].y))
+            return input_error(where(cx.path, c) + ": point " + std::to_string(k) + " is not finite");
+    const Vec2 first = c.points.empty() ? Vec2(0.0) : c.points[0];
+    if (size_t removed = remove_duplicate_points(c.points))
+        note_repair(cx, c, "duplicate", first, "removed " + std::to_string(removed) + " duplicate consecutive point(s)",
+                    0.0);
+    // Contours without area are refused, or dropped when no larger than the tolerance.
+    bool dropped = false;
+    auto degenerate = [&]() -> Status {
+        const double extent = extent_of(c.points);
+        const bool too_few = count_distinct(c.points) < 3;
+        const bool flat =
+            !too_few && (strict ? std::abs(signed_area2(c.points.data(), c.points.size())) <= 1e-12 * extent * extent
+                                : collinear(c.points));
+        if (!too_few && !flat) return ok_status();
+        if (!strict && extent <= cx.tolerance) {
+            note_repair(cx, c, "degenerate", first, "dropped a contour without area", extent);
+            dropped = true;
+            return ok_status();
+        }
+        if (too_few) return input_error(where(cx.path, c) + ": fewer than 3 distinct points");
+        if (count_distinct(c.points) == c.points.size() && !collinear(c.points)) {
+            const std::span<const Vec2> self[1] = {c.points};
+            Crossing x = find_crossing(self);  // a figure eight has zero signed area too
+            if (x.found) return input_error(where(cx.path, c) + ": self-intersects at " + format_point(x.point));
+        }
+        return input_error(where(cx.path, c) + ": zero area");
+    };
+    if (Status s = degenerate(); !s || dropped) return s;
+    if (!strict) {
+        if (Status s = clean_points(cx, c); !s) return s;
+        if (Status s = degenerate(); !s || dropped) return s;
+    }
+    if (count_distinct(c.points) == c.points.size()) {
+        out.push_back(std::move(c));
+        return ok_status();
+    }
+    auto loops = split_keyholes(c.points);
+    if (loops.empty()) return input_error(where(cx.path, c) + ": zero area");
+    note_repair(cx, c, "keyhole", first, "keyhole cut split into " + std::to_string(loops.size()) + " contour(s)", 0.0);
+    for (auto& loop : loops) {
+        Contour piece = c;
+        piece.points = std::move(loop);
+        out.push_back(std::move(piece));
+    }
+    return ok_status();
+}
+
+struct UnionFind {
+    std::vector<size_t> parent;
+    explicit UnionFind(size_t n) : parent(n) {
+        for (size_t i = 0; i < n; ++i) parent[i] = i;
+    }
+    size_t find(size_t i) { return parent[i] == i ? i : parent[i] = find(parent[i]); }
+    void join(size_t a, size_t b) { parent[find(a)] = find(b); }
+};
+
+std::string crossing_message(const std::string& path, const Contour& a, const Contour& b, const Crossing& x) {
+    if (&a == &b) return where(path, a) + ": self-intersects at " + format_point(x.point);
+    return where(path, a) + ": crosses slice " + std::to_string(b.source_slice) + " contour " +
+           std::to_string(b.source_contour) + " at " + format_point(x.point);
+}
+
+// Replaces each cluster of crossing contours of one structure by the union of their regions.
+Status repair_clusters(Context& cx, Slice& slice, const std::vector<Crossing>& same) {
+    UnionFind uf(slice.contours.size());
+    for (const Crossing& x : same) uf.join(x.loop_a, x.loop_b);
+    std::map<size_t, std::vector<size_t>> clusters;
+    std::map<size_t, const Crossing*> first;
+    for (const Crossing& x : same) {
+        first.emplace(uf.find(x.loop_a), &x);
+    }
+    for (size_t i = 0; i < slice.contours.size(); ++i)
+        if (first.count(uf.find(i))) clusters[uf.find(i)].push_back(i);
+    std::vector<bool> replaced(slice.contours.size(), false);
+    std::vector<Contour> added;
+    for (const auto& [root, members] : clusters) {
+        const Crossing& x = *first.at(root);
+        std::vector<std::vector<Vec2>> loops;
+        for (size_t i : members) loops.push_back(slice.contours[i].points);
+        const RegionUnion u = union_regions(loops, cx.tolerance);
+        const Contour& a = slice.contours[members[0]];
+        const std::string problem = crossing_message(cx.path, slice.contours[x.loop_a], slice.contours[x.loop_b], x);
+        if (!u.ok || u.loops.empty()) return input_error(problem + "; cannot be repaired");
+        if (u.moved > cx.tolerance) return input_error(problem + too_far(cx, u.moved));
+        std::string what;
+        if (members.size() == 1)
+            what = "self-intersection repaired into " + std::to_string(u.loops.size()) + " contour(s)";
+        else {
+            what = "union of " + std::to_string(members.size()) + " overlapping contours (";
+            for (size_t k = 0; k < members.size(); ++k)
+                what += (k ? ", " : "") + std::to_string(slice.contours[members[k]].source_contour);
+            what += ") into " + std::to_string(u.loops.size()) + " contour(s)";
+        }
+        if (u.dropped) what += ", " + std::to_string(u.dropped) + " sliver(s) dropped";
+        note_repair(cx, a, members.size() == 1 ? "self_intersection" : "overlap", x.point, what, u.moved);
+        for (size_t i : members) replaced[i] = true;
+        for (const auto& loop : u.loops) {
+            Contour piece = a;
+            piece.points = loop;
+            added.push_back(std::move(piece));
         }
     }
-    std::sort(segs.begin(), segs.end(), [](const Segment& a, const Segment& b) { return a.xmin < b.xmin; });
-    Crossing result;
-    for (size_t s = 0; s < segs.size(); ++s) {
-        const Segment& u = segs[s];
-        const auto& lu = loops[u.loop];
-        const Vec2 &a = lu[u.index], &b = lu[(u.index + 1) % lu.size()];
-        for (size_t t = s + 1; t < segs.size() && segs[t].xmin <= u.xmax; ++t) {
-            const Segment& v = segs[t];
-            if (v.ymin > u.ymax || v.ymax < u.ymin) continue;
-            const auto& lv = loops[v.loop];
-            const Vec2 &c = lv[v.index], &d = lv[(v.index + 1) % lv.size()];
-            Vec2 at;
-            if (u.loop == v.loop) {
-                const uint32_t n = uint32_t(lu.size());
-                bool next = (u.index + 1) % n == v.index, prev = (v.index + 1) % n == u.index;
-                if (next || prev) {
-                    // Adjacent edges meet at their shared vertex; they only fail when they fold back.
-                    const Vec2& shared = next ? b : a;
-                    const Vec2& other_u = next ? a : b;
-                    const Vec2& other_v = next ? d : c;
-                    if (orient(other_u, shared, other_v) == 0 && glm::dot(other_u - shared, other_v - shared) > 0) {
-                        result = {true, u.loop, v.loop, shared};
-                        return result;
-                    }
-                    if (next && prev) continue;
-                    continue;
-                }
-            }
-            if (segments_meet(a, b, c, d, at)) {
-                result = {true, std::min(u.loop, v.loop), std::max(u.loop, v.loop), at};
-                return result;
-            }
+    std::vector<Contour> kept;
+    for (size_t i = 0; i < slice.contours.size(); ++i)
+        if (!replaced[i]) kept.push_back(std::move(slice.contours[i]));
+    for (Contour& c : added) kept.push_back(std::move(c));
+    slice.contours = std::move(kept);
+    return ok_status();
+}
+
+// Crossings on one slice: same structure -> error (strict) or union; different
+// -> warning. After a union, pieces that touch at a point are pulled apart.
+Status check_crossings(Context& cx, Slice& slice, int round) {
+    std::vector<std::span<const Vec2>> loops;
+    for (const Contour& c : slice.contours) loops.emplace_back(c.points);
+    std::vector<Crossing> same;
+    std::set<std::pair<std::string, std::string>> warned;
+    for (const Crossing& x : find_crossings(loops)) {
+        const Contour &a = slice.contours[x.loop_a], &b = slice.contours[x.loop_b];
+        if (a.structure == b.structure) {
+            if (cx.options.strict || round > 3)
+                return input_error(crossing_message(cx.path, a, x.loop_a == x.loop_b ? a : b, x) +
+                                   (round > 0 ? "; cannot be repaired" : ""));
+            same.push_back(x);
+        } else if (round == 0 && x.crosses && warned.insert({a.structure, b.structure}).second) {
+            auto [it, first] = cx.structure_overlaps.emplace(
+                std::pair{a.structure, b.structure},
+                std::pair{where(cx.path, a) + ": at " + format_point(x.point) + ": structure '" + a.structure +
+                              "' crosses slice " + std::to_string(b.source_slice) + " contour " +
+                              std::to_string(b.source_contour) + " of structure '" + b.structure + "'",
+                          size_t(0)});
+            ++it->second.second;
         }
     }
-    return result;
+    if (same.empty()) return ok_status();
+    if (round == 0) {
+        if (Status s = repair_clusters(cx, slice, same); !s) return s;
+    } else {
+        // Union pieces (strictly simple each) may share a point: separate them by a step far below the tolerance.
+        for (const Crossing& x : same) {
+            const double step = cx.tolerance * 1e-2;
+            double moved = pull_inward(slice.contours[x.loop_a].points, x.point, step);
+            if (x.loop_b != x.loop_a)
+                moved = std::max(moved, pull_inward(slice.contours[x.loop_b].points, x.point, step));
+            note_repair(cx, slice.contours[x.loop_a], "touching", x.point, "touching contours pulled apart", moved);
+        }
+    }
+    return check_crossings(cx, slice, round + 1);
+}
+
+}  // namespace
+
+double repair_tolerance(const ContourStack& stack, const RepairOptions& options) {
+    if (options.tolerance > 0) return options.tolerance;
+    Vec2 lo(1e300), hi(-1e300);
+    for (const Slice& s : stack.slices)
+        for (const Contour& c : s.contours)
+            for (const Vec2& p : c.points)
+                if (std::isfinite(p.x) && std::isfinite(p.y)) lo = glm::min(lo, p), hi = glm::max(hi, p);
+    return lo.x <= hi.x ? kDefaultRepairTolerance * glm::length(hi - lo) : 0.0;
+}
+
+Status validate_contour_stack(ContourStack& stack, const std::string& path, const RepairOptions& options,
+                              RepairLog& log) {
+    Context cx{path, options, log, 0.0, 0.0, {}};
+    cx.tolerance = repair_tolerance(stack, options);
+    cx.noise = cx.tolerance * 1e-3;
+    for (Slice& slice : stack.slices) {
+        std::vector<Contour> kept;
+        for (Contour& c : slice.contours)
+            if (Status s = validate_contour(cx, c, kept); !s) return s;
+        slice.contours = std::move(kept);
+        if (Status s = check_crossings(cx, slice, 0); !s) return s;
+    }
+    for (const auto& [pair, first] : cx.structure_overlaps)
+        log.add("structure_overlap",
+                first.first + " (both kept; the two cross on " + std::to_string(first.second) + " slice(s))");
+    return ok_status();
 }
 
 Status validate_contour_stack(ContourStack& stack, const std::string& path, std::vector<std::string>& warnings) {
-    for (Slice& slice : stack.slices) {
-        std::vector<Contour> repaired;
-        for (Contour& c : slice.contours) {
-            for (size_t k = 0; k < c.points.size(); ++k)
-                if (!std::isfinite(c.points[k].x) || !std::isfinite(c.points[k].y))
-                    return input_error(where(path, c) + ": point " + std::to_string(k) + " is not finite");
-            if (size_t removed = remove_duplicates(c.points))
-                warnings.push_back(where(path, c) + ": removed " + std::to_string(removed) +
-                                   " duplicate consecutive point(s)");
-            if (count_distinct(c.points) < 3) return input_error(where(path, c) + ": fewer than 3 distinct points");
-            const double extent = extent_of(c.points);
-            if (std::abs(signed_area2(c.points.data(), c.points.size())) <= 1e-12 * extent * extent &&
-                count_distinct(c.points) == c.points.size()) {
-                const std::span<const Vec2> self[1] = {c.points};
-                Crossing x = find_crossing(self);  // a figure eight has zero signed area too
-                if (x.found && !collinear(c.points))
-                    return input_error(where(path, c) + ": self-intersects at " + format_point(x.point));
-                return input_error(where(path, c) + ": zero area");
-            }
-            if (count_distinct(c.points) == c.points.size()) {
-                repaired.push_back(std::move(c));
-                continue;
-            }
-            auto loops = split_keyholes(c.points);
-            if (loops.empty()) return input_error(where(path, c) + ": zero area");
-            warnings.push_back(where(path, c) + ": keyhole cut split into " + std::to_string(loops.size()) +
-                               " contour(s)");
-            for (auto& loop : loops) {
-                Contour piece = c;
-                piece.points = std::move(loop);
-                repaired.push_back(std::move(piece));
-            }
-        }
-        slice.contours = std::move(repaired);
-
-        // Crossings within each structure group (unlabelled contours form one group).
-        std::map<std::string, std::vector<size_t>> groups;
-        for (size_t i = 0; i < slice.contours.size(); ++i) groups[slice.contours[i].structure].push_back(i);
-        for (const auto& [id, members] : groups) {
-            std::vector<std::span<const Vec2>> loops;
-            for (size_t i : members) loops.emplace_back(slice.contours[i].points);
-            Crossing x = find_crossing(loops);
-            if (!x.found) continue;
-            const Contour& a = slice.contours[members[x.loop_a]];
-            const Contour& b = slice.contours[members[x.loop_b]];
-            if (x.loop_a == x.loop_b)
-                return input_error(where(path, a) + ": self-intersects at " + format_point(x.point));
-            return input_error(where(path, a) + ": crosses slice " + std::to_string(b.source_slice) + " contour " +
-                               std::to_string(b.source_contour) + " at " + format_point(x.point));
-        }
-    }
-    return ok_status();
+    RepairLog log;
+    Status s = validate_contour_stack(stack, path, RepairOptions{}, log);
+    warnings.insert(warnings.end(), log.lines.begin(), log.lines.end());
+    return s;
 }
 
 }  // namespace body

@@ -277,11 +277,12 @@ Result<std::vector<StructureMesh>> build_structures(const ContourStack& input, c
                                                     const std::string& source_path) {
     // Stage 1: validation and repair.
     ContourStack stack = input;
-    std::vector<std::string> warnings;
-    auto valid = validate_contour_stack(stack, source_path, warnings);
-    if (!valid) return valid.error();  // the error is the one line to show; repairs do not matter then
+    RepairLog log;
+    auto valid = validate_contour_stack(stack, source_path, options.repair, log);
+    if (!valid) return valid.error();  // the one line to show; repairs before it do not matter then
     if (options.warning)
-        for (const auto& w : warnings) options.warning(w);
+        for (const auto& w : log.lines) options.warning(w);
+    if (options.repair_counts) options.repair_counts(log.counts);
 
     // Stage 2: structures (labels, or correspondence for unlabelled contours).
     StructureGroups grouping = group_structures(stack, options.correspondence);

@@ -27,12 +27,14 @@
 // overlapping surfaces by design. Smoothing (`fairing.iterations` > 0) keeps the
 // connectivity, hence closedness and manifoldness, but not the re-slicing property.
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
 #include "builder/branching/branching.h"
 #include "builder/caps/caps.h"
 #include "builder/contours/contour_stack.h"
+#include "builder/contours/validate.h"
 #include "builder/correspondence/correspondence.h"
 #include "builder/fairing/fairing.h"
 #include "builder/tiling/tiling.h"
@@ -55,8 +57,13 @@ struct BuildOptions {
     // Called after each slice of each structure: (done, total) slices. With
     // jobs > 1 it is called from the worker threads, one call at a time.
     std::function<void(size_t done, size_t total)> progress;
-    // Receives repair warnings (duplicate points removed, keyholes split, ...).
+    // Contour repair (contours/validate.h): strict refusal or the repair tolerance.
+    RepairOptions repair;
+    // Receives repair warnings (duplicate points removed, keyholes split, ...),
+    // one line each, before any structure is built.
     std::function<void(const std::string& message)> warning;
+    // Receives the repair counts by kind (RepairLog::counts) when set.
+    std::function<void(const std::map<std::string, size_t>& counts)> repair_counts;
 };
 
 struct StructureMesh {

@@ -9,13 +9,16 @@ namespace {
 
 using namespace body::test;
 
-Status validate_one(std::vector<std::vector<Vec2>> contours, std::vector<std::string>* warnings = nullptr) {
+Status validate_one(std::vector<std::vector<Vec2>> contours, std::vector<std::string>* warnings = nullptr,
+                    bool strict = false) {
     StackBuilder b;
     b.slice(0.0, {circle(50, 50, 1)});
     b.slice(1.0, std::move(contours));
-    std::vector<std::string> w;
-    auto s = validate_contour_stack(b.stack, "in.json", w);
-    if (warnings) *warnings = w;
+    RepairOptions options;
+    options.strict = strict;
+    RepairLog log;
+    auto s = validate_contour_stack(b.stack, "in.json", options, log);
+    if (warnings) *warnings = log.lines;
     return s;
 }
 
@@ -47,17 +50,19 @@ TEST(Validate, RemovesDuplicateConsecutivePointsWithAWarning) {
     auto s = validate_one({{{0, 0}, {0, 0}, {4, 0}, {4, 4}, {0, 4}, {0, 0}}}, &w);
     ASSERT_TRUE(s.ok()) << s.error().message;
     ASSERT_EQ(w.size(), 1u);
-    EXPECT_EQ(w[0], "in.json: slice 1 contour 0: removed 2 duplicate consecutive point(s)");
+    EXPECT_EQ(w[0],
+              "in.json: slice 1 contour 0: at (0, 0): removed 2 duplicate consecutive point(s), points moved up to 0");
 }
 
-TEST(Validate, SelfIntersectionNamesThePoint) {
-    auto s = validate_one({{{0, 0}, {4, 4}, {4, 0}, {0, 4}}});  // a bow tie crossing at (2, 2)
+TEST(Validate, StrictSelfIntersectionNamesThePoint) {
+    auto s = validate_one({{{0, 0}, {4, 4}, {4, 0}, {0, 4}}}, nullptr, true);  // a bow tie crossing at (2, 2)
     ASSERT_FALSE(s.ok());
     EXPECT_EQ(s.error().message, "in.json: slice 1 contour 0: self-intersects at (2, 2)");
 }
 
-TEST(Validate, CrossingContoursNameBothAndThePoint) {
-    auto s = validate_one({circle(30, 30, 1), {{0, 0}, {4, 0}, {4, 4}, {0, 4}}, {{2, 1}, {6, 1}, {6, 3}, {2, 3}}});
+TEST(Validate, StrictCrossingContoursNameBothAndThePoint) {
+    auto s = validate_one({circle(30, 30, 1), {{0, 0}, {4, 0}, {4, 4}, {0, 4}}, {{2, 1}, {6, 1}, {6, 3}, {2, 3}}},
+                          nullptr, true);
     ASSERT_FALSE(s.ok());
     EXPECT_NE(s.error().message.find("in.json: slice 1 contour 1: crosses slice 1 contour 2 at (4, "),
               std::string::npos)
