@@ -142,7 +142,10 @@ void print_usage() {
     );
 }
 
-// The pipeline's options from the command line; errors name the bad option.
+}  // namespace
+
+// The pipeline's options from the command line; errors name the bad option
+// (shared with `bodygen exhibit`).
 Result<BuildOptions> build_options_from_args(const CliArgs& args) {
     auto jobs = args.get_long("jobs", 1);
     if (!jobs) return jobs.error();
@@ -175,6 +178,8 @@ Result<BuildOptions> build_options_from_args(const CliArgs& args) {
     options.jobs = static_cast<unsigned>(*jobs);
     return options;
 }
+
+namespace {
 
 void print_json(const std::string& input, const std::string& output, const BuildOptions& options, double seconds,
                 const std::vector<StructureMesh>& built) {

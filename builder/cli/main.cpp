@@ -23,6 +23,7 @@ int run_lod(const Args& args);             // cmd_lod.cpp
 int run_extract(const Args& args);         // cmd_extract.cpp
 int run_info(const Args& args);            // cmd_info.cpp
 int run_contours(const Args& args);        // cmd_contours.cpp
+int run_exhibit(const Args& args);         // cmd_exhibit.cpp
 
 }  // namespace body::cli
 
@@ -41,6 +42,8 @@ const Command kCommands[] = {
     {"extract", "write one level of a .bpm file as OBJ", body::cli::run_extract},
     {"info", "print the structures, levels, sizes and error curve of a .bpm file", body::cli::run_info},
     {"pack", "validate a kiosk scene.json and write a self-contained bundle", body::cli::run_pack},
+    {"exhibit", "label volume, RT-STRUCT, contours or meshes -> a kiosk bundle, in one step",
+     body::cli::run_exhibit},
 };
 
 void print_help(std::FILE* out) {
