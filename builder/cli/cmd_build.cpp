@@ -142,7 +142,7 @@ void print_usage() {
     );
 }
 
-}  // namespace
+}  // namespace body::cli
 
 // The pipeline's options from the command line; errors name the bad option
 // (shared with `bodygen exhibit`).
@@ -219,7 +219,7 @@ void print_summary(const std::string& output, double seconds, const std::vector<
     std::fprintf(stderr, "wrote %s: %zu structures in %.3f s\n", output.c_str(), built.size(), seconds);
 }
 
-}  // namespace body::cli
+}  // namespace
 
 int run_build(const Args& argv) {
     auto args = CliArgs::parse(argv,

@@ -22,7 +22,7 @@
 
 namespace body::cli {
 
-Result<BuildOptions> build_options_from_args(const CliArgs& args);     // cmd_build.cpp
+Result<BuildOptions> build_options_from_args(const CliArgs& args);   // cmd_build.cpp
 Result<lod::LodOptions> lod_options_from_args(const CliArgs& args);  // cmd_lod.cpp
 #ifdef BODY_WITH_IMPORT
 Result<ImportOptions> import_options_from_args(const CliArgs& args);  // cmd_contours.cpp
@@ -103,18 +103,19 @@ Result<std::vector<exhibit::Part>> load_parts(const CliArgs& args, const std::ar
 #ifdef BODY_WITH_IMPORT
         auto import = import_options_from_args(args);
         if (!import) return import.error();
-        if (!quiet) import->note = [](const std::string& m) { std::fprintf(stderr, "bodygen: note: %s\n", m.c_str()); };
-        auto stack = load_any_contour_source(input, *import);
+        if (!quiet) import->note = [](const std::string& m) { std::fprintf(stderr, "bodygen: note: %s\n", m.c_str());
+    };
+    auto stack = load_any_contour_source(input, *import);
 #else
         (void)quiet;
         auto stack = read_contour_stack(input);
 #endif
-        if (!stack) return stack.error();
-        if (Status st = add(exhibit::parts_from_stack(*stack, input, axes)); !st) return st.error();
-    }
-    if (parts.empty()) return input_error("exhibit: no structures in the inputs");
-    return parts;
+    if (!stack) return stack.error();
+    if (Status st = add(exhibit::parts_from_stack(*stack, input, axes)); !st) return st.error();
 }
+if (parts.empty()) return input_error("exhibit: no structures in the inputs");
+return parts;
+}  // namespace
 
 Result<exhibit::SceneOptions> scene_options_from_args(const CliArgs& args) {
     exhibit::SceneOptions o;
@@ -158,21 +159,24 @@ void print_json(const std::vector<exhibit::Part>& parts, const std::vector<exhib
     nlohmann::json failed = nlohmann::json::array();
     for (size_t i = 0; i < parts.size(); ++i)
         if (built[i].error)
-            failed.push_back({{"name", parts[i].name}, {"source", parts[i].source}, {"reason", built[i].error->message}});
-    nlohmann::json j = {{"bundle", pack.bundle},   {"models", pack.models},     {"groups", pack.groups},
-                        {"triangles", pack.triangles}, {"bytes", pack.bytes}, {"structures", parts.size()},
-                        {"failed", failed},        {"seconds", seconds}};
+            failed.push_back(
+                {{"name", parts[i].name}, {"source", parts[i].source}, {"reason", built[i].error->message}});
+    nlohmann::json j = {
+        {"bundle", pack.bundle}, {"models", pack.models},      {"groups", pack.groups}, {"triangles", pack.triangles},
+        {"bytes", pack.bytes},   {"structures", parts.size()}, {"failed", failed},      {"seconds", seconds}};
     std::printf("%s\n", j.dump(2).c_str());
 }
 
-}  // namespace
+}  // namespace body::cli
 
 int run_exhibit(const Args& argv) {
     auto args = CliArgs::parse(argv,
-                               {"output", "groups", "translations", "view", "orientation", "jobs", "caps", "tiling",
-                                "correspondence", "branching", "smooth", "min-triangles", "chunk-splits",
+                               {"output",    "groups",        "translations", "view",           "orientation",
+                                "jobs",      "caps",          "tiling",       "correspondence", "branching",
+                                "smooth",    "min-triangles", "chunk-splits",
 #ifdef BODY_WITH_IMPORT
-                                "labels", "axis", "step", "only", "threshold", "tolerance", "min-area"
+                                "labels",    "axis",          "step",         "only",           "threshold",
+                                "tolerance", "min-area"
 #endif
                                },
                                {"help", "quiet", "json", "strict", "no-normals"});
@@ -211,7 +215,9 @@ int run_exhibit(const Args& argv) {
         if (!built[i].error) continue;
         if (!first_failure) first_failure = &*built[i].error;
         ++failures;
-        if (!quiet) std::fprintf(stderr, "bodygen: left out: %s\n", built[i].error->message.c_str());
+        if (!quiet)
+            std::fprintf(stderr, "bodygen: left out %s: %s\n", (*parts)[i].name.c_str(),
+                         built[i].error->message.c_str());
     }
     if (failures == parts->size())
         return report(runtime_error("exhibit: no structure built (" + std::to_string(failures) + " failed)"));

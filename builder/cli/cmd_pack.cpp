@@ -160,9 +160,8 @@ int run_pack(const Args& argv) {
     auto summary = pack_scene(scene_path, *out);
     if (!summary) return report(summary.error());
     if (args->has("json")) {
-        nlohmann::json j = {{"scene", scene_path},           {"bundle", summary->bundle},
-                            {"models", summary->models},     {"groups", summary->groups},
-                            {"triangles", summary->triangles}, {"bytes", summary->bytes}};
+        nlohmann::json j = {{"scene", scene_path},       {"bundle", summary->bundle},       {"models", summary->models},
+                            {"groups", summary->groups}, {"triangles", summary->triangles}, {"bytes", summary->bytes}};
         std::printf("%s\n", j.dump(2).c_str());
     } else if (!args->has("quiet")) {
         std::printf("%s: %zu models, %zu groups, %zu triangles at full detail -> %s\n", scene_path.c_str(),

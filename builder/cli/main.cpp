@@ -42,8 +42,7 @@ const Command kCommands[] = {
     {"extract", "write one level of a .bpm file as OBJ", body::cli::run_extract},
     {"info", "print the structures, levels, sizes and error curve of a .bpm file", body::cli::run_info},
     {"pack", "validate a kiosk scene.json and write a self-contained bundle", body::cli::run_pack},
-    {"exhibit", "label volume, RT-STRUCT, contours or meshes -> a kiosk bundle, in one step",
-     body::cli::run_exhibit},
+    {"exhibit", "label volume, RT-STRUCT, contours or meshes -> a kiosk bundle, in one step", body::cli::run_exhibit},
 };
 
 void print_help(std::FILE* out) {

@@ -219,7 +219,8 @@ nlohmann::json scene_for(const std::vector<Part>& parts, const std::vector<Built
             auto row = options.translations->rows.find(p.name);
             if (row == options.translations->rows.end()) row = options.translations->rows.find(stems[kept[k]]);
             if (row != options.translations->rows.end())
-                for (const auto& [lang, t] : row->second) label[lang] = {{"title", t.title}, {"description", t.description}};
+                for (const auto& [lang, t] : row->second)
+                    label[lang] = {{"title", t.title}, {"description", t.description}};
         }
         m["label"] = std::move(label);
         models.push_back(std::move(m));

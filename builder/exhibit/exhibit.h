@@ -34,10 +34,10 @@
 namespace body::exhibit {
 
 struct Part {
-    std::string name;              // as the source spells it
-    std::string source;            // file it came from (messages)
-    std::optional<Vec3> colour;    // from the source, when it has one
-    std::array<Vec3, 3> ras_axes;  // the data's +x, +y, +z in RAS+ (orientation.h)
+    std::string name;                      // as the source spells it
+    std::string source;                    // file it came from (messages)
+    std::optional<Vec3> colour;            // from the source, when it has one
+    std::array<Vec3, 3> ras_axes;          // the data's +x, +y, +z in RAS+ (orientation.h)
     std::optional<ContourStack> contours;  // this structure's contours, or
     std::optional<Mesh> mesh;              // a finished mesh
 };

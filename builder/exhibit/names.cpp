@@ -21,10 +21,9 @@ bool iequals_suffix(const std::string& s, const std::string& suffix) {
 
 // Strips one side marker; returns "left", "right" or "".
 std::string take_side(std::string& s) {
-    static const char* const kPrefixes[][2] = {{"ctx-lh-", "left"}, {"ctx-rh-", "right"}, {"lh.", "left"},
-                                               {"rh.", "right"},    {"Left-", "left"},    {"Right-", "right"},
-                                               {"Left_", "left"},   {"Right_", "right"},  {"Left ", "left"},
-                                               {"Right ", "right"}};
+    static const char* const kPrefixes[][2] = {
+        {"ctx-lh-", "left"}, {"ctx-rh-", "right"}, {"lh.", "left"},     {"rh.", "right"},  {"Left-", "left"},
+        {"Right-", "right"}, {"Left_", "left"},    {"Right_", "right"}, {"Left ", "left"}, {"Right ", "right"}};
     for (const auto& [prefix, side] : kPrefixes) {
         const std::string p = prefix;
         if (s.size() > p.size() && iequals_prefix(s, p)) {
@@ -32,10 +31,10 @@ std::string take_side(std::string& s) {
             return side;
         }
     }
-    static const char* const kSuffixes[][2] = {{"_left", "left"}, {"_right", "right"}, {" left", "left"},
-                                               {" right", "right"}, {"_L", "left"},     {"_R", "right"},
-                                               {".L", "left"},      {".R", "right"},    {"-L", "left"},
-                                               {"-R", "right"},     {" L", "left"},     {" R", "right"}};
+    static const char* const kSuffixes[][2] = {{"_left", "left"},   {"_right", "right"}, {" left", "left"},
+                                               {" right", "right"}, {"_L", "left"},      {"_R", "right"},
+                                               {".L", "left"},      {".R", "right"},     {"-L", "left"},
+                                               {"-R", "right"},     {" L", "left"},      {" R", "right"}};
     for (const auto& [suffix, side] : kSuffixes) {
         const std::string x = suffix;
         // Single-letter markers are case-sensitive ("_l" may be part of a word).

@@ -26,8 +26,8 @@ float view_azimuth_deg(View view) {
 }
 
 Result<std::array<Vec3, 3>> parse_orientation(const std::string& letters) {
-    const std::string bad = "--orientation must be three letters from R/L, A/P, S/I (e.g. RAS, LPS), not '" +
-                            letters + "'";
+    const std::string bad =
+        "--orientation must be three letters from R/L, A/P, S/I (e.g. RAS, LPS), not '" + letters + "'";
     if (letters.size() != 3) return input_error(bad);
     std::array<Vec3, 3> axes;
     bool used[3] = {false, false, false};

@@ -37,14 +37,28 @@ Vec3 srgb_from_oklab(const Vec3& lab) {
 }  // namespace
 
 std::vector<Vec3> distinct_palette(size_t n) {
-    // Light enough for shading to read; chroma moderate so every hue stays in gamut.
-    const double lightness[3] = {0.74, 0.62, 0.84};
+    // Candidates: light enough for shading to read, saturated enough to tell apart,
+    // inside the sRGB gamut; then farthest-point sampling in OKLab (each next colour
+    // the one farthest from all chosen), which keeps the closest pair as far apart
+    // as this greedy can for every n.
+    std::vector<Vec3> lab;
+    for (double l : {0.58, 0.66, 0.74, 0.82})
+        for (double c : {0.07, 0.11, 0.15})
+            for (int h = 0; h < 48; ++h) {
+                const double a = h * 7.5 * 3.14159265358979323846 / 180.0;
+                const Vec3 candidate(l, c * std::cos(a), c * std::sin(a));
+                const Vec3 rgb = srgb_from_oklab(candidate);
+                if (glm::length(oklab_from_srgb(rgb) - candidate) < 1e-3) lab.push_back(candidate);  // in gamut
+            }
     std::vector<Vec3> out;
-    out.reserve(n);
-    for (size_t i = 0; i < n; ++i) {
-        const double hue = std::fmod(double(i) * 137.50776405, 360.0) * 3.14159265358979323846 / 180.0;
-        const double chroma = 0.13;
-        out.push_back(srgb_from_oklab({lightness[i % 3], chroma * std::cos(hue), chroma * std::sin(hue)}));
+    std::vector<double> nearest(lab.size(), 1e9);
+    size_t pick = 0;
+    for (size_t i = 1; i < lab.size(); ++i)  // start at the most saturated mid-light colour
+        if (lab[i].x == 0.66 && std::hypot(lab[i].y, lab[i].z) > std::hypot(lab[pick].y, lab[pick].z)) pick = i;
+    for (size_t k = 0; k < n; ++k) {
+        out.push_back(srgb_from_oklab(lab[pick]));
+        for (size_t i = 0; i < lab.size(); ++i) nearest[i] = std::min(nearest[i], glm::length(lab[i] - lab[pick]));
+        pick = size_t(std::max_element(nearest.begin(), nearest.end()) - nearest.begin());
     }
     return out;
 }
@@ -75,7 +89,8 @@ std::vector<Vec3> assign_colours(const std::vector<Box>& boxes, const std::vecto
             ++open;
         }
     }
-    const std::vector<Vec3> palette = distinct_palette(std::max<size_t>(open, 1));
+    // Half again as many colours as structures: room to keep neighbours apart to the last one.
+    const std::vector<Vec3> palette = distinct_palette(std::max<size_t>(open + open / 2, 1));
     std::vector<size_t> uses(palette.size(), 0);
     // Most neighbours first: they are the hardest to separate.
     std::vector<size_t> order;

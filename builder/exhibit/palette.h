@@ -2,9 +2,9 @@
 // Colours for structures whose source gives none: perceptually distinct, with
 // neighbours apart.
 //
-// distinct_palette(n) spreads n colours over OKLab hue (golden-angle steps) at
-// three lightness levels, so any two are far apart for small n and no two are
-// equal for any n. assign_colours() hands these out so that structures whose
+// distinct_palette(n) picks n colours by farthest-point sampling among light,
+// in-gamut OKLab candidates, so any two are far apart (no two equal while the
+// candidates last; beyond about 500 colours they repeat). assign_colours() hands these out so that structures whose
 // bounds touch (neighbours on screen) get colours as different as possible:
 // greedy, most-constrained structure first, each colour used once while
 // colours last. Colours are sRGB-encoded components in [0, 1], like the label
