@@ -119,7 +119,9 @@ std::vector<Part> parts_from_stack(const ContourStack& stack, const std::string&
         Part p;
         p.name = s.name.empty() ? s.id : s.name;
         p.source = source;
-        if (s.color != Vec3(0.8, 0.8, 0.8)) p.colour = s.color;
+        // The format's default grey is no colour; black is a display table's "unset"
+        // (MRIcron .lut files leave labels black) and cannot be shaded on a kiosk.
+        if (s.color != Vec3(0.8, 0.8, 0.8) && s.color != Vec3(0.0)) p.colour = s.color;
         p.ras_axes = stack.ras_axes.value_or(fallback_axes);
         p.contours = one_structure(stack, s);
         parts.push_back(std::move(p));

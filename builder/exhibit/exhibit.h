@@ -44,7 +44,8 @@ struct Part {
 
 // One part per structure of `stack` (empty slices inside a structure's range are
 // kept: a gap is capped, not bridged). Stacks without an orientation get
-// `fallback_axes`. A colour equal to the stack format's default grey counts as none.
+// `fallback_axes`. A colour equal to the stack format's default grey, or black
+// (what display tables leave unset labels), counts as none.
 std::vector<Part> parts_from_stack(const ContourStack& stack, const std::string& source,
                                    const std::array<Vec3, 3>& fallback_axes);
 // One part per mesh (meshes carry no colour of their own in OBJ).
