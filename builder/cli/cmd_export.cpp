@@ -14,7 +14,7 @@
 namespace body::cli {
 
 int run_export(const Args& argv) {
-    auto args = CliArgs::parse(argv, {"output", "lod"}, {"help", "quiet", "json"});
+    auto args = CliArgs::parse(argv, {"output", "lod"}, {"help", "quiet", "json", "meshopt"});
     if (!args) return report(args.error());
     if (args->has("help")) {
         std::printf(
@@ -23,6 +23,8 @@ int run_export(const Args& argv) {
             "       materials, the scene's transforms), wrl (VRML97), stl (binary), ply (binary),\n"
             "       obj; stl/ply/obj/wrl have the scene's transforms applied to the vertices\n"
             "  --lod R   progressive meshes at R x their full triangle count, (0, 1] (default 1)\n"
+            "  --meshopt .glb: KHR_mesh_quantization + EXT_meshopt_compression (smaller; needs a\n"
+            "            viewer with both extensions)\n"
             "  --quiet   no summary line;  --json  the summary as JSON on stdout\n");
         return kExitOk;
     }
@@ -32,6 +34,7 @@ int run_export(const Args& argv) {
     if (!lod) return report(lod.error());
     const std::string out = *args->get("output");
     const std::string ext = std::filesystem::path(out).extension().string();
+    if (args->has("meshopt") && ext != ".glb") return report(input_error("export: --meshopt needs a .glb output"));
     if (ext != ".glb" && ext != ".gltf" && ext != ".wrl" && ext != ".obj" && ext != ".stl" && ext != ".ply")
         return report(input_error("export: " + out + ": the extension must be .glb, .gltf, .wrl, .obj, .stl or .ply"));
     const auto start = std::chrono::steady_clock::now();
@@ -40,7 +43,7 @@ int run_export(const Args& argv) {
     Status st = ok_status();
     if (ext == ".glb" || ext == ".gltf")
 #ifdef BODY_WITH_GLTF
-        st = exporter::write_gltf(out, *scene, exporter::GltfOptions{ext == ".glb"});
+        st = exporter::write_gltf(out, *scene, exporter::GltfOptions{ext == ".glb", args->has("meshopt")});
 #else
         return report(runtime_error("export: this bodygen was built without glTF support (libtinygltf-dev)"));
 #endif

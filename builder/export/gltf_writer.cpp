@@ -3,6 +3,7 @@
 #define TINYGLTF_IMPLEMENTATION
 #include "builder/export/gltf_writer.h"
 
+#include <meshoptimizer.h>
 #include <tiny_gltf.h>
 
 #include <cstring>
@@ -65,7 +66,90 @@ int add_indices(tinygltf::Model& g, const std::vector<uint32_t>& indices, size_t
     return int(g.accessors.size() - 1);
 }
 
-int add_model(tinygltf::Model& g, const ExportModel& m) {
+// KHR_mesh_quantization: positions as uint16 codes over the bounds (stride 8);
+// returns the code -> model matrix (column-major) and fills the accessor.
+std::vector<double> add_quantized_positions(tinygltf::Model& g, const Mesh& mesh, int& accessor) {
+    Vec3 lo(1e300), hi(-1e300);
+    for (const Vec3& p : mesh.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+    Vec3 step = (hi - lo) / 65535.0;
+    for (int k = 0; k < 3; ++k)
+        if (!(step[k] > 0.0)) step[k] = 1.0;
+    std::vector<uint16_t> codes;
+    uint16_t cmin[3] = {65535, 65535, 65535}, cmax[3] = {0, 0, 0};
+    for (const Vec3& p : mesh.positions) {
+        for (int k = 0; k < 3; ++k) {
+            const auto c = uint16_t(std::clamp(std::lround((p[k] - lo[k]) / step[k]), 0L, 65535L));
+            codes.push_back(c);
+            cmin[k] = std::min(cmin[k], c), cmax[k] = std::max(cmax[k], c);
+        }
+        codes.push_back(0);
+    }
+    tinygltf::Accessor a;
+    a.bufferView = add_view(g, codes.data(), codes.size() * 2, TINYGLTF_TARGET_ARRAY_BUFFER);
+    g.bufferViews.back().byteStride = 8;
+    a.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+    a.type = TINYGLTF_TYPE_VEC3;
+    a.count = mesh.positions.size();
+    a.minValues = {double(cmin[0]), double(cmin[1]), double(cmin[2])};
+    a.maxValues = {double(cmax[0]), double(cmax[1]), double(cmax[2])};
+    g.accessors.push_back(a);
+    accessor = int(g.accessors.size() - 1);
+    return {step.x, 0, 0, 0, 0, step.y, 0, 0, 0, 0, step.z, 0, lo.x, lo.y, lo.z, 1};
+}
+
+int add_quantized_normals(tinygltf::Model& g, const Mesh& mesh) {
+    std::vector<int16_t> codes;
+    for (const Vec3& n : mesh.normals) {
+        const Vec3 u = glm::normalize(n);
+        for (int k = 0; k < 3; ++k) codes.push_back(int16_t(std::lround(u[k] * 32767.0)));
+        codes.push_back(0);
+    }
+    tinygltf::Accessor a;
+    a.bufferView = add_view(g, codes.data(), codes.size() * 2, TINYGLTF_TARGET_ARRAY_BUFFER);
+    g.bufferViews.back().byteStride = 8;
+    a.componentType = TINYGLTF_COMPONENT_TYPE_SHORT;
+    a.normalized = true;
+    a.type = TINYGLTF_TYPE_VEC3;
+    a.count = mesh.normals.size();
+    g.accessors.push_back(a);
+    return int(g.accessors.size() - 1);
+}
+
+std::vector<double> multiply_column_major(const std::vector<double>& a, const std::vector<double>& b) {
+    std::vector<double> r(16, 0.0);
+    for (int c = 0; c < 4; ++c)
+        for (int rr = 0; rr < 4; ++rr)
+            for (int k = 0; k < 4; ++k) r[size_t(c * 4 + rr)] += a[size_t(k * 4 + rr)] * b[size_t(c * 4 + k)];
+    return r;
+}
+
+// Vertex cache then fetch order (as gltfpack does before compressing): the
+// meshopt codecs need it to compress well; the geometry is unchanged.
+Mesh cache_ordered(const Mesh& in) {
+    Mesh m = in;
+    meshopt_optimizeVertexCache(m.indices.data(), in.indices.data(), in.indices.size(), in.positions.size());
+    std::vector<uint32_t> remap(in.positions.size());
+    const size_t n = meshopt_optimizeVertexFetchRemap(remap.data(), m.indices.data(), m.indices.size(), remap.size());
+    meshopt_remapIndexBuffer(m.indices.data(), m.indices.data(), m.indices.size(), remap.data());
+    m.positions.assign(n, Vec3(0.0));
+    for (size_t v = 0; v < remap.size(); ++v)
+        if (remap[v] != ~0u) m.positions[remap[v]] = in.positions[v];
+    if (in.normals.size() == in.positions.size()) {
+        m.normals.assign(n, Vec3(0, 0, 1));
+        for (size_t v = 0; v < remap.size(); ++v)
+            if (remap[v] != ~0u) m.normals[remap[v]] = in.normals[v];
+    }
+    return m;
+}
+
+int add_model(tinygltf::Model& g, const ExportModel& source, bool quantize) {
+    ExportModel reordered;
+    if (quantize) {
+        reordered.name = source.name;
+        reordered.matrix = source.matrix;
+        reordered.mesh = cache_ordered(source.mesh);
+    }
+    const ExportModel& m = quantize ? reordered : source;
     std::vector<float> positions, normals;
     for (const Vec3& p : m.mesh.positions) positions.insert(positions.end(), {float(p.x), float(p.y), float(p.z)});
     if (m.mesh.normals.size() == m.mesh.positions.size()) {
@@ -76,8 +160,16 @@ int add_model(tinygltf::Model& g, const ExportModel& m) {
     }
     tinygltf::Primitive prim;
     prim.mode = TINYGLTF_MODE_TRIANGLES;
-    prim.attributes["POSITION"] = add_vec3_accessor(g, positions, true);
-    if (!normals.empty()) prim.attributes["NORMAL"] = add_vec3_accessor(g, normals, false);
+    std::vector<double> dequantize;
+    if (quantize) {
+        int accessor = -1;
+        dequantize = add_quantized_positions(g, m.mesh, accessor);
+        prim.attributes["POSITION"] = accessor;
+        if (!normals.empty()) prim.attributes["NORMAL"] = add_quantized_normals(g, m.mesh);
+    } else {
+        prim.attributes["POSITION"] = add_vec3_accessor(g, positions, true);
+        if (!normals.empty()) prim.attributes["NORMAL"] = add_vec3_accessor(g, normals, false);
+    }
     prim.indices = add_indices(g, m.mesh.indices, m.mesh.positions.size());
 
     tinygltf::Material mat;
@@ -103,7 +195,11 @@ int add_model(tinygltf::Model& g, const ExportModel& m) {
             column_major[c * 4 + r] = m.matrix[r][c];
             identity = identity && m.matrix[r][c] == (r == c ? 1.0 : 0.0);
         }
-    if (!identity) node.matrix = column_major;
+    if (!dequantize.empty()) {
+        node.matrix = multiply_column_major(column_major, dequantize);
+    } else if (!identity) {
+        node.matrix = column_major;
+    }
     g.nodes.push_back(node);
     return int(g.nodes.size() - 1);
 }
@@ -128,7 +224,7 @@ Status write_gltf(const std::string& path, const ExportScene& scene, const GltfO
     }
     for (const ExportModel& m : scene.models) {
         if (m.mesh.triangle_count() == 0) continue;  // glTF accessors must not be empty
-        const int node = add_model(g, m);
+        const int node = add_model(g, m, options.meshopt);
         auto it = m.group.empty() ? group_node.end() : group_node.find(m.group);
         if (it == group_node.end())
             top.push_back(node);
@@ -156,13 +252,23 @@ Status write_gltf(const std::string& path, const ExportScene& scene, const GltfO
     g.scenes.push_back(s);
     g.defaultScene = 0;
 
+    if (options.meshopt) {
+        if (!options.binary) return input_error(path + ": meshopt compression is for .glb files only");
+        g.extensionsUsed = {"KHR_mesh_quantization"};
+        g.extensionsRequired = {"KHR_mesh_quantization"};
+    }
     tinygltf::TinyGLTF writer;
     std::ostringstream out;
     if (!writer.WriteGltfSceneToStream(&g, out, !options.binary, options.binary))
         return runtime_error(path + ": the glTF writer failed");
-    const std::string bytes = out.str();
-    return write_file_atomically(
-        path, std::span<const uint8_t>(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size()));
+    const std::string text = out.str();
+    std::vector<uint8_t> bytes(text.begin(), text.end());
+    if (options.meshopt) {
+        auto packed = meshopt_compress_glb(bytes);
+        if (!packed) return runtime_error(path + ": " + packed.error().message);
+        bytes = std::move(*packed);
+    }
+    return write_file_atomically(path, bytes);
 }
 
 }  // namespace body::exporter

@@ -11,6 +11,9 @@
 #include <tiny_gltf.h>
 #endif
 
+#include <meshoptimizer.h>
+
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -108,13 +111,72 @@ TEST_F(ExportTest, GlbReadsBackWithNamesGroupsColoursAndVertices) {
     }
 }
 
+// Column-major 4x4 (glTF) applied to a point.
+Vec3 transform_point(const std::vector<double>& m, const Vec3& p) {
+    return {m[0] * p.x + m[4] * p.y + m[8] * p.z + m[12], m[1] * p.x + m[5] * p.y + m[9] * p.z + m[13],
+            m[2] * p.x + m[6] * p.y + m[10] * p.z + m[14]};
+}
+
+// The meshopt GLB, decoded with meshoptimizer's decoder and dequantized by each
+// node's matrix, gives the placed source vertices back within the .bpm step.
+TEST_F(ExportTest, MeshoptGlbDecodesToTheSameVertices) {
+    const auto r = test::run(bodygen() + " export " + path("bundle") + " --meshopt -o " + path("mo.glb") + " --json");
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    std::ifstream in(path("mo.glb"), std::ios::binary);
+    const std::vector<uint8_t> glb((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    uint32_t json_len = 0;
+    std::memcpy(&json_len, glb.data() + 12, 4);
+    const auto j = nlohmann::json::parse(glb.begin() + 20, glb.begin() + 20 + json_len);
+    EXPECT_EQ(j["extensionsRequired"], nlohmann::json({"KHR_mesh_quantization", "EXT_meshopt_compression"}));
+    const uint8_t* bin = glb.data() + 20 + json_len + 8;
+    auto source = read_obj(std::string(BODY_TEST_DATA_DIR) + "/models/smoke.obj");
+    ASSERT_TRUE(source);
+    auto pms = pm::read_bpm(path("bundle") + "/" + scene()["models"][0]["file"].get<std::string>());
+    ASSERT_TRUE(pms);
+    const double step = (*pms)[0]->quantization_bound();
+    // The placement of each model, from the plain export (same node order).
+    tinygltf::Model plain;
+    tinygltf::TinyGLTF loader;
+    std::string err, warn;
+    ASSERT_TRUE(loader.LoadBinaryFromFile(&plain, &err, &warn, export_to("plain.glb"))) << err;
+    size_t checked = 0;
+    for (size_t n = 0; n < j["nodes"].size(); ++n) {
+        const auto& node = j["nodes"][n];
+        if (!node.contains("mesh")) continue;
+        const auto& acc =
+            j["accessors"]
+             [j["meshes"][node["mesh"].get<size_t>()]["primitives"][0]["attributes"]["POSITION"].get<size_t>()];
+        const auto& ext = j["bufferViews"][acc["bufferView"].get<size_t>()]["extensions"]["EXT_meshopt_compression"];
+        const size_t count = ext["count"], stride = ext["byteStride"];
+        std::vector<uint16_t> codes(count * stride / 2);
+        ASSERT_EQ(meshopt_decodeVertexBuffer(codes.data(), count, stride, bin + ext["byteOffset"].get<size_t>(),
+                                             ext["byteLength"].get<size_t>()),
+                  0);
+        const std::vector<double> m = node["matrix"].get<std::vector<double>>();
+        const std::vector<double>& place = plain.nodes[n].matrix;
+        ASSERT_EQ(place.size(), 16u);
+        double worst = 0.0;
+        for (size_t v = 0; v < count; ++v) {
+            const Vec3 p = transform_point(m, Vec3(codes[v * 4], codes[v * 4 + 1], codes[v * 4 + 2]));
+            double nearest = 1e300;
+            for (const Vec3& q : (*source)[0].positions)
+                nearest = std::min(nearest, glm::length(p - transform_point(place, q)));
+            worst = std::max(worst, nearest);
+        }
+        EXPECT_LE(worst, step * 1.001 + 1e-6);
+        ++checked;
+    }
+    EXPECT_EQ(checked, 2u);
+}
+
 TEST_F(ExportTest, KhronosValidatorFindsNoErrorsOrWarnings) {
     const std::string validator = std::string(BODY_SOURCE_DIR) + "/tools/node/node_modules/gltf-validator";
     if (test::run("command -v node").exit_code != 0) GTEST_SKIP() << "needs node (Debian nodejs)";
     if (!fs::exists(validator + "/package.json"))
         GTEST_SKIP() << "needs the npm package gltf-validator in tools/node (./setup.sh deps installs it)";
-    for (const char* name : {"scene.glb", "scene.gltf"}) {
-        const std::string file = export_to(name);
+    test::run(bodygen() + " export " + path("bundle") + " --meshopt -o " + path("validate_mo.glb"));
+    for (const char* name : {"scene.glb", "scene.gltf", "validate_mo.glb"}) {
+        const std::string file = std::string(name) == "validate_mo.glb" ? path(name) : export_to(name);
         const auto r = test::run("node " + std::string(BODY_SOURCE_DIR) + "/tests/export/gltf_validate.js " +
                                  validator + " " + file);
         ASSERT_EQ(r.exit_code, 0) << r.output;
