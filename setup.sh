@@ -17,7 +17,7 @@ HOST_PACKAGES=(
   libglfw3-dev libegl-dev libgles-dev libgbm-dev libdrm-dev libglm-dev libevdev-dev
   libtinyobjloader-dev nlohmann-json3-dev libgtest-dev libgmock-dev libbenchmark-dev
   libmeshoptimizer-dev libstb-dev fonts-dejavu-core zlib1g-dev
-  libnifti2-dev libdcmtk-dev libtinygltf-dev
+  libnifti2-dev libdcmtk-dev libtinygltf-dev libassimp-dev
   libegl-mesa0 libgl1-mesa-dri libgles2 xvfb xauth
   glmark2-data python3 python3-pydicom mricron-data dpkg-dev
   assimp-utils python3-vtk9 nodejs

@@ -25,6 +25,8 @@ set(BODY_FONT_FILE /usr/share/fonts/truetype/dejavu/DejaVuSans.ttf CACHE FILEPAT
 
 # glTF export (tinygltf, header-only; Debian ships it for the host only): optional.
 find_path(TINYGLTF_INCLUDE_DIR tiny_gltf.h)
+# STL/PLY/glTF import (Open Asset Import, Debian libassimp-dev): optional.
+find_package(assimp QUIET)
 
 if(BODY_WITH_IMPORT)
   find_path(NIFTI_INCLUDE_DIR nifti1_io.h PATH_SUFFIXES nifti REQUIRED)

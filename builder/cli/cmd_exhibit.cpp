@@ -16,9 +16,9 @@
 #ifdef BODY_WITH_IMPORT
 #include "builder/import/import.h"
 #endif
+#include "builder/mesh_import/mesh_import.h"
 #include "shared/atomic_file.h"
 #include "shared/cli_args.h"
-#include "shared/obj_io.h"
 
 namespace body::cli {
 
@@ -36,7 +36,8 @@ constexpr const char* kUsage =
     "usage: bodygen exhibit INPUT... -o BUNDLE/ [options]\n"
     "  INPUT: a NIfTI label volume (.nii/.nii.gz; its label/colour table beside it or --labels),\n"
     "         a DICOM RT-STRUCT (.dcm), a contour stack (.contours.json), an OBJ file\n"
-    "         (one model per object) or a directory of OBJ files; several may be given\n"
+    "         (one model per object), an STL/PLY/glTF file or a directory of mesh files;\n"
+    "         several may be given\n"
     "  --groups FILE        group pattern table: PATTERN<TAB>GROUP lines, shell globs on the\n"
     "                       structure names, first match wins, {side} becomes left/right\n"
     "                       (example: builder/import/aal_groups.tsv)\n"
@@ -67,11 +68,11 @@ void draw_progress(size_t done, size_t total) {
     std::fflush(stderr);
 }
 
-bool is_mesh_file(const fs::path& p) { return p.extension() == ".obj" || p.extension() == ".OBJ"; }
+bool is_mesh_file(const fs::path& p) { return body::is_mesh_file(p.string()); }
 
-// The parts of one OBJ file: a one-object file is named after the file.
+// The parts of one mesh file: a one-mesh file is named after the file.
 Result<std::vector<exhibit::Part>> mesh_parts(const std::string& path, const std::array<Vec3, 3>& axes) {
-    auto meshes = read_obj(path);
+    auto meshes = read_mesh_file(path);
     if (!meshes) return meshes.error();
     if (meshes->size() == 1) (*meshes)[0].name = fs::path(path).stem().string();
     return exhibit::parts_from_meshes(std::move(*meshes), path, axes);

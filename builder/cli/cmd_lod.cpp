@@ -1,4 +1,4 @@
-// bodygen lod IN.obj -o OUT.bpm [--min-triangles N] [--chunk-splits N] [--no-normals] [--jobs N]
+// bodygen lod IN.(obj|stl|ply|gltf|glb) -o OUT.bpm [--min-triangles N] [--chunk-splits N] [--no-normals] [--jobs N]
 //   [--quiet] [--json]: one progressive mesh per OBJ object, written as a .bpm file.
 #include <chrono>
 #include <cstdio>
@@ -7,8 +7,8 @@
 #include "builder/cli/commands.h"
 #include "builder/lod/bpm_writer.h"
 #include "builder/lod/simplify.h"
+#include "builder/mesh_import/mesh_import.h"
 #include "shared/cli_args.h"
-#include "shared/obj_io.h"
 
 namespace body::cli {
 
@@ -37,7 +37,8 @@ int run_lod(const Args& argv) {
     if (args->has("help")) {
         std::printf(
             "usage: bodygen lod IN.obj -o OUT.bpm [--min-triangles N] [--chunk-splits N] [--no-normals] [--jobs N]\n"
-            "  one progressive mesh per OBJ object; the base mesh keeps at least N triangles\n"
+            "  one progressive mesh per OBJ object (STL, PLY, glTF: per mesh); the base mesh keeps\n"
+            "  at least N triangles\n"
             "  (default: as few as the topology allows)\n"
             "  --jobs N   threads for the setup and a large mesh's first phase\n"
             "             (default: one per CPU; the same output for any N)\n"
@@ -45,12 +46,12 @@ int run_lod(const Args& argv) {
             "  --json     the summary as JSON on stdout\n");
         return kExitOk;
     }
-    if (args->positional().size() != 1) return report(input_error("lod: expected one input OBJ file"));
+    if (args->positional().size() != 1) return report(input_error("lod: expected one input mesh file"));
     if (!args->has("output")) return report(input_error("lod: missing -o OUT.bpm"));
     auto options = lod_options_from_args(*args);
     if (!options) return report(options.error());
     const auto start = std::chrono::steady_clock::now();
-    auto meshes = read_obj(args->positional()[0]);
+    auto meshes = read_mesh_file(args->positional()[0]);
     if (!meshes) return report(meshes.error());
     const std::string out = *args->get("output");
     Status st = lod::write_bpm_from_meshes(out, *meshes, *options);

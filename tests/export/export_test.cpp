@@ -13,6 +13,7 @@
 
 #include <meshoptimizer.h>
 
+#include <algorithm>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -247,6 +248,59 @@ TEST_F(ExportTest, ObjKeepsNamesAndBadInputsAreExitTwoWithNothingWritten) {
     EXPECT_FALSE(fs::exists(path("m.glb")));
     r = test::run(bodygen() + " export " + path("bundle") + " -o " + path("l.glb") + " --lod 0");
     EXPECT_EQ(r.exit_code, 2) << r.output;
+}
+
+// Bounds of every vertex of every structure of a .bpm at full detail.
+std::pair<Vec3, Vec3> bpm_bounds(const std::string& file, size_t& structures, size_t& triangles) {
+    Vec3 lo(1e300), hi(-1e300);
+    auto pms = pm::read_bpm(file);
+    EXPECT_TRUE(pms) << (pms ? "" : pms.error().message);
+    structures = triangles = 0;
+    if (!pms) return {lo, hi};
+    for (auto& p : *pms) {
+        p->set_level(p->max_level());
+        for (size_t v = 0; v < p->vertex_count(); ++v)
+            lo = glm::min(lo, Vec3(p->position(v))), hi = glm::max(hi, Vec3(p->position(v)));
+        ++structures;
+        triangles += p->triangle_count();
+    }
+    return {lo, hi};
+}
+
+// What export writes, lod and exhibit read back: STL and PLY as millimetres,
+// glTF's metres back to millimetres (same bounds), glTF names kept.
+TEST_F(ExportTest, StlPlyGltfImportIntoLodAndExhibit) {
+    const auto probe = test::run(bodygen() + " lod " + export_to("in.stl") + " -o " + path("probe.bpm") + " --quiet");
+    if (probe.output.find("libassimp-dev") != std::string::npos) GTEST_SKIP() << "bodygen built without libassimp-dev";
+    ASSERT_EQ(probe.exit_code, 0) << probe.output;
+    size_t structures = 0, triangles = 0;
+    const auto [lo, hi] = bpm_bounds(path("probe.bpm"), structures, triangles);
+    EXPECT_EQ(triangles, 640u);
+    for (const char* name : {"in.ply", "in.glb", "in.gltf"}) {
+        const auto r = test::run(bodygen() + " lod " + export_to(name) + " -o " + path("r.bpm") + " --quiet");
+        ASSERT_EQ(r.exit_code, 0) << name << ": " << r.output;
+        const auto [l, h] = bpm_bounds(path("r.bpm"), structures, triangles);
+        EXPECT_EQ(triangles, 640u) << name;
+        EXPECT_LT(glm::length(l - lo) + glm::length(h - hi), 1e-2) << name;  // same place, same units
+        if (std::string(name) != "in.ply") {
+            EXPECT_EQ(structures, 2u) << name;
+        }
+    }
+    fs::create_directories(path("glb_dir"));
+    fs::copy_file(path("in.glb"), path("glb_dir/in.glb"), fs::copy_options::overwrite_existing);
+    const auto ex = test::run(bodygen() + " exhibit " + path("glb_dir") + " --quiet -o " + path("re_bundle"));
+    ASSERT_EQ(ex.exit_code, 0) << ex.output;
+    std::ifstream in(path("re_bundle") + "/scene.json");
+    const auto s = nlohmann::json::parse(in);
+    ASSERT_EQ(s["models"].size(), 2u);
+    EXPECT_EQ(s["models"][0]["name"], scene()["models"][0]["name"]);  // glTF node names survive
+
+    std::ofstream(path("bad.ply")) << "ply\nformat ascii 1.0\nelement vertex 3\nend_header\n1 2\n";
+    const auto bad = test::run(bodygen() + " lod " + path("bad.ply") + " -o " + path("bad.bpm"));
+    EXPECT_EQ(bad.exit_code, 2) << bad.output;
+    EXPECT_EQ(std::count(bad.output.begin(), bad.output.end(), '\n'), 1) << bad.output;
+    EXPECT_NE(bad.output.find(path("bad.ply") + ": "), std::string::npos) << bad.output;
+    EXPECT_FALSE(fs::exists(path("bad.bpm")));
 }
 
 }  // namespace
