@@ -17,9 +17,10 @@ HOST_PACKAGES=(
   libglfw3-dev libegl-dev libgles-dev libgbm-dev libdrm-dev libglm-dev libevdev-dev
   libtinyobjloader-dev nlohmann-json3-dev libgtest-dev libgmock-dev libbenchmark-dev
   libmeshoptimizer-dev libstb-dev fonts-dejavu-core zlib1g-dev
-  libnifti2-dev libdcmtk-dev libpolyclipping-dev
+  libnifti2-dev libdcmtk-dev libpolyclipping-dev libtinygltf-dev libassimp-dev
   libegl-mesa0 libgl1-mesa-dri libgles2 xvfb xauth
   glmark2-data python3 python3-pydicom mricron-data dpkg-dev
+  assimp-utils python3-vtk9 nodejs
 )
 CROSS_PACKAGES=(
   g++-aarch64-linux-gnu qemu-user
@@ -57,7 +58,16 @@ install_packages() {
   DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends $missing >/dev/null
 }
 
-deps() { install_packages "${HOST_PACKAGES[@]}"; }
+# The Khronos glTF-Validator (npm, not in Debian) for the export tests, into the
+# git-ignored tools/node/; without npm the tests that need it skip and say so.
+node_tools() {
+  if command -v npm >/dev/null && [ ! -f "$ROOT/tools/node/node_modules/gltf-validator/package.json" ]; then
+    npm install --prefix "$ROOT/tools/node" --no-audit --no-fund --silent gltf-validator >/dev/null ||
+      echo "setup: npm could not install gltf-validator; the glTF validation tests will skip" >&2
+  fi
+}
+
+deps() { install_packages "${HOST_PACKAGES[@]}"; node_tools; }
 
 cross_deps() {
   if ! dpkg --print-foreign-architectures | grep -qx arm64; then

@@ -25,6 +25,11 @@ add_library(body_stb INTERFACE)
 target_include_directories(body_stb SYSTEM INTERFACE ${STB_INCLUDE_DIR})
 set(BODY_FONT_FILE /usr/share/fonts/truetype/dejavu/DejaVuSans.ttf CACHE FILEPATH "UI font")
 
+# glTF export (tinygltf, header-only; Debian ships it for the host only): optional.
+find_path(TINYGLTF_INCLUDE_DIR tiny_gltf.h)
+# STL/PLY/glTF import (Open Asset Import, Debian libassimp-dev): optional.
+find_package(assimp QUIET)
+
 if(BODY_WITH_IMPORT)
   find_path(NIFTI_INCLUDE_DIR nifti1_io.h PATH_SUFFIXES nifti REQUIRED)
   find_library(NIFTI_LIBRARY niftiio REQUIRED)

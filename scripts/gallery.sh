@@ -71,3 +71,19 @@ JSON
 shot --scene "$tmp/scene.json" --screenshot "$out/mixed_scene.png"
 shot --scene "$tmp/scene.json" --select study --xray --screenshot "$out/selection_xray.png"
 echo "gallery: $out/mixed_scene.png $out/selection_xray.png"
+
+# 4. Exhibits made by one `bodygen exhibit` command each (Debian mricron-data atlases),
+# shown from their home camera: the sample (AAL, scripts/build-sample.sh) and JHU white matter.
+atlases=/usr/share/mricron/templates
+if [ -x "$bodygen" ] && [ -f "$atlases/aal.nii.gz" ] && [ -f "$atlases/JHU-WhiteMatter-labels-1mm.nii.gz" ]; then
+  "$bodygen" exhibit "$atlases/aal.nii.gz" --groups builder/import/aal_groups.tsv --min-area 3 --smooth 10 \
+    --view left --jobs "$(nproc)" --quiet -o "$tmp/aal"
+  "$bodygen" exhibit "$atlases/JHU-WhiteMatter-labels-1mm.nii.gz" --min-area 3 --smooth 10 --view left \
+    --jobs "$(nproc)" --quiet -o "$tmp/jhu"
+  for name in aal jhu; do
+    "$bodyview" --headless --size "${SIZE:-640x400}" --ssaa 2 "$tmp/$name" --screenshot "$out/exhibit_$name.png"
+  done
+  echo "gallery: $out/exhibit_aal.png $out/exhibit_jhu.png"
+else
+  echo "gallery: no bodygen or mricron-data: exhibit pictures skipped" >&2
+fi

@@ -160,7 +160,10 @@ void print_usage() {
     );
 }
 
-// The pipeline's options from the command line; errors name the bad option.
+}  // namespace body::cli
+
+// The pipeline's options from the command line; errors name the bad option
+// (shared with `bodygen exhibit`).
 Result<BuildOptions> build_options_from_args(const CliArgs& args) {
     auto jobs = args.get_long("jobs", 1);
     if (!jobs) return jobs.error();
@@ -196,6 +199,8 @@ Result<BuildOptions> build_options_from_args(const CliArgs& args) {
     options.repair = *repair;
     return options;
 }
+
+namespace {
 
 void print_json(const std::string& input, const std::string& output, const BuildOptions& options, double seconds,
                 const std::vector<StructureMesh>& built, const std::map<std::string, size_t>& repairs) {
@@ -236,7 +241,7 @@ void print_summary(const std::string& output, double seconds, const std::vector<
     std::fprintf(stderr, "wrote %s: %zu structures in %.3f s\n", output.c_str(), built.size(), seconds);
 }
 
-}  // namespace body::cli
+}  // namespace
 
 int run_build(const Args& argv) {
     auto args =

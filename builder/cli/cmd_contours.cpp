@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "builder/cli/commands.h"
@@ -34,7 +35,8 @@ constexpr const char* kUsage =
     "  --jobs N          structures extracted in parallel (default 1)\n"
     "  --strict          refuse extracted contours with any problem instead of repairing them\n"
     "  --repair-tolerance D  largest distance a contour repair may move a point (see bodygen check)\n"
-    "  --quiet           no progress bar or notes\n";
+    "  --quiet           no progress bar, notes or summary\n"
+    "  --json            the summary as JSON on stdout\n";
 
 }  // namespace
 
@@ -120,7 +122,7 @@ int run_contours(const Args& argv) {
     auto args = CliArgs::parse(
         argv,
         {"labels", "axis", "step", "only", "threshold", "tolerance", "min-area", "jobs", "output", "repair-tolerance"},
-        {"help", "quiet", "strict"});
+        {"help", "quiet", "json", "strict"});
     if (!args) return report(args.error());
     if (args->has("help")) {
         std::printf("%s", kUsage);
@@ -156,8 +158,19 @@ int run_contours(const Args& argv) {
     if (auto written = write_contour_stack(*output, *stack); !written) return report(written.error());
     const auto [contours, points] = count_contours(*stack);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    std::printf("%s: %zu structures, %zu slices, %zu contours, %zu points in %.2f s\n", output->c_str(),
-                stack->structures.size(), stack->slices.size(), contours, points, seconds);
+    if (args->has("json")) {
+        const nlohmann::json j = {{"input", input},
+                                  {"output", *output},
+                                  {"structures", stack->structures.size()},
+                                  {"slices", stack->slices.size()},
+                                  {"contours", contours},
+                                  {"points", points},
+                                  {"seconds", seconds}};
+        std::printf("%s\n", j.dump(2).c_str());
+    } else if (!quiet) {
+        std::printf("%s: %zu structures, %zu slices, %zu contours, %zu points in %.2f s\n", output->c_str(),
+                    stack->structures.size(), stack->slices.size(), contours, points, seconds);
+    }
     return kExitOk;
 }
 

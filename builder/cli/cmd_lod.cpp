@@ -1,54 +1,77 @@
-// bodygen lod IN.obj -o OUT.bpm [--min-triangles N] [--chunk-splits N] [--no-normals] [--jobs N]:
-// one progressive mesh per OBJ object, written as a .bpm file.
+// bodygen lod IN.(obj|stl|ply|gltf|glb) -o OUT.bpm [--min-triangles N] [--chunk-splits N] [--no-normals] [--jobs N]
+//   [--quiet] [--json]: one progressive mesh per OBJ object, written as a .bpm file.
+#include <chrono>
 #include <cstdio>
+#include <nlohmann/json.hpp>
 
 #include "builder/cli/commands.h"
 #include "builder/lod/bpm_writer.h"
 #include "builder/lod/simplify.h"
+#include "builder/mesh_import/mesh_import.h"
 #include "shared/cli_args.h"
 #include "shared/input_file.h"
-#include "shared/obj_io.h"
 
 namespace body::cli {
 
+// The progressive-mesh options from the command line (shared with `bodygen exhibit`).
+Result<lod::LodOptions> lod_options_from_args(const CliArgs& args) {
+    auto min_tris = args.get_long("min-triangles", 0);
+    if (!min_tris) return min_tris.error();
+    auto chunk = args.get_long("chunk-splits", 4096);
+    if (!chunk) return chunk.error();
+    if (*min_tris < 0 || *chunk < 1) return input_error("lod: --min-triangles >= 0 and --chunk-splits >= 1");
+    auto jobs = args.get_long("jobs", 0);
+    if (!jobs) return jobs.error();
+    if (args.has("jobs") && (*jobs < 1 || *jobs > 256)) return input_error("lod: --jobs must be between 1 and 256");
+    lod::LodOptions options;
+    options.min_triangles = size_t(*min_tris);
+    options.chunk_splits = size_t(*chunk);
+    options.normals = !args.has("no-normals");
+    options.threads = unsigned(*jobs);
+    return options;
+}
+
 int run_lod(const Args& argv) {
-    auto args = CliArgs::parse(argv, {"output", "min-triangles", "chunk-splits", "jobs"}, {"help", "no-normals"});
+    auto args = CliArgs::parse(argv, {"output", "min-triangles", "chunk-splits", "jobs"},
+                               {"help", "no-normals", "quiet", "json"});
     if (!args) return report(args.error());
     if (args->has("help")) {
         std::printf(
             "usage: bodygen lod IN.obj -o OUT.bpm [--min-triangles N] [--chunk-splits N] [--no-normals] [--jobs N]\n"
-            "  one progressive mesh per OBJ object; the base mesh keeps at least N triangles\n"
+            "  one progressive mesh per OBJ object (STL, PLY, glTF: per mesh); the base mesh keeps\n"
+            "  at least N triangles\n"
             "  (default: as few as the topology allows)\n"
             "  --jobs N   threads for the setup and a large mesh's first phase\n"
-            "             (default: one per CPU; the same output for any N)\n");
+            "             (default: one per CPU; the same output for any N)\n"
+            "  --quiet    no summary line\n"
+            "  --json     the summary as JSON on stdout\n");
         return kExitOk;
     }
-    if (args->positional().size() != 1) return report(input_error("lod: expected one input OBJ file"));
+    if (args->positional().size() != 1) return report(input_error("lod: expected one input mesh file"));
     if (!args->has("output")) return report(input_error("lod: missing -o OUT.bpm"));
-    auto min_tris = args->get_long("min-triangles", 0);
-    if (!min_tris) return report(min_tris.error());
-    auto chunk = args->get_long("chunk-splits", 4096);
-    if (!chunk) return report(chunk.error());
-    if (*min_tris < 0 || *chunk < 1) return report(input_error("lod: --min-triangles >= 0 and --chunk-splits >= 1"));
-    auto jobs = args->get_long("jobs", 0);
-    if (!jobs) return report(jobs.error());
-    if (args->has("jobs") && (*jobs < 1 || *jobs > 256))
-        return report(input_error("lod: --jobs must be between 1 and 256"));
-    lod::LodOptions options;
-    options.min_triangles = size_t(*min_tris);
-    options.chunk_splits = size_t(*chunk);
-    options.normals = !args->has("no-normals");
-    options.threads = unsigned(*jobs);
+    auto options = lod_options_from_args(*args);
+    if (!options) return report(options.error());
     if (Status apart = check_output_apart(*args->get("output"), {args->positional()[0]}); !apart)
         return report(apart.error());
-    auto meshes = read_obj(args->positional()[0]);
+    const auto start = std::chrono::steady_clock::now();
+    auto meshes = read_mesh_file(args->positional()[0]);
     if (!meshes) return report(meshes.error());
     const std::string out = *args->get("output");
-    Status st = lod::write_bpm_from_meshes(out, *meshes, options);
+    Status st = lod::write_bpm_from_meshes(out, *meshes, *options);
     if (!st) return report(st.error());
     size_t tris = 0;
     for (const Mesh& m : *meshes) tris += m.triangle_count();
-    std::printf("%s: %zu structures, %zu triangles\n", out.c_str(), meshes->size(), tris);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (args->has("json")) {
+        nlohmann::json j = {{"input", args->positional()[0]},
+                            {"output", out},
+                            {"structures", meshes->size()},
+                            {"triangles", tris},
+                            {"seconds", seconds}};
+        std::printf("%s\n", j.dump(2).c_str());
+    } else if (!args->has("quiet")) {
+        std::printf("%s: %zu structures, %zu triangles\n", out.c_str(), meshes->size(), tris);
+    }
     return kExitOk;
 }
 

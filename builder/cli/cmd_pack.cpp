@@ -55,35 +55,22 @@ Status check_model(const scene::Scene& s, size_t index, size_t& triangles) {
 
 }  // namespace
 
-int run_pack(const Args& argv) {
-    auto args = CliArgs::parse(argv, {"o", "output"}, {"help"});
-    if (!args) return report(args.error());
-    if (args->has("help")) {
-        std::printf(
-            "usage: bodygen pack SCENE.json -o BUNDLE/\n"
-            "validates the scene (shared/scene/SCENE.md), copies its models into BUNDLE/models/ and\n"
-            "writes BUNDLE/scene.json; the bundle replaces BUNDLE/ atomically. Exit 2 on a bad reference.\n");
-        return kExitOk;
-    }
-    const auto out = args->has("o") ? args->get("o") : args->get("output");
-    if (args->positional().size() != 1 || !out)
-        return report(input_error("pack: usage: bodygen pack SCENE.json -o BUNDLE/"));
-    const std::string scene_path = args->positional()[0];
+Result<PackSummary> pack_scene(const std::string& scene_path, const std::string& out) {
     auto scene = scene::read_scene(scene_path);
-    if (!scene) return report(scene.error());
+    if (!scene) return scene.error();
     auto text = read_file(scene_path);
-    if (!text) return report(text.error());
+    if (!text) return text.error();
     nlohmann::json manifest = nlohmann::json::parse(*text, nullptr, false);  // valid: read_scene parsed it
 
     // Validate every model and choose unique names inside models/.
     std::vector<std::string> names;
     std::set<std::string> used;
-    size_t triangles_total = 0;
+    PackSummary summary;
     for (size_t i = 0; i < scene->models.size(); ++i) {
         size_t triangles = 0;
         Status st = check_model(*scene, i, triangles);
-        if (!st) return report(st.error());
-        triangles_total += triangles;
+        if (!st) return st.error();
+        summary.triangles += triangles;
         const fs::path p(scene->models[i].path);
         std::string name = p.filename().string();
         for (int k = 2; used.count(name); ++k)
@@ -92,10 +79,13 @@ int run_pack(const Args& argv) {
         names.push_back(name);
         manifest["models"][i]["file"] = "models/" + name;
     }
+    summary.models = scene->models.size();
+    summary.groups = scene->groups.size();
 
     // Staged next to the destination so the final rename stays on one file system.
-    fs::path bundle = fs::path(*out).lexically_normal();
+    fs::path bundle = fs::path(out).lexically_normal();
     if (bundle.filename().empty()) bundle = bundle.parent_path();
+    summary.bundle = bundle.string();
     auto fill = [&](const std::string& staged_dir) -> Status {
         const fs::path staged(staged_dir);
         std::error_code ec;
@@ -104,8 +94,10 @@ int run_pack(const Args& argv) {
         for (size_t i = 0; i < names.size(); ++i) {
             fs::copy_file(scene->models[i].path, staged / "models" / names[i], ec);
             if (ec) return runtime_error(bundle.string() + ": cannot write models/" + names[i] + ": " + ec.message());
+            summary.bytes += fs::file_size(staged / "models" / names[i], ec);
         }
         const std::string json_text = manifest.dump(2) + "\n";
+        summary.bytes += json_text.size();
         Status written = write_file_atomically(
             (staged / "scene.json").string(),
             std::span<const uint8_t>(reinterpret_cast<const uint8_t*>(json_text.data()), json_text.size()));
@@ -121,10 +113,36 @@ int run_pack(const Args& argv) {
                    ? std::string()
                    : "exists and is not a bundle (no scene.json)";
     };
-    if (Status st = write_directory_atomically(bundle.string(), fill, replaceable); !st) return report(st.error());
-    std::printf("%s: %zu models, %zu groups%s -> %s\n", scene_path.c_str(), scene->models.size(), scene->groups.size(),
-                (", " + std::to_string(triangles_total) + " triangles at full detail").c_str(),
-                bundle.string().c_str());
+    if (Status st = write_directory_atomically(bundle.string(), fill, replaceable); !st) return st.error();
+    return summary;
+}
+
+int run_pack(const Args& argv) {
+    auto args = CliArgs::parse(argv, {"o", "output"}, {"help", "quiet", "json"});
+    if (!args) return report(args.error());
+    if (args->has("help")) {
+        std::printf(
+            "usage: bodygen pack SCENE.json -o BUNDLE/ [--quiet] [--json]\n"
+            "validates the scene (shared/scene/SCENE.md), copies its models into BUNDLE/models/ and\n"
+            "writes BUNDLE/scene.json; the bundle replaces BUNDLE/ atomically. Exit 2 on a bad reference.\n"
+            "  --quiet  no summary line\n"
+            "  --json   the summary as JSON on stdout\n");
+        return kExitOk;
+    }
+    const auto out = args->has("o") ? args->get("o") : args->get("output");
+    if (args->positional().size() != 1 || !out)
+        return report(input_error("pack: usage: bodygen pack SCENE.json -o BUNDLE/"));
+    const std::string scene_path = args->positional()[0];
+    auto summary = pack_scene(scene_path, *out);
+    if (!summary) return report(summary.error());
+    if (args->has("json")) {
+        nlohmann::json j = {{"scene", scene_path},       {"bundle", summary->bundle},       {"models", summary->models},
+                            {"groups", summary->groups}, {"triangles", summary->triangles}, {"bytes", summary->bytes}};
+        std::printf("%s\n", j.dump(2).c_str());
+    } else if (!args->has("quiet")) {
+        std::printf("%s: %zu models, %zu groups, %zu triangles at full detail -> %s\n", scene_path.c_str(),
+                    summary->models, summary->groups, summary->triangles, summary->bundle.c_str());
+    }
     return kExitOk;
 }
 

@@ -19,4 +19,12 @@ struct Command {
 // Prints "bodygen: <message>" on stderr and returns the error's exit code.
 int report(const Error& error);
 
+// `bodygen pack` without the printing (cmd_pack.cpp): validates SCENE and its
+// models and writes the bundle atomically; `bytes` is the bundle's size.
+struct PackSummary {
+    std::string bundle;
+    size_t models = 0, groups = 0, triangles = 0, bytes = 0;
+};
+Result<PackSummary> pack_scene(const std::string& scene_path, const std::string& bundle);
+
 }  // namespace body::cli

@@ -24,6 +24,8 @@ int run_lod(const Args& args);             // cmd_lod.cpp
 int run_extract(const Args& args);         // cmd_extract.cpp
 int run_info(const Args& args);            // cmd_info.cpp
 int run_contours(const Args& args);        // cmd_contours.cpp
+int run_exhibit(const Args& args);         // cmd_exhibit.cpp
+int run_export(const Args& args);          // cmd_export.cpp
 
 }  // namespace body::cli
 
@@ -42,6 +44,8 @@ const Command kCommands[] = {
     {"extract", "write one level of a .bpm file as OBJ", body::cli::run_extract},
     {"info", "print the structures, levels, sizes and error curve of a .bpm file", body::cli::run_info},
     {"pack", "validate a kiosk scene.json and write a self-contained bundle", body::cli::run_pack},
+    {"exhibit", "label volume, RT-STRUCT, contours or meshes -> a kiosk bundle, in one step", body::cli::run_exhibit},
+    {"export", "a bundle, .bpm or OBJ -> glTF 2.0 (.glb/.gltf), VRML97, STL, PLY or OBJ", body::cli::run_export},
 };
 
 void print_help(std::FILE* out) {

@@ -8,7 +8,9 @@
 // A contour is closed (last point not repeated), of arbitrary orientation.
 // Slices may come in any order and spacing; slices whose z differ by less
 // than kSliceMergeTolerance are one slice.
+#include <array>
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -48,6 +50,10 @@ struct ContourStack {
     std::string units = "mm";
     std::vector<StructureInfo> structures;
     std::vector<Slice> slices;  // sorted by increasing z after reading
+    // Unit directions of the stack's +x, +y, +z in RAS+ patient space (x toward
+    // the patient's right, y anterior, z superior) when the source says so (label
+    // volumes, RT-STRUCTs); not stored in stack files. Orients exhibits' cameras.
+    std::optional<std::array<Vec3, 3>> ras_axes;
 };
 
 // Contours and points in a stack, over all slices (for summaries).

@@ -1,5 +1,5 @@
 // Label table parsing: MRIcron/AAL .txt, FSL/FSLeyes .lut, FreeSurfer-style
-// colour tables and MRIcron's binary 768-byte .lut.
+// colour tables, ITK-SNAP label descriptions and MRIcron's binary 768-byte .lut.
 #include "builder/import/label_table.h"
 
 #include <cerrno>
@@ -109,6 +109,24 @@ std::string parse_line(const std::vector<std::string>& t, LabelEntry& entry) {
     return {};
 }
 
+// ITK-SNAP label description: `index r g b alpha visible mesh-visible "name"`,
+// r g b 0-255. Returns a reason, or "" with `entry` filled.
+std::string parse_itksnap_line(const std::string& line, LabelEntry& entry) {
+    const size_t open = line.find('"'), close = line.rfind('"');
+    if (close == open) return "unterminated quoted name";
+    const auto t = split_tokens(line.substr(0, open));
+    if (t.size() != 7) return "expected 'index r g b alpha visible mesh \"name\"' (ITK-SNAP)";
+    double c[3];
+    for (size_t k = 0; k < 3; ++k) {
+        auto v = parse_int(t[k + 1]);
+        if (!v || *v < 0 || *v > 255) return "colour component '" + t[k + 1] + "' is not 0-255";
+        c[k] = static_cast<double>(*v) / 255.0;
+    }
+    entry.name = line.substr(open + 1, close - open - 1);
+    entry.color = Vec3(c[0], c[1], c[2]);
+    return {};
+}
+
 }  // namespace
 
 Result<LabelTable> parse_label_table(const std::string& text, const std::string& path) {
@@ -134,7 +152,8 @@ Result<LabelTable> parse_label_table(const std::string& text, const std::string&
         if (!index) return input_error(where + "label index '" + tokens[0] + "' is not an integer");
         if (*index < 0) return input_error(where + "negative label index " + tokens[0]);
         LabelEntry entry;
-        const std::string reason = parse_line(tokens, entry);
+        const bool quoted = line.find('"') != std::string::npos;
+        const std::string reason = quoted ? parse_itksnap_line(line, entry) : parse_line(tokens, entry);
         if (!reason.empty()) return input_error(where + reason);
         if (entry.name.empty()) return input_error(where + "missing name");
         if (!table.entries.emplace(*index, std::move(entry)).second) {

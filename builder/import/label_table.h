@@ -7,6 +7,7 @@
 //     `index name code`                  (MRIcron/AAL .txt: a trailing number that is not a colour is ignored)
 //     `index name r g b [a]`             (FreeSurfer-style LUT: 0-255 integers)
 //     `index r g b name...`              (FSL/FSLeyes .lut: r g b floats in [0, 1])
+//     `index r g b a vis mesh "name"`    (ITK-SNAP label description: 0-255, a line with a quote)
 //   Names may contain spaces in the first and last forms.
 // - binary MRIcron .lut: exactly 768 bytes, 256 red, then 256 green, then 256
 //   blue bytes, indexed by label value: colours only.

@@ -194,6 +194,8 @@ Result<ContourStack> import_rtstruct(const std::string& path, const ImportOption
         Slice& slice = stack.slices.back();
         slice.contours.push_back(Contour{std::move(pc.points), id, slice.source_index, slice.contours.size()});
     }
+    // DICOM patient coordinates are LPS+: x toward the patient's left, y posterior.
+    stack.ras_axes = std::array<Vec3, 3>{Vec3(-1, 0, 0), Vec3(0, -1, 0), Vec3(0, 0, 1)};
     if (options.progress) options.progress(stack.structures.size(), stack.structures.size());
     return stack;
 }
