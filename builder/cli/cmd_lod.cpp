@@ -1,5 +1,7 @@
 // bodygen lod IN.obj -o OUT.bpm [--min-triangles N] [--chunk-splits N] [--no-normals] [--jobs N]:
 // one progressive mesh per OBJ object, written as a .bpm file.
+#include <unistd.h>
+
 #include <cstdio>
 
 #include "builder/cli/commands.h"
@@ -9,6 +11,19 @@
 #include "shared/obj_io.h"
 
 namespace body::cli {
+namespace {
+
+// Per structure: the faces its collapse loop removed of those it will try to.
+void draw_progress(size_t done, size_t total) {
+    const int width = 40;
+    const int filled = total ? int(double(done) / double(total) * width) : width;
+    std::fprintf(stderr, "\r[%.*s%*s] %zu/%zu faces removed", filled, "########################################",
+                 width - filled, "", done, total);
+    if (done >= total) std::fprintf(stderr, "\r%*s\r", width + 50, "");
+    std::fflush(stderr);
+}
+
+}  // namespace
 
 int run_lod(const Args& argv) {
     auto args = CliArgs::parse(argv, {"output", "min-triangles", "chunk-splits", "jobs"}, {"help", "no-normals"});
@@ -38,6 +53,7 @@ int run_lod(const Args& argv) {
     options.chunk_splits = size_t(*chunk);
     options.normals = !args->has("no-normals");
     options.threads = unsigned(*jobs);
+    if (isatty(STDERR_FILENO)) options.progress = draw_progress;
     auto meshes = read_obj(args->positional()[0]);
     if (!meshes) return report(meshes.error());
     const std::string out = *args->get("output");
