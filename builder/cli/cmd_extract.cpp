@@ -34,7 +34,8 @@ int run_extract(const Args& argv) {
     if (!error) return report(error.error());
     if (!(*ratio >= 0.0 && *ratio <= 1.0) || *triangles < 0 || !(*error >= 0.0))
         return report(input_error("extract: --ratio must be in [0, 1], --triangles and --error >= 0"));
-    auto pms = pm::read_bpm(args->positional()[0]);
+    // Refinement order: every level exact (the batched draw order would move it to a batch boundary).
+    auto pms = pm::read_bpm(args->positional()[0], pm::BpmStream::FaceOrder::Refinement);
     if (!pms) return report(pms.error());
     std::vector<Mesh> meshes;
     for (auto& p : *pms) {

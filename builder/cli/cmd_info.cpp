@@ -20,7 +20,8 @@ int run_info(const Args& argv) {
     const std::string& path = args->positional()[0];
     auto bytes = read_file(path);
     if (!bytes) return report(bytes.error());
-    auto pms = pm::read_bpm_bytes({reinterpret_cast<const uint8_t*>(bytes->data()), bytes->size()}, path);
+    auto pms = pm::read_bpm_bytes({reinterpret_cast<const uint8_t*>(bytes->data()), bytes->size()}, path,
+                                  pm::BpmStream::FaceOrder::Refinement);
     if (!pms) return report(pms.error());
     size_t splits = 0;
     for (auto& p : *pms) splits += p->max_level();
