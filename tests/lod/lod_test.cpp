@@ -392,6 +392,19 @@ TEST(Lod, ManyStructuresWithNamesColoursAndBounds) {
     EXPECT_EQ(pms[1]->max_triangle_count(), b.triangle_count());
 }
 
+TEST(Lod, ProgressIsReportedAndEndsAtTheFacesRemoved) {
+    lod::LodOptions options;
+    std::vector<std::pair<size_t, size_t>> calls;
+    options.progress = [&](size_t done, size_t total) { calls.emplace_back(done, total); };
+    const Mesh in = test::icosphere(4);
+    auto pm = lod::build_progressive_mesh(in, options);
+    ASSERT_TRUE(pm.ok());
+    ASSERT_FALSE(calls.empty());
+    for (const auto& [done, total] : calls) EXPECT_LE(done, total);
+    // The last call: every face the loop removed (down to the base mesh).
+    EXPECT_EQ(calls.back().first, in.triangle_count() - pm->base_faces);
+}
+
 TEST(Lod, DeterministicBytes) {
     lod::LodOptions options;
     options.chunk_splits = 256;
