@@ -37,7 +37,8 @@ int run_extract(const Args& argv) {
         return report(input_error("extract: --ratio must be in [0, 1], --triangles and --error >= 0"));
     if (Status apart = check_output_apart(*args->get("output"), {args->positional()[0]}); !apart)
         return report(apart.error());
-    auto pms = pm::read_bpm(args->positional()[0]);
+    // Refinement order: every level exact (the batched draw order would move it to a batch boundary).
+    auto pms = pm::read_bpm(args->positional()[0], pm::BpmStream::FaceOrder::Refinement);
     if (!pms) return report(pms.error());
     std::vector<Mesh> meshes;
     for (auto& p : *pms) {

@@ -1,5 +1,7 @@
 // bodygen lod IN.(obj|stl|ply|gltf|glb) -o OUT.bpm [--min-triangles N] [--chunk-splits N] [--no-normals] [--jobs N]
 //   [--quiet] [--json]: one progressive mesh per OBJ object, written as a .bpm file.
+#include <unistd.h>
+
 #include <chrono>
 #include <cstdio>
 #include <nlohmann/json.hpp>
@@ -12,6 +14,19 @@
 #include "shared/input_file.h"
 
 namespace body::cli {
+namespace {
+
+// Per structure: the faces its collapse loop removed of those it will try to.
+void draw_progress(size_t done, size_t total) {
+    const int width = 40;
+    const int filled = total ? int(double(done) / double(total) * width) : width;
+    std::fprintf(stderr, "\r[%.*s%*s] %zu/%zu faces removed", filled, "########################################",
+                 width - filled, "", done, total);
+    if (done >= total) std::fprintf(stderr, "\r%*s\r", width + 50, "");
+    std::fflush(stderr);
+}
+
+}  // namespace
 
 // The progressive-mesh options from the command line (shared with `bodygen exhibit`).
 Result<lod::LodOptions> lod_options_from_args(const CliArgs& args) {
@@ -53,6 +68,7 @@ int run_lod(const Args& argv) {
     if (!options) return report(options.error());
     if (Status apart = check_output_apart(*args->get("output"), {args->positional()[0]}); !apart)
         return report(apart.error());
+    if (isatty(STDERR_FILENO) && !args->has("quiet")) options->progress = draw_progress;
     const auto start = std::chrono::steady_clock::now();
     auto meshes = read_mesh_file(args->positional()[0]);
     if (!meshes) return report(meshes.error());

@@ -43,7 +43,7 @@ Status check_model(const scene::Scene& s, size_t index, size_t& triangles) {
     }
     if (ext == ".bpm") {
         // The full reader: header, every section's CRC, decodable base and splits.
-        auto meshes = pm::read_bpm(m.path);
+        auto meshes = pm::read_bpm(m.path, pm::BpmStream::FaceOrder::Refinement);  // checked, not drawn
         if (!meshes) return input_error(where + ": " + meshes.error().message);
         triangles = 0;
         for (const auto& mesh : *meshes) triangles += mesh->max_triangle_count();

@@ -396,6 +396,10 @@ static void restart_ordering(State& s) {
     if (s.live_faces * 4 > s.idx.size() / 3 * 3) return;
     rebuild_ordering_quadrics(s, s.settings.boundary_weight);
     for (CornerCost& c : s.corner_cost) c.time = 0;
+    for (uint32_t v = 0; v < uint32_t(s.locked.size()); ++v) {  // new costs, new placements: tried again
+        s.locked[v] &= uint8_t(~kGaveUp);
+        s.key[v].failed_pops = 0;
+    }
     s.sym_v = kNone;
     for (uint32_t v = 0; v < uint32_t(s.pos.size()); ++v) update_vertex(s, v);
 }
@@ -452,6 +456,11 @@ static bool collapse_top(State& s, CollapseOptions& options) {
             s.key[u].second_target = kNone;  // the key is not the cheapest collapse
             s.key[u].key_is_min = 0;
             s.heap.set(u, cost);  // cheaper work elsewhere first
+            // Passed over illegal collapses to get here (they are tried again at the next pop).
+            if (i > 0 && ++s.key[u].failed_pops >= kMaxFailedPops) {
+                s.locked[u] |= kGaveUp;
+                s.heap.erase(u);
+            }
             return false;
         }
         uint32_t shared[2], shared_count = 0;
@@ -475,7 +484,8 @@ static bool collapse_top(State& s, CollapseOptions& options) {
         options[i] = {std::max(s.q[u].eval(pv) + s.q[v].eval(pv), 0.0) / (w > 0.0 ? w : 1.0), rank, v, true};
         std::sort(options.begin() + ptrdiff_t(i), options.end());
     }
-    s.heap.erase(u);  // no legal collapse: back when its neighbourhood changes
+    s.heap.erase(u);  // no legal collapse: back when its neighbourhood changes, a few times
+    if (++s.key[u].failed_pops >= kMaxFailedPops) s.locked[u] |= kGaveUp;
     return false;
 }
 
@@ -586,7 +596,11 @@ static void lossless_regions(Surface& m, State& s, size_t target_faces, uint32_t
         s.patch_faces.insert(s.patch_faces.end(), r.patch_faces.begin(), r.patch_faces.end());
         s.live_faces -= r.removed_faces;
     }
-    for (uint8_t& l : s.locked) l &= uint8_t(~kFrozen);
+    // The regions' error cap made some vertices fail there: they start afresh.
+    for (uint32_t v = 0; v < uint32_t(s.locked.size()); ++v) {
+        s.locked[v] &= uint8_t(~(kFrozen | kGaveUp));
+        s.key[v].failed_pops = 0;
+    }
 }
 
 // The number of regions of the parallel lossless phase: one per region_faces faces, at
@@ -613,9 +627,15 @@ void collapse_loop(Surface& m, State& s, size_t target_faces, const LodOptions& 
     CollapseOptions options;
     const uint32_t regions = lossless_region_count(s.live_faces, lod.region_faces);
     if (regions > 1) lossless_regions(m, s, target_faces, regions, thread_count(lod));
+    const size_t start_faces = s.live_faces, to_remove = start_faces > target_faces ? start_faces - target_faces : 0;
+    size_t pops = 0;
+    const auto report = [&] {
+        if (lod.progress) lod.progress(std::min(start_faces - s.live_faces, to_remove), to_remove);
+    };
     for (int pass = 0; pass < 16 && s.live_faces > target_faces; ++pass) {
         s.heap.reset(s.rank);
         std::fill(s.key.begin(), s.key.end(), VertexKey{});
+        for (uint8_t& l : s.locked) l &= uint8_t(~kGaveUp);  // a new pass tries every vertex again
         s.sym_v = kNone;
         for (uint32_t v = 0; v < n; ++v) update_vertex(s, v);
         size_t done = 0;
@@ -625,10 +645,12 @@ void collapse_loop(Surface& m, State& s, size_t target_faces, const LodOptions& 
                 if (s.heap.empty()) break;
             }
             if (collapse_top(s, options)) ++done;
+            if (++pops % 65536 == 0) report();
         }
         // Collapses rejected earlier may have become legal as their neighbourhoods changed.
         if (done == 0) break;
     }
+    report();
 }
 
 // Area-weighted vertex normals, here rather than shared/mesh.h so that they are

@@ -34,6 +34,7 @@
 // interior-to-boundary pulls, and anything that would reduce a closed component below a
 // tetrahedron or an open one below one triangle.
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <string>
 #include <vector>
@@ -58,6 +59,10 @@ struct LodOptions {
     // collapse loop's arrays, the quadrics in two halves (0: one per hardware thread).
     // The output is the same for any number.
     unsigned threads = 0;
+    // Called now and then from the collapse loop of each mesh (not the threaded
+    // lossless regions) with the faces removed so far and the faces it will try to
+    // remove, once more at its end; e.g. a terminal's progress bar.
+    std::function<void(size_t done, size_t total)> progress;
 };
 
 // A progressive mesh in refinement order, in the builder's precision.

@@ -24,6 +24,15 @@ using pm::prefetch;
 constexpr uint32_t kNone = 0xffffffffu;
 constexpr uint32_t kUnknown = 0xfffffffeu;
 constexpr uint8_t kLocked = 1, kFrozen = 2;
+// kGaveUp: a vertex popped kMaxFailedPops times without a legal collapse (or
+// re-keyed past illegal ones) stays where it is (as kLocked) for the rest of the
+// pass. Each such pop tries the edges of its fan again, and on
+// garbage (random triangles: most edges non-manifold or boundary, fans near
+// pm::kMaxPatchFan) every collapse nearby brings dozens of them back: 96 s for
+// 200k random faces. The cap bounds the work per vertex; on a real surface a
+// vertex rarely fails even twice.
+constexpr uint8_t kGaveUp = 4;
+constexpr uint8_t kMaxFailedPops = 8;
 constexpr double kMinTurnCos = 0.2;  // cos(78 degrees): the largest turn of a face in one collapse
 constexpr double kFoldCos = -0.9;    // neighbours closer than 26 degrees to back-to-back count as folded
 // A collapse whose ordering cost (mean squared distance) is below (this x the bounding-box
@@ -217,8 +226,9 @@ struct alignas(64) VertexKey {
     // The cheapest of its other collapses (kNone: not known), so that a vertex whose
     // keyed collapse disappears is re-keyed without walking its fan again.
     uint32_t second_target = kNone;
-    uint8_t best_valid = 0;  // best_pos is the placement for exactly the heap key
-    uint8_t key_is_min = 0;  // the key is the cheapest collapse (not one re-ranked past illegal ones)
+    uint8_t best_valid = 0;   // best_pos is the placement for exactly the heap key
+    uint8_t key_is_min = 0;   // the key is the cheapest collapse (not one re-ranked past illegal ones)
+    uint8_t failed_pops = 0;  // pops that found no legal collapse (collapse_top; kMaxFailedPops)
 };
 
 // Per corner c: the cost of idx[c] -> the next vertex of its face, computed at

@@ -403,6 +403,13 @@ Status Benchmark::run() {
         if (auto s = run_lod(lod); !s) return s;
     step("after every style and LOD");
     print_memory();
+    if (source_->progressive() && !options_.model.empty()) {
+        renderer_.state(id_)->style = Style::Baseline;
+        if (auto s = compare_with_static(renderer_, id_, *source_, options_.model, camera_, frame_, options_.frames,
+                                         options_.seconds_per_cell);
+            !s)
+            return s;
+    }
     renderer_.shutdown();
     return ok_status();
 }

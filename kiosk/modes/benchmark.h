@@ -34,6 +34,16 @@ Result<ModelSource> generated_model(size_t target_triangles);
 // How many 1-to-4 subdivisions take a mesh of `triangles` nearest (by ratio) to `target`.
 int subdivisions_toward(size_t triangles, size_t target);
 
+// The draw-order table (benchmark_order.cpp), run after the memory figures:
+// for a .bpm, per LOD 100/40/10 %, the level drawn by the kiosk (model `id`
+// of `source`) against the same triangles as a meshoptimizer-ordered static
+// mesh, timed in alternating pairs in the baseline style, plus
+// meshopt_analyzeVertexCache/Fetch figures of both and of the file's
+// refinement order.
+Status compare_with_static(render::Renderer& renderer, render::ModelId id, ModelSource& source,
+                           const std::string& bpm_path, const render::View& camera, const render::FrameOptions& frame,
+                           int min_pairs, double seconds);
+
 // Peak and current resident set size of this process in KiB (/proc/self/status).
 long peak_rss_kib();
 long current_rss_kib();

@@ -16,12 +16,13 @@
 #include "shared/atomic_file.h"
 #include "shared/input_file.h"
 #include "shared/pm/bpm_container.h"
+#include "shared/pm/draw_order.h"
 #include "shared/pm/prediction.h"
 #include "shared/pm/split_codec.h"
 
 namespace body::pm {
 
-BpmStream::BpmStream(std::string source_name) : source_(std::move(source_name)) {}
+BpmStream::BpmStream(std::string source_name, FaceOrder order) : source_(std::move(source_name)), order_(order) {}
 
 namespace {
 
@@ -181,6 +182,10 @@ Status BpmStream::parse_info(std::span<const uint8_t> payload, const std::string
     m->qpos_.resize(vertices * 3);
     m->qoct_.resize(vertices * 2);
     m->replay_.reset(vertices, faces);
+    if (order_ == FaceOrder::Batched && splits > 0) {
+        m->batch_levels_ = batch_levels(bv, splits);
+        m->face_slot_.resize(faces);
+    }
     meshes_.push_back(std::move(m));
     return ok_status();
 }
@@ -209,6 +214,8 @@ Status BpmStream::parse_base(ProgressiveMesh& m, std::span<const uint8_t> payloa
     }
     std::copy(decoded_indices_.begin(), decoded_indices_.end(), m.indices_.begin());
     m.replay_.add_faces(0, decoded_indices_);
+    if (m.batched())
+        for (size_t f = 0; f < m.base_faces_; ++f) m.face_slot_[f] = uint32_t(f);
     m.decoded_faces_ = m.base_faces_;
     m.base_ready_ = true;
     m.dirty_vertices_.add(0, m.base_vertices_);
@@ -378,6 +385,9 @@ void BpmStream::record_split(ProgressiveMesh& m, size_t j, uint32_t parent, uint
                              const uint16_t to[3], const uint16_t q[3], const uint8_t oct[2], uint16_t error_high) {
     m.replay_.add_faces(m.decoded_faces_, faces);
     std::copy(faces.begin(), faces.end(), m.indices_.begin() + ptrdiff_t(m.decoded_faces_ * 3));
+    const bool batched = m.batched();
+    if (batched)
+        for (size_t f = m.decoded_faces_; f < m.decoded_faces_ + faces.size() / 3; ++f) m.face_slot_[f] = uint32_t(f);
     m.decoded_faces_ += faces.size() / 3;
     m.face_count_bits_[j / 32] |= uint64_t(faces.size() / 3) << (j % 32 * 2);
     if ((j + 1) % 64 == 0) m.face_sample_[(j + 1) / 64] = uint32_t(m.decoded_faces_);
@@ -387,7 +397,11 @@ void BpmStream::record_split(ProgressiveMesh& m, size_t j, uint32_t parent, uint
     }
     const size_t at = m.patch_corners_.size(), w = m.corner_bytes_;
     m.patch_corners_.resize(at + moved.size() * w);
-    for (size_t i = 0; i < moved.size(); ++i) ProgressiveMesh::store_le(&m.patch_corners_[at + i * w], moved[i], w);
+    for (size_t i = 0; i < moved.size(); ++i) {
+        // The replay numbers faces as the file does; indices_ holds them in draw order.
+        const uint32_t c = batched ? m.face_slot_[moved[i] / 3] * 3 + moved[i] % 3 : moved[i];
+        ProgressiveMesh::store_le(&m.patch_corners_[at + i * w], c, w);
+    }
     m.patch_count_[j] = uint8_t(moved.size());
     if (j % 64 == 0) m.move_rank_[j / 64] = uint32_t(m.move_count_);
     if ((from[0] ^ to[0]) | (from[1] ^ to[1]) | (from[2] ^ to[2])) {
@@ -465,6 +479,7 @@ Status BpmStream::parse_splits(ProgressiveMesh& m, std::span<const uint8_t> payl
         record_split(m, j, s.parent, s.child, {s.faces_at, s.faces * 3}, {moved, size_t(std::popcount(s.mask))}, s.from,
                      s.to, s.q, s.oct, uint16_t(previous_error_bits >> 16));  // the low half is 0
         face_cursor += s.faces;
+        if (m.batched() && j + 1 == m.batch_levels_[m.ordered_batches_]) m.order_batch(j + 1);
     }
     const size_t first_child = m.base_vertices_ + first;
     m.dirty_vertices_.add(first_child, first_child + count);
@@ -481,8 +496,9 @@ Status BpmStream::parse_splits(ProgressiveMesh& m, std::span<const uint8_t> payl
 }
 
 Result<std::vector<std::unique_ptr<ProgressiveMesh>>> read_bpm_bytes(std::span<const uint8_t> bytes,
-                                                                     const std::string& source_name) {
-    BpmStream stream(source_name);
+                                                                     const std::string& source_name,
+                                                                     BpmStream::FaceOrder order) {
+    BpmStream stream(source_name, order);
     Status st = stream.feed(bytes);
     if (!st) return st.error();
     st = stream.finish();
@@ -495,12 +511,12 @@ Result<std::vector<std::unique_ptr<ProgressiveMesh>>> read_bpm_bytes(std::span<c
     return out;
 }
 
-Result<std::vector<std::unique_ptr<ProgressiveMesh>>> read_bpm(const std::string& path) {
+Result<std::vector<std::unique_ptr<ProgressiveMesh>>> read_bpm(const std::string& path, BpmStream::FaceOrder order) {
     // Streamed in chunks: a wrong header fails after 16 bytes, not after the whole file.
     if (auto regular = check_regular_file(path); !regular) return regular.error();
     const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), &std::fclose);
     if (!file) return input_error(path + ": cannot open: " + std::strerror(errno));
-    BpmStream stream(path);
+    BpmStream stream(path, order);
     std::vector<uint8_t> chunk(1 << 20);
     size_t n = std::fread(chunk.data(), 1, kFileHeaderSize, file.get());
     while (n > 0) {

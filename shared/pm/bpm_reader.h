@@ -20,7 +20,10 @@ namespace body::pm {
 // its BASE section is in, and refines up to its last complete SPLT chunk.
 class BpmStream {
 public:
-    explicit BpmStream(std::string source_name = "<stream>");
+    // Batched (default): faces in the batched cache order of draw_order.h, the
+    // kiosk's; Refinement: in the file's order, every level an exact prefix.
+    enum class FaceOrder { Batched, Refinement };
+    explicit BpmStream(std::string source_name = "<stream>", FaceOrder order = FaceOrder::Batched);
     // Appends bytes. Returns an error (and stays failed) on a corrupt header or
     // section, naming the section, the structure and the byte offset in the file.
     Status feed(std::span<const uint8_t> bytes);
@@ -47,6 +50,7 @@ private:
                              const uint16_t to[3], const uint16_t q[3], const uint8_t oct[2], uint16_t error_high);
 
     std::string source_;
+    FaceOrder order_;
     std::vector<uint8_t> pending_;  // bytes of the section being received
     size_t consumed_ = 0;           // file offset of pending_[0]
     bool header_done_ = false, complete_ = false, failed_ = false;
@@ -58,9 +62,11 @@ private:
 };
 
 // Reads a whole file; errors name the path, section and byte offset.
-Result<std::vector<std::unique_ptr<ProgressiveMesh>>> read_bpm(const std::string& path);
+Result<std::vector<std::unique_ptr<ProgressiveMesh>>> read_bpm(
+    const std::string& path, BpmStream::FaceOrder order = BpmStream::FaceOrder::Batched);
 // Reads from memory (the same checks as a file).
-Result<std::vector<std::unique_ptr<ProgressiveMesh>>> read_bpm_bytes(std::span<const uint8_t> bytes,
-                                                                     const std::string& source_name);
+Result<std::vector<std::unique_ptr<ProgressiveMesh>>> read_bpm_bytes(
+    std::span<const uint8_t> bytes, const std::string& source_name,
+    BpmStream::FaceOrder order = BpmStream::FaceOrder::Batched);
 
 }  // namespace body::pm

@@ -13,6 +13,7 @@
 #endif
 
 #include "shared/pm/bpm_container.h"
+#include "shared/pm/draw_order.h"
 
 namespace body::pm {
 
@@ -61,7 +62,56 @@ size_t ProgressiveMesh::level_for_triangles(size_t triangles) const {
     const auto it = std::upper_bound(face_sample_.begin(), end, uint32_t(std::min<size_t>(triangles, UINT32_MAX)));
     size_t level = size_t(it - face_sample_.begin() - 1) * 64, t = face_sample_[level / 64];
     while (level < decoded_splits_ && t + faces_added(level) <= triangles) t += faces_added(level++);
-    return level;
+    return drawable_below(level);
+}
+
+size_t ProgressiveMesh::drawable_below(size_t level) const {
+    if (level >= ordered_level()) return level;
+    const auto end = batch_levels_.begin() + ptrdiff_t(ordered_batches_);
+    const auto it = std::upper_bound(batch_levels_.begin(), end, uint32_t(level));
+    return it == batch_levels_.begin() ? 0 : *(it - 1);
+}
+
+size_t ProgressiveMesh::drawable_above(size_t level) const {
+    if (level == 0 || level >= ordered_level()) return level;
+    const auto end = batch_levels_.begin() + ptrdiff_t(ordered_batches_);
+    return *std::lower_bound(batch_levels_.begin(), end, uint32_t(level));
+}
+
+// Called by the reader when split `level` - 1, the last of batch
+// ordered_batches_, is recorded: sorts the batch's faces into cache order on
+// the connectivity at `level` (the replay's) and renumbers what points at them.
+void ProgressiveMesh::order_batch(size_t level) {
+    const size_t lo = ordered_level();
+    // A level inside the batch would stop being a prefix: moved to its end first.
+    // (The reader counts the chunk's splits as decoded at its end: counted here for the move.)
+    if (level_ > lo && level_ < level) {
+        const size_t decoded = decoded_splits_;
+        decoded_splits_ = level;
+        refine_to(level);
+        decoded_splits_ = decoded;
+    }
+    const size_t f0 = triangles_at(lo), f1 = decoded_faces_, n = f1 - f0;
+    ++ordered_batches_;
+    if (n == 0) return;
+    // The batch's faces at `level`, then their order; scratch: the old entries.
+    std::vector<uint32_t> faces(n * 3), order(n);
+    for (size_t i = 0; i < n * 3; ++i) faces[i] = replay_.index(f0 * 3 + i);
+    cache_order(faces.data(), n, base_vertices_ + level, order.data(), order_scratch_);
+    std::copy(indices_.begin() + ptrdiff_t(f0 * 3), indices_.begin() + ptrdiff_t(f1 * 3), faces.begin());
+    for (size_t t = 0; t < n; ++t) {
+        const size_t f = order[t];
+        for (size_t k = 0; k < 3; ++k) indices_[(f0 + t) * 3 + k] = faces[f * 3 + k];
+        face_slot_[f0 + f] = uint32_t(f0 + t);
+    }
+    // Patches of this batch's splits that name its faces (earlier ones cannot).
+    const size_t w = corner_bytes_, end = patch_corners_.size() / w;
+    for (size_t i = batch_patch_begin_; i < end; ++i) {
+        const uint32_t c = patch_corner(i);
+        if (c >= f0 * 3) store_le(&patch_corners_[i * w], face_slot_[c / 3] * 3 + c % 3, w);
+    }
+    batch_patch_begin_ = end;
+    dirty_indices_.add(f0 * 3, f1 * 3);
 }
 
 size_t ProgressiveMesh::level_for_error(float error) const {
@@ -70,11 +120,11 @@ size_t ProgressiveMesh::level_for_error(float error) const {
     auto it = std::partition_point(error_highs_.begin(), error_highs_.end(),
                                    [&](uint16_t e) { return error_value(e) > error; });
     if (it == error_highs_.end()) return decoded_splits_;
-    return std::min<size_t>(error_levels_[size_t(it - error_highs_.begin())], decoded_splits_);
+    return drawable_above(std::min<size_t>(error_levels_[size_t(it - error_highs_.begin())], decoded_splits_));
 }
 
 size_t ProgressiveMesh::refine_to(size_t level) {
-    level = std::min(level, decoded_splits_);
+    level = drawable_below(std::min(level, decoded_splits_));
     size_t e = patch_at_level_;
     for (size_t j = level_; j < level; ++j) {
         const uint32_t child = uint32_t(base_vertices_ + j);
@@ -100,6 +150,7 @@ size_t ProgressiveMesh::refine_to(size_t level) {
 }
 
 size_t ProgressiveMesh::coarsen_to(size_t level) {
+    level = drawable_below(level);
     size_t b = patch_at_level_;
     for (size_t j = level_; j-- > level;) {
         const uint32_t parent = split_parent(j);
@@ -334,6 +385,8 @@ size_t ProgressiveMesh::morph_sources(size_t lo, std::vector<Vec3f>& out) const 
 void ProgressiveMesh::release_decoding_state() {
     // Swapped out, not `= {}` (that empties a vector but keeps its storage).
     replay_ = SplitReplay{};
+    UninitVector<uint32_t>().swap(face_slot_);
+    std::vector<uint32_t>().swap(order_scratch_);
     UninitVector<uint16_t>().swap(qpos_);
     if (!has_normals_) UninitVector<uint8_t>().swap(qoct_);  // with normals: kept as them
     // patch_corners_ grew geometrically while the splits arrived: to its size,

@@ -90,9 +90,19 @@ public:
     // Level selection, limited to available_level().
     size_t level_for_triangles(size_t triangles) const;  // the finest level with at most that many (>= 0)
     size_t level_for_error(float error) const;           // the coarsest level whose error <= error
+    // Batched draw order (draw_order.h): a level is drawable (an exact prefix)
+    // when it is a batch boundary or lies in the batch still arriving; the
+    // level selectors above return drawable levels. drawable_below(k): the
+    // finest drawable level <= k; drawable_above(k): the coarsest >= k (<= available_level()).
+    size_t drawable_below(size_t level) const;
+    size_t drawable_above(size_t level) const;
+    bool batched() const { return !batch_levels_.empty(); }
+    std::span<const uint32_t> batch_levels() const { return batch_levels_; }
 
     // Moves to a level (clamped to [0, available_level()]); cost proportional to
     // the number of splits crossed and their patches. Both return the new level.
+    // With batched draw order (draw_order.h), both move to the boundary level
+    // at or below the one asked for when that falls inside a reordered batch.
     size_t refine_to(size_t level);
     size_t coarsen_to(size_t level);
     size_t set_level(size_t level) { return level >= level_ ? refine_to(level) : coarsen_to(level); }
@@ -267,12 +277,23 @@ private:
     size_t corner_bytes_ = 4;
     uint32_t patch_corner(size_t i) const { return load_le(&patch_corners_[i * corner_bytes_], corner_bytes_); }
     DirtyRange dirty_vertices_, dirty_indices_;
+    // Batched draw order: the boundaries (empty: refinement order) and how many
+    // batches are reordered so far (order_batch, called by the reader as each completes).
+    std::vector<uint32_t> batch_levels_;
+    size_t ordered_batches_ = 0;
+    size_t ordered_level() const { return ordered_batches_ ? batch_levels_[ordered_batches_ - 1] : 0; }
+    void order_batch(size_t level);
     // Decoding state, released when the structure is complete (qoct_ is kept as
     // the normals when the file has them).
     SplitReplay replay_;
     UninitVector<uint16_t>
         qpos_;  // 3 per vertex: positions at the finest decoded level (children are coded against parents)
     UninitVector<uint8_t> qoct_;  // 2 per vertex: octahedral normals
+    // Batched order: per face (the replay's and the file's numbering) its place
+    // in indices_, and the first patch_corners_ entry of the batch arriving.
+    UninitVector<uint32_t> face_slot_;
+    size_t batch_patch_begin_ = 0;
+    std::vector<uint32_t> order_scratch_;
     void release_decoding_state();
     bool moves_parent(size_t j) const { return (move_bits_[j / 64] >> (j % 64)) & 1; }
     void move_parent(size_t j, uint32_t parent) {

@@ -30,8 +30,10 @@ std::vector<uint8_t> encode(const std::vector<Mesh>& meshes, lod::LodOptions opt
     return bytes.ok() ? *bytes : std::vector<uint8_t>{};
 }
 
+// Refinement order: these tests check every level exactly (the batched draw
+// order, where only batch boundaries are levels: draw_order_test.cpp).
 std::vector<std::unique_ptr<ProgressiveMesh>> decode(const std::vector<uint8_t>& bytes) {
-    auto r = pm::read_bpm_bytes(bytes, "test.bpm");
+    auto r = pm::read_bpm_bytes(bytes, "test.bpm", BpmStream::FaceOrder::Refinement);
     EXPECT_TRUE(r.ok()) << (r.ok() ? "" : r.error().message);
     return r.ok() ? std::move(*r) : std::vector<std::unique_ptr<ProgressiveMesh>>{};
 }
@@ -390,6 +392,19 @@ TEST(Lod, ManyStructuresWithNamesColoursAndBounds) {
     EXPECT_EQ(pms[1]->max_triangle_count(), b.triangle_count());
 }
 
+TEST(Lod, ProgressIsReportedAndEndsAtTheFacesRemoved) {
+    lod::LodOptions options;
+    std::vector<std::pair<size_t, size_t>> calls;
+    options.progress = [&](size_t done, size_t total) { calls.emplace_back(done, total); };
+    const Mesh in = test::icosphere(4);
+    auto pm = lod::build_progressive_mesh(in, options);
+    ASSERT_TRUE(pm.ok());
+    ASSERT_FALSE(calls.empty());
+    for (const auto& [done, total] : calls) EXPECT_LE(done, total);
+    // The last call: every face the loop removed (down to the base mesh).
+    EXPECT_EQ(calls.back().first, in.triangle_count() - pm->base_faces);
+}
+
 TEST(Lod, DeterministicBytes) {
     lod::LodOptions options;
     options.chunk_splits = 256;
@@ -452,7 +467,7 @@ TEST(Lod, PartialStreamIsUsableUpToItsLastCompleteChunk) {
     auto bytes = encode({in}, options);
     auto whole = decode(bytes);
     ProgressiveMesh& ref = *whole[0];
-    BpmStream stream("stream");
+    BpmStream stream("stream", BpmStream::FaceOrder::Refinement);
     size_t last_available = 0;
     bool saw_partial_level = false;
     // Feed in odd-sized pieces; after each, whatever is decoded must be drawable.

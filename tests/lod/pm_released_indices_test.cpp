@@ -16,8 +16,10 @@ namespace {
 
 using pm::ProgressiveMesh;
 
-std::unique_ptr<ProgressiveMesh> decode_one(const std::vector<uint8_t>& bytes) {
-    auto r = pm::read_bpm_bytes(bytes, "test.bpm");
+using Order = pm::BpmStream::FaceOrder;
+
+std::unique_ptr<ProgressiveMesh> decode_one(const std::vector<uint8_t>& bytes, Order order = Order::Refinement) {
+    auto r = pm::read_bpm_bytes(bytes, "test.bpm", order);
     EXPECT_TRUE(r.ok()) << (r.ok() ? "" : r.error().message);
     return r.ok() && !r->empty() ? std::move(r->front()) : nullptr;
 }
@@ -42,9 +44,11 @@ void patch(ProgressiveMesh& m, std::vector<uint32_t>& copy) {
     EXPECT_TRUE(m.pending_index_range().empty());
 }
 
-TEST(PmReleasedIndices, PatchedCopyMatchesAMeshKeepingItsArray) {
+// Both orders: in the batched one (the kiosk's) a level inside a batch is
+// moved to the batch boundary below it.
+void expect_patched_copy_matches(Order order) {
     const auto bytes = sphere_bpm(3);
-    auto kept = decode_one(bytes), given = decode_one(bytes);
+    auto kept = decode_one(bytes, order), given = decode_one(bytes, order);
     ASSERT_TRUE(kept && given);
     ASSERT_GT(kept->max_level(), 50u);
     // Start both at a middle level, then hand the array over.
@@ -70,7 +74,8 @@ TEST(PmReleasedIndices, PatchedCopyMatchesAMeshKeepingItsArray) {
         const size_t level = (seed >> 8) % (kept->max_level() + 1);
         kept->set_level(level);
         given->set_level(level);
-        EXPECT_EQ(given->level(), level);
+        EXPECT_EQ(given->level(), given->drawable_below(level));
+        EXPECT_EQ(given->level() == level, order == Order::Refinement || level == given->drawable_below(level));
         // Several moves between two patches now and then: one pass from the
         // copy's level to the last one.
         if (step % 3 == 2) continue;
@@ -98,6 +103,9 @@ TEST(PmReleasedIndices, PatchedCopyMatchesAMeshKeepingItsArray) {
     patch(*given, stale);
     EXPECT_EQ(stale, std::vector<uint32_t>(kept->indices().begin(), kept->indices().end()));
 }
+
+TEST(PmReleasedIndices, PatchedCopyMatchesAMeshKeepingItsArray) { expect_patched_copy_matches(Order::Refinement); }
+TEST(PmReleasedIndices, PatchedCopyMatchesInBatchedOrder) { expect_patched_copy_matches(Order::Batched); }
 
 TEST(PmReleasedIndices, ReleasedAPieceAtATimeWhileCopied) {
     const auto bytes = sphere_bpm(5);  // 20K triangles: an array of whole pages
@@ -178,7 +186,7 @@ TEST(PmReleasedIndices, MovesOfParentsArePending) {
 
 TEST(PmReleasedIndices, NotReleasedWhileSplitsAreStillStreaming) {
     const auto bytes = sphere_bpm(3);
-    pm::BpmStream stream;
+    pm::BpmStream stream("<stream>", pm::BpmStream::FaceOrder::Refinement);
     // Everything up to the middle of the file: the base arrives, not every split.
     ASSERT_TRUE(stream.feed(std::span<const uint8_t>(bytes).first(bytes.size() * 3 / 4)).ok());
     ASSERT_EQ(stream.structure_count(), 1u);

@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# Whole-process build time: `bodygen lod IN.obj` against bench_meshopt_chain (the
+# same OBJ reader, a 10-level meshoptimizer chain, written with its codecs), best
+# of N runs each, alternating; prints the ratio (goal <= 1.0). Also peak RSS.
+# usage: bench/build_vs_meshopt.sh IN.obj [BUILD_DIR=build] [N=3]
+set -euo pipefail
+in=$1
+build=${2:-build}
+n=${3:-3}
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+best() { sort -g | head -1; }
+ours=() base=()
+for _ in $(seq "$n"); do
+  /usr/bin/time -f "%e %M" -o "$work/t1" "$build/bin/bodygen" lod "$in" -o "$work/out.bpm" >/dev/null
+  /usr/bin/time -f "%e %M" -o "$work/t2" "$build/bin/bench_meshopt_chain" "$in" "$work/out.bin" >/dev/null
+  ours+=("$(cat "$work/t1")") base+=("$(cat "$work/t2")")
+done
+o=$(printf '%s\n' "${ours[@]}" | cut -d' ' -f1 | best)
+b=$(printf '%s\n' "${base[@]}" | cut -d' ' -f1 | best)
+orss=$(printf '%s\n' "${ours[@]}" | cut -d' ' -f2 | best)
+brss=$(printf '%s\n' "${base[@]}" | cut -d' ' -f2 | best)
+echo "$(basename "$in"): bodygen lod ${o} s (${orss} KiB peak), meshopt chain ${b} s (${brss} KiB): ratio $(echo "scale=2; $o / $b" | bc) (goal <= 1.0), best of $n"

@@ -1,0 +1,160 @@
+// The benchmark's draw-order table (contract in benchmark.h): a .bpm level as
+// the kiosk draws it against the same triangles as a static mesh that
+// meshoptimizer ordered for the vertex cache and fetch, in the same run.
+#include <GLES3/gl3.h>
+#include <meshoptimizer.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+
+#include "kiosk/modes/benchmark.h"
+#include "shared/pm/bpm_reader.h"
+
+namespace body::kiosk {
+namespace {
+
+double frame_ms(render::Renderer& r, const render::View& camera, const render::FrameOptions& frame) {
+    const auto t0 = std::chrono::steady_clock::now();
+    r.render(camera, render::Lighting{}, frame);
+    glFinish();
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+double median(std::vector<double> v) {
+    if (v.empty()) return 0.0;
+    std::sort(v.begin(), v.end());
+    return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+}
+
+// The static mesh of one level: vertex cache order, then vertices in first-use
+// order; the .bpm's own codes (same formats as the kiosk's model).
+struct StaticLevel {
+    std::vector<uint32_t> indices;
+    std::vector<uint16_t> codes;
+    std::vector<uint8_t> oct;
+};
+
+StaticLevel optimise(const pm::ProgressiveMesh& m) {
+    StaticLevel s;
+    const size_t n = m.triangle_count() * 3, vc = m.vertex_count();
+    std::vector<uint32_t> cached(n), remap(vc);
+    meshopt_optimizeVertexCache(cached.data(), m.indices().data(), n, vc);
+    const size_t unique = meshopt_optimizeVertexFetchRemap(remap.data(), cached.data(), n, vc);
+    s.indices.resize(n);
+    meshopt_remapIndexBuffer(s.indices.data(), cached.data(), n, remap.data());
+    s.codes.resize(unique * 3);
+    meshopt_remapVertexBuffer(s.codes.data(), m.position_codes().data(), vc, 6, remap.data());
+    if (m.has_normals()) {
+        s.oct.resize(unique * 2);
+        meshopt_remapVertexBuffer(s.oct.data(), m.normal_codes().data(), vc, 2, remap.data());
+    }
+    return s;
+}
+
+void print_cache(const char* what, std::span<const uint32_t> idx, size_t vertices) {
+    const auto c = meshopt_analyzeVertexCache(idx.data(), idx.size(), vertices, 16, 0, 0);
+    const auto f = meshopt_analyzeVertexFetch(idx.data(), idx.size(), vertices, 8);
+    std::printf("  %-32s ACMR %.3f  ATVR %.3f  fetch overfetch %.2f\n", what, c.acmr, c.atvr, f.overfetch);
+}
+
+}  // namespace
+
+Status compare_with_static(render::Renderer& renderer, render::ModelId id, ModelSource& source,
+                           const std::string& bpm_path, const render::View& camera, const render::FrameOptions& frame,
+                           int min_pairs, double seconds) {
+    auto batched = pm::read_bpm(bpm_path);
+    if (!batched) return batched.error();
+    auto plain = pm::read_bpm(bpm_path, pm::BpmStream::FaceOrder::Refinement);
+    if (!plain) return plain.error();
+    // The structure the benchmark drew: the largest, as there.
+    const auto largest = [](auto& v) {
+        return std::max_element(
+                   v.begin(), v.end(),
+                   [](const auto& a, const auto& b) { return a->max_triangle_count() < b->max_triangle_count(); })
+            ->get();
+    };
+    pm::ProgressiveMesh& m = *largest(*batched);
+    pm::ProgressiveMesh& p = *largest(*plain);
+    std::printf(
+        "draw order (baseline shader, wall ms on this GL_RENDERER): the .bpm level as the kiosk draws it vs the same "
+        "triangles as a static mesh meshoptimizer ordered (vertex cache + fetch); ratio: median over pairs of bpm "
+        "frame / mean of the static frames around it (goal <= 1.15); refine_ms, refine_x: the file's refinement order "
+        "(the kiosk's before batching) uploaded as a static mesh, likewise\n");
+    std::printf("%-5s %-9s %9s %9s %6s %9s %8s %5s %s\n", "LOD", "triangles", "bpm_ms", "static_ms", "ratio",
+                "refine_ms", "refine_x", "pairs", "goal");
+    for (double lod : {1.0, 0.4, 0.1}) {
+        source.set_lod(lod);
+        if (const render::Dirty d = source.take_dirty(); d.vertex_begin < d.vertex_end || d.index_begin < d.index_end) {
+            if (auto s = renderer.update_model(id, source.upload_mesh(), d); !s) return s;
+            source.release_arrays();
+        }
+        m.set_level(m.level_for_triangles(source.triangles()));
+        p.set_level(m.level());
+        if (m.triangle_count() != source.triangles())
+            return input_error(bpm_path + ": the benchmark's level does not match a second read of the file");
+        const StaticLevel s = optimise(m);
+        // The file's refinement order as a static mesh (the kiosk's order before batching).
+        render::MeshData plain_data;
+        plain_data.indices = p.indices().first(p.triangle_count() * 3);
+        plain_data.position_codes = p.position_codes().first(p.vertex_count() * 3);
+        plain_data.normal_codes = p.normal_codes().first(p.has_normals() ? p.vertex_count() * 2 : 0);
+        plain_data.has_position_box = true;
+        plain_data.position_box_min = p.bounds_min();
+        plain_data.position_box_max = p.bounds_max();
+        plain_data.vertex_count = p.vertex_count();
+        render::MeshData data;
+        data.indices = s.indices;
+        data.position_codes = s.codes;
+        data.normal_codes = s.oct;
+        data.has_position_box = true;
+        data.position_box_min = m.bounds_min();
+        data.position_box_max = m.bounds_max();
+        data.vertex_count = s.codes.size() / 3;
+        auto sid = renderer.add_model(data, "static level");
+        if (!sid) return sid.error();
+        auto pid = renderer.add_model(plain_data, "refinement order");
+        if (!pid) return pid.error();
+        for (render::ModelId other : {sid.value(), pid.value()}) {
+            *renderer.state(other) = *renderer.state(id);
+            renderer.state(other)->morph_begin = SIZE_MAX;  // drawn as they are
+            renderer.state(other)->morph = 1.0f;
+        }
+        // Frames cycle static, bpm, refinement; each of the others is divided by
+        // the mean of the static frames around it.
+        const render::ModelId models[3] = {sid.value(), id, pid.value()};
+        const auto draw = [&](int which) {
+            for (int k = 0; k < 3; ++k) renderer.state(models[k])->visible = k == which;
+            return frame_ms(renderer, camera, frame);
+        };
+        for (int i = 0; i < 2; ++i)
+            for (int k = 0; k < 3; ++k) (void)draw(k);
+        std::vector<double> stat{draw(0)}, bpm, plain_ms, ratio, plain_ratio;
+        const auto start = std::chrono::steady_clock::now();
+        while (bpm.size() < size_t(std::max(min_pairs, 1)) ||
+               (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() < seconds &&
+                bpm.size() < 200)) {
+            bpm.push_back(draw(1));
+            plain_ms.push_back(draw(2));
+            stat.push_back(draw(0));
+            const double around = 0.5 * (stat[stat.size() - 2] + stat.back());
+            ratio.push_back(bpm.back() / around);
+            plain_ratio.push_back(plain_ms.back() / around);
+        }
+        renderer.state(id)->visible = true;
+        renderer.remove_model(sid.value());
+        renderer.remove_model(pid.value());
+        const double r = median(ratio);
+        std::printf("%3.0f%%  %-9zu %9.2f %9.2f %6.2f %9.2f %8.2f %5zu <= 1.15x %s\n", lod * 100, m.triangle_count(),
+                    median(bpm), median(stat), r, median(plain_ms), median(plain_ratio), ratio.size(),
+                    r <= 1.15 ? "ok" : "MISSED");
+        const size_t n = m.triangle_count() * 3;
+        print_cache("bpm, batched order (kiosk)", m.indices().first(n), m.vertex_count());
+        print_cache("bpm, refinement order (file)", p.indices().first(n), p.vertex_count());
+        print_cache("static, meshoptimizer", s.indices, s.codes.size() / 3);
+        std::fflush(stdout);
+    }
+    return ok_status();
+}
+
+}  // namespace body::kiosk
