@@ -29,7 +29,7 @@ run_watched() {
   /usr/bin/time -v -o "$TMP/time" "$BODYVIEW" "$@" 2> "$TMP/err" &
   local pid=$! peak=0 child n
   while kill -0 "$pid" 2>/dev/null; do
-    child=$(pgrep -P "$pid" -n bodyview || true)
+    child=$(pgrep -P "$pid" -n || true)
     if [ -n "$child" ] && [ -r "/proc/$child/status" ]; then
       n=$(awk '/^Threads:/ {print $2}' "/proc/$child/status" 2>/dev/null || echo 0)
       [ "${n:-0}" -gt "$peak" ] && peak=$n
