@@ -24,19 +24,25 @@ void FlushPacer::flush() {
 void set_matrices(Program& p, const Frame& f, const Model& m) {
     glm::mat4 mv = f.view * m.state.transform;
     glm::mat3 nm = glm::transpose(glm::inverse(glm::mat3(mv)));
+    if (p.frame_uniforms != f.serial) {
+        glUniformMatrix4fv(p.loc("u_projection"), 1, GL_FALSE, glm::value_ptr(f.projection));
+        glUniform4fv(p.loc("u_view_ray"), 1, glm::value_ptr(f.view_ray));
+        p.frame_uniforms = f.serial;
+    }
     glUniformMatrix4fv(p.loc("u_model_view"), 1, GL_FALSE, glm::value_ptr(mv));
-    glUniformMatrix4fv(p.loc("u_projection"), 1, GL_FALSE, glm::value_ptr(f.projection));
     glUniformMatrix3fv(p.loc("u_normal_matrix"), 1, GL_FALSE, glm::value_ptr(nm));
     glUniform3fv(p.loc("u_pos_origin"), 1, glm::value_ptr(m.pos_origin));
     glUniform3fv(p.loc("u_pos_scale"), 1, glm::value_ptr(m.pos_scale));
     glUniform1i(p.loc("u_normal_codes"), m.normal_codes ? 1 : 0);
-    glUniform4fv(p.loc("u_view_ray"), 1, glm::value_ptr(f.view_ray));
     const bool morphing = m.vbo_morph && m.state.morph < 1.0f && m.state.morph_begin < m.vertex_count;
     glUniform1f(p.loc("u_morph"), morphing ? std::max(m.state.morph, 0.0f) : 1.0f);
     glUniform1i(p.loc("u_morph_begin"), morphing ? static_cast<GLint>(m.state.morph_begin) : INT32_MAX);
 }
 
-void set_lights(Program& p, const Lighting& l) {
+void set_lights(Program& p, const Frame& f) {
+    if (p.frame_lights == f.serial) return;
+    p.frame_lights = f.serial;
+    const Lighting& l = *f.lighting;
     auto unit = [](Vec3f v) { return glm::length(v) > 0.0f ? glm::normalize(v) : Vec3f(0.0f, 0.0f, 1.0f); };
     const Vec3f key = unit(l.key_dir), fill = unit(l.fill_dir), rim = unit(l.rim_dir);
     glUniform3fv(p.loc("u_key_dir"), 1, glm::value_ptr(key));
@@ -52,7 +58,7 @@ void set_lights(Program& p, const Lighting& l) {
 void draw_coloured(Frame& f, Program& p, const Model& m, const Vec3f& color, bool lit) {
     f.use(p);
     set_matrices(p, f, m);
-    if (lit) set_lights(p, *f.lighting);
+    if (lit) set_lights(p, f);
     glUniform4f(p.loc("u_color"), color.r, color.g, color.b, 1.0f);
     draw_triangles(f, m);
 }

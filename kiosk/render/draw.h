@@ -44,6 +44,11 @@ struct Frame {
     const Lighting* lighting;
     const FrameOptions* options;
     bool flush_large_draws = false;  // RendererState::flush_large_draws
+    uint64_t serial = 0;             // RendererState::frame_serial: this frame's number, from 1
+    // The view frustum's planes in world space (inside: dot(xyz, p) + w >= 0,
+    // xyz of unit length), and pixels per world unit at view distance 1.
+    glm::vec4 frustum[6];
+    float pixels_at_unit_distance = 0.0f;
     // Drivers compile a program's shaders at its first draw (llvmpipe: LLVM)
     // and free the compiler's scratch into the heap: a frame that drew a
     // program for the first time trims the heap at its end.
@@ -58,8 +63,9 @@ struct Frame {
 // mesh.vert's uniforms for model `m`: matrices, position dequantization,
 // normal format, view ray and geomorph.
 void set_matrices(Program& p, const Frame& f, const Model& m);
-// lighting.glsl's uniforms; directions are normalized here once, not per fragment.
-void set_lights(Program& p, const Lighting& l);
+// lighting.glsl's uniforms from the frame's lights (once a frame per program);
+// directions are normalized here once, not per fragment.
+void set_lights(Program& p, const Frame& f);
 // Draws the model's triangles with a mesh.vert program in one colour
 // (u_color), lit by the frame's lights (lighting.glsl) when `lit`.
 void draw_coloured(Frame& f, Program& p, const Model& m, const Vec3f& color, bool lit);

@@ -28,7 +28,7 @@ static_assert(static_cast<size_t>(Style::Smooth) == 0 && static_cast<size_t>(Sty
 // Clears the target and sets the GL state every style starts from; the frame's
 // matrices and the view ray through pixel (x, y): ((2x/w - 1) / P00, (2y/h -
 // 1) / P11, -1) for a symmetric perspective.
-Frame begin_frame(const RendererState& s, const View& camera, const Lighting& lighting, const FrameOptions& o) {
+Frame begin_frame(RendererState& s, const View& camera, const Lighting& lighting, const FrameOptions& o) {
     glBindFramebuffer(GL_FRAMEBUFFER, o.framebuffer);
     glViewport(0, 0, o.width, o.height);
     glClearColor(o.background.r, o.background.g, o.background.b, 1.0f);
@@ -52,7 +52,34 @@ Frame begin_frame(const RendererState& s, const View& camera, const Lighting& li
     f.lighting = &lighting;
     f.options = &o;
     f.flush_large_draws = s.flush_large_draws;
+    f.serial = ++s.frame_serial;
+    // Gribb and Hartmann: the planes are the rows of P V added to or taken from its last row.
+    const glm::mat4 pv = f.projection * f.view;
+    for (int i = 0; i < 6; ++i) {
+        const int row = i / 2;
+        const float sign = i % 2 ? -1.0f : 1.0f;
+        glm::vec4 plane;
+        for (int c = 0; c < 4; ++c) plane[c] = pv[c][3] + sign * pv[c][row];
+        f.frustum[i] = plane / std::max(glm::length(glm::vec3(plane)), 1e-20f);
+    }
+    f.pixels_at_unit_distance = 0.5f * static_cast<float>(o.height) * f.projection[1][1];
     return f;
+}
+
+// Models below this radius on screen are skipped: they would cover a pixel or
+// none, and on a scene of thousands of small structures each still costs a draw.
+constexpr float kMinRadiusPixels = 0.5f;
+
+// Whether a model's world bounding sphere reaches into the view and is not
+// smaller than kMinRadiusPixels there.
+bool on_screen(const Frame& f, const Model& m) {
+    Vec3f c;
+    float r = 0.0f;
+    world_sphere(m, c, r);
+    for (const glm::vec4& plane : f.frustum)
+        if (glm::dot(glm::vec3(plane), c) + plane.w < -r) return false;
+    const float depth = -(f.view * glm::vec4(c, 1.0f)).z;
+    return depth <= r || r * f.pixels_at_unit_distance >= kMinRadiusPixels * depth;
 }
 
 // A model whose style uses neither the `lines` nor the `wireframe` data
@@ -80,7 +107,7 @@ bool release_unused_line_data(RendererState& s) {
 std::vector<Model*> draw_opaque(RendererState& s, Frame& f, bool fade_rest) {
     std::vector<Model*> transparent;
     for (auto& [id, m] : s.models) {
-        if (m.internal || !m.state.visible || m.index_count == 0) continue;
+        if (m.internal || !m.state.visible || m.index_count == 0 || !on_screen(f, m)) continue;
         if (m.state.selected || fade_rest) {
             transparent.push_back(&m);
             continue;

@@ -54,7 +54,7 @@ Result<Program> link(const std::string& vert, const std::string& frag) {
 }  // namespace
 
 GLint Program::loc(const char* name) {
-    auto it = locations.find(name);
+    auto it = locations.find(std::string_view(name));
     if (it != locations.end()) return it->second;
     GLint l = glGetUniformLocation(id, name);
     locations.emplace(name, l);

@@ -4,6 +4,8 @@
 // up once and cached.
 #include <GLES3/gl3.h>
 
+#include <cstdint>
+#include <functional>
 #include <map>
 #include <string>
 
@@ -19,7 +21,10 @@ inline constexpr GLuint kNormalCode = 4;  // 8:8 octahedral normal codes (mesh.v
 struct Program {
     GLuint id = 0;
     bool drawn = false;  // used by a frame already (its shader variants compiled)
-    std::map<std::string, GLint> locations;
+    // The Frame::serial whose per-frame uniforms (projection, view ray; the
+    // lights) this program holds: set once a frame, not once a model.
+    uint64_t frame_uniforms = 0, frame_lights = 0;
+    std::map<std::string, GLint, std::less<>> locations;  // looked up without a std::string per call
     GLint loc(const char* name);
 };
 

@@ -23,6 +23,7 @@ struct RendererState {
     ModelId next_id = 1;
     ModelId sphere = 0;
     FrameStats stats;
+    uint64_t frame_serial = 0;  // frames begun (Frame::serial)
     Transfers transfers;
     // Software rasterizers (GL_RENDERER llvmpipe, softpipe): large draws are
     // split and flushed (draw.h, kFlushTriangles).

@@ -16,12 +16,26 @@ glm::mat4 to_model_matrix(const scene::Transform& t) {
     return glm::scale(m, glm::vec3(t.scale));
 }
 
+namespace {
+// What a model covers on screen, estimated before anything of it is read (the
+// decoding order needs it before the bounds are known): its file's bytes grow
+// with its triangles, which grow with its surface at the atlas's resolution,
+// and the manifest's scale enlarges that surface by its square.
+double screen_size_estimate(const scene::Model& m) {
+    std::error_code ec;
+    const auto bytes = std::filesystem::file_size(m.path, ec);
+    return ec ? 0.0 : static_cast<double>(bytes) * double(m.transform.scale) * double(m.transform.scale);
+}
+}  // namespace
+
 SceneModels::SceneModels(const scene::Scene& scene)
     : scene_(scene), models_(scene.models.size()), info_(scene.models.size()) {
     for (const scene::Model& m : scene.models) transforms_.push_back(to_model_matrix(m.transform));
-    for (size_t i = 0; i < scene.models.size(); ++i)
-        if (std::filesystem::path(scene.models[i].path).extension() == ".bpm")
-            models_[i].loader = std::make_unique<StreamLoader>(scene.models[i].path);
+    for (size_t i = 0; i < scene.models.size(); ++i) {
+        const scene::Model& m = scene.models[i];
+        if (std::filesystem::path(m.path).extension() != ".bpm") continue;
+        models_[i].loader = std::make_unique<StreamLoader>(m.path, 64 * 1024, screen_size_estimate(m));
+    }
 }
 
 SceneModels::~SceneModels() = default;

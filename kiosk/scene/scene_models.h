@@ -12,8 +12,10 @@
 //   per frame: auto lock = models.lock(); models.poll_streams();
 //              models.bind(i, binding, now) for each model; lock = {}; renderer.render(...)
 //
-// Threads: a .bpm streams on its own loader thread (scene/stream_loader.h); its
-// structures are touched only under lock(), which bind() and pick() need.
+// Threads: a .bpm streams on the shared decoding threads (scene/stream_loader.h,
+// scene/decode_pool.h: cores - 1 of them, whatever the number of files), larger
+// models first; its structures are touched only under lock(), which bind() and
+// pick() need.
 #include <chrono>
 #include <memory>
 #include <mutex>
@@ -62,8 +64,8 @@ struct LoadOptions {
 
 class SceneModels {
 public:
-    // Starts a loader for every .bpm at once (base meshes decode in parallel,
-    // while the caller initialises the renderer).
+    // Queues a loader for every .bpm at once (base meshes decode on the pool's
+    // threads while the caller initialises the renderer).
     explicit SceneModels(const scene::Scene& scene);
     ~SceneModels();
     SceneModels(const SceneModels&) = delete;

@@ -1,15 +1,13 @@
-// A reader-and-decoder thread per streamed .bpm (contract in stream_loader.h).
+// A streamed .bpm read and decoded on the shared decoding threads (contract in stream_loader.h).
 #include "kiosk/scene/stream_loader.h"
-
-#include <pthread.h>
 
 #include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <memory>
-#include <semaphore>
 #include <span>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -21,27 +19,15 @@ namespace {
 // Bytes fed per lock: bounds how long the render thread can wait for the lock
 // (one slice completes at most a section or two: ~1-3 ms of decoding).
 constexpr size_t kSliceBytes = 16 * 1024;
-
-// Decoding slots shared by every loader: one core fewer than the machine has, so
-// that a scene of many files (the AAL brain: 116) does not put all its threads
-// against the render thread while it compiles shaders and draws the first frame.
-std::counting_semaphore<1024>& decode_slots() {
-    static std::counting_semaphore<1024> slots(
-        std::ptrdiff_t(std::clamp(std::thread::hardware_concurrency(), 2u, 1025u) - 1));
-    return slots;
-}
-
-struct DecodeSlot {
-    DecodeSlot() { decode_slots().acquire(); }
-    ~DecodeSlot() { decode_slots().release(); }
-    DecodeSlot(const DecodeSlot&) = delete;
-    DecodeSlot& operator=(const DecodeSlot&) = delete;
-};
+// Until the bases are in, smaller slices: a slice is decoded whole, and one of
+// kSliceBytes would take a small file's detail along with its base (AAL
+// regions: ~13 KB each), making the first frame wait for every file's detail.
+constexpr size_t kBaseSliceBytes = 2 * 1024;
 }  // namespace
 
-StreamLoader::StreamLoader(std::string path, size_t chunk_bytes)
-    : path_(std::move(path)), chunk_bytes_(chunk_bytes ? chunk_bytes : 1), stream_(path_) {
-    thread_ = std::thread([this] { run(); });
+StreamLoader::StreamLoader(std::string path, size_t chunk_bytes, double priority, DecodePool& pool)
+    : path_(std::move(path)), chunk_bytes_(chunk_bytes ? chunk_bytes : 1), pool_(pool), stream_(path_) {
+    pool_.add(this, priority);  // last: a pool thread may step it at once
 }
 
 StreamLoader::~StreamLoader() {
@@ -50,9 +36,8 @@ StreamLoader::~StreamLoader() {
         stop_ = true;
     }
     cv_.notify_all();
-    thread_.join();
+    pool_.remove(this);
 }
-
 bool StreamLoader::bases_ready() const {
     if (stream_.structure_count_declared() == 0 || stream_.structure_count() < stream_.structure_count_declared())
         return false;
@@ -61,7 +46,16 @@ bool StreamLoader::bases_ready() const {
     return true;
 }
 
-void StreamLoader::wait_for_bases() const {
+void StreamLoader::wait_for_bases() {
+    // Decodes them here when no pool thread has reached this file yet.
+    std::vector<uint8_t> buffer;
+    while (!done_.load(std::memory_order_acquire)) {
+        {
+            std::unique_lock guard = lock();
+            if (bases_ready()) return;
+        }
+        if (!pool_.step_here(this, buffer)) break;
+    }
     std::unique_lock guard = lock();
     cv_.wait(guard, [&] { return done_.load(std::memory_order_relaxed) || bases_ready(); });
 }
@@ -69,9 +63,10 @@ void StreamLoader::wait_for_bases() const {
 void StreamLoader::release_detail() {
     {
         std::unique_lock guard = lock();
+        if (released_) return;
         released_ = true;
     }
-    cv_.notify_all();
+    pool_.release(this);
 }
 
 void StreamLoader::wait_until_done() {
@@ -82,7 +77,7 @@ void StreamLoader::wait_until_done() {
 
 bool StreamLoader::wait_done_until(std::chrono::steady_clock::time_point deadline) const {
     // Polls instead of waiting on the condition: waking from a timed wait would
-    // re-take the mutex past the thread's fairness check (see lock()).
+    // re-take the mutex past the decoder's fairness check (see lock()).
     while (!done_.load(std::memory_order_acquire)) {
         if (std::chrono::steady_clock::now() >= deadline) return false;
         std::this_thread::sleep_for(std::chrono::milliseconds(1));
@@ -90,17 +85,22 @@ bool StreamLoader::wait_done_until(std::chrono::steady_clock::time_point deadlin
     return true;
 }
 
-void StreamLoader::finish(std::string error) {
+DecodeNeed StreamLoader::finish(std::string error) {
     error_ = std::move(error);
     done_.store(true, std::memory_order_release);
     cv_.notify_all();
+    return DecodeNeed::Done;
 }
 
-void StreamLoader::run() {
-    pthread_setname_np(pthread_self(), "bodyview-load");       // for top and perf
-    if (auto regular = check_regular_file(path_); !regular) {  // a FIFO would block fopen
-        std::lock_guard guard(mutex_);
-        return finish(regular.error().message);
+// Opens the file where the last step stopped and reads on: chunk after chunk
+// while the bases are not in, one chunk of detail (so the pool can turn to a
+// file of higher priority), nothing past the bases before release_detail().
+DecodeNeed StreamLoader::step(std::vector<uint8_t>& chunk) {
+    if (!opened_) {
+        if (auto regular = check_regular_file(path_); !regular) {  // a FIFO would block fopen
+            std::lock_guard guard(mutex_);
+            return finish(regular.error().message);
+        }
     }
     const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path_.c_str(), "rb"), &std::fclose);
     std::FILE* f = file.get();
@@ -108,13 +108,17 @@ void StreamLoader::run() {
         std::lock_guard guard(mutex_);
         return finish(path_ + ": " + std::strerror(errno));
     }
-    if (std::fseek(f, 0, SEEK_END) == 0) {
+    if (!opened_ && std::fseek(f, 0, SEEK_END) == 0) {
         const long size = std::ftell(f);
         std::lock_guard guard(mutex_);
         total_ = size > 0 ? static_cast<size_t>(size) : 0;
     }
-    std::fseek(f, 0, SEEK_SET);
-    std::vector<uint8_t> chunk(chunk_bytes_);
+    opened_ = true;
+    if (std::fseek(f, static_cast<long>(decoded_), SEEK_SET) != 0) {
+        std::lock_guard guard(mutex_);
+        return finish(path_ + ": cannot seek to byte " + std::to_string(decoded_));
+    }
+    chunk.resize(chunk_bytes_);
     for (;;) {
         const size_t n = std::fread(chunk.data(), 1, chunk.size(), f);
         if (n == 0) {
@@ -124,22 +128,21 @@ void StreamLoader::run() {
             const Status st = stream_.finish();
             return finish(st ? std::string() : st.error().message);
         }
-        for (size_t off = 0; off < n; off += kSliceBytes) {
-            {
-                // Past the bases, detail waits for the first frame.
-                std::unique_lock guard(mutex_);
-                cv_.wait(guard, [&] { return stop_ || released_ || !bases_ready(); });
-            }
+        for (size_t off = 0; off < n;) {
             while (waiting_.load(std::memory_order_relaxed) > 0) std::this_thread::yield();
-            DecodeSlot slot;
             std::unique_lock guard(mutex_);
             if (stop_) return finish(std::string());
-            const auto slice = std::span<const uint8_t>(chunk).subspan(off, std::min(kSliceBytes, n - off));
             const bool had_bases = bases_ready();
-            if (const Status st = stream_.feed(slice); !st) return finish(st.error().message);
-            decoded_ += slice.size();
+            if (had_bases && !released_) return DecodeNeed::Detail;  // detail waits; decoded_ marks the place
+            const size_t slice_bytes = std::min(had_bases ? kSliceBytes : kBaseSliceBytes, n - off);
+            if (const Status st = stream_.feed(std::span<const uint8_t>(chunk).subspan(off, slice_bytes)); !st)
+                return finish(st.error().message);
+            decoded_ += slice_bytes;
+            off += slice_bytes;
             if (!had_bases && bases_ready()) cv_.notify_all();
         }
+        std::lock_guard guard(mutex_);
+        if (bases_ready()) return DecodeNeed::Detail;
     }
 }
 

@@ -1,21 +1,23 @@
 #pragma once
-// Streaming .bpm loading: one background thread per file reads it in chunks and
-// decodes each chunk as it arrives (pm::BpmStream::feed), beside the render
-// thread instead of inside its frames: on a 2-core board the renderer's vertex
-// work and the decoding then overlap, and a frame never waits for a decode
-// budget. The render thread draws whatever level has been decoded so far.
+// Streaming .bpm loading: the file is read in chunks and each chunk decoded as
+// it arrives (pm::BpmStream::feed) on the shared decoding threads
+// (scene/decode_pool.h), beside the render thread instead of inside its
+// frames: on a 2-core board the renderer's vertex work and the decoding then
+// overlap, and a frame never waits for a decode budget. The render thread
+// draws whatever level has been decoded so far. A loader owns no thread: a
+// scene of thousands of files runs on the pool's few, and a file is open only
+// while a pool thread reads it.
 //
 // Sharing: a ProgressiveMesh is not thread-safe, so the stream (and every
-// structure in it) may only be touched while holding lock(). The thread holds
-// it while decoding one slice of a chunk (a few milliseconds at most); the
-// render thread holds it while it changes levels and uploads, and releases it
-// before drawing (the GL buffers need no lock).
+// structure in it) may only be touched while holding lock(). A pool thread
+// holds it while decoding one slice of a chunk (a few milliseconds at most);
+// the render thread holds it while it changes levels and uploads, and
+// releases it before drawing (the GL buffers need no lock).
 //
-// Order: the thread decodes the base meshes at once, then waits until
-// release_detail() (the kiosk calls it after its first frame, so that detail
-// does not compete with the first picture), then decodes the rest. All loader
-// threads share hardware_concurrency - 1 decoding slots, taken per slice, so a
-// scene of many files (the AAL brain: 116) leaves a core to the render thread.
+// Order: the base meshes of every loader are decoded first (the larger
+// `priority` first), then, once release_detail() was called (the kiosk calls
+// it after its first frame, so that detail does not compete with the first
+// picture), the rest.
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
@@ -23,33 +25,38 @@
 #include <mutex>
 #include <string>
 #include <thread>
+#include <vector>
 
+#include "kiosk/scene/decode_pool.h"
 #include "shared/pm/bpm_reader.h"
 #include "shared/pm/progressive_mesh.h"
 
 namespace body::kiosk {
 
-class StreamLoader {
+class StreamLoader final : private DecodeTask {
 public:
-    // Starts reading and decoding `path` at once, `chunk_bytes` per read.
-    explicit StreamLoader(std::string path, size_t chunk_bytes = 64 * 1024);
-    ~StreamLoader();  // stops the thread (between two slices) and joins it
+    // Queues `path` on `pool` for reading and decoding, `chunk_bytes` per read;
+    // `priority`: its place among the pool's tasks (larger first).
+    explicit StreamLoader(std::string path, size_t chunk_bytes = 64 * 1024, double priority = 0.0,
+                          DecodePool& pool = DecodePool::shared());
+    ~StreamLoader() override;  // stops decoding (between two slices) and leaves the pool
     StreamLoader(const StreamLoader&) = delete;
     StreamLoader& operator=(const StreamLoader&) = delete;
 
-    // Blocks until every structure's base mesh is decoded, or the thread is done.
-    void wait_for_bases() const;
+    // Blocks until every structure's base mesh is decoded, or decoding is done;
+    // decodes them on the calling thread when no pool thread has begun them.
+    void wait_for_bases();
     // Lets decoding go past the base meshes. Idempotent.
     void release_detail();
-    // Blocks until the thread is done (whole file decoded, or failed). Releases
+    // Blocks until decoding is done (whole file decoded, or failed). Releases
     // the detail first. For replays: frames that do not depend on timing.
     void wait_until_done();
-    // Blocks until the thread is done or `deadline` passed; true when done.
+    // Blocks until decoding is done or `deadline` passed; true when done.
     bool wait_done_until(std::chrono::steady_clock::time_point deadline) const;
 
-    // Hold this while touching stream() or its structures. The thread lets a
-    // waiting caller in before its next slice (a mutex alone is not fair: the
-    // thread would re-take it at once, slice after slice, and starve the frames).
+    // Hold this while touching stream() or its structures. The decoding thread
+    // lets a waiting caller in before its next slice (a mutex alone is not fair:
+    // it would re-take it at once, slice after slice, and starve the frames).
     std::unique_lock<std::mutex> lock() const {
         waiting_.fetch_add(1, std::memory_order_relaxed);
         std::unique_lock guard(mutex_);
@@ -68,11 +75,12 @@ public:
     const std::string& path() const { return path_; }
 
 private:
-    void run();
-    void finish(std::string error);  // under the lock
+    DecodeNeed step(std::vector<uint8_t>& buffer) override;
+    DecodeNeed finish(std::string error);  // under the lock
 
     std::string path_;
     size_t chunk_bytes_;
+    DecodePool& pool_;
     mutable std::mutex mutex_;
     mutable std::atomic<int> waiting_{0};  // callers blocked in lock()
     // Nothing more will be decoded; set under the lock, and atomic so that
@@ -82,8 +90,8 @@ private:
     pm::BpmStream stream_;
     bool released_ = false, stop_ = false;
     std::string error_;
-    size_t total_ = 0, decoded_ = 0;
-    std::thread thread_;
+    size_t total_ = 0, decoded_ = 0;  // decoded_: also where the next read starts
+    bool opened_ = false;
 };
 
 }  // namespace body::kiosk

@@ -1,4 +1,4 @@
-// The streaming loader decodes a .bpm on its own thread: the base meshes at
+// The streaming loader decodes a .bpm on the shared decoding threads: the base meshes at
 // once, the detail only after release_detail(), everything in the end exactly
 // as a one-shot read; failures keep what arrived and name the section.
 #include "kiosk/scene/stream_loader.h"
@@ -116,7 +116,7 @@ TEST(StreamLoader, ReportsAMissingFileAndATruncatedOne) {
     ::unlink(path.c_str());
 }
 
-// The render thread takes the lock every frame while the thread decodes: it must
+// The render thread takes the lock every frame while a pool thread decodes: it must
 // get in between two slices, not when the whole file is done (a plain mutex lets
 // the decoding thread re-take it slice after slice).
 TEST(StreamLoader, LetsAWaitingCallerInBetweenSlices) {
@@ -152,7 +152,7 @@ TEST(StreamLoader, StopsWhileWaitingForRelease) {
     {
         StreamLoader loader(path, 1024);
         loader.wait_for_bases();
-    }  // the destructor must stop the thread that waits for release_detail()
+    }  // the destructor must leave the pool while the file waits for release_detail()
     ::unlink(path.c_str());
 }
 

@@ -55,7 +55,7 @@ void draw_hatching(RendererState& s, Frame& f, Model& m) {
     const Lighting& lighting = *f.lighting;
     f.use(p);
     set_matrices(p, f, m);
-    set_lights(p, lighting);
+    set_lights(p, f);
     // Hatch paper tinted lightly by the structure colour.
     Vec3f paper = glm::mix(f.options->paper, m.state.color, 0.25f);
     glUniform4f(p.loc("u_color"), paper.r, paper.g, paper.b, 1.0f);

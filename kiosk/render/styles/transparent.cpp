@@ -16,7 +16,7 @@ namespace {
 void draw_blended(RendererState& s, Frame& f, Model& m, Program& p, Vec3f color, float alpha, bool lit, Vec3f rim) {
     f.use(p);
     set_matrices(p, f, m);
-    if (lit) set_lights(p, *f.lighting);
+    if (lit) set_lights(p, f);
     glUniform4f(p.loc("u_color"), color.r, color.g, color.b, alpha);
     glUniform3fv(p.loc("u_rim_color"), 1, glm::value_ptr(rim));
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
@@ -45,7 +45,7 @@ void draw_manipulation_spheres(RendererState& s, Frame& f) {
     Model& sphere = s.models[s.sphere];
     Program& p = s.programs.smooth;
     f.use(p);
-    set_lights(p, *f.lighting);
+    set_lights(p, f);
     glUniform4f(p.loc("u_color"), 0.95f, 0.95f, 0.95f, 1.0f);
     for (auto& [id, m] : s.models) {
         if (m.internal || !m.state.visible || !m.state.selected) continue;

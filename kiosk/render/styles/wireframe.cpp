@@ -110,7 +110,7 @@ void draw_wireframe(RendererState& s, Frame& f, Model& m) {
     Program& p = s.programs.wireframe;
     f.use(p);
     set_matrices(p, f, m);
-    set_lights(p, *f.lighting);
+    set_lights(p, f);
     glUniform4f(p.loc("u_color"), col.r, col.g, col.b, 1.0f);
     glUniform1f(p.loc("u_width_px"), o.line_width_px * 0.75f);
     set_quantization(p, m.wire_origin, m.wire_scale);

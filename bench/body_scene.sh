@@ -1,0 +1,74 @@
+#!/usr/bin/env bash
+# The body-scale scene against the same triangles in few models (issue 29):
+# models, triangles, first frame, frame time at a fixed LOD, peak threads and
+# peak RSS of `bodyview --headless` on scenes made by scripts/build-body-scene.sh.
+#
+#   bench/body_scene.sh [SCENE.json ...]   (default: build/body-scene/scene.json
+#                                           and build/body-scene/merged/scene.json)
+#   LOD=R      the fixed ratio of the frame-time runs (default 0.05)
+#   RUNS=N     runs per scene; the medians are printed (default 3)
+#   FRAMES=N   frames per run (default 300; the frame time is the mean of the
+#              frames after the first 120, when the detail has streamed in)
+#   SIZE=WxH   default 1280x800
+#
+# First frame: the kiosk's own figure (--kiosk-stats), automatic LOD. Threads:
+# the most /proc/PID/status reported over both runs, polled every 2 ms. RSS: /usr/bin/time -v.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+BODYVIEW=${BODYVIEW:-build/bin/bodyview}
+LOD=${LOD:-0.05}
+RUNS=${RUNS:-3}
+FRAMES=${FRAMES:-300}
+SIZE=${SIZE:-1280x800}
+[ $# -gt 0 ] || set -- build/body-scene/scene.json build/body-scene/merged/scene.json
+TMP=$(mktemp -d)
+trap 'rm -rf "$TMP"' EXIT
+
+# Runs bodyview ARGS... in the background; prints "peak_threads peak_rss_kib" after it exits.
+run_watched() {
+  /usr/bin/time -v -o "$TMP/time" "$BODYVIEW" "$@" 2> "$TMP/err" &
+  local pid=$! peak=0 child n
+  while kill -0 "$pid" 2>/dev/null; do
+    child=$(pgrep -P "$pid" -n || true)
+    if [ -n "$child" ] && [ -r "/proc/$child/status" ]; then
+      n=$(awk '/^Threads:/ {print $2}' "/proc/$child/status" 2>/dev/null || echo 0)
+      [ "${n:-0}" -gt "$peak" ] && peak=$n
+    fi
+    sleep 0.002
+  done
+  wait "$pid" || { cat "$TMP/err" >&2; return 1; }
+  echo "$peak $(awk -F': ' '/Maximum resident/ {print $2}' "$TMP/time")"
+}
+
+median() { sort -g | awk '{a[NR] = $1} END {print (NR % 2) ? a[(NR + 1) / 2] : (a[NR / 2] + a[NR / 2 + 1]) / 2}'; }
+
+printf "%-40s %9s %14s %10s %12s %8s %8s\n" scene models first_frame_ms frame_ms "at_triangles" threads rss_mib
+for scene in "$@"; do
+  : > "$TMP/first"; : > "$TMP/frame"; : > "$TMP/threads"; : > "$TMP/rss"
+  for _ in $(seq "$RUNS"); do
+    read -r threads rss < <(run_watched --headless --size "$SIZE" --scene "$scene" --frames 2 --kiosk-stats)
+    sed -n 's/.*first frame \([0-9.]*\) ms.*/\1/p' "$TMP/err" >> "$TMP/first"
+    models=$(sed -n 's/.*, \([0-9]*\/[0-9]*\) models,.*/\1/p' "$TMP/err")
+    echo "$threads" >> "$TMP/threads"
+    echo "$rss" >> "$TMP/rss"
+    # The same scene with every model at the fixed ratio (beside it: its paths are relative).
+    fixed="$(dirname "$scene")/.fixed-lod.json"
+    python3 -c "import json,sys; s=json.load(open(sys.argv[1]))
+for m in s['models']: m['lod'] = float(sys.argv[2])
+json.dump(s, open(sys.argv[3], 'w'))" "$scene" "$LOD" "$fixed"
+    read -r threads rss < <(run_watched --headless --size "$SIZE" --scene "$fixed" --frames "$FRAMES" \
+      --no-auto-lod --kiosk-stats)
+    rm -f "$fixed"
+    echo "$threads" >> "$TMP/threads"
+    echo "$rss" >> "$TMP/rss"
+    # The cumulative means at 120 and at FRAMES frames give the mean of the frames in between.
+    awk -v total="$FRAMES" '/ms\/frame, [0-9]* triangles/ {n += 60; m[n] = $2; t = $4}
+      END {printf "%.3f %d\n", (m[total] * total - m[120] * 120) / (total - 120), t}' "$TMP/err" > "$TMP/one"
+    cut -d' ' -f1 "$TMP/one" >> "$TMP/frame"
+    drawn=$(cut -d' ' -f2 "$TMP/one")
+  done
+  full=$(python3 -c "import json,sys; print(len(json.load(open(sys.argv[1]))['models']))" "$scene")
+  printf "%-40s %9s %14s %10s %12s %8s %8.1f\n" "$scene" "${models:-?/$full}" \
+    "$(median < "$TMP/first")" "$(median < "$TMP/frame")" "$drawn" "$(sort -g "$TMP/threads" | tail -1)" \
+    "$(echo "$(sort -g "$TMP/rss" | tail -1) / 1024" | bc -l)"
+done
