@@ -51,6 +51,9 @@ void print_help(std::FILE* out) {
                  "  --frames N        kiosk: exit after N frames\n"
                  "  --replay FILE     kiosk: play scripted touch/mouse input (kiosk/app/replay.h), then exit\n"
                  "  --no-auto-lod     kiosk: keep the manifest's LOD (the automatic LOD controller off)\n"
+                 "  --soak MINUTES    kiosk loop under randomised visitors for MINUTES (headless unless\n"
+                 "                    --platform says otherwise); logs RSS, frame times, GL errors, fds\n"
+                 "                    and threads every minute; exit 1 when a soak goal fails (soak.h)\n"
                  "  --kiosk-stats     kiosk: print time to first frame / full detail and frame times\n"
                  "  --benchmark       time every style at LOD 100/40/10%% against a flat baseline\n"
                  "  --bench-triangles N  size of the generated benchmark model (default 1000000; the\n"
@@ -66,6 +69,7 @@ const Mode kModes[] = {
     {"benchmark", [](const ViewOptions& o) { return o.benchmark; }, kiosk::run_benchmark_mode},
     {"screenshot", [](const ViewOptions& o) { return !o.screenshot.empty() && o.replay.empty(); },
      kiosk::run_screenshot_mode},
+    {"soak", [](const ViewOptions& o) { return o.soak_minutes > 0.0; }, kiosk::run_soak_mode},
     {"kiosk", [](const ViewOptions&) { return true; }, kiosk::run_kiosk_mode},
 };
 

@@ -109,6 +109,7 @@ void KioskLoop::start_app() {
 bool KioskLoop::feed_input(double now) {
     events_.clear();
     bool keep = surface_.poll_events(events_);
+    if (options_.hooks.input) options_.hooks.input(*app_, now, events_);
     if (replaying_) {
         // Replay coordinates refer to replay.width x height; scaled to the surface.
         const float sx = static_cast<float>(surface_.width()) /
@@ -230,9 +231,9 @@ int KioskLoop::run() {
         renderer_.render(view, render::Lighting{}, fo);
         draw_overlay(fo);
 
-        const bool last = app_->exit_requested() || !keep ||
-                          (replaying_ && next_event_ >= replay_.events.size() && now >= replay_.end_time) ||
-                          (options_.frames > 0 && frame + 1 >= options_.frames);
+        bool last = app_->exit_requested() || !keep ||
+                    (replaying_ && next_event_ >= replay_.events.size() && now >= replay_.end_time) ||
+                    (options_.frames > 0 && frame + 1 >= options_.frames);
         if (last && !options_.screenshot.empty() && !write_screenshot(fo)) exit_code = kExitRuntime;
         if (auto s = surface_.present(); !s) {
             log_error(s.error());
@@ -256,6 +257,8 @@ int KioskLoop::run() {
                              full_detail_ms, triangles);
         }
         if (!replaying_ || options_.measure_frames_in_replay) app_->report_frame(frame_ms, triangles);
+        if (options_.hooks.frame_done && !options_.hooks.frame_done({frame, now, frame_ms, triangles, app_.get()}))
+            last = true;
         frame_ms_sum += frame_ms;
         ++frames_counted;
         if (options_.verbose && frames_counted % 60 == 0)

@@ -7,8 +7,10 @@
 // controls and label card over it and presents.
 //
 // Exit: the admin gesture, the platform's quit (SIGTERM, window closed), the
-// end of a replay, or `frames`. Visitors have no other way out.
+// end of a replay, `frames`, or a hook's stop. Visitors have no other way out.
+#include <functional>
 #include <string>
+#include <vector>
 
 #include "kiosk/render/renderer.h"
 #include "kiosk/scene/scene_models.h"
@@ -16,6 +18,26 @@
 #include "shared/scene/scene.h"
 
 namespace body::kiosk {
+
+class KioskApp;
+
+// What one presented frame was, for the hooks.
+struct FrameReport {
+    long frame = 0;         // 0 for the first frame
+    double now = 0.0;       // the app's clock at the frame (seconds)
+    double frame_ms = 0.0;  // wall time from the frame's start to after present()
+    size_t triangles = 0;   // drawn
+    const KioskApp* app = nullptr;
+};
+
+// Optional callbacks into the one loop (the soak's visitors, the service's
+// notifications). Called on the loop's thread with the GL context current.
+struct KioskHooks {
+    // Appends this frame's extra input (after the surface's, before the app sees them).
+    std::function<void(const KioskApp& app, double now, std::vector<platform::InputEvent>& events)> input;
+    // After each presented frame; returning false ends the loop (exit code unchanged).
+    std::function<bool(const FrameReport& report)> frame_done;
+};
 
 struct KioskRunOptions {
     std::string replay;      // replay file; empty: live input
@@ -29,6 +51,7 @@ struct KioskRunOptions {
     bool measure_frames_in_replay = false;
     render::RendererOptions renderer = {};  // --buffer-access
     LoadOptions load = {};                  // file colours for a model shown alone
+    KioskHooks hooks = {};
 };
 
 // Returns a process exit code (0 ok, 1 runtime failure, 2 bad input).

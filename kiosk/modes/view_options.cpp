@@ -33,7 +33,8 @@ const std::set<std::string>& view_value_options() {
                                                 "replay",
                                                 "bench-triangles",
                                                 "bench-frames",
-                                                "buffer-access"};
+                                                "buffer-access",
+                                                "soak"};
     return names;
 }
 
@@ -132,6 +133,20 @@ Status parse_benchmark(const CliArgs& args, ViewOptions& o) {
     return ok_status();
 }
 
+// --soak MINUTES: headless unless a platform was named.
+Status parse_soak(const CliArgs& args, ViewOptions& o) {
+    if (!args.has("soak")) return ok_status();
+    auto minutes = args.get_double("soak", 0.0);
+    if (!minutes) return minutes.error();
+    if (!(minutes.value() > 0.0 && minutes.value() <= 60.0 * 24.0 * 7.0))
+        return input_error("--soak expects MINUTES in (0, 10080]");
+    if (!o.replay.empty() || !o.screenshot.empty() || o.benchmark)
+        return input_error("--soak excludes --replay, --screenshot and --benchmark");
+    o.soak_minutes = minutes.value();
+    if (!args.has("platform")) o.surface.backend = platform::Backend::Headless;
+    return ok_status();
+}
+
 }  // namespace
 
 Result<ViewOptions> parse_view_options(const CliArgs& args) {
@@ -147,6 +162,7 @@ Result<ViewOptions> parse_view_options(const CliArgs& args) {
     o.replay = args.get_or("replay", "");
     o.auto_lod = !args.has("no-auto-lod");
     o.kiosk_stats = args.has("kiosk-stats");
+    if (auto s = parse_soak(args, o); !s) return s.error();
     if (o.surface.backend == platform::Backend::Headless) {
         if (o.surface.width == 0) o.surface.width = 1280, o.surface.height = 800;
         o.surface.width *= o.ssaa;

@@ -32,6 +32,7 @@ struct ViewOptions {
     bool benchmark = false;
     long bench_triangles = 1000000;
     long bench_frames = 9;
+    double soak_minutes = 0.0;  // --soak; 0: no soak
 };
 
 // Value options and flags bodyview accepts (names without "--").
