@@ -171,8 +171,8 @@ private:
     // Touchscreens through evdev, in display pixels. Absent or unreadable
     // devices are not an error: one line, and a panel plugged in later is found.
     void open_touch(const SurfaceOptions& options) {
-        auto input = EvdevInput::open(
-            EvdevOptions{options.touch_directory, mode_.hdisplay, mode_.vdisplay, options.touch_rotation});
+        auto input = EvdevInput::open(EvdevOptions{options.touch_directory, mode_.hdisplay, mode_.vdisplay,
+                                                   options.touch_rotation, options.touch_calibration});
         if (!input) {
             std::fprintf(stderr, "bodyview: drm: no touch input (%s)\n", input.error().message.c_str());
             return;

@@ -6,6 +6,7 @@
 
 #include "kiosk/modes/modes.h"
 #include "platform/evdev_touch.h"
+#include "platform/log.h"
 
 namespace body::kiosk {
 
@@ -34,7 +35,9 @@ const std::set<std::string>& view_value_options() {
                                                 "bench-triangles",
                                                 "bench-frames",
                                                 "buffer-access",
-                                                "soak"};
+                                                "soak",
+                                                "touch-calibration",
+                                                "log-level"};
     return names;
 }
 
@@ -68,6 +71,11 @@ Status parse_surface(const CliArgs& args, platform::SurfaceOptions& so) {
         auto deg = platform::parse_rotation(*r);
         if (!deg) return deg.error();
         so.touch_rotation = deg.value();
+    }
+    if (auto c = args.get("touch-calibration")) {
+        auto matrix = platform::parse_calibration(*c);
+        if (!matrix) return matrix.error();
+        so.touch_calibration = matrix.value();
     }
     return ok_status();
 }
@@ -162,6 +170,12 @@ Result<ViewOptions> parse_view_options(const CliArgs& args) {
     o.replay = args.get_or("replay", "");
     o.auto_lod = !args.has("no-auto-lod");
     o.kiosk_stats = args.has("kiosk-stats");
+    if (auto l = args.get("log-level")) {
+        auto level = platform::parse_log_level(*l);
+        if (!level) return level.error();
+        o.log_level = level.value();
+        o.kiosk_stats = o.kiosk_stats || level.value() == platform::LogLevel::Debug;
+    }
     if (auto s = parse_soak(args, o); !s) return s.error();
     if (o.surface.backend == platform::Backend::Headless) {
         if (o.surface.width == 0) o.surface.width = 1280, o.surface.height = 800;

@@ -142,6 +142,29 @@ TEST(TouchMapping, RotationsMapThePanelCornersToTheScreen) {
     EXPECT_FALSE(parse_rotation("45"));
 }
 
+// A panel whose touches land 10 % right and mirrored vertically: the matrix
+// (from a calibration tool, libinput's convention) undoes it before the rotation.
+TEST(TouchMapping, CalibrationMatrixIsAppliedBeforeTheRotation) {
+    TouchMapping m;
+    m.max_x = m.max_y = 1000;
+    m.width = m.height = 1001;
+    m.calibration = {1, 0, -0.1f, 0, -1, 1};
+    float x, y;
+    map_touch(m, 600, 250, x, y);
+    EXPECT_NEAR(x, 500.0f, 1e-3f);
+    EXPECT_NEAR(y, 750.0f, 1e-3f);
+    m.rotation = 90;  // then turned: (u, v) -> (1 - v, u)
+    map_touch(m, 600, 250, x, y);
+    EXPECT_NEAR(x, 250.0f, 1e-3f);
+    EXPECT_NEAR(y, 500.0f, 1e-3f);
+    auto c = parse_calibration("1, 0, -0.1 0 -1 1");
+    ASSERT_TRUE(c);
+    EXPECT_FLOAT_EQ((*c)[2], -0.1f);
+    EXPECT_FALSE(parse_calibration("1 0 0 0 1"));    // five numbers
+    EXPECT_FALSE(parse_calibration("1 2 0 2 4 0"));  // singular
+    EXPECT_FALSE(parse_calibration("1 0 0 0 1 0 7"));
+}
+
 TEST(EvdevInput, OpensADirectoryWithoutTouchscreens) {
     char dir[] = "/tmp/body_evdev_XXXXXX";
     ASSERT_NE(::mkdtemp(dir), nullptr);
