@@ -1,7 +1,7 @@
 // DRM/KMS backend: mode setting, GBM surface, EGL on GBM and page flipping with
-// at most one flip in flight; the original CRTC is restored on exit and after
-// SIGINT/SIGTERM. Structure after kmscube (drm-common.c, drm-legacy.c). Touch:
-// the panels under SurfaceOptions::touch_directory through the evdev layer
+// at most one flip in flight; the original CRTC is restored on exit, after
+// SIGINT/SIGTERM, after a fatal error and on a crash (platform/drm_restore.h). Structure after kmscube (drm-common.c,
+// drm-legacy.c). Touch: the panels under SurfaceOptions::touch_directory through the evdev layer
 // (platform/evdev_touch.h, hot-plugged), in display pixels, from poll_events().
 #include <GLES3/gl3.h>
 #include <fcntl.h>
@@ -16,16 +16,15 @@
 #include <cstdio>
 #include <cstring>
 
+#include "platform/drm_restore.h"
 #include "platform/drm_select.h"
 #include "platform/egl_context.h"
 #include "platform/evdev_touch.h"
 #include "platform/platform.h"
+#include "platform/quit_signal.h"
 
 namespace body::platform {
 namespace {
-
-volatile std::sig_atomic_t g_quit_requested = 0;
-void on_signal(int) { g_quit_requested = 1; }
 
 std::string connector_name(const drmModeConnector* c) {
     const char* type = drmModeGetConnectorTypeName(c->connector_type);
@@ -85,7 +84,9 @@ public:
         connector_id_ = chosen->connector_id;
         drmModeFreeConnector(chosen);
         crtc_id_ = sel->crtc;
-        saved_crtc_ = drmModeGetCrtc(fd_, crtc_id_);
+        keeper_ = std::make_unique<DrmCrtcKeeper>(real_drm_ops(), fd_, crtc_id_, connector_id_);
+        if (!keeper_->save())
+            std::fprintf(stderr, "bodyview: drm: cannot read CRTC %u; it is turned off at exit\n", crtc_id_);
 
         gbm_ = gbm_create_device(fd_);
         if (!gbm_) return runtime_error("drm: gbm_create_device failed on " + device_);
@@ -98,8 +99,7 @@ public:
         if (auto s = egl_->create_window_surface(gbm_surface_); !s) return s;
         if (auto s = egl_->make_current(); !s) return s;
 
-        std::signal(SIGINT, on_signal);
-        std::signal(SIGTERM, on_signal);
+        install_quit_handlers();
         start_ = std::chrono::steady_clock::now();
         // First frame: clear, swap, set the mode on that buffer.
         glClearColor(0, 0, 0, 1);
@@ -110,7 +110,8 @@ public:
         if (!fb) return fb.error();
         if (drmModeSetCrtc(fd_, crtc_id_, fb.value(), 0, 0, &connector_id_, 1, &mode_) != 0)
             return runtime_error("drm: drmModeSetCrtc failed (" + std::string(std::strerror(errno)) + ")");
-        mode_set_ = true;
+        keeper_->mode_set();
+        restore_on_crash(keeper_.get());
         front_ = bo;
         open_touch(options);
         return ok_status();
@@ -125,7 +126,7 @@ public:
         return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
     }
     bool poll_events(std::vector<InputEvent>& out) override {
-        if (g_quit_requested) {
+        if (quit_requested()) {
             InputEvent quit;
             quit.type = InputEvent::Type::Quit;
             quit.time = time();
@@ -144,19 +145,21 @@ public:
         if (!next) return runtime_error("drm: no free GBM buffer");
         auto fb = framebuffer_for(next);
         if (!fb) return fb.error();
-        bool waiting = true;
-        if (drmModePageFlip(fd_, crtc_id_, fb.value(), DRM_MODE_PAGE_FLIP_EVENT, &waiting) != 0) {
+        if (drmModePageFlip(fd_, crtc_id_, fb.value(), DRM_MODE_PAGE_FLIP_EVENT, keeper_.get()) != 0) {
             gbm_surface_release_buffer(gbm_surface_, next);
             return runtime_error("drm: drmModePageFlip failed (" + std::string(std::strerror(errno)) + ")");
         }
+        keeper_->flip_queued();
         drmEventContext ev{};
         ev.version = 2;
-        ev.page_flip_handler = [](int, unsigned, unsigned, unsigned, void* data) { *static_cast<bool*>(data) = false; };
-        while (waiting) {
+        ev.page_flip_handler = [](int, unsigned, unsigned, unsigned, void* data) {
+            static_cast<DrmCrtcKeeper*>(data)->flip_done();
+        };
+        while (keeper_->flip_pending()) {
             pollfd p{fd_, POLLIN, 0};
             int r = ::poll(&p, 1, 1000);
             if (r < 0 && errno == EINTR) {
-                if (g_quit_requested) break;
+                if (quit_requested()) break;  // the keeper waits for the flip before restoring
                 continue;
             }
             if (r <= 0) return runtime_error("drm: page flip timed out");
@@ -227,13 +230,13 @@ private:
         return fb;
     }
 
+    // The display first (before our framebuffers go), then GL, GBM and the device.
     void teardown() {
-        if (mode_set_ && saved_crtc_) {
-            drmModeSetCrtc(fd_, saved_crtc_->crtc_id, saved_crtc_->buffer_id, saved_crtc_->x, saved_crtc_->y,
-                           &connector_id_, 1, &saved_crtc_->mode);
+        if (keeper_) {
+            restore_on_crash(nullptr);
+            if (auto s = keeper_->restore(); !s) std::fprintf(stderr, "bodyview: %s\n", s.error().message.c_str());
+            keeper_.reset();
         }
-        if (saved_crtc_) drmModeFreeCrtc(saved_crtc_);
-        saved_crtc_ = nullptr;
         if (front_ && gbm_surface_) gbm_surface_release_buffer(gbm_surface_, front_);
         front_ = nullptr;
         egl_.reset();
@@ -243,18 +246,14 @@ private:
         gbm_ = nullptr;
         if (fd_ >= 0) ::close(fd_);
         fd_ = -1;
-        if (mode_set_) {
-            std::signal(SIGINT, SIG_DFL);
-            std::signal(SIGTERM, SIG_DFL);
-        }
+        remove_quit_handlers();
     }
 
     int fd_ = -1;
     std::string device_;
     drmModeModeInfo mode_{};
     uint32_t connector_id_ = 0, crtc_id_ = 0;
-    drmModeCrtc* saved_crtc_ = nullptr;
-    bool mode_set_ = false;
+    std::unique_ptr<DrmCrtcKeeper> keeper_;
     gbm_device* gbm_ = nullptr;
     gbm_surface* gbm_surface_ = nullptr;
     gbm_bo* front_ = nullptr;
