@@ -22,6 +22,11 @@ pkg_check_modules(SYSTEMD QUIET IMPORTED_TARGET libsystemd)
 if(NOT SYSTEMD_FOUND)
   message(STATUS "libsystemd not found (libsystemd-dev): service notifications use bodyview's own sd_notify datagram")
 endif()
+pkg_check_modules(SEAT QUIET IMPORTED_TARGET libseat)
+if(NOT SEAT_FOUND)
+  message(STATUS "libseat not found (libseat-dev): bodyview opens display and input devices directly (root or "
+                 "members of video and input), without VT switching")
+endif()
 
 # stb (header-only here) and the DejaVu font.
 find_path(STB_INCLUDE_DIR stb_image_write.h PATH_SUFFIXES stb REQUIRED)

@@ -20,8 +20,10 @@
 #include "platform/drm_select.h"
 #include "platform/egl_context.h"
 #include "platform/evdev_touch.h"
+#include "platform/log.h"
 #include "platform/platform.h"
 #include "platform/quit_signal.h"
+#include "platform/seat.h"
 
 namespace body::platform {
 namespace {
@@ -70,6 +72,8 @@ public:
     Status init(const SurfaceOptions& options) {
         auto request = parse_mode_request(options.mode);
         if (!request) return request.error();
+        seat_ = Seat::open();
+        if (log_enabled(LogLevel::Info)) std::fprintf(stderr, "bodyview: drm: devices through %s\n", seat_->kind());
         if (auto s = open_device(options.drm_device); !s) return s;
         drmModeRes* res = drmModeGetResources(fd_);
         if (!res) return runtime_error("drm: " + device_ + " has no KMS resources (not a display controller?)");
@@ -112,6 +116,7 @@ public:
             return runtime_error("drm: drmModeSetCrtc failed (" + std::string(std::strerror(errno)) + ")");
         keeper_->mode_set();
         restore_on_crash(keeper_.get());
+        activations_ = seat_->activations();
         front_ = bo;
         open_touch(options);
         return ok_status();
@@ -133,18 +138,33 @@ public:
             out.push_back(quit);
             return false;
         }
-        if (touch_) touch_->poll(time(), out);
+        seat_->dispatch();
+        if (touch_ && seat_->active()) touch_->poll(time(), out);
         return true;
     }
 
     // Swap, queue a flip of the new front buffer, wait for it (so at most one
     // flip is ever in flight), then release the previous buffer.
+    // While another VT has the seat nothing reaches the display; back on ours,
+    // the mode is set again on the new frame (the other session may have changed it).
     Status present() override {
         if (auto s = egl_->swap_buffers(); !s) return s;
         gbm_bo* next = gbm_surface_lock_front_buffer(gbm_surface_);
         if (!next) return runtime_error("drm: no free GBM buffer");
+        if (!seat_->active()) {
+            gbm_surface_release_buffer(gbm_surface_, next);
+            return ok_status();
+        }
         auto fb = framebuffer_for(next);
         if (!fb) return fb.error();
+        if (seat_->activations() != activations_) {
+            activations_ = seat_->activations();
+            if (drmModeSetCrtc(fd_, crtc_id_, fb.value(), 0, 0, &connector_id_, 1, &mode_) != 0)
+                return runtime_error("drm: setting the mode again failed (" + std::string(std::strerror(errno)) + ")");
+            if (front_) gbm_surface_release_buffer(gbm_surface_, front_);
+            front_ = next;
+            return ok_status();
+        }
         if (drmModePageFlip(fd_, crtc_id_, fb.value(), DRM_MODE_PAGE_FLIP_EVENT, keeper_.get()) != 0) {
             gbm_surface_release_buffer(gbm_surface_, next);
             return runtime_error("drm: drmModePageFlip failed (" + std::string(std::strerror(errno)) + ")");
@@ -174,8 +194,11 @@ private:
     // Touchscreens through evdev, in display pixels. Absent or unreadable
     // devices are not an error: one line, and a panel plugged in later is found.
     void open_touch(const SurfaceOptions& options) {
+        std::shared_ptr<Seat> seat = seat_;
         auto input = EvdevInput::open(EvdevOptions{options.touch_directory, mode_.hdisplay, mode_.vdisplay,
-                                                   options.touch_rotation, options.touch_calibration});
+                                                   options.touch_rotation, options.touch_calibration,
+                                                   [seat](const std::string& path) { return seat->open_device(path); },
+                                                   [seat](int fd) { seat->close_device(fd); }});
         if (!input) {
             std::fprintf(stderr, "bodyview: drm: no touch input (%s)\n", input.error().message.c_str());
             return;
@@ -192,7 +215,7 @@ private:
         }
         std::string last = "no /dev/dri/card* device";
         for (const auto& path : candidates) {
-            int fd = ::open(path.c_str(), O_RDWR | O_CLOEXEC);
+            int fd = seat_->open_device(path);
             if (fd < 0) {
                 if (errno != ENOENT || !requested.empty()) last = path + ": " + std::strerror(errno);
                 continue;
@@ -205,7 +228,7 @@ private:
                 return ok_status();
             }
             last = path + ": not a KMS device";
-            ::close(fd);
+            seat_->close_device(fd);
         }
         return runtime_error("drm: cannot open a display device (" + last + ")");
     }
@@ -244,7 +267,8 @@ private:
         if (gbm_) gbm_device_destroy(gbm_);
         gbm_surface_ = nullptr;
         gbm_ = nullptr;
-        if (fd_ >= 0) ::close(fd_);
+        touch_.reset();
+        if (fd_ >= 0) seat_->close_device(fd_);
         fd_ = -1;
         remove_quit_handlers();
     }
@@ -254,6 +278,8 @@ private:
     drmModeModeInfo mode_{};
     uint32_t connector_id_ = 0, crtc_id_ = 0;
     std::unique_ptr<DrmCrtcKeeper> keeper_;
+    std::shared_ptr<Seat> seat_;
+    int activations_ = 0;  // the seat's activations when the mode was last set
     gbm_device* gbm_ = nullptr;
     gbm_surface* gbm_surface_ = nullptr;
     gbm_bo* front_ = nullptr;

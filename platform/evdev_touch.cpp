@@ -150,13 +150,25 @@ struct EvdevInput::Device {
     int fd = -1;
     libevdev* dev = nullptr;
     MtProtocolB protocol;
-    Device(std::string p, int f, libevdev* d, int slots, int number)
-        : path(std::move(p)), fd(f), dev(d), protocol(slots, number) {}
+    const EvdevInput* owner;
+    Device(std::string p, int f, libevdev* d, int slots, int number, const EvdevInput* o)
+        : path(std::move(p)), fd(f), dev(d), protocol(slots, number), owner(o) {}
     ~Device() {
         if (dev) libevdev_free(dev);
-        if (fd >= 0) ::close(fd);
+        if (fd >= 0) owner->close_node(fd);
     }
 };
+
+int EvdevInput::open_node(const std::string& path) const {
+    return options_.open_device ? options_.open_device(path) : ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+}
+
+void EvdevInput::close_node(int fd) const {
+    if (options_.close_device)
+        options_.close_device(fd);
+    else
+        ::close(fd);
+}
 
 Result<std::unique_ptr<EvdevInput>> EvdevInput::open(const EvdevOptions& options) {
     std::unique_ptr<EvdevInput> input(new EvdevInput());
@@ -195,11 +207,11 @@ void EvdevInput::add_device(const std::string& path) {
     for (const auto& d : devices_) {
         if (d->path == path) return;
     }
-    const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    const int fd = open_node(path);
     if (fd < 0) return;  // not (yet) readable: udev may fix permissions later (IN_ATTRIB)
     libevdev* dev = nullptr;
     if (libevdev_new_from_fd(fd, &dev) < 0) {
-        ::close(fd);
+        close_node(fd);
         return;
     }
     const bool touch = libevdev_has_event_code(dev, EV_ABS, ABS_MT_SLOT) &&
@@ -207,11 +219,11 @@ void EvdevInput::add_device(const std::string& path) {
                        libevdev_has_event_code(dev, EV_ABS, ABS_MT_POSITION_Y);
     if (!touch) {
         libevdev_free(dev);
-        ::close(fd);
+        close_node(fd);
         return;
     }
     const int slots = libevdev_get_num_slots(dev);
-    auto device = std::make_unique<Device>(path, fd, dev, slots > 0 ? slots : 10, next_number_++);
+    auto device = std::make_unique<Device>(path, fd, dev, slots > 0 ? slots : 10, next_number_++, this);
     TouchMapping m;
     const input_absinfo* ax = libevdev_get_abs_info(dev, ABS_MT_POSITION_X);
     const input_absinfo* ay = libevdev_get_abs_info(dev, ABS_MT_POSITION_Y);

@@ -24,6 +24,7 @@
 #include <linux/input.h>
 
 #include <array>
+#include <functional>
 #include <memory>
 #include <span>
 #include <string>
@@ -88,6 +89,10 @@ struct EvdevOptions {
     int width = 1280, height = 800;
     int rotation = 0;
     std::array<float, 6> calibration{1, 0, 0, 0, 1, 0};
+    // How device nodes are opened and closed (the seat manager, platform/seat.h);
+    // empty: open(2) read-only and close(2).
+    std::function<int(const std::string& path)> open_device = {};
+    std::function<void(int fd)> close_device = {};
 };
 
 class EvdevInput {
@@ -112,6 +117,8 @@ private:
     void add_device(const std::string& path);
     void remove_device(size_t index, double now, std::vector<InputEvent>& out);
     void read_device(size_t index, double now, std::vector<InputEvent>& out);
+    int open_node(const std::string& path) const;
+    void close_node(int fd) const;
 
     EvdevOptions options_;
     int inotify_fd_ = -1;
