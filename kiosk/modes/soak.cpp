@@ -2,8 +2,6 @@
 // a minute-by-minute log of the process's resources and the verdict on them.
 #include "kiosk/modes/soak.h"
 
-#include <GLES3/gl3.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -53,10 +51,9 @@ public:
     explicit SoakMonitor(double minutes) : minutes_(minutes) {}
 
     bool frame_done(const FrameReport& r, const SoakVisitors& visitors) {
-        for (GLenum e = glGetError(); e != GL_NO_ERROR; e = glGetError()) {
-            if (gl_errors_total_ < 10) std::fprintf(stderr, "bodyview: soak: GL error 0x%04x\n", e);
-            ++gl_errors_, ++gl_errors_total_;
-        }
+        if (r.gl_errors > 0 && gl_errors_total_ < 10)
+            std::fprintf(stderr, "bodyview: soak: %d GL errors in frame %ld\n", r.gl_errors, r.frame);
+        gl_errors_ += r.gl_errors, gl_errors_total_ += r.gl_errors;
         frame_ms_.push_back(r.frame_ms);
         const KioskMode mode = r.app->mode();
         if (mode == KioskMode::Attract && last_mode_ != KioskMode::Attract) ++attracts_;
