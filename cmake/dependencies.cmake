@@ -18,6 +18,17 @@ if(BODY_WITH_DRM)
   pkg_check_modules(DRM REQUIRED IMPORTED_TARGET libdrm)
   pkg_check_modules(GBM REQUIRED IMPORTED_TARGET gbm)
 endif()
+# Optional, for the kiosk as a service (platform/service_notify.h, seat_* and
+# input hotplug): each missing one leaves a fallback, named here.
+pkg_check_modules(SYSTEMD QUIET IMPORTED_TARGET libsystemd)
+if(NOT SYSTEMD_FOUND)
+  message(STATUS "libsystemd not found (libsystemd-dev): service notifications use bodyview's own sd_notify datagram")
+endif()
+pkg_check_modules(SEAT QUIET IMPORTED_TARGET libseat)
+if(NOT SEAT_FOUND)
+  message(STATUS "libseat not found (libseat-dev): bodyview opens display and input devices directly (root or "
+                 "members of video and input), without VT switching")
+endif()
 
 # stb (header-only here) and the DejaVu font.
 find_path(STB_INCLUDE_DIR stb_image_write.h PATH_SUFFIXES stb REQUIRED)

@@ -7,6 +7,8 @@
 
 #include "body/version.h"
 #include "kiosk/modes/modes.h"
+#include "kiosk/modes/service_config.h"
+#include "platform/log.h"
 #include "platform/platform.h"
 #include "shared/cli_args.h"
 #include "shared/error.h"
@@ -51,11 +53,19 @@ void print_help(std::FILE* out) {
                  "  --frames N        kiosk: exit after N frames\n"
                  "  --replay FILE     kiosk: play scripted touch/mouse input (kiosk/app/replay.h), then exit\n"
                  "  --no-auto-lod     kiosk: keep the manifest's LOD (the automatic LOD controller off)\n"
+                 "  --soak MINUTES    kiosk loop under randomised visitors for MINUTES (headless unless\n"
+                 "                    --platform says otherwise); logs RSS, frame times, GL errors, fds\n"
+                 "                    and threads every minute; exit 1 when a soak goal fails (soak.h)\n"
                  "  --kiosk-stats     kiosk: print time to first frame / full detail and frame times\n"
                  "  --benchmark       time every style at LOD 100/40/10%% against a flat baseline\n"
                  "  --bench-triangles N  size of the generated benchmark model (default 1000000; the\n"
                  "                    nearest count a subdivision of the bunny or a sphere gives)\n"
                  "  --bench-frames N  at least N timed pairs per style and LOD, more up to 3 s (default 9)\n"
+                 "  --config FILE     options from FILE (the service's /etc/bodyview/bodyview.conf;\n"
+                 "                    kiosk/modes/service_config.h); the command line wins\n"
+                 "  --touch-calibration \"A B C D E F\"  touch: 2x3 matrix applied to the panel's\n"
+                 "                    normalised coordinates before the rotation (libinput's convention)\n"
+                 "  --log-level L     error|warning|info|debug (default info; debug = --kiosk-stats)\n"
                  "  --help            this text\n  --version         print the version\n\n"
                  "A model that cannot be loaded is skipped with a one-line error (nothing drawn).\n"
                  "exit codes: 0 ok, 1 runtime failure, 2 bad usage or bad input\n");
@@ -66,6 +76,7 @@ const Mode kModes[] = {
     {"benchmark", [](const ViewOptions& o) { return o.benchmark; }, kiosk::run_benchmark_mode},
     {"screenshot", [](const ViewOptions& o) { return !o.screenshot.empty() && o.replay.empty(); },
      kiosk::run_screenshot_mode},
+    {"soak", [](const ViewOptions& o) { return o.soak_minutes > 0.0; }, kiosk::run_soak_mode},
     {"kiosk", [](const ViewOptions&) { return true; }, kiosk::run_kiosk_mode},
 };
 
@@ -73,6 +84,7 @@ int run(const CliArgs& args) {
     auto options = kiosk::parse_view_options(args);
     if (!options) return kiosk::report(options.error());
     const ViewOptions& o = options.value();
+    platform::set_log_level(o.log_level);
     // The scene is read before the surface opens: a bad manifest is reported as such on any machine.
     scene::Scene scene;
     if (!o.benchmark) {
@@ -105,7 +117,9 @@ int main(int argc, char** argv) {
         print_help(stderr);
         return kExitBadInput;
     }
-    auto args = CliArgs::parse(argv_list, kiosk::view_value_options(), kiosk::view_flag_options());
+    auto with_config = kiosk::apply_config_file(argv_list, kiosk::view_value_options(), kiosk::view_flag_options());
+    if (!with_config) return kiosk::report(with_config.error());
+    auto args = CliArgs::parse(with_config.value(), kiosk::view_value_options(), kiosk::view_flag_options());
     if (!args) return kiosk::report(args.error());
     return run(args.value());
 }

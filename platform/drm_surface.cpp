@@ -1,7 +1,7 @@
 // DRM/KMS backend: mode setting, GBM surface, EGL on GBM and page flipping with
-// at most one flip in flight; the original CRTC is restored on exit and after
-// SIGINT/SIGTERM. Structure after kmscube (drm-common.c, drm-legacy.c). Touch:
-// the panels under SurfaceOptions::touch_directory through the evdev layer
+// at most one flip in flight; the original CRTC is restored on exit, after
+// SIGINT/SIGTERM, after a fatal error and on a crash (platform/drm_restore.h). Structure after kmscube (drm-common.c,
+// drm-legacy.c). Touch: the panels under SurfaceOptions::touch_directory through the evdev layer
 // (platform/evdev_touch.h, hot-plugged), in display pixels, from poll_events().
 #include <GLES3/gl3.h>
 #include <fcntl.h>
@@ -16,16 +16,17 @@
 #include <cstdio>
 #include <cstring>
 
+#include "platform/drm_restore.h"
 #include "platform/drm_select.h"
 #include "platform/egl_context.h"
 #include "platform/evdev_touch.h"
+#include "platform/log.h"
 #include "platform/platform.h"
+#include "platform/quit_signal.h"
+#include "platform/seat.h"
 
 namespace body::platform {
 namespace {
-
-volatile std::sig_atomic_t g_quit_requested = 0;
-void on_signal(int) { g_quit_requested = 1; }
 
 std::string connector_name(const drmModeConnector* c) {
     const char* type = drmModeGetConnectorTypeName(c->connector_type);
@@ -71,6 +72,8 @@ public:
     Status init(const SurfaceOptions& options) {
         auto request = parse_mode_request(options.mode);
         if (!request) return request.error();
+        seat_ = Seat::open();
+        if (log_enabled(LogLevel::Info)) std::fprintf(stderr, "bodyview: drm: devices through %s\n", seat_->kind());
         if (auto s = open_device(options.drm_device); !s) return s;
         drmModeRes* res = drmModeGetResources(fd_);
         if (!res) return runtime_error("drm: " + device_ + " has no KMS resources (not a display controller?)");
@@ -85,7 +88,9 @@ public:
         connector_id_ = chosen->connector_id;
         drmModeFreeConnector(chosen);
         crtc_id_ = sel->crtc;
-        saved_crtc_ = drmModeGetCrtc(fd_, crtc_id_);
+        keeper_ = std::make_unique<DrmCrtcKeeper>(real_drm_ops(), fd_, crtc_id_, connector_id_);
+        if (!keeper_->save())
+            std::fprintf(stderr, "bodyview: drm: cannot read CRTC %u; it is turned off at exit\n", crtc_id_);
 
         gbm_ = gbm_create_device(fd_);
         if (!gbm_) return runtime_error("drm: gbm_create_device failed on " + device_);
@@ -98,8 +103,7 @@ public:
         if (auto s = egl_->create_window_surface(gbm_surface_); !s) return s;
         if (auto s = egl_->make_current(); !s) return s;
 
-        std::signal(SIGINT, on_signal);
-        std::signal(SIGTERM, on_signal);
+        install_quit_handlers();
         start_ = std::chrono::steady_clock::now();
         // First frame: clear, swap, set the mode on that buffer.
         glClearColor(0, 0, 0, 1);
@@ -110,7 +114,9 @@ public:
         if (!fb) return fb.error();
         if (drmModeSetCrtc(fd_, crtc_id_, fb.value(), 0, 0, &connector_id_, 1, &mode_) != 0)
             return runtime_error("drm: drmModeSetCrtc failed (" + std::string(std::strerror(errno)) + ")");
-        mode_set_ = true;
+        keeper_->mode_set();
+        restore_on_crash(keeper_.get());
+        activations_ = seat_->activations();
         front_ = bo;
         open_touch(options);
         return ok_status();
@@ -125,38 +131,55 @@ public:
         return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
     }
     bool poll_events(std::vector<InputEvent>& out) override {
-        if (g_quit_requested) {
+        if (quit_requested()) {
             InputEvent quit;
             quit.type = InputEvent::Type::Quit;
             quit.time = time();
             out.push_back(quit);
             return false;
         }
-        if (touch_) touch_->poll(time(), out);
+        seat_->dispatch();
+        if (touch_ && seat_->active()) touch_->poll(time(), out);
         return true;
     }
 
     // Swap, queue a flip of the new front buffer, wait for it (so at most one
     // flip is ever in flight), then release the previous buffer.
+    // While another VT has the seat nothing reaches the display; back on ours,
+    // the mode is set again on the new frame (the other session may have changed it).
     Status present() override {
         if (auto s = egl_->swap_buffers(); !s) return s;
         gbm_bo* next = gbm_surface_lock_front_buffer(gbm_surface_);
         if (!next) return runtime_error("drm: no free GBM buffer");
+        if (!seat_->active()) {
+            gbm_surface_release_buffer(gbm_surface_, next);
+            return ok_status();
+        }
         auto fb = framebuffer_for(next);
         if (!fb) return fb.error();
-        bool waiting = true;
-        if (drmModePageFlip(fd_, crtc_id_, fb.value(), DRM_MODE_PAGE_FLIP_EVENT, &waiting) != 0) {
+        if (seat_->activations() != activations_) {
+            activations_ = seat_->activations();
+            if (drmModeSetCrtc(fd_, crtc_id_, fb.value(), 0, 0, &connector_id_, 1, &mode_) != 0)
+                return runtime_error("drm: setting the mode again failed (" + std::string(std::strerror(errno)) + ")");
+            if (front_) gbm_surface_release_buffer(gbm_surface_, front_);
+            front_ = next;
+            return ok_status();
+        }
+        if (drmModePageFlip(fd_, crtc_id_, fb.value(), DRM_MODE_PAGE_FLIP_EVENT, keeper_.get()) != 0) {
             gbm_surface_release_buffer(gbm_surface_, next);
             return runtime_error("drm: drmModePageFlip failed (" + std::string(std::strerror(errno)) + ")");
         }
+        keeper_->flip_queued();
         drmEventContext ev{};
         ev.version = 2;
-        ev.page_flip_handler = [](int, unsigned, unsigned, unsigned, void* data) { *static_cast<bool*>(data) = false; };
-        while (waiting) {
+        ev.page_flip_handler = [](int, unsigned, unsigned, unsigned, void* data) {
+            static_cast<DrmCrtcKeeper*>(data)->flip_done();
+        };
+        while (keeper_->flip_pending()) {
             pollfd p{fd_, POLLIN, 0};
             int r = ::poll(&p, 1, 1000);
             if (r < 0 && errno == EINTR) {
-                if (g_quit_requested) break;
+                if (quit_requested()) break;  // the keeper waits for the flip before restoring
                 continue;
             }
             if (r <= 0) return runtime_error("drm: page flip timed out");
@@ -171,8 +194,11 @@ private:
     // Touchscreens through evdev, in display pixels. Absent or unreadable
     // devices are not an error: one line, and a panel plugged in later is found.
     void open_touch(const SurfaceOptions& options) {
-        auto input = EvdevInput::open(
-            EvdevOptions{options.touch_directory, mode_.hdisplay, mode_.vdisplay, options.touch_rotation});
+        std::shared_ptr<Seat> seat = seat_;
+        auto input = EvdevInput::open(EvdevOptions{options.touch_directory, mode_.hdisplay, mode_.vdisplay,
+                                                   options.touch_rotation, options.touch_calibration,
+                                                   [seat](const std::string& path) { return seat->open_device(path); },
+                                                   [seat](int fd) { seat->close_device(fd); }});
         if (!input) {
             std::fprintf(stderr, "bodyview: drm: no touch input (%s)\n", input.error().message.c_str());
             return;
@@ -189,7 +215,7 @@ private:
         }
         std::string last = "no /dev/dri/card* device";
         for (const auto& path : candidates) {
-            int fd = ::open(path.c_str(), O_RDWR | O_CLOEXEC);
+            int fd = seat_->open_device(path);
             if (fd < 0) {
                 if (errno != ENOENT || !requested.empty()) last = path + ": " + std::strerror(errno);
                 continue;
@@ -202,7 +228,7 @@ private:
                 return ok_status();
             }
             last = path + ": not a KMS device";
-            ::close(fd);
+            seat_->close_device(fd);
         }
         return runtime_error("drm: cannot open a display device (" + last + ")");
     }
@@ -227,13 +253,13 @@ private:
         return fb;
     }
 
+    // The display first (before our framebuffers go), then GL, GBM and the device.
     void teardown() {
-        if (mode_set_ && saved_crtc_) {
-            drmModeSetCrtc(fd_, saved_crtc_->crtc_id, saved_crtc_->buffer_id, saved_crtc_->x, saved_crtc_->y,
-                           &connector_id_, 1, &saved_crtc_->mode);
+        if (keeper_) {
+            restore_on_crash(nullptr);
+            if (auto s = keeper_->restore(); !s) std::fprintf(stderr, "bodyview: %s\n", s.error().message.c_str());
+            keeper_.reset();
         }
-        if (saved_crtc_) drmModeFreeCrtc(saved_crtc_);
-        saved_crtc_ = nullptr;
         if (front_ && gbm_surface_) gbm_surface_release_buffer(gbm_surface_, front_);
         front_ = nullptr;
         egl_.reset();
@@ -241,20 +267,19 @@ private:
         if (gbm_) gbm_device_destroy(gbm_);
         gbm_surface_ = nullptr;
         gbm_ = nullptr;
-        if (fd_ >= 0) ::close(fd_);
+        touch_.reset();
+        if (fd_ >= 0) seat_->close_device(fd_);
         fd_ = -1;
-        if (mode_set_) {
-            std::signal(SIGINT, SIG_DFL);
-            std::signal(SIGTERM, SIG_DFL);
-        }
+        remove_quit_handlers();
     }
 
     int fd_ = -1;
     std::string device_;
     drmModeModeInfo mode_{};
     uint32_t connector_id_ = 0, crtc_id_ = 0;
-    drmModeCrtc* saved_crtc_ = nullptr;
-    bool mode_set_ = false;
+    std::unique_ptr<DrmCrtcKeeper> keeper_;
+    std::shared_ptr<Seat> seat_;
+    int activations_ = 0;  // the seat's activations when the mode was last set
     gbm_device* gbm_ = nullptr;
     gbm_surface* gbm_surface_ = nullptr;
     gbm_bo* front_ = nullptr;

@@ -9,9 +9,12 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+
+#include "platform/log.h"
 
 namespace body::platform {
 
@@ -20,8 +23,10 @@ namespace body::platform {
 void map_touch(const TouchMapping& m, int raw_x, int raw_y, float& x, float& y) {
     const float span_x = static_cast<float>(std::max(m.max_x - m.min_x, 1));
     const float span_y = static_cast<float>(std::max(m.max_y - m.min_y, 1));
-    const float u = std::clamp(static_cast<float>(raw_x - m.min_x) / span_x, 0.0f, 1.0f);
-    const float v = std::clamp(static_cast<float>(raw_y - m.min_y) / span_y, 0.0f, 1.0f);
+    const float nu = static_cast<float>(raw_x - m.min_x) / span_x, nv = static_cast<float>(raw_y - m.min_y) / span_y;
+    const auto& c = m.calibration;
+    const float u = std::clamp(c[0] * nu + c[1] * nv + c[2], 0.0f, 1.0f);
+    const float v = std::clamp(c[3] * nu + c[4] * nv + c[5], 0.0f, 1.0f);
     float sx = u, sy = v;
     switch (m.rotation) {
         case 90: sx = 1.0f - v, sy = u; break;
@@ -36,6 +41,20 @@ void map_touch(const TouchMapping& m, int raw_x, int raw_y, float& x, float& y) 
 Result<int> parse_rotation(const std::string& text) {
     if (text == "0" || text == "90" || text == "180" || text == "270") return std::stoi(text);
     return input_error("--rotate: expected 0, 90, 180 or 270, got '" + text + "'");
+}
+
+Result<std::array<float, 6>> parse_calibration(const std::string& text) {
+    std::array<float, 6> c{};
+    std::string t = text;
+    std::replace(t.begin(), t.end(), ',', ' ');
+    char extra = 0;
+    const bool read =
+        std::sscanf(t.c_str(), "%f %f %f %f %f %f %c", &c[0], &c[1], &c[2], &c[3], &c[4], &c[5], &extra) == 6;
+    const bool finite = std::all_of(c.begin(), c.end(), [](float x) { return std::isfinite(x); });
+    if (!read || !finite || std::abs(c[0] * c[4] - c[1] * c[3]) < 1e-6f)
+        return input_error("--touch-calibration: expected six numbers 'A B C D E F' with A*E - B*D not 0, got '" +
+                           text + "'");
+    return c;
 }
 
 // ---- protocol B ------------------------------------------------------------------
@@ -131,13 +150,25 @@ struct EvdevInput::Device {
     int fd = -1;
     libevdev* dev = nullptr;
     MtProtocolB protocol;
-    Device(std::string p, int f, libevdev* d, int slots, int number)
-        : path(std::move(p)), fd(f), dev(d), protocol(slots, number) {}
+    const EvdevInput* owner;
+    Device(std::string p, int f, libevdev* d, int slots, int number, const EvdevInput* o)
+        : path(std::move(p)), fd(f), dev(d), protocol(slots, number), owner(o) {}
     ~Device() {
         if (dev) libevdev_free(dev);
-        if (fd >= 0) ::close(fd);
+        if (fd >= 0) owner->close_node(fd);
     }
 };
+
+int EvdevInput::open_node(const std::string& path) const {
+    return options_.open_device ? options_.open_device(path) : ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+}
+
+void EvdevInput::close_node(int fd) const {
+    if (options_.close_device)
+        options_.close_device(fd);
+    else
+        ::close(fd);
+}
 
 Result<std::unique_ptr<EvdevInput>> EvdevInput::open(const EvdevOptions& options) {
     std::unique_ptr<EvdevInput> input(new EvdevInput());
@@ -176,11 +207,11 @@ void EvdevInput::add_device(const std::string& path) {
     for (const auto& d : devices_) {
         if (d->path == path) return;
     }
-    const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    const int fd = open_node(path);
     if (fd < 0) return;  // not (yet) readable: udev may fix permissions later (IN_ATTRIB)
     libevdev* dev = nullptr;
     if (libevdev_new_from_fd(fd, &dev) < 0) {
-        ::close(fd);
+        close_node(fd);
         return;
     }
     const bool touch = libevdev_has_event_code(dev, EV_ABS, ABS_MT_SLOT) &&
@@ -188,11 +219,11 @@ void EvdevInput::add_device(const std::string& path) {
                        libevdev_has_event_code(dev, EV_ABS, ABS_MT_POSITION_Y);
     if (!touch) {
         libevdev_free(dev);
-        ::close(fd);
+        close_node(fd);
         return;
     }
     const int slots = libevdev_get_num_slots(dev);
-    auto device = std::make_unique<Device>(path, fd, dev, slots > 0 ? slots : 10, next_number_++);
+    auto device = std::make_unique<Device>(path, fd, dev, slots > 0 ? slots : 10, next_number_++, this);
     TouchMapping m;
     const input_absinfo* ax = libevdev_get_abs_info(dev, ABS_MT_POSITION_X);
     const input_absinfo* ay = libevdev_get_abs_info(dev, ABS_MT_POSITION_Y);
@@ -201,8 +232,10 @@ void EvdevInput::add_device(const std::string& path) {
     m.width = options_.width;
     m.height = options_.height;
     m.rotation = options_.rotation;
+    m.calibration = options_.calibration;
     device->protocol.set_mapping(m);
-    std::fprintf(stderr, "bodyview: touch device %s (%s, %d slots)\n", path.c_str(), libevdev_get_name(dev), slots);
+    if (log_enabled(LogLevel::Info))
+        std::fprintf(stderr, "bodyview: touch device %s (%s, %d slots)\n", path.c_str(), libevdev_get_name(dev), slots);
     devices_.push_back(std::move(device));
 }
 

@@ -15,12 +15,16 @@
 // Touch ids are unique across devices while a finger is down: device number
 // * 65536 + tracking id (16 bits).
 //
-// Coordinates: raw axis ranges are normalised to [0, 1] and rotated into the
-// screen. `rotation` (0, 90, 180, 270) is how far the picture is turned clockwise
+// Coordinates: raw axis ranges are normalised to [0, 1], calibrated by a 2x3
+// matrix [a b c; d e f] (u' = a u + b v + c, v' = d u + e v + f: libinput's
+// LIBINPUT_CALIBRATION_MATRIX convention; identity by default), clamped, and
+// rotated into the screen. `rotation` (0, 90, 180, 270) is how far the picture is turned clockwise
 // relative to the panel's native axes: at 90, the panel's top-left corner is
 // the screen's top-right corner.
 #include <linux/input.h>
 
+#include <array>
+#include <functional>
 #include <memory>
 #include <span>
 #include <string>
@@ -35,11 +39,14 @@ struct TouchMapping {
     int min_x = 0, max_x = 4095, min_y = 0, max_y = 4095;  // raw axis ranges (inclusive)
     int width = 1280, height = 800;                        // screen pixels
     int rotation = 0;                                      // 0, 90, 180 or 270
+    std::array<float, 6> calibration{1, 0, 0, 0, 1, 0};    // see above
 };
 
 // Raw device coordinates to screen pixels (origin top-left); clamps to the screen.
 void map_touch(const TouchMapping& mapping, int raw_x, int raw_y, float& x, float& y);
 Result<int> parse_rotation(const std::string& text);
+// Six numbers separated by spaces or commas ("1 0 0 0 1 0"); finite, an invertible 2x2 part.
+Result<std::array<float, 6>> parse_calibration(const std::string& text);
 
 struct MtSlot {
     int tracking_id = -1;  // -1: no contact
@@ -81,6 +88,11 @@ struct EvdevOptions {
     std::string directory = "/dev/input";
     int width = 1280, height = 800;
     int rotation = 0;
+    std::array<float, 6> calibration{1, 0, 0, 0, 1, 0};
+    // How device nodes are opened and closed (the seat manager, platform/seat.h);
+    // empty: open(2) read-only and close(2).
+    std::function<int(const std::string& path)> open_device = {};
+    std::function<void(int fd)> close_device = {};
 };
 
 class EvdevInput {
@@ -105,6 +117,8 @@ private:
     void add_device(const std::string& path);
     void remove_device(size_t index, double now, std::vector<InputEvent>& out);
     void read_device(size_t index, double now, std::vector<InputEvent>& out);
+    int open_node(const std::string& path) const;
+    void close_node(int fd) const;
 
     EvdevOptions options_;
     int inotify_fd_ = -1;

@@ -179,6 +179,7 @@ private:
         eo.width = mode ? mode->width : width();
         eo.height = mode ? mode->height : height();
         eo.rotation = options.touch_rotation;
+        eo.calibration = options.touch_calibration;
         auto input = EvdevInput::open(eo);
         if (!input) {
             std::fprintf(stderr, "bodyview: glfw: no touch input (%s); mouse only\n", input.error().message.c_str());

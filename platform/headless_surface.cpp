@@ -8,6 +8,7 @@
 
 #include "platform/egl_context.h"
 #include "platform/platform.h"
+#include "platform/quit_signal.h"
 
 namespace body::platform {
 namespace {
@@ -15,6 +16,7 @@ namespace {
 class HeadlessSurface final : public Surface {
 public:
     ~HeadlessSurface() override {
+        remove_quit_handlers();
         if (egl_) {
             (void)egl_->make_current();
             if (fbo_) glDeleteFramebuffers(1, &fbo_);
@@ -23,6 +25,7 @@ public:
         }
     }
     Status init(const SurfaceOptions& options) {
+        install_quit_handlers();  // SIGTERM ends a headless kiosk or soak by the loop's own exit
         width_ = options.width > 0 ? options.width : 1280;
         height_ = options.height > 0 ? options.height : 800;
         auto egl = EglContext::open(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, 0, 0);
@@ -66,7 +69,7 @@ public:
     int width() const override { return width_; }
     int height() const override { return height_; }
     unsigned framebuffer() const override { return fbo_; }
-    bool poll_events(std::vector<InputEvent>&) override { return true; }
+    bool poll_events(std::vector<InputEvent>&) override { return !quit_requested(); }
     double time() const override {
         return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
     }

@@ -9,6 +9,8 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "platform/log.h"
+
 namespace body::platform {
 
 std::vector<Backend> compiled_backends() {
@@ -37,6 +39,21 @@ Result<Backend> parse_backend(const std::string& name) {
     for (Backend b : {Backend::Auto, Backend::Headless, Backend::Glfw, Backend::Drm})
         if (name == backend_name(b)) return b;
     return input_error("unknown platform '" + name + "' (expected auto, glfw, drm or headless)");
+}
+
+namespace {
+LogLevel g_log_level = LogLevel::Info;
+}  // namespace
+
+void set_log_level(LogLevel level) { g_log_level = level; }
+LogLevel log_level() { return g_log_level; }
+
+Result<LogLevel> parse_log_level(const std::string& text) {
+    if (text == "error") return LogLevel::Error;
+    if (text == "warning") return LogLevel::Warning;
+    if (text == "info") return LogLevel::Info;
+    if (text == "debug") return LogLevel::Debug;
+    return input_error("--log-level: expected error, warning, info or debug, got '" + text + "'");
 }
 
 Result<std::pair<int, int>> parse_size(const std::string& text) {

@@ -7,6 +7,7 @@
 // Contract: create_surface() returns a Surface whose GLES 3.0 context is
 // current on the calling thread. Render into framebuffer() (0 for on-screen
 // backends, an FBO for headless), then present(). All calls on one thread.
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -73,6 +74,8 @@ struct SurfaceOptions {
     // rotation (0, 90, 180, 270) against the picture.
     std::string touch_directory = "/dev/input";
     int touch_rotation = 0;
+    // Applied to the panel's normalised coordinates before the rotation (evdev_touch.h).
+    std::array<float, 6> touch_calibration{1, 0, 0, 0, 1, 0};
 };
 
 class Surface {

@@ -62,6 +62,15 @@ check_debs() {
         arch=$(dpkg-deb -f "$deb" Architecture)
         dpkg-deb -I "$deb" | grep -E '^ (Package|Version|Architecture|Depends):'
         dpkg-deb -c "$deb" | grep -E 'bin/(bodygen|bodyview)$' || { echo "$deb lacks the binaries"; ok=1; }
+        # The service (packaging/): unit, user, configuration as a conffile, sample exhibit.
+        local files conffiles
+        files=$(dpkg-deb -c "$deb" | awk '{print $6}')
+        conffiles=$(dpkg-deb -I "$deb" conffiles)
+        for f in ./usr/lib/systemd/system/bodyview.service ./usr/lib/sysusers.d/bodyview.conf \
+                 ./etc/bodyview/bodyview.conf ./usr/share/bodyview/exhibit/scene.json; do
+            grep -qx "$f" <<<"$files" || { echo "$deb lacks $f"; ok=1; }
+        done
+        grep -qx /etc/bodyview/bodyview.conf <<<"$conffiles" || { echo "$deb: no conffile"; ok=1; }
         [ "$arch" = "${pair##*:}" ] || { echo "$deb: architecture $arch, expected ${pair##*:}"; ok=1; }
     done
     return $ok

@@ -45,6 +45,7 @@ private:
                models_.transform(static_cast<size_t>(model));
     }
     void yield_to_loaders(double frame_ms);
+    bool check_gl(FrameReport& report);
 
     platform::Surface& surface_;
     const scene::Scene& scene_;
@@ -62,7 +63,26 @@ private:
     std::unique_ptr<KioskApp> app_;
     Overlay overlay_;
     std::vector<platform::InputEvent> events_;
+    double detail_cap_ = 1.0;  // lowered by GL_OUT_OF_MEMORY
 };
+
+// Reads the context's health into `report`; false when the context is lost.
+bool KioskLoop::check_gl(FrameReport& report) {
+    const platform::GlHealth h = options_.hooks.gl_health ? options_.hooks.gl_health() : platform::read_gl_health();
+    report.gl_errors = h.errors;
+    report.out_of_memory = h.out_of_memory;
+    if (h.context_lost()) {
+        std::fprintf(stderr, "bodyview: GPU context lost (reset status 0x%04x): exiting for a fresh start\n",
+                     h.reset_status);
+        return false;
+    }
+    if (h.out_of_memory && detail_cap_ > 1.0 / 16.0) {
+        detail_cap_ *= 0.5;
+        std::fprintf(stderr, "bodyview: GPU out of memory: every model now drawn at %.1f %% of its planned detail\n",
+                     100.0 * detail_cap_);
+    }
+    return true;
+}
 
 // Replay, renderer, models, app and overlay. Returns an exit code, or -1 to go on.
 int KioskLoop::start() {
@@ -109,6 +129,7 @@ void KioskLoop::start_app() {
 bool KioskLoop::feed_input(double now) {
     events_.clear();
     bool keep = surface_.poll_events(events_);
+    if (options_.hooks.input) options_.hooks.input(*app_, now, events_);
     if (replaying_) {
         // Replay coordinates refer to replay.width x height; scaled to the surface.
         const float sx = static_cast<float>(surface_.width()) /
@@ -151,6 +172,7 @@ bool KioskLoop::bind_models(long frame, double now, size_t& triangles) {
         b.lod_ratio = !options_.auto_lod  ? (ms.manual_lod ? *ms.manual_lod : 1.0)
                       : mi.full_triangles ? static_cast<double>(ms.triangles) / static_cast<double>(mi.full_triangles)
                                           : 1.0;
+        b.lod_ratio = std::max(b.lod_ratio * detail_cap_, 1e-6);
         b.hold_level = frame == 0;  // the first frame shows the base meshes: on screen as soon as possible
         at_planned_detail = models_.bind(m, b, now) && at_planned_detail;
         if (b.visible) triangles += models_.triangles(m);
@@ -230,9 +252,9 @@ int KioskLoop::run() {
         renderer_.render(view, render::Lighting{}, fo);
         draw_overlay(fo);
 
-        const bool last = app_->exit_requested() || !keep ||
-                          (replaying_ && next_event_ >= replay_.events.size() && now >= replay_.end_time) ||
-                          (options_.frames > 0 && frame + 1 >= options_.frames);
+        bool last = app_->exit_requested() || !keep ||
+                    (replaying_ && next_event_ >= replay_.events.size() && now >= replay_.end_time) ||
+                    (options_.frames > 0 && frame + 1 >= options_.frames);
         if (last && !options_.screenshot.empty() && !write_screenshot(fo)) exit_code = kExitRuntime;
         if (auto s = surface_.present(); !s) {
             log_error(s.error());
@@ -256,6 +278,12 @@ int KioskLoop::run() {
                              full_detail_ms, triangles);
         }
         if (!replaying_ || options_.measure_frames_in_replay) app_->report_frame(frame_ms, triangles);
+        FrameReport report{frame, now, frame_ms, triangles, app_.get()};
+        if (!check_gl(report)) {
+            exit_code = kExitRuntime;
+            last = true;
+        }
+        if (options_.hooks.frame_done && !options_.hooks.frame_done(report)) last = true;
         frame_ms_sum += frame_ms;
         ++frames_counted;
         if (options_.verbose && frames_counted % 60 == 0)

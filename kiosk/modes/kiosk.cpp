@@ -1,7 +1,9 @@
 // The kiosk mode: a scene (or one model as a scene) shown live with gestures,
-// labels and automatic LOD, or driven by --replay (kiosk/app/kiosk_run.h).
+// labels and automatic LOD, or driven by --replay (kiosk/app/kiosk_run.h); under
+// systemd it notifies the service manager (platform/service_notify.h).
 #include "kiosk/app/kiosk_run.h"
 #include "kiosk/modes/modes.h"
+#include "platform/service_notify.h"
 
 namespace body::kiosk {
 
@@ -14,7 +16,16 @@ int run_kiosk_mode(platform::Surface& surface, const ViewOptions& o, const scene
     ko.verbose = o.kiosk_stats;
     ko.renderer = o.renderer;
     ko.load.file_colours = !o.model_path.empty();
-    return run_kiosk(surface, scene, ko);
+    // Under systemd: ready after the first frame, the watchdog fed only while frames come.
+    platform::ServiceNotifier notifier;
+    if (notifier.active())
+        ko.hooks.frame_done = [&](const FrameReport&) {
+            notifier.frame_presented(surface.time());
+            return true;
+        };
+    const int code = run_kiosk(surface, scene, ko);
+    notifier.stopping();
+    return code;
 }
 
 }  // namespace body::kiosk

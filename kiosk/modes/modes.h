@@ -18,6 +18,8 @@ struct Mode {
 int run_benchmark_mode(platform::Surface& surface, const ViewOptions& options, const scene::Scene& scene);
 // --screenshot without --replay: one frame of the scene or model to a PNG (screenshot.cpp).
 int run_screenshot_mode(platform::Surface& surface, const ViewOptions& options, const scene::Scene& scene);
+// --soak MINUTES: the kiosk loop under randomised visitors, resources logged and judged (soak.cpp).
+int run_soak_mode(platform::Surface& surface, const ViewOptions& options, const scene::Scene& scene);
 // Otherwise: the kiosk, live or driven by --replay (kiosk.cpp).
 int run_kiosk_mode(platform::Surface& surface, const ViewOptions& options, const scene::Scene& scene);
 

@@ -6,6 +6,7 @@
 
 #include "kiosk/modes/modes.h"
 #include "platform/evdev_touch.h"
+#include "platform/log.h"
 
 namespace body::kiosk {
 
@@ -33,7 +34,10 @@ const std::set<std::string>& view_value_options() {
                                                 "replay",
                                                 "bench-triangles",
                                                 "bench-frames",
-                                                "buffer-access"};
+                                                "buffer-access",
+                                                "soak",
+                                                "touch-calibration",
+                                                "log-level"};
     return names;
 }
 
@@ -67,6 +71,11 @@ Status parse_surface(const CliArgs& args, platform::SurfaceOptions& so) {
         auto deg = platform::parse_rotation(*r);
         if (!deg) return deg.error();
         so.touch_rotation = deg.value();
+    }
+    if (auto c = args.get("touch-calibration")) {
+        auto matrix = platform::parse_calibration(*c);
+        if (!matrix) return matrix.error();
+        so.touch_calibration = matrix.value();
     }
     return ok_status();
 }
@@ -135,6 +144,20 @@ Status parse_benchmark(const CliArgs& args, ViewOptions& o) {
     return ok_status();
 }
 
+// --soak MINUTES: headless unless a platform was named.
+Status parse_soak(const CliArgs& args, ViewOptions& o) {
+    if (!args.has("soak")) return ok_status();
+    auto minutes = args.get_double("soak", 0.0);
+    if (!minutes) return minutes.error();
+    if (!(minutes.value() > 0.0 && minutes.value() <= 60.0 * 24.0 * 7.0))
+        return input_error("--soak expects MINUTES in (0, 10080]");
+    if (!o.replay.empty() || !o.screenshot.empty() || o.benchmark)
+        return input_error("--soak excludes --replay, --screenshot and --benchmark");
+    o.soak_minutes = minutes.value();
+    if (!args.has("platform")) o.surface.backend = platform::Backend::Headless;
+    return ok_status();
+}
+
 }  // namespace
 
 constexpr long kMaxPictureSide = 8192, kMaxPicturePixels = 64l << 20;
@@ -152,6 +175,13 @@ Result<ViewOptions> parse_view_options(const CliArgs& args) {
     o.replay = args.get_or("replay", "");
     o.auto_lod = !args.has("no-auto-lod");
     o.kiosk_stats = args.has("kiosk-stats");
+    if (auto l = args.get("log-level")) {
+        auto level = platform::parse_log_level(*l);
+        if (!level) return level.error();
+        o.log_level = level.value();
+        o.kiosk_stats = o.kiosk_stats || level.value() == platform::LogLevel::Debug;
+    }
+    if (auto s = parse_soak(args, o); !s) return s.error();
     if (o.surface.backend == platform::Backend::Headless) {
         if (o.surface.width == 0) o.surface.width = 1280, o.surface.height = 800;
         o.surface.width *= o.ssaa;

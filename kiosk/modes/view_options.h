@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "kiosk/render/renderer.h"
+#include "platform/log.h"
 #include "platform/platform.h"
 #include "shared/cli_args.h"
 #include "shared/error.h"
@@ -32,6 +33,8 @@ struct ViewOptions {
     bool benchmark = false;
     long bench_triangles = 1000000;
     long bench_frames = 9;
+    double soak_minutes = 0.0;  // --soak; 0: no soak
+    platform::LogLevel log_level = platform::LogLevel::Info;
 };
 
 // Value options and flags bodyview accepts (names without "--").

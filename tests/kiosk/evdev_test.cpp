@@ -1,9 +1,12 @@
 // evdev multitouch protocol B fed fabricated kernel events: slots, tracking ids,
 // SYN_DROPPED resync, device removal, and the rotation mapping.
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cstdio>
+#include <filesystem>
 
 #include "platform/evdev_touch.h"
 #include "tests/platform/input_events.h"
@@ -142,6 +145,29 @@ TEST(TouchMapping, RotationsMapThePanelCornersToTheScreen) {
     EXPECT_FALSE(parse_rotation("45"));
 }
 
+// A panel whose touches land 10 % right and mirrored vertically: the matrix
+// (from a calibration tool, libinput's convention) undoes it before the rotation.
+TEST(TouchMapping, CalibrationMatrixIsAppliedBeforeTheRotation) {
+    TouchMapping m;
+    m.max_x = m.max_y = 1000;
+    m.width = m.height = 1001;
+    m.calibration = {1, 0, -0.1f, 0, -1, 1};
+    float x, y;
+    map_touch(m, 600, 250, x, y);
+    EXPECT_NEAR(x, 500.0f, 1e-3f);
+    EXPECT_NEAR(y, 750.0f, 1e-3f);
+    m.rotation = 90;  // then turned: (u, v) -> (1 - v, u)
+    map_touch(m, 600, 250, x, y);
+    EXPECT_NEAR(x, 250.0f, 1e-3f);
+    EXPECT_NEAR(y, 500.0f, 1e-3f);
+    auto c = parse_calibration("1, 0, -0.1 0 -1 1");
+    ASSERT_TRUE(c);
+    EXPECT_FLOAT_EQ((*c)[2], -0.1f);
+    EXPECT_FALSE(parse_calibration("1 0 0 0 1"));    // five numbers
+    EXPECT_FALSE(parse_calibration("1 2 0 2 4 0"));  // singular
+    EXPECT_FALSE(parse_calibration("1 0 0 0 1 0 7"));
+}
+
 TEST(EvdevInput, OpensADirectoryWithoutTouchscreens) {
     char dir[] = "/tmp/body_evdev_XXXXXX";
     ASSERT_NE(::mkdtemp(dir), nullptr);
@@ -164,6 +190,51 @@ TEST(EvdevInput, OpensADirectoryWithoutTouchscreens) {
     EXPECT_TRUE(out.empty());
     ::rmdir(dir);
     EXPECT_FALSE(EvdevInput::open(EvdevOptions{"/nonexistent/input", 800, 480, 0}));
+}
+
+// Hotplug through the same path the backends use, with a fake opener in place of
+// the seat (no uinput here): a node created while running is opened at the next
+// poll (the next frame, so well within the 1 s goal), one whose permissions udev
+// fixes later (IN_ATTRIB) is tried again, and every descriptor handed out is
+// given back to the opener's closer.
+TEST(EvdevInput, AddedNodesAreOpenedAtTheNextPollThroughTheOpener) {
+    char dir[] = "/tmp/body_evdev_hotplug_XXXXXX";
+    ASSERT_NE(::mkdtemp(dir), nullptr);
+    std::vector<std::string> opened;
+    int open_fds = 0;
+    EvdevOptions o{dir, 800, 480, 0};
+    o.open_device = [&](const std::string& path) {
+        opened.push_back(path);
+        const int fd = ::open("/dev/null", O_RDONLY | O_CLOEXEC);  // not an evdev device: ignored after opening
+        open_fds += fd >= 0;
+        return fd;
+    };
+    o.close_device = [&](int fd) {
+        --open_fds;
+        ::close(fd);
+    };
+    auto input = EvdevInput::open(o);
+    ASSERT_TRUE(input) << input.error().message;
+    std::vector<InputEvent> out;
+    (*input)->poll(0.0, out);
+    EXPECT_TRUE(opened.empty());
+    const std::string node = std::string(dir) + "/event4";
+    std::FILE* f = std::fopen(node.c_str(), "w");
+    ASSERT_NE(f, nullptr);
+    std::fclose(f);
+    (*input)->poll(1.0 / 60.0, out);  // the next frame
+    ASSERT_EQ(opened.size(), 1u);
+    EXPECT_EQ(opened[0], node);
+    ::chmod(node.c_str(), 0660);  // udev setting the group later: tried again
+    (*input)->poll(2.0 / 60.0, out);
+    EXPECT_EQ(opened.size(), 2u);
+    std::fclose(std::fopen((std::string(dir) + "/js0").c_str(), "w"));  // not an event node
+    (*input)->poll(3.0 / 60.0, out);
+    EXPECT_EQ(opened.size(), 2u);
+    EXPECT_EQ(open_fds, 0);
+    EXPECT_TRUE(out.empty());
+    input->reset();
+    std::filesystem::remove_all(dir);
 }
 
 }  // namespace

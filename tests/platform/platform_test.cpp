@@ -9,6 +9,7 @@
 #include <string>
 
 #include "platform/egl_context.h"
+#include "platform/seat.h"
 
 using namespace body::platform;
 
@@ -98,3 +99,21 @@ TEST(Platform, DrmBadModeIsAUsageError) {
     EXPECT_EQ(drm_failure(o).exit_code, body::kExitBadInput);
 }
 #endif
+
+// The seat: the seat manager's when one answers (libseat's builtin one as root),
+// else direct opens; either way a device opens, closes and the seat is active.
+TEST(Seat, OpensAndClosesADevice) {
+    auto seat = Seat::open();
+    ASSERT_NE(seat, nullptr);
+    seat->dispatch();
+    EXPECT_TRUE(seat->active());
+    EXPECT_GE(seat->activations(), 1);
+    const int fd = seat->open_device("/dev/null");
+    if (std::string(seat->kind()) == "direct") {
+        ASSERT_GE(fd, 0);
+        seat->close_device(fd);
+    } else if (fd >= 0) {  // a seat manager may refuse a non-device node
+        seat->close_device(fd);
+    }
+    EXPECT_LT(seat->open_device("/nonexistent/event0"), 0);
+}

@@ -1,0 +1,51 @@
+#pragma once
+// `bodyview --soak MINUTES BUNDLE/`: the kiosk's one loop (kiosk/app/kiosk_run.h),
+// headless by default, driven for MINUTES of wall time by randomised visitor
+// sessions (taps on models and controls, one-finger drags, two-finger pinches,
+// wheel turns, style, LOD, group and language changes), each followed by an idle
+// period long enough for attract mode and, mostly, the reset. The soak shortens
+// the manifest's idle timers (kSoakIdleSeconds, kSoakResetSeconds) so that every
+// session ends that way; frames are paced at 60 Hz like a display's vsync.
+//
+// Every minute one line on stderr: RSS, frames, frame time p50/p99, GL errors,
+// open file descriptors, threads, sessions, attract entries and resets. At the
+// end the minutes are judged against the goals (soak_verdict); the exit code is
+// 0 when every goal holds, 1 otherwise.
+#include <string>
+#include <vector>
+
+namespace body::kiosk {
+
+inline constexpr float kSoakIdleSeconds = 6.0f;
+inline constexpr float kSoakResetSeconds = 12.0f;
+
+// One minute of a soak, as logged.
+struct SoakMinute {
+    int minute = 0;                     // 1-based, the minute just ended
+    double rss_mib = 0.0;               // resident set size at the minute's end
+    long frames = 0;                    // frames in this minute
+    double p50_ms = 0.0, p99_ms = 0.0;  // this minute's frame times
+    long gl_errors = 0;                 // glGetError() values other than GL_NO_ERROR, this minute
+    int fds = 0, threads = 0;           // at the minute's end
+};
+
+struct SoakGoals {
+    double warmup_minutes = 5.0;       // RSS, fds and threads are compared from here on
+    double rss_mib_per_hour = 1.0;     // allowed RSS growth after the warm-up
+    double rss_noise_mib = 1.0;        // allowed on top: allocator and page granularity
+    double p99_window_minutes = 10.0;  // first vs last window after the warm-up ...
+    double p99_tolerance = 0.10;       // ... within this fraction (judged only when both fit apart)
+};
+
+struct SoakVerdict {
+    bool ok = true;
+    std::vector<std::string> failures;  // one line each
+    std::vector<std::string> notes;     // goals measured but not judged (too short a run), figures
+};
+
+// Judges a soak's minutes against `goals`. Warm-up shrinks to half the run when
+// the run is shorter than twice the warm-up (a CI soak of two minutes compares
+// minute 1 with minute 2); the p99 comparison needs two disjoint windows after it.
+SoakVerdict soak_verdict(const std::vector<SoakMinute>& minutes, const SoakGoals& goals = {});
+
+}  // namespace body::kiosk
