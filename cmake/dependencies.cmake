@@ -38,8 +38,11 @@ set(BODY_FONT_FILE /usr/share/fonts/truetype/dejavu/DejaVuSans.ttf CACHE FILEPAT
 
 # glTF export (tinygltf, header-only; Debian ships it for the host only): optional.
 find_path(TINYGLTF_INCLUDE_DIR tiny_gltf.h)
-# STL/PLY/glTF import (Open Asset Import, Debian libassimp-dev): optional.
-find_package(assimp QUIET)
+# STL/PLY/glTF import (Open Asset Import, Debian libassimp-dev): optional, host
+# builds only (the cross build lists no assimp:arm64).
+if(NOT CMAKE_CROSSCOMPILING)
+  find_package(assimp QUIET)
+endif()
 
 if(BODY_WITH_IMPORT)
   find_path(NIFTI_INCLUDE_DIR nifti1_io.h PATH_SUFFIXES nifti REQUIRED)
