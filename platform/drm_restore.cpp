@@ -36,6 +36,11 @@ const DrmOps& real_drm_ops() { return kRealOps; }
 DrmCrtcKeeper::DrmCrtcKeeper(const DrmOps& ops, int fd, uint32_t crtc_id, uint32_t connector_id)
     : ops_(ops), fd_(fd), crtc_id_(crtc_id), connector_id_(connector_id) {}
 
+DrmCrtcKeeper::~DrmCrtcKeeper() {
+    (void)restore();
+    if (saved_) ops_.free_crtc(saved_);  // never set: nothing to restore, still ours to free
+}
+
 bool DrmCrtcKeeper::save() {
     if (saved_) ops_.free_crtc(saved_);
     saved_ = ops_.get_crtc(fd_, crtc_id_);

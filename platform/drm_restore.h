@@ -36,7 +36,7 @@ class DrmCrtcKeeper {
 public:
     static constexpr int kFlipWaitMs = 1000;
     DrmCrtcKeeper(const DrmOps& ops, int fd, uint32_t crtc_id, uint32_t connector_id);
-    ~DrmCrtcKeeper() { (void)restore(); }
+    ~DrmCrtcKeeper();
     DrmCrtcKeeper(const DrmCrtcKeeper&) = delete;
     DrmCrtcKeeper& operator=(const DrmCrtcKeeper&) = delete;
 
