@@ -12,7 +12,8 @@
 #     OUT_DIR  default build/body-scene
 #   COPIES=N   copies of the atlas (default 18)
 #   MERGED=N   also OUT_DIR/merged/scene.json with N models (default 0: none)
-#   SAMPLE=DIR an existing sample (default: OUT_DIR/sample, built when missing)
+#   SAMPLE=DIR an existing sample, as build-sample.sh makes it (DIR/bundle; default:
+#              OUT_DIR/sample, built when missing)
 #
 # Output: OUT_DIR/scene.json (the copies; model files stay in the sample) and,
 # with MERGED, OUT_DIR/merged/scene.json. Nothing here is committed.
@@ -27,15 +28,21 @@ SAMPLE=${SAMPLE:-$OUT/sample}
 mkdir -p "$OUT"
 OUT=$(cd "$OUT" && pwd)
 
-if [ ! -f "$SAMPLE/scene.json" ]; then
+if [ ! -f "$SAMPLE/bundle/scene.json" ]; then
   echo "build-body-scene: building the AAL sample in $SAMPLE"
   "$ROOT/scripts/build-sample.sh" "$BODYGEN" "$SAMPLE"
 fi
-SAMPLE=$(cd "$SAMPLE" && pwd)
+SAMPLE=$(cd "$SAMPLE/bundle" && pwd)
+# Full-detail OBJs of the sample's models: the grid's extent and the merged baseline read them.
+mkdir -p "$OUT/obj"
+for f in "$SAMPLE"/models/*.bpm; do
+  obj="$OUT/obj/$(basename "${f%.bpm}").obj"
+  [ -f "$obj" ] || "$BODYGEN" extract "$f" --ratio 1 -o "$obj" >/dev/null
+done
 
-python3 - "$SAMPLE" "$OUT" "$COPIES" "$MERGED" <<'PY'
+python3 - "$SAMPLE" "$OUT" "$COPIES" "$MERGED" "$OUT/obj" <<'PY'
 import json, math, os, sys
-sample, out, copies, merged = sys.argv[1], sys.argv[2], int(sys.argv[3]), int(sys.argv[4])
+sample, out, copies, merged, objdir = sys.argv[1], sys.argv[2], int(sys.argv[3]), int(sys.argv[4]), sys.argv[5]
 base = json.load(open(os.path.join(sample, "scene.json")))
 
 def rotate(p, deg):
@@ -61,7 +68,7 @@ def read_obj(path):
 lo, hi = [1e30] * 3, [-1e30] * 3
 meshes = {}
 for m in base["models"]:
-    obj = os.path.join(sample, os.path.splitext(m["file"])[0] + ".obj")
+    obj = os.path.join(objdir, os.path.splitext(os.path.basename(m["file"]))[0] + ".obj")
     vs, fs = read_obj(obj)
     deg = m.get("transform", {}).get("rotate_deg", [0, 0, 0])
     vs = [rotate(v, deg) for v in vs]
