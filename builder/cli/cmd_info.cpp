@@ -18,7 +18,8 @@ int run_info(const Args& argv) {
     }
     if (args->positional().size() != 1) return report(input_error("info: expected one input .bpm file"));
     const std::string& path = args->positional()[0];
-    auto pms = pm::read_bpm(path, pm::BpmStream::FaceOrder::Refinement);  // checks the file type and the 16-byte header before reading on
+    // Checks the file type and the 16-byte header before reading on; every level exact (refinement order).
+    auto pms = pm::read_bpm(path, pm::BpmStream::FaceOrder::Refinement);
     if (!pms) return report(pms.error());
     auto file_size = regular_file_size(path);
     if (!file_size) return report(file_size.error());

@@ -93,7 +93,9 @@ Result<PackSummary> pack_scene(const std::string& scene_path, const std::string&
         if (ec) return runtime_error(bundle.string() + ": cannot create the bundle's directory: " + ec.message());
         for (size_t i = 0; i < names.size(); ++i) {
             fs::copy_file(scene->models[i].path, staged / "models" / names[i], ec);
-            if (ec) return runtime_error(bundle.string() + ": cannot write the bundle's models/" + names[i] + ": " + ec.message());
+            if (ec)
+                return runtime_error(bundle.string() + ": cannot write the bundle's models/" + names[i] + ": " +
+                                     ec.message());
             summary.bytes += fs::file_size(staged / "models" / names[i], ec);
         }
         const std::string json_text = manifest.dump(2) + "\n";
