@@ -36,7 +36,8 @@ constexpr const char* kUsage =
     "usage: bodygen exhibit INPUT... -o BUNDLE/ [options]\n"
     "  INPUT: a NIfTI label volume (.nii/.nii.gz; its label/colour table beside it or --labels),\n"
     "         a DICOM RT-STRUCT (.dcm), a contour stack (.contours.json), an OBJ file\n"
-    "         (one model per object), an STL/PLY/glTF file or a directory of mesh files;\n"
+    "         (one model per object), a VRML97 .wrl (one model per Shape, its colour kept),\n"
+    "         an STL/PLY/glTF file or a directory of mesh files;\n"
     "         several may be given\n"
     "  --groups FILE        group pattern table: PATTERN<TAB>GROUP lines, shell globs on the\n"
     "                       structure names, first match wins, {side} becomes left/right\n"
@@ -92,7 +93,8 @@ Result<std::vector<exhibit::Part>> load_parts(const CliArgs& args, const std::ar
             for (const auto& e : fs::directory_iterator(input, ec))
                 if (e.is_regular_file() && is_mesh_file(e.path())) files.push_back(e.path());
             std::sort(files.begin(), files.end());
-            if (files.empty()) return input_error(input + ": no mesh files (.obj) in the directory");
+            if (files.empty())
+                return input_error(input + ": no mesh files (.obj, .wrl, .stl, .ply, .gltf, .glb) in the directory");
             for (const fs::path& f : files)
                 if (Status st = add(mesh_parts(f.string(), axes)); !st) return st.error();
             continue;

@@ -1,4 +1,4 @@
-// bodygen lod IN.(obj|stl|ply|gltf|glb) -o OUT.bpm [--min-triangles N] [--chunk-splits N] [--no-normals] [--jobs N]
+// bodygen lod IN.(obj|wrl|stl|ply|gltf|glb) -o OUT.bpm [--min-triangles N] [--chunk-splits N] [--no-normals] [--jobs N]
 //   [--quiet] [--json]: one progressive mesh per OBJ object, written as a .bpm file.
 #include <unistd.h>
 
@@ -52,9 +52,10 @@ int run_lod(const Args& argv) {
     if (!args) return report(args.error());
     if (args->has("help")) {
         std::printf(
-            "usage: bodygen lod IN.obj -o OUT.bpm [--min-triangles N] [--chunk-splits N] [--no-normals] [--jobs N]\n"
-            "  one progressive mesh per OBJ object (STL, PLY, glTF: per mesh); the base mesh keeps\n"
-            "  at least N triangles\n"
+            "usage: bodygen lod IN.(obj|wrl|stl|ply|gltf|glb) -o OUT.bpm [--min-triangles N] [--chunk-splits N]\n"
+            "                 [--no-normals] [--jobs N]\n"
+            "  one progressive mesh per OBJ object (VRML97: per Shape; STL, PLY, glTF: per mesh); the base\n"
+            "  mesh keeps at least N triangles\n"
             "  (default: as few as the topology allows)\n"
             "  --jobs N   threads for the setup and a large mesh's first phase\n"
             "             (default: one per CPU; the same output for any N)\n"

@@ -40,7 +40,7 @@ const Command kCommands[] = {
     {"slice", "slice a closed OBJ mesh with parallel planes into a contour stack", body::cli::run_slice},
     {"build", "contours, label volume or RT-STRUCT -> one closed mesh per structure (OBJ, .bpm or OUT/)",
      body::cli::run_build},
-    {"lod", "build progressive meshes (.bpm) from an OBJ file", body::cli::run_lod},
+    {"lod", "build progressive meshes (.bpm) from an OBJ, VRML97, STL, PLY or glTF file", body::cli::run_lod},
     {"extract", "write one level of a .bpm file as OBJ", body::cli::run_extract},
     {"info", "print the structures, levels, sizes and error curve of a .bpm file", body::cli::run_info},
     {"pack", "validate a kiosk scene.json and write a self-contained bundle", body::cli::run_pack},

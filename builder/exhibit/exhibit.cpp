@@ -137,6 +137,9 @@ std::vector<Part> parts_from_meshes(std::vector<Mesh> meshes, const std::string&
         p.name = m.name.empty() ? "mesh " + std::to_string(parts.size() + 1) : m.name;
         p.source = source;
         p.ras_axes = axes;
+        // Mesh readers leave the default grey where the file has no colour (OBJ, STL, ...);
+        // VRML's diffuseColor comes through. Black stays unset, as for stacks.
+        if (m.color != Vec3(0.8, 0.8, 0.8) && m.color != Vec3(0.0)) p.colour = m.color;
         p.mesh = std::move(m);
         parts.push_back(std::move(p));
     }

@@ -48,7 +48,8 @@ struct Part {
 // (what display tables leave unset labels), counts as none.
 std::vector<Part> parts_from_stack(const ContourStack& stack, const std::string& source,
                                    const std::array<Vec3, 3>& fallback_axes);
-// One part per mesh (meshes carry no colour of their own in OBJ).
+// One part per mesh; mesh.color is the part's colour unless it is the default grey or
+// black (readers leave the grey where the file has none: OBJ, STL, PLY, glTF).
 std::vector<Part> parts_from_meshes(std::vector<Mesh> meshes, const std::string& source,
                                     const std::array<Vec3, 3>& axes);
 

@@ -5,6 +5,7 @@
 #include <cctype>
 #include <filesystem>
 
+#include "builder/mesh_import/vrml_reader.h"
 #include "shared/obj_io.h"
 
 #ifdef BODY_WITH_ASSIMP
@@ -78,7 +79,7 @@ Result<std::vector<Mesh>> read_with_assimp(const std::string& path, const std::s
 
 bool is_mesh_file(const std::string& path) {
     const std::string ext = lower_extension(path);
-    if (ext == ".obj") return true;
+    if (ext == ".obj" || ext == ".wrl") return true;
 #ifdef BODY_WITH_ASSIMP
     return ext == ".stl" || ext == ".ply" || ext == ".gltf" || ext == ".glb";
 #else
@@ -89,11 +90,12 @@ bool is_mesh_file(const std::string& path) {
 Result<std::vector<Mesh>> read_mesh_file(const std::string& path) {
     const std::string ext = lower_extension(path);
     if (ext == ".obj") return read_obj(path);
+    if (ext == ".wrl") return read_vrml(path);
 #ifdef BODY_WITH_ASSIMP
     if (ext == ".stl" || ext == ".ply" || ext == ".gltf" || ext == ".glb") return read_with_assimp(path, ext);
-    return input_error(path + ": not a mesh file (expected .obj, .stl, .ply, .gltf or .glb)");
+    return input_error(path + ": not a mesh file (expected .obj, .wrl, .stl, .ply, .gltf or .glb)");
 #else
-    return input_error(path + ": not a mesh file (this bodygen reads .obj; STL/PLY/glTF need libassimp-dev)");
+    return input_error(path + ": not a mesh file (this bodygen reads .obj and .wrl; STL/PLY/glTF need libassimp-dev)");
 #endif
 }
 

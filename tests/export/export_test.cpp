@@ -2,7 +2,7 @@
 // goes out as GLB/glTF (read back with tinygltf: names, groups as parents,
 // colours, every vertex within the .bpm quantization step; and the Khronos
 // glTF-Validator: 0 errors, 0 warnings), VRML97 (VTK's importer: shapes,
-// triangles, colours), binary STL and PLY (assimp: faces and vertices), OBJ.
+// triangles, colours; and our own reader through exhibit), binary STL and PLY (assimp: faces and vertices), OBJ.
 // Tools that are not installed skip their check and name the package.
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -20,6 +20,8 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "builder/export/export_scene.h"
+#include "builder/mesh_import/vrml_reader.h"
 #include "shared/obj_io.h"
 #include "shared/pm/bpm_reader.h"
 #include "shared/pm/progressive_mesh.h"
@@ -301,6 +303,108 @@ TEST_F(ExportTest, StlPlyGltfImportIntoLodAndExhibit) {
     EXPECT_EQ(std::count(bad.output.begin(), bad.output.end(), '\n'), 1) << bad.output;
     EXPECT_NE(bad.output.find(path("bad.ply") + ": "), std::string::npos) << bad.output;
     EXPECT_FALSE(fs::exists(path("bad.bpm")));
+}
+
+// Export -> .wrl -> exhibit: every name, colour and vertex comes back (vertices
+// within the new .bpm's quantization step of the placed originals).
+TEST_F(ExportTest, VrmlRoundTripsThroughExhibit) {
+    const std::string wrl = export_to("rt.wrl");
+    const auto r = test::run(bodygen() + " exhibit " + wrl + " --quiet -o " + path("re_wrl"));
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    auto before = exporter::load_export_scene(path("bundle"), 1.0);
+    auto after = exporter::load_export_scene(path("re_wrl"), 1.0);
+    ASSERT_TRUE(before && after);
+    ASSERT_EQ(after->models.size(), before->models.size());
+    for (size_t k = 0; k < before->models.size(); ++k) {
+        const exporter::ExportModel& b = before->models[k];
+        const exporter::ExportModel& a = after->models[k];
+        EXPECT_EQ(a.name, b.name);
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(a.mesh.color[c], b.mesh.color[c], 1e-3) << a.name;
+        ASSERT_EQ(a.mesh.vertex_count(), b.mesh.vertex_count()) << a.name;
+        ASSERT_EQ(a.mesh.triangle_count(), b.mesh.triangle_count()) << a.name;
+        double worst = 0.0;
+        for (const Vec3& p : a.mesh.positions) {
+            double nearest = 1e300;
+            for (const Vec3& q : b.mesh.positions)
+                nearest = std::min(nearest, glm::length(p - exporter::place_point(b, q)));
+            worst = std::max(worst, nearest);
+        }
+        EXPECT_GT(a.quantization_bound, 0.0f);
+        EXPECT_LE(worst, a.quantization_bound * 1.0001 + 1e-6) << a.name << ": a vertex moved more than the step";
+    }
+}
+
+// A hand-written scene: nested Transforms (translation, rotation, scale, center),
+// a USE'd Shape and a USE'd geometry, comments; names from the nearest DEF.
+TEST_F(ExportTest, VrmlReaderAppliesNestedTransformsAndUse) {
+    std::ofstream(path("hand.wrl")) << R"(#VRML V2.0 utf8
+# a tetrahedron, 10 mm edges, three times
+DEF Outer Transform { translation 0.1 0 0 rotation 0 0 1 1.5707963267948966 scale 2 2 2
+  children [ Transform { translation 0 0.01 0 children [
+    DEF Tet Shape { appearance Appearance { material Material { diffuseColor 1 0 0 } }
+      geometry DEF TetGeo IndexedFaceSet { ccw TRUE solid FALSE   # tolerated
+        coord Coordinate { point [ 0 0 0, 0.01 0 0, 0 0.01 0, 0 0 0.01 ] }
+        coordIndex [ 0 2 1 -1 0 1 3 -1 0 3 2 -1 1 2 3 -1 ] } }
+  ] } ] }
+DEF Copy Transform { translation 0 0 0.05 center 0.01 0 0 rotation 0 0 1 3.141592653589793 children [ USE Tet ] }
+DEF Plain Transform { children [ Shape { geometry USE TetGeo } ] }
+)";
+    auto meshes = read_vrml(path("hand.wrl"));
+    ASSERT_TRUE(meshes) << meshes.error().message;
+    ASSERT_EQ(meshes->size(), 3u);
+    const auto near = [](const Vec3& a, const Vec3& b) { return glm::length(a - b) < 1e-9; };
+    const auto str = [](const Vec3& v) {
+        return std::to_string(v.x) + " " + std::to_string(v.y) + " " + std::to_string(v.z);
+    };
+    const Mesh& outer = (*meshes)[0];
+    EXPECT_EQ(outer.name, "Tet");
+    EXPECT_EQ(outer.color, Vec3(1, 0, 0));
+    EXPECT_EQ(outer.triangle_count(), 4u);
+    // (x, y, z) -> +0.01 y, x2, 90 deg about z, +0.1 x; metres to mm.
+    EXPECT_TRUE(near(outer.positions[0], Vec3(80, 0, 0))) << str(outer.positions[0]);
+    EXPECT_TRUE(near(outer.positions[1], Vec3(80, 20, 0))) << str(outer.positions[1]);
+    EXPECT_TRUE(near(outer.positions[3], Vec3(80, 0, 20))) << str(outer.positions[3]);
+    const Mesh& copy = (*meshes)[1];
+    EXPECT_EQ(copy.name, "Tet_2");
+    EXPECT_TRUE(near(copy.positions[0], Vec3(20, 0, 50))) << str(copy.positions[0]);  // half-turn about the centre
+    EXPECT_TRUE(near(copy.positions[1], Vec3(10, 0, 50))) << str(copy.positions[1]);  // the centre stays
+    const Mesh& plain = (*meshes)[2];
+    EXPECT_EQ(plain.name, "Plain");  // the Shape has no DEF: the enclosing Transform's
+    EXPECT_EQ(plain.color, Vec3(0.8, 0.8, 0.8));
+    EXPECT_EQ(plain.indices, outer.indices);
+
+    // In an exhibit the file's colour is kept; the uncoloured Shape gets the palette's.
+    const auto r = test::run(bodygen() + " exhibit " + path("hand.wrl") + " --quiet -o " + path("hand_bundle"));
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    std::ifstream in(path("hand_bundle") + "/scene.json");
+    const auto s = nlohmann::json::parse(in);
+    ASSERT_EQ(s["models"].size(), 3u);
+    EXPECT_EQ(s["models"][0]["name"], "Tet");
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(s["models"][0]["colour"][c].get<double>(), c == 0 ? 1.0 : 0.0, 1e-3);
+    EXPECT_NE(s["models"][2]["colour"], (nlohmann::json{0.8, 0.8, 0.8}));
+}
+
+// Bad .wrl files: one line naming the file and the line, exit 2, nothing written.
+TEST_F(ExportTest, BadVrmlIsOneLocatedLineAndExitTwo) {
+    const std::string shape = "Shape { geometry IndexedFaceSet { coord Coordinate { point [ 0 0 0 1 0 0 0 1 0 ] }\n";
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {"#VRML V1.0 ascii\nSeparator { }\n", ":1: not VRML97"},
+        {"#VRML V2.0 utf8\n" + shape + "  coordIndex [ 0 1 3 -1 ] } }\n", ":3: bad1: coordIndex 3 out of range"},
+        {"#VRML V2.0 utf8\nTransform { children [\n" + shape + " coordIndex [ 0 1 2 -1 ] } }\n", ":2: "},
+    };
+    for (size_t k = 0; k < cases.size(); ++k) {
+        const std::string file = path("bad" + std::to_string(k) + ".wrl");
+        std::ofstream(file) << cases[k].first;
+        for (const std::string& cmd :
+             {" exhibit " + file + " -o " + path("bad_bundle"), " lod " + file + " -o " + path("bad.bpm")}) {
+            const auto r = test::run(bodygen() + cmd);
+            EXPECT_EQ(r.exit_code, 2) << cmd << ": " << r.output;
+            EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+            EXPECT_NE(r.output.find(file + cases[k].second), std::string::npos) << r.output;
+        }
+        EXPECT_FALSE(fs::exists(path("bad_bundle")));
+        EXPECT_FALSE(fs::exists(path("bad.bpm")));
+    }
 }
 
 }  // namespace
