@@ -29,8 +29,20 @@ struct Reader {
     std::string source;
     std::string message;
 
+    // The message is one line: control characters from the file (in names, keys, values) are escaped.
     bool fail(const std::string& path, const std::string& reason) {
-        if (message.empty()) message = source + ": " + path + ": " + reason;
+        if (!message.empty()) return false;
+        static const char* hex = "0123456789abcdef";
+        message = source + ": ";
+        for (const unsigned char c : path + ": " + reason) {
+            if (c < 0x20 || c == 0x7f) {
+                message += "\\x";
+                message += hex[c >> 4];
+                message += hex[c & 15];
+            } else {
+                message += char(c);
+            }
+        }
         return false;
     }
 

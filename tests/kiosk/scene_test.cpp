@@ -63,6 +63,15 @@ TEST(Scene, NumberOverflowIsAnErrorNotACrash) {
     EXPECT_EQ(s.error().message.rfind("scene.json: not valid JSON: ", 0), 0u) << s.error().message;
 }
 
+// Found by fuzz_scene_parser: a value with a newline made the one-line error two lines.
+TEST(Scene, ControlCharactersInAnErrorAreEscaped) {
+    const std::string m =
+        error_of(R"({"version": 1, "models": [{"name": "a", "file": "a.obj", "style": "hatch\ng"}]})");
+    EXPECT_EQ(m.find('\n'), std::string::npos) << m;
+    EXPECT_NE(m.find("unknown style 'hatch\\x0ag'"), std::string::npos) << m;
+    EXPECT_EQ(m.rfind("scene.json: models[0].style: ", 0), 0u) << m;
+}
+
 TEST(Scene, ErrorsNameFileAndPath) {
     EXPECT_EQ(error_of(R"({"models": [{"name": "a"}]})"), "scene.json: models[0].file: missing");
     EXPECT_EQ(error_of(R"({"models": [{"name": "a", "file": "a.obj", "colour": [1, 2, 0]}]})"),
