@@ -74,7 +74,8 @@ Result<Replay> parse_text(const std::string& text, const std::string& source) {
         char* end = nullptr;
         const double t = std::strtod(first.c_str(), &end);
         if (*end != '\0' || !std::isfinite(t) || t < 0.0) return input_error(where + "expected a time in seconds");
-        if (t > kMaxReplaySeconds) return input_error(where + "time " + first + " is over the 3600 s limit");
+        if (t > kMaxReplaySeconds)
+            return input_error(where + "time " + escape_for_message(first) + " is over the 3600 s limit");
         if (t < last) return input_error(where + "time goes backwards");
         last = t;
         std::string word;
@@ -85,7 +86,8 @@ Result<Replay> parse_text(const std::string& text, const std::string& source) {
         }
         InputEvent e;
         e.time = t;
-        if (!parse_kind(word, e.type)) return input_error(where + "unknown event type '" + word + "'");
+        if (!parse_kind(word, e.type))
+            return input_error(where + "unknown event type '" + escape_for_message(word) + "'");
         bool ok = true;
         switch (e.type) {
             case InputEvent::Type::TouchDown:
@@ -102,13 +104,15 @@ Result<Replay> parse_text(const std::string& text, const std::string& source) {
             case InputEvent::Type::Key: ok = static_cast<bool>(ls >> e.key); break;
             case InputEvent::Type::Quit: ok = false; break;  // not a replay event
         }
-        if (!ok) return input_error(where + "bad arguments for '" + word + "' (see kiosk/app/replay.h)");
+        if (!ok)
+            return input_error(where + "bad arguments for '" + escape_for_message(word) + "' (see kiosk/app/replay.h)");
         std::string mod;
         while (ls >> mod) {
             const auto* it = std::find_if(std::begin(kModifierNames), std::end(kModifierNames),
                                           [&](const auto& m) { return mod == m.first; });
             if (it == std::end(kModifierNames)) {
-                return input_error(where + "unexpected '" + mod + "' (modifiers: shift, ctrl, alt)");
+                return input_error(where + "unexpected '" + escape_for_message(mod) +
+                                   "' (modifiers: shift, ctrl, alt)");
             }
             e.modifiers |= it->second;
         }
@@ -156,7 +160,8 @@ Result<Replay> parse_json(const std::string& text, const std::string& source) {
         if (e.time > kMaxReplaySeconds) return input_error(where + ".t: over the 3600 s limit");
         last = e.time;
         const std::string type = v["type"].get<std::string>();
-        if (!parse_kind(type, e.type)) return input_error(where + ".type: unknown event type '" + type + "'");
+        if (!parse_kind(type, e.type))
+            return input_error(where + ".type: unknown event type '" + escape_for_message(type) + "'");
         auto num = [&](const char* key, float& out) {
             if (!v.contains(key)) return true;
             if (!v[key].is_number()) return false;

@@ -67,6 +67,13 @@ TEST(Replay, NumberOverflowIsAnErrorNotACrash) {
     EXPECT_EQ(end.error().message, "y.replay: line 2: time 1e9 is over the 3600 s limit");
 }
 
+// Found by fuzz_replay_parser: an event type with a newline made the one-line error two lines.
+TEST(Replay, ControlCharactersInAnErrorAreEscaped) {
+    auto r = parse_replay(R"({"events": [{"t": 0, "type": "dow\n"}]})", "x.replay");
+    ASSERT_FALSE(r.ok());
+    EXPECT_EQ(r.error().message, "x.replay: events[0].type: unknown event type 'dow\\x0a'");
+}
+
 TEST(Replay, ErrorsNameTheLine) {
     auto bad = [](const std::string& text) {
         auto r = parse_replay(text, "x.replay");
