@@ -108,7 +108,33 @@ std::string read_contour(DcmItem& item, const std::string& place, PlanarContour&
 
 }  // namespace
 
+namespace {
+Result<ContourStack> read_rtstruct(const std::string& path, const ImportOptions& options);
+}
+
+// The error is one line whatever the file holds: DCMTK's texts and the file's own strings
+// (modality, ROI names) may carry control characters.
 Result<ContourStack> import_rtstruct(const std::string& path, const ImportOptions& options) {
+    auto stack = read_rtstruct(path, options);
+    if (stack.ok()) return stack;
+    Error e = stack.error();
+    std::string line;
+    for (const unsigned char c : e.message) {
+        if (c < 0x20 || c == 0x7f) {
+            static const char* hex = "0123456789abcdef";
+            line += "\\x";
+            line += hex[c >> 4];
+            line += hex[c & 15];
+        } else {
+            line += char(c);
+        }
+    }
+    e.message = std::move(line);
+    return e;
+}
+
+namespace {
+Result<ContourStack> read_rtstruct(const std::string& path, const ImportOptions& options) {
     const std::string where = path + ": ";
     if (!std::filesystem::is_regular_file(path)) return input_error(where + "no such file");
     OFLog::configure(OFLogger::FATAL_LOG_LEVEL);  // errors come back as our message, not DCMTK's log
@@ -199,5 +225,7 @@ Result<ContourStack> import_rtstruct(const std::string& path, const ImportOption
     if (options.progress) options.progress(stack.structures.size(), stack.structures.size());
     return stack;
 }
+
+}  // namespace
 
 }  // namespace body
