@@ -52,8 +52,16 @@ Status check_output_apart(const std::string& output, std::initializer_list<std::
     return ok_status();
 }
 
-std::string escape_for_message(std::string_view text, size_t max) {
+namespace {
+void put_hex(std::string& out, unsigned char c) {
     static const char* hex = "0123456789abcdef";
+    out += "\\x";
+    out += hex[c >> 4];
+    out += hex[c & 15];
+}
+}  // namespace
+
+std::string escape_for_message(std::string_view text, size_t max) {
     std::string out;
     for (size_t i = 0; i < text.size(); ++i) {
         if (out.size() >= max) {
@@ -64,11 +72,22 @@ std::string escape_for_message(std::string_view text, size_t max) {
         if (c == '\\') {
             out += "\\\\";
         } else if (c < 0x20 || c >= 0x7f) {
-            out += "\\x";
-            out += hex[c >> 4];
-            out += hex[c & 15];
+            put_hex(out, c);
         } else {
             out += char(c);
+        }
+    }
+    return out;
+}
+
+std::string escape_control_characters(std::string_view text) {
+    std::string out;
+    for (const char ch : text) {
+        const auto c = static_cast<unsigned char>(ch);
+        if (c < 0x20 || c == 0x7f) {
+            put_hex(out, c);
+        } else {
+            out += ch;
         }
     }
     return out;

@@ -30,4 +30,8 @@ Status check_output_apart(const std::string& output, std::initializer_list<std::
 // '\\' as "\\\\"), cut to `max` characters with "..." after: safe to print.
 std::string escape_for_message(std::string_view text, size_t max = 80);
 
+// `text` with control characters and DEL written as \xHH, everything else (UTF-8
+// names included) kept: a message built from file contents stays one line.
+std::string escape_control_characters(std::string_view text);
+
 }  // namespace body

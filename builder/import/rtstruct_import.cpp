@@ -10,6 +10,7 @@
 #include <map>
 
 #include "builder/import/import.h"
+#include "shared/input_file.h"
 
 namespace body {
 namespace {
@@ -118,18 +119,7 @@ Result<ContourStack> import_rtstruct(const std::string& path, const ImportOption
     auto stack = read_rtstruct(path, options);
     if (stack.ok()) return stack;
     Error e = stack.error();
-    std::string line;
-    for (const unsigned char c : e.message) {
-        if (c < 0x20 || c == 0x7f) {
-            static const char* hex = "0123456789abcdef";
-            line += "\\x";
-            line += hex[c >> 4];
-            line += hex[c & 15];
-        } else {
-            line += char(c);
-        }
-    }
-    e.message = std::move(line);
+    e.message = escape_control_characters(e.message);
     return e;
 }
 

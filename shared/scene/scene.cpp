@@ -31,18 +31,7 @@ struct Reader {
 
     // The message is one line: control characters from the file (in names, keys, values) are escaped.
     bool fail(const std::string& path, const std::string& reason) {
-        if (!message.empty()) return false;
-        static const char* hex = "0123456789abcdef";
-        message = source + ": ";
-        for (const unsigned char c : path + ": " + reason) {
-            if (c < 0x20 || c == 0x7f) {
-                message += "\\x";
-                message += hex[c >> 4];
-                message += hex[c & 15];
-            } else {
-                message += char(c);
-            }
-        }
+        if (message.empty()) message = source + ": " + escape_control_characters(path + ": " + reason);
         return false;
     }
 
