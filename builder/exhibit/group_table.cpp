@@ -4,6 +4,7 @@
 #include <fnmatch.h>
 
 #include "shared/atomic_file.h"
+#include "shared/text_lines.h"
 
 namespace body::exhibit {
 
@@ -31,23 +32,17 @@ std::string GroupTable::group_of(const std::string& name, const std::string& sid
 
 Result<GroupTable> parse_group_table(const std::string& text, const std::string& path) {
     GroupTable table;
-    size_t pos = 0, line_no = 0;
-    while (pos < text.size()) {
-        size_t end = text.find('\n', pos);
-        if (end == std::string::npos) end = text.size();
-        std::string line = text.substr(pos, end - pos);
-        pos = end + 1;
-        ++line_no;
-        if (!line.empty() && line.back() == '\r') line.pop_back();
-        if (line.empty() || line[0] == '#' || line == "pattern\tgroup") continue;
-        const std::string where = path + ":" + std::to_string(line_no) + ": ";
+    Status walked = for_each_text_line(text, path, [&](const std::string& line, const std::string& where) -> Status {
+        if (line.empty() || line[0] == '#' || line == "pattern\tgroup") return ok_status();
         const size_t tab = line.find('\t');
         if (tab == std::string::npos || line.find('\t', tab + 1) != std::string::npos)
             return input_error(where + "expected 'PATTERN<TAB>GROUP'");
         GroupRule r{line.substr(0, tab), line.substr(tab + 1)};
         if (r.pattern.empty() || r.group.empty()) return input_error(where + "empty pattern or group");
         table.rules.push_back(std::move(r));
-    }
+        return ok_status();
+    });
+    if (!walked) return walked.error();
     if (table.rules.empty()) return input_error(path + ": no rules in the group table");
     return table;
 }

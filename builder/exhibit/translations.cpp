@@ -4,21 +4,14 @@
 #include <algorithm>
 
 #include "shared/atomic_file.h"
+#include "shared/text_lines.h"
 
 namespace body::exhibit {
 
 Result<Translations> parse_translations(const std::string& text, const std::string& path) {
     Translations t;
-    size_t pos = 0, line_no = 0;
-    while (pos < text.size()) {
-        size_t end = text.find('\n', pos);
-        if (end == std::string::npos) end = text.size();
-        std::string line = text.substr(pos, end - pos);
-        pos = end + 1;
-        ++line_no;
-        if (!line.empty() && line.back() == '\r') line.pop_back();
-        if (line.empty() || line[0] == '#' || line.starts_with("name\t")) continue;
-        const std::string where = path + ":" + std::to_string(line_no) + ": ";
+    Status walked = for_each_text_line(text, path, [&](const std::string& line, const std::string& where) -> Status {
+        if (line.empty() || line[0] == '#' || line.starts_with("name\t")) return ok_status();
         std::vector<std::string> cells;
         size_t a = 0;
         for (size_t b; (b = line.find('\t', a)) != std::string::npos; a = b + 1) cells.push_back(line.substr(a, b - a));
@@ -35,7 +28,9 @@ Result<Translations> parse_translations(const std::string& text, const std::stri
             return input_error(where + "a second row for '" + cells[0] + "' in '" + cells[1] + "'");
         if (std::find(t.languages.begin(), t.languages.end(), cells[1]) == t.languages.end())
             t.languages.push_back(cells[1]);
-    }
+        return ok_status();
+    });
+    if (!walked) return walked.error();
     if (t.rows.empty()) return input_error(path + ": no translations in the table");
     return t;
 }

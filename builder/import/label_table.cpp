@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "shared/atomic_file.h"
+#include "shared/text_lines.h"
 
 namespace body {
 namespace {
@@ -132,19 +133,11 @@ std::string parse_itksnap_line(const std::string& line, LabelEntry& entry) {
 Result<LabelTable> parse_label_table(const std::string& text, const std::string& path) {
     if (is_binary_lut(text)) return parse_binary_lut(text);
     LabelTable table;
-    size_t line_no = 0, pos = 0;
-    while (pos < text.size()) {
-        size_t end = text.find('\n', pos);
-        if (end == std::string::npos) end = text.size();
-        std::string line = text.substr(pos, end - pos);
-        pos = end + 1;
-        ++line_no;
-        if (!line.empty() && line.back() == '\r') line.pop_back();
+    Status walked = for_each_text_line(text, path, [&](std::string& line, const std::string& where) -> Status {
         const size_t hash = line.find('#');
         if (hash != std::string::npos) line.resize(hash);
         const auto tokens = split_tokens(line);
-        if (tokens.empty()) continue;
-        const std::string where = path + ":" + std::to_string(line_no) + ": ";
+        if (tokens.empty()) return ok_status();
         for (char c : line) {
             if (c == '\0') return input_error(where + "binary data in a text label table");
         }
@@ -159,7 +152,9 @@ Result<LabelTable> parse_label_table(const std::string& text, const std::string&
         if (!table.entries.emplace(*index, std::move(entry)).second) {
             return input_error(where + "duplicate label index " + tokens[0]);
         }
-    }
+        return ok_status();
+    });
+    if (!walked) return walked.error();
     if (table.entries.empty()) return input_error(path + ": no labels in the table");
     return table;
 }
