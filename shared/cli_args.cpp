@@ -82,4 +82,11 @@ Result<long> CliArgs::get_long(const std::string& name, long fallback) const {
     return n;
 }
 
+Result<unsigned> CliArgs::get_jobs(unsigned fallback) const {
+    auto n = get_long("jobs", static_cast<long>(fallback));
+    if (!n) return n.error();
+    if (has("jobs") && (*n < 1 || *n > 256)) return input_error("option --jobs: must be between 1 and 256");
+    return static_cast<unsigned>(*n);
+}
+
 }  // namespace body

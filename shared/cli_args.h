@@ -24,6 +24,8 @@ public:
     // Numeric accessors: an unparsable value is a usage error naming the option.
     Result<double> get_double(const std::string& name, double fallback) const;
     Result<long> get_long(const std::string& name, long fallback) const;
+    // `--jobs N`: threads, 1 to 256; `fallback` when the option is absent.
+    Result<unsigned> get_jobs(unsigned fallback) const;
 
 private:
     std::vector<std::string> positional_;

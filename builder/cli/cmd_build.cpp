@@ -165,9 +165,8 @@ void print_usage() {
 // The pipeline's options from the command line; errors name the bad option
 // (shared with `bodygen exhibit`).
 Result<BuildOptions> build_options_from_args(const CliArgs& args) {
-    auto jobs = args.get_long("jobs", 1);
+    auto jobs = args.get_jobs(1);
     if (!jobs) return jobs.error();
-    if (*jobs < 1 || *jobs > 256) return input_error("build: --jobs must be between 1 and 256");
     auto smooth = args.get_long("smooth", 0);
     if (!smooth) return smooth.error();
     if (*smooth < 0 || *smooth > 1000) return input_error("build: --smooth must be between 0 and 1000");
@@ -193,7 +192,7 @@ Result<BuildOptions> build_options_from_args(const CliArgs& args) {
     options.tiling = *tiling;
     options.correspondence = *corr;
     options.branching = *branching;
-    options.jobs = static_cast<unsigned>(*jobs);
+    options.jobs = *jobs;
     auto repair = repair_options_from_args(args);
     if (!repair) return repair.error();
     options.repair = *repair;

@@ -111,9 +111,8 @@ Result<ImportOptions> import_options_from_args(const CliArgs& args) {
     if (!min_area) return min_area.error();
     if (*min_area < 0.0 || *min_area > 8.0) return input_error("option --min-area: must be between 0 and 8 voxels");
     o.min_area = *min_area;
-    auto jobs = args.get_long("jobs", 1);
+    auto jobs = args.get_jobs(1);
     if (!jobs) return jobs.error();
-    if (*jobs < 1 || *jobs > 1024) return input_error("option --jobs: must be between 1 and 1024");
     o.jobs = static_cast<int>(*jobs);
     return o;
 }

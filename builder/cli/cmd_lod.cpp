@@ -35,14 +35,13 @@ Result<lod::LodOptions> lod_options_from_args(const CliArgs& args) {
     auto chunk = args.get_long("chunk-splits", 4096);
     if (!chunk) return chunk.error();
     if (*min_tris < 0 || *chunk < 1) return input_error("lod: --min-triangles >= 0 and --chunk-splits >= 1");
-    auto jobs = args.get_long("jobs", 0);
+    auto jobs = args.get_jobs(0);
     if (!jobs) return jobs.error();
-    if (args.has("jobs") && (*jobs < 1 || *jobs > 256)) return input_error("lod: --jobs must be between 1 and 256");
     lod::LodOptions options;
     options.min_triangles = size_t(*min_tris);
     options.chunk_splits = size_t(*chunk);
     options.normals = !args.has("no-normals");
-    options.threads = unsigned(*jobs);
+    options.threads = *jobs;
     return options;
 }
 

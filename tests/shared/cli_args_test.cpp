@@ -37,5 +37,18 @@ TEST(CliArgs, NegativeNumbersArePositional) {
     EXPECT_EQ(a->positional().size(), 2u);
 }
 
+TEST(CliArgs, JobsAreOneTo256WithTheFallbackWhenAbsent) {
+    const auto jobs = [](std::vector<std::string> argv) { return CliArgs::parse(argv, {"jobs"}, {})->get_jobs(3); };
+    EXPECT_EQ(*jobs({}), 3u);
+    EXPECT_EQ(*jobs({"--jobs", "1"}), 1u);
+    EXPECT_EQ(*jobs({"--jobs=256"}), 256u);
+    for (const char* bad : {"0", "257", "-2", "two"}) {
+        auto r = jobs({"--jobs", bad});
+        ASSERT_FALSE(r.ok()) << bad;
+        EXPECT_NE(r.error().message.find("--jobs"), std::string::npos);
+        EXPECT_EQ(r.error().exit_code, kExitBadInput);
+    }
+}
+
 }  // namespace
 }  // namespace body
