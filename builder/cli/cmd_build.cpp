@@ -50,15 +50,6 @@ Result<E> pick(const CliArgs& args, const char* option, std::initializer_list<st
     return input_error("build: --" + std::string(option) + " must be " + known + ", not '" + *value + "'");
 }
 
-void draw_progress(size_t done, size_t total) {
-    const int width = 40;
-    const int filled = total ? int(double(done) / double(total) * width) : width;
-    std::fprintf(stderr, "\r[%.*s%*s] %zu/%zu slice pairs", filled, "########################################",
-                 width - filled, "", done, total);
-    if (done >= total) std::fprintf(stderr, "\r%*s\r", width + 40, "");
-    std::fflush(stderr);
-}
-
 enum class OutputKind { Obj, Bpm, Directory, Unknown };
 
 OutputKind output_kind(const std::string& path) {
@@ -268,7 +259,7 @@ int run_build(const Args& argv) {
         return report(apart.error());
     if (!quiet)
         options->warning = [](const std::string& w) { std::fprintf(stderr, "bodygen: warning: %s\n", w.c_str()); };
-    if (!quiet && isatty(STDERR_FILENO)) options->progress = draw_progress;
+    if (!quiet && isatty(STDERR_FILENO)) options->progress = progress_bar("slice pairs");
     std::map<std::string, size_t> repairs;
     options->repair_counts = [&repairs](const std::map<std::string, size_t>& counts) { repairs = counts; };
 

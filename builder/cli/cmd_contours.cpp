@@ -65,15 +65,6 @@ Result<std::vector<int64_t>> parse_only(const std::string& text) {
     return out;
 }
 
-void draw_progress(size_t done, size_t total) {
-    const int width = 30;
-    const int filled = total ? static_cast<int>(width * done / total) : width;
-    std::fprintf(stderr, "\r  [%.*s%*s] %zu/%zu structures", filled, "##############################", width - filled,
-                 "", done, total);
-    if (done == total) std::fputc('\n', stderr);
-    std::fflush(stderr);
-}
-
 }  // namespace
 
 // Shared with other commands that take the same import options.
@@ -135,7 +126,7 @@ int run_contours(const Args& argv) {
     const bool quiet = args->has("quiet");
     if (!quiet) {
         options->note = [](const std::string& m) { std::fprintf(stderr, "bodygen: note: %s\n", m.c_str()); };
-        if (::isatty(2)) options->progress = draw_progress;
+        if (::isatty(2)) options->progress = progress_bar("structures");
     }
     const std::string& input = args->positional()[0];
     if (Status apart = check_output_apart(*output, {input, args->get_or("labels", "")}); !apart)

@@ -60,15 +60,6 @@ constexpr const char* kUsage =
     "colours: the source's (RT-STRUCT ROI colours, colour tables beside label volumes), else\n"
     "distinct colours with touching structures apart.\n";
 
-void draw_progress(size_t done, size_t total) {
-    const int width = 30;
-    const int filled = total ? static_cast<int>(width * done / total) : width;
-    std::fprintf(stderr, "\r  [%.*s%*s] %zu/%zu structures", filled, "##############################", width - filled,
-                 "", done, total);
-    if (done == total) std::fprintf(stderr, "\r%*s\r", width + 40, "");
-    std::fflush(stderr);
-}
-
 bool is_mesh_file(const fs::path& p) { return body::is_mesh_file(p.string()); }
 
 // The parts of one mesh file: a one-mesh file is named after the file.
@@ -207,7 +198,7 @@ int run_exhibit(const Args& argv) {
     const auto start = std::chrono::steady_clock::now();
     auto parts = load_parts(*args, *axes, quiet);
     if (!parts) return report(parts.error());
-    if (!quiet && ::isatty(STDERR_FILENO)) options.progress = draw_progress;
+    if (!quiet && ::isatty(STDERR_FILENO)) options.progress = progress_bar("structures");
     const std::vector<exhibit::BuiltPart> built = exhibit::build_parts(*parts, options);
 
     size_t failures = 0;

@@ -14,20 +14,6 @@
 #include "shared/input_file.h"
 
 namespace body::cli {
-namespace {
-
-// Per structure: the faces its collapse loop removed of those it will try to.
-void draw_progress(size_t done, size_t total) {
-    const int width = 40;
-    const int filled = total ? int(double(done) / double(total) * width) : width;
-    std::fprintf(stderr, "\r[%.*s%*s] %zu/%zu faces removed", filled, "########################################",
-                 width - filled, "", done, total);
-    if (done >= total) std::fprintf(stderr, "\r%*s\r", width + 50, "");
-    std::fflush(stderr);
-}
-
-}  // namespace
-
 // The progressive-mesh options from the command line (shared with `bodygen exhibit`).
 Result<lod::LodOptions> lod_options_from_args(const CliArgs& args) {
     auto min_tris = args.get_long("min-triangles", 0);
@@ -68,7 +54,7 @@ int run_lod(const Args& argv) {
     if (!options) return report(options.error());
     if (Status apart = check_output_apart(*args->get("output"), {args->positional()[0]}); !apart)
         return report(apart.error());
-    if (isatty(STDERR_FILENO) && !args->has("quiet")) options->progress = draw_progress;
+    if (isatty(STDERR_FILENO) && !args->has("quiet")) options->progress = progress_bar("faces removed");
     const auto start = std::chrono::steady_clock::now();
     auto meshes = read_mesh_file(args->positional()[0]);
     if (!meshes) return report(meshes.error());

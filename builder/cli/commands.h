@@ -1,6 +1,8 @@
 #pragma once
 // bodygen subcommands. Each takes the arguments after the subcommand name and
 // returns a process exit code (0 ok, 1 runtime failure, 2 bad usage/input).
+#include <cstddef>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -18,6 +20,10 @@ struct Command {
 
 // Prints "bodygen: <message>" on stderr and returns the error's exit code.
 int report(const Error& error);
+
+// A progress bar on stderr, `[####    ] DONE/TOTAL UNIT`, erased when done reaches
+// total; for the `progress` callbacks of the long commands (callers check isatty).
+std::function<void(size_t, size_t)> progress_bar(const char* unit);
 
 // `bodygen pack` without the printing (cmd_pack.cpp): validates SCENE and its
 // models and writes the bundle atomically; `bytes` is the bundle's size.
