@@ -100,6 +100,22 @@ static size_t mark_ring(State& s, uint32_t v, const std::vector<uint32_t>& corne
     return common;
 }
 
+// Whether a (opposite the removed faces) stays a neighbour of v after the collapse:
+// a face other than the removed ones joins it to u or v. The vertex split that undoes
+// the collapse names its new faces' third vertex among v's neighbours (.bpm). Always
+// true on a manifold mesh; a face soup can lose the vertex from the ring.
+static bool stays_neighbour(const State& s, uint32_t a, const uint32_t shared[2], uint32_t shared_count) {
+    for (const std::vector<uint32_t>* corners : {&s.cu, &s.cv}) {
+        for (const uint32_t c : *corners) {
+            const uint32_t f = c / 3;
+            if (f == shared[0] || (shared_count == 2 && f == shared[1])) continue;
+            const uint32_t* t = &s.idx[size_t(f) * 3];
+            if (t[0] == a || t[1] == a || t[2] == a) return true;
+        }
+    }
+    return false;
+}
+
 // Checks topology of the collapse u -> v (u disappears). Fills s.cu and s.cv with u's
 // and v's live corners (geometry_allowed and apply_collapse use them); `shared` gets
 // the faces removed.
@@ -126,6 +142,7 @@ bool topology_allowed(State& s, uint32_t u, uint32_t v, uint32_t shared[2], uint
     for (uint32_t i = 0; i < shared_count; ++i) {
         const uint32_t a = opposite[i];
         if (s.fcount[a] <= (s.boundary[a] ? 1u : 3u)) return false;
+        if (!stays_neighbour(s, a, shared, shared_count)) return false;
     }
     const uint32_t merged = s.fcount[u] + s.fcount[v] - 2 * shared_count;
     if (merged > pm::kMaxPatchFan || merged < (s.boundary[v] ? 1u : 3u)) return false;

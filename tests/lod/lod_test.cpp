@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <map>
+#include <random>
 #include <set>
 
 #include "builder/lod/bpm_writer.h"
@@ -539,6 +540,54 @@ TEST(Lod, LevelSelectionAndDirtyRanges) {
     }
     EXPECT_GT(moved, 0u);  // optimal placement moved some parents
     for (size_t v = 0; v < m.max_vertex_count(); ++v) ASSERT_NEAR(glm::length(m.normal(v)), 1.0f, 1e-4f);
+}
+
+// A face soup (random triangles over shared vertices: no manifold anywhere) encodes,
+// and every level decodes with its full level the input's faces (the writer once
+// refused soups: a collapse left a removed face's third vertex outside the ring).
+TEST(Lod, FaceSoupEncodesAndEveryLevelDecodes) {
+    for (uint32_t seed = 1; seed <= 4; ++seed) {
+        std::mt19937 rng(seed);
+        Mesh soup;
+        soup.name = "soup";
+        std::uniform_real_distribution<double> coord(0.0, 1.0);
+        for (int v = 0; v < 150; ++v) soup.positions.push_back({coord(rng), coord(rng), coord(rng)});
+        std::uniform_int_distribution<uint32_t> pick(0, 149);
+        std::set<std::array<uint32_t, 3>> faces;
+        while (faces.size() < 300) {
+            const uint32_t a = pick(rng), b = pick(rng), c = pick(rng);
+            if (a == b || b == c || a == c) continue;
+            if (faces.insert({a, b, c}).second) soup.indices.insert(soup.indices.end(), {a, b, c});
+        }
+        auto bytes = lod::encode_bpm(std::vector<Mesh>{soup});
+        ASSERT_TRUE(bytes.ok()) << "seed " << seed << ": " << bytes.error().message;
+        auto pms = decode(*bytes);
+        ASSERT_EQ(pms.size(), 1u);
+        ProgressiveMesh& m = *pms[0];
+        m.refine_to(m.max_level());
+        EXPECT_EQ(m.triangle_count(), soup.triangle_count()) << "seed " << seed;
+        // Each full-level triangle lies on an input triangle's corners (up to quantization).
+        const double bound = m.quantization_bound();
+        size_t matched = 0;
+        for (size_t f = 0; f < m.triangle_count(); ++f) {
+            const uint32_t* t = &m.indices()[f * 3];
+            bool found = false;
+            for (size_t g = 0; g < soup.indices.size() && !found; g += 3) {
+                for (int r = 0; r < 3 && !found; ++r) {  // same winding, any rotation
+                    bool same = true;
+                    for (int k = 0; k < 3; ++k) {
+                        const Vec3 p(m.position(t[(k + r) % 3]));
+                        same = same && glm::length(p - soup.positions[soup.indices[g + k]]) <= bound;
+                    }
+                    found = same;
+                }
+            }
+            matched += found;
+        }
+        EXPECT_EQ(matched, soup.triangle_count()) << "seed " << seed;
+        m.coarsen_to(0);
+        EXPECT_LE(m.triangle_count(), soup.triangle_count());
+    }
 }
 
 TEST(Lod, RejectsEmptyInput) {
