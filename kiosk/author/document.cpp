@@ -19,9 +19,9 @@ Document::Document(scene::Scene scene, std::string path) : scene_(std::move(scen
     scene_json_ = saved_json_ = scene::scene_to_json(scene_);
 }
 
-void Document::changed() {
+void Document::changed(std::string json) {
     ++revision_;
-    scene_json_ = scene::scene_to_json(scene_);
+    scene_json_ = json.empty() ? scene::scene_to_json(scene_) : std::move(json);
 }
 
 Status Document::apply(const std::string& label, const std::function<Status(scene::Scene&)>& edit,
@@ -42,7 +42,7 @@ Status Document::apply(const std::string& label, const std::function<Status(scen
     }
     redo_.clear();
     scene_ = std::move(parsed).value();
-    changed();
+    changed(text);  // the parser's defaults are already in the text it read
     return ok_status();
 }
 

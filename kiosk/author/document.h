@@ -53,7 +53,7 @@ private:
         std::string label, merge_key;
         scene::Scene before, after;
     };
-    void changed();
+    void changed(std::string json = {});
 
     scene::Scene scene_;
     std::string path_;

@@ -92,6 +92,11 @@ TEST(AuthorReplay, BuildEditSaveAndTheKioskShowsThePreview) {
     // Rows now: 3 "group 1", 4 "(no group)", 5 a, 6 b, 7 add model, 8 buttons, 9 "Group: group 1".
     s.row(6, 100);  // select b: 9 "Model: b", 10 name, 11 file, 12 group
     s.row(12);      // group: none -> group 1
+    // Shift+drag on b moves it with the manipulation sphere: one "move" command on release.
+    s.out << s.t << " mouse-down left 769 400 shift\n";
+    for (int i = 1; i <= 6; ++i) s.out << s.t + 0.02 * i << " mouse-move " << 769 + 10 * i << " 400 shift\n";
+    s.out << s.t + 0.14 << " mouse-up left 829 400 shift\n";
+    s.t += 0.2;
     s.out << s.t << " wheel 800 400 1\n";
     s.t += 0.1;
     s.key('V');  // start view from the (zoomed) camera
@@ -120,6 +125,8 @@ TEST(AuthorReplay, BuildEditSaveAndTheKioskShowsThePreview) {
     EXPECT_EQ(a["transform"]["scale"], 1.0);
     EXPECT_FALSE(a.contains("group"));
     EXPECT_EQ(j["models"][1]["group"], "group 1");
+    EXPECT_GT(j["models"][1]["transform"]["translate"][0].get<double>(), 0.1);  // dragged right
+    EXPECT_EQ(j["models"][0]["transform"]["translate"][0].get<double>(), 0.0);
     ASSERT_EQ(j["groups"].size(), 1u);
     EXPECT_EQ(j["groups"][0]["name"], "group 1");
     EXPECT_GT(j["camera"]["distance"].get<double>(), 0.0);  // the start view was set
@@ -143,6 +150,32 @@ TEST(AuthorReplay, BuildEditSaveAndTheKioskShowsThePreview) {
     // Not trivially equal: the edits are on screen (wireframe a is not the red of a smooth fill).
     EXPECT_GT(mismatch(preview.value(), author.value()), 0.01);
     if (!::testing::Test::HasFailure() && !std::getenv("BODY_KEEP_TEST_DIR")) fs::remove_all(dir);
+}
+
+// The same window on a desktop: GLFW under Xvfb (a real X server, the glfw
+// backend's events path), driven by a replay; the saved file holds the edits.
+TEST(AuthorReplay, GlfwWindowUnderXvfbSavesTheEdits) {
+    if (!fs::exists("/usr/bin/xvfb-run")) GTEST_SKIP() << "needs xvfb (xvfb-run)";
+    if (!fs::exists("/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf")) GTEST_SKIP() << "needs fonts-dejavu-core";
+    const fs::path dir = test::fresh_test_dir("body_author_xvfb");
+    write_sphere(dir / "a.obj", 0.0f, 1.0f);
+    Script s;
+    s.row(4, 100);                  // a (rows: 3 "(no group)", 4 a, 5 add model, 6 buttons, 7 "Model: a", 8 name ...)
+    s.row(15);                      // style: smooth -> wireframe
+    s.set(18, U"Hippocampus ΑΒΓ");  // title [en]
+    s.key('S', "ctrl");
+    s.out << s.t + 0.2 << " end\n";
+    std::ofstream(dir / "author.replay") << s.out.str();
+    auto r = test::run("/usr/bin/xvfb-run -a -s '-screen 0 1280x800x24' " + test::bin("bodyview") + " --author " +
+                       (dir / "exhibit").string() + "/ " + (dir / "a.obj").string() +
+                       " --platform glfw --windowed --size 1280x800 --replay " + (dir / "author.replay").string());
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    auto text = read_file((dir / "exhibit" / "scene.json").string());
+    ASSERT_TRUE(text) << r.output;
+    const auto j = nlohmann::json::parse(text.value());
+    EXPECT_EQ(j["models"][0]["style"], "wireframe");
+    EXPECT_EQ(j["models"][0]["label"]["en"]["title"], "Hippocampus ΑΒΓ");
+    if (!::testing::Test::HasFailure()) fs::remove_all(dir);
 }
 
 }  // namespace
