@@ -53,6 +53,7 @@ private:
     void bind(long frame, double now);
     scene::HomeCamera camera_as_start_view() const;
     glm::mat4 placement(int i) const;
+    float view_shift() const { return editor_.panel_width() * 0.5f; }
 
     platform::Surface& surface_;
     const AuthorRunOptions& options_;
@@ -171,8 +172,12 @@ void AuthorLoop::serve_requests() {
     }
 }
 
-void AuthorLoop::view_event(const InputEvent& e) {
+// The view is drawn centred right of the panel (shifted by half its width):
+// events reach the camera, picking and the manipulation sphere shifted back.
+void AuthorLoop::view_event(const InputEvent& event) {
     using T = InputEvent::Type;
+    InputEvent e = event;
+    e.x -= view_shift();
     if (e.type == T::MouseDown && e.button() == MouseButton::Right) {
         right_down_ = true;
         last_x_ = e.x;
@@ -305,7 +310,8 @@ int AuthorLoop::run() {
         Vec3f center;
         float radius = 0;
         renderer_.scene_bounds(center, radius);
-        renderer_.render(app_->camera().render_view(glm::vec2(0.0f), center, radius), render::Lighting{}, fo);
+        renderer_.render(app_->camera().render_view(glm::vec2(view_shift(), 0.0f), center, radius), render::Lighting{},
+                         fo);
         painter_.draw(editor_, fo.framebuffer, width, height);
         const bool last = quit_ || (replaying_ && next_event_ >= replay_.events.size() && now_ >= replay_.end_time) ||
                           (options_.frames > 0 && frame + 1 >= options_.frames);

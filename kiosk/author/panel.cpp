@@ -59,15 +59,23 @@ void tree(Builder& b, const scene::Scene& s, const Selection& sel) {
     };
     for (size_t g = 0; g < s.groups.size(); ++g) {
         const scene::Group& group = s.groups[g];
-        PanelRow& r = b.add(RowKind::TreeGroup, group.name + (group.visible ? "" : "  (hidden)"));
+        // A group is open while it or one of its models is selected: a 116-model atlas stays one screen.
+        const bool open =
+            sel.group == static_cast<int>(g) || (sel.model >= 0 && sel.model < static_cast<int>(s.models.size()) &&
+                                                 s.models[static_cast<size_t>(sel.model)].group == group.name);
+        size_t members = 0;
+        for (const scene::Model& m : s.models) members += m.group == group.name;
+        PanelRow& r = b.add(RowKind::TreeGroup, std::string(open ? "▾ " : "▸ ") + group.name + " (" +
+                                                    std::to_string(members) + ")" + (group.visible ? "" : " hidden"));
         r.group = static_cast<int>(g);
         r.active = sel.group == static_cast<int>(g);
+        if (!open) continue;
         for (size_t i = 0; i < s.models.size(); ++i)
             if (s.models[i].group == group.name) model_row(i, 1);
     }
     bool any_loose = false;
     for (const scene::Model& m : s.models) any_loose = any_loose || m.group.empty();
-    if (any_loose) b.add(RowKind::TreeGroup, "(no group)").group = -1;
+    if (any_loose) b.add(RowKind::TreeGroup, "(no group)").group = -1;  // ungrouped models are always listed
     for (size_t i = 0; i < s.models.size(); ++i)
         if (s.models[i].group.empty()) model_row(i, 1);
     PanelRow& add = b.add(RowKind::Field, "add model (.bpm/.obj)");

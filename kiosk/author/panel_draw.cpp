@@ -120,7 +120,7 @@ void PanelPainter::State::row(Layer& l, const PanelRow& r, Editor& e) {
         case RowKind::TreeGroup:
         case RowKind::TreeModel:
             if (r.active) quad(l.solid, r.rect, kActive);
-            text(l, (r.kind == RowKind::TreeGroup ? "▸ " : "") + r.text, r.rect, pad, kInk);
+            text(l, r.text, r.rect, pad, kInk);
             break;
         case RowKind::Field: {
             text(l, r.text, Rect{r.rect.x, r.rect.y, r.value_rect.x - r.rect.x, r.rect.h}, pad, kInk);
@@ -181,7 +181,7 @@ Status PanelPainter::init(const std::string& font_file, float scale, const std::
     for (GLuint i = 0; i < 3; ++i) glEnableVertexAttribArray(i);
     glBindVertexArray(0);
     glGenTextures(1, &s->texture);
-    if (auto b = s->bake(extra_text + "▸"); !b) {
+    if (auto b = s->bake(extra_text + "▸▾"); !b) {
         glDeleteProgram(s->program);
         return b;
     }

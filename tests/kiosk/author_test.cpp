@@ -296,6 +296,7 @@ TEST(AuthorEditor, PanelEditsUndoRedoSaveAndAddRemove) {
     std::ofstream(dir / "c.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
     Editor ed(Document(test_scene(), (dir / "scene.json").string()));
     ed.set_viewport(1280, 800, 1.0f);
+    click(ed, "▸ left (1)");  // opens the group: its model is listed
     click(ed, "a");
     ASSERT_EQ(ed.selection().model, 0);
     click(ed, "style");  // a choice: smooth -> wireframe
