@@ -35,6 +35,8 @@ bool parse_button(const std::string& s, InputEvent& e) {
     return true;
 }
 
+bool valid_codepoint(int c) { return c >= 0 && c <= 0x10FFFF && !(c >= 0xD800 && c < 0xE000); }
+
 bool parse_kind(const std::string& s, InputEvent::Type& k) {
     static const std::pair<const char*, InputEvent::Type> kinds[] = {
         {"down", InputEvent::Type::TouchDown},
@@ -123,6 +125,8 @@ Result<Replay> parse_text(const std::string& text, const std::string& source) {
             e.modifiers |= it->second;
         }
         e.pressed = e.type == InputEvent::Type::Key || e.type == InputEvent::Type::Text;  // a replayed key is a press
+        if (e.type == InputEvent::Type::Text && !valid_codepoint(e.key))
+            return input_error(where + "'text' expects a Unicode codepoint (0..1114111, no surrogates)");
         r.events.push_back(e);
         r.end_time = std::max(r.end_time, t);
     }
@@ -194,6 +198,8 @@ Result<Replay> parse_json(const std::string& text, const std::string& source) {
             if (v[name].get<bool>()) e.modifiers |= bit;
         }
         e.pressed = e.type == InputEvent::Type::Key || e.type == InputEvent::Type::Text;  // a replayed key is a press
+        if (e.type == InputEvent::Type::Text && !valid_codepoint(e.key))
+            return input_error(where + ".key: a Unicode codepoint (0..1114111, no surrogates)");
         r.events.push_back(e);
         r.end_time = std::max(r.end_time, e.time);
     }

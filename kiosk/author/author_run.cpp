@@ -71,7 +71,6 @@ private:
     // The 3-D view's mouse: right drag pans, a left click without a drag selects.
     bool right_down_ = false, left_down_ = false, left_moved_ = false;
     float last_x_ = 0, last_y_ = 0, down_x_ = 0, down_y_ = 0;
-    int previews_ = 0;
 };
 
 glm::mat4 AuthorLoop::placement(int i) const {
@@ -157,7 +156,6 @@ void AuthorLoop::preview() {
         }
     };
     ko.hooks.frame_done = [&](const FrameReport&) { return !back; };
-    ++previews_;
     const int code = run_kiosk(surface_, editor_.document().scene(), ko);
     if (code != kExitOk) std::fprintf(stderr, "bodyview: author: the preview ended with exit code %d\n", code);
 }

@@ -66,7 +66,8 @@ const std::vector<PanelRow>& Editor::rows() {
 
 const PanelRow* Editor::focused_row() {
     if (!focused_) return nullptr;
-    for (const PanelRow& r : rows()) {
+    if (rows_.empty()) rows();
+    for (const PanelRow& r : rows_) {  // the rows last laid out: pointers into them stay valid while drawing
         if (r.kind != RowKind::Field) continue;
         if (focus_field_ < 0 ? r.command == Command::AddModel
                              : r.field == focus_field_ && r.target.model == focus_target_.model &&

@@ -55,7 +55,8 @@ public:
     Status add_model(const std::string& file);
     Status remove_model(int model);
 
-    // What to draw.
+    // What to draw. rows() lays the panel out again (pointers into the old rows die);
+    // focused_row() looks in the rows last laid out.
     const std::vector<PanelRow>& rows();
     const PanelRow* focused_row();  // the row whose field has the focus, or nullptr
     const TextField& field() const { return field_; }

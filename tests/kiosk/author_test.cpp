@@ -11,6 +11,7 @@
 #include <regex>
 #include <set>
 
+#include "kiosk/app/replay.h"
 #include "kiosk/author/editor.h"
 #include "shared/atomic_file.h"
 #include "shared/scene/scene_write.h"
@@ -71,6 +72,20 @@ TEST(AuthorTextField, EditsUtf8ByCodepoint) {
     f.select_all();
     f.insert(U'x');
     EXPECT_EQ(f.text(), "x");
+}
+
+TEST(AuthorReplayFormat, TypedCharactersAreCodepoints) {
+    auto r = parse_replay("0.1 text 252\n0.2 key 257 shift\n", "t.replay");
+    ASSERT_TRUE(r) << r.error().message;
+    ASSERT_EQ(r.value().events.size(), 2u);
+    EXPECT_EQ(r.value().events[0].type, InputEvent::Type::Text);
+    EXPECT_EQ(r.value().events[0].key, 252);
+    EXPECT_EQ(r.value().events[1].key, platform::kKeyBackspace);
+    EXPECT_EQ(r.value().events[1].modifiers, static_cast<uint32_t>(kModShift));
+    auto bad = parse_replay("0.1 text -5\n", "t.replay");
+    ASSERT_FALSE(bad);
+    EXPECT_NE(bad.error().message.find("t.replay: line 1"), std::string::npos) << bad.error().message;
+    EXPECT_FALSE(parse_replay(R"({"events": [{"t": 0, "type": "text", "key": 55296}]})", "t.json"));
 }
 
 TEST(AuthorDocument, UndoRedoAndRefusedEdits) {
