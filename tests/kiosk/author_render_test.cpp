@@ -93,9 +93,10 @@ TEST(AuthorReplay, BuildEditSaveAndTheKioskShowsThePreview) {
     s.row(6, 100);  // select b: 9 "Model: b", 10 name, 11 file, 12 group
     s.row(12);      // group: none -> group 1
     // Shift+drag on b moves it with the manipulation sphere: one "move" command on release.
-    s.out << s.t << " mouse-down left 769 400 shift\n";
-    for (int i = 1; i <= 6; ++i) s.out << s.t + 0.02 * i << " mouse-move " << 769 + 10 * i << " 400 shift\n";
-    s.out << s.t + 0.14 << " mouse-up left 829 400 shift\n";
+    // b is at x 769 in a centred view; the author's view is centred right of the 400-px panel.
+    s.out << s.t << " mouse-down left 969 400 shift\n";
+    for (int i = 1; i <= 6; ++i) s.out << s.t + 0.02 * i << " mouse-move " << 969 + 10 * i << " 400 shift\n";
+    s.out << s.t + 0.14 << " mouse-up left 1029 400 shift\n";
     s.t += 0.2;
     s.out << s.t << " wheel 800 400 1\n";
     s.t += 0.1;
