@@ -24,7 +24,8 @@ void print_help(std::FILE* out) {
                  "bodyview %s - shows anatomy models on a touch screen (OpenGL ES 3.0)\n\n"
                  "usage: bodyview [options] [BUNDLE/]\n"
                  "       bodyview --headless --size 1280x800 --model X.bpm --style S --lod R --screenshot out.png\n"
-                 "       bodyview --headless --benchmark [--model X.bpm]\n\noptions:\n"
+                 "       bodyview --headless --benchmark [--model X.bpm]\n"
+                 "       bodyview --author (BUNDLE/ | scene.json | MODELS...)   compose and save a scene\n\noptions:\n"
                  "  --platform P      auto|glfw|drm|headless (compiled here:",
                  BODY_VERSION_STRING);
     for (auto b : platform::compiled_backends()) std::fprintf(out, " %s", platform::backend_name(b));
@@ -66,6 +67,9 @@ void print_help(std::FILE* out) {
                  "  --touch-calibration \"A B C D E F\"  touch: 2x3 matrix applied to the panel's\n"
                  "                    normalised coordinates before the rotation (libinput's convention)\n"
                  "  --log-level L     error|warning|info|debug (default info; debug = --kiosk-stats)\n"
+                 "  --author          the authoring window: side panel, undo/redo, Ctrl+S saves scene.json,\n"
+                 "                    P previews the kiosk; keys with ? (kiosk/author/editor.h)\n"
+                 "  --preview-screenshot PNG  author with --replay: the preview's last frame\n"
                  "  --help            this text\n  --version         print the version\n\n"
                  "A model that cannot be loaded is skipped with a one-line error (nothing drawn).\n"
                  "exit codes: 0 ok, 1 runtime failure, 2 bad usage or bad input\n");
@@ -73,6 +77,7 @@ void print_help(std::FILE* out) {
 
 // The modes, first match wins; each lives in kiosk/modes/<name>.cpp.
 const Mode kModes[] = {
+    {"author", [](const ViewOptions& o) { return o.author; }, kiosk::run_author_mode},
     {"benchmark", [](const ViewOptions& o) { return o.benchmark; }, kiosk::run_benchmark_mode},
     {"screenshot", [](const ViewOptions& o) { return !o.screenshot.empty() && o.replay.empty(); },
      kiosk::run_screenshot_mode},

@@ -1,7 +1,8 @@
 // GLFW backend: a desktop window (or fullscreen on the primary monitor) with an
 // OpenGL ES 3.0 context created through EGL (GLFW_EGL_CONTEXT_API), so the same
 // GLES code runs on desktops, under Xvfb and on boards. Mouse events map to
-// MouseDown/Move/Up/Scroll, Escape and printable keys to Key, each with the
+// MouseDown/Move/Up/Scroll, Escape, printable and editing keys to Key, typed
+// characters to Text, each with the
 // Shift/Ctrl/Alt modifiers held. GLFW 3.3 has no touch API: touchscreens are
 // read through the evdev layer (platform/evdev_touch.h, hot-plugged) when
 // /dev/input is readable and mapped into the window (platform/evdev_window.h);
@@ -33,6 +34,25 @@ uint32_t modifiers_held(GLFWwindow* win) {
     return (down(GLFW_KEY_LEFT_SHIFT, GLFW_KEY_RIGHT_SHIFT) ? kModShift : 0u) |
            (down(GLFW_KEY_LEFT_CONTROL, GLFW_KEY_RIGHT_CONTROL) ? kModCtrl : 0u) |
            (down(GLFW_KEY_LEFT_ALT, GLFW_KEY_RIGHT_ALT) ? kModAlt : 0u);
+}
+
+// GLFW's editing keys as platform key codes (platform.h), -1 for the rest.
+int editing_key(int key) {
+    switch (key) {
+        case GLFW_KEY_BACKSPACE: return kKeyBackspace;
+        case GLFW_KEY_DELETE: return kKeyDelete;
+        case GLFW_KEY_LEFT: return kKeyLeft;
+        case GLFW_KEY_RIGHT: return kKeyRight;
+        case GLFW_KEY_UP: return kKeyUp;
+        case GLFW_KEY_DOWN: return kKeyDown;
+        case GLFW_KEY_HOME: return kKeyHome;
+        case GLFW_KEY_END: return kKeyEnd;
+        case GLFW_KEY_ENTER:
+        case GLFW_KEY_KP_ENTER: return kKeyEnter;
+        case GLFW_KEY_TAB: return kKeyTab;
+        case GLFW_KEY_F1: return kKeyF1;
+        default: return -1;
+    }
 }
 
 // The monitor a window is on: its own when fullscreen, else the one holding the
@@ -118,10 +138,18 @@ public:
             if (action == GLFW_REPEAT) return;
             InputEvent e;
             e.type = InputEvent::Type::Key;
-            e.key = key == GLFW_KEY_ESCAPE ? kKeyEscape : (key >= 32 && key < 127 ? key : -1);
+            e.key = key == GLFW_KEY_ESCAPE ? kKeyEscape : (key >= 32 && key < 127 ? key : editing_key(key));
             e.pressed = action == GLFW_PRESS;
             e.modifiers = modifiers_from_glfw(mods);
             if (e.key >= 0) static_cast<GlfwSurface*>(glfwGetWindowUserPointer(win))->push(e, 0, 0);
+        });
+        glfwSetCharCallback(window_, [](GLFWwindow* win, unsigned int codepoint) {
+            InputEvent e;
+            e.type = InputEvent::Type::Text;
+            e.key = static_cast<int>(codepoint);
+            e.pressed = true;
+            e.modifiers = modifiers_held(win);
+            static_cast<GlfwSurface*>(glfwGetWindowUserPointer(win))->push(e, 0, 0);
         });
         std::signal(SIGINT, on_glfw_signal);
         std::signal(SIGTERM, on_glfw_signal);
@@ -147,6 +175,7 @@ public:
     }
     unsigned framebuffer() const override { return 0; }
     double time() const override { return glfwGetTime(); }
+    void cancel_quit() override { glfwSetWindowShouldClose(window_, GLFW_FALSE); }
     bool poll_events(std::vector<InputEvent>& out) override {
         glfwPollEvents();
         const size_t first = out.size();

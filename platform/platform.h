@@ -45,6 +45,7 @@ struct InputEvent {
         Scroll,
         Key,
         Quit,  // window closed, SIGINT/SIGTERM
+        Text,  // a character typed: its Unicode codepoint in `key` (glfw's char callback)
     };
     Type type = Type::MouseMove;
     int id = 0;              // touch slot/tracking id; mouse button (0 left, 1 right, 2 middle)
@@ -60,6 +61,9 @@ struct InputEvent {
     }
 };
 inline constexpr int kKeyEscape = 256;
+// Editing keys (Key events; the authoring mode's text fields and shortcuts).
+inline constexpr int kKeyBackspace = 257, kKeyDelete = 258, kKeyLeft = 259, kKeyRight = 260, kKeyUp = 261,
+                     kKeyDown = 262, kKeyHome = 263, kKeyEnd = 264, kKeyEnter = 265, kKeyTab = 266, kKeyF1 = 267;
 
 struct SurfaceOptions {
     Backend backend = Backend::Auto;
@@ -94,6 +98,9 @@ public:
     virtual bool poll_events(std::vector<InputEvent>& out) = 0;
     // Monotonic seconds since the surface was created.
     virtual double time() const = 0;
+    // Takes back a window-close request (the authoring mode's unsaved-changes
+    // prompt: Cancel). Backends without a close button ignore it.
+    virtual void cancel_quit() {}
 };
 
 // Creates the surface for `options.backend`; Auto picks a display server if

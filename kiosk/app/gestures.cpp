@@ -55,6 +55,7 @@ void GestureRecognizer::feed(const InputEvent& e, std::vector<Gesture>& out) {
         case InputEvent::Type::TouchMove:
         case InputEvent::Type::TouchUp: touch(e, out); break;
         case InputEvent::Type::Key:
+        case InputEvent::Type::Text:
         case InputEvent::Type::Quit: break;
         default: mouse(e, out); break;
     }

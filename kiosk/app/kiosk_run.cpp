@@ -94,6 +94,9 @@ int KioskLoop::start() {
         }
         replay_ = std::move(r).value();
         replaying_ = true;
+    } else if (options_.replay_events) {
+        replay_ = *options_.replay_events;
+        replaying_ = true;
     }
     if (auto s = renderer_.init(options_.renderer); !s) {
         log_error(s.error());

@@ -27,6 +27,7 @@
 namespace body::kiosk {
 
 class KioskApp;
+struct Replay;
 
 // What one presented frame was, for the hooks.
 struct FrameReport {
@@ -52,7 +53,10 @@ struct KioskHooks {
 };
 
 struct KioskRunOptions {
-    std::string replay;      // replay file; empty: live input
+    std::string replay;  // replay file; empty: live input
+    // A replay already read (the authoring mode's preview in its own replays);
+    // used when `replay` is empty.
+    const Replay* replay_events = nullptr;
     std::string screenshot;  // PNG of the last frame (replay end, or `frames`)
     long frames = 0;         // > 0: stop after this many frames
     bool auto_lod = true;    // false: every model at its manifest LOD (benchmarks: controller off)

@@ -35,12 +35,19 @@ bool parse_button(const std::string& s, InputEvent& e) {
     return true;
 }
 
+bool valid_codepoint(int c) { return c >= 0 && c <= 0x10FFFF && !(c >= 0xD800 && c < 0xE000); }
+
 bool parse_kind(const std::string& s, InputEvent::Type& k) {
     static const std::pair<const char*, InputEvent::Type> kinds[] = {
-        {"down", InputEvent::Type::TouchDown},       {"move", InputEvent::Type::TouchMove},
-        {"up", InputEvent::Type::TouchUp},           {"mouse-down", InputEvent::Type::MouseDown},
-        {"mouse-move", InputEvent::Type::MouseMove}, {"mouse-up", InputEvent::Type::MouseUp},
-        {"wheel", InputEvent::Type::Scroll},         {"key", InputEvent::Type::Key},
+        {"down", InputEvent::Type::TouchDown},
+        {"move", InputEvent::Type::TouchMove},
+        {"up", InputEvent::Type::TouchUp},
+        {"mouse-down", InputEvent::Type::MouseDown},
+        {"mouse-move", InputEvent::Type::MouseMove},
+        {"mouse-up", InputEvent::Type::MouseUp},
+        {"wheel", InputEvent::Type::Scroll},
+        {"key", InputEvent::Type::Key},
+        {"text", InputEvent::Type::Text},
     };
     for (const auto& [name, kind] : kinds) {
         if (s == name) {
@@ -101,7 +108,8 @@ Result<Replay> parse_text(const std::string& text, const std::string& source) {
             }
             case InputEvent::Type::MouseMove: ok = static_cast<bool>(ls >> e.x >> e.y); break;
             case InputEvent::Type::Scroll: ok = static_cast<bool>(ls >> e.x >> e.y >> e.dy); break;
-            case InputEvent::Type::Key: ok = static_cast<bool>(ls >> e.key); break;
+            case InputEvent::Type::Key:
+            case InputEvent::Type::Text: ok = static_cast<bool>(ls >> e.key); break;
             case InputEvent::Type::Quit: ok = false; break;  // not a replay event
         }
         if (!ok)
@@ -116,7 +124,9 @@ Result<Replay> parse_text(const std::string& text, const std::string& source) {
             }
             e.modifiers |= it->second;
         }
-        e.pressed = e.type == InputEvent::Type::Key;  // a replayed key is a press
+        e.pressed = e.type == InputEvent::Type::Key || e.type == InputEvent::Type::Text;  // a replayed key is a press
+        if (e.type == InputEvent::Type::Text && !valid_codepoint(e.key))
+            return input_error(where + "'text' expects a Unicode codepoint (0..1114111, no surrogates)");
         r.events.push_back(e);
         r.end_time = std::max(r.end_time, t);
     }
@@ -187,7 +197,9 @@ Result<Replay> parse_json(const std::string& text, const std::string& source) {
             if (!v[name].is_boolean()) return input_error(where + "." + name + ": expected true or false");
             if (v[name].get<bool>()) e.modifiers |= bit;
         }
-        e.pressed = e.type == InputEvent::Type::Key;  // a replayed key is a press
+        e.pressed = e.type == InputEvent::Type::Key || e.type == InputEvent::Type::Text;  // a replayed key is a press
+        if (e.type == InputEvent::Type::Text && !valid_codepoint(e.key))
+            return input_error(where + ".key: a Unicode codepoint (0..1114111, no surrogates)");
         r.events.push_back(e);
         r.end_time = std::max(r.end_time, e.time);
     }

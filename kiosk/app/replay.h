@@ -12,11 +12,13 @@
 //   0.520 mouse-move 120 80
 //   0.540 mouse-up left 120 80
 //   0.600 wheel 640 400 1          x y notches
-//   0.700 key 27                   platform key code
+//   0.700 key 27                   platform key code (platform.h: ASCII, kKeyEscape, kKeyBackspace...)
+//   0.710 text 252                 a typed character: its Unicode codepoint (here ü)
 //   9.000 end                      keep running (idle) until this time, then stop
 // JSON: {"size": [1280, 800], "events": [{"t": 0.0, "type": "down", "id": 1, "x": 640, "y": 400},
 //        {"t": 0.5, "type": "mouse-down", "button": "left", "x": 100, "y": 80, "shift": true}, ...],
 //        "end": 9.0}
+// JSON spells a typed character {"t": 0.71, "type": "text", "key": 252}.
 // Modifiers (shift, ctrl, alt; the keys held, as the glfw backend reports them)
 // may follow any event's arguments in text and are boolean members in JSON; files
 // without them stay valid and mean no modifier held.

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "kiosk/author/author_run.h"
 #include "kiosk/modes/modes.h"
 #include "platform/evdev_touch.h"
 #include "platform/log.h"
@@ -37,13 +38,14 @@ const std::set<std::string>& view_value_options() {
                                                 "buffer-access",
                                                 "soak",
                                                 "touch-calibration",
-                                                "log-level"};
+                                                "log-level",
+                                                "preview-screenshot"};
     return names;
 }
 
 const std::set<std::string>& view_flag_options() {
-    static const std::set<std::string> names = {"headless",  "windowed",    "xray",
-                                                "benchmark", "no-auto-lod", "kiosk-stats"};
+    static const std::set<std::string> names = {"headless",    "windowed",    "xray",  "benchmark",
+                                                "no-auto-lod", "kiosk-stats", "author"};
     return names;
 }
 
@@ -64,7 +66,11 @@ Status parse_surface(const CliArgs& args, platform::SurfaceOptions& so) {
         so.width = wh->first;
         so.height = wh->second;
     }
-    so.fullscreen = !args.has("windowed");
+    so.fullscreen = !args.has("windowed") && !args.has("author");  // authoring is a desktop window
+    if (args.has("author") && so.width == 0) {
+        so.width = 1280;
+        so.height = 800;
+    }
     so.mode = args.get_or("mode", "");
     so.drm_device = args.get_or("device", "");
     if (auto r = args.get("rotate")) {
@@ -119,6 +125,14 @@ Status parse_picture(const CliArgs& args, ViewOptions& o) {
 }
 
 Status parse_what_to_show(const CliArgs& args, ViewOptions& o) {
+    if (args.has("author")) {  // BUNDLE/, scene.json, models: kiosk/author/author_run.h reads them
+        o.author = true;
+        o.author_inputs = args.positional();
+        if (auto s = args.get("scene")) o.author_inputs.insert(o.author_inputs.begin(), *s);
+        if (o.author_inputs.empty()) return input_error("--author: give BUNDLE/, scene.json or model files");
+        o.preview_screenshot = args.get_or("preview-screenshot", "");
+        return ok_status();
+    }
     o.scene_path = args.get_or("scene", "");
     if (!args.positional().empty()) {
         if (args.positional().size() > 1 || !o.scene_path.empty()) return input_error("one scene or bundle at most");
@@ -197,6 +211,11 @@ Result<ViewOptions> parse_view_options(const CliArgs& args) {
 }
 
 Result<scene::Scene> scene_to_show(const ViewOptions& o) {
+    if (o.author) {
+        auto start = author::open_for_authoring(o.author_inputs);
+        if (!start) return start.error();
+        return std::move(start.value().scene);
+    }
     if (!o.scene_path.empty()) return scene::read_scene(o.scene_path);
     scene::Scene s;
     s.source = o.model_path;

@@ -5,6 +5,7 @@
 #include <optional>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "kiosk/render/renderer.h"
 #include "platform/log.h"
@@ -33,7 +34,10 @@ struct ViewOptions {
     bool benchmark = false;
     long bench_triangles = 1000000;
     long bench_frames = 9;
-    double soak_minutes = 0.0;  // --soak; 0: no soak
+    double soak_minutes = 0.0;               // --soak; 0: no soak
+    bool author = false;                     // --author: the authoring window (kiosk/author/)
+    std::vector<std::string> author_inputs;  // --author's BUNDLE/, scene.json and/or model files
+    std::string preview_screenshot;          // --preview-screenshot: the author's preview in a replay
     platform::LogLevel log_level = platform::LogLevel::Info;
 };
 

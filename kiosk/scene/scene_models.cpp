@@ -101,6 +101,12 @@ Status SceneModels::load_model(size_t index, const LoadOptions& options) {
     return ok_status();
 }
 
+void SceneModels::set_colour(size_t model, const std::array<float, 3>& colour) {
+    for (ModelPart& p : models_[model].parts)
+        if (render::ModelState* st = renderer_ ? renderer_->state(p.id()) : nullptr)
+            st->color = Vec3f(colour[0], colour[1], colour[2]);
+}
+
 // The world bounding sphere and triangle counts over a model's parts.
 void SceneModels::measure(size_t index) {
     const scene::Model& m = scene_.models[index];

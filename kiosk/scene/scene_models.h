@@ -99,6 +99,9 @@ public:
     // for its level of detail. Returns whether the model is at the detail the
     // whole file would give (false while streaming or gliding towards it).
     bool bind(size_t model, const ModelBinding& binding, double now);
+    // Draws every structure of `model` in `colour` from now on (the authoring
+    // mode's colour edits; the manifest's colour is applied at load).
+    void set_colour(size_t model, const std::array<float, 3>& colour);
     // Triangles of a model at its current levels.
     size_t triangles(size_t model) const;
     // Under lock(): the ray's world distance to the model's surface placed by

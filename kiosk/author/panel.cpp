@@ -1,0 +1,146 @@
+// The side panel's rows (contract in panel.h).
+#include "kiosk/author/panel.h"
+
+namespace body::kiosk::author {
+
+namespace {
+
+struct Builder {
+    const PanelLayout& l;
+    std::vector<PanelRow> rows;
+    float y;
+
+    explicit Builder(const PanelLayout& layout) : l(layout), y(layout.y - layout.scroll) {}
+
+    PanelRow& add(RowKind kind, std::string text, int indent = 0) {
+        PanelRow r;
+        r.kind = kind;
+        r.text = std::move(text);
+        r.indent = indent;
+        r.rect = Rect{l.x, y, l.width, l.row_height};
+        y += l.row_height;
+        rows.push_back(std::move(r));
+        return rows.back();
+    }
+
+    // Buttons side by side in one row.
+    void buttons(std::initializer_list<std::pair<const char*, Command>> list) {
+        const float w = l.width / static_cast<float>(list.size());
+        float x = l.x;
+        for (const auto& [text, command] : list) {
+            PanelRow r;
+            r.kind = RowKind::Button;
+            r.text = text;
+            r.command = command;
+            r.rect = Rect{x + 1, y + 1, w - 2, l.row_height - 2};
+            x += w;
+            rows.push_back(std::move(r));
+        }
+        y += l.row_height;
+    }
+
+    void field(const scene::Scene& s, int index, const FieldTarget& target, const std::string& suffix = {}) {
+        const Field& f = scene_fields()[static_cast<size_t>(index)];
+        PanelRow& r = add(RowKind::Field, std::string(f.label) + suffix, 1);
+        r.field = index;
+        r.target = target;
+        r.value = f.get(s, target);
+        r.editable = f.kind != FieldKind::Fixed;
+        r.value_rect = Rect{l.x + l.width * 0.42f, r.rect.y + 2, l.width * 0.58f - 4, l.row_height - 4};
+    }
+};
+
+void tree(Builder& b, const scene::Scene& s, const Selection& sel) {
+    b.add(RowKind::Heading, "Groups and models");
+    auto model_row = [&](size_t i, int indent) {
+        PanelRow& r = b.add(RowKind::TreeModel, s.models[i].name, indent);
+        r.model = static_cast<int>(i);
+        r.active = sel.model == static_cast<int>(i);
+    };
+    for (size_t g = 0; g < s.groups.size(); ++g) {
+        const scene::Group& group = s.groups[g];
+        // A group is open while it or one of its models is selected: a 116-model atlas stays one screen.
+        const bool open =
+            sel.group == static_cast<int>(g) || (sel.model >= 0 && sel.model < static_cast<int>(s.models.size()) &&
+                                                 s.models[static_cast<size_t>(sel.model)].group == group.name);
+        size_t members = 0;
+        for (const scene::Model& m : s.models) members += m.group == group.name;
+        PanelRow& r = b.add(RowKind::TreeGroup, std::string(open ? "▾ " : "▸ ") + group.name + " (" +
+                                                    std::to_string(members) + ")" + (group.visible ? "" : " hidden"));
+        r.group = static_cast<int>(g);
+        r.active = sel.group == static_cast<int>(g);
+        if (!open) continue;
+        for (size_t i = 0; i < s.models.size(); ++i)
+            if (s.models[i].group == group.name) model_row(i, 1);
+    }
+    bool any_loose = false;
+    for (const scene::Model& m : s.models) any_loose = any_loose || m.group.empty();
+    if (any_loose) b.add(RowKind::TreeGroup, "(no group)").group = -1;  // ungrouped models are always listed
+    for (size_t i = 0; i < s.models.size(); ++i)
+        if (s.models[i].group.empty()) model_row(i, 1);
+    PanelRow& add = b.add(RowKind::Field, "add model (.bpm/.obj)");
+    add.command = Command::AddModel;
+    add.editable = true;
+    add.value_rect = Rect{b.l.x + b.l.width * 0.42f, add.rect.y + 2, b.l.width * 0.58f - 4, b.l.row_height - 4};
+    b.buttons({{"Add group", Command::AddGroup}, {"Remove", Command::RemoveSelected}});
+}
+
+void properties(Builder& b, const scene::Scene& s, const Selection& sel) {
+    const auto& fields = scene_fields();
+    if (sel.model >= 0 && sel.model < static_cast<int>(s.models.size())) {
+        b.add(RowKind::Heading, "Model: " + s.models[static_cast<size_t>(sel.model)].name);
+        FieldTarget t;
+        t.model = sel.model;
+        for (size_t i = 0; i < fields.size(); ++i)
+            if (fields[i].scope == FieldScope::Model) b.field(s, static_cast<int>(i), t);
+        b.buttons({{"Reset transform", Command::ResetTransform}});
+        for (const std::string& lang : s.kiosk.languages) {
+            t.language = lang;
+            for (size_t i = 0; i < fields.size(); ++i)
+                if (fields[i].scope == FieldScope::Label) b.field(s, static_cast<int>(i), t, " [" + lang + "]");
+        }
+        return;
+    }
+    if (sel.group >= 0 && sel.group < static_cast<int>(s.groups.size())) {
+        b.add(RowKind::Heading, "Group: " + s.groups[static_cast<size_t>(sel.group)].name);
+        FieldTarget t;
+        t.group = sel.group;
+        for (size_t i = 0; i < fields.size(); ++i)
+            if (fields[i].scope == FieldScope::Group) b.field(s, static_cast<int>(i), t);
+        return;
+    }
+    b.add(RowKind::Heading, "Scene: start view and kiosk");
+    for (size_t i = 0; i < fields.size(); ++i)
+        if (fields[i].scope == FieldScope::Scene) b.field(s, static_cast<int>(i), FieldTarget{});
+}
+
+}  // namespace
+
+std::vector<PanelRow> layout_panel(const scene::Scene& scene, const Selection& selection, const std::string& status,
+                                   const PanelLayout& layout) {
+    Builder b(layout);
+    b.buttons({{"Save", Command::Save},
+               {"Undo", Command::Undo},
+               {"Redo", Command::Redo},
+               {"Preview", Command::Preview},
+               {"Set view", Command::StartView},
+               {"?", Command::Help}});
+    b.add(RowKind::Status, status);
+    tree(b, scene, selection);
+    properties(b, scene, selection);
+    return std::move(b.rows);
+}
+
+const PanelRow* hit_row(const std::vector<PanelRow>& rows, float x, float y) {
+    for (const PanelRow& r : rows)
+        if (r.rect.contains(x, y)) return &r;
+    return nullptr;
+}
+
+float panel_content_height(const std::vector<PanelRow>& rows, const PanelLayout& layout) {
+    float bottom = layout.y - layout.scroll;
+    for (const PanelRow& r : rows) bottom = std::max(bottom, r.rect.y + r.rect.h);
+    return bottom - (layout.y - layout.scroll);
+}
+
+}  // namespace body::kiosk::author

@@ -1,0 +1,376 @@
+// The authoring mode without GL: the UTF-8 text field, the document's undo/redo
+// and validation, scene.json written back, the editor driven by input events,
+// and the schema walk: every key SCENE.md's table documents has an editor
+// (kiosk/author/fields.h) that changes that key in the saved file.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <set>
+
+#include "kiosk/app/replay.h"
+#include "kiosk/author/editor.h"
+#include "shared/atomic_file.h"
+#include "shared/scene/scene_write.h"
+#include "tests/common/test_dir.h"
+
+namespace body::kiosk::author {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+const char* kScene = R"({"models": [
+    {"name": "a", "file": "a.obj", "group": "left", "colour": [0.2, 0.5, 0.9],
+     "label": {"en": {"title": "Alpha", "description": "The left one"}, "de": "Alpha"}},
+    {"name": "b", "file": "b.obj", "style": "wireframe", "lod": 0.5}],
+  "groups": [{"name": "left", "style": "smooth"}, {"name": "right", "visible": false}],
+  "kiosk": {"languages": ["en", "de"]}})";
+
+scene::Scene test_scene() {
+    auto s = scene::parse_scene(kScene, "scene.json", "");
+    EXPECT_TRUE(s) << (s ? "" : s.error().message);
+    return s.value();
+}
+
+json saved_json(Document& doc, const fs::path& path) {
+    EXPECT_TRUE(doc.save(path.string())) << path;
+    auto text = read_file(path.string());
+    return json::parse(text.value());
+}
+
+TEST(AuthorTextField, EditsUtf8ByCodepoint) {
+    TextField f;
+    for (char32_t c : std::u32string(U"Grüße 😀")) f.insert(c);
+    EXPECT_EQ(f.text(), "Grüße 😀");
+    f.backspace();  // the emoji's four bytes go at once
+    EXPECT_EQ(f.text(), "Grüße ");
+    f.left(false);
+    f.left(false);
+    f.left(true);  // selects "ß"
+    EXPECT_EQ(f.selected(), "ß");
+    f.insert(U's');
+    f.insert(U's');
+    EXPECT_EQ(f.text(), "Grüsse ");
+    f.home(false);
+    f.right(true);
+    f.right(true);
+    f.right(true);
+    EXPECT_EQ(f.selected(), "Grü");
+    f.erase_forward();
+    EXPECT_EQ(f.text(), "sse ");
+    f.set_cursor(1, false);
+    f.insert(std::string("€"));
+    EXPECT_EQ(f.text(), "s€se ");
+    f.set_cursor(2, false);  // inside "€": moved back to its first byte
+    EXPECT_EQ(f.cursor(), 1u);
+    f.insert(U'\n');  // control characters are not text
+    EXPECT_EQ(f.text(), "s€se ");
+    f.select_all();
+    f.insert(U'x');
+    EXPECT_EQ(f.text(), "x");
+}
+
+TEST(AuthorReplayFormat, TypedCharactersAreCodepoints) {
+    auto r = parse_replay("0.1 text 252\n0.2 key 257 shift\n", "t.replay");
+    ASSERT_TRUE(r) << r.error().message;
+    ASSERT_EQ(r.value().events.size(), 2u);
+    EXPECT_EQ(r.value().events[0].type, InputEvent::Type::Text);
+    EXPECT_EQ(r.value().events[0].key, 252);
+    EXPECT_EQ(r.value().events[1].key, platform::kKeyBackspace);
+    EXPECT_EQ(r.value().events[1].modifiers, static_cast<uint32_t>(kModShift));
+    auto bad = parse_replay("0.1 text -5\n", "t.replay");
+    ASSERT_FALSE(bad);
+    EXPECT_NE(bad.error().message.find("t.replay: line 1"), std::string::npos) << bad.error().message;
+    EXPECT_FALSE(parse_replay(R"({"events": [{"t": 0, "type": "text", "key": 55296}]})", "t.json"));
+}
+
+TEST(AuthorDocument, UndoRedoAndRefusedEdits) {
+    Document doc(test_scene(), "");
+    EXPECT_FALSE(doc.dirty());
+    ASSERT_TRUE(doc.apply("style", [](scene::Scene& s) {
+        s.models[0].style = Style::Hatching;
+        return ok_status();
+    }));
+    EXPECT_TRUE(doc.dirty());
+    // A duplicate name is what the parser refuses: nothing changes, the reason is the parser's.
+    auto bad = doc.apply("rename", [](scene::Scene& s) {
+        s.models[1].name = "a";
+        return ok_status();
+    });
+    ASSERT_FALSE(bad);
+    EXPECT_NE(bad.error().message.find("duplicate model 'a'"), std::string::npos) << bad.error().message;
+    EXPECT_EQ(doc.scene().models[1].name, "b");
+    // Two nudges with one merge key are one step.
+    for (int i = 0; i < 2; ++i)
+        ASSERT_TRUE(doc.apply(
+            "nudge",
+            [](scene::Scene& s) {
+                s.models[1].transform.translate[0] += 1.0f;
+                return ok_status();
+            },
+            "nudge b"));
+    EXPECT_EQ(doc.scene().models[1].transform.translate[0], 2.0f);
+    ASSERT_TRUE(doc.undo());
+    EXPECT_EQ(doc.scene().models[1].transform.translate[0], 0.0f);
+    ASSERT_TRUE(doc.undo());
+    EXPECT_EQ(doc.scene().models[0].style, Style::Smooth);
+    EXPECT_FALSE(doc.dirty());  // back to what was loaded
+    EXPECT_FALSE(doc.undo());
+    ASSERT_TRUE(doc.redo());
+    EXPECT_EQ(doc.scene().models[0].style, Style::Hatching);
+    EXPECT_TRUE(doc.dirty());
+    // An edit after an undo drops the redo branch.
+    ASSERT_TRUE(doc.apply("lod", [](scene::Scene& s) {
+        s.models[0].lod = scene::Lod{false, 0.25f};
+        return ok_status();
+    }));
+    EXPECT_FALSE(doc.can_redo());
+}
+
+TEST(AuthorDocument, SavesTheSameSchemaAndReadsBackEqual) {
+    const fs::path dir = test::fresh_test_dir("body_author");
+    Document doc(test_scene(), (dir / "scene.json").string());
+    const json j = saved_json(doc, dir / "scene.json");
+    EXPECT_FALSE(doc.dirty());
+    EXPECT_EQ(j["models"][0]["colour"], json::parse("[0.2, 0.5, 0.9]"));  // floats written as typed
+    EXPECT_EQ(j["models"][1]["lod"], 0.5);
+    EXPECT_EQ(j["models"][0]["label"]["de"]["title"], "Alpha");
+    auto again = scene::read_scene((dir / "scene.json").string());
+    ASSERT_TRUE(again) << again.error().message;
+    EXPECT_EQ(scene::scene_to_json(again.value()), scene::scene_to_json(doc.scene()));
+    // An invalid scene is never written: the old file stays.
+    scene::Scene broken = doc.scene();
+    broken.models[0].group = "nowhere";
+    EXPECT_FALSE(scene::save_scene(broken, (dir / "scene.json").string()));
+    EXPECT_TRUE(scene::read_scene((dir / "scene.json").string()));
+    fs::remove_all(dir);
+}
+
+// The keys SCENE.md's table documents: the one place the schema is written down
+// (helpers adding keys document them there), read fresh by this test.
+std::set<std::string> documented_keys() {
+    std::ifstream in(std::string(BODY_SOURCE_DIR) + "/shared/scene/SCENE.md");
+    EXPECT_TRUE(in) << "shared/scene/SCENE.md";
+    std::set<std::string> keys;
+    const std::regex row(R"(^\| `([^`]+)` \|)");
+    std::smatch m;
+    for (std::string line; std::getline(in, line);)
+        if (std::regex_search(line, m, row)) keys.insert(m[1]);
+    return keys;
+}
+
+// A new valid value for each editor, by its panel label: a field added without
+// one here fails the walk below, so its editor gets tested.
+const std::map<std::string, std::string> kNewValues = {
+    {"name", "renamed"},          {"file", "c.obj"},
+    {"colour", "1 0 0.5"},        {"translate", "1 2 3"},
+    {"rotate (deg)", "10 20 30"}, {"scale", "2"},
+    {"title", "Titel"},           {"description", "Beschreibung"},
+    {"camera target", "1 2 3"},   {"camera azimuth", "45"},
+    {"camera polar", "60"},       {"camera distance", "500"},
+    {"camera fov", "30"},         {"idle (s)", "20"},
+    {"reset (s)", "90"},          {"languages", "en fr"},
+    {"admin taps", "7"},          {"admin seconds", "4"},
+    {"admin corner size", "0.1"}, {"frame target (ms)", "33"},
+};
+
+// The saved JSON at a table key ("models[].colour" -> models[0].colour).
+json at_key(const json& root, const std::string& key) {
+    json v = root;
+    std::string k = key;
+    for (size_t dot; !k.empty(); k = dot == std::string::npos ? "" : k.substr(dot + 1)) {
+        dot = k.find('.');
+        std::string part = k.substr(0, dot);
+        const bool array = part.size() > 2 && part.ends_with("[]");
+        if (array) part.resize(part.size() - 2);
+        if (!v.contains(part)) return json();
+        v = v[part];
+        if (array) v = v[0];
+    }
+    return v;
+}
+
+TEST(AuthorSchema, EveryDocumentedKeyHasAnEditorThatChangesIt) {
+    const std::set<std::string> keys = documented_keys();
+    ASSERT_GT(keys.size(), 20u);
+    std::set<std::string> edited;
+    for (const Field& f : scene_fields()) {
+        EXPECT_TRUE(keys.count(f.key)) << "editor for '" << f.key << "', which SCENE.md's table does not list";
+        edited.insert(f.key);
+    }
+    for (const std::string& k : keys)
+        EXPECT_TRUE(edited.count(k)) << "scene.json key '" << k
+                                     << "' has no editor in kiosk/author/fields.cpp (add one to scene_fields())";
+
+    const fs::path dir = test::fresh_test_dir("body_author");
+    for (size_t i = 0; i < scene_fields().size(); ++i) {
+        const Field& f = scene_fields()[i];
+        Document doc(test_scene(), (dir / "scene.json").string());
+        const json before = saved_json(doc, dir / "scene.json");
+        FieldTarget t;
+        t.model = f.scope == FieldScope::Model || f.scope == FieldScope::Label ? 0 : -1;
+        t.group = f.scope == FieldScope::Group ? 0 : -1;
+        t.language = f.scope == FieldScope::Label ? "de" : "";
+        if (f.kind == FieldKind::Fixed) {
+            EXPECT_EQ(f.get(doc.scene(), t),
+                      before[f.key].is_array() ? std::to_string(before[f.key].size()) : before[f.key].dump());
+            continue;  // `version` is always 1; `models` is edited by add/remove (Editor test below)
+        }
+        std::string value;
+        if (f.kind == FieldKind::Choice) {
+            value = next_choice(f.choices(doc.scene()), f.get(doc.scene(), t));
+        } else {
+            auto it = kNewValues.find(f.label);
+            ASSERT_NE(it, kNewValues.end()) << "no test value for the editor '" << f.label << "' (" << f.key << ")";
+            value = it->second;
+        }
+        auto s = doc.apply("set", [&](scene::Scene& sc) { return f.set(sc, t, value); });
+        ASSERT_TRUE(s) << f.key << " = " << value << ": " << s.error().message;
+        EXPECT_EQ(f.get(doc.scene(), t), value) << f.key;
+        const json after = saved_json(doc, dir / "scene.json");
+        EXPECT_NE(at_key(after, f.key), at_key(before, f.key)) << f.key << " (" << f.label << ") = " << value;
+        EXPECT_TRUE(scene::read_scene((dir / "scene.json").string())) << f.key;
+    }
+    fs::remove_all(dir);
+}
+
+// Every key the writer puts in scene.json is a documented one (or inside one:
+// `transform`, `label`, `admin_gesture` are documented as objects).
+void collect(const json& v, const std::string& path, std::set<std::string>& out) {
+    if (v.is_array()) {
+        for (const json& e : v) collect(e, path + "[]", out);
+    } else if (v.is_object()) {
+        for (const auto& [k, e] : v.items()) {
+            const std::string p = path.empty() ? k : path + "." + k;
+            out.insert(p);
+            collect(e, p, out);
+        }
+    }
+}
+
+TEST(AuthorSchema, TheWriterWritesOnlyDocumentedKeys) {
+    const std::set<std::string> keys = documented_keys();
+    std::set<std::string> written;
+    collect(json::parse(scene::scene_to_json(test_scene())), "", written);
+    for (const std::string& w : written) {
+        bool documented = false;
+        for (const std::string& k : keys)  // a container of documented keys (`camera`, `groups`)
+            documented = documented || k.starts_with(w + ".") || k.starts_with(w + "[].");
+        for (std::string p = w; !documented && !p.empty();) {
+            documented = keys.count(p) > 0;
+            const size_t dot = p.rfind('.');
+            p = dot == std::string::npos ? "" : p.substr(0, dot);
+        }
+        EXPECT_TRUE(documented) << "scene_to_json writes '" << w << "', which SCENE.md's table does not list";
+    }
+    EXPECT_TRUE(written.count("models[].transform.rotate_deg"));
+}
+
+// --- the editor driven by events, as the window feeds it ---------------------
+
+InputEvent key(int k, uint32_t mods = 0) {
+    InputEvent e;
+    e.type = InputEvent::Type::Key;
+    e.key = k;
+    e.pressed = true;
+    e.modifiers = mods;
+    return e;
+}
+
+void type(Editor& ed, const std::u32string& text) {
+    for (char32_t c : text) {
+        InputEvent e;
+        e.type = InputEvent::Type::Text;
+        e.key = static_cast<int>(c);
+        ed.handle(e);
+    }
+}
+
+// Clicks the middle of the value box of the field row called `label` (or the row itself).
+void click(Editor& ed, const std::string& label, uint32_t mods = 0) {
+    for (const PanelRow& r : ed.rows()) {
+        if (r.text != label) continue;
+        const Rect& b = r.kind == RowKind::Field ? r.value_rect : r.rect;
+        InputEvent e;
+        e.type = InputEvent::Type::MouseDown;
+        e.x = b.x + b.w * 0.5f;
+        e.y = b.y + b.h * 0.5f;
+        e.modifiers = mods;
+        EXPECT_TRUE(ed.handle(e)) << label;
+        return;
+    }
+    ADD_FAILURE() << "no panel row '" << label << "'";
+}
+
+TEST(AuthorEditor, PanelEditsUndoRedoSaveAndAddRemove) {
+    const fs::path dir = test::fresh_test_dir("body_author");
+    std::ofstream(dir / "c.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    Editor ed(Document(test_scene(), (dir / "scene.json").string()));
+    ed.set_viewport(1280, 800, 1.0f);
+    click(ed, "▸ left (1)");  // opens the group: its model is listed
+    click(ed, "a");
+    ASSERT_EQ(ed.selection().model, 0);
+    click(ed, "style");  // a choice: smooth -> wireframe
+    EXPECT_EQ(ed.document().scene().models[0].style, Style::Wireframe);
+    click(ed, "title [de]");
+    ed.handle(key('A', kModCtrl));
+    type(ed, U"Großhirn");
+    ed.handle(key(platform::kKeyEnter));
+    EXPECT_EQ(ed.document().scene().label(ed.document().scene().models[0], "de").title, "Großhirn");
+    click(ed, "scale");
+    ed.handle(key('A', kModCtrl));
+    type(ed, U"-1");  // out of range: refused, the field keeps the focus and the status says why
+    ed.handle(key(platform::kKeyEnter));
+    EXPECT_NE(ed.status().find("scale"), std::string::npos) << ed.status();
+    EXPECT_EQ(ed.document().scene().models[0].transform.scale, 1.0f);
+    ed.handle(key(platform::kKeyEscape));
+    ed.handle(key('Z', kModCtrl));  // undo the title
+    EXPECT_EQ(ed.document().scene().label(ed.document().scene().models[0], "de").title, "Alpha");
+    ed.handle(key('Z', kModCtrl | kModShift));  // redo it
+    EXPECT_EQ(ed.document().scene().label(ed.document().scene().models[0], "de").title, "Großhirn");
+    click(ed, "add model (.bpm/.obj)");
+    type(ed, U"" + std::u32string((dir / "c.obj").u32string()));
+    ed.handle(key(platform::kKeyEnter));
+    ASSERT_EQ(ed.document().scene().models.size(), 3u) << ed.status();
+    EXPECT_EQ(ed.document().scene().models[2].file, "c.obj");  // relative to the manifest
+    EXPECT_EQ(ed.selection().model, 2);
+    ed.handle(key(platform::kKeyDelete));
+    ASSERT_EQ(ed.document().scene().models.size(), 2u);
+    ed.handle(key('S', kModCtrl));
+    EXPECT_FALSE(ed.document().dirty()) << ed.status();
+    const json j = json::parse(read_file((dir / "scene.json").string()).value());
+    EXPECT_EQ(j["models"][0]["style"], "wireframe");
+    EXPECT_EQ(j["models"][0]["label"]["de"]["title"], "Großhirn");
+    EXPECT_EQ(j["models"].size(), 2u);
+    fs::remove_all(dir);
+}
+
+TEST(AuthorEditor, UnsavedChangesPromptOnQuit) {
+    const fs::path dir = test::fresh_test_dir("body_author");
+    Editor ed(Document(test_scene(), (dir / "scene.json").string()));
+    ed.set_viewport(1280, 800, 1.0f);
+    ed.request_quit();  // clean: quits at once
+    EXPECT_TRUE(ed.quit_confirmed());
+
+    Editor dirty(Document(test_scene(), (dir / "scene.json").string()));
+    dirty.set_viewport(1280, 800, 1.0f);
+    click(dirty, "b");
+    click(dirty, "LOD");
+    dirty.handle(key('Q', kModCtrl));
+    EXPECT_TRUE(dirty.prompt_visible());
+    EXPECT_FALSE(dirty.quit_confirmed());
+    dirty.handle(key(platform::kKeyEscape));  // back to editing
+    EXPECT_FALSE(dirty.prompt_visible());
+    dirty.handle(key('Q', kModCtrl));
+    dirty.handle(key('S'));  // save and quit
+    EXPECT_TRUE(dirty.quit_confirmed());
+    EXPECT_TRUE(fs::exists(dir / "scene.json"));
+    fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace body::kiosk::author
