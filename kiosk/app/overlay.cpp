@@ -5,6 +5,8 @@
 #include <GLES3/gl3.h>
 
 #include <algorithm>
+#include <map>
+#include <tuple>
 
 #include "kiosk/render/renderer.h"
 
@@ -65,6 +67,8 @@ struct Overlay::State {
     uint64_t uploaded[2] = {~0ull, ~0ull};  // atlas generation in each texture
     int texture_size[2] = {0, 0};
     std::vector<Vertex> solid, text[2];
+    std::map<std::tuple<std::string, float, float>, FittedText> fitted;  // control text and box -> fit
+    const FittedText& fit(const std::string& utf8, float w, float h);
     void build(const std::vector<Control>& controls, const LabelCard& card);
     void upload();
 };
@@ -151,6 +155,14 @@ void Overlay::shutdown() {
     s_.reset();
 }
 
+// fit_text is a search over scales and cuts: done once per text and box, not every frame.
+const FittedText& Overlay::State::fit(const std::string& utf8, float w, float h) {
+    auto key = std::make_tuple(utf8, w, h);
+    if (auto it = fitted.find(key); it != fitted.end()) return it->second;
+    if (fitted.size() > 512) fitted.clear();
+    return fitted.emplace(std::move(key), fit_text(body, decode_utf8(utf8), w, h)).first->second;
+}
+
 void Overlay::State::build(const std::vector<Control>& controls, const LabelCard& card) {
     solid.clear();
     text[0].clear();
@@ -162,8 +174,7 @@ void Overlay::State::build(const std::vector<Control>& controls, const LabelCard
         quad(solid, r.x, r.y, r.x + r.w, r.y + r.h, 0, 0, 0, 0, fill);
         const Colour edge{0.35f, 0.35f, 0.40f, 0.9f};
         quad(solid, r.x, r.y + r.h - 2, r.x + r.w, r.y + r.h, 0, 0, 0, 0, edge);
-        const std::u32string t = decode_utf8(c.text);
-        const FittedText f = fit_text(body, t, r.w - 8.0f, r.h - 6.0f);
+        const FittedText& f = fit(c.text, r.w - 8.0f, r.h - 6.0f);
         // Lines centred in the box; the first baseline puts the block's middle at the box's.
         const float k = f.scale, lh = body.line_height() * k;
         const float top = r.y + (r.h - static_cast<float>(f.lines.size()) * lh) * 0.5f;

@@ -11,7 +11,7 @@ namespace body::kiosk {
 namespace {
 
 constexpr int kFirstAtlasSize = 512, kLargestAtlasSize = 4096, kPadding = 1;
-constexpr size_t kShapedCacheLimit = 4096;
+constexpr size_t kShapedCacheLimit = 16384;
 
 }  // namespace
 
@@ -65,7 +65,7 @@ GlyphAtlas::GlyphAtlas(std::shared_ptr<FontSet> fonts, float pixel_height)
     pixels_.assign(static_cast<size_t>(width_) * static_cast<size_t>(height_), 0);
 }
 
-bool GlyphAtlas::has(char32_t codepoint) { return fonts_->font_for(codepoint, -1) >= 0; }
+bool GlyphAtlas::has(char32_t codepoint) { return fonts_ && fonts_->font_for(codepoint, -1) >= 0; }
 
 // Shelf packing: left to right on the current shelf, a new shelf below when full.
 bool GlyphAtlas::place(int w, int h, int& ax, int& ay) {
