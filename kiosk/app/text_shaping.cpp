@@ -3,8 +3,10 @@
 
 #include <fribidi.h>
 #include <hb.h>
+#include <unicode/ubrk.h>
 
 #include <algorithm>
+#include <memory>
 
 namespace body::kiosk {
 
@@ -132,36 +134,33 @@ bool is_rtl_language(const std::string& language) {
     return false;
 }
 
-namespace {
-
-bool is_cjk(char32_t c) {
-    return (c >= 0x2E80 && c <= 0x9FFF) || (c >= 0xAC00 && c <= 0xD7AF) || (c >= 0xF900 && c <= 0xFAFF) ||
-           (c >= 0xFF00 && c <= 0xFF60) || (c >= 0x20000 && c <= 0x3FFFF);
-}
-// Never at a line's start (closing punctuation, small kana, prolonged sound mark) or end (opening punctuation).
-bool no_start(char32_t c) {
-    return std::u32string_view(
-               U"、。，．：；？！）」』】〉》〕ー・ぁぃぅぇぉっゃゅょゎァィゥェォッャュョヮヵヶ々〜,.:;?!)]}")
-               .find(c) != std::u32string_view::npos;
-}
-bool no_end(char32_t c) { return std::u32string_view(U"（「『【〈《〔([{").find(c) != std::u32string_view::npos; }
-bool is_space(char32_t c) { return c == U' ' || c == U'\u3000' || c == U'\t'; }
-bool is_letter_like(char32_t c) { return c > U' ' && !is_space(c) && c != U'-' && !no_start(c) && !no_end(c); }
-
-}  // namespace
-
 std::vector<bool> line_break_opportunities(std::u32string_view t) {
     std::vector<bool> allowed(t.size(), false);
-    for (size_t i = 1; i < t.size(); ++i) {
-        const char32_t a = t[i - 1], b = t[i];
-        if (is_space(b)) continue;
-        if (is_space(a))
-            allowed[i] = true;
-        else if (a == U'-' && i >= 2 && is_letter_like(t[i - 2]) && is_letter_like(b))
-            allowed[i] = true;
-        else if ((is_cjk(a) || is_cjk(b)) && !no_start(b) && !no_end(a))
-            allowed[i] = true;
+    // ICU works on UTF-16: each unit remembers the character it belongs to.
+    std::vector<UChar> u16;
+    std::vector<size_t> index_of;
+    u16.reserve(t.size());
+    for (size_t i = 0; i < t.size(); ++i) {
+        const char32_t c = t[i] <= 0x10FFFF && (t[i] < 0xD800 || t[i] > 0xDFFF) ? t[i] : U'\uFFFD';
+        if (c > 0xFFFF) {
+            u16.push_back(static_cast<UChar>(0xD7C0 + (c >> 10)));
+            u16.push_back(static_cast<UChar>(0xDC00 | (c & 0x3FF)));
+            index_of.insert(index_of.end(), {i, i});
+        } else {
+            u16.push_back(static_cast<UChar>(c));
+            index_of.push_back(i);
+        }
     }
+    UErrorCode err = U_ZERO_ERROR;
+    // One iterator per thread: opening one loads the rules, setting its text is cheap.
+    thread_local std::unique_ptr<UBreakIterator, void (*)(UBreakIterator*)> it(
+        ubrk_open(UBRK_LINE, "", nullptr, 0, &err), ubrk_close);
+    err = U_ZERO_ERROR;
+    if (!it || u16.empty()) return allowed;
+    ubrk_setText(it.get(), u16.data(), static_cast<int32_t>(u16.size()), &err);
+    if (U_FAILURE(err)) return allowed;
+    for (int32_t b = ubrk_first(it.get()); b != UBRK_DONE; b = ubrk_next(it.get()))
+        if (b > 0 && static_cast<size_t>(b) < u16.size()) allowed[index_of[static_cast<size_t>(b)]] = true;
     return allowed;
 }
 

@@ -4,7 +4,8 @@
 // and one font (FontSet::font_for), HarfBuzz shapes each run (Arabic joining,
 // marks, ligatures, mirrored brackets in right-to-left runs) and the runs are
 // placed in visual order (rule L2). Also the line-break opportunities the
-// wrapper uses, with the CJK rule (a break between any two ideographs or kana).
+// wrapper uses: ICU's UAX #14 line breaking (CJK breaks between characters,
+// never before closing punctuation; after a hyphen between letters).
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -40,9 +41,8 @@ bool is_rtl_paragraph(std::u32string_view text);
 // Languages written right to left (ISO 639-1 codes, region suffix ignored: "ar", "he-IL").
 bool is_rtl_language(const std::string& language);
 
-// allowed[i]: a line may start at text[i] (i >= 1): after spaces, after a hyphen
-// between letters, and between CJK characters except before closing and after
-// opening punctuation (a subset of UAX #14 enough for labels).
+// allowed[i]: a line may start at text[i] (UAX #14 by ICU; never at i = 0, and
+// never inside a paragraph when ICU's data is missing).
 std::vector<bool> line_break_opportunities(std::u32string_view text);
 
 }  // namespace body::kiosk
