@@ -4,6 +4,7 @@
 #include "kiosk/app/text.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 
 namespace body::kiosk {
@@ -216,6 +217,40 @@ std::vector<TextLine> GlyphAtlas::wrap(std::u32string_view text, float max_width
     return lines;
 }
 
+namespace {
+
+// Greedy lines that break only at opportunities; a part wider than `max_w` stays whole on its own line.
+std::vector<TextLine> lines_at_breaks(GlyphAtlas& atlas, std::u32string_view text, float max_w) {
+    const auto allowed = line_break_opportunities(text);
+    std::vector<TextLine> lines;
+    size_t start = 0, last_fit = 0;
+    auto emit = [&](size_t end) {
+        const std::u32string_view l = trimmed(text.substr(start, end - start));
+        lines.push_back(TextLine{std::u32string(l), atlas.measure(l)});
+        start = end;
+    };
+    for (size_t i = 1; i <= text.size(); ++i) {
+        if (i < text.size() && !allowed[i]) continue;
+        if (last_fit > start && atlas.measure(trimmed(text.substr(start, i - start))) > max_w) emit(last_fit);
+        last_fit = i;
+    }
+    if (start < text.size() || lines.empty()) emit(text.size());
+    return lines;
+}
+
+// The longest start of `line` that fits `max_w` with "…" after it.
+TextLine abbreviated_line(GlyphAtlas& atlas, std::u32string_view line, float max_w) {
+    for (size_t n = line.size(); n-- > 0;) {
+        std::u32string cut(trimmed(line.substr(0, n)));
+        cut += U'\u2026';
+        const float width = atlas.measure(cut);
+        if (width <= max_w || n == 0) return TextLine{std::move(cut), width};
+    }
+    return TextLine{U"\u2026", atlas.measure(U"\u2026")};
+}
+
+}  // namespace
+
 FittedText fit_text(GlyphAtlas& atlas, std::u32string_view text, float w, float h) {
     FittedText f;
     f.rtl = is_rtl_paragraph(text);
@@ -237,40 +272,28 @@ FittedText fit_text(GlyphAtlas& atlas, std::u32string_view text, float w, float 
     };
     const float one = atlas.measure(text);
     const float fit_one = std::min({1.0f, w / std::max(one, 1e-3f), h / lh});
-    if (fit_one >= kMinTextScale) return accept({TextLine{std::u32string(text), one}}, fit_one, false);
-    // Two or more lines: the largest scale whose wrap fits, in steps of 5 %.
-    for (float scale = 1.0f; scale >= kMinTextScale - 1e-4f; scale -= 0.05f) {
-        auto lines = atlas.wrap(text, w / scale);
+    if (fit_one >= 1.0f) return accept({TextLine{std::u32string(text), one}}, 1.0f, false);
+    // Two or more lines at break opportunities: the largest scale that fits, in steps of 5 %.
+    for (float scale = 1.0f; scale > fit_one && scale >= kMinTextScale - 1e-4f; scale -= 0.05f) {
+        auto lines = lines_at_breaks(atlas, text, w / scale);
         float width = 0.0f;
         const float height = extent(lines, width);
-        if (lines.size() > 1 && width * scale <= w && height * scale <= h) {
-            // Only breaks at opportunities: a line made by breaking a word is no wrap.
-            const auto allowed = line_break_opportunities(text);
-            size_t at = 0;
-            bool at_opportunities = true;
-            for (size_t i = 0; i + 1 < lines.size(); ++i) {
-                at = text.find(lines[i].text, at) + lines[i].text.size();
-                while (at < text.size() && text[at] == U' ') ++at;
-                at_opportunities = at_opportunities && at < text.size() && allowed[at];
-            }
-            if (at_opportunities) return accept(std::move(lines), scale, false);
-        }
+        if (lines.size() > 1 && width * scale <= w && height * scale <= h)
+            return accept(std::move(lines), scale, false);
     }
-    // Abbreviated in the middle, so that both ends stay (sides, numbers): the
-    // most characters that fit with an ellipsis, three fifths of them from the start.
+    if (fit_one >= kMinTextScale) return accept({TextLine{std::u32string(text), one}}, fit_one, false);
+    // Abbreviated: the lines at break opportunities the box holds, each too wide
+    // one cut and ended with "…" (so "cerebellum-left" keeps its side); one
+    // abbreviated line when there are more lines than room.
     const float scale = std::min(kMinTextScale, h / lh);
-    for (size_t n = text.size(); n-- > 0;) {
-        const size_t head = (n * 3 + 4) / 5, tail = n - head;
-        std::u32string cut(trimmed(text.substr(0, head)));
-        cut += U'\u2026';
-        cut += trimmed(text.substr(text.size() - tail));
-        const float width = atlas.measure(cut);
-        if (width * scale <= w || n == 0) {
-            const float k = std::min(scale, w / std::max(width, 1e-3f));
-            return accept({TextLine{std::move(cut), width}}, k, true);
-        }
-    }
-    return accept({TextLine{}}, scale, true);  // empty text in a box too small for a line
+    const auto max_lines = static_cast<size_t>(std::max(1.0f, std::floor(h / (lh * scale) + 1e-4f)));
+    auto lines = lines_at_breaks(atlas, text, w / scale);
+    if (lines.size() > max_lines) lines = {TextLine{std::u32string(text), one}};
+    for (TextLine& l : lines)
+        if (l.width * scale > w) l = abbreviated_line(atlas, l.text, w / scale);
+    float width = 0.0f;
+    (void)extent(lines, width);
+    return accept(std::move(lines), std::min(scale, w / std::max(width, 1e-3f)), true);
 }
 
 }  // namespace body::kiosk

@@ -86,10 +86,11 @@ private:
 };
 
 // How a control's text fits a w x h box, by rule: one line at full size; else
-// one line shrunk to no less than kMinTextScale; else two or more lines at a
-// break opportunity, at the largest scale >= kMinTextScale whose lines fit
-// both ways; else one line at kMinTextScale abbreviated in the middle with
-// "…", keeping both ends (sides, numbers). Never wider or taller than the box.
+// the larger of one line shrunk (to no less than kMinTextScale) and two or more
+// lines broken at line_break_opportunities (largest scale that fits, 5 % steps);
+// else, at kMinTextScale, the lines at break opportunities the box holds with
+// each too-wide line cut and ended with "…" (abbreviated: "cerebel…" / "left").
+// Never wider or taller than the box.
 inline constexpr float kMinTextScale = 0.7f;
 struct FittedText {
     std::vector<TextLine> lines;  // widths unscaled

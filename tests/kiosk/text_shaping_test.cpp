@@ -169,6 +169,31 @@ std::vector<std::string> aal_group_names() {
     return {names.begin(), names.end()};
 }
 
+TEST(ControlText, TheRuleShrinksWrapsThenAbbreviatesKeepingTheSide) {
+    if (!std::filesystem::exists(BODY_FONT_FILE)) GTEST_SKIP() << "needs fonts-dejavu-core";
+    auto atlas = GlyphAtlas::build(BODY_FONT_FILE, 20.0f);
+    ASSERT_TRUE(atlas) << atlas.error().message;
+    const float wide = atlas->measure(U"central-left");
+    const FittedText whole = fit_text(*atlas, U"central-left", wide + 1.0f, 60.0f);
+    EXPECT_EQ(whole.lines.size(), 1u);
+    EXPECT_FLOAT_EQ(whole.scale, 1.0f);
+    const FittedText shrunk = fit_text(*atlas, U"central-left", wide * 0.9f, 20.0f);  // one line's height only
+    ASSERT_EQ(shrunk.lines.size(), 1u);
+    EXPECT_NEAR(shrunk.scale, 0.9f, 0.01f);
+    const FittedText wrapped = fit_text(*atlas, U"central-left", wide * 0.8f, 60.0f);  // wrapping keeps it larger
+    ASSERT_EQ(wrapped.lines.size(), 2u);
+    EXPECT_EQ(wrapped.lines[0].text, U"central-");
+    EXPECT_EQ(wrapped.lines[1].text, U"left");
+    EXPECT_GT(wrapped.scale, 0.8f);
+    const float narrow = atlas->measure(U"cerebel") * kMinTextScale;
+    const FittedText cut = fit_text(*atlas, U"cerebellum-left", narrow, 60.0f);
+    EXPECT_TRUE(cut.abbreviated);
+    ASSERT_EQ(cut.lines.size(), 2u);
+    EXPECT_EQ(cut.lines[0].text.back(), U'\u2026');
+    EXPECT_EQ(cut.lines[1].text, U"left");
+    EXPECT_LE(cut.width, narrow);
+}
+
 // Draws nothing: lays every control's text out as the overlay does and checks
 // that every glyph lies inside its button, and that the words are all there
 // or abbreviated by the rule (both ends kept).
@@ -212,9 +237,16 @@ TEST(ControlText, EveryControlOfTheAalLayoutFitsItsButtonInEveryLanguage) {
                         EXPECT_GT(count, 8u) << w << "x" << h << " " << lang << " " << c.text;
                         EXPECT_LT(c.rect.w, 80.0f) << c.text;
                         ++abbreviated;
+                        // What is shown, less the ellipses, is the text's start and then characters of it in order.
+                        EXPECT_NE(shown.find(U'\u2026'), std::u32string::npos) << c.text;
                         EXPECT_EQ(shown.front(), text.front()) << c.text;
-                        EXPECT_EQ(shown.back(), text.back()) << c.text;
-                        EXPECT_NE(shown.find(U'\u2026'), std::u32string::npos);
+                        size_t at = 0;
+                        for (char32_t ch : shown) {
+                            if (ch == U'\u2026' || ch == U' ') continue;
+                            at = text.find(ch, at);
+                            ASSERT_NE(at, std::u32string::npos) << c.text;
+                            ++at;
+                        }
                     } else {
                         std::u32string squeezed = text;
                         std::erase(squeezed, U' ');
