@@ -21,6 +21,7 @@ HOST_PACKAGES=(
   libegl-mesa0 libgl1-mesa-dri libgles2 xvfb xauth
   glmark2-data python3 python3-pydicom mricron-data dpkg-dev
   assimp-utils python3-vtk9 nodejs
+  libharfbuzz-dev libfribidi-dev libicu-dev fonts-noto-core fonts-noto-cjk
 )
 CROSS_PACKAGES=(
   g++-aarch64-linux-gnu qemu-user
@@ -29,6 +30,7 @@ CROSS_PACKAGES=(
   libevdev-dev:arm64 libtinyobjloader-dev:arm64 libgtest-dev:arm64 libgmock-dev:arm64
   libmeshoptimizer-dev:arm64 libstb-dev:arm64 zlib1g-dev:arm64 libpolyclipping-dev:arm64
   libegl-mesa0:arm64 libgl1-mesa-dri:arm64 libgles2:arm64 libsystemd-dev:arm64 libseat-dev:arm64
+  libharfbuzz-dev:arm64 libfribidi-dev:arm64 libicu-dev:arm64
 )
 
 missing_packages() {

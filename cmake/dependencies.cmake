@@ -30,6 +30,12 @@ if(NOT SEAT_FOUND)
                  "members of video and input), without VT switching")
 endif()
 
+# Text for every script in the kiosk (kiosk/app/text_shaping.cpp): HarfBuzz
+# shapes, FriBidi orders right-to-left text, ICU finds line breaks (UAX #14).
+pkg_check_modules(HARFBUZZ REQUIRED IMPORTED_TARGET harfbuzz)
+pkg_check_modules(FRIBIDI REQUIRED IMPORTED_TARGET fribidi)
+pkg_check_modules(ICU_UC REQUIRED IMPORTED_TARGET icu-uc)
+
 # stb (header-only here) and the DejaVu font.
 find_path(STB_INCLUDE_DIR stb_image_write.h PATH_SUFFIXES stb REQUIRED)
 add_library(body_stb INTERFACE)

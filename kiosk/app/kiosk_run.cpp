@@ -118,12 +118,9 @@ void KioskLoop::start_app() {
     app_->set_picker([this](int model, const Ray& ray) -> std::optional<float> {
         return models_.pick(static_cast<size_t>(model), placement(model), ray);
     });
-    std::string label_text;
-    for (const scene::Model& m : scene_.models)
-        for (const auto& l : m.labels) label_text += l.title + l.description;
     const auto ui_start = Clock::now();
     const float ui_scale = std::max(1.0f, static_cast<float>(std::min(surface_.width(), surface_.height())) / 800.0f);
-    if (auto s = overlay_.init(options_.font.empty() ? default_font_file() : options_.font, ui_scale, label_text); !s)
+    if (auto s = overlay_.init(options_.font.empty() ? default_font_file() : options_.font, ui_scale); !s)
         std::fprintf(stderr, "bodyview: labels disabled: %s\n", s.error().message.c_str());
     ui_ms_ = ms_since(ui_start);
 }

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "kiosk/app/kiosk_app.h"
+#include "kiosk/app/text_shaping.h"
 
 namespace body::kiosk {
 
@@ -13,7 +14,9 @@ Rect label_card_rect(const UiState& s) {
     const float gap = std::floor(b * 0.15f);
     const float w = std::min(static_cast<float>(s.width) * 0.45f, 560.0f);
     const float h = std::min(static_cast<float>(s.height) * 0.3f, 240.0f);
-    return Rect{gap + s.drift_x, static_cast<float>(s.height) - b - 2 * gap - h + s.drift_y, w, h};
+    Rect r{gap + s.drift_x, static_cast<float>(s.height) - b - 2 * gap - h + s.drift_y, w, h};
+    if (is_rtl_language(s.language)) r.x = static_cast<float>(s.width) - r.x - r.w;  // mirrored with the controls
+    return r;
 }
 
 LabelCard label_card(const KioskApp& app) {

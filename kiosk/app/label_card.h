@@ -17,7 +17,7 @@ struct LabelCard {
     std::string description;  // UTF-8
 };
 
-// The card's largest rectangle (bottom-left, above the group row).
+// The card's largest rectangle (bottom-left, above the group row; bottom-right for a right-to-left language).
 Rect label_card_rect(const UiState& state);
 // The card for the app's selection (not visible when nothing is selected).
 LabelCard label_card(const KioskApp& app);

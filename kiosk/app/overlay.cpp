@@ -5,6 +5,8 @@
 #include <GLES3/gl3.h>
 
 #include <algorithm>
+#include <map>
+#include <tuple>
 
 #include "kiosk/render/renderer.h"
 
@@ -62,20 +64,60 @@ struct Overlay::State {
     GLuint textures[2] = {0, 0};
     GLint u_screen = -1, u_textured = -1, u_atlas = -1;
     GlyphAtlas title, body;
+    uint64_t uploaded[2] = {~0ull, ~0ull};  // atlas generation in each texture
+    int texture_size[2] = {0, 0};
     std::vector<Vertex> solid, text[2];
+    std::map<std::tuple<std::string, float, float>, FittedText> fitted;  // control text and box -> fit
+    const FittedText& fit(const std::string& utf8, float w, float h);
+    void build(const std::vector<Control>& controls, const LabelCard& card);
+    void upload();
 };
+
+namespace {
+
+// `lines` of one atlas, each centred (or aligned to `align`: -1 left, 1 right) in r.
+void text_lines(std::vector<Vertex>& out, GlyphAtlas& a, const std::vector<TextLine>& lines, float k, float x, float w,
+                float y_baseline, int align, TextDirection dir, Colour c) {
+    float y = y_baseline;
+    for (const TextLine& line : lines) {
+        const float lw = line.width * k;
+        const float x0 = align < 0 ? x : align > 0 ? x + w - lw : x + (w - lw) * 0.5f;
+        for (const GlyphQuad& q : a.layout(line.text, 0.0f, 0.0f, nullptr, dir))
+            quad(out, x0 + q.x0 * k, y + q.y0 * k, x0 + q.x1 * k, y + q.y1 * k, q.s0, q.t0, q.s1, q.t1, c);
+        y += a.line_height() * k;
+    }
+}
+
+}  // namespace
+
+void Overlay::State::upload() {
+    GlyphAtlas* atlases[2] = {&title, &body};
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    for (int i = 0; i < 2; ++i) {
+        const GlyphAtlas& a = *atlases[i];
+        if (uploaded[i] == a.generation()) continue;
+        glBindTexture(GL_TEXTURE_2D, textures[i]);
+        if (texture_size[i] != a.width()) {
+            glTexImage2D(GL_TEXTURE_2D, 0, GL_R8, a.width(), a.height(), 0, GL_RED, GL_UNSIGNED_BYTE,
+                         a.pixels().data());
+            texture_size[i] = a.width();
+        } else {
+            glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, a.width(), a.height(), GL_RED, GL_UNSIGNED_BYTE, a.pixels().data());
+        }
+        uploaded[i] = a.generation();
+    }
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+}
 
 Overlay::Overlay() = default;
 Overlay::~Overlay() = default;
 
-Status Overlay::init(const std::string& font_file, float scale, const std::string& all_label_text) {
+Status Overlay::init(const std::string& font_file, float scale) {
     auto s = std::make_unique<State>();
-    auto title = GlyphAtlas::build(font_file, 30.0f * scale, all_label_text);
-    if (!title) return title.error();
-    auto body = GlyphAtlas::build(font_file, 20.0f * scale, all_label_text);
-    if (!body) return body.error();
-    s->title = std::move(title).value();
-    s->body = std::move(body).value();
+    auto fonts = FontSet::open(FontSet::every_script(font_file));
+    if (!fonts) return fonts.error();
+    s->title = GlyphAtlas(fonts.value(), 30.0f * scale);
+    s->body = GlyphAtlas(fonts.value(), 20.0f * scale);
     auto program = render::link_program(kVertex, kFragment, "overlay");
     if (!program) return program.error();
     s->program = program.value();
@@ -92,18 +134,13 @@ Status Overlay::init(const std::string& font_file, float scale, const std::strin
     for (GLuint i = 0; i < 3; ++i) glEnableVertexAttribArray(i);
     glBindVertexArray(0);
     glGenTextures(2, s->textures);
-    const GlyphAtlas* atlases[2] = {&s->title, &s->body};
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     for (int i = 0; i < 2; ++i) {
         glBindTexture(GL_TEXTURE_2D, s->textures[i]);
-        glTexImage2D(GL_TEXTURE_2D, 0, GL_R8, atlases[i]->width(), atlases[i]->height(), 0, GL_RED, GL_UNSIGNED_BYTE,
-                     atlases[i]->pixels().data());
         glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
         glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
         glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
         glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     }
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
     shutdown();
     s_ = std::move(s);
     return ok_status();
@@ -118,69 +155,78 @@ void Overlay::shutdown() {
     s_.reset();
 }
 
+// fit_text is a search over scales and cuts: done once per text and box, not every frame.
+const FittedText& Overlay::State::fit(const std::string& utf8, float w, float h) {
+    auto key = std::make_tuple(utf8, w, h);
+    if (auto it = fitted.find(key); it != fitted.end()) return it->second;
+    if (fitted.size() > 512) fitted.clear();
+    return fitted.emplace(std::move(key), fit_text(body, decode_utf8(utf8), w, h)).first->second;
+}
+
+void Overlay::State::build(const std::vector<Control>& controls, const LabelCard& card) {
+    solid.clear();
+    text[0].clear();
+    text[1].clear();
+    const Colour ink{0.12f, 0.11f, 0.10f, 1.0f}, faded{0.12f, 0.11f, 0.10f, 0.35f};
+    for (const Control& c : controls) {
+        const Rect& r = c.rect;
+        const Colour fill = c.active ? Colour{0.80f, 0.88f, 0.97f, 0.92f} : Colour{1.0f, 1.0f, 1.0f, 0.85f};
+        quad(solid, r.x, r.y, r.x + r.w, r.y + r.h, 0, 0, 0, 0, fill);
+        const Colour edge{0.35f, 0.35f, 0.40f, 0.9f};
+        quad(solid, r.x, r.y + r.h - 2, r.x + r.w, r.y + r.h, 0, 0, 0, 0, edge);
+        const FittedText& f = fit(c.text, r.w - 8.0f, r.h - 6.0f);
+        // Lines centred in the box; the first baseline puts the block's middle at the box's.
+        const float k = f.scale, lh = body.line_height() * k;
+        const float top = r.y + (r.h - static_cast<float>(f.lines.size()) * lh) * 0.5f;
+        const float baseline = top + (lh + body.ascent() * 0.75f * k) * 0.5f;
+        const TextDirection dir = f.rtl ? TextDirection::RightToLeft : TextDirection::LeftToRight;
+        text_lines(text[1], body, f.lines, k, r.x + 4.0f, r.w - 8.0f, baseline, 0, dir, c.enabled ? ink : faded);
+    }
+    if (!card.visible) return;
+    // Shrink the card to its text, keeping its bottom edge.
+    const float pad = 16.0f;
+    const std::u32string title_text = decode_utf8(card.title), body_text = decode_utf8(card.description);
+    const auto title_lines = title.wrap(title_text, card.rect.w - 2 * pad);
+    auto body_lines = body.wrap(body_text, card.rect.w - 2 * pad);
+    const bool has_body = !card.description.empty();
+    if (!has_body) body_lines.clear();
+    const float needed = 2 * pad + static_cast<float>(title_lines.size()) * title.line_height() +
+                         (has_body ? (static_cast<float>(body_lines.size()) + 0.3f) * body.line_height() : 0.0f);
+    Rect r = card.rect;
+    if (needed < r.h) {
+        r.y += r.h - needed;
+        r.h = needed;
+    }
+    // Lines that do not fit the card's height are left out whole, never cut.
+    auto fitting = [](std::vector<TextLine> lines, float from, float to, float lh) {
+        const auto n = static_cast<size_t>(std::max(0.0f, std::floor((to - from) / lh)));
+        if (lines.size() > n) lines.resize(n);
+        return lines;
+    };
+    const bool rtl = is_rtl_paragraph(title_text.empty() ? body_text : title_text);
+    quad(solid, r.x, r.y, r.x + r.w, r.y + r.h, 0, 0, 0, 0, Colour{1.0f, 1.0f, 0.98f, 0.93f});
+    const float bar_x = rtl ? r.x + r.w - 6 : r.x;  // the accent bar on the reading side
+    quad(solid, bar_x, r.y, bar_x + 6, r.y + r.h, 0, 0, 0, 0, Colour{0.55f, 0.25f, 0.80f, 1.0f});
+    const TextDirection dir = rtl ? TextDirection::RightToLeft : TextDirection::LeftToRight;
+    const int align = rtl ? 1 : -1;
+    const float title_top = r.y + pad;
+    const auto titles = fitting(title_lines, title_top, r.y + r.h, title.line_height());
+    text_lines(text[0], title, titles, 1.0f, r.x + pad, r.w - 2 * pad, title_top + title.ascent(), align, dir, ink);
+    const float body_top =
+        title_top + static_cast<float>(titles.size()) * title.line_height() + body.line_height() * 0.3f;
+    const auto bodies = fitting(body_lines, body_top, r.y + r.h - pad * 0.5f, body.line_height());
+    text_lines(text[1], body, bodies, 1.0f, r.x + pad, r.w - 2 * pad, body_top + body.ascent(), align, dir, ink);
+}
+
 void Overlay::draw(const std::vector<Control>& controls, const LabelCard& card, unsigned framebuffer, int width,
                    int height) {
     if (!s_) return;
     State& s = *s_;
-    s.solid.clear();
-    s.text[0].clear();
-    s.text[1].clear();
-    const Colour ink{0.12f, 0.11f, 0.10f, 1.0f}, faded{0.12f, 0.11f, 0.10f, 0.35f};
-    auto text_centered = [&](int which, const std::string& utf8, const Rect& r, Colour c) {
-        const GlyphAtlas& a = which == 0 ? s.title : s.body;
-        const std::u32string t = decode_utf8(utf8);
-        const float w = a.measure(t);
-        // Too wide for the button: shrink it (down to 60%), then clip.
-        const float room = r.w - 8.0f;
-        const float k = w > room ? std::max(0.6f, room / w) : 1.0f;
-        const float x = r.x + std::max(4.0f, (r.w - w * k) * 0.5f);
-        const float y = r.y + (r.h + a.ascent() * 0.75f * k) * 0.5f;
-        for (const GlyphQuad& q : a.layout(t, 0.0f, 0.0f)) {
-            const float x0 = x + q.x0 * k, x1 = x + q.x1 * k;
-            if (x1 > r.x + r.w - 2.0f) break;
-            quad(s.text[which], x0, y + q.y0 * k, x1, y + q.y1 * k, q.s0, q.t0, q.s1, q.t1, c);
-        }
-    };
-    for (const Control& c : controls) {
-        const Rect& r = c.rect;
-        const Colour fill = c.active ? Colour{0.80f, 0.88f, 0.97f, 0.92f} : Colour{1.0f, 1.0f, 1.0f, 0.85f};
-        quad(s.solid, r.x, r.y, r.x + r.w, r.y + r.h, 0, 0, 0, 0, fill);
-        const Colour edge{0.35f, 0.35f, 0.40f, 0.9f};
-        quad(s.solid, r.x, r.y + r.h - 2, r.x + r.w, r.y + r.h, 0, 0, 0, 0, edge);
-        text_centered(1, c.text, r, c.enabled ? ink : faded);
-    }
-    if (card.visible) {
-        // Shrink the card to its text, keeping its bottom edge.
-        const float pad = 16.0f;
-        const auto title_lines = s.title.wrap(decode_utf8(card.title), card.rect.w - 2 * pad);
-        const auto body_lines = s.body.wrap(decode_utf8(card.description), card.rect.w - 2 * pad);
-        const bool has_body = !card.description.empty();
-        const float needed = 2 * pad + static_cast<float>(title_lines.size()) * s.title.line_height() +
-                             (has_body ? (static_cast<float>(body_lines.size()) + 0.3f) * s.body.line_height() : 0.0f);
-        Rect r = card.rect;
-        if (needed < r.h) {
-            r.y += r.h - needed;
-            r.h = needed;
-        }
-        quad(s.solid, r.x, r.y, r.x + r.w, r.y + r.h, 0, 0, 0, 0, Colour{1.0f, 1.0f, 0.98f, 0.93f});
-        quad(s.solid, r.x, r.y, r.x + 6, r.y + r.h, 0, 0, 0, 0, Colour{0.55f, 0.25f, 0.80f, 1.0f});
-        float y = r.y + pad + s.title.ascent();
-        for (const TextLine& line : title_lines) {
-            if (y > r.y + r.h) break;
-            for (const GlyphQuad& q : s.title.layout(line.text, r.x + pad, y)) {
-                quad(s.text[0], q.x0, q.y0, q.x1, q.y1, q.s0, q.t0, q.s1, q.t1, ink);
-            }
-            y += s.title.line_height();
-        }
-        y += s.body.line_height() * 0.3f - s.title.ascent() + s.body.ascent();
-        for (const TextLine& line : has_body ? body_lines : std::vector<TextLine>{}) {
-            if (y > r.y + r.h - pad * 0.5f) break;
-            for (const GlyphQuad& q : s.body.layout(line.text, r.x + pad, y)) {
-                quad(s.text[1], q.x0, q.y0, q.x1, q.y1, q.s0, q.t0, q.s1, q.t1, ink);
-            }
-            y += s.body.line_height();
-        }
-    }
+    // Glyphs new this frame may grow an atlas and stale the quads laid out before: then once more.
+    const uint64_t epochs = s.title.epoch() + s.body.epoch();
+    s.build(controls, card);
+    if (s.title.epoch() + s.body.epoch() != epochs) s.build(controls, card);
+    s.upload();
 
     glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
     glViewport(0, 0, width, height);
@@ -202,7 +248,7 @@ void Overlay::draw(const std::vector<Control>& controls, const LabelCard& card, 
         glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(v.size() * sizeof(Vertex)), v.data(), GL_STREAM_DRAW);
         glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(v.size()));
     };
-    submit(s.solid, 0, s.textures[0]);
+    submit(s.solid, 0, s.textures[0]);  // (texture unused: untextured)
     submit(s.text[0], 1, s.textures[0]);
     submit(s.text[1], 1, s.textures[1]);
     glBindVertexArray(0);

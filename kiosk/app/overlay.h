@@ -21,11 +21,13 @@ public:
     Overlay(const Overlay&) = delete;
     Overlay& operator=(const Overlay&) = delete;
 
-    // Compiles the shader and uploads the two atlases (titles, body text); the
-    // label texts are passed so their glyphs are baked.
-    Status init(const std::string& font_file, float scale, const std::string& all_label_text);
+    // Compiles the shader and opens the fonts (font_file first, then the
+    // fallbacks for every script) for two atlases, titles and body text; glyphs
+    // are rasterised and uploaded when a string first needs them.
+    Status init(const std::string& font_file, float scale);
     void shutdown();
-    // Draws controls and card into `framebuffer` (width x height).
+    // Draws controls and card into `framebuffer` (width x height). Control texts
+    // follow fit_text (never cut off); right-to-left card text is right-aligned.
     void draw(const std::vector<Control>& controls, const LabelCard& card, unsigned framebuffer, int width, int height);
 
 private:

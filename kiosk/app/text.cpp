@@ -1,18 +1,20 @@
-// Glyph atlas with stb_truetype's packer (Sean Barrett, stb_truetype.h, public
-// domain): codepoints collected from fixed ranges and the scene's texts, packed
-// with 2x horizontal oversampling into a square power-of-two bitmap.
+// The glyph atlas: glyphs rasterised on first use (font_fallback.h) and packed
+// on shelves into a power-of-two bitmap that grows, then refills when full;
+// shaped lines (text_shaping.h) are cached by text.
 #include "kiosk/app/text.h"
 
 #include <algorithm>
-#include <set>
-
-#include "shared/atomic_file.h"
-
-#define STBTT_STATIC
-#define STB_TRUETYPE_IMPLEMENTATION
-#include <stb_truetype.h>
+#include <cmath>
+#include <cstring>
 
 namespace body::kiosk {
+
+namespace {
+
+constexpr int kFirstAtlasSize = 512, kLargestAtlasSize = 4096, kPadding = 1;
+constexpr size_t kShapedCacheLimit = 16384;
+
+}  // namespace
 
 std::u32string decode_utf8(std::string_view s) {
     std::u32string out;
@@ -50,134 +52,248 @@ std::u32string decode_utf8(std::string_view s) {
 
 const char* default_font_file() { return BODY_FONT_FILE; }
 
-Result<GlyphAtlas> GlyphAtlas::build(const std::string& font_file, float pixel_height, std::string_view extra_text) {
-    auto font = read_file(font_file);
-    if (!font) return font.error();
-    const auto* data = reinterpret_cast<const unsigned char*>(font->data());
-    stbtt_fontinfo info;
-    if (stbtt_GetFontOffsetForIndex(data, 0) < 0 ||
-        !stbtt_InitFont(&info, data, stbtt_GetFontOffsetForIndex(data, 0))) {
-        return input_error(font_file + ": byte 0: not a TrueType font");
-    }
-    std::set<char32_t> wanted;
-    for (char32_t c = 0x20; c < 0x7F; ++c) wanted.insert(c);
-    for (char32_t c = 0xA0; c < 0x180; ++c) wanted.insert(c);
-    for (char32_t c = 0x391; c < 0x3CA; ++c) wanted.insert(c);
-    for (char32_t c : std::u32string_view(U"\u2013\u2014\u2018\u2019\u201C\u201D\u2022\u2026\u2212\u2302\uFFFD")) {
-        wanted.insert(c);
-    }
-    for (char32_t c : decode_utf8(extra_text)) {
-        if (c >= 0x20) wanted.insert(c);
-    }
-    std::vector<int> codepoints;
-    for (char32_t c : wanted) {
-        if (stbtt_FindGlyphIndex(&info, static_cast<int>(c)) != 0) codepoints.push_back(static_cast<int>(c));
-    }
+Result<GlyphAtlas> GlyphAtlas::build(const std::string& font_file, float pixel_height) {
+    auto fonts = FontSet::open(FontSet::every_script(font_file));
+    if (!fonts) return fonts.error();
+    return GlyphAtlas(std::move(fonts).value(), pixel_height);
+}
 
-    GlyphAtlas atlas;
-    atlas.pixel_height_ = pixel_height;
-    std::vector<stbtt_packedchar> packed(codepoints.size());
-    for (int size = 256; size <= 4096; size *= 2) {
-        atlas.width_ = atlas.height_ = size;
-        atlas.pixels_.assign(static_cast<size_t>(size) * static_cast<size_t>(size), 0);
-        stbtt_pack_context pc;
-        if (!stbtt_PackBegin(&pc, atlas.pixels_.data(), size, size, 0, 1, nullptr)) {
-            return runtime_error(font_file + ": cannot start the glyph packer");
+GlyphAtlas::GlyphAtlas(std::shared_ptr<FontSet> fonts, float pixel_height)
+    : fonts_(std::move(fonts)), pixel_height_(pixel_height) {
+    em_px_ = fonts_->em_for_pixel_height(pixel_height);
+    fonts_->vertical_metrics(em_px_, ascent_, line_height_);
+    width_ = height_ = kFirstAtlasSize;
+    pixels_.assign(static_cast<size_t>(width_) * static_cast<size_t>(height_), 0);
+}
+
+bool GlyphAtlas::has(char32_t codepoint) { return fonts_ && fonts_->font_for(codepoint, -1) >= 0; }
+
+// Shelf packing: left to right on the current shelf, a new shelf below when full.
+bool GlyphAtlas::place(int w, int h, int& ax, int& ay) {
+    if (shelf_x_ + w + kPadding > width_) {
+        shelf_y_ += shelf_h_ + kPadding;
+        shelf_x_ = 0;
+        shelf_h_ = 0;
+    }
+    if (shelf_y_ + h + kPadding > height_ || w + kPadding > width_) return false;
+    ax = shelf_x_ + kPadding;
+    ay = shelf_y_ + kPadding;
+    shelf_x_ += w + kPadding;
+    shelf_h_ = std::max(shelf_h_, h);
+    return true;
+}
+
+// Doubles the bitmap (glyphs keep their pixels; texture coordinates change),
+// or at the largest size starts an empty one.
+void GlyphAtlas::grow_or_refill() {
+    ++epoch_;
+    ++generation_;
+    if (width_ < kLargestAtlasSize) {
+        const int old_w = width_;
+        std::vector<uint8_t> old = std::move(pixels_);
+        width_ *= 2;
+        height_ *= 2;
+        pixels_.assign(static_cast<size_t>(width_) * static_cast<size_t>(height_), 0);
+        for (int y = 0; y < old_w; ++y)
+            std::memcpy(&pixels_[static_cast<size_t>(y) * static_cast<size_t>(width_)],
+                        &old[static_cast<size_t>(y) * static_cast<size_t>(old_w)], static_cast<size_t>(old_w));
+        shelf_y_ += shelf_h_ + kPadding;  // the old shelves are full; a new one below them
+        shelf_x_ = shelf_h_ = 0;
+        return;
+    }
+    std::fill(pixels_.begin(), pixels_.end(), uint8_t{0});
+    slots_.clear();
+    shelf_x_ = shelf_y_ = shelf_h_ = 0;
+}
+
+const GlyphAtlas::Slot& GlyphAtlas::slot(int font, uint32_t glyph) {
+    const uint64_t key = (static_cast<uint64_t>(font) << 32) | glyph;
+    if (auto it = slots_.find(key); it != slots_.end()) return it->second;
+    const GlyphBitmap b = fonts_->rasterize(font, glyph, em_px_);
+    Slot s;
+    if (b.width > 0) {
+        bool ok = place(b.width, b.height, s.ax, s.ay);
+        for (int tries = 0; !ok && tries < 4; ++tries) {
+            grow_or_refill();
+            ok = place(b.width, b.height, s.ax, s.ay);
         }
-        stbtt_PackSetOversampling(&pc, 2, 1);
-        stbtt_pack_range range{};
-        range.font_size = pixel_height;
-        range.array_of_unicode_codepoints = codepoints.data();
-        range.num_chars = static_cast<int>(codepoints.size());
-        range.chardata_for_range = packed.data();
-        const int ok = stbtt_PackFontRanges(&pc, data, 0, &range, 1);
-        stbtt_PackEnd(&pc);
-        if (ok) break;
-        if (size == 4096) return runtime_error(font_file + ": glyphs do not fit a 4096x4096 atlas");
+        if (ok) {
+            for (int y = 0; y < b.height; ++y)
+                std::memcpy(
+                    &pixels_[static_cast<size_t>(s.ay + y) * static_cast<size_t>(width_) + static_cast<size_t>(s.ax)],
+                    &b.coverage[static_cast<size_t>(y) * static_cast<size_t>(b.width)], static_cast<size_t>(b.width));
+            s.w = b.width;
+            s.h = b.height;
+            s.x0 = b.x0;
+            s.y0 = b.y0;
+            s.x1 = b.x1;
+            s.y1 = b.y1;
+            ++generation_;
+        }
     }
-    const float scale = stbtt_ScaleForPixelHeight(&info, pixel_height);
-    int ascent = 0, descent = 0, gap = 0;
-    stbtt_GetFontVMetrics(&info, &ascent, &descent, &gap);
-    atlas.ascent_ = static_cast<float>(ascent) * scale;
-    atlas.line_height_ = static_cast<float>(ascent - descent + gap) * scale;
-    for (size_t i = 0; i < codepoints.size(); ++i) {
-        float x = 0.0f, y = 0.0f;
-        stbtt_aligned_quad q;
-        stbtt_GetPackedQuad(packed.data(), atlas.width_, atlas.height_, static_cast<int>(i), &x, &y, &q, 0);
-        atlas.glyphs_.push_back(Glyph{static_cast<char32_t>(codepoints[i]), q.x0, q.y0, q.x1, q.y1, q.s0, q.t0, q.s1,
-                                      q.t1, packed[i].xadvance});
-    }
-    return atlas;
+    return slots_.emplace(key, s).first->second;
 }
 
-const GlyphAtlas::Glyph* GlyphAtlas::find(char32_t codepoint) const {
-    auto it = std::lower_bound(glyphs_.begin(), glyphs_.end(), codepoint,
-                               [](const Glyph& g, char32_t c) { return g.codepoint < c; });
-    return it != glyphs_.end() && it->codepoint == codepoint ? &*it : nullptr;
+const ShapedText& GlyphAtlas::shaped(std::u32string_view text, TextDirection direction) {
+    std::u32string key(1, static_cast<char32_t>(direction));
+    key += text;
+    if (auto it = shaped_.find(key); it != shaped_.end()) return it->second;
+    if (shaped_.size() >= kShapedCacheLimit) shaped_.clear();
+    return shaped_.emplace(std::move(key), shape_text(*fonts_, text, em_px_, direction)).first->second;
 }
 
-bool GlyphAtlas::has(char32_t codepoint) const { return find(codepoint) != nullptr; }
-
-std::vector<GlyphQuad> GlyphAtlas::layout(std::u32string_view text, float x, float y, float* advance) const {
+std::vector<GlyphQuad> GlyphAtlas::layout(std::u32string_view text, float x, float y, float* advance,
+                                          TextDirection direction) {
     std::vector<GlyphQuad> out;
-    const float x_start = x;
-    for (char32_t c : text) {
-        const Glyph* g = find(c);
-        if (!g) g = find(U'\uFFFD');
-        if (!g) g = find(U'?');
-        if (!g) continue;
-        if (g->x1 > g->x0 && c != U' ') {
-            out.push_back(GlyphQuad{x + g->x0, y + g->y0, x + g->x1, y + g->y1, g->s0, g->t0, g->s1, g->t1, c});
-        }
-        x += g->advance;
+    if (!fonts_) return out;
+    const ShapedText& line = shaped(text, direction);
+    for (const ShapedGlyph& g : line.glyphs) {
+        const Slot& s = slot(g.font, g.glyph);
+        if (s.w == 0) continue;
+        const float w = static_cast<float>(width_), h = static_cast<float>(height_);
+        out.push_back(GlyphQuad{x + g.x + s.x0, y + g.y + s.y0, x + g.x + s.x1, y + g.y + s.y1,
+                                static_cast<float>(s.ax) / w, static_cast<float>(s.ay) / h,
+                                static_cast<float>(s.ax + s.w) / w, static_cast<float>(s.ay + s.h) / h,
+                                g.cluster < text.size() ? text[g.cluster] : U'\uFFFD'});
     }
-    if (advance) *advance = x - x_start;
+    if (advance) *advance = line.width;
     return out;
 }
 
-float GlyphAtlas::measure(std::u32string_view text) const {
-    float w = 0.0f;
-    (void)layout(text, 0.0f, 0.0f, &w);
-    return w;
+float GlyphAtlas::measure(std::u32string_view text, TextDirection direction) {
+    return fonts_ ? shaped(text, direction).width : 0.0f;
 }
 
-std::vector<TextLine> GlyphAtlas::wrap(std::u32string_view text, float max_width) const {
+namespace {
+
+std::u32string_view trimmed(std::u32string_view s) {
+    while (!s.empty() && (s.back() == U' ' || s.back() == U'\u3000')) s.remove_suffix(1);
+    while (!s.empty() && (s.front() == U' ' || s.front() == U'\u3000')) s.remove_prefix(1);
+    return s;
+}
+
+}  // namespace
+
+std::vector<TextLine> GlyphAtlas::wrap(std::u32string_view text, float max_width) {
     std::vector<TextLine> lines;
-    std::u32string current;
-    auto flush = [&] {
-        while (!current.empty() && current.back() == U' ') current.pop_back();
-        lines.push_back(TextLine{current, measure(current)});
-        current.clear();
+    auto emit = [&](std::u32string_view line) {
+        line = trimmed(line);
+        lines.push_back(TextLine{std::u32string(line), measure(line)});
     };
-    size_t i = 0;
-    while (i < text.size()) {
-        if (text[i] == U'\n') {
-            flush();
-            ++i;
-            continue;
-        }
-        size_t j = i;
-        while (j < text.size() && text[j] != U' ' && text[j] != U'\n') ++j;
-        std::u32string word(text.substr(i, j - i));
-        const std::u32string candidate = current.empty() ? word : current + U" " + word;
-        if (measure(candidate) <= max_width || (current.empty() && word.size() <= 1)) {
-            current = candidate;
-        } else if (!current.empty() && measure(word) <= max_width) {
-            flush();
-            current = word;
-        } else {
-            // Break an over-long word at the width.
-            if (!current.empty()) flush();
-            for (char32_t c : word) {
-                if (!current.empty() && measure(current + c) > max_width) flush();
-                current.push_back(c);
+    size_t para = 0;
+    while (para <= text.size()) {
+        const size_t end = std::min(text.find(U'\n', para), text.size());
+        const std::u32string_view p = text.substr(para, end - para);
+        const auto allowed = line_break_opportunities(p);
+        size_t line_start = 0, last_fit = 0;  // last_fit: a break where the line so far fits
+        for (size_t i = 1; i <= p.size(); ++i) {
+            if (i < p.size() && !allowed[i]) continue;
+            if (measure(trimmed(p.substr(line_start, i - line_start))) <= max_width) {
+                last_fit = i;
+                continue;
             }
+            if (last_fit > line_start) {  // the line up to the last fitting break
+                emit(p.substr(line_start, last_fit - line_start));
+                line_start = last_fit;
+                if (measure(trimmed(p.substr(line_start, i - line_start))) <= max_width) {
+                    last_fit = i;
+                    continue;
+                }
+            }
+            // One part wider than the line: broken between characters.
+            size_t k = line_start + 1;
+            while (true) {
+                while (k < i && measure(trimmed(p.substr(line_start, k + 1 - line_start))) <= max_width) ++k;
+                if (k >= i) break;
+                emit(p.substr(line_start, k - line_start));
+                line_start = k;
+                k = line_start + 1;
+            }
+            last_fit = i;
         }
-        i = j;
-        while (i < text.size() && text[i] == U' ') ++i;
+        if (line_start < p.size() || lines.empty() || p.empty()) emit(p.substr(line_start));
+        para = end + 1;
     }
-    if (!current.empty() || lines.empty()) flush();
     return lines;
+}
+
+namespace {
+
+// Greedy lines that break only at opportunities; a part wider than `max_w` stays whole on its own line.
+std::vector<TextLine> lines_at_breaks(GlyphAtlas& atlas, std::u32string_view text, float max_w) {
+    const auto allowed = line_break_opportunities(text);
+    std::vector<TextLine> lines;
+    size_t start = 0, last_fit = 0;
+    auto emit = [&](size_t end) {
+        const std::u32string_view l = trimmed(text.substr(start, end - start));
+        lines.push_back(TextLine{std::u32string(l), atlas.measure(l)});
+        start = end;
+    };
+    for (size_t i = 1; i <= text.size(); ++i) {
+        if (i < text.size() && !allowed[i]) continue;
+        if (last_fit > start && atlas.measure(trimmed(text.substr(start, i - start))) > max_w) emit(last_fit);
+        last_fit = i;
+    }
+    if (start < text.size() || lines.empty()) emit(text.size());
+    return lines;
+}
+
+// The longest start of `line` that fits `max_w` with "…" after it.
+TextLine abbreviated_line(GlyphAtlas& atlas, std::u32string_view line, float max_w) {
+    for (size_t n = line.size(); n-- > 0;) {
+        std::u32string cut(trimmed(line.substr(0, n)));
+        cut += U'\u2026';
+        const float width = atlas.measure(cut);
+        if (width <= max_w || n == 0) return TextLine{std::move(cut), width};
+    }
+    return TextLine{U"\u2026", atlas.measure(U"\u2026")};
+}
+
+}  // namespace
+
+FittedText fit_text(GlyphAtlas& atlas, std::u32string_view text, float w, float h) {
+    FittedText f;
+    f.rtl = is_rtl_paragraph(text);
+    const float lh = atlas.line_height();
+    auto extent = [&](const std::vector<TextLine>& lines, float& width) {
+        width = 0.0f;
+        for (const TextLine& l : lines) width = std::max(width, l.width);
+        return static_cast<float>(lines.size()) * lh;
+    };
+    auto accept = [&](std::vector<TextLine> lines, float scale, bool abbreviated) {
+        float width = 0.0f;
+        const float height = extent(lines, width);
+        f.lines = std::move(lines);
+        f.scale = scale;
+        f.abbreviated = abbreviated;
+        f.width = width * scale;
+        f.height = height * scale;
+        return f;
+    };
+    const float one = atlas.measure(text);
+    const float fit_one = std::min({1.0f, w / std::max(one, 1e-3f), h / lh});
+    if (fit_one >= 1.0f) return accept({TextLine{std::u32string(text), one}}, 1.0f, false);
+    // Two or more lines at break opportunities: the largest scale that fits, in steps of 5 %.
+    for (float scale = 1.0f; scale > fit_one && scale >= kMinTextScale - 1e-4f; scale -= 0.05f) {
+        auto lines = lines_at_breaks(atlas, text, w / scale);
+        float width = 0.0f;
+        const float height = extent(lines, width);
+        if (lines.size() > 1 && width * scale <= w && height * scale <= h)
+            return accept(std::move(lines), scale, false);
+    }
+    if (fit_one >= kMinTextScale) return accept({TextLine{std::u32string(text), one}}, fit_one, false);
+    // Abbreviated: the lines at break opportunities the box holds, each too wide
+    // one cut and ended with "…" (so "cerebellum-left" keeps its side); one
+    // abbreviated line when there are more lines than room.
+    const float scale = std::min(kMinTextScale, h / lh);
+    const auto max_lines = static_cast<size_t>(std::max(1.0f, std::floor(h / (lh * scale) + 1e-4f)));
+    auto lines = lines_at_breaks(atlas, text, w / scale);
+    if (lines.size() > max_lines) lines = {TextLine{std::u32string(text), one}};
+    for (TextLine& l : lines)
+        if (l.width * scale > w) l = abbreviated_line(atlas, l.text, w / scale);
+    float width = 0.0f;
+    (void)extent(lines, width);
+    return accept(std::move(lines), std::min(scale, w / std::max(width, 1e-3f)), true);
 }
 
 }  // namespace body::kiosk

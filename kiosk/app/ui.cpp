@@ -4,6 +4,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <iterator>
+
+#include "kiosk/app/text_shaping.h"
 
 namespace body::kiosk {
 
@@ -23,6 +26,22 @@ constexpr Word kWords[] = {
     {"auto", "Auto", "Auto", "Auto", "Auto"},        {"isolate", "Isolate", "Isolieren", "Isoler", "Aislar"},
 };
 
+// The same words in the scripts the kiosk shapes (text_shaping.h): Cyrillic,
+// Greek, Arabic, Hebrew, Chinese, Japanese; in kWords' key order.
+struct MoreWords {
+    const char* language;
+    const char* words[6];
+};
+
+constexpr MoreWords kMoreWords[] = {
+    {"ru", {"Домой", "Стиль", "Группа", "Детали", "Авто", "Изолировать"}},
+    {"el", {"Αρχή", "Στυλ", "Ομάδα", "Λεπτομέρεια", "Αυτόματο", "Απομόνωση"}},
+    {"ar", {"الرئيسية", "النمط", "المجموعة", "التفاصيل", "تلقائي", "عزل"}},
+    {"he", {"בית", "סגנון", "קבוצה", "פירוט", "אוטומטי", "בידוד"}},
+    {"zh", {"主页", "样式", "组", "细节", "自动", "单独显示"}},
+    {"ja", {"ホーム", "スタイル", "グループ", "詳細", "自動", "単独表示"}},
+};
+
 }  // namespace
 
 float button_size(const UiState& s) {
@@ -30,8 +49,11 @@ float button_size(const UiState& s) {
 }
 
 std::string ui_text(const std::string& key, const std::string& language) {
-    for (const Word& w : kWords) {
+    for (size_t i = 0; i < std::size(kWords); ++i) {
+        const Word& w = kWords[i];
         if (key != w.key) continue;
+        for (const MoreWords& m : kMoreWords)
+            if (language == m.language) return m.words[i];
         if (language == "de") return w.de;
         if (language == "fr") return w.fr;
         if (language == "es") return w.es;
@@ -107,7 +129,12 @@ std::vector<Control> layout_controls(const UiState& s) {
         out.push_back(std::move(c));
         gx += gw + gap;
     }
+    if (is_rtl_language(s.language)) mirror_for_rtl(out, s.width);
     return out;
+}
+
+void mirror_for_rtl(std::vector<Control>& controls, int width) {
+    for (Control& c : controls) c.rect.x = static_cast<float>(width) - c.rect.x - c.rect.w;
 }
 
 const Control* hit_test(const std::vector<Control>& controls, float x, float y) {

@@ -6,9 +6,10 @@
 // Layout (pixels, origin top-left): a column of buttons along the right edge —
 // home, language, style of the selection, style of its group, LOD -, LOD +, LOD
 // auto, isolate group — and a row of group show/hide toggles along the bottom.
-// Buttons are at least kMinButtonPx (about 9 mm on a 24" 1080p panel) and grow
-// with the screen. Hit tests accept touches up to kTouchSlopPx outside a button
-// when no other button is closer.
+// For a right-to-left language (is_rtl_language) the layout is mirrored: the
+// column on the left, the group row from the right. Buttons are at least kMinButtonPx (about 9 mm on a 24" 1080p panel)
+// and grow with the screen. Hit tests accept touches up to kTouchSlopPx outside a button when no other button is
+// closer.
 #include <string>
 #include <vector>
 
@@ -48,11 +49,14 @@ inline constexpr float kMinButtonPx = 64.0f;
 inline constexpr float kTouchSlopPx = 8.0f;
 
 std::vector<Control> layout_controls(const UiState& state);
+// Mirrors the controls left to right in a screen `width` pixels wide.
+void mirror_for_rtl(std::vector<Control>& controls, int width);
 // The control at (x, y), or nullptr; disabled controls are never hit.
 const Control* hit_test(const std::vector<Control>& controls, float x, float y);
 // The side of a control in pixels: a finger's size, at least kMinButtonPx.
 float button_size(const UiState& state);
-// A UI word in `language` ("home", "language", "style", "group", "lod", "auto", "isolate"); English fallback.
+// A UI word in `language` ("home", "style", "group", "lod", "auto", "isolate"): en, de, fr, es, ru, el, ar,
+// he, zh, ja; English fallback.
 std::string ui_text(const std::string& key, const std::string& language);
 
 }  // namespace body::kiosk

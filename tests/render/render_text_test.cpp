@@ -1,0 +1,123 @@
+// The kiosk's 2-D layer in every script on llvmpipe: controls, group buttons
+// and a label card in Latin, Cyrillic, Greek, Arabic, Hebrew, Chinese and
+// Japanese against golden/text_<script>.png (BODY_UPDATE_GOLDENS=1 rewrites
+// them). Right-to-left languages draw the mirrored layout.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+
+#include "kiosk/app/label_card.h"
+#include "kiosk/app/overlay.h"
+#include "kiosk/render/image.h"
+#include "render_fixture.h"
+
+namespace body {
+namespace {
+
+using kiosk::Control;
+using kiosk::LabelCard;
+using kiosk::UiState;
+
+struct Script {
+    const char* name;
+    const char* language;
+    const char* title;
+    const char* description;
+    std::vector<std::string> groups;
+};
+
+const Script kScripts[] = {
+    {"latin",
+     "en",
+     "Hippocampus",
+     "Forms new memories and links them to emotions and senses (since 2003).",
+     {"frontal-left", "temporal-right", "cerebellum-left"}},
+    {"cyrillic",
+     "ru",
+     "Гиппокамп",
+     "Формирует новые воспоминания и связывает их с эмоциями и чувствами.",
+     {"лобная-левая", "височная-правая", "мозжечок"}},
+    {"greek",
+     "el",
+     "Ιππόκαμπος",
+     "Σχηματίζει νέες αναμνήσεις και τις συνδέει με τα συναισθήματα.",
+     {"μετωπιαίος", "κροταφικός", "παρεγκεφαλίδα"}},
+    {"arabic",
+     "ar",
+     "الحُصين",
+     "يكوّن ذكريات جديدة ويربطها بالعواطف والحواس منذ 2003.",
+     {"الفص الجبهي", "الفص الصدغي", "المخيخ"}},
+    {"hebrew",
+     "he",
+     "היפוקמפוס",
+     "יוצר זיכרונות חדשים ומקשר אותם לרגשות, שלב 12 מתוך 30.",
+     {"אונה מצחית", "אונה רקתית", "המוח הקטן"}},
+    {"chinese",
+     "zh",
+     "海马体",
+     "海马体负责形成新的记忆，并把记忆与情绪和感觉联系起来。",
+     {"额叶（左）", "颞叶（右）", "小脑"}},
+    {"japanese",
+     "ja",
+     "海馬",
+     "海馬は新しい記憶をつくり、感情や感覚と結びつけます。",
+     {"前頭葉（左）", "側頭葉（右）", "小脳"}},
+};
+
+void PrintTo(const Script& s, std::ostream* os) { *os << s.name; }
+
+class TextGolden : public ::testing::TestWithParam<Script> {};
+
+TEST_P(TextGolden, MatchesGolden) {
+    if (!std::filesystem::exists(BODY_FONT_FILE)) GTEST_SKIP() << "needs fonts-dejavu-core";
+    const Script& sc = GetParam();
+    const int w = 800, h = 500;
+    test::RenderFixture f(w, h);
+    if (!f.ok()) GTEST_SKIP() << f.why();
+    kiosk::Overlay overlay;
+    ASSERT_TRUE(overlay.init(BODY_FONT_FILE, 1.0f).ok());
+    UiState s;
+    s.width = w;
+    s.height = h;
+    s.language = sc.language;
+    s.has_selection = s.selection_has_group = true;
+    s.style_name = "hatching";
+    s.group_style_name = "lines";
+    s.group_names = sc.groups;
+    s.group_visible = {true, false, true};
+    LabelCard card;
+    card.visible = true;
+    card.rect = kiosk::label_card_rect(s);
+    card.title = sc.title;
+    card.description = sc.description;
+    const render::FrameOptions o = f.frame();
+    (void)f.draw(render::View{});  // the background
+    overlay.draw(kiosk::layout_controls(s), card, o.framebuffer, w, h);
+    render::Image img;
+    img.width = w;
+    img.height = h;
+    img.rgba = platform::read_pixels_rgba(o.framebuffer, w, h);
+    overlay.shutdown();
+
+    const std::string path = std::string(BODY_GOLDEN_DIR) + "/text_" + sc.name + ".png";
+    if (std::getenv("BODY_UPDATE_GOLDENS")) {
+        ASSERT_TRUE(render::write_png(path, img).ok());
+        return;
+    }
+    auto golden = render::read_png(path);
+    ASSERT_TRUE(golden.ok()) << golden.error().message << " (regenerate with BODY_UPDATE_GOLDENS=1)";
+    // Text is thin: a strict block threshold, so that a wrong glyph, order or font shows.
+    const auto d = test::compare(golden.value(), img, 16);
+    if (d.bad_block_fraction > 0.001) {
+        const auto actual = std::filesystem::temp_directory_path() / ("text_" + std::string(sc.name) + ".actual.png");
+        (void)render::write_png(actual.string(), img);
+        ADD_FAILURE() << sc.name << ": " << d.bad_block_fraction * 100 << "% blocks differ (actual: " << actual << ")";
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(EveryScript, TextGolden, ::testing::ValuesIn(kScripts),
+                         [](const auto& info) { return std::string(info.param.name); });
+
+}  // namespace
+}  // namespace body
