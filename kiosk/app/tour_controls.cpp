@@ -55,13 +55,18 @@ void add_tour_controls(const UiState& ui, const TourUiState& st, std::vector<Con
     const float width = static_cast<float>(ui.width), height = static_cast<float>(ui.height);
     const float top = gap + ui.drift_y;
     const std::string& L = ui.language;
-    // A row of n buttons of width w centred at the top.
+    // Rows are centred in the room left of the controls already in the two top rows (ui.h's columns).
+    float right = width;
+    for (const Control& c : out) {
+        if (c.rect.y < top + 2.0f * b + gap && c.rect.x > width * 0.25f) right = std::min(right, c.rect.x);
+    }
+    const float room = std::max(b, right - gap - ui.drift_x);
     auto row = [&](size_t n, float w) {
         const float total = static_cast<float>(n) * w + static_cast<float>(n > 0 ? n - 1 : 0) * gap;
-        return (width - total) * 0.5f + ui.drift_x;
+        return (room - total) * 0.5f + ui.drift_x;
     };
     if (st.playing && !st.attract) {
-        const float w = std::floor(b * 1.6f);
+        const float w = std::max(kMinButtonPx, std::min(std::floor(b * 1.6f), std::floor((room - 5.0f * gap) / 4.0f)));
         float x = row(4, w);
         const ControlId ids[] = {ControlId::TourPrevious, ControlId::TourPause, ControlId::TourNext,
                                  ControlId::TourLeave};
@@ -73,7 +78,7 @@ void add_tour_controls(const UiState& ui, const TourUiState& st, std::vector<Con
         }
     } else if (!st.playing && !st.tour_titles.empty()) {
         const float w = std::floor(b * 2.2f);
-        const size_t fit = static_cast<size_t>(std::max(1.0f, (width * 0.5f + gap) / (w + gap)));
+        const size_t fit = static_cast<size_t>(std::max(1.0f, (room - gap) / (w + gap)));
         const size_t n = std::min(st.tour_titles.size(), fit);
         float x = row(n, w);
         for (size_t i = 0; i < n; ++i) {
@@ -82,9 +87,9 @@ void add_tour_controls(const UiState& ui, const TourUiState& st, std::vector<Con
         }
     }
     if (st.playing && !st.caption.empty()) {
-        const float w = std::floor(width * 0.5f);
+        const float w = std::floor(std::min(room - 2.0f * gap, b * 8.0f));
         const float y = st.attract ? top : top + b + gap;
-        out.push_back(make(ControlId::TourCaption, Rect{(width - w) * 0.5f + ui.drift_x, y, w, b}, st.caption));
+        out.push_back(make(ControlId::TourCaption, Rect{(room - w) * 0.5f + ui.drift_x, y, w, b}, st.caption));
     }
     if (st.countdown) {
         const float w = std::floor(std::min(width * 0.5f, b * 5.0f)), h = std::floor(b * 1.4f);

@@ -1,8 +1,9 @@
 #pragma once
 // The controls of tours and of the idle countdown, as a layout (no GL), added
 // after ui.h's controls:
-//   - no tour playing: one start button per tour (its title) in a row centred
-//     at the top;
+//   - no tour playing: one start button per tour (its title) in a row at the
+//     top, centred left of the controls already in `out` (ui.h's columns; as
+//     many as fit);
 //   - a tour playing: back, pause/play, next and leave in that row, the step's
 //     caption in a wide box under it;
 //   - the "still looking?" countdown: a wide box in the middle of the screen
@@ -24,7 +25,7 @@ struct TourUiState {
     std::optional<int> countdown;  // seconds left before the reset
 };
 
-// Appends the tour controls and the countdown for `state` (ui.h's layout metrics) to `out`.
+// Appends the tour controls and the countdown for `state` to `out`, which holds layout_controls()'s.
 void add_tour_controls(const UiState& ui, const TourUiState& state, std::vector<Control>& out);
 // A tour or countdown word in `language` ("tour", "back", "pause", "play", "next", "leave", "still"); English fallback.
 std::string tour_text(const std::string& key, const std::string& language);
