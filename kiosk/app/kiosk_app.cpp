@@ -73,6 +73,7 @@ KioskApp::KioskApp(scene::Scene scene, std::vector<ModelInfo> models, int width,
         home_pose_.target = center;
         home_pose_.distance = camera_.fit_distance(radius);
     }
+    operator_ = OperatorMode(scene_.kiosk.operator_pin);
     reset();
     resets_ = 0;
 }
@@ -139,6 +140,10 @@ UiState KioskApp::ui_state() const {
 }
 
 void KioskApp::relayout() {
+    if (operator_.active()) {
+        controls_ = operator_.controls(ui_state(), operator_.diagnostics(now_, lod_auto()));
+        return;
+    }
     controls_ = layout_controls(ui_state());
     add_tour_and_pin_controls();
 }
@@ -168,7 +173,15 @@ void KioskApp::admin_tap(float x, float y, double now) {
     }
     admin_taps_.push_back(now);
     std::erase_if(admin_taps_, [&](double t) { return now - t > a.seconds; });
-    if (static_cast<int>(admin_taps_.size()) >= a.taps) exit_requested_ = true;
+    if (static_cast<int>(admin_taps_.size()) < a.taps) return;
+    if (!operator_.enabled()) {
+        exit_requested_ = true;
+        return;
+    }
+    operator_.open();
+    admin_taps_.clear();
+    ui_touches_.clear();
+    relayout();
 }
 
 void KioskApp::handle(const InputEvent& e) {
@@ -203,6 +216,7 @@ void KioskApp::handle(const InputEvent& e) {
             return;
         }
     }
+    if (operator_.active()) return;  // modal: only its controls answer
     std::vector<Gesture> gestures;
     gestures_.feed(e, gestures);
     for (const Gesture& g : gestures) {
@@ -303,6 +317,10 @@ void KioskApp::activate(const Control& c, double now) {
         case ControlId::TourCaption:
         case ControlId::Countdown:
         case ControlId::Pin: activate_tour(c, now); break;
+        case ControlId::OperatorKey:
+        case ControlId::OperatorInfo:
+        case ControlId::OperatorRestart:
+        case ControlId::OperatorClose: activate_operator(c); break;
     }
     relayout();
 }
@@ -393,6 +411,7 @@ void KioskApp::home(double now) { camera_.fly_to(home_pose_, now); }
 
 void KioskApp::reset() {
     leave_tour();
+    operator_.close();  // staff who walked away leave no panel open
     visited_ = false;
     open_pin_ = -1;
     camera_.set_pose(home_pose_);

@@ -22,6 +22,8 @@
 //     gives the whole seconds left (a box on screen); any input cancels it.
 //   - pinned labels (kiosk_pins.cpp, pins.h) when `kiosk.pins` is on: pins()
 //     per frame, hidden when their point is occluded; a tap opens its card.
+//   - with `kiosk.operator_pin`, the admin gesture opens the operator mode
+//     (operator_mode.h: PIN keypad, diagnostics, restart) instead of exiting.
 #include <functional>
 #include <optional>
 #include <string>
@@ -31,6 +33,7 @@
 #include "kiosk/app/gestures.h"
 #include "kiosk/app/input.h"
 #include "kiosk/app/lod_controller.h"
+#include "kiosk/app/operator_mode.h"
 #include "kiosk/app/pins.h"
 #include "kiosk/app/tour.h"
 #include "kiosk/app/ui.h"
@@ -83,7 +86,10 @@ public:
     // Advances timers and the camera to `now`, chooses LOD levels for the next frame.
     void update(double now);
     // The frame just drawn (measured or simulated), for the automatic LOD.
-    void report_frame(double frame_ms, size_t triangles_drawn) { lod_.report_frame(frame_ms, triangles_drawn); }
+    void report_frame(double frame_ms, size_t triangles_drawn) {
+        lod_.report_frame(frame_ms, triangles_drawn);
+        operator_.note_frame(frame_ms, triangles_drawn);
+    }
 
     // State read back by the renderer and tests.
     const scene::Scene& scene() const { return scene_; }
@@ -136,6 +142,7 @@ public:
     // Pinned labels (kiosk_pins.cpp): empty unless `kiosk.pins` is on.
     const std::vector<PinView>& pins() const { return pins_; }
     int open_pin() const;  // index into pins() whose card is open (its model selected), or -1
+    const OperatorMode& operator_mode() const { return operator_; }
     // A model's placement in the scene: its manifest transform, moved by the visitor.
     glm::mat4 placement(int model) const;
     // The model under pixel (x, y), or -1.
@@ -158,6 +165,7 @@ private:
     void find_pin_anchors();
     void test_pin_occlusion();
     std::optional<float> hit_distance(int model, const Ray& ray) const;
+    void activate_operator(const Control& c);  // kiosk_operator.cpp
 
     scene::Scene scene_;
     std::vector<ModelInfo> info_;
@@ -198,6 +206,7 @@ private:
     std::vector<float> pin_last_key_;    // the same at the last frame
     double pin_tested_at_ = -1e30;
     int open_pin_ = -1;
+    OperatorMode operator_;
 };
 
 }  // namespace body::kiosk

@@ -39,6 +39,11 @@ enum class ControlId {
     TourCaption,
     Countdown,
     Pin,
+    // The operator mode (kiosk/app/operator_mode.h); `group` holds the key (OperatorKey).
+    OperatorKey,
+    OperatorInfo,
+    OperatorRestart,
+    OperatorClose,
 };
 
 struct Control {

@@ -410,6 +410,9 @@ Status Benchmark::run() {
             !s)
             return s;
     }
+    renderer_.state(id_)->style = Style::Smooth;
+    if (auto s = compare_pins(renderer_, id_, *source_, frame_, options_.frames, options_.seconds_per_cell); !s)
+        return s;
     renderer_.shutdown();
     return ok_status();
 }

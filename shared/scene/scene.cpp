@@ -203,7 +203,7 @@ bool read_camera(Reader& r, const json& v, const std::string& path, HomeCamera& 
 bool read_kiosk(Reader& r, const json& v, const std::string& path, KioskSettings& k) {
     if (!r.only_keys(v, path,
                      {"idle_seconds", "reset_seconds", "languages", "admin_gesture", "frame_ms_target", "attract_tour",
-                      "countdown_seconds", "pins"})) {
+                      "countdown_seconds", "pins", "operator_pin"})) {
         return false;
     }
     if (detail::Failure f; !detail::read_kiosk_tour_settings(v, path, k, f)) return r.fail(f.where, f.why);

@@ -92,6 +92,7 @@ struct KioskSettings {
     std::string attract_tour;         // tour the attract mode plays (looping) instead of turning; empty: turn
     float countdown_seconds = 10.0f;  // "still looking?" countdown before the reset; 0: none
     bool pins = false;                // show pinned labels (each model's pins, else its default pin)
+    std::string operator_pin;         // digits: the admin gesture opens the operator mode; empty: it exits
 };
 
 // Tours (kiosk/app/tour.h): named, ordered steps the camera and the scene's

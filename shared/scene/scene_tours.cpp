@@ -200,6 +200,16 @@ bool read_kiosk_tour_settings(const json& k, const std::string& path, KioskSetti
         !number(k["countdown_seconds"], path + ".countdown_seconds", 0, 600, out.countdown_seconds, f)) {
         return false;
     }
+    if (k.contains("operator_pin")) {
+        const json& p = k["operator_pin"];
+        const std::string where = path + ".operator_pin";
+        if (!p.is_string()) return fail(f, where, "expected a string of 4 to 12 digits");
+        out.operator_pin = p.get<std::string>();
+        const bool digits = out.operator_pin.find_first_not_of("0123456789") == std::string::npos;
+        if (!digits || out.operator_pin.size() < 4 || out.operator_pin.size() > 12) {
+            return fail(f, where, "expected a string of 4 to 12 digits");
+        }
+    }
     if (k.contains("pins")) {
         if (!k["pins"].is_boolean()) return fail(f, path + ".pins", "expected true or false");
         out.pins = k["pins"].get<bool>();

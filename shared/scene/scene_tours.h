@@ -18,7 +18,7 @@ struct Failure {
 
 // models[i].pins
 bool read_pins(const nlohmann::json& v, const std::string& path, std::vector<Pin>& out, Failure& f);
-// kiosk.attract_tour, kiosk.countdown_seconds, kiosk.pins (only those keys of `kiosk` are read).
+// kiosk.attract_tour, kiosk.countdown_seconds, kiosk.pins, kiosk.operator_pin (only those keys of `kiosk` are read).
 bool read_kiosk_tour_settings(const nlohmann::json& kiosk, const std::string& path, KioskSettings& k, Failure& f);
 // The root's `tours`.
 bool read_tours(const nlohmann::json& v, const std::string& path, std::vector<Tour>& out, Failure& f);
