@@ -411,7 +411,9 @@ Status Benchmark::run() {
             return s;
     }
     renderer_.state(id_)->style = Style::Smooth;
-    if (auto s = compare_pins(renderer_, id_, *source_, frame_, options_.frames, options_.seconds_per_cell); !s)
+    if (auto s =
+            compare_pins(renderer_, id_, *source_, frame_, std::max(options_.frames, 30), options_.seconds_per_cell);
+        !s)
         return s;
     renderer_.shutdown();
     return ok_status();
