@@ -4,7 +4,7 @@
 namespace body::kiosk {
 
 void KioskApp::activate_operator(const Control& c) {
-    switch (c.id) {
+    switch (c.id) {  // `c` lives in controls_: read before relayout()
         case ControlId::OperatorKey: operator_.key(c.group); break;
         case ControlId::OperatorRestart:
             operator_.close();

@@ -110,9 +110,11 @@ void KioskApp::tour_gesture(const Gesture& g) {
     if (moves && tour_.active() && !tour_.looping()) tour_.pause(now_);
 }
 
+// `c` lives in controls_, which every action below lays out anew: read it first.
 bool KioskApp::activate_tour(const Control& c, double now) {
+    const int group = c.group;
     switch (c.id) {
-        case ControlId::TourStart: start_tour(c.group, now); return true;
+        case ControlId::TourStart: start_tour(group, now); return true;
         case ControlId::TourPrevious: previous_tour_step(now); return true;
         case ControlId::TourPause:
             if (tour_.paused() || tour_.finished()) {
@@ -124,9 +126,9 @@ bool KioskApp::activate_tour(const Control& c, double now) {
         case ControlId::TourNext: next_tour_step(now); return true;
         case ControlId::TourLeave: leave_tour(); return true;
         case ControlId::Pin:
-            if (c.group >= 0 && c.group < static_cast<int>(pins_.size())) {
-                select(pins_[static_cast<size_t>(c.group)].model);
-                open_pin_ = selected_ >= 0 ? c.group : -1;
+            if (group >= 0 && group < static_cast<int>(pins_.size())) {
+                select(pins_[static_cast<size_t>(group)].model);
+                open_pin_ = selected_ >= 0 ? group : -1;
             }
             return true;
         default: return false;  // the caption and the countdown do nothing (the touch itself cancels the countdown)
