@@ -73,6 +73,7 @@ KioskApp::KioskApp(scene::Scene scene, std::vector<ModelInfo> models, int width,
         home_pose_.target = center;
         home_pose_.distance = camera_.fit_distance(radius);
     }
+    operator_ = OperatorMode(scene_.kiosk.operator_pin);
     reset();
     resets_ = 0;
 }
@@ -93,6 +94,7 @@ int KioskApp::group_index(int model) const {
 
 bool KioskApp::visible(int model) const {
     if (!info_[static_cast<size_t>(model)].loaded) return false;
+    if (!tour_visible_.empty()) return tour_visible_[static_cast<size_t>(model)] != 0;
     const int g = group_index(model);
     return g < 0 ? !isolated_ : groups_[static_cast<size_t>(g)].visible;
 }
@@ -137,7 +139,14 @@ UiState KioskApp::ui_state() const {
     return s;
 }
 
-void KioskApp::relayout() { controls_ = layout_controls(ui_state()); }
+void KioskApp::relayout() {
+    if (operator_.active()) {
+        controls_ = operator_.controls(ui_state(), operator_.diagnostics(now_, lod_auto()));
+        return;
+    }
+    controls_ = layout_controls(ui_state());
+    add_tour_and_pin_controls();
+}
 
 size_t KioskApp::triangles_planned() const {
     size_t total = 0;
@@ -164,13 +173,23 @@ void KioskApp::admin_tap(float x, float y, double now) {
     }
     admin_taps_.push_back(now);
     std::erase_if(admin_taps_, [&](double t) { return now - t > a.seconds; });
-    if (static_cast<int>(admin_taps_.size()) >= a.taps) exit_requested_ = true;
+    if (static_cast<int>(admin_taps_.size()) < a.taps) return;
+    if (!operator_.enabled()) {
+        exit_requested_ = true;
+        return;
+    }
+    operator_.open();
+    admin_taps_.clear();
+    ui_touches_.clear();
+    relayout();
 }
 
 void KioskApp::handle(const InputEvent& e) {
     now_ = std::max(now_, e.time);
     last_input_ = e.time;
     reset_done_ = false;
+    visited_ = true;
+    if (tour_.looping()) leave_tour();  // the attract mode's tour gives way to the visitor
     mode_ = KioskMode::Interactive;
     const bool down = e.type == InputEvent::Type::TouchDown || e.type == InputEvent::Type::MouseDown;
     const bool up = e.type == InputEvent::Type::TouchUp || e.type == InputEvent::Type::MouseUp;
@@ -197,9 +216,13 @@ void KioskApp::handle(const InputEvent& e) {
             return;
         }
     }
+    if (operator_.active()) return;  // modal: only its controls answer
     std::vector<Gesture> gestures;
     gestures_.feed(e, gestures);
-    for (const Gesture& g : gestures) apply_gesture(g);
+    for (const Gesture& g : gestures) {
+        tour_gesture(g);
+        apply_gesture(g);
+    }
     relayout();
 }
 
@@ -210,6 +233,7 @@ void KioskApp::apply_gesture(const Gesture& g) {
         case GestureKind::Zoom: camera_.zoom(g.factor); break;
         case GestureKind::Pan: camera_.pan(g.dx, g.dy); break;
         case GestureKind::Tap: {
+            open_pin_ = -1;
             // Thesis B.2: Shift+left click selects what it hits; Shift+left or
             // middle click away from every object deselects; a middle click on
             // an object changes nothing. Touch taps act like left clicks.
@@ -285,6 +309,18 @@ void KioskApp::activate(const Control& c, double now) {
         case ControlId::GroupToggle:
             if (c.group >= 0) set_group_visible(c.group, !groups_[static_cast<size_t>(c.group)].visible);
             break;
+        case ControlId::TourStart:
+        case ControlId::TourPrevious:
+        case ControlId::TourPause:
+        case ControlId::TourNext:
+        case ControlId::TourLeave:
+        case ControlId::TourCaption:
+        case ControlId::Countdown:
+        case ControlId::Pin: activate_tour(c, now); break;
+        case ControlId::OperatorKey:
+        case ControlId::OperatorInfo:
+        case ControlId::OperatorRestart:
+        case ControlId::OperatorClose: activate_operator(c); break;
     }
     relayout();
 }
@@ -305,6 +341,11 @@ int KioskApp::pick(float x, float y) const {
         }
     }
     return best;
+}
+
+std::optional<float> KioskApp::hit_distance(int model, const Ray& ray) const {
+    return picker_ ? picker_(model, ray)
+                   : ray_sphere(ray, model_center(model), info_[static_cast<size_t>(model)].radius);
 }
 
 void KioskApp::select(int model) {
@@ -369,6 +410,10 @@ void KioskApp::next_language() {
 void KioskApp::home(double now) { camera_.fly_to(home_pose_, now); }
 
 void KioskApp::reset() {
+    leave_tour();
+    operator_.close();  // staff who walked away leave no panel open
+    visited_ = false;
+    open_pin_ = -1;
     camera_.set_pose(home_pose_);
     for (size_t i = 0; i < groups_.size(); ++i) {
         groups_[i].visible = scene_.groups[i].visible;
@@ -432,12 +477,21 @@ void KioskApp::update(double now) {
             reset();
             reset_done_ = true;
         }
-        if (!camera_.transitioning()) camera_.rotate(kAttractRadiansPerSecond * static_cast<float>(dt), 0.0f);
+        const int attract_tour = scene_.tour_index(scene_.kiosk.attract_tour);
+        if (attract_tour >= 0 && !tour_.active()) start_tour(attract_tour, now, true);
+        if (attract_tour < 0 && !camera_.transitioning()) {
+            camera_.rotate(kAttractRadiansPerSecond * static_cast<float>(dt), 0.0f);
+        }
     }
     std::vector<Gesture> gestures;
     gestures_.flush(gestures);
-    for (const Gesture& g : gestures) apply_gesture(g);
+    for (const Gesture& g : gestures) {
+        tour_gesture(g);
+        apply_gesture(g);
+    }
     camera_.update(now);
+    update_tour(now);
+    update_pins(now);
     plan_lod();
     relayout();
 }

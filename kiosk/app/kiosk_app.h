@@ -13,6 +13,17 @@
 //     burn-in, always on;
 //   - no visitor-reachable exit: exit_requested() turns true only after the
 //     admin gesture (taps in a corner, from the manifest).
+//   - tours (kiosk_tour.cpp, tour.h): a visitor starts, pauses, steps and leaves
+//     them with the tour controls; a camera gesture pauses a visitor's tour; the
+//     attract mode plays `kiosk.attract_tour` (looping) instead of turning, and
+//     any input leaves it. Leaving a tour restores the visibility it changed.
+//   - the idle countdown: in the last `kiosk.countdown_seconds` before a reset,
+//     once the attract mode has begun after a visitor's input, countdown()
+//     gives the whole seconds left (a box on screen); any input cancels it.
+//   - pinned labels (kiosk_pins.cpp, pins.h) when `kiosk.pins` is on: pins()
+//     per frame, hidden when their point is occluded; a tap opens its card.
+//   - with `kiosk.operator_pin`, the admin gesture opens the operator mode
+//     (operator_mode.h: PIN keypad, diagnostics, restart) instead of exiting.
 #include <functional>
 #include <optional>
 #include <string>
@@ -22,6 +33,9 @@
 #include "kiosk/app/gestures.h"
 #include "kiosk/app/input.h"
 #include "kiosk/app/lod_controller.h"
+#include "kiosk/app/operator_mode.h"
+#include "kiosk/app/pins.h"
+#include "kiosk/app/tour.h"
 #include "kiosk/app/ui.h"
 #include "kiosk/scene/scene_models.h"
 #include "shared/scene/scene.h"
@@ -43,6 +57,17 @@ struct GroupState {
 
 enum class KioskMode { Interactive, Attract };
 
+// One pinned label in this frame (KioskApp::pins()).
+struct PinView {
+    int model = -1;
+    int pin = -1;                    // index into the model's pins; -1: its default pin
+    glm::vec3 anchor{0.0f};          // in the model file's coordinates
+    glm::vec2 anchor_px{0.0f};       // on screen (origin top-left)
+    bool shown = false;              // in front, on screen, its model visible and the point not occluded
+    std::optional<Rect> label;       // where its label is (nullopt: hidden, no room)
+    std::string title, description;  // in the current language
+};
+
 class KioskApp {
 public:
     static constexpr float kAttractRadiansPerSecond = 0.15f;
@@ -61,7 +86,10 @@ public:
     // Advances timers and the camera to `now`, chooses LOD levels for the next frame.
     void update(double now);
     // The frame just drawn (measured or simulated), for the automatic LOD.
-    void report_frame(double frame_ms, size_t triangles_drawn) { lod_.report_frame(frame_ms, triangles_drawn); }
+    void report_frame(double frame_ms, size_t triangles_drawn) {
+        lod_.report_frame(frame_ms, triangles_drawn);
+        operator_.note_frame(frame_ms, triangles_drawn);
+    }
 
     // State read back by the renderer and tests.
     const scene::Scene& scene() const { return scene_; }
@@ -99,6 +127,24 @@ public:
     void next_language();
     void home(double now);
     void reset();  // everything back to the manifest's, immediately
+
+    // Tours (kiosk_tour.cpp).
+    void start_tour(int tour, double now, bool loop = false);
+    void pause_tour(double now);
+    void resume_tour(double now);
+    void next_tour_step(double now);
+    void previous_tour_step(double now);
+    void leave_tour();
+    const TourPlayer& tour() const { return tour_; }
+    std::string tour_caption() const;  // the current step's caption in the current language
+    // The idle countdown: whole seconds left before the reset, or nullopt when not shown.
+    std::optional<int> countdown() const;
+    // Pinned labels (kiosk_pins.cpp): empty unless `kiosk.pins` is on.
+    const std::vector<PinView>& pins() const { return pins_; }
+    int open_pin() const;  // index into pins() whose card is open (its model selected), or -1
+    const OperatorMode& operator_mode() const { return operator_; }
+    // A model's placement in the scene: its manifest transform, moved by the visitor.
+    glm::mat4 placement(int model) const;
     // The model under pixel (x, y), or -1.
     int pick(float x, float y) const;
 
@@ -109,6 +155,17 @@ private:
     void plan_lod();
     void relayout();
     int group_index(int model) const;
+    // Tours, countdown and pins (kiosk_tour.cpp, kiosk_pins.cpp).
+    void update_tour(double now);
+    void enter_tour_step(double now);
+    void tour_gesture(const Gesture& g);
+    bool activate_tour(const Control& c, double now);
+    void add_tour_and_pin_controls();
+    void update_pins(double now);
+    void find_pin_anchors();
+    void test_pin_occlusion();
+    std::optional<float> hit_distance(int model, const Ray& ray) const;
+    void activate_operator(const Control& c);  // kiosk_operator.cpp
 
     scene::Scene scene_;
     std::vector<ModelInfo> info_;
@@ -135,6 +192,21 @@ private:
     bool reset_done_ = false;
     int resets_ = 0;
     std::vector<double> admin_taps_;
+    // Tours and countdown.
+    TourPlayer tour_;
+    CameraPose tour_from_, tour_to_;
+    bool tour_moving_ = false;
+    std::vector<char> tour_visible_;  // per model while a step sets `visible`; empty: no override
+    bool visited_ = false;            // input since the last reset (the countdown is for a visitor)
+    // Pins.
+    std::vector<PinView> pins_;
+    bool pin_anchors_found_ = false;
+    std::vector<char> pin_occluded_;
+    std::vector<float> pin_tested_key_;  // camera and offsets at the last occlusion test
+    std::vector<float> pin_last_key_;    // the same at the last frame
+    double pin_tested_at_ = -1e30;
+    int open_pin_ = -1;
+    OperatorMode operator_;
 };
 
 }  // namespace body::kiosk

@@ -8,6 +8,7 @@
 
 #include "kiosk/app/kiosk_app.h"
 #include "kiosk/app/overlay.h"
+#include "kiosk/app/pin_lines.h"
 #include "kiosk/app/replay.h"
 #include "kiosk/render/image.h"
 #include "kiosk/scene/scene_models.h"
@@ -62,6 +63,8 @@ private:
     SceneModels models_;
     std::unique_ptr<KioskApp> app_;
     Overlay overlay_;
+    PinLines pin_lines_;  // leader lines under the overlay's pin labels
+    float ui_scale_ = 1.0f;
     std::vector<platform::InputEvent> events_;
     double detail_cap_ = 1.0;  // lowered by GL_OUT_OF_MEMORY
 };
@@ -122,6 +125,11 @@ void KioskLoop::start_app() {
     const float ui_scale = std::max(1.0f, static_cast<float>(std::min(surface_.width(), surface_.height())) / 800.0f);
     if (auto s = overlay_.init(options_.font.empty() ? default_font_file() : options_.font, ui_scale); !s)
         std::fprintf(stderr, "bodyview: labels disabled: %s\n", s.error().message.c_str());
+    ui_scale_ = ui_scale;
+    if (scene_.kiosk.pins) {
+        if (auto s = pin_lines_.init(); !s)
+            std::fprintf(stderr, "bodyview: pin leader lines disabled: %s\n", s.error().message.c_str());
+    }
     ui_ms_ = ms_since(ui_start);
 }
 
@@ -190,6 +198,7 @@ render::View KioskLoop::camera_view(double now) const {
 
 // The controls and the selected model's label card.
 void KioskLoop::draw_overlay(const render::FrameOptions& frame) {
+    pin_lines_.draw(app_->pins(), ui_scale_, frame.framebuffer, frame.width, frame.height);
     overlay_.draw(app_->controls(), label_card(*app_), frame.framebuffer, frame.width, frame.height);
 }
 
@@ -298,6 +307,7 @@ int KioskLoop::run() {
         std::fprintf(stderr, "bodyview: %ld frames, %.2f ms/frame mean, LOD controller %s, budget %zu triangles\n",
                      frames_counted, frame_ms_sum / static_cast<double>(frames_counted),
                      options_.auto_lod ? "on" : "off", app_->lod_controller().budget());
+    pin_lines_.shutdown();
     overlay_.shutdown();
     renderer_.shutdown();
     return exit_code;

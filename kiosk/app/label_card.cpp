@@ -28,6 +28,10 @@ LabelCard label_card(const KioskApp& app) {
     card.rect = label_card_rect(app.ui_state());
     card.title = t.title;
     card.description = t.description;
+    if (const int pin = app.open_pin(); pin >= 0) {  // a tapped pin's card: the pin's text
+        card.title = app.pins()[static_cast<size_t>(pin)].title;
+        card.description = app.pins()[static_cast<size_t>(pin)].description;
+    }
     return card;
 }
 

@@ -20,11 +20,36 @@ struct Rect {
     bool contains(float px, float py) const { return px >= x && py >= y && px < x + w && py < y + h; }
 };
 
-enum class ControlId { Home, Language, Style, GroupStyle, LodDown, LodUp, LodAuto, Isolate, GroupToggle };
+enum class ControlId {
+    Home,
+    Language,
+    Style,
+    GroupStyle,
+    LodDown,
+    LodUp,
+    LodAuto,
+    Isolate,
+    GroupToggle,
+    // Tours, the idle countdown and pinned labels (kiosk/app/tour_controls.h); `group` holds the
+    // tour index (TourStart) or the pin index into KioskApp::pins() (Pin).
+    TourStart,
+    TourPrevious,
+    TourPause,
+    TourNext,
+    TourLeave,
+    TourCaption,
+    Countdown,
+    Pin,
+    // The operator mode (kiosk/app/operator_mode.h); `group` holds the key (OperatorKey).
+    OperatorKey,
+    OperatorInfo,
+    OperatorRestart,
+    OperatorClose,
+};
 
 struct Control {
     ControlId id = ControlId::Home;
-    int group = -1;  // GroupToggle: index into the scene's groups
+    int group = -1;  // GroupToggle: index into the scene's groups; TourStart, Pin: see ControlId
     Rect rect;
     std::string text;  // UTF-8, in the current language
     bool enabled = true;

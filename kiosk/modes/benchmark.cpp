@@ -410,6 +410,11 @@ Status Benchmark::run() {
             !s)
             return s;
     }
+    renderer_.state(id_)->style = Style::Smooth;
+    if (auto s =
+            compare_pins(renderer_, id_, *source_, frame_, std::max(options_.frames, 30), options_.seconds_per_cell);
+        !s)
+        return s;
     renderer_.shutdown();
     return ok_status();
 }

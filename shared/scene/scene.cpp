@@ -11,6 +11,7 @@
 
 #include "shared/atomic_file.h"
 #include "shared/input_file.h"
+#include "shared/scene/scene_tours.h"
 
 namespace body::scene {
 
@@ -145,7 +146,9 @@ struct Reader {
 };
 
 bool read_model(Reader& r, const json& v, const std::string& path, const std::string& base_dir, Model& m) {
-    if (!r.only_keys(v, path, {"name", "file", "group", "colour", "transform", "style", "lod", "label"})) return false;
+    if (!r.only_keys(v, path, {"name", "file", "group", "colour", "transform", "style", "lod", "label", "pins"})) {
+        return false;
+    }
     if (!v.contains("name")) return r.fail(path + ".name", "missing");
     if (!r.string(v["name"], path + ".name", m.name)) return false;
     if (!v.contains("file")) return r.fail(path + ".file", "missing");
@@ -162,6 +165,8 @@ bool read_model(Reader& r, const json& v, const std::string& path, const std::st
     } else {
         m.labels.push_back(LabelText{"", m.name, ""});
     }
+    detail::Failure f;
+    if (v.contains("pins") && !detail::read_pins(v["pins"], path + ".pins", m.pins, f)) return r.fail(f.where, f.why);
     return true;
 }
 
@@ -196,9 +201,12 @@ bool read_camera(Reader& r, const json& v, const std::string& path, HomeCamera& 
 }
 
 bool read_kiosk(Reader& r, const json& v, const std::string& path, KioskSettings& k) {
-    if (!r.only_keys(v, path, {"idle_seconds", "reset_seconds", "languages", "admin_gesture", "frame_ms_target"})) {
+    if (!r.only_keys(v, path,
+                     {"idle_seconds", "reset_seconds", "languages", "admin_gesture", "frame_ms_target", "attract_tour",
+                      "countdown_seconds", "pins", "operator_pin"})) {
         return false;
     }
+    if (detail::Failure f; !detail::read_kiosk_tour_settings(v, path, k, f)) return r.fail(f.where, f.why);
     if (v.contains("idle_seconds") && !r.number(v["idle_seconds"], path + ".idle_seconds", 1, 86400, k.idle_seconds)) {
         return false;
     }
@@ -309,6 +317,23 @@ const LabelText& Scene::label(const Model& model, const std::string& language) c
     return model.labels.front();
 }
 
+const LabelText* Scene::text(const std::vector<LabelText>& texts, const std::string& language) const {
+    for (const LabelText& t : texts) {
+        if (t.language == language) return &t;
+    }
+    for (const LabelText& t : texts) {
+        if (t.language == kiosk.languages.front()) return &t;
+    }
+    return texts.empty() ? nullptr : &texts.front();
+}
+
+int Scene::tour_index(const std::string& name) const {
+    for (size_t i = 0; i < tours.size(); ++i) {
+        if (tours[i].name == name) return static_cast<int>(i);
+    }
+    return -1;
+}
+
 Result<Scene> parse_scene(const std::string& text, const std::string& source, const std::string& base_dir) {
     json root;
     try {
@@ -322,7 +347,9 @@ Result<Scene> parse_scene(const std::string& text, const std::string& source, co
     Scene s;
     s.source = source;
     s.base_dir = base_dir;
-    if (!r.only_keys(root, "$", {"version", "models", "groups", "camera", "kiosk"})) return input_error(r.message);
+    if (!r.only_keys(root, "$", {"version", "models", "groups", "camera", "kiosk", "tours"})) {
+        return input_error(r.message);
+    }
     if (root.contains("version")) {
         int version = 0;
         if (!r.integer(root["version"], "version", 1, 1, version)) return input_error(r.message);
@@ -349,6 +376,15 @@ Result<Scene> parse_scene(const std::string& text, const std::string& source, co
     }
     if (root.contains("camera") && !read_camera(r, root["camera"], "camera", s.camera)) return input_error(r.message);
     if (!check_references(r, s)) return input_error(r.message);
+    detail::Failure f;
+    if (root.contains("tours") && !detail::read_tours(root["tours"], "tours", s.tours, f)) {
+        r.fail(f.where, f.why);
+        return input_error(r.message);
+    }
+    if (!detail::check_tour_references(s, f)) {
+        r.fail(f.where, f.why);
+        return input_error(r.message);
+    }
     return s;
 }
 

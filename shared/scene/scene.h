@@ -38,6 +38,13 @@ struct LabelText {
     std::string description;
 };
 
+// A pinned label (kiosk/app/pins.h): a point on the model's surface, in the
+// model file's coordinates (before `transform`), and its text per language.
+struct Pin {
+    std::array<float, 3> anchor{0, 0, 0};
+    std::vector<LabelText> labels;  // at least one; languages from KioskSettings::languages
+};
+
 struct Model {
     std::string name;   // unique in the scene
     std::string file;   // as written in the manifest
@@ -48,6 +55,7 @@ struct Model {
     Style style = Style::Smooth;
     Lod lod;
     std::vector<LabelText> labels;  // at least one; languages from KioskSettings::languages
+    std::vector<Pin> pins;          // empty: the kiosk's default pin when KioskSettings::pins is on
 };
 
 struct Group {
@@ -80,7 +88,38 @@ struct KioskSettings {
     float reset_seconds = 120.0f;              // full reset after this long without input
     std::vector<std::string> languages{"en"};  // first = default
     AdminGesture admin;
-    float frame_ms_target = 16.7f;  // LOD controller target
+    float frame_ms_target = 16.7f;    // LOD controller target
+    std::string attract_tour;         // tour the attract mode plays (looping) instead of turning; empty: turn
+    float countdown_seconds = 10.0f;  // "still looking?" countdown before the reset; 0: none
+    bool pins = false;                // show pinned labels (each model's pins, else its default pin)
+    std::string operator_pin;         // digits: the admin gesture opens the operator mode; empty: it exits
+};
+
+// Tours (kiosk/app/tour.h): named, ordered steps the camera and the scene's
+// state move through. Names in `visible`, `styles` and `select` are model or
+// group names.
+enum class Easing { Linear, EaseIn, EaseOut, EaseInOut };
+
+struct TourCamera {  // a missing value keeps the previous step's
+    std::optional<std::array<float, 3>> target;
+    std::optional<float> azimuth_deg, polar_deg, distance;
+};
+
+struct TourStep {
+    TourCamera camera;
+    std::optional<std::vector<std::string>> visible;  // shown; the rest hidden. nullopt: as the manifest
+    std::vector<std::pair<std::string, Style>> styles;
+    std::string select;              // model name; empty: nothing selected
+    std::vector<LabelText> caption;  // title per language (description unused); may be empty
+    float duration = 2.0f;           // seconds the transition into this step takes
+    float hold = 4.0f;               // seconds the step stays before the next one (when playing)
+    Easing easing = Easing::EaseInOut;
+};
+
+struct Tour {
+    std::string name;              // unique
+    std::vector<LabelText> title;  // the start button's text per language; default: the name
+    std::vector<TourStep> steps;   // at least one
 };
 
 struct Scene {
@@ -90,11 +129,15 @@ struct Scene {
     std::vector<Group> groups;
     HomeCamera camera;
     KioskSettings kiosk;
+    std::vector<Tour> tours;
 
     const Group* find_group(const std::string& name) const;
     int model_index(const std::string& name) const;  // -1 when absent
     // The label in `language`, else in the default language, else the first one.
     const LabelText& label(const Model& model, const std::string& language) const;
+    // The same fallback for any list of texts (pins, captions); nullptr when `texts` is empty.
+    const LabelText* text(const std::vector<LabelText>& texts, const std::string& language) const;
+    int tour_index(const std::string& name) const;  // -1 when absent
 };
 
 // Parses manifest text; `source` names the file in messages and `base_dir`

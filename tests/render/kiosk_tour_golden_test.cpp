@@ -1,0 +1,140 @@
+// Golden pictures of tours and pinned labels through bodyview (headless,
+// llvmpipe, 800x500): a tour's two steps, and pins at the home view (the back
+// sphere's pin hidden behind the front sphere) and turned (it shows). Taps are
+// placed with the same layout functions the kiosk uses. BODY_UPDATE_GOLDENS=1
+// rewrites tests/render/golden/.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+
+#include "kiosk/app/tour_controls.h"
+#include "kiosk/render/image.h"
+#include "shared/obj_io.h"
+#include "tests/cli/cli_test.h"
+#include "tests/common/test_dir.h"
+#include "tests/common/test_meshes.h"
+#include "tests/render/render_fixture.h"
+
+namespace body {
+namespace {
+
+namespace fs = std::filesystem;
+constexpr int kWidth = 800, kHeight = 500;
+
+void write_sphere(const fs::path& path, double cx, double cz, double r) {
+    const Mesh sphere = test::uv_sphere(24, 48, Vec3(cx, 0.0, cz), r);
+    ASSERT_TRUE(write_obj(path.string(), std::span<const Mesh>(&sphere, 1)).ok());
+}
+
+class TourGolden : public ::testing::Test {
+protected:
+    void SetUp() override {
+        if (!fs::exists("/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf")) GTEST_SKIP() << "needs fonts-dejavu-core";
+        dir_ = test::fresh_test_dir("body_tour_golden");
+        write_sphere(dir_ / "front.obj", 0.0, 0.0, 0.8);
+        write_sphere(dir_ / "back.obj", 1.0, -2.5, 0.8);
+        write_sphere(dir_ / "side.obj", -2.0, 0.0, 0.8);
+        std::ofstream(dir_ / "scene.json") << R"({"models": [
+            {"name": "front", "file": "front.obj", "colour": [0.2, 0.5, 0.9],
+             "pins": [{"anchor": [0, 0.5657, 0.5657], "label": {"en": "Upper front"}}]},
+            {"name": "back", "file": "back.obj", "colour": [0.3, 0.75, 0.35], "label": {"en": "Back"}},
+            {"name": "side", "file": "side.obj", "colour": [0.9, 0.5, 0.2], "label": {"en": "Side"}}],
+          "camera": {"polar_deg": 90},
+          "tours": [{"name": "walk", "title": {"en": "Tour"}, "steps": [
+            {"camera": {"azimuth_deg": 0}, "caption": {"en": "Three spheres"}, "duration": 0.5, "hold": 20},
+            {"camera": {"azimuth_deg": 60, "polar_deg": 70}, "visible": ["front", "side"], "select": "front",
+             "styles": {"side": "lines"}, "caption": {"en": "The back one hidden"}, "duration": 0.5, "hold": 20}]}],
+          "kiosk": {"pins": true}})";
+    }
+    void TearDown() override {
+        if (!dir_.empty()) fs::remove_all(dir_);
+    }
+
+    render::Image play(const std::string& replay) {
+        std::ofstream(dir_ / "input.replay") << "size 800 500\n" << replay;
+        auto r =
+            test::run(test::bin("bodyview") + " --headless --size 800x500 --scene " + (dir_ / "scene.json").string() +
+                      " --replay " + (dir_ / "input.replay").string() + " --screenshot " + (dir_ / "out.png").string());
+        EXPECT_EQ(r.exit_code, 0) << r.output;
+        auto img = render::read_png((dir_ / "out.png").string());
+        EXPECT_TRUE(img) << r.output;
+        return img ? img.value() : render::Image{};
+    }
+
+    // A tap in the middle of the tour control `id` as the kiosk lays it out at 800x500.
+    static std::string tap(kiosk::ControlId id, bool playing, double t) {
+        kiosk::UiState ui;
+        ui.width = kWidth;
+        ui.height = kHeight;
+        kiosk::TourUiState st;
+        st.tour_titles = {"Tour"};
+        st.playing = playing;
+        std::vector<kiosk::Control> controls = kiosk::layout_controls(ui);
+        kiosk::add_tour_controls(ui, st, controls);
+        for (const kiosk::Control& c : controls) {
+            if (c.id != id) continue;
+            const std::string at =
+                std::to_string(c.rect.x + c.rect.w / 2) + " " + std::to_string(c.rect.y + c.rect.h / 2);
+            return std::to_string(t) + " down 1 " + at + "\n" + std::to_string(t + 0.05) + " up 1 " + at + "\n";
+        }
+        ADD_FAILURE() << "no such control";
+        return "";
+    }
+
+    void expect_golden(const std::string& name, const render::Image& img) {
+        const std::string path = std::string(BODY_GOLDEN_DIR) + "/" + name + ".png";
+        if (std::getenv("BODY_UPDATE_GOLDENS")) {
+            ASSERT_TRUE(render::write_png(path, img).ok());
+            return;
+        }
+        auto golden = render::read_png(path);
+        ASSERT_TRUE(golden.ok()) << golden.error().message << " (regenerate with BODY_UPDATE_GOLDENS=1)";
+        const auto d = test::compare(golden.value(), img);
+        EXPECT_LE(d.bad_block_fraction, 0.01) << name;
+        EXPECT_LE(std::abs(d.mean_luma_delta), 1.5) << name;
+    }
+
+    fs::path dir_;
+};
+
+// Green pixels: the back sphere.
+size_t green(const render::Image& img) {
+    size_t n = 0;
+    for (int y = 0; y < img.height; ++y) {
+        for (int x = 0; x < img.width; ++x) {
+            const uint8_t* p = img.at(x, y);
+            n += p[1] > p[0] + 40 && p[1] > p[2] + 40;
+        }
+    }
+    return n;
+}
+
+TEST_F(TourGolden, TheTourSteps) {
+    using kiosk::ControlId;
+    const render::Image step1 = play(tap(ControlId::TourStart, false, 0.2) + "1.2 end\n");
+    const render::Image step2 =
+        play(tap(ControlId::TourStart, false, 0.2) + tap(ControlId::TourNext, true, 1.0) + "2.0 end\n");
+    ASSERT_EQ(step1.width, kWidth);
+    ASSERT_EQ(step2.width, kWidth);
+    EXPECT_GT(green(step1), 500u);  // step 1 shows every sphere
+    EXPECT_EQ(green(step2), 0u);    // step 2 hides the back one
+    expect_golden("tour_step1", step1);
+    expect_golden("tour_step2", step2);
+}
+
+TEST_F(TourGolden, PinsHideBehindTheFrontSphere) {
+    const render::Image home = play("0.5 end\n");
+    // Turn by dragging (the back sphere's front comes out from behind the front one).
+    const render::Image turned = play(
+        "0.2 down 1 300 300\n0.3 move 1 260 300\n0.4 move 1 220 300\n"
+        "0.5 up 1 220 300\n1.0 end\n");
+    ASSERT_EQ(home.width, kWidth);
+    expect_golden("pins_home", home);
+    expect_golden("pins_turned", turned);
+}
+
+}  // namespace
+}  // namespace body
