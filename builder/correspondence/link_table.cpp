@@ -4,6 +4,7 @@
 
 #include <algorithm>
 
+#include "builder/contours/contour_links.h"
 #include "builder/correspondence/grouping.h"
 #include "builder/correspondence/link_overrides.h"
 
@@ -86,6 +87,25 @@ void structure_links(const ContourStack& stack, const std::string& id,
         }
 }
 
+// The cut overrides no structure's correspondence listed (their contours
+// now in different structures, or never linked), so each cut can be seen.
+void list_other_cuts(const ContourStack& stack, LinkTable& table) {
+    for (const LinkOverride& o : stack.links) {
+        if (o.edit != LinkEdit::Cut) continue;
+        const bool listed = std::any_of(table.links.begin(), table.links.end(), [&](const TableLink& l) {
+            return l.origin == LinkOrigin::Cut &&
+                   ((l.lower == o.a && l.upper == o.b) || (l.lower == o.b && l.upper == o.a));
+        });
+        auto a = find_contour(stack, o.a), b = find_contour(stack, o.b);
+        if (listed || !a || !b) continue;  // a contour a repair dropped: nothing to show
+        if (a->slice > b->slice) std::swap(a, b);
+        const Contour& lower = stack.slices[a->slice].contours[a->position];
+        const Contour& upper = stack.slices[b->slice].contours[b->position];
+        table.links.push_back(
+            {lower.structure, a->slice, ref_of(lower), ref_of(upper), false, LinkKind::Band, LinkOrigin::Cut});
+    }
+}
+
 }  // namespace
 
 Result<LinkTable> compute_link_table(const ContourStack& input, CorrespondenceMethod method,
@@ -100,6 +120,7 @@ Result<LinkTable> compute_link_table(const ContourStack& input, CorrespondenceMe
     const StructureGroups groups = group_structures(stack, method);
     for (size_t i = 0; i < groups.infos.size(); ++i)
         structure_links(stack, groups.infos[i].id, groups.members[i], method, table);
+    list_other_cuts(stack, table);
     return table;
 }
 

@@ -21,7 +21,8 @@ namespace body {
 enum class LinkOrigin : uint8_t {
     Computed,  // the correspondence links them and the build does
     Joined,    // a "join" override links them
-    Cut,       // the correspondence links them but a "cut" override removes the link
+    Cut,       // a "cut" override names them: no link is built (listed whether or not the
+               // correspondence links them, e.g. once the cut split their unlabelled structure)
 };
 enum class LinkKind : uint8_t { Band, Branch };  // 1:1, or part of a 1:N / N:1 / N:M group
 
