@@ -60,7 +60,7 @@ Result<ContourReview> ContourReview::open(const std::string& path, int width, in
     r.radius_ = std::max(0.5f * glm::length(hi - lo), 1e-3f);
     r.camera_.set_viewport(std::max(width, 1), std::max(height, 1));
     r.camera_.configure(35.0f, r.radius_);
-    r.camera_.set_pose({r.center_, 0.5f, 1.15f, r.camera_.fit_distance(r.radius_)});
+    r.camera_.set_pose({r.center_, 0.5f, 1.2f, 0.62f * r.camera_.fit_distance(r.radius_)});
     return r;
 }
 

@@ -20,6 +20,8 @@ int run_benchmark_mode(platform::Surface& surface, const ViewOptions& options, c
 int run_screenshot_mode(platform::Surface& surface, const ViewOptions& options, const scene::Scene& scene);
 // --soak MINUTES: the kiosk loop under randomised visitors, resources logged and judged (soak.cpp).
 int run_soak_mode(platform::Surface& surface, const ViewOptions& options, const scene::Scene& scene);
+// --contours STACK: review and override the contour correspondence (contour_review.cpp).
+int run_contour_review_mode(platform::Surface& surface, const ViewOptions& options, const scene::Scene& scene);
 // Otherwise: the kiosk, live or driven by --replay (kiosk.cpp).
 int run_kiosk_mode(platform::Surface& surface, const ViewOptions& options, const scene::Scene& scene);
 
