@@ -17,6 +17,9 @@
 //   "join": [A, B]  A and B (adjacent slices, same structure) are linked
 //                   even if the correspondence does not link them;
 //   "exclude": A    A is left out of the build.
+// Entries apply in file order (a later one wins over an earlier one on the
+// same pair). Correspondence matches solid boundaries with solids and holes
+// with holes, so a join of a solid and a hole links nothing.
 // A cut or join between contours that are not on adjacent slices (after the
 // merging below), or a reference to no contour, is refused when reading.
 // Writers emit version 1 when there are no links, so such files stay readable
