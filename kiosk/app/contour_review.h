@@ -55,6 +55,13 @@ struct ReviewHit {
 
 class ContourReview {
 public:
+    // Move-only: contours() point into stack().
+    ContourReview() = default;
+    ContourReview(const ContourReview&) = delete;
+    ContourReview& operator=(const ContourReview&) = delete;
+    ContourReview(ContourReview&&) = default;
+    ContourReview& operator=(ContourReview&&) = default;
+
     // Reads `path` (errors as bodygen reports them) and computes the table.
     static Result<ContourReview> open(const std::string& path, int width, int height);
 
