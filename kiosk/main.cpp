@@ -38,6 +38,9 @@ void print_help(std::FILE* out) {
                  "  --device PATH     drm: /dev/dri/cardN (default: the first that works)\n"
                  "  --rotate DEG      touch panel rotation against the display: 0|90|180|270 (default 0)\n"
                  "  --model FILE      a .bpm progressive mesh or .obj file, shown as a scene of one model\n"
+                 "  --contours STACK  review a contour stack's correspondence: click a link to cut it, two\n"
+                 "                    contours to join them, x excludes the selected one, s saves the\n"
+                 "                    overrides into STACK's \"links\", o shows the built surface\n"
                  "  --scene FILE      a scene manifest (scene.json); BUNDLE/ means BUNDLE/scene.json\n"
                  "  --style S         smooth|wireframe|lines|hatching|hatching-2tone (overrides the scene)\n"
                  "  --lod R           level of detail, ratio of the full triangles in (0,1] (default 1)\n"
@@ -78,6 +81,7 @@ void print_help(std::FILE* out) {
 // The modes, first match wins; each lives in kiosk/modes/<name>.cpp.
 const Mode kModes[] = {
     {"author", [](const ViewOptions& o) { return o.author; }, kiosk::run_author_mode},
+    {"contours", [](const ViewOptions& o) { return !o.contours_path.empty(); }, kiosk::run_contour_review_mode},
     {"benchmark", [](const ViewOptions& o) { return o.benchmark; }, kiosk::run_benchmark_mode},
     {"screenshot", [](const ViewOptions& o) { return !o.screenshot.empty() && o.replay.empty(); },
      kiosk::run_screenshot_mode},
@@ -92,7 +96,7 @@ int run(const CliArgs& args) {
     platform::set_log_level(o.log_level);
     // The scene is read before the surface opens: a bad manifest is reported as such on any machine.
     scene::Scene scene;
-    if (!o.benchmark) {
+    if (!o.benchmark && o.contours_path.empty()) {
         auto s = kiosk::scene_to_show(o);
         if (!s) return kiosk::report(s.error());
         scene = std::move(s.value());

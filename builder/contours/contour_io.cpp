@@ -18,6 +18,12 @@
 // find a syntax error, which takes precedence. A number too large for a
 // double ("1e999") is reported where it stands: slice, contour and point index
 // and byte offset.
+// The "links" section (version 2) is small: its value is captured as a JSON
+// tree by nlohmann's own DOM builder and read by contour_links.cpp once the
+// slices are known.
+// Why one file: the reader is one state machine whose frames, slots and error
+// order are only understood together; the links section's own reading and
+// writing live in contour_links.cpp.
 #include <algorithm>
 #include <array>
 #include <cerrno>
@@ -30,6 +36,7 @@
 #include <optional>
 #include <sstream>
 
+#include "builder/contours/contour_links.h"
 #include "builder/contours/contour_stack.h"
 #include "shared/atomic_file.h"
 #include "shared/input_file.h"
@@ -67,6 +74,7 @@ enum class Member : uint8_t {
     Units,
     Structures,
     Slices,
+    Links,
     Id,
     Name,
     Color,
@@ -84,6 +92,7 @@ enum class Slot : uint8_t {
     Units,
     StructureList,
     SliceList,
+    Links,
     Ignored,
     StructureItem,
     Id,
@@ -111,7 +120,7 @@ struct OpenFrame {
 struct Scalar {
     enum Kind : uint8_t { Null, Bool, Number, String } kind;
     double number = 0.0;
-    bool is_integer_one = false;  // an integer equal to 1 (for "version")
+    bool is_version = false;  // an integer equal to a supported version (1 or 2)
     const std::string* text = nullptr;
 };
 
@@ -119,7 +128,7 @@ struct Scalar {
 // (format, version, units, structures, missing slices, slice content), then
 // position in the file (structure; slice, contour + 1, stage, point).
 using ErrorKey = std::array<size_t, 5>;
-enum Category : size_t { kFormat, kVersion, kUnits, kStructures, kSliceList, kSliceContent };
+enum Category : size_t { kFormat, kVersion, kUnits, kStructures, kSliceList, kSliceContent, kLinks };
 
 // Long tokens (a fuzzer's megabyte of digits) are cut in messages.
 std::string clip(std::string s, size_t max = 120) {
@@ -148,18 +157,25 @@ public:
     explicit StackReader(const std::string& path) : path_(path) { frames_.reserve(16); }
 
     // --- nlohmann SAX interface ---
-    bool null() { return scalar({Scalar::Null}); }
-    bool boolean(bool) { return scalar({Scalar::Bool}); }
-    bool number_integer(json::number_integer_t v) { return scalar({Scalar::Number, double(v), v == 1}); }
-    bool number_unsigned(json::number_unsigned_t v) { return scalar({Scalar::Number, double(v), v == 1}); }
-    bool number_float(json::number_float_t v, const std::string&) { return scalar({Scalar::Number, v}); }
-    bool string(std::string& s) { return scalar({Scalar::String, 0.0, false, &s}); }
+    bool null() { return links_depth_ ? links_->null() : scalar({Scalar::Null}); }
+    bool boolean(bool b) { return links_depth_ ? links_->boolean(b) : scalar({Scalar::Bool}); }
+    bool number_integer(json::number_integer_t v) {
+        return links_depth_ ? links_->number_integer(v) : scalar({Scalar::Number, double(v), v == 1 || v == 2});
+    }
+    bool number_unsigned(json::number_unsigned_t v) {
+        return links_depth_ ? links_->number_unsigned(v) : scalar({Scalar::Number, double(v), v == 1 || v == 2});
+    }
+    bool number_float(json::number_float_t v, const std::string& s) {
+        return links_depth_ ? links_->number_float(v, s) : scalar({Scalar::Number, v});
+    }
+    bool string(std::string& s) { return links_depth_ ? links_->string(s) : scalar({Scalar::String, 0.0, false, &s}); }
     bool binary(json::binary_t&) { return scalar({Scalar::Null}); }
-    bool start_object(size_t) { return open(/*object=*/true); }
-    bool start_array(size_t) { return open(/*object=*/false); }
-    bool end_object() { return close(); }
-    bool end_array() { return close(); }
+    bool start_object(size_t n) { return links_depth_ ? (++links_depth_, links_->start_object(n)) : open(true, n); }
+    bool start_array(size_t n) { return links_depth_ ? (++links_depth_, links_->start_array(n)) : open(false, n); }
+    bool end_object() { return links_depth_ ? (--links_depth_, links_->end_object()) : close(); }
+    bool end_array() { return links_depth_ ? (--links_depth_, links_->end_array()) : close(); }
     bool key(std::string& k) {
+        if (links_depth_) return links_->key(k);
         OpenFrame& f = frames_.back();
         f.member = classify(f.kind, k);
         return true;
@@ -182,6 +198,12 @@ public:
                 stack_.slices.push_back(std::move(s));
             }
         }
+        if (links_) {
+            auto links = parse_link_overrides(links_json_, path_);
+            if (!links) return links.error();
+            stack_.links = std::move(*links);
+            if (auto checked = check_link_overrides(stack_, path_); !checked) return checked.error();
+        }
         return std::move(stack_);
     }
 
@@ -194,6 +216,7 @@ private:
                 if (k == "units") return Member::Units;
                 if (k == "structures") return Member::Structures;
                 if (k == "slices") return Member::Slices;
+                if (k == "links") return Member::Links;
                 break;
             case Frame::Structure:
                 if (k == "id") return Member::Id;
@@ -224,6 +247,7 @@ private:
                     case Member::Units: return Slot::Units;
                     case Member::Structures: return Slot::StructureList;
                     case Member::Slices: return Slot::SliceList;
+                    case Member::Links: return Slot::Links;
                     default: return Slot::Ignored;
                 }
             case Frame::Structures: return Slot::StructureItem;
@@ -279,7 +303,7 @@ private:
         switch (slot) {
             case Slot::Document: not_a_stack(); break;
             case Slot::Format: format_ok_ = text && *v.text == "bodygen.contours"; break;
-            case Slot::Version: version_ok_ = v.is_integer_one; break;
+            case Slot::Version: version_ok_ = v.is_version; break;
             case Slot::Units:
                 if (text)
                     stack_.units = *v.text;
@@ -288,6 +312,7 @@ private:
                 break;
             case Slot::StructureList: structures_not_array(); break;
             case Slot::SliceList: slices_ok_ = false; break;
+            case Slot::Links: fail({kLinks, 0, 0, 0, 0}, path_ + ": \"links\" must be an array"); break;
             case Slot::Ignored: break;
             case Slot::StructureItem: structure_needs_id(index); break;
             case Slot::Id:
@@ -351,11 +376,16 @@ private:
     }
 
     // --- containers ---
-    bool open(bool object) {
+    bool open(bool object, size_t elements) {
         const Slot slot = next_slot();
         const size_t index = take_index();
         Frame kind = Frame::Skip;
         switch (slot) {
+            case Slot::Links:  // the value goes to the DOM builder until it closes
+                links_json_ = json();
+                links_.emplace(links_json_, /*allow_exceptions=*/false);
+                links_depth_ = 1;
+                return object ? links_->start_object(elements) : links_->start_array(elements);
             case Slot::Document:
                 if (object)
                     kind = Frame::Root;
@@ -515,7 +545,7 @@ private:
 
     void finish_root() {
         if (!format_ok_) not_a_stack();
-        if (!version_ok_) fail({kVersion, 0, 0, 0, 0}, path_ + ": unsupported version (expected 1)");
+        if (!version_ok_) fail({kVersion, 0, 0, 0, 0}, path_ + ": unsupported version (expected 1 or 2)");
         if (!slices_ok_) fail({kSliceList, 0, 0, 0, 0}, path_ + ": needs a \"slices\" array");
         for (const PendingLabel& l : pending_labels_)
             if (!known_structure(l.id))
@@ -574,6 +604,10 @@ private:
     std::vector<Slice> raw_;  // slices in file order
     std::optional<std::pair<ErrorKey, std::string>> error_;
     std::string syntax_error_;
+    // The "links" value while and after it is read (depth: its open containers).
+    json links_json_;
+    std::optional<nlohmann::detail::json_sax_dom_parser<json>> links_;
+    size_t links_depth_ = 0;
 
     bool format_ok_ = false, version_ok_ = false, slices_ok_ = false;
     bool structures_done_ = false;
@@ -652,7 +686,7 @@ Result<ContourStack> read_contour_stack(const std::string& path) {
 std::string contour_stack_to_json(const ContourStack& stack) {
     json root;
     root["format"] = "bodygen.contours";
-    root["version"] = 1;
+    root["version"] = stack.links.empty() ? 1 : 2;
     root["units"] = stack.units;
     json structures = json::array();
     for (const auto& s : stack.structures)
@@ -671,6 +705,7 @@ std::string contour_stack_to_json(const ContourStack& stack) {
         slices.push_back({{"z", slice.z}, {"contours", std::move(contours)}});
     }
     root["slices"] = std::move(slices);
+    if (!stack.links.empty()) root["links"] = link_overrides_to_json(stack);
     return root.dump();
 }
 

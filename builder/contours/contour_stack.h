@@ -1,15 +1,32 @@
 #pragma once
 // The contour stack: planar closed polygons traced on parallel slices.
 //
-// File format `*.contours.json` (format "bodygen.contours", version 1):
-//   {"format": "bodygen.contours", "version": 1, "units": "mm",
+// File format `*.contours.json` (format "bodygen.contours", version 1 or 2):
+//   {"format": "bodygen.contours", "version": 2, "units": "mm",
 //    "structures": [{"id": "kidney_l", "name": "Left kidney", "color": [0.8, 0.3, 0.3]}],
-//    "slices": [{"z": 12.5, "contours": [{"points": [[x, y], ...], "structure": "kidney_l"}]}]}
+//    "slices": [{"z": 12.5, "contours": [{"points": [[x, y], ...], "structure": "kidney_l"}]}],
+//    "links": [{"cut": [[0, 1], [1, 0]]}, {"join": [[1, 0], [2, 1]]}, {"exclude": [3, 0]}]}
 // A contour is closed (last point not repeated), of arbitrary orientation.
 // Slices may come in any order and spacing; slices whose z differ by less
 // than kSliceMergeTolerance are one slice.
+// Version 2 adds "links", the reviewer's correspondence overrides (optional;
+// version 1 files are read as before and have none). Each entry names
+// contours as [slice, contour], their indices in the file's arrays:
+//   "cut": [A, B]   no link between A and B (on adjacent slices), whatever
+//                   the correspondence computes;
+//   "join": [A, B]  A and B (adjacent slices, same structure) are linked
+//                   even if the correspondence does not link them;
+//   "exclude": A    A is left out of the build.
+// Entries apply in file order (a later one wins over an earlier one on the
+// same pair). Correspondence matches solid boundaries with solids and holes
+// with holes, so a join of a solid and a hole links nothing.
+// A cut or join between contours that are not on adjacent slices (after the
+// merging below), or a reference to no contour, is refused when reading.
+// Writers emit version 1 when there are no links, so such files stay readable
+// by older builders.
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -40,6 +57,22 @@ struct Slice {
     size_t source_index = 0;  // first input slice merged into this one
 };
 
+// A contour as the file names it: its slice's index in "slices" and its own
+// index in that slice's "contours" (Contour::source_slice / source_contour).
+struct ContourRef {
+    size_t slice = 0, contour = 0;
+    bool operator==(const ContourRef&) const = default;
+    auto operator<=>(const ContourRef&) const = default;
+};
+
+// One correspondence override of the "links" section.
+enum class LinkEdit : uint8_t { Cut, Join, Exclude };
+struct LinkOverride {
+    LinkEdit edit = LinkEdit::Cut;
+    ContourRef a, b;  // b: cut and join only
+    bool operator==(const LinkOverride&) const = default;
+};
+
 struct StructureInfo {
     std::string id;
     std::string name;
@@ -54,7 +87,14 @@ struct ContourStack {
     // the patient's right, y anterior, z superior) when the source says so (label
     // volumes, RT-STRUCTs); not stored in stack files. Orients exhibits' cameras.
     std::optional<std::array<Vec3, 3>> ras_axes;
+    // The "links" section, in file order; references are file indices.
+    std::vector<LinkOverride> links;
 };
+
+// Whether `c` is (or, after repairs split it, comes from) the contour `ref` names.
+inline bool names(const ContourRef& ref, const Contour& c) {
+    return c.source_slice == ref.slice && c.source_contour == ref.contour;
+}
 
 // Contours and points in a stack, over all slices (for summaries).
 struct StackCounts {
@@ -93,7 +133,9 @@ Result<ContourStack> read_contour_stack(const std::string& path);
 // The range check above for a stack from any source (imports, slicing).
 Status check_coordinate_range(const ContourStack& stack, const std::string& path);
 
-// Serialises a stack (atomically when writing to a file).
+// Serialises a stack (atomically when writing to a file). Slices are written
+// in the stack's (sorted, merged) order, so the links' references are
+// rewritten to the written indices.
 std::string contour_stack_to_json(const ContourStack& stack);
 Status write_contour_stack(const std::string& path, const ContourStack& stack);
 

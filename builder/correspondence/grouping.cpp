@@ -8,6 +8,7 @@
 #include <string>
 
 #include "builder/contours/validate.h"
+#include "builder/correspondence/link_overrides.h"
 
 namespace body {
 namespace {
@@ -44,7 +45,8 @@ std::vector<std::vector<uint32_t>> sort_labelled(const ContourStack& stack, Stru
 }
 
 // Phase 2: unlabelled contours joined to their parent (holes) and to the
-// solid contours they correspond to on the next slice. Nodes are numbered
+// solid contours they correspond to on the next slice (with the stack's cuts
+// and joins: a cut may split a structure, a join merges two). Nodes are numbered
 // over all unlabelled contours, slice by slice from `first[s]`.
 void join_unlabelled(const ContourStack& stack, const std::vector<std::vector<uint32_t>>& unlabelled,
                      const std::vector<uint32_t>& first, CorrespondenceMethod method, UnionFind& uf) {
@@ -63,7 +65,14 @@ void join_unlabelled(const ContourStack& stack, const std::vector<std::vector<ui
         std::vector<PolygonSpan> lower, upper;
         for (uint32_t k : solids[s]) lower.emplace_back(stack.slices[s].contours[unlabelled[s][k]].points);
         for (uint32_t k : solids[s + 1]) upper.emplace_back(stack.slices[s + 1].contours[unlabelled[s + 1][k]].points);
-        for (const ContourLink& l : correspond_contours(lower, upper, method))
+        std::vector<ContourLink> links = correspond_contours(lower, upper, method);
+        if (!stack.links.empty()) {
+            std::vector<const Contour*> lower_src, upper_src;
+            for (uint32_t k : solids[s]) lower_src.push_back(&stack.slices[s].contours[unlabelled[s][k]]);
+            for (uint32_t k : solids[s + 1]) upper_src.push_back(&stack.slices[s + 1].contours[unlabelled[s + 1][k]]);
+            apply_link_overrides(stack.links, lower_src, upper_src, links);
+        }
+        for (const ContourLink& l : links)
             uf.unite(first[s] + solids[s][l.lower], first[s + 1] + solids[s + 1][l.upper]);
     }
 }

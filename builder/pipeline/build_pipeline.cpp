@@ -33,6 +33,7 @@
 #include "builder/branching/structure_surface.h"
 #include "builder/contours/validate.h"
 #include "builder/correspondence/grouping.h"
+#include "builder/correspondence/link_overrides.h"
 
 namespace body {
 namespace {
@@ -90,8 +91,9 @@ Status connect_group(StructureSurface& surface, size_t s, const LinkGroup& group
 }
 
 // Correspondence between slices s and s+1 (solids with solids, holes with
-// holes), then one construction per link group.
-Status connect(StructureSurface& surface, size_t s, BranchingMethod branching) {
+// holes) with the stack's overrides, then one construction per link group.
+Status connect(StructureSurface& surface, size_t s, BranchingMethod branching,
+               std::span<const LinkOverride> overrides) {
     for (int hole = 0; hole < 2; ++hole) {
         std::vector<uint32_t> lo, up;
         for (uint32_t k = 0; k < surface.loops[s].size(); ++k)
@@ -102,7 +104,13 @@ Status connect(StructureSurface& surface, size_t s, BranchingMethod branching) {
         std::vector<PolygonSpan> a, b;
         for (uint32_t k : lo) a.emplace_back(surface.loops[s][k].xy);
         for (uint32_t k : up) b.emplace_back(surface.loops[s + 1][k].xy);
-        const auto links = correspond_contours(a, b, surface.correspondence);
+        auto links = correspond_contours(a, b, surface.correspondence);
+        if (!overrides.empty()) {
+            std::vector<const Contour*> lower_src, upper_src;
+            for (uint32_t k : lo) lower_src.push_back(surface.loops[s][k].source);
+            for (uint32_t k : up) upper_src.push_back(surface.loops[s + 1][k].source);
+            apply_link_overrides(overrides, lower_src, upper_src, links);
+        }
         for (LinkGroup& group : group_links(links, lo.size(), up.size())) {
             // From positions among this kind of loop to loop indices on the slices.
             for (uint32_t& k : group.lower) k = lo[k];
@@ -228,7 +236,7 @@ Status build_surface(StructureSurface& surface, const ContourStack& stack, const
     make_loops(surface, stack, members);
     for (size_t s = 0; s + 1 < surface.loops.size(); ++s) {
         if (!surface.loops[s].empty() || !surface.loops[s + 1].empty()) {
-            auto status = connect(surface, s, options.branching);
+            auto status = connect(surface, s, options.branching, stack.links);
             if (!status) return status;
         }
         advance();
@@ -275,8 +283,9 @@ Result<StructureMesh> build_structure(const ContourStack& stack, const Structure
 
 Result<std::vector<StructureMesh>> build_structures(const ContourStack& input, const BuildOptions& options,
                                                     const std::string& source_path) {
-    // Stage 1: validation and repair.
+    // Stage 1: validation and repair, without the contours the links exclude.
     ContourStack stack = input;
+    drop_excluded_contours(stack);
     RepairLog log;
     auto valid = validate_contour_stack(stack, source_path, options.repair, log);
     if (!valid) return valid.error();  // the one line to show; repairs before it do not matter then

@@ -22,6 +22,8 @@ int run_screenshot_mode(platform::Surface& surface, const ViewOptions& options, 
 int run_soak_mode(platform::Surface& surface, const ViewOptions& options, const scene::Scene& scene);
 // --author: the authoring window (author.cpp, kiosk/author/).
 int run_author_mode(platform::Surface& surface, const ViewOptions& options, const scene::Scene& scene);
+// --contours STACK: review and override the contour correspondence (contour_review.cpp).
+int run_contour_review_mode(platform::Surface& surface, const ViewOptions& options, const scene::Scene& scene);
 // Otherwise: the kiosk, live or driven by --replay (kiosk.cpp).
 int run_kiosk_mode(platform::Surface& surface, const ViewOptions& options, const scene::Scene& scene);
 

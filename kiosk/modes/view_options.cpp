@@ -23,6 +23,7 @@ const std::set<std::string>& view_value_options() {
                                                 "device",
                                                 "rotate",
                                                 "model",
+                                                "contours",
                                                 "scene",
                                                 "style",
                                                 "lod",
@@ -140,7 +141,10 @@ Status parse_what_to_show(const CliArgs& args, ViewOptions& o) {
     }
     o.model_path = args.get_or("model", "");
     o.benchmark = args.has("benchmark");
-    if (!o.benchmark && o.model_path.empty() && o.scene_path.empty())
+    o.contours_path = args.get_or("contours", "");
+    if (!o.contours_path.empty() && (!o.model_path.empty() || !o.scene_path.empty() || o.benchmark))
+        return input_error("--contours excludes --model, --scene, a bundle and --benchmark");
+    if (!o.benchmark && o.model_path.empty() && o.scene_path.empty() && o.contours_path.empty())
         return input_error("nothing to show: give --model FILE, --scene FILE or a BUNDLE/ (see --help)");
     if (!o.model_path.empty() && !o.scene_path.empty()) return input_error("--model and --scene exclude each other");
     return ok_status();

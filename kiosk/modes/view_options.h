@@ -21,6 +21,7 @@ struct ViewOptions {
     render::RendererOptions renderer;
     std::string scene_path;                           // --scene, or BUNDLE/scene.json
     std::string model_path;                           // --model
+    std::string contours_path;                        // --contours: the contour review (modes/contour_review.cpp)
     std::optional<double> lod;                        // --lod: every model at this ratio
     std::optional<Style> style;                       // --style: every model in this style
     std::optional<std::string> select;                // --select

@@ -45,6 +45,12 @@ std::string stack_with(const std::string& contours) {
            "]}]}";
 }
 
+// `stack` (a JSON object) with a "links" member.
+std::string with_links(const std::string& stack, const std::string& links) {
+    return stack.substr(0, stack.rfind('}')) + R"(, "links": )" + links + "}";
+}
+const std::string kFar = R"({"points": [[20,0],[30,0],[30,10],[20,10]]})";
+
 struct BadCase {
     const char* name;
     std::string json;
@@ -61,6 +67,9 @@ TEST_F(ContourCli, EachBadFileExitsTwoNamesThePlaceAndWritesNothing) {
         kHead + R"("slices": [{"z": 0, "contours": [)" + kSquare + R"(]}, {"z": -3e400, "contours": []}]})";
     const std::string whole = stack_with(R"({"points": [[0,0],[4,0],[4,4],[0,4]]})");
     const std::string truncated = whole.substr(0, whole.find("[4,4]") + 3);
+    const std::string three_slices = kHead + R"("slices": [{"z": 0, "contours": [)" + kSquare +
+                                     R"(]}, {"z": 2, "contours": [)" + kSquare + R"(]}, {"z": 4, "contours": [)" +
+                                     kSquare + "]}]}";
     const BadCase cases[] = {
         // validation (builder/contours/validate.cpp)
         {"few_points", stack_with(R"({"points": [[0,0],[1,1],[0,0]]})"),
@@ -79,8 +88,22 @@ TEST_F(ContourCli, EachBadFileExitsTwoNamesThePlaceAndWritesNothing) {
         {"wrong_format", R"({"format": "other", "version": 1, "slices": []})",
          R"(not a contour stack ("format" must be "bodygen.contours"))"},
         {"not_an_object", "[1, 2, 3]", R"(not a contour stack ("format" must be "bodygen.contours"))"},
-        {"wrong_version", R"({"format": "bodygen.contours", "version": 2, "slices": []})",
-         "unsupported version (expected 1)"},
+        {"wrong_version", R"({"format": "bodygen.contours", "version": 3, "slices": []})",
+         "unsupported version (expected 1 or 2)"},
+        // correspondence overrides (builder/contours/contour_links.cpp)
+        {"links_unknown_contour", with_links(stack_with(kSquare), R"([{"cut": [[0, 0], [1, 5]]}])"),
+         "links entry 0: slice 1 contour 5: no such contour"},
+        {"links_unknown_slice", with_links(stack_with(kSquare), R"([{"exclude": [0, 0]}, {"join": [[7, 0], [1, 0]]}])"),
+         "links entry 1: slice 7 contour 0: no such contour"},
+        {"links_same_slice", with_links(stack_with(kSquare + ", " + kFar), R"([{"join": [[1, 0], [1, 1]]}])"),
+         "links entry 0: slice 1 contour 0 and slice 1 contour 1 are not on adjacent slices (z = 2 and 2)"},
+        {"links_not_adjacent", with_links(three_slices, R"([{"cut": [[0, 0], [2, 0]]}])"),
+         "links entry 0: slice 0 contour 0 and slice 2 contour 0 are not on adjacent slices (z = 0 and 4)"},
+        {"links_shape", with_links(stack_with(kSquare), R"([{"cut": [0, 1]}])"),
+         R"(links entry 0: must be {"cut": [A, B]}, {"join": [A, B]} or {"exclude": A} with A, B = [slice, contour])"},
+        {"links_two_edits", with_links(stack_with(kSquare), R"([{"cut": [[0, 0], [1, 0]], "exclude": [0, 0]}])"),
+         R"(links entry 0: must be {"cut": [A, B]}, {"join": [A, B]} or {"exclude": A} with A, B = [slice, contour])"},
+        {"links_not_array", with_links(stack_with(kSquare), "3"), R"("links" must be an array)"},
         // missing fields
         {"no_slices", R"({"format": "bodygen.contours", "version": 1})", R"(needs a "slices" array)"},
         {"no_z", kHead + R"("slices": [{"z": 0, "contours": []}, {"contours": []}]})",
@@ -243,6 +266,48 @@ TEST_F(ContourCli, CheckOfManyNestedRingsIsNotQuadratic) {
     EXPECT_NE(r.output.find("3 slices, 600 contours, 38400 points, 0 structures (units mm), 0 repair(s)"),
               std::string::npos)
         << r.output;
+}
+
+}  // namespace
+}  // namespace body::test
+
+namespace body::test {
+namespace {
+
+// `bodygen check --links` prints the correspondence build uses, with the
+// file's cuts, joins and exclusions; build honours them.
+TEST_F(ContourCli, CheckLinksPrintsTheCorrespondenceWithTheOverrides) {
+    const std::string slices = kHead + R"("slices": [{"z": 0, "contours": [)" + kSquare + R"(]},
+        {"z": 2, "contours": [)" +
+                               kSquare + ", " + kFar + R"(]}, {"z": 4, "contours": [)" + kSquare + "]}]}";
+    const std::string plain = write("plain.contours.json", slices);
+    RunResult r = run(bin("bodygen") + " check --links " + plain);
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_EQ(lines_with(r.output, "link "),
+              (std::vector<std::string>{"link auto_1 [0, 0] -> [1, 0] band (computed)",
+                                        "link auto_1 [1, 0] -> [2, 0] band (computed)"}));
+    EXPECT_EQ(lines_with(r.output, "end auto_2 "),
+              (std::vector<std::string>{"end auto_2 [1, 1] top", "end auto_2 [1, 1] bottom"}));
+
+    const std::string edited =
+        write("edited.contours.json",
+              with_links(slices, R"([{"join": [[0, 0], [1, 1]]}, {"cut": [[1, 0], [2, 0]]}, {"exclude": [2, 0]}])"));
+    r = run(bin("bodygen") + " check --links " + edited);
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_EQ(lines_with(r.output, "link "),
+              (std::vector<std::string>{"link auto_1 [0, 0] -> [1, 0] branch (computed)",
+                                        "link auto_1 [0, 0] -> [1, 1] branch (joined)"}));
+    EXPECT_EQ(lines_with(r.output, "excluded "), (std::vector<std::string>{"excluded [2, 0]"}));
+    r = run(bin("bodygen") + " check --links --json " + edited);
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find(R"("origin": "joined")"), std::string::npos) << r.output;
+
+    // Build: one structure of one piece (the join) over slices 0 and 1 only (the cut and the exclusion).
+    const std::string out = (dir / "edited.obj").string();
+    r = run(bin("bodygen") + " build " + edited + " -o " + out + " --json");
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find(R"("components": 1)"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find(R"("contours": 3)"), std::string::npos) << r.output;
 }
 
 }  // namespace

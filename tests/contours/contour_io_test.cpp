@@ -46,7 +46,7 @@ TEST(ContourIo, BadInputNamesThePlace) {
     const BadCase cases[] = {
         {"{", "byte"},
         {R"({"format": "x", "version": 1, "slices": []})", "format"},
-        {R"({"format": "bodygen.contours", "version": 2, "slices": []})", "version"},
+        {R"({"format": "bodygen.contours", "version": 3, "slices": []})", "version"},
         {R"({"format": "bodygen.contours", "version": 1, "slices": [{"contours": []}]})", "slice 0"},
         {R"({"format": "bodygen.contours", "version": 1, "slices": [{"z": 0, "contours": [{"points": [[0,0],[1]]}]}]})",
          "slice 0 contour 0: point 1"},
