@@ -42,6 +42,7 @@
 #include <utility>
 #include <vector>
 
+#include "kiosk/render/cut_plane.h"
 #include "kiosk/render/mesh_data.h"
 #include "kiosk/render/view.h"
 #include "shared/error.h"
@@ -64,6 +65,7 @@ struct ModelState {
     // The `lines` and `wireframe` styles draw the positions as they are.
     size_t morph_begin = SIZE_MAX;
     float morph = 1.0f;
+    bool cut = true;  // FrameOptions::cut applies to this model (a group may be cut alone)
 };
 
 // Lights are attached to the camera: directions in view space, toward the light.
@@ -86,6 +88,7 @@ struct FrameOptions {
     bool xray_unselected = false;    // fade everything not selected (when something is)
     bool manipulation_sphere = true;
     float sphere_fraction = 0.2f;  // manipulation sphere radius / model bounding radius
+    CutPlane cut;                  // kiosk/render/cut_plane.h; needs a stencil buffer for the caps
 };
 
 struct FrameStats {
