@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "kiosk/app/camera.h"
+#include "kiosk/app/cut_plane.h"
 #include "kiosk/app/gestures.h"
 #include "kiosk/app/input.h"
 #include "kiosk/app/lod_controller.h"
@@ -86,6 +87,9 @@ public:
     const LodController& lod_controller() const { return lod_; }
     size_t triangles_planned() const;
     double last_input() const { return last_input_; }
+    // The cut plane (kiosk/app/cut_plane.h) and whether it cuts `model` (its group, or every model).
+    const CutPlane& cut() const { return cut_; }
+    bool cut_applies(int model) const;
 
     // Actions (also reachable through the controls).
     void select(int model);  // -1 deselects
@@ -135,6 +139,7 @@ private:
     bool reset_done_ = false;
     int resets_ = 0;
     std::vector<double> admin_taps_;
+    CutPlane cut_;
 };
 
 }  // namespace body::kiosk

@@ -19,7 +19,19 @@ struct Rect {
     bool contains(float px, float py) const { return px >= x && py >= y && px < x + w && py < y + h; }
 };
 
-enum class ControlId { Home, Language, Style, GroupStyle, LodDown, LodUp, LodAuto, Isolate, GroupToggle };
+enum class ControlId {
+    Home,
+    Language,
+    Style,
+    GroupStyle,
+    LodDown,
+    LodUp,
+    LodAuto,
+    Isolate,
+    GroupToggle,
+    Cut,      // the cut plane: off -> move the plane -> move the camera -> off (kiosk/app/cut_plane.h)
+    CutAxis,  // the plane's preset: axial -> coronal -> sagittal
+};
 
 struct Control {
     ControlId id = ControlId::Home;
@@ -41,7 +53,9 @@ struct UiState {
     std::string group_style_name;  // style of the selection's group
     std::vector<std::string> group_names;
     std::vector<bool> group_visible;
-    float drift_x = 0.0f, drift_y = 0.0f;  // anti burn-in offset, pixels
+    float drift_x = 0.0f, drift_y = 0.0f;      // anti burn-in offset, pixels
+    bool cut_on = false, cut_editing = false;  // the cut plane (kiosk/app/cut_plane.h)
+    std::string cut_axis = "axial";            // its preset (cut_axis_name)
 };
 
 inline constexpr float kMinButtonPx = 64.0f;
@@ -52,7 +66,8 @@ std::vector<Control> layout_controls(const UiState& state);
 const Control* hit_test(const std::vector<Control>& controls, float x, float y);
 // The side of a control in pixels: a finger's size, at least kMinButtonPx.
 float button_size(const UiState& state);
-// A UI word in `language` ("home", "language", "style", "group", "lod", "auto", "isolate"); English fallback.
+// A UI word in `language` ("home", "language", "style", "group", "lod", "auto", "isolate", "cut", "off",
+// "move", "fixed", "axial", "coronal", "sagittal"); English fallback.
 std::string ui_text(const std::string& key, const std::string& language);
 
 }  // namespace body::kiosk
