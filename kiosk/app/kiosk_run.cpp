@@ -267,6 +267,8 @@ int KioskLoop::run() {
         if (first_frame_ms < 0.0) {
             first_frame_ms = since_start;
             after_first_frame();
+            renderer_.warm_up_cut(render::Lighting{},
+                                  fo);  // the cut plane's shaders compiled now, not at a visitor's tap
             if (options_.verbose)
                 std::fprintf(stderr,
                              "bodyview: first frame %.1f ms after start (renderer init %.1f ms with the loaders "

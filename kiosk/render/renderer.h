@@ -173,6 +173,11 @@ public:
     // Draws one frame into options.framebuffer.
     void render(const View& view, const Lighting& lighting, const FrameOptions& options);
     const FrameStats& last_frame_stats() const;
+    // Draws a few frames of the smallest model, cut and capped in every style and
+    // selected, into options.framebuffer (the next frame overwrites them), so that
+    // the driver compiles the cut plane's shader variants now (the kiosk: after
+    // its first frame) rather than at a visitor's first cut. Model states are restored.
+    void warm_up_cut(const Lighting& lighting, const FrameOptions& options);
     // Bytes of GL buffers and textures this renderer created (models, lazily
     // built edge lists and data textures, the tonal art map).
     size_t gpu_bytes() const;

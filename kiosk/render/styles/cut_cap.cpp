@@ -148,3 +148,39 @@ void draw_cut_cap(RendererState& s, Frame& f, const Model& m, Vec3f color, float
 }
 
 }  // namespace body::render
+
+namespace body::render {
+
+void Renderer::warm_up_cut(const Lighting& lighting, const FrameOptions& options) {
+    RendererState& s = *s_;
+    Model* small = nullptr;
+    for (auto& [id, m] : s.models)
+        if (!m.internal && m.index_count > 0 && (!small || m.index_count < small->index_count)) small = &m;
+    if (!small || !prepare_cut(s)) return;
+    std::vector<std::pair<Model*, ModelState>> saved;
+    for (auto& [id, m] : s.models) {
+        if (m.internal) continue;
+        saved.emplace_back(&m, m.state);
+        m.state.visible = false;
+    }
+    Vec3f c;
+    float r = 0.0f;
+    world_sphere(*small, c, r);
+    const View view = View::framing(c, std::max(r, 1e-6f));
+    const Vec3f n = glm::normalize(view.eye - c);
+    FrameOptions o = options;
+    o.cut = CutPlane{};
+    o.cut.enabled = true;
+    o.cut.plane = glm::vec4(n, -glm::dot(n, c));
+    small->state.visible = small->state.cut = true;
+    small->state.selected = false;
+    for (Style style : kAllStyles) {
+        small->state.style = style;
+        render(view, lighting, o);
+    }
+    small->state.selected = true;
+    render(view, lighting, o);
+    for (auto& [m, state] : saved) m->state = state;
+}
+
+}  // namespace body::render
