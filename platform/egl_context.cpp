@@ -70,9 +70,17 @@ Result<std::unique_ptr<EglContext>> EglContext::open(EGLenum platform, void* nat
         EGL_RENDERABLE_TYPE, EGL_OPENGL_ES3_BIT,   EGL_RED_SIZE, 8, EGL_GREEN_SIZE, 8, EGL_BLUE_SIZE, 8,
         EGL_DEPTH_SIZE,      surface_bits ? 24 : 0};
     attribs.insert(attribs.end(), {EGL_SURFACE_TYPE, surface_bits});
+    // A stencil buffer for the cut plane's caps (kiosk/render/styles/cut_cap.h);
+    // a display without one still runs, its cut sections left open.
+    if (surface_bits) attribs.insert(attribs.end(), {EGL_STENCIL_SIZE, 8});
     attribs.push_back(EGL_NONE);
     EGLint count = 0;
     eglChooseConfig(ctx->display_, attribs.data(), nullptr, 0, &count);
+    if (count <= 0 && surface_bits) {
+        attribs.resize(attribs.size() - 3);
+        attribs.push_back(EGL_NONE);
+        eglChooseConfig(ctx->display_, attribs.data(), nullptr, 0, &count);
+    }
     if (count <= 0) return runtime_error("EGL: no GLES 3 config with RGB888 and depth");
     std::vector<EGLConfig> configs(static_cast<size_t>(count));
     eglChooseConfig(ctx->display_, attribs.data(), configs.data(), count, &count);

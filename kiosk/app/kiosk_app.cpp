@@ -35,6 +35,15 @@ std::optional<float> ray_sphere(const Ray& ray, const glm::vec3& center, float r
     return t;
 }
 
+// The world normals of the cut plane's presets: the kiosk world's axes
+// (cut_plane.h) or the scene's own.
+std::array<glm::vec3, 3> cut_axes(const scene::Scene& s) {
+    std::array<glm::vec3, 3> axes{glm::vec3(0, 1, 0), glm::vec3(0, 0, 1), glm::vec3(1, 0, 0)};
+    for (size_t i = 0; i < 3; ++i)
+        if (const auto& a = s.cut_plane.axes[i]) axes[i] = glm::vec3((*a)[0], (*a)[1], (*a)[2]);
+    return axes;
+}
+
 }  // namespace
 
 KioskApp::KioskApp(scene::Scene scene, std::vector<ModelInfo> models, int width, int height)
@@ -74,9 +83,12 @@ KioskApp::KioskApp(scene::Scene scene, std::vector<ModelInfo> models, int width,
         home_pose_.distance = camera_.fit_distance(radius);
     }
     operator_ = OperatorMode(scene_.kiosk.operator_pin);
+    cut_.configure(center, radius, cut_axes(scene_));
     reset();
     resets_ = 0;
 }
+
+bool KioskApp::cut_applies(int model) const { return cut_.group() < 0 || group_index(model) == cut_.group(); }
 
 void KioskApp::set_viewport(int width, int height) {
     camera_.set_viewport(width, height);
@@ -136,6 +148,9 @@ UiState KioskApp::ui_state() const {
     const glm::vec2 d = drift(now_);
     s.drift_x = d.x;
     s.drift_y = d.y;
+    s.cut_on = cut_.on();
+    s.cut_editing = cut_.editing();
+    s.cut_axis = cut_axis_name(cut_.axis());
     return s;
 }
 
@@ -229,9 +244,19 @@ void KioskApp::handle(const InputEvent& e) {
 void KioskApp::apply_gesture(const Gesture& g) {
     switch (g.kind) {
         case GestureKind::Begin: break;
-        case GestureKind::Orbit: camera_.orbit(g.dx, g.dy); break;
+        case GestureKind::Orbit:
+            if (cut_.editing())
+                cut_.drag(g.dx, g.dy, camera_);
+            else
+                camera_.orbit(g.dx, g.dy);
+            break;
         case GestureKind::Zoom: camera_.zoom(g.factor); break;
-        case GestureKind::Pan: camera_.pan(g.dx, g.dy); break;
+        case GestureKind::Pan:
+            if (cut_.editing())
+                cut_.tilt(g.dx, g.dy, camera_);
+            else
+                camera_.pan(g.dx, g.dy);
+            break;
         case GestureKind::Tap: {
             open_pin_ = -1;
             // Thesis B.2: Shift+left click selects what it hits; Shift+left or
@@ -306,6 +331,8 @@ void KioskApp::activate(const Control& c, double now) {
             }
             break;
         case ControlId::Isolate: toggle_isolate(); break;
+        case ControlId::Cut: cut_.cycle(camera_, selected_ >= 0 ? group_index(selected_) : -1); break;
+        case ControlId::CutAxis: cut_.next_axis(camera_); break;
         case ControlId::GroupToggle:
             if (c.group >= 0) set_group_visible(c.group, !groups_[static_cast<size_t>(c.group)].visible);
             break;
@@ -431,6 +458,8 @@ void KioskApp::reset() {
     selected_ = -1;
     dragging_object_ = false;
     isolated_ = false;
+    cut_.off();
+    cut_.set_axis(CutAxis::Axial, camera_);
     language_ = scene_.kiosk.languages.front();
     ui_touches_.clear();
     gestures_.reset();

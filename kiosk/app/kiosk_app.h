@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "kiosk/app/camera.h"
+#include "kiosk/app/cut_plane.h"
 #include "kiosk/app/gestures.h"
 #include "kiosk/app/input.h"
 #include "kiosk/app/lod_controller.h"
@@ -114,6 +115,9 @@ public:
     const LodController& lod_controller() const { return lod_; }
     size_t triangles_planned() const;
     double last_input() const { return last_input_; }
+    // The cut plane (kiosk/app/cut_plane.h) and whether it cuts `model` (its group, or every model).
+    const CutPlane& cut() const { return cut_; }
+    bool cut_applies(int model) const;
 
     // Actions (also reachable through the controls).
     void select(int model);  // -1 deselects
@@ -207,6 +211,7 @@ private:
     double pin_tested_at_ = -1e30;
     int open_pin_ = -1;
     OperatorMode operator_;
+    CutPlane cut_;
 };
 
 }  // namespace body::kiosk

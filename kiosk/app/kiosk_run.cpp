@@ -175,6 +175,7 @@ bool KioskLoop::bind_models(long frame, double now, size_t& triangles) {
         b.style = ms.style;
         b.visible = app_->visible(i);
         b.selected = i == app_->selected();
+        b.cut = app_->cut_applies(i);
         b.transform = placement(i);
         b.lod_automatic = options_.auto_lod;
         b.lod_ratio = !options_.auto_lod  ? (ms.manual_lod ? *ms.manual_lod : 1.0)
@@ -256,6 +257,7 @@ int KioskLoop::run() {
         fo.width = surface_.width();
         fo.height = surface_.height();
         fo.framebuffer = surface_.framebuffer();
+        fo.cut = app_->cut().plane();
         const render::View view = camera_view(now);
         stream_locks.clear();  // drawing needs only the GL buffers
         renderer_.render(view, render::Lighting{}, fo);
@@ -274,6 +276,8 @@ int KioskLoop::run() {
         if (first_frame_ms < 0.0) {
             first_frame_ms = since_start;
             after_first_frame();
+            renderer_.warm_up_cut(render::Lighting{},
+                                  fo);  // the cut plane's shaders compiled now, not at a visitor's tap
             if (options_.verbose)
                 std::fprintf(stderr,
                              "bodyview: first frame %.1f ms after start (renderer init %.1f ms with the loaders "

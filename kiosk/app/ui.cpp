@@ -42,6 +42,17 @@ constexpr MoreWords kMoreWords[] = {
     {"ja", {"ホーム", "スタイル", "グループ", "詳細", "自動", "単独表示"}},
 };
 
+// The cut plane's words (kiosk/app/cut_plane.h).
+constexpr Word kCutWords[] = {
+    {"cut", "Cut", "Schnitt", "Coupe", "Corte"},
+    {"off", "off", "aus", "non", "no"},
+    {"move", "move", "bewegen", "bouger", "mover"},
+    {"fixed", "fixed", "fest", "fixe", "fijo"},
+    {"axial", "axial", "axial", "axiale", "axial"},
+    {"coronal", "coronal", "koronal", "coronale", "coronal"},
+    {"sagittal", "sagittal", "sagittal", "sagittale", "sagital"},
+};
+
 }  // namespace
 
 float button_size(const UiState& s) {
@@ -54,6 +65,13 @@ std::string ui_text(const std::string& key, const std::string& language) {
         if (key != w.key) continue;
         for (const MoreWords& m : kMoreWords)
             if (language == m.language) return m.words[i];
+        if (language == "de") return w.de;
+        if (language == "fr") return w.fr;
+        if (language == "es") return w.es;
+        return w.en;
+    }
+    for (const Word& w : kCutWords) {
+        if (key != w.key) continue;
         if (language == "de") return w.de;
         if (language == "fr") return w.fr;
         if (language == "es") return w.es;
@@ -129,6 +147,12 @@ std::vector<Control> layout_controls(const UiState& s) {
         out.push_back(std::move(c));
         gx += gw + gap;
     }
+    // The cut plane's buttons continue the column (after the group row in `out`).
+    const char* cut_state = !s.cut_on ? "off" : s.cut_editing ? "move" : "fixed";
+    place();
+    add(ControlId::Cut, ui_text("cut", L) + ": " + ui_text(cut_state, L), true, s.cut_on);
+    place();
+    add(ControlId::CutAxis, ui_text(s.cut_axis, L), s.cut_on, false);
     if (is_rtl_language(s.language)) mirror_for_rtl(out, s.width);
     return out;
 }

@@ -45,6 +45,8 @@ enum class ControlId {
     OperatorInfo,
     OperatorRestart,
     OperatorClose,
+    Cut,      // the cut plane: off -> move the plane -> move the camera -> off (kiosk/app/cut_plane.h)
+    CutAxis,  // the plane's preset: axial -> coronal -> sagittal
 };
 
 struct Control {
@@ -67,7 +69,9 @@ struct UiState {
     std::string group_style_name;  // style of the selection's group
     std::vector<std::string> group_names;
     std::vector<bool> group_visible;
-    float drift_x = 0.0f, drift_y = 0.0f;  // anti burn-in offset, pixels
+    float drift_x = 0.0f, drift_y = 0.0f;      // anti burn-in offset, pixels
+    bool cut_on = false, cut_editing = false;  // the cut plane (kiosk/app/cut_plane.h)
+    std::string cut_axis = "axial";            // its preset (cut_axis_name)
 };
 
 inline constexpr float kMinButtonPx = 64.0f;
@@ -80,8 +84,9 @@ void mirror_for_rtl(std::vector<Control>& controls, int width);
 const Control* hit_test(const std::vector<Control>& controls, float x, float y);
 // The side of a control in pixels: a finger's size, at least kMinButtonPx.
 float button_size(const UiState& state);
-// A UI word in `language` ("home", "style", "group", "lod", "auto", "isolate"): en, de, fr, es, ru, el, ar,
-// he, zh, ja; English fallback.
+// A UI word in `language` ("home", "language", "style", "group", "lod", "auto", "isolate", "cut", "off",
+// "move", "fixed", "axial", "coronal", "sagittal"): en, de, fr, es; the first six also ru, el, ar, he, zh, ja;
+// English fallback.
 std::string ui_text(const std::string& key, const std::string& language);
 
 }  // namespace body::kiosk

@@ -126,6 +126,7 @@ private:
     Status run_lod(double lod);
     void print_cell(double lod, Style s, const Cell& c) const;
     void print_memory() const;
+    Status run_cut_plane();
 
     platform::Surface& surface_;
     const BenchmarkOptions& options_;
@@ -386,6 +387,16 @@ void Benchmark::print_memory() const {
                     mib(std::max(after_baseline_, after_baseline_current_ + added) - empty_rss_));
 }
 
+// The cut-plane table (benchmark_cut.cpp) at full detail.
+Status Benchmark::run_cut_plane() {
+    source_->set_lod(1.0);
+    if (const render::Dirty d = source_->take_dirty(); d.vertex_begin < d.vertex_end || d.index_begin < d.index_end) {
+        if (auto s = renderer_.update_model(id_, source_->upload_mesh(), d); !s) return s;
+        source_->release_arrays();
+    }
+    return compare_cut_plane(renderer_, id_, camera_, frame_, options_.frames, options_.seconds_per_cell);
+}
+
 Status Benchmark::run() {
     surface_.make_current();
     glFinish();
@@ -403,6 +414,7 @@ Status Benchmark::run() {
         if (auto s = run_lod(lod); !s) return s;
     step("after every style and LOD");
     print_memory();
+    if (auto s = run_cut_plane(); !s) return s;
     if (source_->progressive() && !options_.model.empty()) {
         renderer_.state(id_)->style = Style::Baseline;
         if (auto s = compare_with_static(renderer_, id_, *source_, options_.model, camera_, frame_, options_.frames,

@@ -50,6 +50,12 @@ Status compare_with_static(render::Renderer& renderer, render::ModelId id, Model
 // pairs; median pair ratio and the ratio of the totals (goal <= 1.1x).
 Status compare_pins(render::Renderer& renderer, render::ModelId id, ModelSource& source,
                     const render::FrameOptions& frame, int min_pairs, double seconds);
+// The cut-plane table (benchmark_cut.cpp), run at full detail after the
+// memory figures: per style and for the model selected under x-ray, the view
+// with the cut plane through the model and its cap against the same view
+// without it, in alternating pairs (goal <= 1.3x), and the plane without caps.
+Status compare_cut_plane(render::Renderer& renderer, render::ModelId id, const render::View& camera,
+                         const render::FrameOptions& frame, int min_pairs, double seconds);
 
 // Peak and current resident set size of this process in KiB (/proc/self/status).
 long peak_rss_kib();

@@ -36,6 +36,10 @@ private:
     GLsync previous_ = nullptr;
 };
 
+struct Frame;
+// The cut plane's uniforms (kiosk/render/styles/cut_cap.cpp).
+void set_clip_uniforms(Program& p, const Frame& f);
+
 // One frame being drawn (Renderer::render, kiosk/render/frame.cpp).
 struct Frame {
     glm::mat4 view, projection;
@@ -53,8 +57,13 @@ struct Frame {
     // and free the compiler's scratch into the heap: a frame that drew a
     // program for the first time trims the heap at its end.
     bool first_use = false;
+    // The cut plane (styles/cut_cap.h): on for this frame, and the view-space
+    // plane of the model being drawn ((0, 0, 0, -1) keeps everything).
+    bool clipping = false;
+    glm::vec4 clip_view{0.0f, 0.0f, 0.0f, -1.0f};
     void use(Program& p) {
         glUseProgram(p.id);
+        if (clipping) set_clip_uniforms(p, *this);
         first_use |= !p.drawn;
         p.drawn = true;
     }

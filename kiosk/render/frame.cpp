@@ -35,7 +35,11 @@ Frame begin_frame(RendererState& s, const View& camera, const Lighting& lighting
     glClearDepthf(1.0f);
     glDepthMask(GL_TRUE);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    if (o.cut.enabled) {  // the cut plane's caps count in the stencil (styles/cut_cap.h)
+        glStencilMask(0xFF);
+        glClearStencil(0);
+    }
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | (o.cut.enabled ? GL_STENCIL_BUFFER_BIT : 0));
     Frame f{};
     if (!s.ready || o.width <= 0 || o.height <= 0) return f;
     glEnable(GL_DEPTH_TEST);
@@ -108,6 +112,8 @@ std::vector<Model*> draw_opaque(RendererState& s, Frame& f, bool fade_rest) {
     std::vector<Model*> transparent;
     for (auto& [id, m] : s.models) {
         if (m.internal || !m.state.visible || m.index_count == 0 || !on_screen(f, m)) continue;
+        const CutSide cut = begin_model_cut(f, m);
+        if (cut == CutSide::Removed) continue;
         if (m.state.selected || fade_rest) {
             transparent.push_back(&m);
             continue;
@@ -116,6 +122,7 @@ std::vector<Model*> draw_opaque(RendererState& s, Frame& f, bool fade_rest) {
         s.stats.triangles += m.index_count / 3;
         ++s.stats.draw_calls;
         kDrawStyle[static_cast<size_t>(m.state.style)](s, f, m);
+        if (cut == CutSide::Cut) draw_cut_cap(s, f, m, m.state.color, 1.0f);
         BODY_GL_CHECK(style_name(m.state.style));
     }
     return transparent;
@@ -134,10 +141,12 @@ void draw_transparent(RendererState& s, Frame& f, const std::vector<Model*>& tra
     glEnable(GL_BLEND);
     glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
     for (auto& [z, m] : order) {
+        const bool cut = begin_model_cut(f, *m) == CutSide::Cut;
         if (m->state.selected)
             draw_selected(s, f, *m);
         else
             draw_xray(s, f, *m);
+        if (cut) draw_cut_cap(s, f, *m, m->state.selected ? f.options->selection_color : m->state.color, 0.55f);
     }
     glDisable(GL_BLEND);
 }
@@ -156,9 +165,14 @@ void Renderer::render(const View& camera, const Lighting& lighting, const FrameO
     // it (llvmpipe: the vertex stage's sampler view), so the heap is trimmed
     // again at the end of the frame.
     const bool released = release_unused_line_data(s);
+    // A cut plane draws with the clipped programs (styles/cut_cap.h) for this frame.
+    f.clipping = o.cut.enabled && prepare_cut(s);
+    if (f.clipping) std::swap(s.programs, s.cut.clipped);
     const std::vector<Model*> transparent = draw_opaque(s, f, fade_rest);
+    f.clip_view = glm::vec4(0.0f, 0.0f, 0.0f, -1.0f);  // the spheres are never cut
     if (o.manipulation_sphere && any_selected) draw_manipulation_spheres(s, f);
     draw_transparent(s, f, transparent);
+    if (f.clipping) std::swap(s.programs, s.cut.clipped);
     glBindVertexArray(0);
     glUseProgram(0);
     if (f.first_use || released) trim_heap();

@@ -35,10 +35,22 @@ Result<GLuint> compile(GLenum type, const char* src, const std::string& label) {
     return s;
 }
 
-Result<Program> link(const std::string& vert, const std::string& frag) {
-    const char* vs = shader_source(vert);
-    const char* fs = shader_source(frag);
-    if (!vs || !fs) return runtime_error("shader " + (vs ? frag : vert) + ": not embedded in this build");
+// `defines` ("#define X 1\n" lines) go after each source's #version line.
+std::string with_defines(const char* source, const char* defines) {
+    std::string text(source);
+    if (!defines || !*defines) return text;
+    const size_t eol = text.find('\n');
+    return eol == std::string::npos ? text + "\n" + defines : text.insert(eol + 1, defines);
+}
+
+Result<Program> link(const std::string& vert, const std::string& frag, const char* defines) {
+    const char* vs_source = shader_source(vert);
+    const char* fs_source = shader_source(frag);
+    if (!vs_source || !fs_source)
+        return runtime_error("shader " + (vs_source ? frag : vert) + ": not embedded in this build");
+    const std::string vs_text = with_defines(vs_source, defines), fs_text = with_defines(fs_source, defines);
+    const char* vs = vs_text.c_str();
+    const char* fs = fs_text.c_str();
     const std::pair<unsigned, const char*> attributes[] = {{kPosition, "a_position"},
                                                            {kNormal, "a_normal"},
                                                            {kMorph, "a_morph"},
@@ -83,7 +95,7 @@ Result<unsigned> link_program(const char* vertex_source, const char* fragment_so
     return id;
 }
 
-Status link_programs(Programs& programs) {
+Status link_programs(Programs& programs, const char* defines) {
     struct Want {
         Program* p;
         const char* vert;
@@ -94,7 +106,7 @@ Status link_programs(Programs& programs) {
           Want{&programs.hatching, "mesh.vert", "hatching.frag"}, Want{&programs.xray, "mesh.vert", "xray.frag"},
           Want{&programs.lines, "lines.vert", "lines.frag"},
           Want{&programs.wireframe, "wireframe.vert", "wireframe.frag"}}) {
-        auto p = link(w.vert, w.frag);
+        auto p = link(w.vert, w.frag, defines);
         if (!p) {
             delete_programs(programs);
             return p.error();
@@ -102,6 +114,10 @@ Status link_programs(Programs& programs) {
         *w.p = std::move(p.value());
     }
     return ok_status();
+}
+
+Result<Program> link_shader_pair(const std::string& vert, const std::string& frag, const char* defines) {
+    return link(vert, frag, defines);
 }
 
 void delete_programs(Programs& programs) {

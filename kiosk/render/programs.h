@@ -40,7 +40,11 @@ struct Programs {
 };
 
 // Links every program of the table; on an error the ones linked are deleted.
-Status link_programs(Programs& programs);
+// `defines` ("#define NAME 1\n" lines) select a variant, e.g. the cut plane's
+// clipped programs (kiosk/render/styles/cut_cap.cpp).
+Status link_programs(Programs& programs, const char* defines = nullptr);
+// One program of kiosk/shaders/ (the cut plane's cap), with optional `defines`.
+Result<Program> link_shader_pair(const std::string& vert, const std::string& frag, const char* defines = nullptr);
 void delete_programs(Programs& programs);
 
 }  // namespace body::render

@@ -111,6 +111,7 @@ void Renderer::shutdown() {
     for (auto& [id, m] : s_->models) free_model(m);
     s_->models.clear();
     delete_programs(s_->programs);
+    free_cut(s_->cut);
     if (s_->tam) glDeleteTextures(1, &s_->tam);
     if (s_->wire_vao) glDeleteVertexArrays(1, &s_->wire_vao);
     if (s_->quad_vao) glDeleteVertexArrays(1, &s_->quad_vao);

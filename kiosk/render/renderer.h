@@ -42,6 +42,7 @@
 #include <utility>
 #include <vector>
 
+#include "kiosk/render/cut_plane.h"
 #include "kiosk/render/mesh_data.h"
 #include "kiosk/render/view.h"
 #include "shared/error.h"
@@ -64,6 +65,7 @@ struct ModelState {
     // The `lines` and `wireframe` styles draw the positions as they are.
     size_t morph_begin = SIZE_MAX;
     float morph = 1.0f;
+    bool cut = true;  // FrameOptions::cut applies to this model (a group may be cut alone)
 };
 
 // Lights are attached to the camera: directions in view space, toward the light.
@@ -86,6 +88,7 @@ struct FrameOptions {
     bool xray_unselected = false;    // fade everything not selected (when something is)
     bool manipulation_sphere = true;
     float sphere_fraction = 0.2f;  // manipulation sphere radius / model bounding radius
+    CutPlane cut;                  // kiosk/render/cut_plane.h; needs a stencil buffer for the caps
 };
 
 struct FrameStats {
@@ -170,6 +173,11 @@ public:
     // Draws one frame into options.framebuffer.
     void render(const View& view, const Lighting& lighting, const FrameOptions& options);
     const FrameStats& last_frame_stats() const;
+    // Draws a few frames of the smallest model, cut and capped in every style and
+    // selected, into options.framebuffer (the next frame overwrites them), so that
+    // the driver compiles the cut plane's shader variants now (the kiosk: after
+    // its first frame) rather than at a visitor's first cut. Model states are restored.
+    void warm_up_cut(const Lighting& lighting, const FrameOptions& options);
     // Bytes of GL buffers and textures this renderer created (models, lazily
     // built edge lists and data textures, the tonal art map).
     size_t gpu_bytes() const;

@@ -10,6 +10,7 @@
 #include "kiosk/render/model.h"
 #include "kiosk/render/programs.h"
 #include "kiosk/render/renderer.h"
+#include "kiosk/render/styles/cut_cap.h"
 
 namespace body::render {
 
@@ -28,6 +29,7 @@ struct RendererState {
     // Software rasterizers (GL_RENDERER llvmpipe, softpipe): large draws are
     // split and flushed (draw.h, kFlushTriangles).
     bool flush_large_draws = false;
+    CutCapState cut;  // the cut plane's programs (styles/cut_cap.h)
 };
 
 }  // namespace body::render

@@ -194,6 +194,7 @@ bool SceneModels::bind(size_t model, const ModelBinding& b, double now) {
         st->style = b.style;
         st->visible = b.visible;
         st->selected = b.selected;
+        st->cut = b.cut;
         st->transform = b.transform;
         if (b.hold_level)
             at_detail = at_detail && !p.progressive();

@@ -54,6 +54,7 @@ struct ModelBinding {
     bool lod_automatic = false;  // chosen by the kiosk's LOD controller (OBJ: full detail)
     bool glide = true;           // geomorph level changes (false: jump, e.g. a screenshot)
     bool hold_level = false;     // keep the current level (the kiosk's first frame: base meshes)
+    bool cut = true;             // the frame's cut plane applies (render::ModelState::cut)
 };
 
 struct LoadOptions {

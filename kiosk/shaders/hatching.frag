@@ -25,6 +25,7 @@ uniform vec4 u_color;
 uniform mediump sampler2DArray u_tam;  // layer 0: tones 0-3, 1: tones 2-5 (RGBA), 2: tones 1, 4 (RG)
 uniform int u_two_tone;
 out vec4 o_color;
+#include "clip.glsl"
 
 void main() {
     float s = v_hatch.w;  // 0: white paper .. 6: the darkest tone (tone k - 1 at s = k)
@@ -41,5 +42,6 @@ void main() {
         float t = dark ? s - 2.0 : s;  // the layer's channels hold tones at t = 1, 2, 3, 4
         ink = max(0.0, 1.0 - s) + dot(max(vec4(0.0), 1.0 - abs(t - vec4(1.0, 2.0, 3.0, 4.0))), tones);
     }
+    clip_fragment();  // after the derivatives, which need every fragment of the quad
     o_color = vec4(mix(vec3(0.12, 0.11, 0.10), u_color.rgb, ink), 1.0);
 }

@@ -13,9 +13,11 @@ precision highp float;
 in vec3 v_view_normal;
 uniform vec4 u_color;
 #include "lighting.glsl"
+#include "clip.glsl"
 out vec4 o_color;
 
 void main() {
+    clip_fragment();
     vec3 n = v_view_normal * inversesqrt(dot(v_view_normal, v_view_normal));
     float diffuse = max(dot(n, u_key_light), 0.0) + max(dot(n, u_fill_light), 0.0) + u_light_levels.w;
     // pow(x, 40) by squaring: six multiplies instead of a log2 and an exp2.

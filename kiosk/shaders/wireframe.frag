@@ -7,6 +7,7 @@ in vec3 v_view_pos;
 uniform vec4 u_color;
 uniform float u_width_px;
 #include "lighting.glsl"
+#include "clip.glsl"
 out vec4 o_color;
 
 void main() {
@@ -16,5 +17,6 @@ void main() {
     float px = min(min(d.x, d.y), d.z);
     float edge = 1.0 - smoothstep(0.5 * u_width_px - 0.5, 0.5 * u_width_px + 0.5, px);
     vec3 fill = mix(vec3(1.0), u_color.rgb, 0.35) * light;
+    clip_fragment();  // after the derivatives, which need every fragment of the quad
     o_color = vec4(mix(fill, u_color.rgb * 0.35, edge), 1.0);
 }

@@ -6,8 +6,10 @@ in vec3 v_view_normal;
 uniform vec4 u_color;      // rgb, base alpha
 uniform vec3 u_rim_color;  // colour toward the outline
 #include "lighting.glsl"
+#include "clip.glsl"
 out vec4 o_color;
 void main() {
+    clip_fragment();
     vec3 n = normalize(v_view_normal);
     float facing = abs(dot(n, normalize(view_ray())));
     float rim = pow(1.0 - facing, 2.5);

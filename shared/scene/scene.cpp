@@ -263,6 +263,21 @@ bool read_kiosk(Reader& r, const json& v, const std::string& path, KioskSettings
     return true;
 }
 
+bool read_cut_plane(Reader& r, const json& v, const std::string& path, CutPlaneSettings& c) {
+    const char* names[] = {"axial", "coronal", "sagittal"};
+    if (!r.only_keys(v, path, {names[0], names[1], names[2]})) return false;
+    for (size_t i = 0; i < 3; ++i) {
+        if (!v.contains(names[i])) continue;
+        std::array<float, 3> n{};
+        const std::string p = path + "." + names[i];
+        if (!r.vec3(v[names[i]], p, -1e6f, 1e6f, n)) return false;
+        if (std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) < 1e-6f)
+            return r.fail(p, "expected a non-zero direction");
+        c.axes[i] = n;
+    }
+    return true;
+}
+
 // Cross-references: unique names, groups that exist, label languages that are declared.
 bool check_references(Reader& r, Scene& s) {
     std::set<std::string> groups;
@@ -347,7 +362,7 @@ Result<Scene> parse_scene(const std::string& text, const std::string& source, co
     Scene s;
     s.source = source;
     s.base_dir = base_dir;
-    if (!r.only_keys(root, "$", {"version", "models", "groups", "camera", "kiosk", "tours"})) {
+    if (!r.only_keys(root, "$", {"version", "models", "groups", "camera", "kiosk", "tours", "cut_plane"})) {
         return input_error(r.message);
     }
     if (root.contains("version")) {
@@ -355,6 +370,8 @@ Result<Scene> parse_scene(const std::string& text, const std::string& source, co
         if (!r.integer(root["version"], "version", 1, 1, version)) return input_error(r.message);
     }
     if (root.contains("kiosk") && !read_kiosk(r, root["kiosk"], "kiosk", s.kiosk)) return input_error(r.message);
+    if (root.contains("cut_plane") && !read_cut_plane(r, root["cut_plane"], "cut_plane", s.cut_plane))
+        return input_error(r.message);
     if (root.contains("groups")) {
         const json& groups = root["groups"];
         if (!groups.is_array()) return input_error(source + ": groups: expected an array");

@@ -122,6 +122,13 @@ struct Tour {
     std::vector<TourStep> steps;   // at least one
 };
 
+// The kiosk's cut plane (kiosk/app/cut_plane.h): the world normals of its
+// presets, axial, coronal and sagittal, for bundles whose world is not the
+// exhibits' (+Y superior, +Z anterior, +X left); nullopt keeps that default.
+struct CutPlaneSettings {
+    std::array<std::optional<std::array<float, 3>>, 3> axes;  // axial, coronal, sagittal
+};
+
 struct Scene {
     std::string source;  // manifest path as given
     std::string base_dir;
@@ -130,6 +137,7 @@ struct Scene {
     HomeCamera camera;
     KioskSettings kiosk;
     std::vector<Tour> tours;
+    CutPlaneSettings cut_plane;
 
     const Group* find_group(const std::string& name) const;
     int model_index(const std::string& name) const;  // -1 when absent

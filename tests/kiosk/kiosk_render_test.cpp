@@ -170,5 +170,36 @@ TEST_F(KioskReplay, AdminCornerTapsAreTheWayOut) {
     EXPECT_NE(r.output.find("admin exit"), std::string::npos) << r.output;
 }
 
+// The lowest and highest rows holding bluish pixels in the left half (the left sphere), or -1.
+std::pair<int, int> blue_rows(const render::Image& img) {
+    int top = -1, bottom = -1;
+    for (int y = 0; y < img.height; ++y)
+        for (int x = 0; x < 640; ++x)
+            if (img.at(x, y)[2] > img.at(x, y)[0] + 40) {
+                if (top < 0) top = y;
+                bottom = y;
+            }
+    return {top, bottom};
+}
+
+TEST_F(KioskReplay, CutButtonAndDragRemoveTheUpperHalvesThroughBodyview) {
+    // The Cut button is the eighth row of the right column at 1280x800
+    // (72-pixel buttons, 10-pixel gaps): centre (1190, 620). Axial preset:
+    // the plane y = 0 through the spheres' centres (row 400), the upper halves removed.
+    const auto [top0, bottom0] = blue_rows(play("0.3 end\n"));
+    const auto [top1, bottom1] = blue_rows(play("0.2 down 1 1190 620\n0.25 up 1 1190 620\n0.6 end\n"));
+    ASSERT_GE(top0, 0);
+    ASSERT_GE(top1, 0);
+    EXPECT_LT(top0, 360);  // the whole sphere: about 400 - 62
+    EXPECT_GT(top1, 390);  // only the lower half
+    EXPECT_NEAR(bottom1, bottom0, 2);
+    // A one-finger drag 60 px down moves the plane down with it.
+    const auto [top2, bottom2] = blue_rows(
+        play("0.2 down 1 1190 620\n0.25 up 1 1190 620\n0.4 down 1 300 300\n0.45 move 1 300 330\n0.5 move 1 300 360\n"
+             "0.55 up 1 300 360\n0.8 end\n"));
+    EXPECT_NEAR(top2, top1 + 60, 4);
+    EXPECT_NEAR(bottom2, bottom0, 2);
+}
+
 }  // namespace
 }  // namespace body

@@ -25,7 +25,7 @@ UiState state(int w, int h) {
 TEST(Ui, ControlsAreFingerSizedOnScreenAndDoNotOverlap) {
     for (auto [w, h] : {std::pair{800, 480}, {1280, 800}, {1920, 1080}, {800, 1280}}) {
         const auto controls = layout_controls(state(w, h));
-        ASSERT_EQ(controls.size(), 8u + 3u);
+        ASSERT_EQ(controls.size(), 8u + 3u + 2u);  // + the cut plane's two
         for (size_t i = 0; i < controls.size(); ++i) {
             const Rect& r = controls[i].rect;
             EXPECT_GE(r.h, kMinButtonPx);
