@@ -152,6 +152,8 @@ void print_usage() {
         "  --strict                           refuse contours with any problem instead of repairing them\n"
         "  --repair-tolerance D               largest distance a contour repair may move a point, in stack\n"
         "                                     units (default 0.001 x the stack's x-y extent; see bodygen check)\n"
+        "  --min-area A                       for a contour stack (.json): drop contours smaller than A\n"
+        "                                     (stack units squared) with a warning (default 0: keep all)\n"
         "  --normals                          write vertex normals\n"
         "  --quiet                            no progress bar and no summary\n"
         "  --json                             statistics as JSON on stdout\n"
@@ -253,14 +255,14 @@ void print_summary(const std::string& output, double seconds, const std::vector<
 }  // namespace
 
 int run_build(const Args& argv) {
-    auto args = CliArgs::parse(
-        argv,
-        {"output", "caps", "tiling", "correspondence", "branching", "jobs", "smooth", "interpolate", "repair-tolerance",
+    auto args = CliArgs::parse(argv,
+                               {"output", "caps", "tiling", "correspondence", "branching", "jobs", "smooth",
+                                "interpolate", "repair-tolerance", "min-area",
 #ifdef BODY_WITH_IMPORT
-         "labels", "axis", "step", "only", "threshold", "tolerance", "min-area"
+                                "labels", "axis", "step", "only", "threshold", "tolerance"
 #endif
-        },
-        {"help", "quiet", "json", "normals", "strict"});
+                               },
+                               {"help", "quiet", "json", "normals", "strict"});
     if (!args) return report(args.error());
     if (args->has("help")) {
         print_usage();
