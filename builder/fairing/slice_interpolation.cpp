@@ -74,12 +74,54 @@ void find_rungs(Work& w, std::span<const uint32_t> indices) {
     }
 }
 
+// A crease or corner between bands: a band triangle at the vertex turns more
+// than this from their mean normal. Curves there would bulge off the flat
+// sides they join (a cube's edges), so rungs ending there stay straight.
+constexpr double kSharpCos = 0.866;  // 30 degrees
+
+// The slopes turned into the tangent plane of the bands at each vertex with
+// bands on both sides (the area-weighted normal of its band triangles): the
+// mean of a vertex's partners can point off the surface where the tiling fans
+// one point to many. A slope that the plane would make nearly horizontal is
+// left as it was. Rungs at sharp vertices are marked straight.
+void in_tangent_plane(Work& w, std::span<const Vec3> positions, std::span<const uint32_t> indices,
+                      std::span<const uint32_t> n_up, std::span<const uint32_t> n_down, std::vector<Vec2>& slope) {
+    std::vector<Vec3> normal(positions.size(), Vec3(0.0));
+    for (size_t t = 0; t + 2 < indices.size(); t += 3) {
+        if (!is_band(w, &indices[t])) continue;
+        const Vec3 n = glm::cross(positions[indices[t + 1]] - positions[indices[t]],
+                                  positions[indices[t + 2]] - positions[indices[t]]);
+        for (int c = 0; c < 3; ++c) normal[indices[t + size_t(c)]] += n;
+    }
+    std::vector<bool> sharp(positions.size(), false);
+    for (size_t t = 0; t + 2 < indices.size(); t += 3) {
+        if (!is_band(w, &indices[t])) continue;
+        const Vec3 n = glm::cross(positions[indices[t + 1]] - positions[indices[t]],
+                                  positions[indices[t + 2]] - positions[indices[t]]);
+        const double ln = glm::length(n);
+        for (int c = 0; c < 3; ++c) {
+            const uint32_t v = indices[t + size_t(c)];
+            const double lv = glm::length(normal[v]);
+            if (ln > 0 && lv > 0 && glm::dot(n, normal[v]) < kSharpCos * ln * lv) sharp[v] = true;
+        }
+    }
+    for (Rung& r : w.rungs)
+        if (sharp[r.lo] || sharp[r.hi]) r.curved = false;
+    for (size_t v = 0; v < positions.size(); ++v) {
+        const double length = glm::length(normal[v]);
+        if (!(length > 0) || !n_up[v] || !n_down[v]) continue;
+        const Vec3 n = normal[v] / length, d(slope[v], 1.0);
+        const Vec3 in_plane = d - glm::dot(d, n) * n;
+        if (in_plane.z > 0.25) slope[v] = Vec2(in_plane) / in_plane.z;
+    }
+}
+
 // Phase 2: the Catmull-Rom slope (d(x, y)/dz) at every vertex from the mean of
 // its rung partners above and below, weighted for uneven spacing. A vertex
 // with partners on one side only (a structure's end, a branch) takes the
 // parabola's end slope, 2 x chord slope - the partners' slope, so the curve
 // keeps bending towards the end instead of running straight into it.
-std::vector<Vec2> slopes(const Work& w, std::span<const Vec3> positions) {
+std::vector<Vec2> slopes(Work& w, std::span<const Vec3> positions, std::span<const uint32_t> indices) {
     const size_t n = positions.size();
     std::vector<Vec2> up(n, Vec2(0.0)), down(n, Vec2(0.0));
     std::vector<uint32_t> n_up(n, 0), n_down(n, 0);
@@ -122,6 +164,7 @@ std::vector<Vec2> slopes(const Work& w, std::span<const Vec3> positions) {
     for (size_t v = 0; v < n; ++v)
         if (n_partner[v] > 0 && n_partner[v] == std::max(n_up[v], n_down[v]))
             slope[v] = 2.0 * slope[v] - partner[v] / double(n_partner[v]);
+    in_tangent_plane(w, positions, indices, n_up, n_down, slope);
     return slope;
 }
 
@@ -381,7 +424,7 @@ InterpolationStats interpolate_between_slices(std::vector<Vec3>& positions, std:
     std::vector<std::pair<uint32_t, uint32_t>> input_pairs;
     count_self_intersections(positions, indices, 0, &input_pairs);
     const size_t first_new = positions.size();
-    place_points(w, positions, slopes(w, positions));
+    place_points(w, positions, slopes(w, positions, indices));
     std::vector<uint32_t> parent;
     indices = retriangulate(w, indices, parent);
     stats.straightened = keep_free_of_new_crossings(w, positions, indices, parent, input_pairs, first_new);

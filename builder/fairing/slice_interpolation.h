@@ -17,7 +17,10 @@
 //   z_s + k/(rings+1) (z_{s+1} - z_s), placed on the cubic Hermite curve whose
 //   end tangents are the Catmull-Rom slopes of each end vertex (the mean of its
 //   rung partners on the slices above and below, weighted for uneven spacing;
-//   one-sided at a structure's end). A rung also used by a triangle that is not
+//   parabolic end slope at a structure's end), turned into the bands' tangent
+//   plane at the vertex. Rungs at a crease or corner (a band triangle there
+//   turns more than 30 degrees from the vertex's mean band normal) stay
+//   straight, so flat sides stay flat. A rung also used by a triangle that is not
 //   a band triangle (branch walls, mid-slice rings) is split on its straight
 //   line, and that triangle is re-triangulated in its own plane.
 // - Band triangles become strips of 2 x rings + 1 triangles with the original

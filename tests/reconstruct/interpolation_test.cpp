@@ -143,6 +143,22 @@ TEST(Interpolation, BranchesStayClosedAndKeepTheirContours) {
     EXPECT_GT(smooth.triangles, linear.triangles);
 }
 
+// A box whose square contours carry extra points at other places on each
+// slice (so the tiling fans corners to many points): its sides stay flat.
+TEST(Interpolation, FlatSidesStayFlat) {
+    StackBuilder sb;
+    for (int k = 0; k < 6; ++k) {
+        const double a = 0.2 + 0.15 * k;  // where the extra points sit along each side
+        sb.slice(0.3 * k, {{{-1, -1}, {a - 1, -1}, {1, -1}, {1, a - 1}, {1, 1}, {1 - a, 1}, {-1, 1}, {-1, 1 - a}}});
+    }
+    const StructureMesh smooth = build_one(sb.stack, 3);
+    expect_good_structure(smooth, sb.stack, "");
+    double off = 0.0;
+    for (const Vec3& p : smooth.mesh.positions)
+        if (p.z > 0.0 && p.z < 1.5) off = std::max(off, std::abs(std::max(std::abs(p.x), std::abs(p.y)) - 1.0));
+    EXPECT_LE(off, 1e-9);
+}
+
 TEST(Interpolation, NoRingsLeaveTheMeshAsItIs) {
     const ContourStack stack = ellipsoid_stack(1.0, 0.8, 0.2, 6, 32);
     const StructureMesh linear = build_one(stack, 0);
