@@ -114,6 +114,8 @@ TEST(Interpolation, SphereKeepsEveryTracedPointAndHalvesTheError) {
     const double zlo = stack.slices.front().z, zhi = stack.slices.back().z;
     const auto d = ellipsoid_distance(1.0, 1.0, 0.0);
     const double e_linear = distance_to(linear.mesh, d, zlo, zhi), e_smooth = distance_to(smooth.mesh, d, zlo, zhi);
+    RecordProperty("linear", std::to_string(e_linear));
+    RecordProperty("interpolated", std::to_string(e_smooth));
     EXPECT_LT(e_smooth, 0.5 * e_linear) << "linear " << e_linear << ", interpolated " << e_smooth;
 }
 
@@ -125,6 +127,8 @@ TEST(Interpolation, ShearedEllipsoidFollowsTheSlantedSurface) {
     const double zlo = stack.slices.front().z, zhi = stack.slices.back().z;
     const auto d = ellipsoid_distance(1.0, 0.6, 0.5);
     const double e_linear = distance_to(linear.mesh, d, zlo, zhi), e_smooth = distance_to(smooth.mesh, d, zlo, zhi);
+    RecordProperty("linear", std::to_string(e_linear));
+    RecordProperty("interpolated", std::to_string(e_smooth));
     EXPECT_LT(e_smooth, 0.5 * e_linear) << "linear " << e_linear << ", interpolated " << e_smooth;
 }
 
