@@ -9,8 +9,11 @@ Distances are sampled at the vertices and triangle centroids of each mesh and
 measured to the other surface with vtkImplicitPolyDataDistance.
 
 usage: reconstruct_vs_vtk.py STACK.contours.json ORIGINAL.obj BODYGEN.obj [--resolution N]
+                              [--also LABEL OBJ SECONDS]... [--row NAME]
 Prints one line per reconstruction: name, time, Hausdorff (absolute and relative to the
-original's bounding-box diagonal), mean distance, triangles.
+original's bounding-box diagonal), mean distance, triangles. --also adds further bodygen
+meshes of the same stack (VTK runs once); --row prints one more line,
+"row NAME vtk_h vtk_mean vtk_s [label h mean s]...", for tables.
 """
 import argparse
 import json
@@ -108,10 +111,10 @@ def samples(pts, tris, zlo, zhi):
 def distances(sample_points, surface):
     d = vtk.vtkImplicitPolyDataDistance()
     d.SetInput(surface)
-    out = np.empty(len(sample_points))
-    for i, p in enumerate(sample_points):
-        out[i] = abs(d.EvaluateFunction(p))
-    return out
+    # All points in one call (the same EvaluateFunction per point, without a Python loop).
+    values = vtk.vtkDoubleArray()
+    d.FunctionValue(numpy_support.numpy_to_vtk(np.ascontiguousarray(sample_points, dtype=float), deep=True), values)
+    return np.abs(numpy_support.vtk_to_numpy(values).astype(float))
 
 
 def hausdorff(a_pts, a_tris, b_pts, b_tris, zlo, zhi):
@@ -134,6 +137,8 @@ def main():
     ap.add_argument("--resolution", type=int, default=256)
     ap.add_argument("--bodygen-seconds", type=float, default=float("nan"))
     ap.add_argument("--label", default="bodygen")
+    ap.add_argument("--also", nargs=3, action="append", default=[], metavar=("LABEL", "OBJ", "SECONDS"))
+    ap.add_argument("--row")
     args = ap.parse_args()
 
     with open(args.stack) as f:
@@ -156,6 +161,15 @@ def main():
     (_, bs, bh, bm, _), (_, vs, vh, vm, _) = results
     print(f"ratio bodygen/vtk: hausdorff {bh / vh:.3f}  mean {bm / vm:.3f}  time {bs / vs:.3f}"
           f"  -> bodygen {'not worse' if bh <= vh else 'WORSE'} than VTK on Hausdorff")
+    row = [args.row, f"{vh:.6g}", f"{vm:.4g}", f"{vs:.4g}", args.label, f"{bh:.6g}", f"{bm:.4g}", f"{bs:.4g}"]
+    for label, obj, seconds in args.also:
+        pts, tris = read_obj(obj)
+        h, mean = hausdorff(pts, tris, orig_pts, orig_tris, zlo, zhi)
+        print(f"{label:24s} cpu {float(seconds):8.3f} s  hausdorff {h:.5f} ({h / diag:.2e} of diag)  "
+              f"mean {mean:.5f}  triangles {len(tris)}  ratio to vtk {h / vh:.3f}")
+        row += [label, f"{h:.6g}", f"{mean:.4g}", f"{float(seconds):.4g}"]
+    if args.row:
+        print("row " + " ".join(row))
     return 0
 
 

@@ -1,6 +1,6 @@
 // bodygen build INPUT -o OUT [--caps flat|dome|none]
 //   [--tiling optimal|multires] [--correspondence overlap|ellipse]
-//   [--branching partition|overlap] [--smooth N] [--normals] [--quiet] [--json] [--jobs N]
+//   [--branching partition|overlap] [--smooth N] [--interpolate N] [--normals] [--quiet] [--json] [--jobs N]
 // INPUT: a contour stack (*.contours.json), or, with import support, a NIfTI
 // label volume or a DICOM RT-STRUCT (imported with the `contours` defaults).
 // OUT: OUT.obj (one `o NAME` per structure), OUT.bpm (progressive meshes), or
@@ -137,9 +137,14 @@ void print_usage() {
         "                                     removes slice terraces and voxel stairs with little shrinking\n"
         "                                     (small thin structures lose the most volume);\n"
         "                                     vertices leave their slice planes\n"
+        "  --interpolate N                    N intermediate rings per slice gap on C1 Hermite curves through\n"
+        "                                     the traced contours (default 0: linear bands); every traced\n"
+        "                                     point stays on the mesh\n"
         "  --strict                           refuse contours with any problem instead of repairing them\n"
         "  --repair-tolerance D               largest distance a contour repair may move a point, in stack\n"
         "                                     units (default 0.001 x the stack's x-y extent; see bodygen check)\n"
+        "  --min-area A                       for a contour stack (.json): drop contours smaller than A\n"
+        "                                     (stack units squared) with a warning (default 0: keep all)\n"
         "  --normals                          write vertex normals\n"
         "  --quiet                            no progress bar and no summary\n"
         "  --json                             statistics as JSON on stdout\n"
@@ -161,8 +166,12 @@ Result<BuildOptions> build_options_from_args(const CliArgs& args) {
     auto smooth = args.get_long("smooth", 0);
     if (!smooth) return smooth.error();
     if (*smooth < 0 || *smooth > 1000) return input_error("build: --smooth must be between 0 and 1000");
+    auto interpolate = args.get_long("interpolate", 0);
+    if (!interpolate) return interpolate.error();
+    if (*interpolate < 0 || *interpolate > 64) return input_error("build: --interpolate must be between 0 and 64");
     BuildOptions options;
     options.fairing.iterations = int(*smooth);
+    options.interpolate = int(*interpolate);
     auto caps = pick<CapStyle>(
         args, "caps", {{"flat", CapStyle::Flat}, {"dome", CapStyle::Dome}, {"none", CapStyle::None}}, CapStyle::Dome);
     if (!caps) return caps.error();
@@ -202,6 +211,7 @@ void print_json(const std::string& input, const std::string& output, const Build
     j["correspondence"] = correspondence_method_name(options.correspondence);
     j["branching"] = branching_method_name(options.branching);
     j["smooth"] = options.fairing.iterations;
+    j["interpolate"] = options.interpolate;
     j["seconds"] = seconds;
     j["repairs"] = repairs;
     nlohmann::json list = nlohmann::json::array();
@@ -217,6 +227,7 @@ void print_json(const std::string& input, const std::string& output, const Build
                         {"components", s.components},
                         {"closed_manifold", s.closed_manifold},
                         {"smooth_vertices_kept", s.fairing_restored},
+                        {"interpolation_rungs_straight", s.interpolation_straightened},
                         {"seconds", s.seconds}});
     j["structures"] = std::move(list);
     std::printf("%s\n", j.dump(2).c_str());
@@ -234,14 +245,14 @@ void print_summary(const std::string& output, double seconds, const std::vector<
 }  // namespace
 
 int run_build(const Args& argv) {
-    auto args =
-        CliArgs::parse(argv,
-                       {"output", "caps", "tiling", "correspondence", "branching", "jobs", "smooth", "repair-tolerance",
+    auto args = CliArgs::parse(argv,
+                               {"output", "caps", "tiling", "correspondence", "branching", "jobs", "smooth",
+                                "interpolate", "repair-tolerance", "min-area",
 #ifdef BODY_WITH_IMPORT
-                        "labels", "axis", "step", "only", "threshold", "tolerance", "min-area"
+                                "labels", "axis", "step", "only", "threshold", "tolerance"
 #endif
-                       },
-                       {"help", "quiet", "json", "normals", "strict"});
+                               },
+                               {"help", "quiet", "json", "normals", "strict"});
     if (!args) return report(args.error());
     if (args->has("help")) {
         print_usage();

@@ -2,8 +2,10 @@
 // `bodygen build` does (same code path, same options), print each repair and
 // a summary; exit 2 with the one line `build` would refuse with. With --links,
 // also the correspondence build would use (builder/correspondence/link_table.h).
+#include <cctype>
 #include <cstdio>
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "builder/cli/commands.h"
 #include "builder/contours/contour_stack.h"
@@ -21,6 +23,14 @@ namespace body::cli {
 Result<ImportOptions> import_options_from_args(const CliArgs& args);  // cmd_contours.cpp
 #endif
 
+// Whether the one input is a contour stack (*.json) rather than a volume to import.
+bool stack_input(const CliArgs& args) {
+    if (args.positional().size() != 1) return false;
+    std::string lower;
+    for (char c : args.positional()[0]) lower += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return lower.ends_with(".json");
+}
+
 // The repair options of check, build and contours (--strict, --repair-tolerance).
 Result<RepairOptions> repair_options_from_args(const CliArgs& args) {
     RepairOptions o;
@@ -29,6 +39,14 @@ Result<RepairOptions> repair_options_from_args(const CliArgs& args) {
     if (!tol) return tol.error();
     if (!(*tol >= 0.0) || *tol > 1e9) return input_error("option --repair-tolerance: must be a distance >= 0");
     o.tolerance = *tol;
+    // --min-area: for a contour stack an area in its units squared (for a
+    // label volume the importer's voxel count, cmd_contours.cpp).
+    if (stack_input(args)) {
+        auto min_area = args.get_double("min-area", 0.0);
+        if (!min_area) return min_area.error();
+        if (!(*min_area >= 0.0) || *min_area > 1e18) return input_error("option --min-area: must be an area >= 0");
+        o.min_area = *min_area;
+    }
     return o;
 }
 
@@ -50,6 +68,8 @@ constexpr const char* kUsage =
     "  --strict                  refuse on the first problem instead of repairing\n"
     "  --repair-tolerance D      largest distance a repair may move a point, in stack units\n"
     "                            (default 0.001 x the stack's x-y extent)\n"
+    "  --min-area A              for a contour stack (.json): drop contours smaller than A (stack\n"
+    "                            units squared) with a warning (default 0: keep all)\n"
     "  --json                    the summary and repair counts as JSON on stdout\n"
     "  --links                   also the correspondence build uses: one line per link between\n"
     "                            contours ([slice, contour] as in the file) and per end (cap),\n"
@@ -110,9 +130,9 @@ void print_table(const LinkTable& t) {
 
 int run_contours_check(const Args& argv) {
     auto args = CliArgs::parse(argv,
-                               {"repair-tolerance", "correspondence",
+                               {"repair-tolerance", "min-area", "correspondence",
 #ifdef BODY_WITH_IMPORT
-                                "labels", "axis", "step", "only", "threshold", "tolerance", "min-area"
+                                "labels", "axis", "step", "only", "threshold", "tolerance"
 #endif
                                },
                                {"help", "strict", "json", "links"});

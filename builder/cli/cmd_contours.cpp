@@ -43,6 +43,7 @@ constexpr const char* kUsage =
 #ifdef BODY_WITH_IMPORT
 
 Result<RepairOptions> repair_options_from_args(const CliArgs& args);  // cmd_check.cpp
+bool stack_input(const CliArgs& args);                                // cmd_check.cpp
 void print_repairs(const RepairLog& log);                             // cmd_check.cpp
 
 namespace {
@@ -100,7 +101,8 @@ Result<ImportOptions> import_options_from_args(const CliArgs& args) {
     o.tolerance = *tol;
     auto min_area = args.get_double("min-area", 0.0);
     if (!min_area) return min_area.error();
-    if (*min_area < 0.0 || *min_area > 8.0) return input_error("option --min-area: must be between 0 and 8 voxels");
+    if (!stack_input(args) && (*min_area < 0.0 || *min_area > 8.0))
+        return input_error("option --min-area: must be between 0 and 8 voxels");
     o.min_area = *min_area;
     auto jobs = args.get_jobs(1);
     if (!jobs) return jobs.error();

@@ -332,6 +332,22 @@ Status check_crossings(Context& cx, Slice& slice, int round) {
     return check_crossings(cx, slice, round + 1);
 }
 
+// Contours under RepairOptions::min_area, dropped with one line each.
+void drop_small(Context& cx, Slice& slice) {
+    std::vector<Contour> kept;
+    for (Contour& c : slice.contours) {
+        const double area = 0.5 * std::abs(signed_area2(c.points.data(), c.points.size()));
+        if (area >= cx.options.min_area) {
+            kept.push_back(std::move(c));
+            continue;
+        }
+        cx.log.add("small", where(cx.path, c) + ": at " + format_point(c.points[0]) + ": dropped a contour of area " +
+                                distance_text(area) + " (under --min-area " + distance_text(cx.options.min_area) +
+                                "), points moved up to " + distance_text(extent_of(c.points)));
+    }
+    slice.contours = std::move(kept);
+}
+
 }  // namespace
 
 double repair_tolerance(const ContourStack& stack, const RepairOptions& options) {
@@ -355,6 +371,7 @@ Status validate_contour_stack(ContourStack& stack, const std::string& path, cons
             if (Status s = validate_contour(cx, c, kept); !s) return s;
         slice.contours = std::move(kept);
         if (Status s = check_crossings(cx, slice, 0); !s) return s;
+        if (options.min_area > 0) drop_small(cx, slice);
     }
     for (const auto& [pair, first] : cx.structure_overlaps)
         log.add("structure_overlap",

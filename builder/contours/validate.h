@@ -19,6 +19,7 @@
 //     their lobes, curls merge and overlapping contours of one structure are unioned; pieces
 //     of the result whose every point lies within the tolerance of the rest (the slivers of
 //     zig-zags) are dropped. A repair that would move a point further is refused.
+//   - contours smaller than RepairOptions::min_area       -> dropped with a warning
 //   - contours of different structures that cross (touching is normal: label maps) -> one
 //     warning per pair of structures (first place, number of slices), both kept.
 // Each repair is one line "PATH: slice S contour C: at (x, y): what, points moved up to D"
@@ -49,11 +50,15 @@ struct RepairOptions {
     // Largest distance a repair may move a point, in stack units; <= 0 means
     // kDefaultRepairTolerance times the stack's extent.
     double tolerance = 0.0;
+    // Contours (solid or hole) with a smaller area, in stack units squared, are
+    // dropped after the repairs with a warning ("small"); 0 keeps every contour.
+    // A speck traced beside a structure would otherwise become a floating blob.
+    double min_area = 0.0;
 };
 
 // What validation did: one line per repair or warning, and repairs counted by
 // kind ("duplicate", "near_duplicate", "collinear", "spike", "degenerate",
-// "keyhole", "self_intersection", "overlap"; "structure_overlap" counts warnings).
+// "keyhole", "self_intersection", "overlap", "small"; "structure_overlap" counts warnings).
 struct RepairLog {
     std::vector<std::string> lines;
     std::map<std::string, size_t> counts;

@@ -9,7 +9,8 @@
 //         (branching/branch_cascade.h);
 //      c. caps where nothing continues, slabs for contours linked to nothing
 //         (caps/);
-//   then smoothing (fairing/) and the mesh's statistics.
+//   then interpolation between slices and smoothing (fairing/) and the
+//   mesh's statistics.
 //
 // References:
 //   BodyGen/BodyView thesis, sections 2.3-2.6 (the stage structure).
@@ -34,6 +35,7 @@
 #include "builder/contours/validate.h"
 #include "builder/correspondence/grouping.h"
 #include "builder/correspondence/link_overrides.h"
+#include "builder/fairing/slice_interpolation.h"
 
 namespace body {
 namespace {
@@ -267,6 +269,8 @@ Result<StructureMesh> build_structure(const ContourStack& stack, const Structure
     sm.mesh.color = grouping.infos[i].color;
     sm.mesh.positions = std::move(surface.positions);
     sm.mesh.indices = std::move(surface.triangles);
+    sm.interpolation_straightened =
+        interpolate_between_slices(sm.mesh.positions, sm.mesh.indices, surface.z, options.interpolate).straightened;
     sm.fairing_restored = taubin_smooth(sm.mesh.positions, sm.mesh.indices, options.fairing);
     const MeshTopology topo = analyze_topology(sm.mesh.positions, sm.mesh.indices);
     sm.triangles = sm.mesh.triangle_count();

@@ -24,7 +24,9 @@
 // tiling/ and are only as fold-free as it makes them; branch geometry is built
 // to avoid crossings but not proven free of them for every input.
 // `--branching overlap` (thesis method) and `--caps none` leave open or
-// overlapping surfaces by design. Smoothing (`fairing.iterations` > 0) keeps the
+// overlapping surfaces by design. Interpolation (`interpolate` > 0) keeps
+// every guarantee above: traced points and contour edges stay, curves that
+// would make triangles meet are left straight. Smoothing (`fairing.iterations` > 0) keeps the
 // connectivity, hence closedness and manifoldness, but not the re-slicing property.
 #include <functional>
 #include <map>
@@ -52,6 +54,9 @@ struct BuildOptions {
     // Optional Taubin smoothing of each finished mesh (off by default: it moves
     // vertices off their slice planes; see fairing/fairing.h).
     FairingOptions fairing;
+    // Intermediate rings per slice gap on C1 Hermite curves through the traced
+    // contours (fairing/slice_interpolation.h); 0 keeps the linear bands.
+    int interpolate = 0;
     // Structures built at once (they are independent; the output does not depend on it).
     unsigned jobs = 1;
     // Called after each slice of each structure: (done, total) slices. With
@@ -76,8 +81,9 @@ struct StructureMesh {
     long genus = 0;       // sum over components; meaningful when closed_manifold
     size_t components = 0;
     bool closed_manifold = false;
-    size_t fairing_restored = 0;  // vertices smoothing left in place to avoid a self-intersection
-    double seconds = 0.0;         // wall time spent on this structure
+    size_t fairing_restored = 0;            // vertices smoothing left in place to avoid a self-intersection
+    size_t interpolation_straightened = 0;  // rungs interpolation left straight to avoid a self-intersection
+    double seconds = 0.0;                   // wall time spent on this structure
 };
 
 // Builds one mesh per structure that has contours. Errors name `source_path`,

@@ -135,5 +135,42 @@ TEST_F(BuildCli, SmoothMovesVerticesAndKeepsTheMeshClosed) {
     EXPECT_TRUE(analyze_topology((*c)[0].positions, (*c)[0].indices).closed_manifold());
 }
 
+// --interpolate N adds rings between the slices and keeps the mesh closed;
+// --min-area drops a speck of a contour stack with the warning check prints too.
+TEST_F(BuildCli, InterpolateAndMinArea) {
+    const std::string in = write("speck.contours.json", R"({"format": "bodygen.contours", "version": 1, "slices": [
+      {"z": 0, "contours": [{"points": [[0,0],[10,0],[10,10],[0,10]]}]},
+      {"z": 2, "contours": [{"points": [[-2,-2],[12,-2],[12,12],[-2,12]]}]},
+      {"z": 4, "contours": [{"points": [[1,1],[9,1],[9,9],[1,9]]}, {"points": [[20,0],[20.5,0],[20.5,0.5]]}]}]})");
+    const std::string raw = (dir / "raw.obj").string(), rings = (dir / "rings.obj").string();
+    ASSERT_EQ(run(bin("bodygen") + " build " + in + " -o " + raw + " --quiet").exit_code, 0);
+    RunResult r = run(bin("bodygen") + " build " + in + " -o " + rings + " --json --interpolate 3");
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find("\"interpolate\": 3"), std::string::npos) << r.output;
+    auto a = read_obj(raw), b = read_obj(rings);
+    ASSERT_TRUE(a.ok() && b.ok());
+    ASSERT_EQ(a->size(), 2u);  // the speck is a structure of its own
+    EXPECT_GT((*b)[0].indices.size(), (*a)[0].indices.size());
+    EXPECT_TRUE(analyze_topology((*b)[0].positions, (*b)[0].indices).closed_manifold());
+
+    r = run(bin("bodygen") + " build " + in + " -o " + raw + " --min-area 0.5");
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find("slice 2 contour 1: at (20, 0): dropped a contour of area 0.125 (under --min-area 0.5)"),
+              std::string::npos)
+        << r.output;
+    a = read_obj(raw);
+    ASSERT_TRUE(a.ok());
+    EXPECT_EQ(a->size(), 1u);
+    RunResult check = run(bin("bodygen") + " check " + in + " --min-area 0.5 --json");
+    EXPECT_EQ(check.exit_code, 0) << check.output;
+    EXPECT_NE(check.output.find("\"small\": 1"), std::string::npos) << check.output;
+
+    r = run(bin("bodygen") + " build " + in + " -o " + raw + " --interpolate 65");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.output.find("--interpolate must be between 0 and 64"), std::string::npos) << r.output;
+    r = run(bin("bodygen") + " build " + in + " -o " + raw + " --min-area -1");
+    EXPECT_EQ(r.exit_code, 2);
+}
+
 }  // namespace
 }  // namespace body::test

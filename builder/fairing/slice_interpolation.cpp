@@ -1,0 +1,438 @@
+// Smooth between-slice interpolation (contract in slice_interpolation.h).
+//
+// The tiling already pairs points on neighbouring slices: each edge of a band
+// joining the two slices (a rung) is a correspondence. Each rung becomes a
+// cubic Hermite curve whose end tangents are Catmull-Rom slopes taken from
+// the rungs above and below its ends, so consecutive curves meet with one
+// tangent at every traced point (C1 across the slice), while the traced
+// points and contour edges themselves stay where they are.
+//
+// References:
+//   E. Catmull, R. Rom, "A class of local interpolating splines", Computer
+//     Aided Geometric Design, 1974 (the tangents).
+//   D. Meyers, S. Skinner, K. Sloan, "Surfaces from contours", ACM TOG 11(3),
+//     1992 (surface fitting as the fourth sub-problem after tiling).
+#include "builder/fairing/slice_interpolation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+#include <unordered_map>
+#include <utility>
+
+#include "shared/mesh_intersect.h"
+
+namespace body {
+namespace {
+
+constexpr int kNoSlice = -1;
+
+// The slice a vertex lies on (exact height), or kNoSlice.
+int slice_of(double z, std::span<const double> slice_z) {
+    auto it = std::lower_bound(slice_z.begin(), slice_z.end(), z);
+    return it != slice_z.end() && *it == z ? int(it - slice_z.begin()) : kNoSlice;
+}
+
+struct Rung {
+    uint32_t lo = 0, hi = 0;  // vertex on the lower slice, on the upper one
+    bool band = false;        // used by a band triangle: it is split
+    bool curved = true;       // every triangle using it is a band triangle
+    uint32_t first = 0;       // its `rings` points, from lo to hi
+};
+
+struct Work {
+    std::span<const double> slice_z;
+    int rings = 0;
+    std::vector<int> slice;                                     // per input vertex
+    std::map<std::pair<uint32_t, uint32_t>, uint32_t> rung_of;  // (min, max) vertex -> rung
+    std::vector<Rung> rungs;
+    std::vector<Vec3> straight;  // positions with every rung on its straight line
+};
+
+bool is_band(const Work& w, const uint32_t* t) {
+    const int s0 = w.slice[t[0]], s1 = w.slice[t[1]], s2 = w.slice[t[2]];
+    if (s0 == kNoSlice || s1 == kNoSlice || s2 == kNoSlice) return false;
+    return std::max({s0, s1, s2}) - std::min({s0, s1, s2}) == 1;
+}
+
+// Phase 1: rungs, the edges joining adjacent slices, and which are split.
+void find_rungs(Work& w, std::span<const uint32_t> indices) {
+    for (size_t t = 0; t + 2 < indices.size(); t += 3) {
+        const bool band = is_band(w, &indices[t]);
+        for (int e = 0; e < 3; ++e) {
+            uint32_t a = indices[t + e], b = indices[t + (e + 1) % 3];
+            const int sa = w.slice[a], sb = w.slice[b];
+            if (sa == kNoSlice || sb == kNoSlice || std::abs(sa - sb) != 1) continue;
+            if (sa > sb) std::swap(a, b);
+            auto [it, fresh] = w.rung_of.try_emplace({std::min(a, b), std::max(a, b)}, uint32_t(w.rungs.size()));
+            if (fresh) w.rungs.push_back({a, b});
+            Rung& r = w.rungs[it->second];
+            r.band = r.band || band;
+            r.curved = r.curved && band;
+        }
+    }
+}
+
+// A crease or corner between bands: a band triangle at the vertex turns more
+// than this from their mean normal. Curves there would bulge off the flat
+// sides they join (a cube's edges), so rungs ending there stay straight.
+constexpr double kSharpCos = 0.866;  // 30 degrees
+
+// The slopes turned into the tangent plane of the bands at each vertex with
+// bands on both sides (the area-weighted normal of its band triangles): the
+// mean of a vertex's partners can point off the surface where the tiling fans
+// one point to many. A slope that the plane would make nearly horizontal is
+// left as it was. Rungs at sharp vertices are marked straight.
+void in_tangent_plane(Work& w, std::span<const Vec3> positions, std::span<const uint32_t> indices,
+                      std::span<const uint32_t> n_up, std::span<const uint32_t> n_down, std::vector<Vec2>& slope) {
+    std::vector<Vec3> normal(positions.size(), Vec3(0.0));
+    for (size_t t = 0; t + 2 < indices.size(); t += 3) {
+        if (!is_band(w, &indices[t])) continue;
+        const Vec3 n = glm::cross(positions[indices[t + 1]] - positions[indices[t]],
+                                  positions[indices[t + 2]] - positions[indices[t]]);
+        for (int c = 0; c < 3; ++c) normal[indices[t + size_t(c)]] += n;
+    }
+    std::vector<bool> sharp(positions.size(), false);
+    for (size_t t = 0; t + 2 < indices.size(); t += 3) {
+        if (!is_band(w, &indices[t])) continue;
+        const Vec3 n = glm::cross(positions[indices[t + 1]] - positions[indices[t]],
+                                  positions[indices[t + 2]] - positions[indices[t]]);
+        const double ln = glm::length(n);
+        for (int c = 0; c < 3; ++c) {
+            const uint32_t v = indices[t + size_t(c)];
+            const double lv = glm::length(normal[v]);
+            if (ln > 0 && lv > 0 && glm::dot(n, normal[v]) < kSharpCos * ln * lv) sharp[v] = true;
+        }
+    }
+    for (Rung& r : w.rungs)
+        if (sharp[r.lo] || sharp[r.hi]) r.curved = false;
+    for (size_t v = 0; v < positions.size(); ++v) {
+        const double length = glm::length(normal[v]);
+        if (!(length > 0) || !n_up[v] || !n_down[v]) continue;
+        const Vec3 n = normal[v] / length, d(slope[v], 1.0);
+        const Vec3 in_plane = d - glm::dot(d, n) * n;
+        if (in_plane.z > 0.25) slope[v] = Vec2(in_plane) / in_plane.z;
+    }
+}
+
+// Phase 2: the Catmull-Rom slope (d(x, y)/dz) at every vertex from the mean of
+// its rung partners above and below, weighted for uneven spacing. A vertex
+// with partners on one side only (a structure's end, a branch) takes the
+// parabola's end slope, 2 x chord slope - the partners' slope, so the curve
+// keeps bending towards the end instead of running straight into it.
+std::vector<Vec2> slopes(Work& w, std::span<const Vec3> positions, std::span<const uint32_t> indices) {
+    const size_t n = positions.size();
+    std::vector<Vec2> up(n, Vec2(0.0)), down(n, Vec2(0.0));
+    std::vector<uint32_t> n_up(n, 0), n_down(n, 0);
+    for (const Rung& r : w.rungs) {
+        if (!r.band) continue;
+        up[r.lo] += Vec2(positions[r.hi]);
+        ++n_up[r.lo];
+        down[r.hi] += Vec2(positions[r.lo]);
+        ++n_down[r.hi];
+    }
+    std::vector<Vec2> slope(n, Vec2(0.0));
+    for (size_t v = 0; v < n; ++v) {
+        if (w.slice[v] == kNoSlice || (n_up[v] == 0 && n_down[v] == 0)) continue;
+        const size_t s = size_t(w.slice[v]);
+        const Vec2 p(positions[v]);
+        Vec2 su(0.0), sd(0.0);
+        double hu = 0, hd = 0;
+        if (n_up[v]) {
+            hu = w.slice_z[s + 1] - w.slice_z[s];
+            su = (up[v] / double(n_up[v]) - p) / hu;
+        }
+        if (n_down[v]) {
+            hd = w.slice_z[s] - w.slice_z[s - 1];
+            sd = (p - down[v] / double(n_down[v])) / hd;
+        }
+        if (n_up[v] && n_down[v])
+            slope[v] = (hd * su + hu * sd) / (hu + hd);
+        else
+            slope[v] = n_up[v] ? su : sd;  // the chord's, until the end condition below
+    }
+    // End condition from the two-sided partners' slopes.
+    std::vector<Vec2> partner(n, Vec2(0.0));
+    std::vector<uint32_t> n_partner(n, 0);
+    auto two_sided = [&](uint32_t v) { return n_up[v] > 0 && n_down[v] > 0; };
+    for (const Rung& r : w.rungs) {
+        if (!r.band) continue;
+        if (!two_sided(r.lo) && two_sided(r.hi)) partner[r.lo] += slope[r.hi], ++n_partner[r.lo];
+        if (!two_sided(r.hi) && two_sided(r.lo)) partner[r.hi] += slope[r.lo], ++n_partner[r.hi];
+    }
+    for (size_t v = 0; v < n; ++v)
+        if (n_partner[v] > 0 && n_partner[v] == std::max(n_up[v], n_down[v]))
+            slope[v] = 2.0 * slope[v] - partner[v] / double(n_partner[v]);
+    in_tangent_plane(w, positions, indices, n_up, n_down, slope);
+    return slope;
+}
+
+// Phase 3: each split rung's points, on its curve (`positions`) and on its
+// straight line (`w.straight`).
+void place_points(Work& w, std::vector<Vec3>& positions, std::span<const Vec2> slope) {
+    w.straight = positions;
+    for (Rung& r : w.rungs) {
+        if (!r.band) continue;
+        r.first = uint32_t(positions.size());
+        const Vec3 a = positions[r.lo], b = positions[r.hi];
+        const double h = b.z - a.z;
+        for (int k = 1; k <= w.rings; ++k) {
+            const double t = double(k) / double(w.rings + 1);
+            const double z = a.z + t * h;
+            const double h00 = (1 + 2 * t) * (1 - t) * (1 - t), h10 = t * (1 - t) * (1 - t);
+            const double h01 = t * t * (3 - 2 * t), h11 = t * t * (t - 1);
+            const Vec2 curve = h00 * Vec2(a) + h10 * h * slope[r.lo] + h01 * Vec2(b) + h11 * h * slope[r.hi];
+            const Vec2 line = Vec2(a) + t * (Vec2(b) - Vec2(a));
+            w.straight.emplace_back(line, z);
+            positions.emplace_back(r.curved ? curve : line, z);
+        }
+    }
+}
+
+// Point k (0 = `from`, rings + 1 = the other end) along the rung (from, to).
+uint32_t along(const Work& w, uint32_t from, uint32_t to, int k) {
+    if (k == 0) return from;
+    if (k == w.rings + 1) return to;
+    const Rung& r = w.rungs[w.rung_of.at({std::min(from, to), std::max(from, to)})];
+    return r.first + uint32_t(from == r.lo ? k - 1 : w.rings - k);
+}
+
+// A band triangle (p, q on one slice, r on the other) as a strip from the
+// base (p, q) to the apex r, each quad split along its shorter diagonal.
+void strip(const Work& w, uint32_t p, uint32_t q, uint32_t r, std::vector<uint32_t>& out) {
+    for (int k = 0; k <= w.rings; ++k) {
+        const uint32_t p0 = along(w, p, r, k), q0 = along(w, q, r, k);
+        const uint32_t p1 = along(w, p, r, k + 1), q1 = along(w, q, r, k + 1);
+        if (k == w.rings) {
+            out.insert(out.end(), {p0, q0, r});
+        } else if (glm::length(w.straight[p0] - w.straight[q1]) <= glm::length(w.straight[q0] - w.straight[p1])) {
+            out.insert(out.end(), {p0, q0, q1, p0, q1, p1});
+        } else {
+            out.insert(out.end(), {p0, q0, p1, q0, q1, p1});
+        }
+    }
+}
+
+// Whether `p` lies in the closed triangle (a, b, c) of normal `n` (its plane's).
+bool in_closed_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& n, double slack) {
+    return glm::dot(glm::cross(b - a, p - a), n) >= -slack && glm::dot(glm::cross(c - b, p - b), n) >= -slack &&
+           glm::dot(glm::cross(a - c, p - c), n) >= -slack;
+}
+
+// A triangle that is not a band triangle with split rungs on its sides (on
+// their straight lines): its boundary with those points, ear-clipped in its
+// plane. An ear has positive area and no other boundary point in it or on its
+// diagonal (points on a straight side would lie on it).
+void fan(const Work& w, const uint32_t* t, std::vector<uint32_t>& out) {
+    std::vector<uint32_t> poly;
+    for (int e = 0; e < 3; ++e) {
+        const uint32_t a = t[e], b = t[(e + 1) % 3];
+        poly.push_back(a);
+        auto it = w.rung_of.find({std::min(a, b), std::max(a, b)});
+        if (it == w.rung_of.end() || !w.rungs[it->second].band) continue;
+        for (int k = 1; k <= w.rings; ++k) poly.push_back(along(w, a, b, k));
+    }
+    const auto& P = w.straight;
+    const Vec3 n = glm::cross(P[t[1]] - P[t[0]], P[t[2]] - P[t[0]]);
+    const double floor = 1e-9 * glm::dot(n, n);
+    while (poly.size() > 3) {
+        const size_t m = poly.size();
+        size_t best = m;
+        double best_area = floor;
+        for (size_t i = 0; i < m; ++i) {
+            const Vec3 &a = P[poly[(i + m - 1) % m]], &b = P[poly[i]], &c = P[poly[(i + 1) % m]];
+            const double area = glm::dot(glm::cross(b - a, c - a), n);
+            if (area <= best_area) continue;
+            bool empty = true;
+            for (size_t j = 0; j < m && empty; ++j)
+                if (j != i && j != (i + 1) % m && j != (i + m - 1) % m)
+                    empty = !in_closed_triangle(P[poly[j]], a, b, c, n, floor);
+            if (empty) best = i, best_area = area;
+        }
+        if (best == m) break;  // cannot happen for a triangle's boundary; keep what is left as a fan
+        out.insert(out.end(), {poly[(best + m - 1) % m], poly[best], poly[(best + 1) % m]});
+        poly.erase(poly.begin() + long(best));
+    }
+    for (size_t i = 1; i + 1 < poly.size(); ++i) out.insert(out.end(), {poly[0], poly[i], poly[i + 1]});
+}
+
+// Phase 4: the new triangles; `parent` receives each one's input triangle.
+std::vector<uint32_t> retriangulate(const Work& w, std::span<const uint32_t> indices, std::vector<uint32_t>& parent) {
+    std::vector<uint32_t> out;
+    out.reserve(indices.size() * size_t(2 * w.rings + 1));
+    for (size_t t = 0; t + 2 < indices.size(); t += 3) {
+        const uint32_t* tri = &indices[t];
+        if (is_band(w, tri)) {
+            // The apex is the vertex alone on its slice.
+            for (int e = 0; e < 3; ++e) {
+                const uint32_t p = tri[(e + 1) % 3], q = tri[(e + 2) % 3], r = tri[e];
+                if (w.slice[p] == w.slice[q]) {
+                    strip(w, p, q, r, out);
+                    break;
+                }
+            }
+            parent.resize(out.size() / 3, uint32_t(t / 3));
+            continue;
+        }
+        bool split = false;
+        for (int e = 0; e < 3; ++e) {
+            auto it = w.rung_of.find({std::min(tri[e], tri[(e + 1) % 3]), std::max(tri[e], tri[(e + 1) % 3])});
+            split = split || (it != w.rung_of.end() && w.rungs[it->second].band);
+        }
+        if (split)
+            fan(w, tri, out);
+        else
+            out.insert(out.end(), tri, tri + 3);
+        parent.resize(out.size() / 3, uint32_t(t / 3));
+    }
+    return out;
+}
+
+// Triangles whose boxes over every place their vertices can take (on the
+// curve or straight) share a cell of a uniform grid: the candidates for
+// meeting a given triangle in any state.
+class NearTriangles {
+public:
+    NearTriangles(std::span<const uint32_t> indices, std::span<const Vec3> curved, std::span<const Vec3> straight) {
+        const size_t n = indices.size() / 3;
+        boxes_.resize(n);
+        double sum = 0;
+        for (size_t t = 0; t < n; ++t) {
+            for (int c = 0; c < 3; ++c) {
+                const uint32_t v = indices[3 * t + size_t(c)];
+                boxes_[t].extend(curved[v]);
+                boxes_[t].extend(straight[v]);
+            }
+            const Vec3 d = boxes_[t].max - boxes_[t].min;
+            sum += std::max({d.x, d.y, d.z});
+            all_.extend(boxes_[t].min);
+            all_.extend(boxes_[t].max);
+        }
+        cell_ = std::max(2.0 * sum / double(std::max<size_t>(n, 1)), 1e-9 * std::max(all_.extent(), 1e-300));
+        for (uint32_t t = 0; t < n; ++t) visit(t, [&](uint64_t key) { cells_[key].push_back(t); });
+    }
+    // Appends the triangles sharing a cell with `t` (t included, repeats possible).
+    void near(uint32_t t, std::vector<uint32_t>& out) const {
+        visit(t, [&](uint64_t key) {
+            auto it = cells_.find(key);
+            if (it != cells_.end()) out.insert(out.end(), it->second.begin(), it->second.end());
+        });
+    }
+
+private:
+    template <class F>
+    void visit(uint32_t t, F&& f) const {
+        auto at = [&](double x, double lo) { return int64_t(std::floor((x - lo) / cell_)); };
+        const Aabb& b = boxes_[t];
+        for (int64_t i = at(b.min.x, all_.min.x); i <= at(b.max.x, all_.min.x); ++i)
+            for (int64_t j = at(b.min.y, all_.min.y); j <= at(b.max.y, all_.min.y); ++j)
+                for (int64_t k = at(b.min.z, all_.min.z); k <= at(b.max.z, all_.min.z); ++k)
+                    f(uint64_t(i) << 42 ^ uint64_t(j) << 21 ^ uint64_t(k));
+    }
+    std::vector<Aabb> boxes_;
+    Aabb all_;
+    double cell_ = 1;
+    std::unordered_map<uint64_t, std::vector<uint32_t>> cells_;
+};
+
+// Phase 5: rungs whose curve makes triangles meet that do not meet on the
+// straight mesh go back on their straight line, until none is left. The
+// straight mesh lies on the input triangles, so its meeting pairs are the
+// children of input triangles that meet (`input_pairs`). After the first
+// round only triangles next to a rung just straightened are tested again
+// (any other new pair was found before and had its rungs straightened).
+size_t keep_free_of_new_crossings(Work& w, std::vector<Vec3>& positions, std::span<const uint32_t> indices,
+                                  std::span<const uint32_t> parent,
+                                  const std::vector<std::pair<uint32_t, uint32_t>>& input_pairs, size_t first_new) {
+    const std::set<std::pair<uint32_t, uint32_t>> before(input_pairs.begin(), input_pairs.end());
+    auto is_new = [&](std::pair<uint32_t, uint32_t> pair) {
+        const uint32_t a = parent[pair.first], b = parent[pair.second];
+        return a == b || !before.count({std::min(a, b), std::max(a, b)});
+    };
+    std::vector<uint32_t> rung_at(positions.size() - first_new, 0);
+    for (uint32_t r = 0; r < w.rungs.size(); ++r)
+        if (w.rungs[r].band)
+            for (int k = 0; k < w.rings; ++k) rung_at[w.rungs[r].first + uint32_t(k) - first_new] = r;
+    // Triangles around each rung's points (CSR).
+    std::vector<uint32_t> start(w.rungs.size() + 1, 0), around;
+    for (size_t i = 0; i < indices.size(); ++i)
+        if (indices[i] >= first_new) ++start[rung_at[indices[i] - first_new] + 1];
+    for (size_t r = 0; r < w.rungs.size(); ++r) start[r + 1] += start[r];
+    around.resize(start.back());
+    std::vector<uint32_t> fill(start.begin(), start.end() - 1);
+    for (size_t i = 0; i < indices.size(); ++i)
+        if (indices[i] >= first_new) around[fill[rung_at[indices[i] - first_new]]++] = uint32_t(i / 3);
+    const NearTriangles near(indices, positions, w.straight);
+
+    std::vector<std::pair<uint32_t, uint32_t>> pairs;
+    count_self_intersections(positions, indices, 0, &pairs);
+    size_t straightened = 0;
+    for (int round = 0; round < 64; ++round) {
+        std::vector<uint32_t> moved;
+        for (const auto& pair : pairs) {
+            if (!is_new(pair)) continue;
+            for (uint32_t t : {pair.first, pair.second})
+                for (int c = 0; c < 3; ++c) {
+                    const uint32_t v = indices[3 * size_t(t) + size_t(c)];
+                    if (v < first_new) continue;
+                    Rung& r = w.rungs[rung_at[v - first_new]];
+                    if (!r.curved) continue;
+                    r.curved = false;
+                    for (int k = 0; k < w.rings; ++k)
+                        positions[r.first + uint32_t(k)] = w.straight[r.first + uint32_t(k)];
+                    moved.push_back(rung_at[v - first_new]);
+                }
+        }
+        straightened += moved.size();
+        if (moved.empty()) return straightened;
+        // The triangles next to those rungs and everything near them, tested again.
+        std::vector<uint32_t> subset;
+        for (uint32_t r : moved)
+            for (uint32_t i = start[r]; i < start[r + 1]; ++i) near.near(around[i], subset);
+        std::sort(subset.begin(), subset.end());
+        subset.erase(std::unique(subset.begin(), subset.end()), subset.end());
+        std::vector<uint32_t> sub_indices;
+        for (uint32_t t : subset)
+            sub_indices.insert(sub_indices.end(), &indices[3 * size_t(t)], &indices[3 * size_t(t)] + 3);
+        pairs.clear();
+        count_self_intersections(positions, sub_indices, 0, &pairs);
+        for (auto& pair : pairs) pair = {subset[pair.first], subset[pair.second]};
+    }
+    // Not settled: the straight mesh, which has no new crossing by construction.
+    for (Rung& r : w.rungs)
+        if (r.band && r.curved) {
+            r.curved = false;
+            ++straightened;
+        }
+    positions = w.straight;
+    return straightened;
+}
+
+}  // namespace
+
+InterpolationStats interpolate_between_slices(std::vector<Vec3>& positions, std::vector<uint32_t>& indices,
+                                              std::span<const double> slice_z, int rings) {
+    InterpolationStats stats;
+    if (rings <= 0 || slice_z.size() < 2) return stats;
+    Work w;
+    w.slice_z = slice_z;
+    w.rings = rings;
+    w.slice.resize(positions.size());
+    for (size_t v = 0; v < positions.size(); ++v) w.slice[v] = slice_of(positions[v].z, slice_z);
+    find_rungs(w, indices);
+    std::vector<std::pair<uint32_t, uint32_t>> input_pairs;
+    count_self_intersections(positions, indices, 0, &input_pairs);
+    const size_t first_new = positions.size();
+    place_points(w, positions, slopes(w, positions, indices));
+    std::vector<uint32_t> parent;
+    indices = retriangulate(w, indices, parent);
+    stats.straightened = keep_free_of_new_crossings(w, positions, indices, parent, input_pairs, first_new);
+    for (const Rung& r : w.rungs) {
+        stats.rungs += r.band;
+        stats.curved += r.band && r.curved;
+    }
+    return stats;
+}
+
+}  // namespace body

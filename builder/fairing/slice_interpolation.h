@@ -1,0 +1,50 @@
+#pragma once
+// Smooth between-slice interpolation of a mesh built from a contour stack: the
+// linear bands between adjacent slices are replaced by C1 cubic (Hermite)
+// curves through the band's corresponding points, with `rings` intermediate
+// rings per slice gap. Every vertex of the input mesh keeps its position and
+// every input edge lying in a slice plane stays an edge, so the traced
+// contours stay exactly on the mesh.
+//
+// Contract:
+// - `positions`/`indices` (3 per triangle, each < positions.size()) are the
+//   mesh; `slice_z` the stack's slice heights in increasing order. A vertex is
+//   on slice s when its z equals slice_z[s] exactly (the pipeline puts contour
+//   vertices there); a band triangle has its three vertices on two adjacent
+//   slices.
+// - Each edge of a band triangle joining adjacent slices (a "rung": the
+//   tiling's point correspondence) is split into `rings` points at the heights
+//   z_s + k/(rings+1) (z_{s+1} - z_s), placed on the cubic Hermite curve whose
+//   end tangents are the Catmull-Rom slopes of each end vertex (the mean of its
+//   rung partners on the slices above and below, weighted for uneven spacing;
+//   parabolic end slope at a structure's end), turned into the bands' tangent
+//   plane at the vertex. Rungs at a crease or corner (a band triangle there
+//   turns more than 30 degrees from the vertex's mean band normal) stay
+//   straight, so flat sides stay flat. A rung also used by a triangle that is not
+//   a band triangle (branch walls, mid-slice rings) is split on its straight
+//   line, and that triangle is re-triangulated in its own plane.
+// - Band triangles become strips of 2 x rings + 1 triangles with the original
+//   orientation; the mesh's connectivity class (closed, manifold, genus) is kept.
+// - No new self-intersection: rungs whose curves make two triangles meet that
+//   did not meet on the straight mesh are put back on their straight lines
+//   until none is left (the return value counts them).
+// - `rings` = 0 leaves the mesh as it is. Memory: O(output size).
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "shared/geometry.h"
+
+namespace body {
+
+struct InterpolationStats {
+    size_t rungs = 0;         // band edges split
+    size_t curved = 0;        // of these, on their Hermite curve
+    size_t straightened = 0;  // put back on their straight line to avoid a self-intersection
+};
+
+InterpolationStats interpolate_between_slices(std::vector<Vec3>& positions, std::vector<uint32_t>& indices,
+                                              std::span<const double> slice_z, int rings);
+
+}  // namespace body
