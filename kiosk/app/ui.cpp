@@ -53,6 +53,21 @@ constexpr Word kCutWords[] = {
     {"sagittal", "sagittal", "sagittal", "sagittale", "sagital"},
 };
 
+// The cut plane's words in the other scripts, in kCutWords' key order.
+struct MoreCutWords {
+    const char* language;
+    const char* words[7];
+};
+
+constexpr MoreCutWords kMoreCutWords[] = {
+    {"ru", {"Срез", "выкл", "двигать", "закреплён", "аксиальный", "корональный", "сагиттальный"}},
+    {"el", {"Τομή", "κλειστό", "μετακίνηση", "σταθερό", "αξονικό", "στεφανιαίο", "οβελιαίο"}},
+    {"ar", {"مقطع", "إيقاف", "تحريك", "ثابت", "محوري", "إكليلي", "سهمي"}},
+    {"he", {"חתך", "כבוי", "הזזה", "קבוע", "צירי", "קורונלי", "סגיטלי"}},
+    {"zh", {"剖切", "关", "移动", "固定", "轴位", "冠状位", "矢状位"}},
+    {"ja", {"断面", "オフ", "移動", "固定", "軸位", "冠状断", "矢状断"}},
+};
+
 }  // namespace
 
 float button_size(const UiState& s) {
@@ -70,8 +85,11 @@ std::string ui_text(const std::string& key, const std::string& language) {
         if (language == "es") return w.es;
         return w.en;
     }
-    for (const Word& w : kCutWords) {
+    for (size_t i = 0; i < std::size(kCutWords); ++i) {
+        const Word& w = kCutWords[i];
         if (key != w.key) continue;
+        for (const MoreCutWords& m : kMoreCutWords)
+            if (language == m.language) return m.words[i];
         if (language == "de") return w.de;
         if (language == "fr") return w.fr;
         if (language == "es") return w.es;

@@ -85,8 +85,7 @@ const Control* hit_test(const std::vector<Control>& controls, float x, float y);
 // The side of a control in pixels: a finger's size, at least kMinButtonPx.
 float button_size(const UiState& state);
 // A UI word in `language` ("home", "language", "style", "group", "lod", "auto", "isolate", "cut", "off",
-// "move", "fixed", "axial", "coronal", "sagittal"): en, de, fr, es; the first six also ru, el, ar, he, zh, ja;
-// English fallback.
+// "move", "fixed", "axial", "coronal", "sagittal"): en, de, fr, es, ru, el, ar, he, zh, ja; English fallback.
 std::string ui_text(const std::string& key, const std::string& language);
 
 }  // namespace body::kiosk

@@ -249,12 +249,7 @@ Status AuthorLoop::start() {
     sync();
     if (!models_) return runtime_error("author: the renderer did not start");
     const float scale = std::max(1.0f, static_cast<float>(std::min(surface_.width(), surface_.height())) / 800.0f);
-    std::string names;
-    for (const scene::Model& m : editor_.document().scene().models) {
-        names += m.name;
-        for (const auto& l : m.labels) names += l.title + l.description;
-    }
-    if (auto s = painter_.init(options_.font.empty() ? default_font_file() : options_.font, scale, names); !s) return s;
+    if (auto s = painter_.init(options_.font.empty() ? default_font_file() : options_.font, scale); !s) return s;
     editor_.set_viewport(surface_.width(), surface_.height(), scale);
     editor_.set_measure([this](const std::string& t) { return painter_.measure(t); });
     return ok_status();

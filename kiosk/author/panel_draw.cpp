@@ -67,27 +67,34 @@ struct Layer {
 struct PanelPainter::State {
     GLuint program = 0, vao = 0, vbo = 0, texture = 0;
     GLint u_screen = -1, u_textured = -1, u_atlas = -1;
-    GlyphAtlas atlas;
-    std::string font, baked;
+    GlyphAtlas atlas;  // glyphs drawn in when first laid out (app/text.h)
+    std::string font;
     float pixel_height = 16.0f;
+    uint64_t uploaded = ~0ull;  // the atlas generation in `texture`
+    int texture_width = 0;
     Layer layers[2];
 
-    Status bake(const std::string& extra) {
-        auto a = GlyphAtlas::build(font, pixel_height, extra);
-        if (!a) return a.error();
-        atlas = std::move(a).value();
-        baked = extra;
+    void upload() {
+        if (uploaded == atlas.generation()) return;
         glBindTexture(GL_TEXTURE_2D, texture);
         glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-        glTexImage2D(GL_TEXTURE_2D, 0, GL_R8, atlas.width(), atlas.height(), 0, GL_RED, GL_UNSIGNED_BYTE,
-                     atlas.pixels().data());
+        if (texture_width != atlas.width()) {
+            glTexImage2D(GL_TEXTURE_2D, 0, GL_R8, atlas.width(), atlas.height(), 0, GL_RED, GL_UNSIGNED_BYTE,
+                         atlas.pixels().data());
+            texture_width = atlas.width();
+            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+        } else {
+            glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, atlas.width(), atlas.height(), GL_RED, GL_UNSIGNED_BYTE,
+                            atlas.pixels().data());
+        }
         glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-        return ok_status();
+        uploaded = atlas.generation();
     }
+
+    void build(Editor& e, int width, int height);
 
     // Text from its left edge, vertically centred in `r`, clipped at the right; returns the pen's x.
     float text(Layer& l, const std::string& utf8, const Rect& r, float left, Colour c) {
@@ -161,7 +168,7 @@ void PanelPainter::State::box(Layer& l, const std::vector<std::string>& lines, i
 PanelPainter::PanelPainter() = default;
 PanelPainter::~PanelPainter() = default;
 
-Status PanelPainter::init(const std::string& font_file, float scale, const std::string& extra_text) {
+Status PanelPainter::init(const std::string& font_file, float scale) {
     auto s = std::make_unique<State>();
     s->font = font_file;
     s->pixel_height = 16.0f * scale;
@@ -181,10 +188,15 @@ Status PanelPainter::init(const std::string& font_file, float scale, const std::
     for (GLuint i = 0; i < 3; ++i) glEnableVertexAttribArray(i);
     glBindVertexArray(0);
     glGenTextures(1, &s->texture);
-    if (auto b = s->bake(extra_text + "▸▾"); !b) {
+    auto atlas = GlyphAtlas::build(font_file, s->pixel_height);
+    if (!atlas) {
         glDeleteProgram(s->program);
-        return b;
+        glDeleteVertexArrays(1, &s->vao);
+        glDeleteBuffers(1, &s->vbo);
+        glDeleteTextures(1, &s->texture);
+        return atlas.error();
     }
+    s->atlas = std::move(atlas).value();
     shutdown();
     s_ = std::move(s);
     return ok_status();
@@ -201,26 +213,26 @@ void PanelPainter::shutdown() {
 
 float PanelPainter::measure(const std::string& utf8) const { return s_ ? s_->atlas.measure(decode_utf8(utf8)) : 0.0f; }
 
+void PanelPainter::State::build(Editor& e, int width, int height) {
+    for (Layer& l : layers) l.solid.clear(), l.text.clear();
+    Layer& base = layers[0];
+    quad(base.solid, Rect{0, 0, e.panel_width(), static_cast<float>(height)}, kPanel);
+    for (const PanelRow& r : e.rows())
+        if (r.rect.y + r.rect.h >= 0 && r.rect.y <= static_cast<float>(height)) row(base, r, e);
+    if (e.help_visible()) box(layers[1], help_lines(), width, height);
+    if (e.prompt_visible())
+        box(layers[1], {"Unsaved changes.", "S  save and quit", "D  quit without saving", "Esc  go back"}, width,
+            height);
+}
+
 void PanelPainter::draw(Editor& e, unsigned framebuffer, int width, int height) {
     if (!s_) return;
     State& s = *s_;
-    // A typed character the atlas lacks: bake again with it.
-    if (e.focused_row()) {
-        for (char32_t c : decode_utf8(e.field().text()))
-            if (!s.atlas.has(c)) {
-                if (!s.bake(s.baked + e.field().text())) break;
-                break;
-            }
-    }
-    for (Layer& l : s.layers) l.solid.clear(), l.text.clear();
-    Layer& base = s.layers[0];
-    quad(base.solid, Rect{0, 0, e.panel_width(), static_cast<float>(height)}, kPanel);
-    for (const PanelRow& r : e.rows())
-        if (r.rect.y + r.rect.h >= 0 && r.rect.y <= static_cast<float>(height)) s.row(base, r, e);
-    if (e.help_visible()) s.box(s.layers[1], help_lines(), width, height);
-    if (e.prompt_visible())
-        s.box(s.layers[1], {"Unsaved changes.", "S  save and quit", "D  quit without saving", "Esc  go back"}, width,
-              height);
+    // Glyphs new this frame may grow the atlas and stale the quads laid out before: then once more.
+    const uint64_t epoch = s.atlas.epoch();
+    s.build(e, width, height);
+    if (s.atlas.epoch() != epoch) s.build(e, width, height);
+    s.upload();
 
     glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
     glViewport(0, 0, width, height);

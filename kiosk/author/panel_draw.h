@@ -2,7 +2,7 @@
 // Draws the editor (editor.h) over the 3-D view with GLES 3.0: the side panel's
 // rows, the focused field's selection and cursor, the help overlay and the
 // unsaved-changes prompt. Text comes from the kiosk's glyph atlas (app/text.h),
-// re-baked when a typed character is missing from it. Needs a current GLES 3
+// which draws in each glyph (any script) the first time it is shown. Needs a current GLES 3
 // context; pixels, origin top-left.
 #include <memory>
 #include <string>
@@ -19,8 +19,7 @@ public:
     PanelPainter(const PanelPainter&) = delete;
     PanelPainter& operator=(const PanelPainter&) = delete;
 
-    // `extra_text`: text whose glyphs are baked besides Latin and Greek (names, labels).
-    Status init(const std::string& font_file, float scale, const std::string& extra_text);
+    Status init(const std::string& font_file, float scale);
     void shutdown();
     // Width of `utf8` in pixels as drawn.
     float measure(const std::string& utf8) const;

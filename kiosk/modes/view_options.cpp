@@ -17,30 +17,18 @@ int report(const Error& error) {
 }
 
 const std::set<std::string>& view_value_options() {
-    static const std::set<std::string> names = {"platform",
-                                                "size",
-                                                "mode",
-                                                "device",
-                                                "rotate",
-                                                "model",
-                                                "contours",
-                                                "scene",
-                                                "style",
-                                                "lod",
-                                                "select",
-                                                "view",
-                                                "line-width",
-                                                "ssaa",
-                                                "screenshot",
-                                                "frames",
-                                                "replay",
-                                                "bench-triangles",
-                                                "bench-frames",
-                                                "buffer-access",
-                                                "soak",
-                                                "touch-calibration",
-                                                "log-level",
-                                                "preview-screenshot"};
+    static const std::set<std::string> names = {"platform",     "size",
+                                                "mode",         "device",
+                                                "rotate",       "model",
+                                                "contours",     "scene",
+                                                "style",        "lod",
+                                                "select",       "view",
+                                                "line-width",   "ssaa",
+                                                "screenshot",   "frames",
+                                                "replay",       "bench-triangles",
+                                                "bench-frames", "buffer-access",
+                                                "soak",         "touch-calibration",
+                                                "log-level",    "preview-screenshot"};
     return names;
 }
 
