@@ -68,15 +68,16 @@ struct PanelPainter::State {
     GLuint program = 0, vao = 0, vbo = 0, texture = 0;
     GLint u_screen = -1, u_textured = -1, u_atlas = -1;
     GlyphAtlas atlas;
-    std::string font, baked;
+    std::string font;
     float pixel_height = 16.0f;
     Layer layers[2];
 
-    Status bake(const std::string& extra) {
-        auto a = GlyphAtlas::build(font, pixel_height, extra);
-        if (!a) return a.error();
-        atlas = std::move(a).value();
-        baked = extra;
+    uint64_t uploaded = ~uint64_t{0};  // the atlas generation the texture holds
+
+    // The atlas rasterises glyphs on first use (kiosk/app/text.h): upload it when it changed.
+    void upload() {
+        if (atlas.generation() == uploaded) return;
+        uploaded = atlas.generation();
         glBindTexture(GL_TEXTURE_2D, texture);
         glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
         glTexImage2D(GL_TEXTURE_2D, 0, GL_R8, atlas.width(), atlas.height(), 0, GL_RED, GL_UNSIGNED_BYTE,
@@ -86,7 +87,6 @@ struct PanelPainter::State {
         glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
         glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
         glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-        return ok_status();
     }
 
     // Text from its left edge, vertically centred in `r`, clipped at the right; returns the pen's x.
@@ -119,6 +119,8 @@ void PanelPainter::State::row(Layer& l, const PanelRow& r, Editor& e) {
         case RowKind::Status: text(l, r.text, r.rect, 6.0f, kFaded); break;
         case RowKind::TreeGroup:
         case RowKind::TreeModel:
+        case RowKind::TreeTour:
+        case RowKind::TreeStep:
             if (r.active) quad(l.solid, r.rect, kActive);
             text(l, r.text, r.rect, pad, kInk);
             break;
@@ -181,10 +183,13 @@ Status PanelPainter::init(const std::string& font_file, float scale, const std::
     for (GLuint i = 0; i < 3; ++i) glEnableVertexAttribArray(i);
     glBindVertexArray(0);
     glGenTextures(1, &s->texture);
-    if (auto b = s->bake(extra_text + "▸▾"); !b) {
+    auto atlas = GlyphAtlas::build(font_file, s->pixel_height);
+    if (!atlas) {
         glDeleteProgram(s->program);
-        return b;
+        return atlas.error();
     }
+    s->atlas = std::move(atlas).value();
+    (void)s->atlas.layout(decode_utf8(extra_text + "▸▾"), 0.0f, 0.0f);  // the scene's names rasterised up front
     shutdown();
     s_ = std::move(s);
     return ok_status();
@@ -204,23 +209,22 @@ float PanelPainter::measure(const std::string& utf8) const { return s_ ? s_->atl
 void PanelPainter::draw(Editor& e, unsigned framebuffer, int width, int height) {
     if (!s_) return;
     State& s = *s_;
-    // A typed character the atlas lacks: bake again with it.
-    if (e.focused_row()) {
-        for (char32_t c : decode_utf8(e.field().text()))
-            if (!s.atlas.has(c)) {
-                if (!s.bake(s.baked + e.field().text())) break;
-                break;
-            }
+    // New glyphs are rasterised while laying out; when that moved earlier quads' texture
+    // coordinates (the atlas grew), the second pass lays out again with every glyph in place.
+    for (int pass = 0; pass < 2; ++pass) {
+        const uint64_t epoch = s.atlas.epoch();
+        for (Layer& l : s.layers) l.solid.clear(), l.text.clear();
+        Layer& base = s.layers[0];
+        quad(base.solid, Rect{0, 0, e.panel_width(), static_cast<float>(height)}, kPanel);
+        for (const PanelRow& r : e.rows())
+            if (r.rect.y + r.rect.h >= 0 && r.rect.y <= static_cast<float>(height)) s.row(base, r, e);
+        if (e.help_visible()) s.box(s.layers[1], help_lines(), width, height);
+        if (e.prompt_visible())
+            s.box(s.layers[1], {"Unsaved changes.", "S  save and quit", "D  quit without saving", "Esc  go back"},
+                  width, height);
+        if (s.atlas.epoch() == epoch) break;
     }
-    for (Layer& l : s.layers) l.solid.clear(), l.text.clear();
-    Layer& base = s.layers[0];
-    quad(base.solid, Rect{0, 0, e.panel_width(), static_cast<float>(height)}, kPanel);
-    for (const PanelRow& r : e.rows())
-        if (r.rect.y + r.rect.h >= 0 && r.rect.y <= static_cast<float>(height)) s.row(base, r, e);
-    if (e.help_visible()) s.box(s.layers[1], help_lines(), width, height);
-    if (e.prompt_visible())
-        s.box(s.layers[1], {"Unsaved changes.", "S  save and quit", "D  quit without saving", "Esc  go back"}, width,
-              height);
+    s.upload();
 
     glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
     glViewport(0, 0, width, height);
