@@ -136,7 +136,7 @@ Status compare_pins(render::Renderer& renderer, render::ModelId id, ModelSource&
     without.set_picker(picker);
 
     Overlay overlay;
-    if (auto s = overlay.init(default_font_file(), 1.0f, "Pin 12345678"); !s) return s;
+    if (auto s = overlay.init(default_font_file(), 1.0f); !s) return s;
     PinLines lines;
     if (auto s = lines.init(); !s) return s;
 
