@@ -207,6 +207,13 @@ void Editor::run(Command command, const PanelRow* row) {
 
 void Editor::remove_selected() {
     const scene::Scene& sc = document_.scene();
+    // An undo can take the selected tour or step away: nothing to remove then.
+    if (selection_.tour >= static_cast<int>(sc.tours.size()) ||
+        (selection_.tour >= 0 &&
+         selection_.step >= static_cast<int>(sc.tours[static_cast<size_t>(selection_.tour)].steps.size()))) {
+        selection_ = Selection{};
+        return;
+    }
     if (selection_.model >= 0) {
         report(remove_model(selection_.model), "removed");
     } else if (selection_.group >= 0) {
@@ -279,7 +286,7 @@ Status Editor::add_step(int tour, const scene::HomeCamera& camera, const std::ve
     const scene::Scene& sc = document_.scene();
     if (tour < 0 || tour >= static_cast<int>(sc.tours.size())) return input_error("add step: no such tour");
     const int count = static_cast<int>(sc.tours[static_cast<size_t>(tour)].steps.size());
-    const int at = selection_.tour == tour && selection_.step >= 0 ? selection_.step + 1 : count;
+    const int at = selection_.tour == tour && selection_.step >= 0 ? std::min(selection_.step + 1, count) : count;
     scene::TourStep st;
     st.camera.target = camera.target;
     st.camera.azimuth_deg = camera.azimuth_deg;
@@ -301,7 +308,11 @@ Status Editor::add_step(int tour, const scene::HomeCamera& camera, const std::ve
 Status Editor::move_step(int delta) {
     if (selection_.tour < 0 || selection_.step < 0) return input_error("move step: select a step first");
     const int to = selection_.step + delta;
-    const auto& steps = document_.scene().tours.at(static_cast<size_t>(selection_.tour)).steps;
+    const auto& tours = document_.scene().tours;
+    if (selection_.tour >= static_cast<int>(tours.size()) ||
+        selection_.step >= static_cast<int>(tours[static_cast<size_t>(selection_.tour)].steps.size()))
+        return input_error("move step: select a step first");
+    const auto& steps = tours[static_cast<size_t>(selection_.tour)].steps;
     if (to < 0 || to >= static_cast<int>(steps.size())) return input_error("move step: already at the end");
     const Status s = document_.apply("move step", [&](scene::Scene& sc) {
         auto& list = sc.tours[static_cast<size_t>(selection_.tour)].steps;

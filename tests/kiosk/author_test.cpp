@@ -606,6 +606,18 @@ TEST(AuthorEditor, PinsToursAndStepsAreUndoableCommands) {
     while (ed.document().undo()) {
     }
     EXPECT_FALSE(ed.document().dirty());
+    // A selection an undo took away removes nothing (and does not throw).
+    ASSERT_TRUE(ed.add_tour());
+    ASSERT_EQ(ed.selection().tour, 1);
+    ed.handle(key('Z', kModCtrl));
+    ed.handle(key(platform::kKeyDelete));
+    click(ed, "Add tour");
+    EXPECT_EQ(ed.document().scene().tours.size(), 2u);
+    ed.select_tour(1, 0);
+    ed.handle(key('Z', kModCtrl));
+    EXPECT_FALSE(ed.move_step(-1));
+    ed.handle(key(platform::kKeyDelete));
+    EXPECT_EQ(ed.document().scene().tours.size(), 1u);
 }
 
 }  // namespace
