@@ -48,6 +48,7 @@ private:
     void sync();
     void feed(const InputEvent& e);
     void view_event(const InputEvent& e);
+    void surface_point(int model, float x, float y);
     void serve_requests();
     void preview();
     void bind(long frame, double now);
@@ -166,6 +167,14 @@ void AuthorLoop::serve_requests() {
             case Request::Preview: preview(); break;
             case Request::StartView: (void)editor_.set_start_view(camera_as_start_view()); break;
             case Request::Quit: quit_ = true; break;
+            case Request::AddStep: {
+                std::vector<std::string> visible;  // the step shows what the view shows now
+                for (int i = 0; i < app_->model_count(); ++i)
+                    if (app_->visible(i))
+                        visible.push_back(editor_.document().scene().models[static_cast<size_t>(i)].name);
+                (void)editor_.add_step(editor_.step_request_tour(), camera_as_start_view(), visible);
+                break;
+            }
         }
     }
 }
@@ -199,7 +208,11 @@ void AuthorLoop::view_event(const InputEvent& event) {
     app_->handle(e);
     if (e.type == T::MouseUp && e.button() == MouseButton::Left && left_down_) {
         left_down_ = false;
-        if (!left_moved_) editor_.select_model(app_->pick(e.x, e.y));
+        if (!left_moved_) {
+            const int picked = app_->pick(e.x, e.y);
+            editor_.select_model(picked);
+            surface_point(picked, e.x, e.y);
+        }
     }
     // The manipulation sphere's move becomes one command when the drag ends.
     const int sel = app_->selected();
@@ -209,6 +222,17 @@ void AuthorLoop::view_event(const InputEvent& event) {
         if (auto s = editor_.move_model(sel, {d.x, d.y, d.z}); !s)
             std::fprintf(stderr, "bodyview: author: %s\n", s.error().message.c_str());
     }
+}
+
+// The point a click hit on `model`, in the model file's coordinates (a pin's anchor).
+void AuthorLoop::surface_point(int model, float x, float y) {
+    if (model < 0) return;
+    const Ray ray = app_->camera().ray(x, y);
+    const auto t = models_->pick(static_cast<size_t>(model), placement(model), ray);
+    if (!t) return;
+    const glm::vec3 hit = ray.origin + ray.direction * *t;
+    const glm::vec3 a = glm::vec3(glm::inverse(placement(model)) * glm::vec4(hit, 1.0f));
+    editor_.set_surface_point(model, {a.x, a.y, a.z});
 }
 
 void AuthorLoop::feed(const InputEvent& e) {

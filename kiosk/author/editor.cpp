@@ -16,7 +16,8 @@ const std::vector<std::string>& help_lines() {
         "Ctrl+S  save scene.json          Ctrl+Q  quit",
         "Ctrl+Z  undo      Ctrl+Shift+Z / Ctrl+Y  redo",
         "P  preview the kiosk (Esc: back)   V  start view = camera",
-        "Delete  remove the selected model or group",
+        "Delete  remove the selected model, group, tour or step",
+        "click a model  the point for Add pin",
         "? / F1  this help",
         "Mouse",
         "click  select     left drag  orbit     right drag  pan",
@@ -40,6 +41,11 @@ void Editor::select_model(int model) {
 void Editor::select_group(int group) {
     if (focused_) commit();
     selection_ = Selection{-1, group};
+}
+
+void Editor::select_tour(int tour, int step) {
+    if (focused_) commit();
+    selection_ = Selection{-1, -1, tour, step};
 }
 
 void Editor::set_viewport(int width, int height, float scale) {
@@ -69,9 +75,7 @@ const PanelRow* Editor::focused_row() {
     if (rows_.empty()) rows();
     for (const PanelRow& r : rows_) {  // the rows last laid out: pointers into them stay valid while drawing
         if (r.kind != RowKind::Field) continue;
-        if (focus_field_ < 0 ? r.command == Command::AddModel
-                             : r.field == focus_field_ && r.target.model == focus_target_.model &&
-                                   r.target.group == focus_target_.group && r.target.language == focus_target_.language)
+        if (focus_field_ < 0 ? r.command == Command::AddModel : r.field == focus_field_ && r.target == focus_target_)
             return &r;
     }
     return nullptr;
@@ -166,22 +170,7 @@ void Editor::run(Command command, const PanelRow* row) {
             if (s) selection_ = Selection{-1, static_cast<int>(document_.scene().groups.size()) - 1};
             break;
         }
-        case Command::RemoveSelected: {
-            if (selection_.model >= 0) {
-                report(remove_model(selection_.model), "removed");
-            } else if (selection_.group >= 0) {
-                const std::string name = sc.groups[static_cast<size_t>(selection_.group)].name;
-                const Status s = document_.apply("remove group " + name, [&](scene::Scene& s2) {
-                    for (scene::Model& m : s2.models)
-                        if (m.group == name) m.group.clear();  // the members stay, ungrouped
-                    s2.groups.erase(s2.groups.begin() + selection_.group);
-                    return ok_status();
-                });
-                report(s, "removed group " + name);
-                if (s) selection_ = Selection{};
-            }
-            break;
-        }
+        case Command::RemoveSelected: remove_selected(); break;
         case Command::ResetTransform: {
             if (selection_.model < 0) break;
             const Status s = document_.apply("reset transform", [&](scene::Scene& s2) {
@@ -194,7 +183,144 @@ void Editor::run(Command command, const PanelRow* row) {
         case Command::AddModel:
             if (row) focus(*row, row->value_rect.x);
             break;
+        case Command::AddPin: {
+            if (selection_.model < 0 || !surface_point_ || surface_point_->first != selection_.model) {
+                status_ = "Add pin: click the point on the selected model first";
+                break;
+            }
+            report(add_pin(selection_.model, surface_point_->second), "pin added (undo: Ctrl+Z)");
+            break;
+        }
+        case Command::RemovePin:
+            if (row) report(remove_pin(row->target.model, row->target.pin), "pin removed");
+            break;
+        case Command::AddTour: report(add_tour(), "tour added: + step adds the view as a step"); break;
+        case Command::AddStep:
+            if (!row) break;
+            step_request_tour_ = row->target.tour;
+            requests_.push_back(Request::AddStep);
+            break;
+        case Command::StepUp: report(move_step(-1), "step moved"); break;
+        case Command::StepDown: report(move_step(+1), "step moved"); break;
     }
+}
+
+void Editor::remove_selected() {
+    const scene::Scene& sc = document_.scene();
+    // An undo can take the selected tour or step away: nothing to remove then.
+    if (selection_.tour >= static_cast<int>(sc.tours.size()) ||
+        (selection_.tour >= 0 &&
+         selection_.step >= static_cast<int>(sc.tours[static_cast<size_t>(selection_.tour)].steps.size()))) {
+        selection_ = Selection{};
+        return;
+    }
+    if (selection_.model >= 0) {
+        report(remove_model(selection_.model), "removed");
+    } else if (selection_.group >= 0) {
+        const std::string name = sc.groups[static_cast<size_t>(selection_.group)].name;
+        const Status s = document_.apply("remove group " + name, [&](scene::Scene& s2) {
+            for (scene::Model& m : s2.models)
+                if (m.group == name) m.group.clear();  // the members stay, ungrouped
+            s2.groups.erase(s2.groups.begin() + selection_.group);
+            return ok_status();
+        });
+        report(s, "removed group " + name);
+        if (s) selection_ = Selection{};
+    } else if (selection_.tour >= 0 && selection_.step >= 0) {
+        // The parser refuses a tour without steps: the last one stays, with its reason.
+        const Status s = document_.apply("remove step", [&](scene::Scene& s2) {
+            auto& steps = s2.tours.at(static_cast<size_t>(selection_.tour)).steps;
+            steps.erase(steps.begin() + selection_.step);
+            return ok_status();
+        });
+        report(s, "step removed");
+        if (s) selection_.step = -1;
+    } else if (selection_.tour >= 0) {
+        const std::string name = sc.tours.at(static_cast<size_t>(selection_.tour)).name;
+        const Status s = document_.apply("remove tour " + name, [&](scene::Scene& s2) {
+            if (s2.kiosk.attract_tour == name) s2.kiosk.attract_tour.clear();  // the attract mode turns again
+            s2.tours.erase(s2.tours.begin() + selection_.tour);
+            return ok_status();
+        });
+        report(s, "removed tour " + name);
+        if (s) selection_ = Selection{};
+    }
+}
+
+Status Editor::add_pin(int model, const std::array<float, 3>& anchor) {
+    const scene::Scene& sc = document_.scene();
+    const scene::Model& m = sc.models.at(static_cast<size_t>(model));
+    const std::string& first = sc.kiosk.languages.front();
+    // Titled as the model until the author types one: a valid pin at once.
+    scene::Pin pin{anchor, {scene::LabelText{first, sc.label(m, first).title, ""}}};
+    return document_.apply("add pin to " + m.name, [&](scene::Scene& s) {
+        s.models[static_cast<size_t>(model)].pins.push_back(pin);
+        return ok_status();
+    });
+}
+
+Status Editor::remove_pin(int model, int pin) {
+    return document_.apply("remove pin", [&](scene::Scene& s) -> Status {
+        auto& pins = s.models.at(static_cast<size_t>(model)).pins;
+        if (pin < 0 || pin >= static_cast<int>(pins.size())) return input_error("remove pin: no such pin");
+        pins.erase(pins.begin() + pin);
+        return ok_status();
+    });
+}
+
+Status Editor::add_tour() {
+    std::string name;
+    for (int n = 1; name.empty() || document_.scene().tour_index(name) >= 0; ++n) name = "tour " + std::to_string(n);
+    const Status s = document_.apply("add tour", [&](scene::Scene& sc) {
+        scene::Tour t;
+        t.name = name;
+        t.steps.emplace_back();
+        sc.tours.push_back(std::move(t));
+        return ok_status();
+    });
+    if (s) selection_ = Selection{-1, -1, static_cast<int>(document_.scene().tours.size()) - 1, -1};
+    return s;
+}
+
+Status Editor::add_step(int tour, const scene::HomeCamera& camera, const std::vector<std::string>& visible) {
+    const scene::Scene& sc = document_.scene();
+    if (tour < 0 || tour >= static_cast<int>(sc.tours.size())) return input_error("add step: no such tour");
+    const int count = static_cast<int>(sc.tours[static_cast<size_t>(tour)].steps.size());
+    const int at = selection_.tour == tour && selection_.step >= 0 ? std::min(selection_.step + 1, count) : count;
+    scene::TourStep st;
+    st.camera.target = camera.target;
+    st.camera.azimuth_deg = camera.azimuth_deg;
+    st.camera.polar_deg = camera.polar_deg;
+    st.camera.distance = camera.distance;
+    st.visible = visible;
+    if (selection_.model >= 0 && selection_.model < static_cast<int>(sc.models.size()))
+        st.select = sc.models[static_cast<size_t>(selection_.model)].name;
+    const Status s = document_.apply("add step", [&](scene::Scene& s2) {
+        auto& steps = s2.tours[static_cast<size_t>(tour)].steps;
+        steps.insert(steps.begin() + at, st);
+        return ok_status();
+    });
+    report(s, "step " + std::to_string(at + 1) + " added from the view");
+    if (s) selection_ = Selection{-1, -1, tour, at};
+    return s;
+}
+
+Status Editor::move_step(int delta) {
+    if (selection_.tour < 0 || selection_.step < 0) return input_error("move step: select a step first");
+    const int to = selection_.step + delta;
+    const auto& tours = document_.scene().tours;
+    if (selection_.tour >= static_cast<int>(tours.size()) ||
+        selection_.step >= static_cast<int>(tours[static_cast<size_t>(selection_.tour)].steps.size()))
+        return input_error("move step: select a step first");
+    const auto& steps = tours[static_cast<size_t>(selection_.tour)].steps;
+    if (to < 0 || to >= static_cast<int>(steps.size())) return input_error("move step: already at the end");
+    const Status s = document_.apply("move step", [&](scene::Scene& sc) {
+        auto& list = sc.tours[static_cast<size_t>(selection_.tour)].steps;
+        std::swap(list[static_cast<size_t>(selection_.step)], list[static_cast<size_t>(to)]);
+        return ok_status();
+    });
+    if (s) selection_.step = to;
+    return s;
 }
 
 // --- the focused field -------------------------------------------------------
@@ -330,7 +456,7 @@ bool Editor::key(const InputEvent& e) {
         case 'P': run(Command::Preview, nullptr); return true;
         case 'V': run(Command::StartView, nullptr); return true;
         case platform::kKeyF1: help_ = !help_; return true;
-        case platform::kKeyDelete: run(Command::RemoveSelected, nullptr); return true;
+        case platform::kKeyDelete: remove_selected(); return true;
         case platform::kKeyEscape:
             if (help_)
                 help_ = false;
@@ -357,6 +483,8 @@ bool Editor::click(float x, float y, uint32_t modifiers) {
         case RowKind::Button: run(row->command, row); break;
         case RowKind::TreeGroup: select_group(row->group); break;
         case RowKind::TreeModel: select_model(row->model); break;
+        case RowKind::TreeTour:
+        case RowKind::TreeStep: select_tour(row->target.tour, row->target.step); break;
         case RowKind::Field: {
             if (!row->editable) break;
             if (row->command == Command::AddModel) {

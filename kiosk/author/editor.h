@@ -8,7 +8,8 @@
 //
 // Keys (listed by the help overlay, `?` or F1):
 //   Ctrl+S save   Ctrl+Z undo   Ctrl+Shift+Z / Ctrl+Y redo   P preview (Esc back)
-//   V start view from the camera   Delete remove the selection   Ctrl+Q quit
+//   V start view from the camera   Delete remove the selection (model, group,
+//   tour or step)   Ctrl+Q quit
 //   In a field: typing, Backspace, Delete, arrows (Shift extends), Home, End,
 //   Ctrl+A, Enter commits, Tab commits and moves on, Esc cancels.
 #include <deque>
@@ -24,7 +25,8 @@
 
 namespace body::kiosk::author {
 
-enum class Request { Preview, StartView, Quit };
+// AddStep: the loop answers with add_step(step_request_tour(), its camera, the visible models).
+enum class Request { Preview, StartView, Quit, AddStep };
 
 // The lines of the help overlay.
 const std::vector<std::string>& help_lines();
@@ -38,6 +40,7 @@ public:
     const Selection& selection() const { return selection_; }
     void select_model(int model);
     void select_group(int group);
+    void select_tour(int tour, int step = -1);  // step -1: the tour itself
 
     // Panel geometry: the panel's width follows `scale` (UI scale, 1 at 800 px).
     void set_viewport(int width, int height, float scale);
@@ -54,6 +57,18 @@ public:
     Status set_start_view(const scene::HomeCamera& camera);
     Status add_model(const std::string& file);
     Status remove_model(int model);
+    // Pins: the loop reports the surface point a click in the view hit (model
+    // file coordinates, before `transform`); Add pin puts one there.
+    void set_surface_point(int model, const std::array<float, 3>& anchor) { surface_point_ = {model, anchor}; }
+    Status add_pin(int model, const std::array<float, 3>& anchor);
+    Status remove_pin(int model, int pin);
+    // Tours: a new one has one step that changes nothing; a step added from the view
+    // holds `camera` (target, azimuth, polar, distance), only `visible` shown and the
+    // model selected now; it goes after the selected step of that tour, else last.
+    Status add_tour();
+    Status add_step(int tour, const scene::HomeCamera& camera, const std::vector<std::string>& visible);
+    int step_request_tour() const { return step_request_tour_; }
+    Status move_step(int delta);  // the selected step, earlier (-1) or later (+1)
 
     // What to draw. rows() lays the panel out again (pointers into the old rows die);
     // focused_row() looks in the rows last laid out.
@@ -96,6 +111,9 @@ private:
     std::deque<Request> requests_;
     std::function<float(const std::string&)> measure_;
     int new_groups_ = 0;
+    std::optional<std::pair<int, std::array<float, 3>>> surface_point_;
+    int step_request_tour_ = -1;
+    void remove_selected();
 };
 
 }  // namespace body::kiosk::author

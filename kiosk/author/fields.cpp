@@ -8,9 +8,11 @@
 #include <filesystem>
 #include <sstream>
 
+#include "kiosk/author/fields_detail.h"
+
 namespace body::kiosk::author {
 
-namespace {
+namespace detail {
 
 using scene::Scene;
 
@@ -69,6 +71,15 @@ Status parse_style_text(const std::string& text, const char* what, Style& out) {
 std::vector<std::string> style_choices(const Scene&) {
     return {"smooth", "wireframe", "lines", "hatching", "hatching-2tone"};
 }
+std::vector<std::string> bool_choices(const Scene&) { return {"true", "false"}; }
+
+}  // namespace detail
+
+namespace {
+
+using scene::Scene;
+using namespace detail;
+
 std::vector<std::string> optional_style_choices(const Scene& s) {
     auto c = style_choices(s);
     c.insert(c.begin(), "none");
@@ -76,7 +87,6 @@ std::vector<std::string> optional_style_choices(const Scene& s) {
 }
 std::vector<std::string> model_lod_choices(const Scene&) { return {"auto", "1", "0.5", "0.25", "0.1"}; }
 std::vector<std::string> group_lod_choices(const Scene&) { return {"none", "auto", "1", "0.5", "0.25", "0.1"}; }
-std::vector<std::string> bool_choices(const Scene&) { return {"true", "false"}; }
 std::vector<std::string> group_choices(const Scene& s) {
     std::vector<std::string> c{"none"};
     for (const scene::Group& g : s.groups) c.push_back(g.name);
@@ -116,6 +126,7 @@ std::vector<Field> model_fields() {
         {"models[].name", "name", FieldScope::Model, FieldKind::Text,
          [](const Scene& s, const FieldTarget& t) { return model(s, t).name; },
          [](Scene& s, const FieldTarget& t, const std::string& v) -> Status {
+             rename_in_tours(s, model(s, t).name, v);  // steps naming it follow the rename
              model(s, t).name = v;
              return ok_status();
          }},
@@ -197,6 +208,7 @@ std::vector<Field> group_fields() {
              const std::string old = group(s, t).name;
              for (scene::Model& m : s.models)
                  if (m.group == old) m.group = v;  // members follow the rename
+             rename_in_tours(s, old, v);
              group(s, t).name = v;
              return ok_status();
          }},
@@ -283,6 +295,7 @@ Status set_languages(Scene& s, const FieldTarget&, const std::string& v) {
         });
         if (m.labels.empty()) m.labels.push_back(scene::LabelText{langs.front(), m.name, ""});
     }
+    drop_tour_languages(s, langs);
     return ok_status();
 }
 
@@ -356,7 +369,8 @@ std::vector<Field> all_fields() {
                    [](Scene&, const FieldTarget&, const std::string&) -> Status {
                        return input_error("models: use Add model / Remove model");
                    }});
-    for (auto* part : {&model_fields, &group_fields, &camera_fields, &kiosk_fields})
+    for (auto* part :
+         {&model_fields, &pin_fields, &group_fields, &camera_fields, &kiosk_fields, &kiosk_tour_fields, &tour_fields})
         for (Field& f : part()) out.push_back(f);
     return out;
 }

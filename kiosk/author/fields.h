@@ -11,8 +11,10 @@
 
 namespace body::kiosk::author {
 
-// What a row edits: the scene, a model (and a label language), a group.
-enum class FieldScope { Scene, Model, Label, Group };
+// What a row edits: the scene, a model (and a label language), a group, a
+// model's pin (and its label language), a tour (and its title language), a
+// tour's step (and its caption language).
+enum class FieldScope { Scene, Model, Label, Group, Pin, PinLabel, Tour, TourTitle, Step, StepCaption };
 
 enum class FieldKind {
     Text,    // typed
@@ -25,7 +27,11 @@ enum class FieldKind {
 struct FieldTarget {
     int model = -1;
     int group = -1;
-    std::string language;  // FieldScope::Label
+    int pin = -1;          // with `model`
+    int tour = -1;         // FieldScope::Tour, TourTitle, Step, StepCaption
+    int step = -1;         // with `tour`
+    std::string language;  // FieldScope::Label, PinLabel, TourTitle, StepCaption
+    bool operator==(const FieldTarget&) const = default;
 };
 
 struct Field {

@@ -39,6 +39,15 @@ struct Builder {
         y += l.row_height;
     }
 
+    // One button across the row, acting on `target` (a pin, a tour).
+    PanelRow& button(std::string text, Command command, const FieldTarget& target = {}) {
+        PanelRow& r = add(RowKind::Button, std::move(text));
+        r.command = command;
+        r.target = target;
+        r.rect = Rect{r.rect.x + 1, r.rect.y + 1, r.rect.w - 2, r.rect.h - 2};
+        return r;
+    }
+
     void field(const scene::Scene& s, int index, const FieldTarget& target, const std::string& suffix = {}) {
         const Field& f = scene_fields()[static_cast<size_t>(index)];
         PanelRow& r = add(RowKind::Field, std::string(f.label) + suffix, 1);
@@ -83,6 +92,78 @@ void tree(Builder& b, const scene::Scene& s, const Selection& sel) {
     add.editable = true;
     add.value_rect = Rect{b.l.x + b.l.width * 0.42f, add.rect.y + 2, b.l.width * 0.58f - 4, b.l.row_height - 4};
     b.buttons({{"Add group", Command::AddGroup}, {"Remove", Command::RemoveSelected}});
+    // Tours: each with its steps while it or a step is selected, and its "+ step" (which keeps the model selection).
+    b.add(RowKind::Heading, "Tours");
+    for (size_t i = 0; i < s.tours.size(); ++i) {
+        const scene::Tour& t = s.tours[i];
+        const bool open = sel.tour == static_cast<int>(i);
+        PanelRow& r = b.add(RowKind::TreeTour, std::string(open ? "▾ " : "▸ ") + t.name + " (" +
+                                                   std::to_string(t.steps.size()) + " steps)");
+        r.target.tour = static_cast<int>(i);
+        r.active = open && sel.step < 0;
+        for (size_t k = 0; open && k < t.steps.size(); ++k) {
+            PanelRow& st = b.add(RowKind::TreeStep, "step " + std::to_string(k + 1), 1);
+            st.target.tour = static_cast<int>(i);
+            st.target.step = static_cast<int>(k);
+            st.active = sel.step == static_cast<int>(k);
+        }
+        FieldTarget target;
+        target.tour = static_cast<int>(i);
+        b.button("+ step to " + t.name + " from the view", Command::AddStep, target).indent = 1;
+    }
+    b.button("Add tour", Command::AddTour);
+}
+
+void pins(Builder& b, const scene::Scene& s, int model) {
+    const auto& fields = scene_fields();
+    FieldTarget t;
+    t.model = model;
+    const auto& list = s.models[static_cast<size_t>(model)].pins;
+    for (size_t k = 0; k < list.size(); ++k) {
+        t.pin = static_cast<int>(k);
+        t.language.clear();
+        const std::string n = " #" + std::to_string(k + 1);
+        for (size_t i = 0; i < fields.size(); ++i)
+            if (fields[i].scope == FieldScope::Pin) b.field(s, static_cast<int>(i), t, n);
+        for (const std::string& lang : s.kiosk.languages) {
+            t.language = lang;
+            for (size_t i = 0; i < fields.size(); ++i)
+                if (fields[i].scope == FieldScope::PinLabel) b.field(s, static_cast<int>(i), t, n + " [" + lang + "]");
+        }
+        t.language.clear();
+        b.button("Remove pin" + n, Command::RemovePin, t);
+    }
+    b.button("Add pin at the clicked point", Command::AddPin);
+}
+
+// A tour's fields and title per language; with a step selected, the step's and its caption per language.
+void tour_properties(Builder& b, const scene::Scene& s, const Selection& sel) {
+    const auto& fields = scene_fields();
+    const scene::Tour& tour = s.tours[static_cast<size_t>(sel.tour)];
+    FieldTarget t;
+    t.tour = sel.tour;
+    const bool step = sel.step >= 0 && sel.step < static_cast<int>(tour.steps.size());
+    if (!step) {
+        b.add(RowKind::Heading, "Tour: " + tour.name);
+        for (size_t i = 0; i < fields.size(); ++i)
+            if (fields[i].scope == FieldScope::Tour) b.field(s, static_cast<int>(i), t);
+        for (const std::string& lang : s.kiosk.languages) {
+            t.language = lang;
+            for (size_t i = 0; i < fields.size(); ++i)
+                if (fields[i].scope == FieldScope::TourTitle) b.field(s, static_cast<int>(i), t, " [" + lang + "]");
+        }
+        return;
+    }
+    t.step = sel.step;
+    b.add(RowKind::Heading, "Tour " + tour.name + ": step " + std::to_string(sel.step + 1));
+    for (size_t i = 0; i < fields.size(); ++i)
+        if (fields[i].scope == FieldScope::Step) b.field(s, static_cast<int>(i), t);
+    for (const std::string& lang : s.kiosk.languages) {
+        t.language = lang;
+        for (size_t i = 0; i < fields.size(); ++i)
+            if (fields[i].scope == FieldScope::StepCaption) b.field(s, static_cast<int>(i), t, " [" + lang + "]");
+    }
+    b.buttons({{"Step earlier", Command::StepUp}, {"Step later", Command::StepDown}});
 }
 
 void properties(Builder& b, const scene::Scene& s, const Selection& sel) {
@@ -99,6 +180,7 @@ void properties(Builder& b, const scene::Scene& s, const Selection& sel) {
             for (size_t i = 0; i < fields.size(); ++i)
                 if (fields[i].scope == FieldScope::Label) b.field(s, static_cast<int>(i), t, " [" + lang + "]");
         }
+        pins(b, s, sel.model);
         return;
     }
     if (sel.group >= 0 && sel.group < static_cast<int>(s.groups.size())) {
@@ -107,6 +189,10 @@ void properties(Builder& b, const scene::Scene& s, const Selection& sel) {
         t.group = sel.group;
         for (size_t i = 0; i < fields.size(); ++i)
             if (fields[i].scope == FieldScope::Group) b.field(s, static_cast<int>(i), t);
+        return;
+    }
+    if (sel.tour >= 0 && sel.tour < static_cast<int>(s.tours.size())) {
+        tour_properties(b, s, sel);
         return;
     }
     b.add(RowKind::Heading, "Scene: start view and kiosk");

@@ -1,9 +1,10 @@
 #pragma once
 // The authoring window's side panel as rows (no GL; panel_draw.cpp draws them):
 // a toolbar, the status line, the tree of groups and their models, the add and
-// remove commands, then the editors (fields.h) of the selection: a model's
-// fields and its label per kiosk language, a group's fields, or with nothing
-// selected the scene's camera and kiosk settings. Pixels, origin top-left; the
+// remove commands, the tours and their steps, then the editors (fields.h) of
+// the selection: a model's fields, its label per kiosk language and its pins, a
+// group's fields, a tour's or a step's, or with nothing selected the scene's
+// camera and kiosk settings. Pixels, origin top-left; the
 // rows scroll as one list.
 #include <string>
 #include <vector>
@@ -14,7 +15,7 @@
 
 namespace body::kiosk::author {
 
-enum class RowKind { Button, Status, Heading, TreeGroup, TreeModel, Field };
+enum class RowKind { Button, Status, Heading, TreeGroup, TreeModel, TreeTour, TreeStep, Field };
 
 enum class Command {
     None,
@@ -27,7 +28,13 @@ enum class Command {
     AddGroup,
     RemoveSelected,
     ResetTransform,
-    AddModel,  // the row's field holds the path typed
+    AddModel,   // the row's field holds the path typed
+    AddPin,     // at the surface point last clicked on the selected model
+    RemovePin,  // the row's target.pin
+    AddTour,
+    AddStep,  // to the row's target.tour: the view, the visible models and the model selected
+    StepUp,
+    StepDown,
 };
 
 struct PanelRow {
@@ -48,6 +55,8 @@ struct PanelRow {
 struct Selection {
     int model = -1;
     int group = -1;
+    int tour = -1;  // a tour, or with `step` one of its steps
+    int step = -1;
     bool operator==(const Selection&) const = default;
 };
 

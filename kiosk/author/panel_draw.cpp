@@ -126,6 +126,8 @@ void PanelPainter::State::row(Layer& l, const PanelRow& r, Editor& e) {
         case RowKind::Status: text(l, r.text, r.rect, 6.0f, kFaded); break;
         case RowKind::TreeGroup:
         case RowKind::TreeModel:
+        case RowKind::TreeTour:
+        case RowKind::TreeStep:
             if (r.active) quad(l.solid, r.rect, kActive);
             text(l, r.text, r.rect, pad, kInk);
             break;

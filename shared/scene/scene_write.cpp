@@ -39,6 +39,65 @@ const char* corner_name(AdminGesture::Corner c) {
     return "top-left";
 }
 
+// language -> {"title", "description"} (labels, pins).
+ordered_json label_json(const std::vector<LabelText>& texts) {
+    ordered_json j = ordered_json::object();
+    for (const LabelText& t : texts) j[t.language] = {{"title", t.title}, {"description", t.description}};
+    return j;
+}
+
+// language -> text (tour titles, step captions: the parser reads no description there).
+ordered_json text_json(const std::vector<LabelText>& texts) {
+    ordered_json j = ordered_json::object();
+    for (const LabelText& t : texts) j[t.language] = t.title;
+    return j;
+}
+
+const char* easing_name(Easing e) {
+    switch (e) {
+        case Easing::Linear: return "linear";
+        case Easing::EaseIn: return "ease-in";
+        case Easing::EaseOut: return "ease-out";
+        case Easing::EaseInOut: return "ease-in-out";
+    }
+    return "ease-in-out";
+}
+
+// Optional step values are written only when set: a missing one means "keep the previous step's".
+ordered_json step_json(const TourStep& st) {
+    ordered_json j = ordered_json::object();
+    const TourCamera& c = st.camera;
+    if (c.target || c.azimuth_deg || c.polar_deg || c.distance) {
+        ordered_json cam = ordered_json::object();
+        if (c.target) cam["target"] = vec3(*c.target);
+        if (c.azimuth_deg) cam["azimuth_deg"] = num(*c.azimuth_deg);
+        if (c.polar_deg) cam["polar_deg"] = num(*c.polar_deg);
+        if (c.distance) cam["distance"] = num(*c.distance);
+        j["camera"] = cam;
+    }
+    if (st.visible) j["visible"] = *st.visible;
+    if (!st.styles.empty()) {
+        ordered_json styles = ordered_json::object();
+        for (const auto& [name, style] : st.styles) styles[name] = style_name(style);
+        j["styles"] = styles;
+    }
+    if (!st.select.empty()) j["select"] = st.select;
+    if (!st.caption.empty()) j["caption"] = text_json(st.caption);
+    j["duration"] = num(st.duration);
+    j["hold"] = num(st.hold);
+    j["easing"] = easing_name(st.easing);
+    return j;
+}
+
+ordered_json tour_json(const Tour& t) {
+    ordered_json j;
+    j["name"] = t.name;
+    if (!t.title.empty()) j["title"] = text_json(t.title);
+    j["steps"] = ordered_json::array();
+    for (const TourStep& st : t.steps) j["steps"].push_back(step_json(st));
+    return j;
+}
+
 ordered_json model_json(const Model& m) {
     ordered_json j;
     j["name"] = m.name;
@@ -50,9 +109,11 @@ ordered_json model_json(const Model& m) {
                       {"scale", num(m.transform.scale)}};
     j["style"] = style_name(m.style);
     j["lod"] = lod(m.lod);
-    ordered_json label = ordered_json::object();
-    for (const LabelText& t : m.labels) label[t.language] = {{"title", t.title}, {"description", t.description}};
-    j["label"] = label;
+    j["label"] = label_json(m.labels);
+    if (!m.pins.empty()) {
+        j["pins"] = ordered_json::array();
+        for (const Pin& p : m.pins) j["pins"].push_back({{"anchor", vec3(p.anchor)}, {"label", label_json(p.labels)}});
+    }
     return j;
 }
 
@@ -88,6 +149,14 @@ std::string scene_to_json(const Scene& s) {
                        {"seconds", num(k.admin.seconds)},
                        {"corner_size", num(k.admin.corner_size)}}},
                      {"frame_ms_target", num(k.frame_ms_target)}};
+    if (!k.attract_tour.empty()) root["kiosk"]["attract_tour"] = k.attract_tour;
+    root["kiosk"]["countdown_seconds"] = num(k.countdown_seconds);
+    root["kiosk"]["pins"] = k.pins;
+    if (!k.operator_pin.empty()) root["kiosk"]["operator_pin"] = k.operator_pin;
+    if (!s.tours.empty()) {
+        root["tours"] = ordered_json::array();
+        for (const Tour& t : s.tours) root["tours"].push_back(tour_json(t));
+    }
     return root.dump(2) + "\n";
 }
 

@@ -6,6 +6,7 @@
 // started on the saved scene shows the same picture as the author's preview.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -78,20 +79,21 @@ TEST(AuthorReplay, BuildEditSaveAndTheKioskShowsThePreview) {
     const fs::path bundle = dir / "exhibit";
 
     Script s;
-    // New scene: rows 3 "(no group)", 4 a, 5 b, 6 add model, 7 Add group | Remove, 8 "Model: a",
-    // then name, file, group, colour, translate, rotate, scale, style, LOD, reset, title [en], description [en].
+    // New scene: rows 3 "(no group)", 4 a, 5 b, 6 add model, 7 Add group | Remove, 8 "Tours", 9 Add tour, 10 "Model:
+    // a", then name, file, group, colour, translate, rotate, scale, style, LOD, reset, title [en], description [en].
     s.row(4, 100);             // select a
-    s.row(16);                 // style: smooth -> wireframe
-    s.set(12, U"1 0 0");       // colour
-    s.set(19, U"Großhirn");    // title [en]
-    s.set(15, U"2");           // scale 2 ...
+    s.row(18);                 // style: smooth -> wireframe
+    s.set(14, U"1 0 0");       // colour
+    s.set(21, U"Großhirn");    // title [en]
+    s.set(17, U"2");           // scale 2 ...
     s.key('Z', "ctrl");        // ... undone
     s.key('Z', "ctrl shift");  // redo, then undo again: the redo stack works both ways
     s.key('Z', "ctrl");
     s.row(7, 100);  // Add group: "group 1", selected
-    // Rows now: 3 "group 1", 4 "(no group)", 5 a, 6 b, 7 add model, 8 buttons, 9 "Group: group 1".
-    s.row(6, 100);  // select b: 9 "Model: b", 10 name, 11 file, 12 group
-    s.row(12);      // group: none -> group 1
+    // Rows now: 3 "group 1", 4 "(no group)", 5 a, 6 b, 7 add model, 8 buttons, 9 "Tours", 10 Add tour,
+    // 11 "Group: group 1".
+    s.row(6, 100);  // select b: 11 "Model: b", 12 name, 13 file, 14 group
+    s.row(14);      // group: none -> group 1
     // Shift+drag on b moves it with the manipulation sphere: one "move" command on release.
     // b is at x 769 in a centred view; the author's view is centred right of the 400-px panel.
     s.out << s.t << " mouse-down left 969 400 shift\n";
@@ -161,9 +163,10 @@ TEST(AuthorReplay, GlfwWindowUnderXvfbSavesTheEdits) {
     const fs::path dir = test::fresh_test_dir("body_author_xvfb");
     write_sphere(dir / "a.obj", 0.0f, 1.0f);
     Script s;
-    s.row(4, 100);                  // a (rows: 3 "(no group)", 4 a, 5 add model, 6 buttons, 7 "Model: a", 8 name ...)
-    s.row(15);                      // style: smooth -> wireframe
-    s.set(18, U"Hippocampus ΑΒΓ");  // title [en]
+    // a (rows: 3 "(no group)", 4 a, 5 add model, 6 buttons, 7 "Tours", 8 Add tour, 9 "Model: a", 10 name ...)
+    s.row(4, 100);
+    s.row(17);                      // style: smooth -> wireframe
+    s.set(20, U"Hippocampus ΑΒΓ");  // title [en]
     s.key('S', "ctrl");
     s.out << s.t + 0.2 << " end\n";
     std::ofstream(dir / "author.replay") << s.out.str();
@@ -176,6 +179,48 @@ TEST(AuthorReplay, GlfwWindowUnderXvfbSavesTheEdits) {
     const auto j = nlohmann::json::parse(text.value());
     EXPECT_EQ(j["models"][0]["style"], "wireframe");
     EXPECT_EQ(j["models"][0]["label"]["en"]["title"], "Hippocampus ΑΒΓ");
+    if (!::testing::Test::HasFailure()) fs::remove_all(dir);
+}
+
+// A pin where a click hit the model, and a tour step from the view: the author
+// loop's picking and camera reach the saved file (kiosk/author/author_run.cpp).
+TEST(AuthorReplay, PinAtTheClickedPointAndAStepFromTheView) {
+    if (!fs::exists("/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf")) GTEST_SKIP() << "needs fonts-dejavu-core";
+    const fs::path dir = test::fresh_test_dir("body_author_pins");
+    write_sphere(dir / "a.obj", 0.0f, 1.0f);
+    Script s;
+    // The sphere fills the view's centre, 200 px right of the screen's (the panel is 400 px wide).
+    s.click(840, 400);  // selects a and marks the point hit
+    // Rows: 7 "Tours", 8 Add tour, 9 "Model: a", ... 20 title [en], 21 description [en], 22 Add pin.
+    s.row(22, 200);
+    s.row(8, 200);      // Add tour: "tour 1" selected (8 its row, 9 "step 1", 10 + step, 11 Add tour)
+    s.click(840, 400);  // a selected again: 8 "tour 1", 9 + step
+    s.out << s.t << " wheel 840 400 1\n";  // a closer view for the step
+    s.t += 0.1;
+    s.row(9, 200);  // + step to tour 1 from the view
+    s.key('S', "ctrl");
+    s.out << s.t + 0.2 << " end\n";
+    std::ofstream(dir / "author.replay") << s.out.str();
+    auto r =
+        test::run(test::bin("bodyview") + " --author " + (dir / "exhibit").string() + "/ " + (dir / "a.obj").string() +
+                  " --headless --size 1280x800 --replay " + (dir / "author.replay").string());
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_EQ(r.output.find("unsaved"), std::string::npos) << r.output;
+    auto text = read_file((dir / "exhibit" / "scene.json").string());
+    ASSERT_TRUE(text) << r.output;
+    const auto j = nlohmann::json::parse(text.value());
+    ASSERT_EQ(j["models"][0]["pins"].size(), 1u) << text.value();
+    const auto& anchor = j["models"][0]["pins"][0]["anchor"];
+    const double len = std::hypot(anchor[0].get<double>(), anchor[1].get<double>(), anchor[2].get<double>());
+    EXPECT_NEAR(len, 1.0, 0.03) << anchor;  // on the unit sphere's (tessellated) surface
+    ASSERT_EQ(j["tours"].size(), 1u) << text.value();
+    const auto& steps = j["tours"][0]["steps"];
+    ASSERT_EQ(steps.size(), 2u) << text.value();
+    EXPECT_EQ(steps[1]["select"], "a");
+    EXPECT_EQ(steps[1]["visible"], nlohmann::json::parse(R"(["a"])"));
+    ASSERT_TRUE(steps[1].contains("camera")) << steps[1];
+    EXPECT_GT(steps[1]["camera"]["distance"].get<double>(), 0.0);
+    EXPECT_TRUE(steps[1]["camera"].contains("azimuth_deg"));
     if (!::testing::Test::HasFailure()) fs::remove_all(dir);
 }
 

@@ -25,10 +25,13 @@ using nlohmann::json;
 
 const char* kScene = R"({"models": [
     {"name": "a", "file": "a.obj", "group": "left", "colour": [0.2, 0.5, 0.9],
-     "label": {"en": {"title": "Alpha", "description": "The left one"}, "de": "Alpha"}},
+     "label": {"en": {"title": "Alpha", "description": "The left one"}, "de": "Alpha"},
+     "pins": [{"anchor": [1, 2, 3], "label": {"en": "Tip", "de": {"title": "Spitze", "description": "vorn"}}}]},
     {"name": "b", "file": "b.obj", "style": "wireframe", "lod": 0.5}],
   "groups": [{"name": "left", "style": "smooth"}, {"name": "right", "visible": false}],
-  "kiosk": {"languages": ["en", "de"]}})";
+  "kiosk": {"languages": ["en", "de"]},
+  "tours": [{"name": "t1", "title": {"en": "Tour", "de": "Rundgang"},
+             "steps": [{"caption": {"en": "Hi", "de": "Hallo"}}, {"select": "b"}]}]})";
 
 scene::Scene test_scene() {
     auto s = scene::parse_scene(kScene, "scene.json", "");
@@ -150,6 +153,100 @@ TEST(AuthorDocument, SavesTheSameSchemaAndReadsBackEqual) {
     fs::remove_all(dir);
 }
 
+// A scene using every key of SCENE.md's tables, with values other than the defaults
+// and in the forms the writer writes (labels as objects, titles and captions as text).
+const char* kEveryKey = R"({"version": 1,
+  "models": [
+    {"name": "a", "file": "a.obj", "group": "left", "colour": [0.1, 0.2, 0.3],
+     "transform": {"translate": [1, 2, 3], "rotate_deg": [10, 20, 30], "scale": 2},
+     "style": "hatching", "lod": 0.5,
+     "label": {"en": {"title": "A", "description": "Alpha"}, "de": {"title": "A-de", "description": ""}},
+     "pins": [{"anchor": [0.5, -1.25, 3], "label": {"en": {"title": "Tip", "description": "The tip"},
+                                                    "de": {"title": "Spitze", "description": ""}}},
+              {"anchor": [0, 0, 0], "label": {"de": {"title": "Basis", "description": "unten"}}}]},
+    {"name": "b", "file": "b.obj", "style": "hatching-2tone", "lod": "auto",
+     "label": {"en": {"title": "B", "description": ""}}}],
+  "groups": [{"name": "left", "style": "lines", "lod": "auto", "visible": false}, {"name": "right", "lod": 0.25, "visible": true}],
+  "camera": {"target": [4, 5, 6], "azimuth_deg": 30, "polar_deg": 70, "distance": 400, "fov_deg": 35},
+  "kiosk": {"idle_seconds": 20, "reset_seconds": 90, "languages": ["en", "de"],
+            "admin_gesture": {"corner": "bottom-right", "taps": 4, "seconds": 2.5, "corner_size": 0.1},
+            "frame_ms_target": 33, "attract_tour": "limbic", "countdown_seconds": 15, "pins": true,
+            "operator_pin": "004217"},
+  "tours": [
+    {"name": "limbic", "title": {"en": "The limbic system", "de": "Das limbische System"},
+     "steps": [
+       {"camera": {"target": [1, 2, 3], "azimuth_deg": 90, "polar_deg": 70, "distance": 250},
+        "visible": ["left", "b"], "styles": {"left": "hatching", "b": "wireframe"}, "select": "a",
+        "caption": {"en": "Seen from the right", "de": "Von rechts"}, "duration": 1.5, "hold": 5, "easing": "linear"},
+       {"camera": {"azimuth_deg": -45}, "duration": 0, "hold": 3600, "easing": "ease-in"}]},
+    {"name": "second", "steps": [{"visible": [], "duration": 2, "hold": 4, "easing": "ease-out"}]}]})";
+
+// Every value of `expected` is in `actual` at the same place (`actual` may add defaults).
+void expect_contains(const json& actual, const json& expected, const std::string& path) {
+    if (expected.is_object()) {
+        ASSERT_TRUE(actual.is_object()) << path;
+        for (const auto& [k, v] : expected.items()) {
+            EXPECT_TRUE(actual.contains(k)) << path << "." << k << " was dropped";
+            if (actual.contains(k)) expect_contains(actual[k], v, path + "." + k);
+        }
+    } else if (expected.is_array()) {
+        ASSERT_TRUE(actual.is_array()) << path;
+        ASSERT_EQ(actual.size(), expected.size()) << path;
+        for (size_t i = 0; i < expected.size(); ++i)
+            expect_contains(actual[i], expected[i], path + "[" + std::to_string(i) + "]");
+    } else {
+        EXPECT_EQ(actual, expected) << path;
+    }
+}
+
+TEST(AuthorSchema, EveryKeyRoundTrips) {
+    auto first = scene::parse_scene(kEveryKey, "every.json", "");
+    ASSERT_TRUE(first) << first.error().message;
+    const std::string text = scene::scene_to_json(first.value());
+    expect_contains(json::parse(text), json::parse(kEveryKey), "$");
+    auto second = scene::parse_scene(text, "written.json", "");
+    ASSERT_TRUE(second) << second.error().message;
+    EXPECT_EQ(scene::scene_to_json(second.value()), text);  // write -> parse -> write: the same text
+    // The values read back, field by field, for the keys added with tours and pins.
+    const scene::Scene &a = first.value(), &b = second.value();
+    EXPECT_EQ(b.kiosk.attract_tour, "limbic");
+    EXPECT_EQ(b.kiosk.countdown_seconds, a.kiosk.countdown_seconds);
+    EXPECT_TRUE(b.kiosk.pins);
+    EXPECT_EQ(b.kiosk.operator_pin, "004217");  // leading zeros kept: a string, not a number
+    ASSERT_EQ(b.models[0].pins.size(), 2u);
+    for (size_t i = 0; i < 2; ++i) {
+        EXPECT_EQ(b.models[0].pins[i].anchor, a.models[0].pins[i].anchor);
+        ASSERT_EQ(b.models[0].pins[i].labels.size(), a.models[0].pins[i].labels.size());
+        for (size_t k = 0; k < a.models[0].pins[i].labels.size(); ++k) {
+            EXPECT_EQ(b.models[0].pins[i].labels[k].title, a.models[0].pins[i].labels[k].title);
+            EXPECT_EQ(b.models[0].pins[i].labels[k].description, a.models[0].pins[i].labels[k].description);
+        }
+    }
+    ASSERT_EQ(b.tours.size(), 2u);
+    for (size_t t = 0; t < 2; ++t) {
+        EXPECT_EQ(b.tours[t].name, a.tours[t].name);
+        EXPECT_EQ(b.tours[t].title.size(), a.tours[t].title.size());
+        ASSERT_EQ(b.tours[t].steps.size(), a.tours[t].steps.size());
+        for (size_t k = 0; k < a.tours[t].steps.size(); ++k) {
+            const scene::TourStep &x = a.tours[t].steps[k], &y = b.tours[t].steps[k];
+            EXPECT_EQ(y.camera.target, x.camera.target);
+            EXPECT_EQ(y.camera.azimuth_deg, x.camera.azimuth_deg);
+            EXPECT_EQ(y.camera.polar_deg, x.camera.polar_deg);
+            EXPECT_EQ(y.camera.distance, x.camera.distance);
+            EXPECT_EQ(y.visible, x.visible);  // [] (hide all) stays apart from absent (as before the tour)
+            EXPECT_EQ(y.styles, x.styles);
+            EXPECT_EQ(y.select, x.select);
+            ASSERT_EQ(y.caption.size(), x.caption.size());
+            for (size_t c = 0; c < x.caption.size(); ++c) EXPECT_EQ(y.caption[c].title, x.caption[c].title);
+            EXPECT_EQ(y.duration, x.duration);
+            EXPECT_EQ(y.hold, x.hold);
+            EXPECT_EQ(y.easing, x.easing);
+        }
+    }
+    EXPECT_FALSE(b.tours[0].steps[1].camera.target);  // unset camera values stay unset
+    EXPECT_FALSE(b.tours[1].steps[0].camera.azimuth_deg);
+}
+
 // The keys SCENE.md's table documents: the one place the schema is written down
 // (helpers adding keys document them there), read fresh by this test.
 std::set<std::string> documented_keys() {
@@ -166,22 +263,51 @@ std::set<std::string> documented_keys() {
 // A new valid value for each editor, by its panel label: a field added without
 // one here fails the walk below, so its editor gets tested.
 const std::map<std::string, std::string> kNewValues = {
-    {"name", "renamed"},          {"file", "c.obj"},
-    {"colour", "1 0 0.5"},        {"translate", "1 2 3"},
-    {"rotate (deg)", "10 20 30"}, {"scale", "2"},
-    {"title", "Titel"},           {"description", "Beschreibung"},
-    {"camera target", "1 2 3"},   {"camera azimuth", "45"},
-    {"camera polar", "60"},       {"camera distance", "500"},
-    {"camera fov", "30"},         {"idle (s)", "20"},
-    {"reset (s)", "90"},          {"languages", "en fr"},
-    {"admin taps", "7"},          {"admin seconds", "4"},
-    {"admin corner size", "0.1"}, {"frame target (ms)", "33"},
+    {"name", "renamed"},
+    {"file", "c.obj"},
+    {"colour", "1 0 0.5"},
+    {"translate", "1 2 3"},
+    {"rotate (deg)", "10 20 30"},
+    {"scale", "2"},
+    {"title", "Titel"},
+    {"description", "Beschreibung"},
+    {"camera target", "1 2 3"},
+    {"camera azimuth", "45"},
+    {"camera polar", "60"},
+    {"camera distance", "500"},
+    {"camera fov", "30"},
+    {"idle (s)", "20"},
+    {"reset (s)", "90"},
+    {"languages", "en fr"},
+    {"admin taps", "7"},
+    {"admin seconds", "4"},
+    {"admin corner size", "0.1"},
+    {"frame target (ms)", "33"},
+    {"countdown (s)", "5"},
+    {"operator PIN", "1234"},
+    {"pin anchor", "4 5 6"},
+    {"pin title", "Spitzen"},
+    {"pin description", "hinten"},
+    {"tour name", "t2"},
+    {"tour title", "Führung"},
+    {"step target", "1 2 3"},
+    {"step azimuth", "45"},
+    {"step polar", "60"},
+    {"step distance", "300"},
+    {"step visible", "b, right"},
+    {"step styles", "a=hatching, left=lines"},
+    {"caption", "Beschriftung"},
+    {"duration (s)", "3"},
+    {"hold (s)", "6"},
 };
+
+// A table key as the saved JSON nests it: a tour's steps are inside tours[].
+std::string json_key(const std::string& key) { return key.starts_with("steps[].") ? "tours[]." + key : key; }
 
 // The saved JSON at a table key ("models[].colour" -> models[0].colour).
 json at_key(const json& root, const std::string& key) {
     json v = root;
-    std::string k = key;
+    std::string k = json_key(key);
     for (size_t dot; !k.empty(); k = dot == std::string::npos ? "" : k.substr(dot + 1)) {
         dot = k.find('.');
         std::string part = k.substr(0, dot);
@@ -211,14 +337,22 @@ TEST(AuthorSchema, EveryDocumentedKeyHasAnEditorThatChangesIt) {
         const Field& f = scene_fields()[i];
         Document doc(test_scene(), (dir / "scene.json").string());
         const json before = saved_json(doc, dir / "scene.json");
+        using S = FieldScope;
         FieldTarget t;
-        t.model = f.scope == FieldScope::Model || f.scope == FieldScope::Label ? 0 : -1;
-        t.group = f.scope == FieldScope::Group ? 0 : -1;
-        t.language = f.scope == FieldScope::Label ? "de" : "";
+        const bool pin = f.scope == S::Pin || f.scope == S::PinLabel;
+        t.model = f.scope == S::Model || f.scope == S::Label || pin ? 0 : -1;
+        t.pin = pin ? 0 : -1;
+        t.group = f.scope == S::Group ? 0 : -1;
+        t.tour =
+            f.scope == S::Tour || f.scope == S::TourTitle || f.scope == S::Step || f.scope == S::StepCaption ? 0 : -1;
+        t.step = f.scope == S::Step || f.scope == S::StepCaption ? 0 : -1;
+        const bool text =
+            f.scope == S::Label || f.scope == S::PinLabel || f.scope == S::TourTitle || f.scope == S::StepCaption;
+        t.language = text ? "de" : "";
         if (f.kind == FieldKind::Fixed) {
-            EXPECT_EQ(f.get(doc.scene(), t),
-                      before[f.key].is_array() ? std::to_string(before[f.key].size()) : before[f.key].dump());
-            continue;  // `version` is always 1; `models` is edited by add/remove (Editor test below)
+            const json b = at_key(before, f.key);
+            EXPECT_EQ(f.get(doc.scene(), t), b.is_array() ? std::to_string(b.size()) : b.dump()) << f.key;
+            continue;  // `version` is always 1; `models`, `tours`, steps: add/remove commands (Editor tests below)
         }
         std::string value;
         if (f.kind == FieldKind::Choice) {
@@ -260,14 +394,23 @@ TEST(AuthorSchema, TheWriterWritesOnlyDocumentedKeys) {
         bool documented = false;
         for (const std::string& k : keys)  // a container of documented keys (`camera`, `groups`)
             documented = documented || k.starts_with(w + ".") || k.starts_with(w + "[].");
-        for (std::string p = w; !documented && !p.empty();) {
-            documented = keys.count(p) > 0;
+        for (std::string p = w.starts_with("tours[].steps[].") ? w.substr(8) : w; !documented && !p.empty();) {
+            documented = keys.count(p) > 0 || (p.ends_with("[]") && keys.count(p.substr(0, p.size() - 2)) > 0);
             const size_t dot = p.rfind('.');
             p = dot == std::string::npos ? "" : p.substr(0, dot);
         }
         EXPECT_TRUE(documented) << "scene_to_json writes '" << w << "', which SCENE.md's table does not list";
     }
     EXPECT_TRUE(written.count("models[].transform.rotate_deg"));
+}
+
+// kEveryKey uses every documented key: a key added to SCENE.md without a place in it fails
+// here, so the round trip above covers it.
+TEST(AuthorSchema, TheRoundTripSceneUsesEveryDocumentedKey) {
+    std::set<std::string> written;
+    collect(json::parse(kEveryKey), "", written);
+    for (const std::string& k : documented_keys())
+        EXPECT_TRUE(written.count(json_key(k))) << "kEveryKey (author_test.cpp) does not use '" << k << "'";
 }
 
 // --- the editor driven by events, as the window feeds it ---------------------
@@ -370,6 +513,111 @@ TEST(AuthorEditor, UnsavedChangesPromptOnQuit) {
     EXPECT_TRUE(dirty.quit_confirmed());
     EXPECT_TRUE(fs::exists(dir / "scene.json"));
     fs::remove_all(dir);
+}
+
+// Pins, tours and steps through the editor's commands: each one undo step.
+TEST(AuthorEditor, PinsToursAndStepsAreUndoableCommands) {
+    Editor ed(Document(test_scene(), ""));
+    ed.set_viewport(1280, 800, 1.0f);
+    // Add pin needs a clicked surface point on the selected model.
+    click(ed, "b");
+    click(ed, "Add pin at the clicked point");
+    EXPECT_TRUE(ed.document().scene().models[1].pins.empty()) << ed.status();
+    ed.set_surface_point(1, {0.5f, 0.25f, -1.0f});
+    click(ed, "Add pin at the clicked point");
+    ASSERT_EQ(ed.document().scene().models[1].pins.size(), 1u) << ed.status();
+    EXPECT_EQ(ed.document().scene().models[1].pins[0].anchor, (std::array<float, 3>{0.5f, 0.25f, -1.0f}));
+    click(ed, "pin title #1 [de]");
+    type(ed, U"Knoten");
+    ed.handle(key(platform::kKeyEnter));
+    EXPECT_EQ(ed.document().scene().text(ed.document().scene().models[1].pins[0].labels, "de")->title, "Knoten");
+    click(ed, "Remove pin #1");
+    EXPECT_TRUE(ed.document().scene().models[1].pins.empty());
+    ed.handle(key('Z', kModCtrl));  // the removal undone: the pin is back with its title
+    ASSERT_EQ(ed.document().scene().models[1].pins.size(), 1u);
+
+    // A step from the view: camera, visible models and the model selected (b) at the click.
+    click(ed, "b");
+    click(ed, "+ step to t1 from the view");
+    ASSERT_EQ(ed.take_request(), Request::AddStep);
+    scene::HomeCamera cam;
+    cam.target = {1, 2, 3};
+    cam.azimuth_deg = 45;
+    cam.polar_deg = 80;
+    cam.distance = 120;
+    ASSERT_TRUE(ed.add_step(ed.step_request_tour(), cam, {"a"}));
+    const auto& steps = [&]() -> const std::vector<scene::TourStep>& { return ed.document().scene().tours[0].steps; };
+    ASSERT_EQ(steps().size(), 3u);
+    EXPECT_EQ(steps()[2].camera.azimuth_deg, 45.0f);
+    EXPECT_EQ(steps()[2].camera.target, (std::array<float, 3>{1, 2, 3}));
+    EXPECT_EQ(steps()[2].visible, (std::vector<std::string>{"a"}));
+    EXPECT_EQ(steps()[2].select, "b");
+    EXPECT_EQ(ed.selection().tour, 0);
+    EXPECT_EQ(ed.selection().step, 2);
+    click(ed, "easing");  // ease-in-out -> linear
+    EXPECT_EQ(steps()[2].easing, scene::Easing::Linear);
+    click(ed, "Step earlier");
+    EXPECT_EQ(steps()[1].select, "b");
+    EXPECT_EQ(steps()[2].select, "b");  // the old step 2 selected b too
+    EXPECT_EQ(steps()[1].camera.azimuth_deg, 45.0f);
+    EXPECT_EQ(ed.selection().step, 1);
+    ed.handle(key(platform::kKeyDelete));  // removes the selected step
+    ASSERT_EQ(steps().size(), 2u);
+    EXPECT_FALSE(steps()[1].camera.azimuth_deg);
+
+    // Renaming a model renames it in the steps; dropping a language drops its captions and pin texts.
+    ed.select_model(1);
+    click(ed, "name");
+    ed.handle(key('A', kModCtrl));
+    type(ed, U"bee");
+    ed.handle(key(platform::kKeyEnter));
+    EXPECT_EQ(steps()[1].select, "bee") << ed.status();
+    ed.handle(key(platform::kKeyEscape));  // deselects: the scene's fields
+    click(ed, "languages");
+    ed.handle(key('A', kModCtrl));
+    type(ed, U"en");
+    ed.handle(key(platform::kKeyEnter));
+    ASSERT_EQ(ed.document().scene().kiosk.languages.size(), 1u) << ed.status();
+    EXPECT_EQ(ed.document().scene().tours[0].steps[0].caption.size(), 1u);
+    EXPECT_EQ(ed.document().scene().models[0].pins[0].labels.size(), 1u);
+    EXPECT_EQ(ed.document().scene().models[1].pins[0].labels[0].language, "en");  // its "de" title went
+
+    // A new tour, the attract tour, then the tour removed: the attract mode turns again.
+    click(ed, "Add tour");
+    ASSERT_EQ(ed.document().scene().tours.size(), 2u) << ed.status();
+    EXPECT_EQ(ed.document().scene().tours[1].name, "tour 1");
+    ed.handle(key(platform::kKeyEscape));
+    click(ed, "attract tour");  // none -> t1
+    click(ed, "attract tour");  // -> tour 1
+    EXPECT_EQ(ed.document().scene().kiosk.attract_tour, "tour 1");
+    click(ed, "▸ tour 1 (1 steps)");
+    ed.handle(key(platform::kKeyDelete));
+    EXPECT_EQ(ed.document().scene().tours.size(), 1u);
+    EXPECT_TRUE(ed.document().scene().kiosk.attract_tour.empty());
+    // A tour keeps its last step: the parser's reason, nothing changed.
+    click(ed, "▸ t1 (2 steps)");
+    click(ed, "step 2");
+    ed.handle(key(platform::kKeyDelete));
+    click(ed, "step 1");
+    ed.handle(key(platform::kKeyDelete));
+    EXPECT_EQ(ed.document().scene().tours[0].steps.size(), 1u);
+    EXPECT_NE(ed.status().find("non-empty"), std::string::npos) << ed.status();
+    // Everything above is undoable back to the scene loaded.
+    while (ed.document().undo()) {
+    }
+    EXPECT_FALSE(ed.document().dirty());
+    // A selection an undo took away removes nothing (and does not throw).
+    ASSERT_TRUE(ed.add_tour());
+    ASSERT_EQ(ed.selection().tour, 1);
+    ed.handle(key('Z', kModCtrl));
+    ed.handle(key(platform::kKeyDelete));
+    click(ed, "Add tour");
+    EXPECT_EQ(ed.document().scene().tours.size(), 2u);
+    ed.select_tour(1, 0);
+    ed.handle(key('Z', kModCtrl));
+    EXPECT_FALSE(ed.move_step(-1));
+    ed.handle(key(platform::kKeyDelete));
+    EXPECT_EQ(ed.document().scene().tours.size(), 1u);
 }
 
 }  // namespace
