@@ -355,6 +355,35 @@ std::vector<Field> kiosk_fields() {
     };
 }
 
+// The cut plane's preset normals (scene.h CutPlaneSettings): empty text unsets one.
+template <size_t I>
+Field cut_axis_field(const char* key, const char* label) {
+    return {key,
+            label,
+            FieldScope::Scene,
+            FieldKind::Vec3,
+            [](const Scene& s, const FieldTarget&) {
+                const auto& n = s.cut_plane.axes[I];
+                return n ? fmt3(*n) : std::string();
+            },
+            [](Scene& s, const FieldTarget&, const std::string& v) -> Status {
+                if (v.find_first_not_of(" \t") == std::string::npos) {
+                    s.cut_plane.axes[I].reset();
+                    return ok_status();
+                }
+                std::array<float, 3> n{};
+                if (auto r = parse_vec3(v, "cut plane normal", n); !r) return r;
+                s.cut_plane.axes[I] = n;
+                return ok_status();
+            }};
+}
+
+std::vector<Field> cut_plane_fields() {
+    return {cut_axis_field<0>("cut_plane.axial", "cut axial normal"),
+            cut_axis_field<1>("cut_plane.coronal", "cut coronal normal"),
+            cut_axis_field<2>("cut_plane.sagittal", "cut sagittal normal")};
+}
+
 std::vector<Field> all_fields() {
     std::vector<Field> out;
     // `version` and `models` have no value to type: the version is always 1, and
@@ -369,8 +398,8 @@ std::vector<Field> all_fields() {
                    [](Scene&, const FieldTarget&, const std::string&) -> Status {
                        return input_error("models: use Add model / Remove model");
                    }});
-    for (auto* part :
-         {&model_fields, &pin_fields, &group_fields, &camera_fields, &kiosk_fields, &kiosk_tour_fields, &tour_fields})
+    for (auto* part : {&model_fields, &pin_fields, &group_fields, &camera_fields, &kiosk_fields, &kiosk_tour_fields,
+                       &cut_plane_fields, &tour_fields})
         for (Field& f : part()) out.push_back(f);
     return out;
 }

@@ -153,6 +153,9 @@ std::string scene_to_json(const Scene& s) {
     root["kiosk"]["countdown_seconds"] = num(k.countdown_seconds);
     root["kiosk"]["pins"] = k.pins;
     if (!k.operator_pin.empty()) root["kiosk"]["operator_pin"] = k.operator_pin;
+    static const char* const kCutPresets[] = {"axial", "coronal", "sagittal"};
+    for (size_t i = 0; i < 3; ++i)
+        if (const auto& n = s.cut_plane.axes[i]) root["cut_plane"][kCutPresets[i]] = vec3(*n);
     if (!s.tours.empty()) {
         root["tours"] = ordered_json::array();
         for (const Tour& t : s.tours) root["tours"].push_back(tour_json(t));

@@ -172,6 +172,7 @@ const char* kEveryKey = R"({"version": 1,
             "admin_gesture": {"corner": "bottom-right", "taps": 4, "seconds": 2.5, "corner_size": 0.1},
             "frame_ms_target": 33, "attract_tour": "limbic", "countdown_seconds": 15, "pins": true,
             "operator_pin": "004217"},
+  "cut_plane": {"axial": [0, 0, 1], "coronal": [0, 1, 0], "sagittal": [-1, 0, 0.5]},
   "tours": [
     {"name": "limbic", "title": {"en": "The limbic system", "de": "Das limbische System"},
      "steps": [
@@ -276,6 +277,9 @@ const std::map<std::string, std::string> kNewValues = {
     {"camera polar", "60"},
     {"camera distance", "500"},
     {"camera fov", "30"},
+    {"cut axial normal", "0 0 1"},
+    {"cut coronal normal", "0 1 0"},
+    {"cut sagittal normal", "-1 0 0.5"},
     {"idle (s)", "20"},
     {"reset (s)", "90"},
     {"languages", "en fr"},
