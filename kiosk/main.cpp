@@ -69,6 +69,8 @@ void print_help(std::FILE* out) {
                  "                    kiosk/modes/service_config.h); the command line wins\n"
                  "  --touch-calibration \"A B C D E F\"  touch: 2x3 matrix applied to the panel's\n"
                  "                    normalised coordinates before the rotation (libinput's convention)\n"
+                 "  --display-width-mm W  the screen's width in mm, when the display reports none or a\n"
+                 "                    wrong one: no touch target is smaller than 9 mm on it\n"
                  "  --log-level L     error|warning|info|debug (default info; debug = --kiosk-stats)\n"
                  "  --author          the authoring window: side panel, undo/redo, Ctrl+S saves scene.json,\n"
                  "                    P previews the kiosk; keys with ? (kiosk/author/editor.h)\n"

@@ -86,6 +86,7 @@ public:
         if (!chosen) return runtime_error("drm: connector vanished during set-up");
         mode_ = chosen->modes[sel->mode];
         connector_id_ = chosen->connector_id;
+        if (chosen->mmWidth > 0) px_per_mm_ = static_cast<float>(mode_.hdisplay) / static_cast<float>(chosen->mmWidth);
         drmModeFreeConnector(chosen);
         crtc_id_ = sel->crtc;
         keeper_ = std::make_unique<DrmCrtcKeeper>(real_drm_ops(), fd_, crtc_id_, connector_id_);
@@ -126,6 +127,7 @@ public:
     void make_current() override { (void)egl_->make_current(); }
     int width() const override { return mode_.hdisplay; }
     int height() const override { return mode_.vdisplay; }
+    float pixels_per_mm() const override { return px_per_mm_; }
     unsigned framebuffer() const override { return 0; }
     double time() const override {
         return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
@@ -277,6 +279,7 @@ private:
     std::string device_;
     drmModeModeInfo mode_{};
     uint32_t connector_id_ = 0, crtc_id_ = 0;
+    float px_per_mm_ = 0.0f;  // from the connector's reported size; 0 when it reports none
     std::unique_ptr<DrmCrtcKeeper> keeper_;
     std::shared_ptr<Seat> seat_;
     int activations_ = 0;  // the seat's activations when the mode was last set

@@ -163,6 +163,17 @@ public:
         glfwSwapBuffers(window_);
         return ok_status();
     }
+    float pixels_per_mm() const override {
+        GLFWmonitor* m = monitor_of(window_);
+        int mm_w = 0, mm_h = 0, win_w = 0, win_h = 0;
+        glfwGetMonitorPhysicalSize(m, &mm_w, &mm_h);
+        const GLFWvidmode* mode = glfwGetVideoMode(m);
+        glfwGetWindowSize(window_, &win_w, &win_h);
+        if (mm_w <= 0 || !mode || mode->width <= 0 || win_w <= 0) return 0.0f;
+        // Monitor pixels per mm, times framebuffer pixels per window unit (high-DPI).
+        return static_cast<float>(mode->width) / static_cast<float>(mm_w) * static_cast<float>(width()) /
+               static_cast<float>(win_w);
+    }
     int width() const override {
         int w = 0, h = 0;
         glfwGetFramebufferSize(window_, &w, &h);

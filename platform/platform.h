@@ -98,6 +98,10 @@ public:
     virtual bool poll_events(std::vector<InputEvent>& out) = 0;
     // Monotonic seconds since the surface was created.
     virtual double time() const = 0;
+    // The display's pixels per millimetre (DRM: the connector's size; GLFW: the
+    // monitor's, scaled to the framebuffer); 0 when unknown (headless, a
+    // display that reports no size). Touch targets are sized from it.
+    virtual float pixels_per_mm() const { return 0.0f; }
     // Takes back a window-close request (the authoring mode's unsaved-changes
     // prompt: Cancel). Backends without a close button ignore it.
     virtual void cancel_quit() {}

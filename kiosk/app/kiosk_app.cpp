@@ -125,8 +125,14 @@ bool KioskApp::lod_auto() const {
     return std::all_of(models_.begin(), models_.end(), [](const ModelSettings& m) { return !m.manual_lod; });
 }
 
+void KioskApp::set_pixels_per_mm(float px_per_mm) {
+    px_per_mm_ = std::max(0.0f, px_per_mm);
+    relayout();
+}
+
 UiState KioskApp::ui_state() const {
     UiState s;
+    s.px_per_mm = px_per_mm_;
     s.width = camera_.width();
     s.height = camera_.height();
     s.language = language_;

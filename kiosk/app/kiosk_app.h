@@ -83,6 +83,9 @@ public:
 
     void set_picker(Picker picker) { picker_ = std::move(picker); }
     void set_viewport(int width, int height);
+    // The display's density (platform::Surface::pixels_per_mm); 0: unknown. Touch
+    // targets are never smaller than kMinTouchMm on it (ui.h).
+    void set_pixels_per_mm(float px_per_mm);
     void handle(const InputEvent& event);
     // Advances timers and the camera to `now`, chooses LOD levels for the next frame.
     void update(double now);
@@ -212,6 +215,7 @@ private:
     int open_pin_ = -1;
     OperatorMode operator_;
     CutPlane cut_;
+    float px_per_mm_ = 0.0f;
 };
 
 }  // namespace body::kiosk

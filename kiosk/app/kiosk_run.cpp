@@ -118,6 +118,9 @@ int KioskLoop::start() {
 
 void KioskLoop::start_app() {
     app_ = std::make_unique<KioskApp>(scene_, models_.infos(), surface_.width(), surface_.height());
+    app_->set_pixels_per_mm(options_.display_width_mm > 0.0
+                                ? static_cast<float>(surface_.width() / options_.display_width_mm)
+                                : surface_.pixels_per_mm());
     app_->set_picker([this](int model, const Ray& ray) -> std::optional<float> {
         return models_.pick(static_cast<size_t>(model), placement(model), ray);
     });

@@ -68,6 +68,7 @@ struct KioskRunOptions {
     render::RendererOptions renderer = {};  // --buffer-access
     LoadOptions load = {};                  // file colours for a model shown alone
     KioskHooks hooks = {};
+    double display_width_mm = 0.0;  // > 0: overrides the display's reported size (touch targets)
 };
 
 // Returns a process exit code (0 ok, 1 runtime failure, 2 bad input).

@@ -163,7 +163,7 @@ void KioskApp::add_tour_and_pin_controls() {
     for (const Control& c : controls_) obstacles.push_back(c.rect);
     if (selected_ >= 0) obstacles.push_back(label_card_rect(ui));
     const float b = button_size(ui);
-    const float h = std::max(kMinButtonPx, std::floor(0.75f * b));
+    const float h = std::max(min_target_px(ui), std::floor(0.75f * b));
     std::vector<PinRequest> requests;
     std::vector<size_t> index;
     for (size_t i = 0; i < pins_.size(); ++i) {

@@ -66,7 +66,8 @@ void add_tour_controls(const UiState& ui, const TourUiState& st, std::vector<Con
         return (room - total) * 0.5f + ui.drift_x;
     };
     if (st.playing && !st.attract) {
-        const float w = std::max(kMinButtonPx, std::min(std::floor(b * 1.6f), std::floor((room - 5.0f * gap) / 4.0f)));
+        const float w =
+            std::max(min_target_px(ui), std::min(std::floor(b * 1.6f), std::floor((room - 5.0f * gap) / 4.0f)));
         float x = row(4, w);
         const ControlId ids[] = {ControlId::TourPrevious, ControlId::TourPause, ControlId::TourNext,
                                  ControlId::TourLeave};

@@ -70,8 +70,12 @@ constexpr MoreCutWords kMoreCutWords[] = {
 
 }  // namespace
 
+float min_target_px(const UiState& s) {
+    return std::max(kMinButtonPx, std::ceil(kMinTouchMm * std::max(0.0f, s.px_per_mm)));
+}
+
 float button_size(const UiState& s) {
-    return std::max(kMinButtonPx, std::floor(static_cast<float>(std::min(s.width, s.height)) / 11.0f));
+    return std::max(min_target_px(s), std::floor(static_cast<float>(std::min(s.width, s.height)) / 11.0f));
 }
 
 std::string ui_text(const std::string& key, const std::string& language) {
@@ -153,7 +157,7 @@ std::vector<Control> layout_controls(const UiState& s) {
     // below a button; groups that still do not fit are left out.
     const float n = static_cast<float>(std::max<size_t>(s.group_names.size(), 1));
     const float gw = std::max(
-        kMinButtonPx, std::min(std::floor(b * 2.4f), std::floor((static_cast<float>(s.width) - gap) / n - gap)));
+        min_target_px(s), std::min(std::floor(b * 2.4f), std::floor((static_cast<float>(s.width) - gap) / n - gap)));
     for (size_t i = 0; i < s.group_names.size(); ++i) {
         if (gx + gw > static_cast<float>(s.width)) break;
         Control c;

@@ -72,9 +72,11 @@ struct UiState {
     float drift_x = 0.0f, drift_y = 0.0f;      // anti burn-in offset, pixels
     bool cut_on = false, cut_editing = false;  // the cut plane (kiosk/app/cut_plane.h)
     std::string cut_axis = "axial";            // its preset (cut_axis_name)
+    float px_per_mm = 0.0f;                    // the display's density; 0: unknown (pixel minimum only)
 };
 
 inline constexpr float kMinButtonPx = 64.0f;
+inline constexpr float kMinTouchMm = 9.0f;  // a fingertip: no touch target is smaller on either side
 inline constexpr float kTouchSlopPx = 8.0f;
 
 std::vector<Control> layout_controls(const UiState& state);
@@ -82,7 +84,10 @@ std::vector<Control> layout_controls(const UiState& state);
 void mirror_for_rtl(std::vector<Control>& controls, int width);
 // The control at (x, y), or nullptr; disabled controls are never hit.
 const Control* hit_test(const std::vector<Control>& controls, float x, float y);
-// The side of a control in pixels: a finger's size, at least kMinButtonPx.
+// The smallest side of any touch target in pixels: kMinButtonPx, and kMinTouchMm
+// when the display's density is known.
+float min_target_px(const UiState& state);
+// The side of a control in pixels: a finger's size, at least min_target_px.
 float button_size(const UiState& state);
 // A UI word in `language` ("home", "language", "style", "group", "lod", "auto", "isolate", "cut", "off",
 // "move", "fixed", "axial", "coronal", "sagittal"): en, de, fr, es, ru, el, ar, he, zh, ja; English fallback.

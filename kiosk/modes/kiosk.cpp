@@ -15,6 +15,7 @@ int run_kiosk_mode(platform::Surface& surface, const ViewOptions& o, const scene
     ko.auto_lod = o.auto_lod;
     ko.verbose = o.kiosk_stats;
     ko.renderer = o.renderer;
+    ko.display_width_mm = o.display_width_mm;
     ko.load.file_colours = !o.model_path.empty();
     // Under systemd: ready after the first frame, the watchdog fed only while frames come.
     platform::ServiceNotifier notifier;

@@ -18,7 +18,8 @@ constexpr Key kKeys[] = {{"bundle", nullptr},
                          {"display_mode", "mode"},
                          {"device", "device"},
                          {"log_level", "log-level"},
-                         {"touch_calibration", "touch-calibration"}};
+                         {"touch_calibration", "touch-calibration"},
+                         {"display_width_mm", "display-width-mm"}};
 
 std::string trim(const std::string& s) {
     const size_t a = s.find_first_not_of(" \t\r"), b = s.find_last_not_of(" \t\r");

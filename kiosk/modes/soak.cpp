@@ -174,6 +174,7 @@ int run_soak_mode(platform::Surface& surface, const ViewOptions& o, const scene:
     ko.auto_lod = o.auto_lod;
     ko.verbose = o.kiosk_stats;
     ko.renderer = o.renderer;
+    ko.display_width_mm = o.display_width_mm;
     ko.load.file_colours = !o.model_path.empty();
     ko.hooks.input = [&](const KioskApp& app, double now, std::vector<platform::InputEvent>& events) {
         visitors.poll(app, now, events);

@@ -17,18 +17,31 @@ int report(const Error& error) {
 }
 
 const std::set<std::string>& view_value_options() {
-    static const std::set<std::string> names = {"platform",     "size",
-                                                "mode",         "device",
-                                                "rotate",       "model",
-                                                "contours",     "scene",
-                                                "style",        "lod",
-                                                "select",       "view",
-                                                "line-width",   "ssaa",
-                                                "screenshot",   "frames",
-                                                "replay",       "bench-triangles",
-                                                "bench-frames", "buffer-access",
-                                                "soak",         "touch-calibration",
-                                                "log-level",    "preview-screenshot"};
+    static const std::set<std::string> names = {"platform",
+                                                "size",
+                                                "mode",
+                                                "device",
+                                                "rotate",
+                                                "model",
+                                                "contours",
+                                                "scene",
+                                                "style",
+                                                "lod",
+                                                "select",
+                                                "view",
+                                                "line-width",
+                                                "ssaa",
+                                                "screenshot",
+                                                "frames",
+                                                "replay",
+                                                "bench-triangles",
+                                                "bench-frames",
+                                                "buffer-access",
+                                                "soak",
+                                                "touch-calibration",
+                                                "display-width-mm",
+                                                "log-level",
+                                                "preview-screenshot"};
     return names;
 }
 
@@ -76,6 +89,11 @@ Status parse_surface(const CliArgs& args, platform::SurfaceOptions& so) {
 }
 
 Status parse_picture(const CliArgs& args, ViewOptions& o) {
+    auto mm = args.get_double("display-width-mm", 0.0);
+    if (!mm) return mm.error();
+    if (*mm != 0.0 && !(*mm >= 20.0 && *mm <= 10000.0))
+        return input_error("option --display-width-mm: a screen's width between 20 and 10000 mm");
+    o.display_width_mm = *mm;
     auto lod = args.get_double("lod", 1.0);
     if (!lod) return lod.error();
     if (!(lod.value() > 0.0 && lod.value() <= 1.0)) return input_error("--lod must be in (0, 1]");

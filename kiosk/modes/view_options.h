@@ -36,6 +36,7 @@ struct ViewOptions {
     long bench_triangles = 1000000;
     long bench_frames = 9;
     double soak_minutes = 0.0;               // --soak; 0: no soak
+    double display_width_mm = 0.0;           // --display-width-mm; 0: as the display reports it
     bool author = false;                     // --author: the authoring window (kiosk/author/)
     std::vector<std::string> author_inputs;  // --author's BUNDLE/, scene.json and/or model files
     std::string preview_screenshot;          // --preview-screenshot: the author's preview in a replay

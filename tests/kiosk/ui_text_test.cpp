@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "kiosk/app/text.h"
+#include "kiosk/app/tour_controls.h"
 #include "kiosk/app/ui.h"
 
 namespace body::kiosk {
@@ -41,6 +42,32 @@ TEST(Ui, ControlsAreFingerSizedOnScreenAndDoNotOverlap) {
             }
         }
     }
+}
+
+// Issue 27: no touch target under 9 mm on a display whose size is known, on
+// dense and coarse screens alike (the pixel minimum alone is 4 mm on a 4K 15").
+TEST(Ui, EveryTouchTargetIsAtLeastNineMillimetresWhenTheDensityIsKnown) {
+    for (auto [w, h] : {std::pair{800, 480}, {1280, 800}, {1920, 1080}, {3840, 2160}}) {
+        for (float px_per_mm : {3.0f, 6.0f, 11.0f, 16.0f}) {
+            UiState s = state(w, h);
+            s.px_per_mm = px_per_mm;
+            s.has_selection = s.selection_has_group = true;
+            std::vector<Control> controls = layout_controls(s);
+            TourUiState tour;
+            tour.tour_titles = {"Limbic system"};
+            tour.playing = true;
+            add_tour_controls(s, tour, controls);
+            const float least = kMinTouchMm * px_per_mm;
+            EXPECT_GE(min_target_px(s), least);
+            for (const Control& c : controls) {
+                if (c.id == ControlId::TourCaption || c.id == ControlId::Countdown) continue;  // text, not targets
+                EXPECT_GE(c.rect.w, least) << w << "x" << h << " at " << px_per_mm << " px/mm: " << c.text;
+                EXPECT_GE(c.rect.h, least) << w << "x" << h << " at " << px_per_mm << " px/mm: " << c.text;
+            }
+        }
+    }
+    UiState unknown = state(1280, 800);
+    EXPECT_EQ(min_target_px(unknown), kMinButtonPx);
 }
 
 TEST(Ui, HitTestingFindsTheControlAndToleratesNearMisses) {
