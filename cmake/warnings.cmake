@@ -7,6 +7,11 @@ if(BODY_SANITIZE)
   add_compile_options(-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined)
   add_link_options(-fsanitize=address,undefined)
 endif()
+# libFuzzer steers by coverage of the code under test, not only of the target's
+# file: instrument every library (fuzzer-no-link), the targets add the driver.
+if(BODY_FUZZ)
+  add_compile_options(-fsanitize=fuzzer-no-link)
+endif()
 if(BODY_SANITIZE_THREAD)
   add_compile_options(-fsanitize=thread -fno-omit-frame-pointer)
   add_link_options(-fsanitize=thread)
