@@ -8,6 +8,7 @@
 // initialised and every style drawn once on one triangle before the model is
 // loaded: the driver's fixed cost apart).
 #include <string>
+#include <vector>
 
 #include "kiosk/render/renderer.h"
 #include "kiosk/scene/model_source.h"
@@ -56,6 +57,11 @@ Status compare_pins(render::Renderer& renderer, render::ModelId id, ModelSource&
 // without it, in alternating pairs (goal <= 1.3x), and the plane without caps.
 Status compare_cut_plane(render::Renderer& renderer, render::ModelId id, const render::View& camera,
                          const render::FrameOptions& frame, int min_pairs, double seconds);
+
+// Wall milliseconds of one frame of `r` (glFinish included): the tables' one timer.
+double frame_ms(render::Renderer& r, const render::View& camera, const render::FrameOptions& frame);
+// The median of `values`; 0 when empty.
+double median(std::vector<double> values);
 
 // Peak and current resident set size of this process in KiB (/proc/self/status).
 long peak_rss_kib();

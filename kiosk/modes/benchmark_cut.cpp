@@ -13,13 +13,6 @@
 namespace body::kiosk {
 namespace {
 
-double frame_ms(render::Renderer& r, const render::View& camera, const render::FrameOptions& frame) {
-    const auto t0 = std::chrono::steady_clock::now();
-    r.render(camera, render::Lighting{}, frame);
-    glFinish();
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
-
 double quantile(std::vector<double> v, double q) {
     if (v.empty()) return 0.0;
     std::sort(v.begin(), v.end());

@@ -1,5 +1,10 @@
 // The benchmark's stand-in model (contract in benchmark.h): the bunny, or a
-// bumpy icosphere where it is not installed, subdivided toward the asked-for size.
+// bumpy icosphere where it is not installed, subdivided toward the asked-for size;
+// and the frame timer and median every table uses.
+#include <GLES3/gl3.h>
+
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <unordered_map>
 
@@ -70,6 +75,20 @@ int subdivisions_toward(size_t triangles, size_t target) {
     const double t = static_cast<double>(target);
     for (double n = static_cast<double>(triangles); n * 4.0 / t < t / n; n *= 4.0) ++k;
     return k;
+}
+
+double frame_ms(render::Renderer& r, const render::View& camera, const render::FrameOptions& frame) {
+    const auto t0 = std::chrono::steady_clock::now();
+    r.render(camera, render::Lighting{}, frame);
+    glFinish();
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+double median(std::vector<double> v) {
+    if (v.empty()) return 0.0;
+    std::sort(v.begin(), v.end());
+    const size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
 }  // namespace body::kiosk

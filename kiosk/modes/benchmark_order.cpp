@@ -14,19 +14,6 @@
 namespace body::kiosk {
 namespace {
 
-double frame_ms(render::Renderer& r, const render::View& camera, const render::FrameOptions& frame) {
-    const auto t0 = std::chrono::steady_clock::now();
-    r.render(camera, render::Lighting{}, frame);
-    glFinish();
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
-
-double median(std::vector<double> v) {
-    if (v.empty()) return 0.0;
-    std::sort(v.begin(), v.end());
-    return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
-}
-
 // The static mesh of one level: vertex cache order, then vertices in first-use
 // order; the .bpm's own codes (same formats as the kiosk's model).
 struct StaticLevel {
