@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "shared/error.h"
+#include "shared/scene/scene_pack.h"
 
 namespace body::cli {
 
@@ -25,12 +26,8 @@ int report(const Error& error);
 // total; for the `progress` callbacks of the long commands (callers check isatty).
 std::function<void(size_t, size_t)> progress_bar(const char* unit);
 
-// `bodygen pack` without the printing (cmd_pack.cpp): validates SCENE and its
-// models and writes the bundle atomically; `bytes` is the bundle's size.
-struct PackSummary {
-    std::string bundle;
-    size_t models = 0, groups = 0, triangles = 0, bytes = 0;
-};
-Result<PackSummary> pack_scene(const std::string& scene_path, const std::string& bundle);
+// `bodygen pack` without the printing: shared/scene/scene_pack.h.
+using scene::pack_scene;
+using scene::PackSummary;
 
 }  // namespace body::cli
