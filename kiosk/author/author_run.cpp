@@ -11,6 +11,7 @@
 #include "kiosk/app/replay.h"
 #include "kiosk/app/text.h"
 #include "kiosk/author/editor.h"
+#include "kiosk/author/manipulation.h"
 #include "kiosk/author/panel_draw.h"
 #include "kiosk/render/image.h"
 #include "kiosk/scene/scene_models.h"
@@ -32,8 +33,28 @@ constexpr std::array<std::array<float, 3>, 6> kPalette{{{0.85f, 0.55f, 0.45f},
 bool model_file(const std::string& p) {
     std::string ext = fs::path(p).extension().string();
     for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    return ext == ".bpm" || ext == ".obj";
+    return ext == ".bpm" || ext == ".obj" || ext == ".stl" || ext == ".ply";
 }
+
+// The manipulation sphere's rotate (Alt+drag) or scale (Alt+Shift+drag) in progress:
+// the model is drawn at `current` until the release makes it one command.
+struct Manipulation {
+    bool scale = false;
+    int model = -1;
+    glm::vec2 centre{0.0f};  // the sphere's centre on screen (view pixels)
+    float radius_px = 1.0f;
+    glm::vec2 press{0.0f};
+    glm::vec3 world_centre{0.0f};
+    scene::Transform start, current;
+};
+
+// A pin being dragged to another point of its model's surface.
+struct PinDrag {
+    int model = -1, pin = -1;
+    glm::vec2 press{0.0f};
+    bool moved = false;
+    std::optional<std::array<float, 3>> anchor;  // where the pointer last hit the model
+};
 
 class AuthorLoop {
 public:
@@ -49,6 +70,13 @@ private:
     void feed(const InputEvent& e);
     void view_event(const InputEvent& e);
     void surface_point(int model, float x, float y);
+    std::optional<std::array<float, 3>> anchor_at(int model, float x, float y);
+    std::optional<glm::vec2> to_view_pixels(const glm::vec3& world) const;
+    bool manipulate(const InputEvent& e);
+    bool drag_pin(const InputEvent& e);
+    void commit_move(int model, const glm::vec3& delta, bool snap);
+    void update_pin_markers();
+    bool same_models_but_one(const scene::Scene& s, size_t& index, bool& added) const;
     void serve_requests();
     void preview();
     void bind(long frame, double now);
@@ -72,11 +100,16 @@ private:
     // The 3-D view's mouse: right drag pans, a left click without a drag selects.
     bool right_down_ = false, left_down_ = false, left_moved_ = false;
     float last_x_ = 0, last_y_ = 0, down_x_ = 0, down_y_ = 0;
+    uint32_t down_modifiers_ = 0;
+    std::optional<Manipulation> manip_;
+    std::optional<PinDrag> pin_drag_;
 };
 
 glm::mat4 AuthorLoop::placement(int i) const {
-    return glm::translate(glm::mat4(1.0f), app_->model(i).offset) *
-           to_model_matrix(editor_.document().scene().models[static_cast<size_t>(i)].transform);
+    const scene::Transform& t = manip_ && manip_->model == i
+                                    ? manip_->current
+                                    : editor_.document().scene().models[static_cast<size_t>(i)].transform;
+    return glm::translate(glm::mat4(1.0f), app_->model(i).offset) * to_model_matrix(t);
 }
 
 Status AuthorLoop::load_models() {
@@ -110,7 +143,24 @@ void AuthorLoop::rebuild_app() {
     app_->select(editor_.selection().model);
 }
 
-// After an edit, undo or redo: reload when the model files changed, else rebind.
+// Whether `s` is the loaded scene with one model added or removed at `index`.
+bool AuthorLoop::same_models_but_one(const scene::Scene& s, size_t& index, bool& added) const {
+    const auto& now = s.models;
+    const auto& was = loaded_.models;
+    if (now.size() + 1 != was.size() && now.size() != was.size() + 1) return false;
+    added = now.size() > was.size();
+    const auto& longer = added ? now : was;
+    const auto& shorter = added ? was : now;
+    index = 0;
+    while (index < shorter.size() && shorter[index].path == longer[index].path) ++index;
+    for (size_t i = index; i < shorter.size(); ++i)
+        if (shorter[i].path != longer[i + 1].path) return false;
+    return true;
+}
+
+// After an edit, undo or redo: a model added or removed is uploaded or dropped
+// alone (the others stay on the GPU); other file changes reload every model;
+// the rest is rebound.
 void AuthorLoop::sync() {
     const Document& doc = editor_.document();
     if (doc.revision() == seen_revision_) return;
@@ -118,6 +168,21 @@ void AuthorLoop::sync() {
     const scene::Scene& s = doc.scene();
     bool same_files = s.models.size() == loaded_.models.size();
     for (size_t i = 0; same_files && i < s.models.size(); ++i) same_files = s.models[i].path == loaded_.models[i].path;
+    size_t index = 0;
+    bool added = false;
+    if (!same_files && models_ && same_models_but_one(s, index, added)) {
+        const auto at = loaded_.models.begin() + static_cast<std::ptrdiff_t>(index);
+        if (added) {
+            loaded_.models.insert(at, s.models[index]);
+            if (auto st = models_->insert_model(index); !st)
+                std::fprintf(stderr, "bodyview: author: %s: %s\n", s.models[index].name.c_str(),
+                             st.error().message.c_str());
+        } else {
+            loaded_.models.erase(at);
+            models_->erase_model(index);
+        }
+        same_files = true;
+    }
     if (!same_files || !models_) {
         if (auto st = load_models(); !st) std::fprintf(stderr, "bodyview: author: %s\n", st.error().message.c_str());
     }
@@ -179,12 +244,113 @@ void AuthorLoop::serve_requests() {
     }
 }
 
+// A world point in the view's pixels (as events reach the view: unshifted); nullopt behind the eye.
+std::optional<glm::vec2> AuthorLoop::to_view_pixels(const glm::vec3& world) const {
+    const OrbitCamera& cam = app_->camera();
+    const glm::vec4 clip = cam.projection() * cam.view() * glm::vec4(world, 1.0f);
+    if (clip.w <= 1e-6f) return std::nullopt;
+    const glm::vec2 ndc(clip.x / clip.w, clip.y / clip.w);
+    return glm::vec2((ndc.x * 0.5f + 0.5f) * static_cast<float>(cam.width()),
+                     (0.5f - ndc.y * 0.5f) * static_cast<float>(cam.height()));
+}
+
+// Alt+drag on the selected model's sphere rotates it, Alt+Shift+drag scales it;
+// Ctrl (or snap on) snaps. True when the event was the manipulation's.
+bool AuthorLoop::manipulate(const InputEvent& e) {
+    using T = InputEvent::Type;
+    if (e.type == T::MouseDown && e.button() == MouseButton::Left && (e.modifiers & kModAlt)) {
+        const int sel = app_->selected();
+        if (sel < 0) return false;
+        const glm::vec3 c = app_->model_center(sel);
+        const float r = app_->info(sel).radius * KioskApp::kSphereFraction;
+        const auto centre = to_view_pixels(c);
+        if (!centre) return false;
+        const Ray ray = app_->camera().ray(e.x, e.y);
+        const glm::vec3 oc = ray.origin - c;  // the press must be on the sphere
+        const float b = glm::dot(oc, ray.direction), disc = b * b - (glm::dot(oc, oc) - r * r);
+        if (disc < 0.0f) return false;
+        Manipulation m;
+        m.scale = (e.modifiers & kModShift) != 0;
+        m.model = sel;
+        m.centre = *centre;
+        m.radius_px = std::max(app_->camera().screen_radius(c, r), 4.0f);
+        m.press = glm::vec2(e.x, e.y);
+        m.world_centre = c;
+        m.start = m.current = editor_.document().scene().models[static_cast<size_t>(sel)].transform;
+        manip_ = m;
+        return true;
+    }
+    if (!manip_) return false;
+    if (e.type != T::MouseMove && e.type != T::MouseUp) return true;
+    Manipulation& m = *manip_;
+    const bool snap = editor_.snap() || (e.modifiers & kModCtrl);
+    const glm::vec2 at(e.x, e.y);
+    if (m.scale) {
+        const float from = std::max(glm::length(m.press - m.centre), 4.0f);
+        m.current = scaled(m.start, glm::length(at - m.centre) / from, m.world_centre, snap);
+    } else {
+        const glm::vec3 a = arcball_point(m.press, m.centre, m.radius_px), b = arcball_point(at, m.centre, m.radius_px);
+        const glm::mat3 view = glm::mat3(app_->camera().view());  // world -> view rotation
+        const glm::mat3 turn = glm::transpose(view) * rotation_between(a, b) * view;
+        m.current = rotated(m.start, turn, m.world_centre, snap);
+    }
+    if (e.type == T::MouseUp) {
+        const Manipulation done = m;
+        manip_.reset();
+        if (!(done.current == done.start))
+            (void)editor_.set_transform(done.model, done.current, done.scale ? "scale" : "rotate");
+    }
+    return true;
+}
+
+// A press on a pin's marker picks it up; the release puts it where the pointer
+// last hit its model (one command); a release off the model leaves it.
+bool AuthorLoop::drag_pin(const InputEvent& e) {
+    using T = InputEvent::Type;
+    if (e.type == T::MouseDown && e.button() == MouseButton::Left && !e.modifiers) {
+        const float reach = std::max(8.0f, 6.0f * editor_.panel_width() / 400.0f);
+        for (const PinMarker& p : editor_.pin_markers())
+            if (std::abs(p.x - view_shift() - e.x) <= reach && std::abs(p.y - e.y) <= reach) {
+                pin_drag_ = PinDrag{p.model, p.pin, glm::vec2(e.x, e.y), false, std::nullopt};
+                return true;
+            }
+        return false;
+    }
+    if (!pin_drag_) return false;
+    if (e.type == T::MouseMove || e.type == T::MouseUp) {
+        pin_drag_->moved = pin_drag_->moved || glm::length(glm::vec2(e.x, e.y) - pin_drag_->press) >= 3.0f;
+        if (auto a = anchor_at(pin_drag_->model, e.x, e.y); a && pin_drag_->moved) pin_drag_->anchor = a;
+    }
+    if (e.type == T::MouseUp) {
+        const PinDrag d = *pin_drag_;
+        pin_drag_.reset();
+        if (d.anchor) (void)editor_.move_pin(d.model, d.pin, *d.anchor);
+    }
+    return true;
+}
+
+// The Shift+drag move as one command; snapped, the translate lands on the model's grid.
+void AuthorLoop::commit_move(int sel, const glm::vec3& d, bool snap) {
+    editor_.select_model(sel);
+    Status st = ok_status();
+    if (snap) {
+        scene::Transform t = editor_.document().scene().models[static_cast<size_t>(sel)].transform;
+        t.translate = snap_translate({t.translate[0] + d.x, t.translate[1] + d.y, t.translate[2] + d.z},
+                                     grid_step(app_->info(sel).radius));
+        st = editor_.set_transform(sel, t, "move");
+    } else {
+        st = editor_.move_model(sel, {d.x, d.y, d.z});
+    }
+    if (!st) std::fprintf(stderr, "bodyview: author: %s\n", st.error().message.c_str());
+}
+
 // The view is drawn centred right of the panel (shifted by half its width):
 // events reach the camera, picking and the manipulation sphere shifted back.
 void AuthorLoop::view_event(const InputEvent& event) {
     using T = InputEvent::Type;
     InputEvent e = event;
     e.x -= view_shift();
+    if (manipulate(e) || drag_pin(e)) return;
     if (e.type == T::MouseDown && e.button() == MouseButton::Right) {
         right_down_ = true;
         last_x_ = e.x;
@@ -198,6 +364,7 @@ void AuthorLoop::view_event(const InputEvent& event) {
         if (e.type == T::MouseUp) right_down_ = false;
         return;
     }
+    if (e.type == T::MouseDown && e.button() == MouseButton::Left) down_modifiers_ = e.modifiers;
     if (e.type == T::MouseDown && e.button() == MouseButton::Left && !(e.modifiers & kModShift)) {
         left_down_ = true;
         left_moved_ = false;
@@ -216,23 +383,42 @@ void AuthorLoop::view_event(const InputEvent& event) {
     }
     // The manipulation sphere's move becomes one command when the drag ends.
     const int sel = app_->selected();
-    if (e.type == T::MouseUp && sel >= 0 && glm::length(app_->model(sel).offset) > 0.0f) {
-        const glm::vec3 d = app_->model(sel).offset;
-        editor_.select_model(sel);
-        if (auto s = editor_.move_model(sel, {d.x, d.y, d.z}); !s)
-            std::fprintf(stderr, "bodyview: author: %s\n", s.error().message.c_str());
-    }
+    if (e.type == T::MouseUp && sel >= 0 && glm::length(app_->model(sel).offset) > 0.0f)
+        commit_move(sel, app_->model(sel).offset, editor_.snap() || ((e.modifiers | down_modifiers_) & kModCtrl));
 }
 
-// The point a click hit on `model`, in the model file's coordinates (a pin's anchor).
-void AuthorLoop::surface_point(int model, float x, float y) {
-    if (model < 0) return;
+// The point (x, y) hits on `model`, in the model file's coordinates (a pin's anchor).
+std::optional<std::array<float, 3>> AuthorLoop::anchor_at(int model, float x, float y) {
+    if (model < 0) return std::nullopt;
     const Ray ray = app_->camera().ray(x, y);
+    auto locks = models_->lock();
     const auto t = models_->pick(static_cast<size_t>(model), placement(model), ray);
-    if (!t) return;
+    if (!t) return std::nullopt;
     const glm::vec3 hit = ray.origin + ray.direction * *t;
     const glm::vec3 a = glm::vec3(glm::inverse(placement(model)) * glm::vec4(hit, 1.0f));
-    editor_.set_surface_point(model, {a.x, a.y, a.z});
+    return std::array<float, 3>{a.x, a.y, a.z};
+}
+
+void AuthorLoop::surface_point(int model, float x, float y) {
+    if (auto a = anchor_at(model, x, y)) editor_.set_surface_point(model, *a);
+}
+
+// Where the pins of the selected model are on screen (window pixels), for the panel painter and drag_pin.
+void AuthorLoop::update_pin_markers() {
+    std::vector<PinMarker> markers;
+    const int sel = app_->selected();
+    const scene::Scene& s = editor_.document().scene();
+    if (sel >= 0 && sel < static_cast<int>(s.models.size())) {
+        const auto& pins = s.models[static_cast<size_t>(sel)].pins;
+        for (size_t k = 0; k < pins.size(); ++k) {
+            std::array<float, 3> a = pins[k].anchor;
+            if (pin_drag_ && pin_drag_->pin == static_cast<int>(k) && pin_drag_->anchor) a = *pin_drag_->anchor;
+            const glm::vec3 w = glm::vec3(placement(sel) * glm::vec4(a[0], a[1], a[2], 1.0f));
+            if (auto p = to_view_pixels(w))
+                markers.push_back(PinMarker{p->x + view_shift(), p->y, sel, static_cast<int>(k)});
+        }
+    }
+    editor_.set_pin_markers(std::move(markers));
 }
 
 void AuthorLoop::feed(const InputEvent& e) {
@@ -317,6 +503,7 @@ int AuthorLoop::run() {
         if (app_->selected() != editor_.selection().model) app_->select(editor_.selection().model);
         auto locks = models_->lock();
         app_->update(now_);
+        update_pin_markers();
         models_->poll_streams();
         bind(frame, now_);
         locks.clear();

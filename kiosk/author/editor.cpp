@@ -6,6 +6,9 @@
 #include <cmath>
 #include <filesystem>
 
+#include "kiosk/author/model_convert.h"
+#include "shared/scene/scene_pack.h"
+
 namespace body::kiosk::author {
 
 namespace fs = std::filesystem;
@@ -14,6 +17,7 @@ const std::vector<std::string>& help_lines() {
     static const std::vector<std::string> lines = {
         "Keys",
         "Ctrl+S  save scene.json          Ctrl+Q  quit",
+        "Ctrl+P  pack the bundle (saves first)   G  snap on/off",
         "Ctrl+Z  undo      Ctrl+Shift+Z / Ctrl+Y  redo",
         "P  preview the kiosk (Esc: back)   V  start view = camera",
         "Delete  remove the selected model, group, tour or step",
@@ -22,6 +26,9 @@ const std::vector<std::string>& help_lines() {
         "Mouse",
         "click  select     left drag  orbit     right drag  pan",
         "wheel  zoom       Shift+drag  move the selected model",
+        "Alt+drag  rotate it (arcball)   Alt+Shift+drag  scale it",
+        "Ctrl while dragging  snap (grid, 15 degrees, 0.1 scale)",
+        "drag a pin  move it on its model's surface",
         "Fields",
         "click a value: type; Enter commits, Tab next, Esc cancels",
         "click a choice: next value (Shift+click: type it)",
@@ -31,6 +38,10 @@ const std::vector<std::string>& help_lines() {
 
 Editor::Editor(Document document) : document_(std::move(document)) {
     status_ = document_.path().empty() ? "new scene (not saved)" : document_.path();
+    if (!document_.path().empty()) {
+        const fs::path folder = fs::absolute(document_.path()).parent_path().lexically_normal();
+        pack_to_ = (folder.parent_path() / (folder.filename().string() + "-bundle")).string();
+    }
 }
 
 void Editor::select_model(int model) {
@@ -66,7 +77,7 @@ void Editor::report(const Status& s, const std::string& done) { status_ = s ? do
 const std::vector<PanelRow>& Editor::rows() {
     std::string status = status_;
     if (document_.dirty()) status = "* " + status;
-    rows_ = layout_panel(document_.scene(), selection_, status, layout_);
+    rows_ = layout_panel(document_.scene(), selection_, status, layout_, snap_);
     return rows_;
 }
 
@@ -92,6 +103,34 @@ Status Editor::move_model(int model, const std::array<float, 3>& delta) {
                            });
 }
 
+Status Editor::set_transform(int model, const scene::Transform& transform, const std::string& what) {
+    const std::string name = document_.scene().models.at(static_cast<size_t>(model)).name;
+    Status s = document_.apply(what + " " + name, [&](scene::Scene& sc) {
+        sc.models[static_cast<size_t>(model)].transform = transform;
+        return ok_status();
+    });
+    report(s, what + " " + name + (snap_ ? " (snapped)" : ""));
+    return s;
+}
+
+Status Editor::pack() {
+    if (focused_ && !commit()) return input_error(status_);
+    if (document_.path().empty()) return input_error("pack: the scene has no file yet");
+    Status saved = document_.save();
+    if (!saved) {
+        report(saved, "");
+        return saved;
+    }
+    auto packed = scene::pack_scene(document_.path(), pack_to_);
+    if (!packed) {
+        status_ = "pack failed: " + packed.error().message;
+        return packed.error();
+    }
+    status_ = "packed " + std::to_string(packed->models) + " models, " + std::to_string(packed->triangles) +
+              " triangles -> " + packed->bundle;
+    return ok_status();
+}
+
 Status Editor::set_start_view(const scene::HomeCamera& camera) {
     Status s = document_.apply("start view", [&](scene::Scene& sc) {
         sc.camera = camera;
@@ -101,13 +140,20 @@ Status Editor::set_start_view(const scene::HomeCamera& camera) {
     return s;
 }
 
-Status Editor::add_model(const std::string& file) {
+Status Editor::add_model(const std::string& given) {
+    std::string file = given;
     std::string ext = fs::path(file).extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-    if (ext != ".bpm" && ext != ".obj")
-        return input_error(file + ": only .bpm and .obj files (bodygen lod makes a .bpm from .stl/.ply/.gltf)");
     std::error_code ec;
     if (!fs::is_regular_file(file, ec)) return input_error(file + ": not a readable file");
+    if (needs_conversion(file)) {
+        const fs::path base = document_.path().empty() ? fs::current_path() : fs::path(document_.path()).parent_path();
+        auto bpm = convert_to_bpm(file, (base / "models").string());
+        if (!bpm) return bpm.error();
+        file = bpm.value();
+    } else if (ext != ".bpm" && ext != ".obj") {
+        return input_error(file + ": not a model (.bpm, .obj, .stl or .ply; bodygen lod converts .gltf)");
+    }
     const std::string stem = fs::path(file).stem().string();
     Status s = document_.apply("add " + stem, [&](scene::Scene& sc) {
         std::string name = stem;
@@ -202,6 +248,13 @@ void Editor::run(Command command, const PanelRow* row) {
             break;
         case Command::StepUp: report(move_step(-1), "step moved"); break;
         case Command::StepDown: report(move_step(+1), "step moved"); break;
+        case Command::TourUp: report(move_tour(-1), "tour moved"); break;
+        case Command::TourDown: report(move_tour(+1), "tour moved"); break;
+        case Command::Pack: (void)pack(); break;
+        case Command::SnapToggle:
+            snap_ = !snap_;
+            status_ = snap_ ? "snap on: grid, 15 degrees, 0.1 scale" : "snap off";
+            break;
     }
 }
 
@@ -268,6 +321,17 @@ Status Editor::remove_pin(int model, int pin) {
     });
 }
 
+Status Editor::move_pin(int model, int pin, const std::array<float, 3>& anchor) {
+    Status s = document_.apply("move pin", [&](scene::Scene& sc) -> Status {
+        auto& pins = sc.models.at(static_cast<size_t>(model)).pins;
+        if (pin < 0 || pin >= static_cast<int>(pins.size())) return input_error("move pin: no such pin");
+        pins[static_cast<size_t>(pin)].anchor = anchor;
+        return ok_status();
+    });
+    report(s, "pin moved (undo: Ctrl+Z)");
+    return s;
+}
+
 Status Editor::add_tour() {
     std::string name;
     for (int n = 1; name.empty() || document_.scene().tour_index(name) >= 0; ++n) name = "tour " + std::to_string(n);
@@ -320,6 +384,20 @@ Status Editor::move_step(int delta) {
         return ok_status();
     });
     if (s) selection_.step = to;
+    return s;
+}
+
+Status Editor::move_tour(int delta) {
+    const int count = static_cast<int>(document_.scene().tours.size());
+    if (selection_.tour < 0 || selection_.tour >= count || selection_.step >= 0)
+        return input_error("move tour: select a tour first");
+    const int to = selection_.tour + delta;
+    if (to < 0 || to >= count) return input_error("move tour: already at the end");
+    const Status s = document_.apply("move tour", [&](scene::Scene& sc) {
+        std::swap(sc.tours[static_cast<size_t>(selection_.tour)], sc.tours[static_cast<size_t>(to)]);
+        return ok_status();
+    });
+    if (s) selection_.tour = to;
     return s;
 }
 
@@ -439,6 +517,10 @@ bool Editor::prompt_key(const InputEvent& e) {
 bool Editor::key(const InputEvent& e) {
     if (!e.pressed) return focused_;
     const bool ctrl = (e.modifiers & kModCtrl) != 0, shift = (e.modifiers & kModShift) != 0;
+    if (ctrl && e.key == 'P') {
+        (void)pack();
+        return true;
+    }
     if (ctrl && (e.key == 'S' || e.key == 'Z' || e.key == 'Y' || e.key == 'Q')) {
         if (e.key == 'S') {
             if (commit()) run(Command::Save, nullptr);
@@ -455,6 +537,7 @@ bool Editor::key(const InputEvent& e) {
     switch (e.key) {
         case 'P': run(Command::Preview, nullptr); return true;
         case 'V': run(Command::StartView, nullptr); return true;
+        case 'G': run(Command::SnapToggle, nullptr); return true;
         case platform::kKeyF1: help_ = !help_; return true;
         case platform::kKeyDelete: remove_selected(); return true;
         case platform::kKeyEscape:

@@ -8,8 +8,9 @@
 //
 // Keys (listed by the help overlay, `?` or F1):
 //   Ctrl+S save   Ctrl+Z undo   Ctrl+Shift+Z / Ctrl+Y redo   P preview (Esc back)
-//   V start view from the camera   Delete remove the selection (model, group,
-//   tour or step)   Ctrl+Q quit
+//   Ctrl+P pack the bundle (saves first)   G snap on/off   V start view from
+//   the camera   Delete remove the selection (model, group, tour or step)
+//   Ctrl+Q quit
 //   In a field: typing, Backspace, Delete, arrows (Shift extends), Home, End,
 //   Ctrl+A, Enter commits, Tab commits and moves on, Esc cancels.
 #include <deque>
@@ -27,6 +28,13 @@ namespace body::kiosk::author {
 
 // AddStep: the loop answers with add_step(step_request_tour(), its camera, the visible models).
 enum class Request { Preview, StartView, Quit, AddStep };
+
+// A pin of the selected model where the view shows it (window pixels): the
+// painter marks it, a drag moves it (author_run.cpp).
+struct PinMarker {
+    float x = 0, y = 0;
+    int model = -1, pin = -1;
+};
 
 // The lines of the help overlay.
 const std::vector<std::string>& help_lines();
@@ -54,7 +62,20 @@ public:
 
     // Edits the loop asks for: the manipulation sphere's move, the camera as the start view.
     Status move_model(int model, const std::array<float, 3>& delta);
+    // The manipulation sphere's rotate or scale (or a snapped move): the whole transform, one command.
+    Status set_transform(int model, const scene::Transform& transform, const std::string& what);
+    // Snapping of the manipulation sphere's edits (manipulation.h), toggled by G or the panel.
+    bool snap() const { return snap_; }
+    void set_snap(bool on) { snap_ = on; }
+    // Pack: saves, then packs the saved scene into pack_to() (scene/scene_pack.h:
+    // validated, atomic); the status line says what was packed or what failed, where.
+    Status pack();
+    // Default: a sibling of the scene's folder, "<folder>-bundle/" (never inside what it copies).
+    const std::string& pack_to() const { return pack_to_; }
+    void set_pack_to(std::string dir) { pack_to_ = std::move(dir); }
     Status set_start_view(const scene::HomeCamera& camera);
+    // .bpm/.obj are referenced where they lie; .stl/.ply are converted into a
+    // .bpm in the scene's models/ folder first (model_convert.h).
     Status add_model(const std::string& file);
     Status remove_model(int model);
     // Pins: the loop reports the surface point a click in the view hit (model
@@ -62,6 +83,10 @@ public:
     void set_surface_point(int model, const std::array<float, 3>& anchor) { surface_point_ = {model, anchor}; }
     Status add_pin(int model, const std::array<float, 3>& anchor);
     Status remove_pin(int model, int pin);
+    // A pin dragged to another point on its model's surface (model file coordinates).
+    Status move_pin(int model, int pin, const std::array<float, 3>& anchor);
+    void set_pin_markers(std::vector<PinMarker> markers) { pin_markers_ = std::move(markers); }
+    const std::vector<PinMarker>& pin_markers() const { return pin_markers_; }
     // Tours: a new one has one step that changes nothing; a step added from the view
     // holds `camera` (target, azimuth, polar, distance), only `visible` shown and the
     // model selected now; it goes after the selected step of that tour, else last.
@@ -69,6 +94,7 @@ public:
     Status add_step(int tour, const scene::HomeCamera& camera, const std::vector<std::string>& visible);
     int step_request_tour() const { return step_request_tour_; }
     Status move_step(int delta);  // the selected step, earlier (-1) or later (+1)
+    Status move_tour(int delta);  // the selected tour, earlier (-1) or later (+1) in the list
 
     // What to draw. rows() lays the panel out again (pointers into the old rows die);
     // focused_row() looks in the rows last laid out.
@@ -113,6 +139,9 @@ private:
     int new_groups_ = 0;
     std::optional<std::pair<int, std::array<float, 3>>> surface_point_;
     int step_request_tour_ = -1;
+    bool snap_ = false;
+    std::vector<PinMarker> pin_markers_;
+    std::string pack_to_;
     void remove_selected();
 };
 

@@ -87,7 +87,7 @@ void tree(Builder& b, const scene::Scene& s, const Selection& sel) {
     if (any_loose) b.add(RowKind::TreeGroup, "(no group)").group = -1;  // ungrouped models are always listed
     for (size_t i = 0; i < s.models.size(); ++i)
         if (s.models[i].group.empty()) model_row(i, 1);
-    PanelRow& add = b.add(RowKind::Field, "add model (.bpm/.obj)");
+    PanelRow& add = b.add(RowKind::Field, "add model (.bpm/.obj/.stl/.ply)");
     add.command = Command::AddModel;
     add.editable = true;
     add.value_rect = Rect{b.l.x + b.l.width * 0.42f, add.rect.y + 2, b.l.width * 0.58f - 4, b.l.row_height - 4};
@@ -152,6 +152,7 @@ void tour_properties(Builder& b, const scene::Scene& s, const Selection& sel) {
             for (size_t i = 0; i < fields.size(); ++i)
                 if (fields[i].scope == FieldScope::TourTitle) b.field(s, static_cast<int>(i), t, " [" + lang + "]");
         }
+        b.buttons({{"Tour earlier", Command::TourUp}, {"Tour later", Command::TourDown}});
         return;
     }
     t.step = sel.step;
@@ -166,7 +167,7 @@ void tour_properties(Builder& b, const scene::Scene& s, const Selection& sel) {
     b.buttons({{"Step earlier", Command::StepUp}, {"Step later", Command::StepDown}});
 }
 
-void properties(Builder& b, const scene::Scene& s, const Selection& sel) {
+void properties(Builder& b, const scene::Scene& s, const Selection& sel, bool snap) {
     const auto& fields = scene_fields();
     if (sel.model >= 0 && sel.model < static_cast<int>(s.models.size())) {
         b.add(RowKind::Heading, "Model: " + s.models[static_cast<size_t>(sel.model)].name);
@@ -174,7 +175,8 @@ void properties(Builder& b, const scene::Scene& s, const Selection& sel) {
         t.model = sel.model;
         for (size_t i = 0; i < fields.size(); ++i)
             if (fields[i].scope == FieldScope::Model) b.field(s, static_cast<int>(i), t);
-        b.buttons({{"Reset transform", Command::ResetTransform}});
+        b.buttons(
+            {{"Reset transform", Command::ResetTransform}, {snap ? "Snap: on" : "Snap: off", Command::SnapToggle}});
         for (const std::string& lang : s.kiosk.languages) {
             t.language = lang;
             for (size_t i = 0; i < fields.size(); ++i)
@@ -203,9 +205,10 @@ void properties(Builder& b, const scene::Scene& s, const Selection& sel) {
 }  // namespace
 
 std::vector<PanelRow> layout_panel(const scene::Scene& scene, const Selection& selection, const std::string& status,
-                                   const PanelLayout& layout) {
+                                   const PanelLayout& layout, bool snap) {
     Builder b(layout);
     b.buttons({{"Save", Command::Save},
+               {"Pack", Command::Pack},
                {"Undo", Command::Undo},
                {"Redo", Command::Redo},
                {"Preview", Command::Preview},
@@ -213,7 +216,7 @@ std::vector<PanelRow> layout_panel(const scene::Scene& scene, const Selection& s
                {"?", Command::Help}});
     b.add(RowKind::Status, status);
     tree(b, scene, selection);
-    properties(b, scene, selection);
+    properties(b, scene, selection, snap);
     return std::move(b.rows);
 }
 

@@ -35,6 +35,10 @@ enum class Command {
     AddStep,  // to the row's target.tour: the view, the visible models and the model selected
     StepUp,
     StepDown,
+    Pack,        // save, then pack the bundle (Editor::pack)
+    SnapToggle,  // the manipulation sphere's snapping on or off
+    TourUp,
+    TourDown,
 };
 
 struct PanelRow {
@@ -67,8 +71,9 @@ struct PanelLayout {
 };
 
 // The rows for `scene` with `selection`, placed by `layout`. `status`: the status line's text.
+// `snap`: the snap toggle's state (shown on its button).
 std::vector<PanelRow> layout_panel(const scene::Scene& scene, const Selection& selection, const std::string& status,
-                                   const PanelLayout& layout);
+                                   const PanelLayout& layout, bool snap = false);
 // The row at (x, y), or nullptr.
 const PanelRow* hit_row(const std::vector<PanelRow>& rows, float x, float y);
 // The height all rows need (for scrolling limits).

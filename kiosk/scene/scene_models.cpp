@@ -147,6 +147,32 @@ size_t SceneModels::load(render::Renderer& renderer, const LoadOptions& options)
     return ok;
 }
 
+Status SceneModels::insert_model(size_t index, const LoadOptions& options) {
+    const scene::Model& m = scene_.models[index];
+    models_.insert(models_.begin() + static_cast<std::ptrdiff_t>(index), Model{});
+    info_.insert(info_.begin() + static_cast<std::ptrdiff_t>(index), ModelInfo{});
+    transforms_.insert(transforms_.begin() + static_cast<std::ptrdiff_t>(index), to_model_matrix(m.transform));
+    if (std::filesystem::path(m.path).extension() == ".bpm")
+        models_[index].loader = std::make_unique<StreamLoader>(m.path, 64 * 1024, screen_size_estimate(m));
+    if (Status st = load_model(index, options); !st) {
+        for (ModelPart& p : models_[index].parts)
+            if (p.id()) renderer_->remove_model(p.id());
+        models_[index] = Model{};
+        return st;
+    }
+    measure(index);
+    if (models_[index].loader) models_[index].loader->wait_until_done();
+    return ok_status();
+}
+
+void SceneModels::erase_model(size_t index) {
+    for (ModelPart& p : models_[index].parts)
+        if (p.id()) renderer_->remove_model(p.id());
+    models_.erase(models_.begin() + static_cast<std::ptrdiff_t>(index));
+    info_.erase(info_.begin() + static_cast<std::ptrdiff_t>(index));
+    transforms_.erase(transforms_.begin() + static_cast<std::ptrdiff_t>(index));
+}
+
 std::vector<std::string> SceneModels::structure_names(size_t model) const {
     std::vector<std::string> names;
     for (const ModelPart& p : models_[model].parts) names.push_back(p.pm() ? p.pm()->name() : p.source()->name());

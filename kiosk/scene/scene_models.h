@@ -76,6 +76,14 @@ public:
     // fails is logged ("bodyview: NAME: skipped: reason") and left out.
     // Returns how many models loaded.
     size_t load(render::Renderer& renderer, const LoadOptions& options = {});
+    // The authoring mode's add and remove, after load(): the scene given to the
+    // constructor has gained model `index` (inserted there) or lost it, and only
+    // that model is uploaded or dropped; the others stay as they are. An
+    // inserted .bpm is decoded whole before this returns (release_detail(true)).
+    // A model that fails keeps its slot unloaded (info().loaded false) and the
+    // reason is returned.
+    Status insert_model(size_t index, const LoadOptions& options = {});
+    void erase_model(size_t index);
     size_t size() const { return models_.size(); }
     const ModelInfo& info(size_t model) const { return info_[model]; }
     const std::vector<ModelInfo>& infos() const { return info_; }

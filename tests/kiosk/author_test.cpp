@@ -479,7 +479,7 @@ TEST(AuthorEditor, PanelEditsUndoRedoSaveAndAddRemove) {
     EXPECT_EQ(ed.document().scene().label(ed.document().scene().models[0], "de").title, "Alpha");
     ed.handle(key('Z', kModCtrl | kModShift));  // redo it
     EXPECT_EQ(ed.document().scene().label(ed.document().scene().models[0], "de").title, "Großhirn");
-    click(ed, "add model (.bpm/.obj)");
+    click(ed, "add model (.bpm/.obj/.stl/.ply)");
     type(ed, U"" + std::u32string((dir / "c.obj").u32string()));
     ed.handle(key(platform::kKeyEnter));
     ASSERT_EQ(ed.document().scene().models.size(), 3u) << ed.status();
