@@ -259,8 +259,16 @@ bool ContourReview::handle(const InputEvent& e) {
             if (e.button() == MouseButton::Right) right_down_ = false;
             break;
         case T::Scroll: camera_.zoom(std::pow(1.15f, e.dy)); return true;
+        case T::Text:
+            if (e.key != '?') break;
+            help_ = !help_;
+            return true;
         case T::Key: {
             if (!e.pressed) break;
+            if (e.key == platform::kKeyF1) {
+                help_ = !help_;
+                return true;
+            }
             const int k = std::tolower(e.key);
             if (k == 'x' && selected_) toggle_exclude(*selected_);
             if (k == 's') (void)save();

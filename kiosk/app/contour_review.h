@@ -14,7 +14,8 @@
 //   x: exclude the selected contour (again: include it);
 //   s or Ctrl+S: save (atomically; the file is read back, so references are
 //     those of the written file); o: the built surface on or off;
-//   left drag: orbit; right drag: pan; wheel: zoom.
+//   left drag: orbit; right drag: pan; wheel: zoom;
+//   ? or F1: the help overlay on or off (contour_review_text.h).
 // Geometry: stack (x, y, z) is shown as world (x, z, -y), a rotation that
 // stacks the slices along the camera's up axis.
 //
@@ -71,6 +72,7 @@ public:
     const LinkTable& table() const { return table_; }
     std::optional<size_t> selected() const { return selected_; }
     bool show_surface() const { return show_surface_; }
+    bool help_visible() const { return help_; }
     bool dirty() const { return dirty_; }
     const std::string& status() const { return status_; }
     // Bumped whenever contours, links or the stack change (the drawing rebuilds).
@@ -107,7 +109,7 @@ private:
     std::vector<ReviewContour> contours_;
     LinkTable table_;
     std::optional<size_t> selected_;
-    bool show_surface_ = false, dirty_ = false;
+    bool show_surface_ = false, dirty_ = false, help_ = false;
     std::string status_;
     uint64_t revision_ = 0;
     OrbitCamera camera_;

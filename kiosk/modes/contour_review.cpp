@@ -7,13 +7,19 @@
 // stubs pointing out of it; `o` overlays the surface `bodygen build` makes, as
 // wireframe. With --replay the events are applied first; with --screenshot one
 // frame is written and the mode exits (the golden picture of the closing note).
+// A card at the bottom left (app/contour_review_text.h) counts the links and
+// overrides and, with `?`, lists the keys.
 #include "kiosk/app/contour_review.h"
+
+#include <algorithm>
 
 #include <cstdio>
 #include <map>
 #include <tuple>
 
 #include "builder/pipeline/build_pipeline.h"
+#include "kiosk/app/contour_review_text.h"
+#include "kiosk/app/overlay.h"
 #include "kiosk/app/replay.h"
 #include "kiosk/modes/modes.h"
 #include "kiosk/render/image.h"
@@ -144,15 +150,17 @@ render::FrameOptions frame_options(platform::Surface& surface, const ViewOptions
     return fo;
 }
 
-void draw(render::Renderer& renderer, ContourReview& review, const render::FrameOptions& fo) {
+void draw(render::Renderer& renderer, Overlay& overlay, ContourReview& review, const render::FrameOptions& fo) {
     review.camera().set_viewport(fo.width, fo.height);
     const render::View view = review.camera().render_view({0.0f, 0.0f}, review.scene_center(), review.scene_radius());
     renderer.render(view, render::Lighting{}, fo);
+    overlay.draw({}, review_card(review, fo.width, fo.height), fo.framebuffer, fo.width, fo.height);
 }
 
-int screenshot(platform::Surface& surface, render::Renderer& renderer, ContourReview& review, const ViewOptions& o) {
+int screenshot(platform::Surface& surface, render::Renderer& renderer, Overlay& overlay, ContourReview& review,
+               const ViewOptions& o) {
     const render::FrameOptions fo = frame_options(surface, o);
-    draw(renderer, review, fo);
+    draw(renderer, overlay, review, fo);
     render::Image img;
     img.width = fo.width;
     img.height = fo.height;
@@ -163,8 +171,8 @@ int screenshot(platform::Surface& surface, render::Renderer& renderer, ContourRe
 }
 
 // The window: events to the review, a frame whenever something may have changed.
-int live(platform::Surface& surface, render::Renderer& renderer, ContourReview& review, ReviewDrawing& drawing,
-         const ViewOptions& o) {
+int live(platform::Surface& surface, render::Renderer& renderer, Overlay& overlay, ContourReview& review,
+         ReviewDrawing& drawing, const ViewOptions& o) {
     std::vector<InputEvent> events;
     uint64_t shown = review.revision();
     std::string said = review.status();
@@ -179,7 +187,7 @@ int live(platform::Surface& surface, render::Renderer& renderer, ContourReview& 
         if (review.status() != said) std::fprintf(stderr, "bodyview: %s\n", (said = review.status()).c_str());
         if (!keep) break;
         if (review.revision() != shown) drawing.rebuild(review), shown = review.revision();
-        draw(renderer, review, frame_options(surface, o));
+        draw(renderer, overlay, review, frame_options(surface, o));
         if (auto s = surface.present(); !s) return report(s.error());
     }
     if (review.dirty())
@@ -203,10 +211,17 @@ int run_contour_review_mode(platform::Surface& surface, const ViewOptions& o, co
     }
     render::Renderer renderer;
     if (auto s = renderer.init(o.renderer); !s) return report(s.error());
+    Overlay overlay;
+    const float scale = std::max(1.0f, float(std::min(surface.width(), surface.height())) / 800.0f);
+    if (auto s = overlay.init(default_font_file(), scale); !s) {
+        renderer.shutdown();
+        return report(s.error());
+    }
     ReviewDrawing drawing(renderer);
     drawing.rebuild(*review);
-    const int code =
-        o.screenshot.empty() ? live(surface, renderer, *review, drawing, o) : screenshot(surface, renderer, *review, o);
+    const int code = o.screenshot.empty() ? live(surface, renderer, overlay, *review, drawing, o)
+                                          : screenshot(surface, renderer, overlay, *review, o);
+    overlay.shutdown();
     renderer.shutdown();
     return code;
 }

@@ -12,6 +12,7 @@
 #include <string>
 
 #include "builder/pipeline/build_pipeline.h"
+#include "kiosk/app/contour_review_text.h"
 #include "kiosk/app/replay.h"
 #include "tests/common/test_dir.h"
 
@@ -155,6 +156,34 @@ TEST_F(ContourReviewReplay, DragsAndRefusedJoinsChangeNothing) {
     EXPECT_EQ(review->selected(), review->find({2, 1}));
     EXPECT_NE(review->status().find("not on adjacent slices"), std::string::npos);
     EXPECT_FALSE(review->dirty());
+}
+
+// The text overlay counts what the table holds and follows every edit; `?` shows the keys.
+TEST_F(ContourReviewReplay, TheOverlayCountsLinksAndOverridesAndQuestionMarkShowsTheKeys) {
+    auto review = ContourReview::open(path, 640, 480);
+    ASSERT_TRUE(review.ok()) << review.error().message;
+    ReviewCounts c = review_counts(*review);
+    EXPECT_EQ(c.contours, 5u);
+    EXPECT_EQ(c.bands, 3u);  // the left column's two bands and the far square's one
+    EXPECT_EQ(c.cut + c.joined + c.excluded + c.branches, 0u);
+    EXPECT_EQ(c.ends, 4u);  // each column ends at the top and at the bottom
+    EXPECT_FALSE(review->help_visible());
+    LabelCard card = review_card(*review, 640, 480);
+    EXPECT_NE(card.description.find("3 band"), std::string::npos) << card.description;
+    EXPECT_EQ(card.description.find("exclude the selected"), std::string::npos);
+
+    play(*review, click_at(0.1, on_link(*review, {1, 0}, {2, 0})) + "0.5 text 63\n");
+    c = review_counts(*review);
+    EXPECT_EQ(c.cut, 1u);
+    EXPECT_EQ(c.bands, 2u);
+    EXPECT_TRUE(review->help_visible());
+    card = review_card(*review, 640, 480);
+    EXPECT_NE(card.description.find("1 cut"), std::string::npos) << card.description;
+    EXPECT_NE(card.description.find("x  exclude the selected contour"), std::string::npos) << card.description;
+    EXPECT_NE(card.title.find("unsaved"), std::string::npos);
+    EXPECT_LE(card.rect.y + card.rect.h, 480.0f);
+    play(*review, "0.1 key 267\n");  // F1 hides it again
+    EXPECT_FALSE(review->help_visible());
 }
 
 }  // namespace
