@@ -19,8 +19,8 @@ ReviewCounts review_counts(const ContourReview& review) {
         else
             ++c.bands;
     }
-    c.excluded = static_cast<size_t>(
-        std::count_if(review.contours().begin(), review.contours().end(), [](const ReviewContour& r) { return r.excluded; }));
+    c.excluded = static_cast<size_t>(std::count_if(review.contours().begin(), review.contours().end(),
+                                                   [](const ReviewContour& r) { return r.excluded; }));
     c.ends = review.table().ends.size();
     return c;
 }

@@ -12,7 +12,6 @@
 #include "kiosk/app/contour_review.h"
 
 #include <algorithm>
-
 #include <cstdio>
 #include <map>
 #include <tuple>
