@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <glm/gtc/matrix_transform.hpp>
+#include <map>
 
 #include "kiosk/app/kiosk_app.h"
 #include "kiosk/app/kiosk_run.h"
@@ -12,6 +13,7 @@
 #include "kiosk/app/text.h"
 #include "kiosk/author/editor.h"
 #include "kiosk/author/manipulation.h"
+#include "kiosk/author/model_convert.h"
 #include "kiosk/author/panel_draw.h"
 #include "kiosk/render/image.h"
 #include "kiosk/scene/scene_models.h"
@@ -561,7 +563,7 @@ Result<AuthorStart> open_for_authoring(const std::vector<std::string>& inputs) {
             continue;
         }
         if (!model_file(in))
-            return input_error(in + ": --author takes .bpm and .obj models (bodygen lod converts others)");
+            return input_error(in + ": --author takes .bpm, .obj, .stl and .ply models (bodygen lod converts others)");
         if (!fs::is_regular_file(in, ec)) return input_error(in + ": no such file");
         models.push_back(in);
     }
@@ -576,7 +578,19 @@ Result<AuthorStart> open_for_authoring(const std::vector<std::string>& inputs) {
         out.scene.base_dir = fs::path(out.path).parent_path().string();
     }
     Document names(out.scene, out.path);  // for files relative to the manifest
-    for (const std::string& file : models) {
+    for (std::string file : models) {
+        if (needs_conversion(file)) {  // STL/PLY: a .bpm in the scene's models/ folder (model_convert.h)
+            // bodyview opens the inputs twice (checked before the window, then for it): convert once.
+            static std::map<std::string, std::string> converted;
+            const std::string key = fs::absolute(file).string() + "\n" + out.path;
+            auto it = converted.find(key);
+            if (it == converted.end() || !fs::is_regular_file(it->second, ec)) {
+                auto bpm = convert_to_bpm(file, (fs::path(out.path).parent_path() / "models").string());
+                if (!bpm) return bpm.error();
+                it = converted.insert_or_assign(key, bpm.value()).first;
+            }
+            file = it->second;
+        }
         const std::string stem = fs::path(file).stem().string();
         std::string name = stem;
         for (int n = 2; out.scene.model_index(name) >= 0; ++n) name = stem + "-" + std::to_string(n);

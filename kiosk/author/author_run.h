@@ -7,8 +7,15 @@
 // get; Esc (or P) comes back.
 //
 // Edits apply in the next frame: styles, LOD, visibility, transforms and
-// colours are bound to the loaded models; adding or removing a model, or
-// changing a file, loads the scene's models again.
+// colours are bound to the loaded models; an added or removed model is
+// uploaded or dropped alone (SceneModels::insert_model / erase_model); only a
+// changed file reloads every model.
+//
+// The 3-D view's mouse: click selects (and marks the point for Add pin);
+// left drag orbits, right drag pans, wheel zooms; on the selected model's
+// manipulation sphere Shift+drag moves, Alt+drag rotates (arcball), Alt+Shift+
+// drag scales (manipulation.h), Ctrl or the snap toggle snaps; a drag on a pin's
+// marker moves the pin along its model's surface. Each is one undoable command.
 #include <string>
 #include <vector>
 
@@ -26,8 +33,9 @@ struct AuthorStart {
 };
 
 // `inputs`: BUNDLE/ (its scene.json, or a new one there when models follow),
-// scene.json, and/or model files (.bpm, .obj) added to the scene. Models alone
-// make a new scene saved as ./scene.json.
+// scene.json, and/or model files (.bpm, .obj; .stl and .ply are converted into
+// the scene's models/ folder) added to the scene. Models alone make a new
+// scene saved as ./scene.json.
 Result<AuthorStart> open_for_authoring(const std::vector<std::string>& inputs);
 
 struct AuthorRunOptions {

@@ -211,8 +211,8 @@ std::vector<PanelRow> layout_panel(const scene::Scene& scene, const Selection& s
                {"Pack", Command::Pack},
                {"Undo", Command::Undo},
                {"Redo", Command::Redo},
-               {"Preview", Command::Preview},
-               {"Set view", Command::StartView},
+               {"Kiosk", Command::Preview},
+               {"View", Command::StartView},
                {"?", Command::Help}});
     b.add(RowKind::Status, status);
     tree(b, scene, selection);

@@ -197,5 +197,30 @@ TEST_F(AuthorFrames, PinDragArcballRotateRimScaleSnapAndPack) {
     EXPECT_NEAR(std::hypot(t["translate"][0].get<double>(), t["translate"][2].get<double>()), 0.0, 1e-3) << t;
 }
 
+// An STL on the command line: converted once into the new scene's models/ folder, and drawn.
+TEST_F(AuthorFrames, StlOnTheCommandLineBecomesOneBpmInTheScenesModelsFolder) {
+    const Mesh sphere = test::uv_sphere(12, 24, Vec3(0.0), 1.0);
+    ASSERT_TRUE(write_obj((dir / "ball.obj").string(), std::span<const Mesh>(&sphere, 1)).ok());
+    // bodygen export writes the STL, as an atlas's meshes would come.
+    auto e = test::run(test::bin("bodygen") + " export " + (dir / "ball.obj").string() + " -o " +
+                       (dir / "ball.stl").string() + " --quiet");
+    ASSERT_EQ(e.exit_code, 0) << e.output;
+    Script s;
+    s.key('S', "ctrl");
+    std::ofstream(dir / "stl.replay") << s.done();
+    auto r = test::run(test::bin("bodyview") + " --author " + (dir / "exhibit").string() + "/ " +
+                       (dir / "ball.stl").string() + " --headless --size 1280x800 --replay " +
+                       (dir / "stl.replay").string() + " --screenshot " + (dir / "stl.png").string());
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    const auto j = nlohmann::json::parse(read_file((dir / "exhibit" / "scene.json").string()).value());
+    EXPECT_EQ(j["models"][0]["file"], "models/ball.bpm");
+    size_t files = 0;
+    for (const auto& f : fs::directory_iterator(dir / "exhibit" / "models")) files += f.is_regular_file();
+    EXPECT_EQ(files, 1u);
+    auto img = render::read_png((dir / "stl.png").string());
+    ASSERT_TRUE(img);
+    EXPECT_FALSE(same(img.value().at(840, 400), img.value().at(1270, 10)));  // the ball, not the background
+}
+
 }  // namespace
 }  // namespace body
