@@ -1,6 +1,7 @@
 // The authoring window's loop (contract in author_run.h).
 #include "kiosk/author/author_run.h"
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -95,6 +96,8 @@ private:
     std::unique_ptr<KioskApp> app_;
     PanelPainter painter_;
     long seen_revision_ = -1;
+    const char* synced_how_ = nullptr;  // what the last sync did (stats), cleared when reported
+    double synced_ms_ = 0.0;
     Replay replay_;
     bool replaying_ = false, quit_ = false;
     size_t next_event_ = 0;
@@ -166,7 +169,10 @@ bool AuthorLoop::same_models_but_one(const scene::Scene& s, size_t& index, bool&
 void AuthorLoop::sync() {
     const Document& doc = editor_.document();
     if (doc.revision() == seen_revision_) return;
+    const auto began = std::chrono::steady_clock::now();
+    const bool first = seen_revision_ < 0;
     seen_revision_ = doc.revision();
+    const char* how = "rebound";
     const scene::Scene& s = doc.scene();
     bool same_files = s.models.size() == loaded_.models.size();
     for (size_t i = 0; same_files && i < s.models.size(); ++i) same_files = s.models[i].path == loaded_.models[i].path;
@@ -176,20 +182,28 @@ void AuthorLoop::sync() {
         const auto at = loaded_.models.begin() + static_cast<std::ptrdiff_t>(index);
         if (added) {
             loaded_.models.insert(at, s.models[index]);
+            how = "one model uploaded";
             if (auto st = models_->insert_model(index); !st)
                 std::fprintf(stderr, "bodyview: author: %s: %s\n", s.models[index].name.c_str(),
                              st.error().message.c_str());
         } else {
             loaded_.models.erase(at);
             models_->erase_model(index);
+            how = "one model dropped";
         }
         same_files = true;
     }
     if (!same_files || !models_) {
+        how = "every model reloaded";
         if (auto st = load_models(); !st) std::fprintf(stderr, "bodyview: author: %s\n", st.error().message.c_str());
     }
     for (size_t i = 0; i < s.models.size(); ++i) models_->set_colour(i, s.models[i].colour);
     rebuild_app();
+    synced_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - began).count();
+    synced_how_ = how;
+    if (options_.stats && first)
+        std::fprintf(stderr, "bodyview: author: %zu models loaded in %.1f ms\n", s.models.size(), synced_ms_);
+    if (first) synced_how_ = nullptr;
 }
 
 scene::HomeCamera AuthorLoop::camera_as_start_view() const {
@@ -476,6 +490,7 @@ int AuthorLoop::run() {
     int exit_code = kExitOk;
     int width = surface_.width(), height = surface_.height();
     for (long frame = 0;; ++frame) {
+        const auto frame_began = std::chrono::steady_clock::now();
         now_ = replaying_ ? static_cast<double>(frame) / 60.0 : surface_.time();
         std::vector<InputEvent> events;
         const bool open = surface_.poll_events(events);
@@ -535,6 +550,13 @@ int AuthorLoop::run() {
             std::fprintf(stderr, "bodyview: %s\n", s.error().message.c_str());
             exit_code = kExitRuntime;
             break;
+        }
+        if (options_.stats && synced_how_) {  // this frame drew an edit
+            const double ms =
+                std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - frame_began).count();
+            std::fprintf(stderr, "bodyview: author: edit applied in %.1f ms (%s), drawn in frame %ld (%.1f ms)\n",
+                         synced_ms_, synced_how_, frame, ms);
+            synced_how_ = nullptr;
         }
         if (last) break;
     }

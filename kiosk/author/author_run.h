@@ -44,6 +44,10 @@ struct AuthorRunOptions {
     std::string preview_screenshot;  // PNG of a preview's last frame (in a replay: the preview lasts kPreviewSeconds)
     long frames = 0;                 // > 0: stop after this many frames
     std::string font;                // empty: the build's font
+    // --kiosk-stats: on stderr, how long loading every model took and, per edit, how long
+    // applying it to the view took, how (rebound, one model uploaded or dropped, all
+    // reloaded) and the wall time of the frame that drew it.
+    bool stats = false;
     render::RendererOptions renderer;
 };
 

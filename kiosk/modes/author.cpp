@@ -15,6 +15,7 @@ int run_author_mode(platform::Surface& surface, const ViewOptions& o, const scen
     ao.preview_screenshot = o.preview_screenshot;
     ao.frames = o.frames;
     ao.renderer = o.renderer;
+    ao.stats = o.kiosk_stats;
     return author::run_author(surface, start.value(), ao);
 }
 
