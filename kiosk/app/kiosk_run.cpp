@@ -140,6 +140,9 @@ void KioskLoop::start_app() {
 bool KioskLoop::feed_input(double now) {
     events_.clear();
     bool keep = surface_.poll_events(events_);
+    // The display may change size while running (DRM: another monitor plugged in).
+    if (surface_.width() != app_->camera().width() || surface_.height() != app_->camera().height())
+        app_->set_viewport(surface_.width(), surface_.height());
     if (options_.hooks.input) options_.hooks.input(*app_, now, events_);
     if (replaying_) {
         // Replay coordinates refer to replay.width x height; scaled to the surface.
