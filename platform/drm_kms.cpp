@@ -135,7 +135,7 @@ std::vector<DrmProbedConnector> probe(int fd) {
 
 const DrmOps kRealOps = {drmModeGetCrtc,  drmModeFreeCrtc, drmModeSetCrtc, poll_readable, drmHandleEvent,
                          drmSetClientCap, property_id,     primary_plane,  create_blob,   drmModeDestroyPropertyBlob,
-                         atomic_commit,   drmModePageFlip, drmSetMaster,   drmDropMaster, probe};
+                         atomic_commit,   drmModePageFlip, drmSetMaster,   probe};
 
 }  // namespace
 

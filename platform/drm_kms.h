@@ -48,9 +48,9 @@ struct DrmOps {
     int (*atomic_commit)(int fd, const DrmAtomicProp* props, size_t count, uint32_t flags, void* user_data);
     // Legacy page flip.
     int (*page_flip)(int fd, uint32_t crtc_id, uint32_t fb_id, uint32_t flags, void* user_data);
-    // DRM master (direct opens only: the seat manager handles it for libseat).
+    // Takes DRM master back after another process had it (direct opens only:
+    // the seat manager handles master for libseat).
     int (*set_master)(int fd);
-    int (*drop_master)(int fd);
     // Every connector of the device, as it is now.
     std::vector<DrmProbedConnector> (*probe)(int fd);
 };

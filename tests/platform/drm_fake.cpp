@@ -137,13 +137,11 @@ int set_master(int) {
     ++g_kms.set_master_calls;
     return g_kms.master ? 0 : fail(EBUSY);
 }
-int drop_master(int) { return 0; }
 
 std::vector<DrmProbedConnector> probe(int) { return g_kms.connectors; }
 
-const DrmOps kOps = {get_crtc,       free_crtc,   set_crtc,      wait_readable, handle_event,
-                     set_client_cap, property_id, primary_plane, create_blob,   destroy_blob,
-                     atomic_commit,  page_flip,   set_master,    drop_master,   probe};
+const DrmOps kOps = {get_crtc,      free_crtc,   set_crtc,     wait_readable, handle_event, set_client_cap, property_id,
+                     primary_plane, create_blob, destroy_blob, atomic_commit, page_flip,    set_master,     probe};
 
 }  // namespace
 

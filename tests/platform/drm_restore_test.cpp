@@ -70,7 +70,6 @@ const DrmOps kFake = {.get_crtc = fake_get_crtc,
                       .atomic_commit = nullptr,
                       .page_flip = nullptr,
                       .set_master = nullptr,
-                      .drop_master = nullptr,
                       .probe = nullptr};
 
 // The console's CRTC 41 showing framebuffer 7 at 1920x1080 on connector 33.
