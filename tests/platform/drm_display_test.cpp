@@ -147,6 +147,26 @@ TEST(DrmDisplay, HotplugToAnotherResolutionRepicksAndSetsTheNewMode) {
     expect_console_restored(*d, "atomic");
 }
 
+// The driver took atomic at start but refuses the mode of the new display.
+TEST(DrmDisplay, AnAtomicModeSetRefusedAfterAHotplugFallsBackToLegacy) {
+    fake::reset();
+    auto d = shown_display();
+    g_kms.connectors = {fake::connector(33, true, {fake::mode(1280, 800, 60, true)})};
+    g_kms.refuse_test_only = true;
+    FakeHotplug udev;
+    udev.push();
+    ASSERT_EQ(d->follow(udev), Hotplug::Resized);
+    auto shown = d->present(20);
+    ASSERT_TRUE(shown.ok());
+    EXPECT_EQ(shown.value(), Shown::ModeSet);
+    EXPECT_STREQ(d->mode_setter(), "legacy");
+    EXPECT_EQ(g_kms.commits.back(), "legacy-mode 1280x800 fb 20");
+    ASSERT_TRUE(d->present(21));
+    EXPECT_EQ(g_kms.commits.back(), "legacy-flip fb 21");
+    EXPECT_TRUE(g_kms.blobs.empty());       // the atomic setter took its mode blob along
+    expect_console_restored(*d, "atomic");  // the keeper still restores atomically: the driver takes that
+}
+
 TEST(DrmDisplay, HotplugWithTheSameModesChangesNothing) {
     fake::reset();
     auto d = shown_display();
