@@ -15,7 +15,7 @@ constexpr int kCrashSignals[] = {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT};
 
 void on_crash(int signal) {
     // One attempt only: a crash inside the restore must not loop.
-    if (DrmCrtcKeeper* keeper = g_crash_keeper.exchange(nullptr)) (void)keeper->restore();
+    if (DrmCrtcKeeper* keeper = g_crash_keeper.exchange(nullptr)) keeper->restore_after_crash();
     std::signal(signal, SIG_DFL);
     std::raise(signal);
 }
@@ -85,6 +85,13 @@ Status DrmCrtcKeeper::restore() {
     saved_ = nullptr;
     if (rc != 0) return runtime_error("drm: restoring the display failed (" + std::string(std::strerror(errno)) + ")");
     return ok_status();
+}
+
+void DrmCrtcKeeper::restore_after_crash() {
+    if (!mode_set_ || restored_) return;
+    restored_ = true;
+    wait_for_flip();
+    (void)restore_legacy();
 }
 
 void restore_on_crash(DrmCrtcKeeper* keeper) {

@@ -46,6 +46,9 @@ public:
     // on the connector (or turns the CRTC off when it was off). Once; later calls
     // and calls before mode_set() do nothing.
     Status restore();
+    // The crash handler's restore: the same, always legacy (drmModeSetCrtc is
+    // one ioctl; the atomic request allocates, and the heap may be what broke).
+    void restore_after_crash();
     bool restored() const { return restored_; }
 
 private:

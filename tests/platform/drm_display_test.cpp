@@ -288,6 +288,19 @@ TEST(DrmDisplay, ARefusedAtomicRestoreFallsBackToLegacy) {
     expect_console_restored(*d, "legacy");
 }
 
+// The crash handler's restore after an atomic mode set: legacy (one ioctl, no
+// allocation in a signal handler), and only once.
+TEST(DrmDisplay, TheCrashRestoreIsLegacyEvenAfterAtomic) {
+    fake::reset();
+    auto d = shown_display();
+    ASSERT_TRUE(d->present(11));
+    d->keeper()->restore_after_crash();
+    EXPECT_EQ(g_kms.commits.back(), "legacy-mode 1920x1080 fb 7");
+    const size_t commits = g_kms.commits.size();
+    ASSERT_TRUE(d->restore());
+    EXPECT_EQ(g_kms.commits.size(), commits);
+}
+
 TEST(DrmDisplay, NothingIsCommittedBeforeTheFirstPresentNorRestored) {
     fake::reset();
     {
