@@ -17,7 +17,7 @@ HOST_PACKAGES=(
   libglfw3-dev libegl-dev libgles-dev libgbm-dev libdrm-dev libglm-dev libevdev-dev
   libtinyobjloader-dev nlohmann-json3-dev libgtest-dev libgmock-dev libbenchmark-dev
   libmeshoptimizer-dev libstb-dev fonts-dejavu-core zlib1g-dev
-  libnifti2-dev libdcmtk-dev libpolyclipping-dev libtinygltf-dev libassimp-dev libsystemd-dev libseat-dev systemd
+  libnifti2-dev libdcmtk-dev libpolyclipping-dev libtinygltf-dev libassimp-dev libsystemd-dev libseat-dev libudev-dev systemd
   libegl-mesa0 libgl1-mesa-dri libgles2 xvfb xauth
   glmark2-data python3 python3-pydicom mricron-data dpkg-dev
   assimp-utils python3-vtk9 python3-numpy nodejs
@@ -29,7 +29,7 @@ CROSS_PACKAGES=(
   libglfw3-dev:arm64 libegl-dev:arm64 libgles-dev:arm64 libgbm-dev:arm64 libdrm-dev:arm64
   libevdev-dev:arm64 libtinyobjloader-dev:arm64 libgtest-dev:arm64 libgmock-dev:arm64
   libmeshoptimizer-dev:arm64 libstb-dev:arm64 zlib1g-dev:arm64 libpolyclipping-dev:arm64
-  libegl-mesa0:arm64 libgl1-mesa-dri:arm64 libgles2:arm64 libsystemd-dev:arm64 libseat-dev:arm64
+  libegl-mesa0:arm64 libgl1-mesa-dri:arm64 libgles2:arm64 libsystemd-dev:arm64 libseat-dev:arm64 libudev-dev:arm64
   libharfbuzz-dev:arm64 libfribidi-dev:arm64 libicu-dev:arm64
 )
 

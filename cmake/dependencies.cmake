@@ -29,6 +29,10 @@ if(NOT SEAT_FOUND)
   message(STATUS "libseat not found (libseat-dev): bodyview opens display and input devices directly (root or "
                  "members of video and input), without VT switching")
 endif()
+pkg_check_modules(UDEV QUIET IMPORTED_TARGET libudev)
+if(NOT UDEV_FOUND)
+  message(STATUS "libudev not found (libudev-dev): the DRM backend does not notice a display plugged in at run time")
+endif()
 
 # Text for every script in the kiosk (kiosk/app/text_shaping.cpp): HarfBuzz
 # shapes, FriBidi orders right-to-left text, ICU finds line breaks (UAX #14).

@@ -1,8 +1,6 @@
 // Saving and restoring the CRTC around the kiosk (contract in drm_restore.h).
 #include "platform/drm_restore.h"
 
-#include <poll.h>
-
 #include <atomic>
 #include <cerrno>
 #include <csignal>
@@ -12,26 +10,17 @@
 namespace body::platform {
 namespace {
 
-int poll_readable(int fd, int timeout_ms) {
-    pollfd p{fd, POLLIN, 0};
-    return ::poll(&p, 1, timeout_ms);
-}
-
-const DrmOps kRealOps = {drmModeGetCrtc, drmModeFreeCrtc, drmModeSetCrtc, poll_readable, drmHandleEvent};
-
 std::atomic<DrmCrtcKeeper*> g_crash_keeper{nullptr};
 constexpr int kCrashSignals[] = {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT};
 
 void on_crash(int signal) {
     // One attempt only: a crash inside the restore must not loop.
-    if (DrmCrtcKeeper* keeper = g_crash_keeper.exchange(nullptr)) (void)keeper->restore();
+    if (DrmCrtcKeeper* keeper = g_crash_keeper.exchange(nullptr)) keeper->restore_after_crash();
     std::signal(signal, SIG_DFL);
     std::raise(signal);
 }
 
 }  // namespace
-
-const DrmOps& real_drm_ops() { return kRealOps; }
 
 DrmCrtcKeeper::DrmCrtcKeeper(const DrmOps& ops, int fd, uint32_t crtc_id, uint32_t connector_id)
     : ops_(ops), fd_(fd), crtc_id_(crtc_id), connector_id_(connector_id) {}
@@ -65,19 +54,44 @@ void DrmCrtcKeeper::wait_for_flip() {
     }
 }
 
+// The saved state (or "off") in one ALLOW_MODESET commit; the saved mode
+// goes to the kernel as a blob, dropped again after the commit.
+int DrmCrtcKeeper::restore_atomic() {
+    const bool on = saved_ && saved_->mode_valid && saved_->buffer_id;
+    uint32_t blob = 0;
+    if (on && ops_.create_blob(fd_, &saved_->mode, sizeof saved_->mode, &blob) != 0) return -1;
+    DrmAtomicProp props[kMaxAtomicProps];
+    const size_t n = on ? atomic_mode_props(atomic_, connector_id_, crtc_id_, blob, saved_->buffer_id, saved_->x,
+                                            saved_->y, saved_->mode.hdisplay, saved_->mode.vdisplay, props)
+                        : atomic_mode_props(atomic_, connector_id_, crtc_id_, 0, 0, 0, 0, 0, 0, props);
+    const int rc = ops_.atomic_commit(fd_, props, n, DRM_MODE_ATOMIC_ALLOW_MODESET, nullptr);
+    if (blob) ops_.destroy_blob(fd_, blob);
+    return rc;
+}
+
+int DrmCrtcKeeper::restore_legacy() {
+    if (saved_ && saved_->mode_valid && saved_->buffer_id)
+        return ops_.set_crtc(fd_, crtc_id_, saved_->buffer_id, saved_->x, saved_->y, &connector_id_, 1, &saved_->mode);
+    return ops_.set_crtc(fd_, crtc_id_, 0, 0, 0, nullptr, 0, nullptr);  // it was off (or unknown): off again
+}
+
 Status DrmCrtcKeeper::restore() {
     if (!mode_set_ || restored_) return ok_status();
     restored_ = true;
     wait_for_flip();
-    int rc = 0;
-    if (saved_ && saved_->mode_valid && saved_->buffer_id)
-        rc = ops_.set_crtc(fd_, crtc_id_, saved_->buffer_id, saved_->x, saved_->y, &connector_id_, 1, &saved_->mode);
-    else  // it was off (or unknown): off again
-        rc = ops_.set_crtc(fd_, crtc_id_, 0, 0, 0, nullptr, 0, nullptr);
+    int rc = use_atomic_ ? restore_atomic() : -1;
+    if (rc != 0) rc = restore_legacy();
     if (saved_) ops_.free_crtc(saved_);
     saved_ = nullptr;
     if (rc != 0) return runtime_error("drm: restoring the display failed (" + std::string(std::strerror(errno)) + ")");
     return ok_status();
+}
+
+void DrmCrtcKeeper::restore_after_crash() {
+    if (!mode_set_ || restored_) return;
+    restored_ = true;
+    wait_for_flip();
+    (void)restore_legacy();
 }
 
 void restore_on_crash(DrmCrtcKeeper* keeper) {

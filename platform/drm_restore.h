@@ -6,28 +6,17 @@
 // cannot be caught: the kernel drops the DRM master and the next start sets
 // its mode again.
 //
-// The few libdrm calls involved go through DrmOps, a table the unit tests
-// replace with a fake device (tests/platform/drm_restore_test.cpp).
-#include <xf86drm.h>
-#include <xf86drmMode.h>
-
+// The few libdrm calls involved go through DrmOps (drm_kms.h), a table the unit
+// tests replace with a fake device (tests/platform/drm_restore_test.cpp). After
+// an atomic mode set the restore is one atomic commit too (use_atomic), with
+// drmModeSetCrtc as the fallback when the driver refuses it.
 #include <cstdint>
 
+#include "platform/drm_kms.h"
+#include "platform/drm_modeset.h"
 #include "shared/error.h"
 
 namespace body::platform {
-
-struct DrmOps {
-    drmModeCrtc* (*get_crtc)(int fd, uint32_t crtc_id);
-    void (*free_crtc)(drmModeCrtc* crtc);
-    int (*set_crtc)(int fd, uint32_t crtc_id, uint32_t fb_id, uint32_t x, uint32_t y, uint32_t* connectors, int count,
-                    drmModeModeInfo* mode);
-    // poll(2) for POLLIN: > 0 readable, 0 timed out, < 0 error.
-    int (*wait_readable)(int fd, int timeout_ms);
-    int (*handle_event)(int fd, drmEventContext* context);
-};
-// libdrm itself.
-const DrmOps& real_drm_ops();
 
 // Saves one CRTC's state before the kiosk's mode set and puts it back once.
 // Tracks the one page flip allowed in flight: a restore first waits for it
@@ -44,6 +33,11 @@ public:
     bool save();
     // The kiosk's mode is on screen: from now on restore() acts.
     void mode_set() { mode_set_ = true; }
+    // The kiosk set its mode atomically with these ids: restore the same way.
+    void use_atomic(const DrmAtomicIds& ids) {
+        atomic_ = ids;
+        use_atomic_ = true;
+    }
     // The one flip in flight: queued (page flip with an event), then its event seen.
     void flip_queued() { flip_pending_ = true; }
     void flip_done() { flip_pending_ = false; }
@@ -52,16 +46,22 @@ public:
     // on the connector (or turns the CRTC off when it was off). Once; later calls
     // and calls before mode_set() do nothing.
     Status restore();
+    // The crash handler's restore: the same, always legacy (drmModeSetCrtc is
+    // one ioctl; the atomic request allocates, and the heap may be what broke).
+    void restore_after_crash();
     bool restored() const { return restored_; }
 
 private:
     void wait_for_flip();
+    int restore_atomic();
+    int restore_legacy();
 
     const DrmOps& ops_;
     int fd_;
     uint32_t crtc_id_, connector_id_;
     drmModeCrtc* saved_ = nullptr;
-    bool mode_set_ = false, flip_pending_ = false, restored_ = false;
+    bool mode_set_ = false, flip_pending_ = false, restored_ = false, use_atomic_ = false;
+    DrmAtomicIds atomic_;
 };
 
 // Registers `keeper` for the crash signals: their handler restores the display,

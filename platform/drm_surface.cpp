@@ -1,7 +1,10 @@
-// DRM/KMS backend: mode setting, GBM surface, EGL on GBM and page flipping with
-// at most one flip in flight; the original CRTC is restored on exit, after
-// SIGINT/SIGTERM, after a fatal error and on a crash (platform/drm_restore.h). Structure after kmscube (drm-common.c,
-// drm-legacy.c). Touch: the panels under SurfaceOptions::touch_directory through the evdev layer
+// DRM/KMS backend: the device through the seat, a GBM surface with EGL on it,
+// and the display state (selection, atomic or legacy mode setting, one flip in
+// flight, connector hotplug, seat switches, the restore on every exit path) in
+// DrmDisplay (platform/drm_display.h). On a hotplug that changes the display's
+// size the GBM and EGL surfaces are made again at the new size; width() and
+// height() follow, and the kiosk loop resizes its viewport from them. Touch:
+// the panels under SurfaceOptions::touch_directory through the evdev layer
 // (platform/evdev_touch.h, hot-plugged), in display pixels, from poll_events().
 #include <GLES3/gl3.h>
 #include <fcntl.h>
@@ -15,9 +18,10 @@
 #include <csignal>
 #include <cstdio>
 #include <cstring>
+#include <initializer_list>
 
-#include "platform/drm_restore.h"
-#include "platform/drm_select.h"
+#include "platform/drm_display.h"
+#include "platform/drm_hotplug.h"
 #include "platform/egl_context.h"
 #include "platform/evdev_touch.h"
 #include "platform/log.h"
@@ -28,41 +32,14 @@
 namespace body::platform {
 namespace {
 
-std::string connector_name(const drmModeConnector* c) {
-    const char* type = drmModeGetConnectorTypeName(c->connector_type);
-    return std::string(type ? type : "Unknown") + "-" + std::to_string(c->connector_type_id);
-}
-
-// Describes every connector for the pure selection (drm_select.h).
-std::vector<DrmConnector> describe_connectors(int fd, const drmModeRes* res) {
-    std::vector<DrmConnector> out;
-    for (int i = 0; i < res->count_connectors; ++i) {
-        drmModeConnector* c = drmModeGetConnector(fd, res->connectors[i]);
-        if (!c) continue;
-        DrmConnector d;
-        d.id = c->connector_id;
-        d.name = connector_name(c);
-        d.connected = c->connection == DRM_MODE_CONNECTED;
-        for (int m = 0; m < c->count_modes; ++m)
-            d.modes.push_back({c->modes[m].hdisplay, c->modes[m].vdisplay, static_cast<int>(c->modes[m].vrefresh),
-                               (c->modes[m].type & DRM_MODE_TYPE_PREFERRED) != 0});
-        if (c->encoder_id) {
-            if (drmModeEncoder* e = drmModeGetEncoder(fd, c->encoder_id)) {
-                d.current_crtc = e->crtc_id;
-                drmModeFreeEncoder(e);
-            }
-        }
-        for (int e = 0; e < c->count_encoders; ++e) {
-            drmModeEncoder* enc = drmModeGetEncoder(fd, c->encoders[e]);
-            if (!enc) continue;
-            for (int k = 0; k < res->count_crtcs; ++k)
-                if (enc->possible_crtcs & (1u << k)) d.possible_crtcs.push_back(res->crtcs[k]);
-            drmModeFreeEncoder(enc);
-        }
-        drmModeFreeConnector(c);
-        out.push_back(std::move(d));
-    }
-    return out;
+// Waits until one of `fds` (-1 entries ignored) is readable or `timeout_ms`
+// passed: the idle wait while nothing can be shown, instead of a busy loop.
+void wait_for_any(std::initializer_list<int> fds, int timeout_ms) {
+    pollfd p[4];
+    nfds_t n = 0;
+    for (int fd : fds)
+        if (fd >= 0 && n < 4) p[n++] = pollfd{fd, POLLIN, 0};
+    ::poll(p, n, timeout_ms);
 }
 
 class DrmSurface final : public Surface {
@@ -70,34 +47,19 @@ public:
     ~DrmSurface() override { teardown(); }
 
     Status init(const SurfaceOptions& options) {
+        options_ = options;
         auto request = parse_mode_request(options.mode);
         if (!request) return request.error();
         seat_ = Seat::open();
         if (log_enabled(LogLevel::Info)) std::fprintf(stderr, "bodyview: drm: devices through %s\n", seat_->kind());
         if (auto s = open_device(options.drm_device); !s) return s;
-        drmModeRes* res = drmModeGetResources(fd_);
-        if (!res) return runtime_error("drm: " + device_ + " has no KMS resources (not a display controller?)");
-        auto connectors = describe_connectors(fd_, res);
-        drmModeConnector* chosen = nullptr;
-        auto sel = select_drm_output(connectors, request.value());
-        if (sel) chosen = drmModeGetConnector(fd_, connectors[sel->connector].id);
-        drmModeFreeResources(res);
-        if (!sel) return sel.error();
-        if (!chosen) return runtime_error("drm: connector vanished during set-up");
-        mode_ = chosen->modes[sel->mode];
-        connector_id_ = chosen->connector_id;
-        if (chosen->mmWidth > 0) px_per_mm_ = static_cast<float>(mode_.hdisplay) / static_cast<float>(chosen->mmWidth);
-        drmModeFreeConnector(chosen);
-        crtc_id_ = sel->crtc;
-        keeper_ = std::make_unique<DrmCrtcKeeper>(real_drm_ops(), fd_, crtc_id_, connector_id_);
-        if (!keeper_->save())
-            std::fprintf(stderr, "bodyview: drm: cannot read CRTC %u; it is turned off at exit\n", crtc_id_);
+        display_ = std::make_unique<DrmDisplay>(real_drm_ops(), fd_, request.value());
+        activations_ = seat_->activations();
+        if (auto s = display_->pick(); !s) return s;
 
         gbm_ = gbm_create_device(fd_);
         if (!gbm_) return runtime_error("drm: gbm_create_device failed on " + device_);
-        gbm_surface_ = gbm_surface_create(gbm_, mode_.hdisplay, mode_.vdisplay, GBM_FORMAT_XRGB8888,
-                                          GBM_BO_USE_SCANOUT | GBM_BO_USE_RENDERING);
-        if (!gbm_surface_) return runtime_error("drm: gbm_surface_create failed");
+        if (auto s = create_gbm_surface(); !s) return s;
         auto egl = EglContext::open(EGL_PLATFORM_GBM_KHR, gbm_, EGL_WINDOW_BIT, GBM_FORMAT_XRGB8888);
         if (!egl) return runtime_error("drm: " + egl.error().message);
         egl_ = std::move(egl.value());
@@ -109,25 +71,22 @@ public:
         // First frame: clear, swap, set the mode on that buffer.
         glClearColor(0, 0, 0, 1);
         glClear(GL_COLOR_BUFFER_BIT);
-        if (auto s = egl_->swap_buffers(); !s) return s;
-        gbm_bo* bo = gbm_surface_lock_front_buffer(gbm_surface_);
-        auto fb = framebuffer_for(bo);
-        if (!fb) return fb.error();
-        if (drmModeSetCrtc(fd_, crtc_id_, fb.value(), 0, 0, &connector_id_, 1, &mode_) != 0)
-            return runtime_error("drm: drmModeSetCrtc failed (" + std::string(std::strerror(errno)) + ")");
-        keeper_->mode_set();
-        restore_on_crash(keeper_.get());
-        activations_ = seat_->activations();
-        front_ = bo;
+        restore_on_crash(display_->keeper());
+        if (auto s = present(); !s) return s;
+        if (log_enabled(LogLevel::Info))
+            std::fprintf(stderr, "bodyview: drm: %dx%d, %s mode setting\n", width(), height(), display_->mode_setter());
+        std::string why;
+        hotplug_ = open_udev_hotplug(device_, why);
+        if (!hotplug_) std::fprintf(stderr, "bodyview: drm: display hotplug not watched (%s)\n", why.c_str());
         open_touch(options);
         return ok_status();
     }
 
     Backend backend() const override { return Backend::Drm; }
     void make_current() override { (void)egl_->make_current(); }
-    int width() const override { return mode_.hdisplay; }
-    int height() const override { return mode_.vdisplay; }
-    float pixels_per_mm() const override { return px_per_mm_; }
+    int width() const override { return surface_width_; }
+    int height() const override { return surface_height_; }
+    float pixels_per_mm() const override { return display_->pixels_per_mm(); }
     unsigned framebuffer() const override { return 0; }
     double time() const override {
         return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
@@ -141,51 +100,35 @@ public:
             return false;
         }
         seat_->dispatch();
+        // Switched away and back since the last frame counts as away: the mode is set again.
+        if (seat_->activations() != activations_) display_->set_active(false);
+        activations_ = seat_->activations();
+        display_->set_active(seat_->active());
+        if (hotplug_ && display_->follow(*hotplug_) == DrmDisplay::Hotplug::Resized) resize_surfaces();
         if (touch_ && seat_->active()) touch_->poll(time(), out);
         return true;
     }
 
-    // Swap, queue a flip of the new front buffer, wait for it (so at most one
-    // flip is ever in flight), then release the previous buffer.
-    // While another VT has the seat nothing reaches the display; back on ours,
-    // the mode is set again on the new frame (the other session may have changed it).
+    // Swap, then show the new front buffer through the display (a mode set or
+    // one flip, waited for), then release the previous buffer. When nothing
+    // can be shown (another VT has the seat, no display connected, no DRM
+    // master) the frame is dropped and the loop idles until the seat, udev or
+    // a timeout wakes it.
     Status present() override {
         if (auto s = egl_->swap_buffers(); !s) return s;
         gbm_bo* next = gbm_surface_lock_front_buffer(gbm_surface_);
         if (!next) return runtime_error("drm: no free GBM buffer");
-        if (!seat_->active()) {
-            gbm_surface_release_buffer(gbm_surface_, next);
-            return ok_status();
-        }
         auto fb = framebuffer_for(next);
-        if (!fb) return fb.error();
-        if (seat_->activations() != activations_) {
-            activations_ = seat_->activations();
-            if (drmModeSetCrtc(fd_, crtc_id_, fb.value(), 0, 0, &connector_id_, 1, &mode_) != 0)
-                return runtime_error("drm: setting the mode again failed (" + std::string(std::strerror(errno)) + ")");
-            if (front_) gbm_surface_release_buffer(gbm_surface_, front_);
-            front_ = next;
-            return ok_status();
-        }
-        if (drmModePageFlip(fd_, crtc_id_, fb.value(), DRM_MODE_PAGE_FLIP_EVENT, keeper_.get()) != 0) {
+        if (!fb) {
             gbm_surface_release_buffer(gbm_surface_, next);
-            return runtime_error("drm: drmModePageFlip failed (" + std::string(std::strerror(errno)) + ")");
+            return fb.error();
         }
-        keeper_->flip_queued();
-        drmEventContext ev{};
-        ev.version = 2;
-        ev.page_flip_handler = [](int, unsigned, unsigned, unsigned, void* data) {
-            static_cast<DrmCrtcKeeper*>(data)->flip_done();
-        };
-        while (keeper_->flip_pending()) {
-            pollfd p{fd_, POLLIN, 0};
-            int r = ::poll(&p, 1, 1000);
-            if (r < 0 && errno == EINTR) {
-                if (quit_requested()) break;  // the keeper waits for the flip before restoring
-                continue;
-            }
-            if (r <= 0) return runtime_error("drm: page flip timed out");
-            drmHandleEvent(fd_, &ev);
+        auto shown = display_->present(fb.value());
+        if (!shown || shown.value() == DrmDisplay::Shown::Skipped) {
+            gbm_surface_release_buffer(gbm_surface_, next);
+            if (!shown) return shown.error();
+            wait_for_any({seat_->fd(), hotplug_ ? hotplug_->fd() : -1}, kIdleWaitMs);
+            return ok_status();
         }
         if (front_) gbm_surface_release_buffer(gbm_surface_, front_);
         front_ = next;
@@ -193,11 +136,48 @@ public:
     }
 
 private:
+    static constexpr int kIdleWaitMs = 250;
+
+    Status create_gbm_surface() {
+        surface_width_ = display_->width();
+        surface_height_ = display_->height();
+        gbm_surface_ =
+            gbm_surface_create(gbm_, static_cast<uint32_t>(surface_width_), static_cast<uint32_t>(surface_height_),
+                               GBM_FORMAT_XRGB8888, GBM_BO_USE_SCANOUT | GBM_BO_USE_RENDERING);
+        if (!gbm_surface_) return runtime_error("drm: gbm_surface_create failed");
+        return ok_status();
+    }
+
+    // The display re-picked at a new size (hotplug): new GBM and EGL surfaces
+    // (the next present() sets the mode on them) and touch mapped to the new
+    // size. A failure keeps the old surfaces (the frames are then shown at the
+    // old size, or refused, until the next hotplug).
+    void resize_surfaces() {
+        gbm_surface* old = gbm_surface_;
+        const int old_w = surface_width_, old_h = surface_height_;
+        Status s = create_gbm_surface();
+        if (s) s = egl_->replace_window_surface(gbm_surface_);
+        if (!s) {
+            std::fprintf(stderr, "bodyview: drm: resizing to %dx%d failed: %s\n", display_->width(), display_->height(),
+                         s.error().message.c_str());
+            if (gbm_surface_ != old && gbm_surface_) gbm_surface_destroy(gbm_surface_);
+            gbm_surface_ = old;
+            surface_width_ = old_w;
+            surface_height_ = old_h;
+            return;
+        }
+        if (front_) gbm_surface_release_buffer(old, front_);
+        front_ = nullptr;
+        gbm_surface_destroy(old);
+        touch_.reset();
+        open_touch(options_);
+    }
+
     // Touchscreens through evdev, in display pixels. Absent or unreadable
     // devices are not an error: one line, and a panel plugged in later is found.
     void open_touch(const SurfaceOptions& options) {
         std::shared_ptr<Seat> seat = seat_;
-        auto input = EvdevInput::open(EvdevOptions{options.touch_directory, mode_.hdisplay, mode_.vdisplay,
+        auto input = EvdevInput::open(EvdevOptions{options.touch_directory, surface_width_, surface_height_,
                                                    options.touch_rotation, options.touch_calibration,
                                                    [seat](const std::string& path) { return seat->open_device(path); },
                                                    [seat](int fd) { seat->close_device(fd); }});
@@ -257,11 +237,11 @@ private:
 
     // The display first (before our framebuffers go), then GL, GBM and the device.
     void teardown() {
-        if (keeper_) {
+        if (display_) {
             restore_on_crash(nullptr);
-            if (auto s = keeper_->restore(); !s) std::fprintf(stderr, "bodyview: %s\n", s.error().message.c_str());
-            keeper_.reset();
+            if (auto s = display_->restore(); !s) std::fprintf(stderr, "bodyview: %s\n", s.error().message.c_str());
         }
+        hotplug_.reset();
         if (front_ && gbm_surface_) gbm_surface_release_buffer(gbm_surface_, front_);
         front_ = nullptr;
         egl_.reset();
@@ -269,6 +249,7 @@ private:
         if (gbm_) gbm_device_destroy(gbm_);
         gbm_surface_ = nullptr;
         gbm_ = nullptr;
+        display_.reset();
         touch_.reset();
         if (fd_ >= 0) seat_->close_device(fd_);
         fd_ = -1;
@@ -277,12 +258,12 @@ private:
 
     int fd_ = -1;
     std::string device_;
-    drmModeModeInfo mode_{};
-    uint32_t connector_id_ = 0, crtc_id_ = 0;
-    float px_per_mm_ = 0.0f;  // from the connector's reported size; 0 when it reports none
-    std::unique_ptr<DrmCrtcKeeper> keeper_;
+    SurfaceOptions options_;
+    int surface_width_ = 0, surface_height_ = 0;  // the GBM surface's size (the mode's when it was made)
+    std::unique_ptr<DrmDisplay> display_;
+    std::unique_ptr<HotplugSource> hotplug_;
     std::shared_ptr<Seat> seat_;
-    int activations_ = 0;  // the seat's activations when the mode was last set
+    int activations_ = 0;  // the seat's activations at the last frame
     gbm_device* gbm_ = nullptr;
     gbm_surface* gbm_surface_ = nullptr;
     gbm_bo* front_ = nullptr;

@@ -152,6 +152,21 @@ Status EglContext::create_window_surface(void* native_window) {
     return ok_status();
 }
 
+Status EglContext::replace_window_surface(void* native_window) {
+    const EGLSurface old = surface_;
+    if (auto s = create_window_surface(native_window); !s) {
+        surface_ = old;
+        return s;
+    }
+    if (auto s = make_current(); !s) {
+        eglDestroySurface(display_, surface_);
+        surface_ = old;
+        return s;
+    }
+    if (old != EGL_NO_SURFACE) eglDestroySurface(display_, old);
+    return ok_status();
+}
+
 Status EglContext::create_pbuffer_surface(int width, int height) {
     const EGLint attribs[] = {EGL_WIDTH, width, EGL_HEIGHT, height, EGL_NONE};
     surface_ = eglCreatePbufferSurface(display_, config_, attribs);

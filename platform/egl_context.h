@@ -35,6 +35,9 @@ public:
     static Result<std::unique_ptr<EglContext>> open_first_device();
 
     Status create_window_surface(void* native_window);  // e.g. a gbm_surface*
+    // A new window surface (the display changed size), made current; the old
+    // one is destroyed. On failure the old one stays current.
+    Status replace_window_surface(void* native_window);
     Status create_pbuffer_surface(int width, int height);
     Status make_current();
     Status swap_buffers();

@@ -68,6 +68,7 @@ public:
     bool active() const override { return active_; }
     int activations() const override { return activations_; }
     const char* kind() const override { return name_.c_str(); }
+    int fd() const override { return libseat_get_fd(seat_); }
 
 private:
     LibSeat() = default;
@@ -75,7 +76,10 @@ private:
         active_ = true;
         ++activations_;
     }
-    // Another VT is shown: the devices are no longer ours until enable().
+    // Another VT is shown: the devices are no longer ours until enable(). This
+    // runs inside dispatch(), between frames, when the DRM surface has no flip
+    // in flight (it waits for each), so the seat is given up at once; the
+    // surface sees active() false and commits nothing (DrmDisplay::set_active).
     void disable() {
         active_ = false;
         libseat_disable_seat(seat_);

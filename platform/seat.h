@@ -27,6 +27,8 @@ public:
     // Counts re-activations: the surface compares it to know it must set its mode again.
     virtual int activations() const = 0;
     virtual const char* kind() const = 0;  // "libseat (seat0)" or "direct"
+    // Readable when seat events are pending (poll it while idle); -1 for none.
+    virtual int fd() const { return -1; }
 };
 
 }  // namespace body::platform

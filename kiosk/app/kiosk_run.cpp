@@ -19,6 +19,11 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+// The display's density: from --display-width-mm when given, else as the surface reports it.
+float display_pixels_per_mm(const platform::Surface& surface, double display_width_mm) {
+    return display_width_mm > 0.0 ? static_cast<float>(surface.width() / display_width_mm) : surface.pixels_per_mm();
+}
+
 double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
 void log_error(const Error& e) { std::fprintf(stderr, "bodyview: %s\n", e.message.c_str()); }
@@ -118,9 +123,7 @@ int KioskLoop::start() {
 
 void KioskLoop::start_app() {
     app_ = std::make_unique<KioskApp>(scene_, models_.infos(), surface_.width(), surface_.height());
-    app_->set_pixels_per_mm(options_.display_width_mm > 0.0
-                                ? static_cast<float>(surface_.width() / options_.display_width_mm)
-                                : surface_.pixels_per_mm());
+    app_->set_pixels_per_mm(display_pixels_per_mm(surface_, options_.display_width_mm));
     app_->set_picker([this](int model, const Ray& ray) -> std::optional<float> {
         return models_.pick(static_cast<size_t>(model), placement(model), ray);
     });
@@ -140,6 +143,11 @@ void KioskLoop::start_app() {
 bool KioskLoop::feed_input(double now) {
     events_.clear();
     bool keep = surface_.poll_events(events_);
+    // The display may change size while running (DRM: another monitor plugged in).
+    if (surface_.width() != app_->camera().width() || surface_.height() != app_->camera().height()) {
+        app_->set_viewport(surface_.width(), surface_.height());
+        app_->set_pixels_per_mm(display_pixels_per_mm(surface_, options_.display_width_mm));
+    }
     if (options_.hooks.input) options_.hooks.input(*app_, now, events_);
     if (replaying_) {
         // Replay coordinates refer to replay.width x height; scaled to the surface.

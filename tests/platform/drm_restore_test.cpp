@@ -56,7 +56,21 @@ int fake_handle(int, drmEventContext*) {
     g_fake.event_ready = false;
     return 0;
 }
-const DrmOps kFake = {fake_get_crtc, fake_free_crtc, fake_set_crtc, fake_wait, fake_handle};
+// Only the calls a legacy restore makes; the atomic restore is in drm_display_test.cpp.
+const DrmOps kFake = {.get_crtc = fake_get_crtc,
+                      .free_crtc = fake_free_crtc,
+                      .set_crtc = fake_set_crtc,
+                      .wait_readable = fake_wait,
+                      .handle_event = fake_handle,
+                      .set_client_cap = nullptr,
+                      .property_id = nullptr,
+                      .primary_plane = nullptr,
+                      .create_blob = nullptr,
+                      .destroy_blob = nullptr,
+                      .atomic_commit = nullptr,
+                      .page_flip = nullptr,
+                      .set_master = nullptr,
+                      .probe = nullptr};
 
 // The console's CRTC 41 showing framebuffer 7 at 1920x1080 on connector 33.
 void console_on_screen() {
