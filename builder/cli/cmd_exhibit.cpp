@@ -226,6 +226,8 @@ int run_exhibit(const Args& argv) {
     fs::path work = bundle;
     work += ".work-" + std::to_string(::getpid());
     Status st = write_sources(work, *parts, built, *scene_options);
+    // The sources are this run's scratch: a failure there names the bundle asked for.
+    if (!st) st = Error{bundle.string() + "/: " + st.error().message, st.error().exit_code};
     Result<PackSummary> pack = st ? pack_scene((work / "scene.json").string(), bundle.string()) : st.error();
     std::error_code ec;
     fs::remove_all(work, ec);
