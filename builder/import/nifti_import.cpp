@@ -217,6 +217,10 @@ Result<LabelVolume> read_label_volume(const std::string& path, const ImportOptio
             if (!std::isfinite(vol.affine[r][c])) return input_error(where + "non-finite voxel-to-scanner transform");
         }
     }
+    const double det = vol.affine[0][0] * (vol.affine[1][1] * vol.affine[2][2] - vol.affine[1][2] * vol.affine[2][1]) -
+                       vol.affine[0][1] * (vol.affine[1][0] * vol.affine[2][2] - vol.affine[1][2] * vol.affine[2][0]) +
+                       vol.affine[0][2] * (vol.affine[1][0] * vol.affine[2][1] - vol.affine[1][1] * vol.affine[2][0]);
+    if (!(std::abs(det) > 0.0)) return input_error(where + "singular voxel-to-scanner transform (voxels of no volume)");
     return vol;
 }
 
