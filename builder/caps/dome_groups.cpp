@@ -24,18 +24,21 @@ struct Growing {
 // flips could not remove included).
 Vec2 apex_of(const Growing& g) { return g.triangles == 1 ? g.first_centroid : g.moment / g.area; }
 
-// Every fan triangle (p, q, apex) strictly counter-clockwise.
+// Every fan triangle (p, q, apex) strictly counter-clockwise: cross > 1e-9
+// |q - p| |apex - p|, compared squared (no square roots in the inner loop).
 bool star_shaped(std::span<const Vec2> at, const std::vector<uint32_t>& cycle, const Vec2& apex) {
     for (size_t i = 0; i < cycle.size(); ++i) {
         const Vec2 p = at[cycle[i]], q = at[cycle[(i + 1) % cycle.size()]];
-        if (!(cross3(p, q, apex) > 1e-9 * glm::length(q - p) * glm::length(apex - p))) return false;
+        const double c = cross3(p, q, apex);
+        if (!(c > 0) || !(c * c > 1e-18 * glm::dot(q - p, q - p) * glm::dot(apex - p, apex - p))) return false;
     }
     return true;
 }
 
 // Adds triangle (a, b, c) across one of the cycle's edges; false (cycle
 // unchanged) when it shares none, its third vertex is already on the cycle,
-// or the union would not be star-shaped around the new centroid.
+// or the union would not be star-shaped around the new centroid. The cycle
+// is edited in place and restored on refusal (no allocation per triangle).
 bool try_add(std::span<const Vec2> at, Growing& g, uint32_t a, uint32_t b, uint32_t c, double area,
              const Vec2& centroid) {
     const uint32_t tri[3] = {a, b, c};
@@ -45,12 +48,15 @@ bool try_add(std::span<const Vec2> at, Growing& g, uint32_t a, uint32_t b, uint3
         for (size_t i = 0; i < n; ++i) {
             if (g.cycle[i] != u || g.cycle[(i + 1) % n] != v) continue;
             if (std::find(g.cycle.begin(), g.cycle.end(), w) != g.cycle.end()) return false;
-            std::vector<uint32_t> cycle = g.cycle;
-            cycle.insert(cycle.begin() + long(i) + 1, w);
             const Vec2 moment = g.moment + centroid * area;
             const double total = g.area + area;
-            if (!(total > 0) || !star_shaped(at, cycle, moment / total)) return false;
-            g.cycle = std::move(cycle), g.moment = moment, g.area = total, ++g.triangles;
+            if (!(total > 0)) return false;
+            g.cycle.insert(g.cycle.begin() + long(i) + 1, w);
+            if (!star_shaped(at, g.cycle, moment / total)) {
+                g.cycle.erase(g.cycle.begin() + long(i) + 1);
+                return false;
+            }
+            g.moment = moment, g.area = total, ++g.triangles;
             return true;
         }
     }
@@ -70,7 +76,7 @@ void dome_groups(std::span<const Vec2> at, std::span<const uint32_t> triangles, 
         if (g.cycle.empty()) return;
         groups.push_back({apex_of(g), uint32_t(cycles.size()), uint32_t(g.cycle.size())});
         cycles.insert(cycles.end(), g.cycle.begin(), g.cycle.end());
-        g = Growing{};
+        g.cycle.clear();  // keeps its capacity for the next group
     };
     for (size_t t = 0; t < count; ++t) {
         const uint32_t a = triangles[3 * t], b = triangles[3 * t + 1], c = triangles[3 * t + 2];
@@ -78,7 +84,7 @@ void dome_groups(std::span<const Vec2> at, std::span<const uint32_t> triangles, 
         const double area = 0.5 * cross3(at[a], at[b], at[c]);
         if (!g.cycle.empty() && g.triangles < most && try_add(at, g, a, b, c, area, centroid)) continue;
         close();
-        g.cycle = {a, b, c};
+        g.cycle.assign({a, b, c});
         g.moment = centroid * std::max(area, 0.0);
         g.area = std::max(area, 0.0);
         g.triangles = 1;

@@ -32,8 +32,11 @@ Status check_model(const scene::Scene& s, size_t index, size_t& triangles) {
     const scene::Model& m = s.models[index];
     const std::string where = s.source + ": models[" + std::to_string(index) + "].file: '" + m.file + "'";
     // A FIFO, directory or device is named as such (and never opened).
-    if (Status regular = check_regular_file(m.path); !regular)
-        return input_error(where + ": " + regular.error().message);
+    if (Status regular = check_regular_file(m.path); !regular) {
+        const std::string& message = regular.error().message;  // "PATH: reason"
+        const std::string reason = message.starts_with(m.path + ": ") ? message.substr(m.path.size() + 2) : message;
+        return input_error(where + ": " + reason + " (" + m.path + ")");
+    }
     const std::string ext = fs::path(m.path).extension().string();
     if (ext == ".obj") {
         auto meshes = read_obj(m.path);
