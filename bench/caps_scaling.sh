@@ -1,7 +1,10 @@
 #!/usr/bin/env bash
 # Cap triangulation scaling (issue 30): one wavy circle of N points on two
-# slices, built with --caps none, flat and dome (the default); prints wall and
-# user seconds. The ratio to --caps none is the figure (same run, same machine).
+# slices, built with --caps none, flat and dome (the default), each RUNS times
+# (default 3); prints every run's wall and user seconds and the median user
+# seconds with its ratio to --caps none (same run, same machine). --strict
+# keeps every point: the default repair would merge the ring's nearly
+# collinear points (10^6 points -> about 1,200).
 #   bench/caps_scaling.sh [BODYGEN] [N...]     (default N: 10000 100000 1000000)
 set -euo pipefail
 BODYGEN=${1:-build/bin/bodygen}
@@ -23,8 +26,20 @@ def ring(n):
 json.dump({"format": "bodygen.contours", "version": 1, "structures": [{"id": "a"}],
            "slices": [{"z": z, "contours": [{"points": ring(n), "structure": "a"}]} for z in (0, 2)]}, open(out, "w"))
 PY
+    declare -A median
     for caps in none flat dome; do
-        /usr/bin/time -f "points $n caps $caps: %e s wall, %U s user, %M KiB" \
-            "$BODYGEN" build "$WORK/c$n.contours.json" --caps "$caps" --quiet -o "$WORK/out.obj"
+        times=()
+        for ((run = 0; run < ${RUNS:-3}; run++)); do
+            /usr/bin/time -o "$WORK/time" -f "%e %U %M" \
+                "$BODYGEN" build "$WORK/c$n.contours.json" --caps "$caps" --strict --quiet -o "$WORK/out.obj"
+            read -r wall user kib < "$WORK/time"
+            echo "points $n caps $caps: $wall s wall, $user s user, $kib KiB"
+            times+=("$user")
+        done
+        median[$caps]=$(printf '%s\n' "${times[@]}" | sort -g | awk '{a[NR]=$1} END {print a[int((NR + 1) / 2)]}')
+    done
+    for caps in none flat dome; do
+        echo "median points $n caps $caps: ${median[$caps]} s user ($(awk -v a="${median[$caps]}" -v b="${median[none]}" \
+            'BEGIN {printf "%.2f", a / b}')x none)"
     done
 done

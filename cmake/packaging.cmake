@@ -32,8 +32,10 @@ if(NOT CPACK_DEBIAN_PACKAGE_ARCHITECTURE)
   endif()
 endif()
 # Runtime libraries by package name (dpkg-shlibdeps cannot run for a foreign architecture).
+# Every NEEDED library's package (scripts/check-deb-depends.sh checks that
+# against the binaries; Debian 12 package names).
 set(CPACK_DEBIAN_PACKAGE_DEPENDS
-    "libc6, libstdc++6, libegl1, libgles2, libglfw3, libgbm1, libdrm2, libevdev2, fonts-dejavu-core, libegl-mesa0, libgl1-mesa-dri")
+    "libc6, libstdc++6, libgcc-s1, libegl1, libgles2, libglfw3, libgbm1, libdrm2, libevdev2, fonts-dejavu-core, libegl-mesa0, libgl1-mesa-dri, libmeshoptimizer2d, libtinyobjloader2rc10, libpolyclipping22, libharfbuzz0b, libfribidi0, libicu72")
 if(SYSTEMD_FOUND)
   string(APPEND CPACK_DEBIAN_PACKAGE_DEPENDS ", libsystemd0")
 endif()
@@ -44,14 +46,18 @@ if(UDEV_FOUND)
   string(APPEND CPACK_DEBIAN_PACKAGE_DEPENDS ", libudev1")
 endif()
 if(BODY_WITH_IMPORT)
-  string(APPEND CPACK_DEBIAN_PACKAGE_DEPENDS ", libniftiio2, libznz3, libdcmtk17")
+  string(APPEND CPACK_DEBIAN_PACKAGE_DEPENDS ", libniftiio2, libznz3, libdcmtk17, zlib1g")
+endif()
+if(TARGET assimp::assimp)
+  string(APPEND CPACK_DEBIAN_PACKAGE_DEPENDS ", libassimp5")
 endif()
 set(CPACK_DEBIAN_PACKAGE_CONTROL_EXTRA
     ${PROJECT_SOURCE_DIR}/packaging/debian/postinst ${PROJECT_SOURCE_DIR}/packaging/debian/prerm
     ${PROJECT_SOURCE_DIR}/packaging/debian/postrm ${PROJECT_SOURCE_DIR}/packaging/debian/conffiles)
 set(CPACK_DEBIAN_PACKAGE_CONTROL_STRICT_PERMISSION ON)
 # adduser: the postinst's fallback where systemd-sysusers is absent.
-set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "systemd, adduser")
+# fonts-noto-core, fonts-noto-cjk: the kiosk's Arabic, Hebrew and CJK fallback fonts.
+set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "systemd, adduser, fonts-noto-core, fonts-noto-cjk")
 # seatd: the seat manager where logind is not running.
 set(CPACK_DEBIAN_PACKAGE_SUGGESTS "seatd")
 include(CPack)

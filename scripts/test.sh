@@ -72,6 +72,7 @@ check_debs() {
         done
         grep -qx /etc/bodyview/bodyview.conf <<<"$conffiles" || { echo "$deb: no conffile"; ok=1; }
         [ "$arch" = "${pair##*:}" ] || { echo "$deb: architecture $arch, expected ${pair##*:}"; ok=1; }
+        scripts/check-deb-depends.sh "$deb" || ok=1
     done
     return $ok
 }

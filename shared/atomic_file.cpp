@@ -109,7 +109,7 @@ Status write_file_atomically(const std::string& path, const std::function<std::s
         std::ofstream out(temp.path(), std::ios::binary | std::ios::trunc);
         if (!out) return runtime_error(path + ": cannot create file: " + std::strerror(errno));
         reason = write(out);
-        out.flush();
+        out.close();  // checked: a file system may report a full disk only when the file is closed
         if (reason.empty() && !out) reason = "write failed (disk full?)";
     }
     if (reason.empty() && std::rename(temp.path().c_str(), path.c_str()) != 0)

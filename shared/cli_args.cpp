@@ -32,6 +32,7 @@ Result<CliArgs> CliArgs::parse(const std::vector<std::string>& argv, const std::
             }
         } else if (a == "-o" && value_options.count("output")) {
             if (i + 1 >= argv.size()) return input_error("option -o needs a value");
+            if (argv[i + 1].empty()) return input_error("option -o: the output path is empty");
             args.options_.emplace_back("output", argv[++i]);
         } else if (a.size() > 1 && a[0] == '-' && !(std::isdigit(static_cast<unsigned char>(a[1])) || a[1] == '.')) {
             return input_error("unknown option " + a);

@@ -29,10 +29,18 @@ Status check_regular_file(const std::string& path) {
 }
 
 Status check_output_apart(const std::string& output, std::initializer_list<std::string> inputs) {
+    return check_output_apart(output, std::span<const std::string>(inputs.begin(), inputs.size()));
+}
+
+Status check_output_apart(const std::string& output, std::span<const std::string> inputs) {
     namespace fs = std::filesystem;
     std::error_code ec;
     struct stat out_st {};
     const bool out_exists = ::stat(output.c_str(), &out_st) == 0;
+    if (out_exists && !S_ISREG(out_st.st_mode) && !S_ISDIR(out_st.st_mode)) {
+        auto what = regular_file_size(output);  // names what it is
+        return input_error((what ? output + ": not a regular file" : what.error().message) + "; not writing there");
+    }
     fs::path out_path = fs::weakly_canonical(fs::path(output), ec);
     if (ec) out_path = fs::absolute(fs::path(output), ec).lexically_normal();
     const std::string out_dir = out_path.string() + "/";

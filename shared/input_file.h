@@ -4,6 +4,7 @@
 // escaped before it is echoed in a message.
 #include <cstdint>
 #include <initializer_list>
+#include <span>
 #include <string>
 #include <string_view>
 
@@ -24,7 +25,11 @@ Result<uint64_t> regular_file_size(const std::string& path);
 // file as one of `inputs` (same path after resolving links, or same inode
 // through a hard link), or a directory output that contains an input (it
 // is replaced whole). "OUT: is the input INPUT; not overwriting it".
+// An existing output that is not a regular file or a directory (a FIFO, a
+// device, a socket) is refused too: a write would block or the rename that
+// makes it atomic would replace the node. "OUT: is a FIFO; not writing there".
 Status check_output_apart(const std::string& output, std::initializer_list<std::string> inputs);
+Status check_output_apart(const std::string& output, std::span<const std::string> inputs);
 
 // `text` with control characters, DEL and bytes >= 0x80 written as \xHH (and
 // '\\' as "\\\\"), cut to `max` characters with "..." after: safe to print.

@@ -2,18 +2,9 @@
 
 #include <algorithm>
 #include <numeric>
-#include <unordered_map>
 
 namespace body {
 namespace {
-
-uint64_t edge_key(uint32_t a, uint32_t b) { return (uint64_t(std::min(a, b)) << 32) | std::max(a, b); }
-
-struct EdgeUse {
-    uint32_t count = 0;
-    int direction_sum = 0;  // +1 for a->b with a<b, -1 otherwise; 0 when consistently oriented
-    uint32_t first_triangle = 0;
-};
 
 size_t find_root(std::vector<uint32_t>& parent, uint32_t x) {
     while (parent[x] != x) x = parent[x] = parent[parent[x]];
@@ -36,22 +27,16 @@ size_t count_nonmanifold_vertices(size_t vertex_count, std::span<const uint32_t>
         }
     }
     size_t bad = 0;
-    std::unordered_map<uint32_t, uint32_t> local;  // link vertex -> local id
-    std::vector<uint32_t> parent, degree;
+    std::vector<uint32_t> ids, parent, degree;  // the link's distinct vertices, sorted; their local union-find
     for (size_t v = 0; v < vertex_count; ++v) {
         if (start[v] == start[v + 1]) continue;
-        local.clear();
-        parent.clear();
-        degree.clear();
-        auto id = [&](uint32_t x) {
-            auto [it, inserted] = local.emplace(x, uint32_t(parent.size()));
-            if (inserted) {
-                parent.push_back(it->second);
-                degree.push_back(0);
-            }
-            return it->second;
-        };
-        size_t components = 0;
+        ids.assign(link.begin() + start[v], link.begin() + start[v + 1]);
+        std::sort(ids.begin(), ids.end());
+        ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+        parent.resize(ids.size());
+        std::iota(parent.begin(), parent.end(), 0u);
+        degree.assign(ids.size(), 0);
+        auto id = [&](uint32_t x) { return uint32_t(std::lower_bound(ids.begin(), ids.end(), x) - ids.begin()); };
         for (uint32_t i = start[v]; i < start[v + 1]; i += 2) {
             uint32_t a = id(link[i]), b = id(link[i + 1]);
             degree[a]++;
@@ -59,6 +44,7 @@ size_t count_nonmanifold_vertices(size_t vertex_count, std::span<const uint32_t>
             size_t ra = find_root(parent, a), rb = find_root(parent, b);
             if (ra != rb) parent[ra] = uint32_t(rb);
         }
+        size_t components = 0;
         for (uint32_t i = 0; i < parent.size(); ++i) components += find_root(parent, i) == i;
         bool ok = components == 1 && std::all_of(degree.begin(), degree.end(), [](uint32_t d) { return d <= 2; });
         bad += !ok;
@@ -68,16 +54,21 @@ size_t count_nonmanifold_vertices(size_t vertex_count, std::span<const uint32_t>
 
 }  // namespace
 
+// Edges are gathered per lower vertex (a counting sort, then each vertex's few
+// entries sorted by the upper one): linear and cache-friendly where a hash of
+// 3F edges was the build's largest cost on million-triangle caps.
 MeshTopology analyze_topology(std::span<const Vec3> positions, std::span<const uint32_t> indices,
                               double degenerate_area) {
     MeshTopology topo;
     topo.triangles = indices.size() / 3;
-    std::unordered_map<uint64_t, EdgeUse> edges;
-    edges.reserve(indices.size());
     std::vector<uint8_t> used(positions.size(), 0);
     std::vector<uint32_t> parent(topo.triangles);
     std::iota(parent.begin(), parent.end(), 0u);
-
+    struct EdgeEnd {
+        uint32_t upper, triangle;
+        int32_t direction;  // +1 for lower -> upper, -1 otherwise
+    };
+    std::vector<uint32_t> start(positions.size() + 1, 0);
     for (size_t t = 0; t < topo.triangles; ++t) {
         const uint32_t* tri = &indices[3 * t];
         if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2]) {
@@ -87,28 +78,43 @@ MeshTopology analyze_topology(std::span<const Vec3> positions, std::span<const u
             if (0.5 * glm::length(n) <= degenerate_area) topo.degenerate_triangles++;
         }
         for (int k = 0; k < 3; ++k) {
-            uint32_t a = tri[k], b = tri[(k + 1) % 3];
+            const uint32_t a = tri[k], b = tri[(k + 1) % 3];
             used[a] = 1;
-            if (a == b) continue;
-            EdgeUse& e = edges[edge_key(a, b)];
-            if (e.count == 0)
-                e.first_triangle = uint32_t(t);
-            else {
-                size_t ra = find_root(parent, uint32_t(t)), rb = find_root(parent, e.first_triangle);
-                if (ra != rb) parent[ra] = uint32_t(rb);
-            }
-            e.count++;
-            e.direction_sum += a < b ? 1 : -1;
+            if (a != b) start[std::min(a, b) + 1]++;
         }
     }
-    topo.edges = edges.size();
-    for (const auto& [key, e] : edges) {
-        if (e.count == 1)
-            topo.boundary_edges++;
-        else if (e.count > 2)
-            topo.nonmanifold_edges++;
-        else if (e.direction_sum != 0)
-            topo.misoriented_edges++;
+    std::partial_sum(start.begin(), start.end(), start.begin());
+    std::vector<EdgeEnd> ends(start.back());
+    std::vector<uint32_t> fill(start.begin(), start.end() - 1);
+    for (size_t t = 0; t < topo.triangles; ++t) {
+        for (int k = 0; k < 3; ++k) {
+            const uint32_t a = indices[3 * t + k], b = indices[3 * t + (k + 1) % 3];
+            if (a != b) ends[fill[std::min(a, b)]++] = {std::max(a, b), uint32_t(t), a < b ? 1 : -1};
+        }
+    }
+    for (size_t v = 0; v + 1 < start.size(); ++v) {
+        const auto first = ends.begin() + start[v], last = ends.begin() + start[v + 1];
+        std::sort(first, last, [](const EdgeEnd& x, const EdgeEnd& y) {
+            return x.upper != y.upper ? x.upper < y.upper : x.triangle < y.triangle;
+        });
+        for (auto e = first; e != last;) {
+            auto run = e;
+            int direction_sum = 0;
+            size_t count = 0;
+            for (; run != last && run->upper == e->upper; ++run, ++count) {
+                direction_sum += run->direction;
+                size_t ra = find_root(parent, run->triangle), rb = find_root(parent, e->triangle);
+                if (ra != rb) parent[ra] = uint32_t(rb);
+            }
+            topo.edges++;
+            if (count == 1)
+                topo.boundary_edges++;
+            else if (count > 2)
+                topo.nonmanifold_edges++;
+            else if (direction_sum != 0)
+                topo.misoriented_edges++;
+            e = run;
+        }
     }
     topo.vertices = size_t(std::count(used.begin(), used.end(), uint8_t(1)));
     for (uint32_t t = 0; t < topo.triangles; ++t) topo.components += find_root(parent, t) == t;

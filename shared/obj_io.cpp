@@ -63,6 +63,7 @@ Status check_obj_text(const std::string& text, const std::string& path) {
         std::string_view line(text.data() + pos, end - pos);
         pos = end + 1;
         ++line_no;
+        if (line.find('\0') != std::string_view::npos) return fail("NUL byte (not a text file)");
         if (const size_t hash = line.find('#'); hash != std::string_view::npos) line = line.substr(0, hash);
         std::vector<std::string_view> tok;
         for (size_t i = 0; i < line.size();) {

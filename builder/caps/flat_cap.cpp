@@ -13,6 +13,7 @@
 
 #include "builder/caps/boundary_distance.h"
 #include "builder/caps/caps.h"
+#include "builder/caps/dome_groups.h"
 #include "builder/caps/monotone_cap.h"
 
 namespace body {
@@ -326,26 +327,28 @@ Status build_cap(std::span<const std::span<const Vec2>> loops, std::span<const s
         for (size_t t = 0; t < local.size(); t += 3) emit(global[local[t]], global[local[t + 1]], global[local[t + 2]]);
         return ok_status();
     }
-    // Dome: every triangle gets its centroid lifted by a height that grows with the
-    // centroid's distance to the boundary (a height field over the flat cap, so it
-    // cannot fold onto itself).
+    // Dome: a height field over the flat cap, sampled at one apex per group of
+    // cap triangles (dome_groups.h), lifted by a height that grows with its
+    // distance to the boundary; each group becomes a fan around its apex, so
+    // the dome cannot fold onto itself.
+    std::vector<DomeGroup> groups;
+    std::vector<uint32_t> cycles;
+    dome_groups(flat, local, groups, cycles);
     const BoundaryDistance distance(loops);
-    std::vector<double> dist(local.size() / 3, 0.0);
+    std::vector<double> dist(groups.size(), 0.0);
     double dmax = 0;
-    for (size_t t = 0; t < local.size(); t += 3) {
-        const Vec2 c = (flat[local[t]] + flat[local[t + 1]] + flat[local[t + 2]]) / 3.0;
-        dist[t / 3] = distance(c);
-        dmax = std::max(dmax, dist[t / 3]);
+    for (size_t g = 0; g < groups.size(); ++g) {
+        dist[g] = distance(groups[g].apex);
+        dmax = std::max(dmax, dist[g]);
     }
-    for (size_t t = 0; t < local.size(); t += 3) {
-        const Vec2 c = (flat[local[t]] + flat[local[t + 1]] + flat[local[t + 2]]) / 3.0;
-        const double h = dmax > 0 ? dome_height * std::sqrt(dist[t / 3] / dmax) : 0.0;
+    for (size_t g = 0; g < groups.size(); ++g) {
+        const Vec2 c = groups[g].apex;
+        const double h = dmax > 0 ? dome_height * std::sqrt(dist[g] / dmax) : 0.0;
         const uint32_t apex = uint32_t(positions.size());
         positions.emplace_back(c.x, c.y, z + (up ? h : -h));
-        const uint32_t a = global[local[t]], b = global[local[t + 1]], cc = global[local[t + 2]];
-        emit(a, b, apex);
-        emit(b, cc, apex);
-        emit(cc, a, apex);
+        const uint32_t* cycle = &cycles[groups[g].first];
+        const uint32_t n = groups[g].count;
+        for (uint32_t i = 0; i < n; ++i) emit(global[cycle[i]], global[cycle[(i + 1) % n]], apex);
     }
     return ok_status();
 }

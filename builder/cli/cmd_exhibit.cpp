@@ -19,6 +19,7 @@
 #include "builder/mesh_import/mesh_import.h"
 #include "shared/atomic_file.h"
 #include "shared/cli_args.h"
+#include "shared/input_file.h"
 
 namespace body::cli {
 
@@ -223,9 +224,13 @@ int run_exhibit(const Args& argv) {
 
     fs::path bundle = fs::path(*args->get("output")).lexically_normal();
     if (bundle.filename().empty()) bundle = bundle.parent_path();
+    if (Status apart = check_output_apart(bundle.string() + "/", args->positional()); !apart)
+        return report(apart.error());
     fs::path work = bundle;
     work += ".work-" + std::to_string(::getpid());
     Status st = write_sources(work, *parts, built, *scene_options);
+    // The sources are this run's scratch: a failure there names the bundle asked for.
+    if (!st) st = Error{bundle.string() + "/: " + st.error().message, st.error().exit_code};
     Result<PackSummary> pack = st ? pack_scene((work / "scene.json").string(), bundle.string()) : st.error();
     std::error_code ec;
     fs::remove_all(work, ec);

@@ -10,6 +10,7 @@
 #include "builder/export/gltf_writer.h"
 #include "builder/export/mesh_writers.h"
 #include "shared/cli_args.h"
+#include "shared/input_file.h"
 
 namespace body::cli {
 
@@ -37,6 +38,7 @@ int run_export(const Args& argv) {
     if (args->has("meshopt") && ext != ".glb") return report(input_error("export: --meshopt needs a .glb output"));
     if (ext != ".glb" && ext != ".gltf" && ext != ".wrl" && ext != ".obj" && ext != ".stl" && ext != ".ply")
         return report(input_error("export: " + out + ": the extension must be .glb, .gltf, .wrl, .obj, .stl or .ply"));
+    if (Status apart = check_output_apart(out, {args->positional()[0]}); !apart) return report(apart.error());
     const auto start = std::chrono::steady_clock::now();
     auto scene = exporter::load_export_scene(args->positional()[0], *lod);
     if (!scene) return report(scene.error());

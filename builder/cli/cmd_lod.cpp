@@ -54,6 +54,8 @@ int run_lod(const Args& argv) {
     if (!options) return report(options.error());
     if (Status apart = check_output_apart(*args->get("output"), {args->positional()[0]}); !apart)
         return report(apart.error());
+    if (!args->get("output")->ends_with(".bpm"))
+        return report(input_error(*args->get("output") + ": lod writes a .bpm file (-o OUT.bpm)"));
     if (isatty(STDERR_FILENO) && !args->has("quiet")) options->progress = progress_bar("faces removed");
     const auto start = std::chrono::steady_clock::now();
     auto meshes = read_mesh_file(args->positional()[0]);

@@ -1,6 +1,9 @@
 // bodygen: the offline builder. Dispatches to one subcommand per file in builder/cli/.
 #include <cstdio>
 #include <cstring>
+#include <exception>
+#include <filesystem>
+#include <new>
 #include <span>
 #include <string>
 
@@ -8,6 +11,7 @@
 #include "builder/cli/commands.h"
 #include "shared/atomic_file.h"
 #include "shared/error.h"
+#include "shared/input_file.h"
 
 namespace body::cli {
 
@@ -77,7 +81,22 @@ int main(int argc, char** argv) {
     }
     body::remove_temporaries_on_signal();
     for (const Command& c : kCommands) {
-        if (first == c.name) return c.run(body::cli::Args(argv + 2, argv + argc));
+        if (first != c.name) continue;
+        // The last net under every command: a path the file system refuses
+        // (too long, a loop) or memory running out is one line, not an abort.
+        try {
+            return c.run(body::cli::Args(argv + 2, argv + argc));
+        } catch (const std::filesystem::filesystem_error& e) {
+            std::fprintf(stderr, "bodygen: %s: %s\n", body::escape_for_message(e.path1().string()).c_str(),
+                         e.code().message().c_str());
+            return body::kExitBadInput;
+        } catch (const std::bad_alloc&) {
+            std::fprintf(stderr, "bodygen: %s: out of memory\n", c.name);
+            return body::kExitRuntime;
+        } catch (const std::exception& e) {
+            std::fprintf(stderr, "bodygen: %s: %s\n", c.name, body::escape_for_message(e.what(), 200).c_str());
+            return body::kExitRuntime;
+        }
     }
     std::fprintf(stderr, "bodygen: unknown command '%s' (see bodygen --help)\n", first.c_str());
     return body::kExitBadInput;

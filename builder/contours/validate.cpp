@@ -376,6 +376,14 @@ Status validate_contour_stack(ContourStack& stack, const std::string& path, cons
     for (const auto& [pair, first] : cx.structure_overlaps)
         log.add("structure_overlap",
                 first.first + " (both kept; the two cross on " + std::to_string(first.second) + " slice(s))");
+    // A stack that leaves nothing to build is refused here, so that check and
+    // build agree and build never writes an empty mesh file.
+    size_t contours = 0;
+    for (const Slice& slice : stack.slices) contours += slice.contours.size();
+    if (contours == 0)
+        return input_error(
+            path + ": no contour to build from (" +
+            (stack.slices.empty() ? std::string("no slices") : "every contour was empty or without area") + ")");
     return ok_status();
 }
 

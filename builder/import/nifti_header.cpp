@@ -7,6 +7,7 @@
 #include <zlib.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 
 #include "shared/input_file.h"
@@ -35,7 +36,30 @@ struct HeaderView {
     }
 };
 
-constexpr size_t kDimAt = 40, kBitpixAt = 72, kVoxOffsetAt = 108, kMagicAt = 344;
+constexpr size_t kDimAt = 40, kDatatypeAt = 70, kPixdimAt = 76, kQformCodeAt = 252, kSformCodeAt = 254, kBitpixAt = 72,
+                 kVoxOffsetAt = 108, kMagicAt = 344;
+
+// nifti1.h's datatype codes and the bitpix each implies (0: not a datatype).
+int bitpix_of(int datatype) {
+    switch (datatype) {
+        case 2:
+        case 256: return 8;  // uint8, int8
+        case 4:
+        case 512: return 16;  // int16, uint16
+        case 8:
+        case 16:
+        case 768:
+        case 2304: return 32;  // int32, float32, uint32, rgba32
+        case 32:
+        case 64:
+        case 1024:
+        case 1280: return 64;  // complex64, float64, int64, uint64
+        case 128: return 24;   // rgb24
+        case 1536:
+        case 1792: return 128;  // float128, complex128
+        default: return 0;
+    }
+}
 
 }  // namespace
 
@@ -81,13 +105,31 @@ Result<NiftiHeaderFacts> check_nifti_header(std::span<const uint8_t> header, con
     const int bitpix = h.i16(kBitpixAt);
     if (bitpix <= 0 || bitpix % 8 != 0 || bitpix > 128)
         return bad(kBitpixAt, "bitpix = " + std::to_string(bitpix) + ", must be 8, 16, 32, 64 or 128");
+    const int datatype = h.i16(kDatatypeAt);
+    if (bitpix_of(datatype) == 0)
+        return bad(kDatatypeAt, "datatype = " + std::to_string(datatype) + " is not a NIfTI-1 datatype");
+    if (bitpix_of(datatype) != bitpix)
+        return bad(kBitpixAt, "bitpix = " + std::to_string(bitpix) + ", but datatype " + std::to_string(datatype) +
+                                  " has " + std::to_string(bitpix_of(datatype)));
     facts.bytes_per_voxel = bitpix / 8;
     facts.data_bytes =
         uint64_t(facts.dim[0]) * uint64_t(facts.dim[1]) * uint64_t(facts.dim[2]) * uint64_t(facts.bytes_per_voxel);
+    // Without a qform or sform the voxel size is the only geometry: niftilib
+    // would make a zero or non-finite one 1 mm, another volume than the file's.
+    if (h.i16(kQformCodeAt) <= 0 && h.i16(kSformCodeAt) <= 0) {
+        for (int d = 1; d <= std::min(rank, 3); ++d) {
+            const float v = h.f32(kPixdimAt + 4 * size_t(d));
+            if (!(std::isfinite(v) && v != 0.0f))
+                return bad(kPixdimAt + 4 * size_t(d), "pixdim[" + std::to_string(d) + "] = " + std::to_string(v) +
+                                                          ": the voxel size must be a non-zero number");
+        }
+    }
     if (facts.single_file) {
         const float off = h.f32(kVoxOffsetAt);
         if (!(off >= 0.0f) || off > 1e12f)
             return bad(kVoxOffsetAt, "vox_offset = " + std::to_string(off) + " is not a byte offset");
+        if (off < 352.0f)  // a .nii's voxels follow the 348-byte header and its 4-byte extension flag
+            return bad(kVoxOffsetAt, "vox_offset = " + std::to_string(off) + " points inside the header (below 352)");
         facts.data_offset = uint64_t(off);
     }
     return facts;

@@ -91,7 +91,10 @@ std::string check_data_length(const nifti_image& nim) {
         if (!gz) return "cannot open the image data " + file;
         std::vector<char> buffer(1 << 16);
         int n = 0;
-        while (have < needed && (n = gzread(gz, buffer.data(), static_cast<unsigned>(buffer.size()))) > 0) {
+        // On to the stream's end (up to 64 MiB past the voxels), so that a
+        // cut or corrupt gzip trailer (its CRC and length) is found too.
+        const uint64_t limit = needed + (uint64_t(64) << 20);
+        while (have < limit && (n = gzread(gz, buffer.data(), static_cast<unsigned>(buffer.size()))) > 0) {
             have += static_cast<uint64_t>(n);
         }
         int err = Z_OK;
@@ -103,6 +106,7 @@ std::string check_data_length(const nifti_image& nim) {
             return "image data truncated (gzip: " + reason + "; " + std::to_string(have) + " of " +
                    std::to_string(needed) + " bytes)";
         }
+        if (broken) return "gzip stream damaged after the image data (" + reason + ")";
     } else {
         std::error_code ec;
         have = std::filesystem::file_size(file, ec);
@@ -217,6 +221,10 @@ Result<LabelVolume> read_label_volume(const std::string& path, const ImportOptio
             if (!std::isfinite(vol.affine[r][c])) return input_error(where + "non-finite voxel-to-scanner transform");
         }
     }
+    const double det = vol.affine[0][0] * (vol.affine[1][1] * vol.affine[2][2] - vol.affine[1][2] * vol.affine[2][1]) -
+                       vol.affine[0][1] * (vol.affine[1][0] * vol.affine[2][2] - vol.affine[1][2] * vol.affine[2][0]) +
+                       vol.affine[0][2] * (vol.affine[1][0] * vol.affine[2][1] - vol.affine[1][1] * vol.affine[2][0]);
+    if (!(std::abs(det) > 0.0)) return input_error(where + "singular voxel-to-scanner transform (voxels of no volume)");
     return vol;
 }
 

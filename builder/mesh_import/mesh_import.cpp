@@ -5,6 +5,7 @@
 #include <cctype>
 #include <filesystem>
 
+#include "builder/mesh_import/ply_header.h"
 #include "builder/mesh_import/vrml_reader.h"
 #include "shared/obj_io.h"
 
@@ -56,6 +57,8 @@ void collect(const aiScene& scene, const aiNode& node, const aiMatrix4x4& parent
 Result<std::vector<Mesh>> read_with_assimp(const std::string& path, const std::string& ext) {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path, ec)) return input_error(path + ": no such file");
+    if (ext == ".ply")
+        if (Status header = check_ply_header(path); !header) return header.error();
     Assimp::Importer importer;
     const aiScene* scene = importer.ReadFile(path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
                                                        aiProcess_FindInvalidData | aiProcess_ValidateDataStructure);

@@ -5,6 +5,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "shared/input_file.h"
+
 namespace body::kiosk {
 namespace {
 
@@ -58,6 +60,8 @@ Result<std::vector<std::string>> apply_config_file(const std::vector<std::string
     if (!taken) return taken.error();
     auto [path, out] = std::move(taken).value();
     if (path.empty()) return out;
+    // A directory, FIFO or device is named as such and never opened (a FIFO would block).
+    if (Status regular = check_regular_file(path); !regular) return regular.error();
     std::ifstream in(path);
     if (!in) return input_error(path + ": cannot read the configuration file");
     auto command_line = CliArgs::parse(out, value_options, flag_options);

@@ -1,6 +1,7 @@
 // bodyview's command line (contract in view_options.h).
 #include "kiosk/modes/view_options.h"
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 
@@ -57,14 +58,14 @@ Status parse_surface(const CliArgs& args, platform::SurfaceOptions& so) {
     if (args.has("headless")) so.backend = platform::Backend::Headless;
     if (auto p = args.get("platform")) {
         auto b = platform::parse_backend(*p);
-        if (!b) return b.error();
+        if (!b) return input_error("--platform: " + b.error().message);
         if (args.has("headless") && b.value() != platform::Backend::Headless)
             return input_error("--headless contradicts --platform " + *p);
         so.backend = b.value();
     }
     if (auto s = args.get("size")) {
         auto wh = platform::parse_size(*s);
-        if (!wh) return wh.error();
+        if (!wh) return input_error("--size: " + wh.error().message);
         so.width = wh->first;
         so.height = wh->second;
     }
@@ -74,6 +75,14 @@ Status parse_surface(const CliArgs& args, platform::SurfaceOptions& so) {
         so.height = 800;
     }
     so.mode = args.get_or("mode", "");
+    if (!so.mode.empty()) {  // WxH[@Hz], checked here whatever the backend (only DRM uses it)
+        int w = 0, h = 0, n = 0;
+        float hz = 0;
+        const bool sized = std::sscanf(so.mode.c_str(), "%dx%d%n", &w, &h, &n) == 2 && w > 0 && h > 0;
+        const std::string rest = sized ? so.mode.substr(size_t(n)) : "";
+        const bool rate = rest.empty() || (std::sscanf(rest.c_str(), "@%f", &hz) == 1 && hz > 0 && hz < 1000);
+        if (!sized || !rate) return input_error("--mode: bad mode '" + so.mode + "' (expected WxH or WxH@Hz)");
+    }
     so.drm_device = args.get_or("device", "");
     if (auto r = args.get("rotate")) {
         auto deg = platform::parse_rotation(*r);
@@ -114,18 +123,20 @@ Status parse_picture(const CliArgs& args, ViewOptions& o) {
     if (auto s = args.get("style")) {
         o.style = parse_style(*s);
         if (!o.style)
-            return input_error("unknown style '" + *s +
+            return input_error("--style: unknown style '" + *s +
                                "' (expected smooth, wireframe, lines, hatching, hatching-2tone)");
     }
     if (auto v = args.get("view")) {
         float azimuth = 0, polar = 0;
-        if (std::sscanf(v->c_str(), "%f,%f", &azimuth, &polar) != 2)
-            return input_error("--view expects AZIMUTH,POLAR in degrees, e.g. 20,75");
+        int used = 0;
+        if (std::sscanf(v->c_str(), "%f,%f%n", &azimuth, &polar, &used) != 2 || size_t(used) != v->size() ||
+            !std::isfinite(azimuth) || !(polar >= 0.0f && polar <= 180.0f))
+            return input_error("--view expects AZIMUTH,POLAR in degrees (polar 0..180), e.g. 20,75");
         o.view_deg = std::make_pair(azimuth, polar);
     }
     if (auto a = args.get("buffer-access")) {
         auto access = render::parse_buffer_access(*a);
-        if (!access) return access.error();
+        if (!access) return input_error("--buffer-access: " + access.error().message);
         o.renderer.buffer_access = access.value();
     }
     return ok_status();
@@ -191,8 +202,8 @@ Result<ViewOptions> parse_view_options(const CliArgs& args) {
     if (auto s = parse_surface(args, o.surface); !s) return s.error();
     if (auto s = parse_picture(args, o); !s) return s.error();
     if (auto s = parse_what_to_show(args, o); !s) return s.error();
-    if (o.benchmark)
-        if (auto s = parse_benchmark(args, o); !s) return s.error();
+    // Checked whether or not --benchmark is given: a bad value never passes unnoticed.
+    if (auto s = parse_benchmark(args, o); !s) return s.error();
     o.select = args.get("select");
     o.xray = args.has("xray");
     o.screenshot = args.get_or("screenshot", "");

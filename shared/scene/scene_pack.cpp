@@ -7,6 +7,7 @@
 #include <span>
 
 #include "shared/atomic_file.h"
+#include "shared/input_file.h"
 #include "shared/obj_io.h"
 #include "shared/pm/bpm_reader.h"
 #include "shared/pm/progressive_mesh.h"
@@ -23,8 +24,12 @@ namespace fs = std::filesystem;
 Status check_model(const Scene& s, size_t index, size_t& triangles) {
     const Model& m = s.models[index];
     const std::string where = s.source + ": models[" + std::to_string(index) + "].file: '" + m.file + "'";
-    std::error_code ec;
-    if (!fs::is_regular_file(m.path, ec)) return input_error(where + ": no such file (" + m.path + ")");
+    // A FIFO, directory or device is named as such (and never opened).
+    if (Status regular = check_regular_file(m.path); !regular) {
+        const std::string& message = regular.error().message;  // "PATH: reason"
+        const std::string reason = message.starts_with(m.path + ": ") ? message.substr(m.path.size() + 2) : message;
+        return input_error(where + ": " + reason + " (" + m.path + ")");
+    }
     const std::string ext = fs::path(m.path).extension().string();
     if (ext == ".obj") {
         auto meshes = read_obj(m.path);
@@ -79,6 +84,10 @@ Result<PackSummary> pack_scene(const std::string& scene_path, const std::string&
     fs::path bundle = fs::path(out).lexically_normal();
     if (bundle.filename().empty()) bundle = bundle.parent_path();
     summary.bundle = bundle.string();
+    // The bundle replaces its directory whole: never one holding the scene or a model.
+    std::vector<std::string> sources{scene_path};
+    for (const scene::Model& m : scene->models) sources.push_back(m.path);
+    if (Status apart = check_output_apart(bundle.string() + "/", sources); !apart) return apart.error();
     auto fill = [&](const std::string& staged_dir) -> Status {
         const fs::path staged(staged_dir);
         std::error_code ec;

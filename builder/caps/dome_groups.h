@@ -1,0 +1,34 @@
+#pragma once
+// The dome's apexes: the dome is a height field sampled at one apex per group
+// of adjacent flat-cap triangles, each group becoming a fan around its apex.
+//
+// A cap of up to kDomeSamples triangles gets one group per triangle (its
+// centroid is the apex: 3 triangles for each flat one). A larger cap's boundary
+// is sampled far more finely than the dome's shape needs, and one apex per
+// triangle made its mesh 4x the flat cap's; there, runs of consecutive
+// triangles (in the triangulator's order) that share an edge are merged into
+// groups of up to min(16, ceil(F / kDomeSamples)) triangles, while their union
+// stays a simple polygon star-shaped around its area centroid (every fan
+// triangle strictly counter-clockwise). A group of k triangles gives k + 2
+// triangles instead of 3k.
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "shared/geometry.h"
+
+namespace body {
+
+constexpr size_t kDomeSamples = 4096;
+
+struct DomeGroup {
+    Vec2 apex;
+    uint32_t first, count;  // its boundary, counter-clockwise: cycles[first .. first + count)
+};
+
+// `triangles` index `at` and are counter-clockwise. Fills `groups` and
+// `cycles` (cleared first).
+void dome_groups(std::span<const Vec2> at, std::span<const uint32_t> triangles, std::vector<DomeGroup>& groups,
+                 std::vector<uint32_t>& cycles);
+
+}  // namespace body
