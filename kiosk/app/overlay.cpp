@@ -7,16 +7,27 @@
 #include <map>
 #include <tuple>
 
+#include "kiosk/app/access.h"
 #include "kiosk/app/batch_2d.h"
 
 namespace body::kiosk {
 
 struct Overlay::State {
     Batch2d batch;
-    AtlasTexture textures[2];  // title, body
-    GlyphAtlas title, body;
+    // Per text size (normal, large): the title and body atlases and their textures.
+    struct Atlases {
+        AtlasTexture textures[2];  // title, body
+        GlyphAtlas title, body;
+    };
+    Atlases sizes[2];
+    std::shared_ptr<FontSet> fonts;
+    float scale = 1.0f;
+    bool high_contrast = false;
+    int size = 0;  // index into sizes
+    GlyphAtlas *title_atlas = nullptr, *body_atlas = nullptr;
     std::vector<Vertex2d> solid, text[2];
-    std::map<std::tuple<std::string, float, float>, FittedText> fitted;  // control text and box -> fit
+    std::map<std::tuple<std::string, float, float, int>, FittedText> fitted;  // control text, box, size -> fit
+    void use_size(int s);
     const FittedText& fit(const std::string& utf8, float w, float h);
     void build(const std::vector<Control>& controls, const LabelCard& card);
     void upload();
@@ -40,8 +51,21 @@ void text_lines(std::vector<Vertex2d>& out, GlyphAtlas& a, const std::vector<Tex
 }  // namespace
 
 void Overlay::State::upload() {
-    textures[0].upload(title);
-    textures[1].upload(body);
+    sizes[size].textures[0].upload(*title_atlas);
+    sizes[size].textures[1].upload(*body_atlas);
+}
+
+// The atlases of text size `s` (0 normal, 1 large), made at first use.
+void Overlay::State::use_size(int s) {
+    Atlases& a = sizes[s];
+    if (a.title.pixel_height() <= 0.0f) {
+        const float k = s == 1 ? kLargeTextScale : 1.0f;
+        a.title = GlyphAtlas(fonts, 30.0f * scale * k);
+        a.body = GlyphAtlas(fonts, 20.0f * scale * k);
+    }
+    size = s;
+    title_atlas = &a.title;
+    body_atlas = &a.body;
 }
 
 Overlay::Overlay() = default;
@@ -51,8 +75,9 @@ Status Overlay::init(const std::string& font_file, float scale) {
     auto s = std::make_unique<State>();
     auto fonts = FontSet::open(FontSet::every_script(font_file));
     if (!fonts) return fonts.error();
-    s->title = GlyphAtlas(fonts.value(), 30.0f * scale);
-    s->body = GlyphAtlas(fonts.value(), 20.0f * scale);
+    s->fonts = fonts.value();
+    s->scale = scale;
+    s->use_size(0);
     if (auto b = s->batch.init("overlay"); !b) return b;
     shutdown();
     s_ = std::move(s);
@@ -62,28 +87,36 @@ Status Overlay::init(const std::string& font_file, float scale) {
 void Overlay::shutdown() {
     if (!s_) return;
     s_->batch.shutdown();
-    for (AtlasTexture& t : s_->textures) t.shutdown();
+    for (State::Atlases& a : s_->sizes)
+        for (AtlasTexture& t : a.textures) t.shutdown();
     s_.reset();
 }
 
 // fit_text is a search over scales and cuts: done once per text and box, not every frame.
 const FittedText& Overlay::State::fit(const std::string& utf8, float w, float h) {
-    auto key = std::make_tuple(utf8, w, h);
+    auto key = std::make_tuple(utf8, w, h, size);
     if (auto it = fitted.find(key); it != fitted.end()) return it->second;
     if (fitted.size() > 512) fitted.clear();
-    return fitted.emplace(std::move(key), fit_text(body, decode_utf8(utf8), w, h)).first->second;
+    return fitted.emplace(std::move(key), fit_text(*body_atlas, decode_utf8(utf8), w, h)).first->second;
 }
 
 void Overlay::State::build(const std::vector<Control>& controls, const LabelCard& card) {
     solid.clear();
     text[0].clear();
     text[1].clear();
-    const Rgba ink{0.12f, 0.11f, 0.10f, 1.0f}, faded{0.12f, 0.11f, 0.10f, 0.35f};
+    GlyphAtlas &title = *title_atlas, &body = *body_atlas;
+    const Palette& p = palette(high_contrast);
+    const Rgba ink = p.ink;
     for (const Control& c : controls) {
         const Rect& r = c.rect;
-        const Rgba fill = c.active ? Rgba{0.80f, 0.88f, 0.97f, 0.92f} : Rgba{1.0f, 1.0f, 1.0f, 0.85f};
+        const Rgba fill = c.active ? p.active_fill : p.fill;
         quad_2d(solid, r.x, r.y, r.x + r.w, r.y + r.h, fill);
-        const Rgba edge{0.35f, 0.35f, 0.40f, 0.9f};
+        const Rgba edge = p.edge;
+        if (p.framed) {  // the top, left and right edges as well
+            quad_2d(solid, r.x, r.y, r.x + r.w, r.y + 2, edge);
+            quad_2d(solid, r.x, r.y + 2, r.x + 2, r.y + r.h - 2, edge);
+            quad_2d(solid, r.x + r.w - 2, r.y + 2, r.x + r.w, r.y + r.h - 2, edge);
+        }
         quad_2d(solid, r.x, r.y + r.h - 2, r.x + r.w, r.y + r.h, edge);
         const FittedText& f = fit(c.text, r.w - 8.0f, r.h - 6.0f);
         // Lines centred in the box; the first baseline puts the block's middle at the box's.
@@ -91,7 +124,10 @@ void Overlay::State::build(const std::vector<Control>& controls, const LabelCard
         const float top = r.y + (r.h - static_cast<float>(f.lines.size()) * lh) * 0.5f;
         const float baseline = top + (lh + body.ascent() * 0.75f * k) * 0.5f;
         const TextDirection dir = f.rtl ? TextDirection::RightToLeft : TextDirection::LeftToRight;
-        text_lines(text[1], body, f.lines, k, r.x + 4.0f, r.w - 8.0f, baseline, 0, dir, c.enabled ? ink : faded);
+        text_lines(text[1], body, f.lines, k, r.x + 4.0f, r.w - 8.0f, baseline, 0, dir,
+                   !c.enabled ? p.faded
+                   : c.active ? p.active_ink
+                              : ink);
     }
     if (!card.visible) return;
     // Shrink the card to its text, keeping its bottom edge.
@@ -115,18 +151,19 @@ void Overlay::State::build(const std::vector<Control>& controls, const LabelCard
         return lines;
     };
     const bool rtl = is_rtl_paragraph(title_text.empty() ? body_text : title_text);
-    quad_2d(solid, r.x, r.y, r.x + r.w, r.y + r.h, Rgba{1.0f, 1.0f, 0.98f, 0.93f});
+    quad_2d(solid, r.x, r.y, r.x + r.w, r.y + r.h, p.card);
     const float bar_x = rtl ? r.x + r.w - 6 : r.x;  // the accent bar on the reading side
-    quad_2d(solid, bar_x, r.y, bar_x + 6, r.y + r.h, Rgba{0.55f, 0.25f, 0.80f, 1.0f});
+    quad_2d(solid, bar_x, r.y, bar_x + 6, r.y + r.h, p.accent);
     const TextDirection dir = rtl ? TextDirection::RightToLeft : TextDirection::LeftToRight;
     const int align = rtl ? 1 : -1;
     const float title_top = r.y + pad;
     const auto titles = fitting(title_lines, title_top, r.y + r.h, title.line_height());
-    text_lines(text[0], title, titles, 1.0f, r.x + pad, r.w - 2 * pad, title_top + title.ascent(), align, dir, ink);
+    text_lines(text[0], title, titles, 1.0f, r.x + pad, r.w - 2 * pad, title_top + title.ascent(), align, dir,
+               p.card_ink);
     const float body_top =
         title_top + static_cast<float>(titles.size()) * title.line_height() + body.line_height() * 0.3f;
     const auto bodies = fitting(body_lines, body_top, r.y + r.h - pad * 0.5f, body.line_height());
-    text_lines(text[1], body, bodies, 1.0f, r.x + pad, r.w - 2 * pad, body_top + body.ascent(), align, dir, ink);
+    text_lines(text[1], body, bodies, 1.0f, r.x + pad, r.w - 2 * pad, body_top + body.ascent(), align, dir, p.card_ink);
 }
 
 void Overlay::draw(const std::vector<Control>& controls, const LabelCard& card, unsigned framebuffer, int width,
@@ -134,16 +171,22 @@ void Overlay::draw(const std::vector<Control>& controls, const LabelCard& card, 
     if (!s_) return;
     State& s = *s_;
     // Glyphs new this frame may grow an atlas and stale the quads laid out before: then once more.
-    const uint64_t epochs = s.title.epoch() + s.body.epoch();
+    const uint64_t epochs = s.title_atlas->epoch() + s.body_atlas->epoch();
     s.build(controls, card);
-    if (s.title.epoch() + s.body.epoch() != epochs) s.build(controls, card);
+    if (s.title_atlas->epoch() + s.body_atlas->epoch() != epochs) s.build(controls, card);
     s.upload();
 
     s.batch.begin(framebuffer, width, height);
     s.batch.draw(s.solid);
-    s.batch.draw(s.text[0], s.textures[0].id());
-    s.batch.draw(s.text[1], s.textures[1].id());
+    s.batch.draw(s.text[0], s.sizes[s.size].textures[0].id());
+    s.batch.draw(s.text[1], s.sizes[s.size].textures[1].id());
     s.batch.end();
+}
+
+void Overlay::set_look(bool high_contrast, bool large_text) {
+    if (!s_) return;
+    s_->high_contrast = high_contrast;
+    s_->use_size(large_text ? 1 : 0);
 }
 
 }  // namespace body::kiosk

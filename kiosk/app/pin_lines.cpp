@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "kiosk/app/access.h"
 #include "kiosk/app/batch_2d.h"
 
 namespace body::kiosk {
@@ -35,7 +36,12 @@ void dot(std::vector<Vertex2d>& out, glm::vec2 centre, float r, Rgba c) {
 struct PinLines::State {
     Batch2d batch;
     std::vector<Vertex2d> vertices;
+    bool high_contrast = false;
 };
+
+void PinLines::set_high_contrast(bool on) {
+    if (s_) s_->high_contrast = on;
+}
 
 PinLines::PinLines() = default;
 PinLines::~PinLines() = default;
@@ -58,7 +64,7 @@ void PinLines::draw(const std::vector<PinView>& pins, float scale, unsigned fram
     if (!s_) return;
     State& s = *s_;
     s.vertices.clear();
-    const Rgba halo{1.0f, 1.0f, 1.0f, 0.9f}, ink{0.12f, 0.11f, 0.10f, 1.0f};
+    const Rgba halo = palette(s.high_contrast).line_halo, ink = palette(s.high_contrast).line_ink;
     for (const PinView& p : pins) {
         if (!p.shown || !p.label) continue;
         const glm::vec2 end = leader_end(*p.label, p.anchor_px);

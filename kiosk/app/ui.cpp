@@ -14,7 +14,20 @@ float min_target_px(const UiState& s) {
 }
 
 float button_size(const UiState& s) {
-    return std::max(min_target_px(s), std::floor(static_cast<float>(std::min(s.width, s.height)) / 11.0f));
+    const float b = std::max(min_target_px(s), std::floor(static_cast<float>(std::min(s.width, s.height)) / 11.0f));
+    return s.large_text ? std::floor(b * kLargeButtonScale) : b;
+}
+
+Rect column_cell(const UiState& s, int row) {
+    const float b = button_size(s);
+    const float gap = std::floor(b * 0.15f);
+    const float wide = b * 2.2f;
+    const float top = gap + s.drift_y;
+    const float bottom = static_cast<float>(s.height) - b - 2.0f * gap + s.drift_y;
+    const int rows_per_column = std::max(1, static_cast<int>((bottom - top + gap) / (b + gap)));
+    const int column = row / rows_per_column;
+    return Rect{static_cast<float>(s.width) - static_cast<float>(column + 1) * (wide + gap) + s.drift_x,
+                top + static_cast<float>(row % rows_per_column) * (b + gap), wide, b};
 }
 
 std::string ui_text(const std::string& key, const std::string& language) { return ui_word(key, language); }
@@ -23,19 +36,14 @@ std::vector<Control> layout_controls(const UiState& s) {
     const float b = button_size(s);
     const float gap = std::floor(b * 0.15f);
     const float wide = b * 2.2f;
-    // Rows of the right-hand column; when they do not fit above the group row,
-    // they flow into further columns to the left.
-    const float top = gap + s.drift_y;
-    const float bottom = static_cast<float>(s.height) - b - 2.0f * gap + s.drift_y;
-    const int rows_per_column = std::max(1, static_cast<int>((bottom - top + gap) / (b + gap)));
+    // Rows of the right-hand column (column_cell).
     int row = 0;
     float x = 0.0f, y = 0.0f;
     std::vector<Control> out;
     auto place = [&] {
-        const int column = row / rows_per_column;
-        x = static_cast<float>(s.width) - static_cast<float>(column + 1) * (wide + gap) + s.drift_x;
-        y = top + static_cast<float>(row % rows_per_column) * (b + gap);
-        ++row;
+        const Rect cell = column_cell(s, row++);
+        x = cell.x;
+        y = cell.y;
     };
     auto add = [&](ControlId id, std::string text, bool enabled, bool active, float w = 0.0f) {
         Control c;
