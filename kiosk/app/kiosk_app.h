@@ -180,7 +180,8 @@ private:
     void find_pin_anchors();
     void test_pin_occlusion();
     std::optional<float> hit_distance(int model, const Ray& ray) const;
-    void activate_operator(const Control& c);  // kiosk_operator.cpp
+    bool may_occlude(int model, const Ray& ray, float before) const;  // kiosk_pins.cpp
+    void activate_operator(const Control& c);                         // kiosk_operator.cpp
 
     scene::Scene scene_;
     std::vector<ModelInfo> info_;
