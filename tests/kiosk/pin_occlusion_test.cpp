@@ -42,7 +42,7 @@ TEST(PinOcclusion, OnlyModelsOnTheLineOfSightAreWalked) {
     ASSERT_EQ(app.pins().size(), 4u);
     std::fill(walks.begin(), walks.end(), 0);
     app.camera().rotate(0.01f, 0.0f);
-    app.update(1.0);  // one occlusion test
+    app.update(1.0);                    // one occlusion test
     EXPECT_TRUE(app.pins()[1].shown);   // the middle sphere's front pole
     EXPECT_FALSE(app.pins()[2].shown);  // the right one's, behind the fourth sphere
     // Each pin's ray walks its own model, and the right one's also the sphere in front:
