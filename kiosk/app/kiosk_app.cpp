@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "kiosk/app/access.h"
+
 namespace body::kiosk {
 
 namespace {
@@ -52,6 +54,9 @@ KioskApp::KioskApp(scene::Scene scene, std::vector<ModelInfo> models, int width,
     models_.resize(scene_.models.size());
     groups_.resize(scene_.groups.size());
     language_ = scene_.kiosk.languages.front();
+    high_contrast_ = scene_.kiosk.high_contrast;
+    large_text_ = scene_.kiosk.large_text;
+    offered_languages_ = offered_languages(scene_.kiosk.languages);
     LodSettings lod_settings;
     lod_settings.target_ms = scene_.kiosk.frame_ms_target;
     lod_ = LodController(lod_settings);
@@ -154,6 +159,9 @@ UiState KioskApp::ui_state() const {
     const glm::vec2 d = drift(now_);
     s.drift_x = d.x;
     s.drift_y = d.y;
+    s.high_contrast = high_contrast_;
+    s.large_text = large_text_;
+    s.access_buttons = scene_.kiosk.access_buttons;
     s.cut_on = cut_.on();
     s.cut_editing = cut_.editing();
     s.cut_axis = cut_axis_name(cut_.axis());
@@ -162,11 +170,13 @@ UiState KioskApp::ui_state() const {
 
 void KioskApp::relayout() {
     if (operator_.active()) {
-        controls_ = operator_.controls(ui_state(), operator_.diagnostics(now_, lod_auto()));
+        controls_ = operator_.controls(ui_state(), operator_.diagnostics(now_, lod_auto()), language_set());
         return;
     }
     controls_ = layout_controls(ui_state());
+    if (scene_.kiosk.access_buttons) add_access_controls(ui_state(), controls_);  // before the pins avoid them
     add_tour_and_pin_controls();
+    if (scene_.kiosk.icons) add_icons(controls_);
 }
 
 size_t KioskApp::triangles_planned() const {
@@ -353,7 +363,10 @@ void KioskApp::activate(const Control& c, double now) {
         case ControlId::OperatorKey:
         case ControlId::OperatorInfo:
         case ControlId::OperatorRestart:
-        case ControlId::OperatorClose: activate_operator(c); break;
+        case ControlId::OperatorClose:
+        case ControlId::OperatorLanguage: activate_operator(c); break;
+        case ControlId::Contrast: high_contrast_ = !high_contrast_; break;
+        case ControlId::LargeText: large_text_ = !large_text_; break;
     }
     relayout();
 }
@@ -467,6 +480,8 @@ void KioskApp::reset() {
     cut_.off();
     cut_.set_axis(CutAxis::Axial, camera_);
     language_ = scene_.kiosk.languages.front();
+    high_contrast_ = scene_.kiosk.high_contrast;
+    large_text_ = scene_.kiosk.large_text;
     ui_touches_.clear();
     gestures_.reset();
     ++resets_;

@@ -121,6 +121,14 @@ public:
     // The cut plane (kiosk/app/cut_plane.h) and whether it cuts `model` (its group, or every model).
     const CutPlane& cut() const { return cut_; }
     bool cut_applies(int model) const;
+    // The access modes (kiosk/app/access.h): start as the manifest says, visitors toggle them.
+    bool high_contrast() const { return high_contrast_; }
+    bool large_text() const { return large_text_; }
+    // The operator's language set (kiosk_operator.cpp): the manifest's
+    // languages, then the UI's others (ui_words.h), each on or off; the
+    // language button cycles through those on (scene().kiosk.languages).
+    std::vector<std::pair<std::string, bool>> language_set() const;
+    void toggle_language(const std::string& language);
 
     // Actions (also reachable through the controls).
     void select(int model);  // -1 deselects
@@ -172,7 +180,8 @@ private:
     void find_pin_anchors();
     void test_pin_occlusion();
     std::optional<float> hit_distance(int model, const Ray& ray) const;
-    void activate_operator(const Control& c);  // kiosk_operator.cpp
+    bool may_occlude(int model, const Ray& ray, float before) const;  // kiosk_pins.cpp
+    void activate_operator(const Control& c);                         // kiosk_operator.cpp
 
     scene::Scene scene_;
     std::vector<ModelInfo> info_;
@@ -216,6 +225,8 @@ private:
     OperatorMode operator_;
     CutPlane cut_;
     float px_per_mm_ = 0.0f;
+    bool high_contrast_ = false, large_text_ = false;
+    std::vector<std::string> offered_languages_;  // language_set()'s order
 };
 
 }  // namespace body::kiosk

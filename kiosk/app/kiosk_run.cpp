@@ -210,6 +210,8 @@ render::View KioskLoop::camera_view(double now) const {
 
 // The controls and the selected model's label card.
 void KioskLoop::draw_overlay(const render::FrameOptions& frame) {
+    pin_lines_.set_high_contrast(app_->high_contrast());
+    overlay_.set_look(app_->high_contrast(), app_->large_text());
     pin_lines_.draw(app_->pins(), ui_scale_, frame.framebuffer, frame.width, frame.height);
     overlay_.draw(app_->controls(), label_card(*app_), frame.framebuffer, frame.width, frame.height);
 }

@@ -3,9 +3,12 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+
+#include "kiosk/app/ui_words.h"
 
 namespace body::kiosk {
 
@@ -58,7 +61,8 @@ Diagnostics OperatorMode::diagnostics(double uptime_s, bool lod_auto) const {
     return d;
 }
 
-std::vector<Control> OperatorMode::controls(const UiState& ui, const Diagnostics& d) const {
+std::vector<Control> OperatorMode::controls(const UiState& ui, const Diagnostics& d,
+                                            const std::vector<std::pair<std::string, bool>>& languages) const {
     std::vector<Control> out;
     const float b = button_size(ui);
     const float gap = std::floor(b * 0.15f);
@@ -97,14 +101,30 @@ std::vector<Control> OperatorMode::controls(const UiState& ui, const Diagnostics
         const long up = static_cast<long>(d.uptime_s);
         std::snprintf(lines[3], sizeof lines[3], "Uptime %ldh %02ldm %02lds", up / 3600, up / 60 % 60, up % 60);
         const float pw = std::floor(std::min(w - 2 * gap, b * 6.0f)), x0 = (w - pw) * 0.5f;
-        const float y0 = std::max(gap, (h - 5 * b - 4 * gap) * 0.5f);
+        const int per_row = std::max(1, static_cast<int>((pw + gap) / (b + gap)));
+        const float rows = static_cast<float>(5 + (static_cast<int>(languages.size()) + per_row - 1) / per_row);
+        const float y0 = std::max(gap, (h - rows * b - (rows - 1) * gap) * 0.5f);
         for (int i = 0; i < 4; ++i) {
             add(ControlId::OperatorInfo, i, Rect{x0, y0 + static_cast<float>(i) * (b + gap), pw, b}, lines[i]);
         }
         const float half = (pw - gap) * 0.5f, y = y0 + 4 * (b + gap);
         add(ControlId::OperatorRestart, -1, Rect{x0, y, half, b}, "Restart");
         add(ControlId::OperatorClose, -1, Rect{x0 + half + gap, y, half, b}, "Close");
+        // The language set: square toggles in rows below, as many a row as fit the panel.
+        for (size_t i = 0; i < languages.size(); ++i) {
+            const int r = static_cast<int>(i) / per_row, k = static_cast<int>(i) % per_row;
+            add(ControlId::OperatorLanguage, static_cast<int>(i),
+                Rect{x0 + static_cast<float>(k) * (b + gap), y + static_cast<float>(1 + r) * (b + gap), b, b},
+                languages[i].first, languages[i].second);
+        }
     }
+    return out;
+}
+
+std::vector<std::string> offered_languages(const std::vector<std::string>& scene_languages) {
+    std::vector<std::string> out = scene_languages;
+    for (std::string_view l : kUiLanguages)
+        if (std::find(out.begin(), out.end(), l) == out.end()) out.emplace_back(l);
     return out;
 }
 

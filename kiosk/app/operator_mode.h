@@ -3,7 +3,8 @@
 // `kiosk.operator_pin` (without it the gesture exits at once, as before): a
 // PIN keypad, then a panel with the kiosk's diagnostics (frame time, the
 // triangles the LOD drew, resident memory, uptime) and two buttons, restart
-// (the kiosk exits; its service manager starts it again) and close. Modal:
+// (the kiosk exits; its service manager starts it again) and close, and the
+// language set: which languages the visitors' language button offers. Modal:
 // while it is open, only its controls answer. Three wrong PINs close it.
 // State and layout only, no GL; KioskApp drives it (kiosk_operator.cpp).
 #include <optional>
@@ -41,8 +42,11 @@ public:
     void note_frame(double frame_ms, size_t triangles);
     Diagnostics diagnostics(double uptime_s, bool lod_auto) const;
 
-    // The keypad (Pin) or the panel (Open), centred, for `ui`'s size.
-    std::vector<Control> controls(const UiState& ui, const Diagnostics& d) const;
+    // The keypad (Pin) or the panel (Open), centred, for `ui`'s size; the
+    // panel ends with one toggle per language of `languages` (on: active),
+    // ControlId::OperatorLanguage with `group` its index.
+    std::vector<Control> controls(const UiState& ui, const Diagnostics& d,
+                                  const std::vector<std::pair<std::string, bool>>& languages = {}) const;
 
 private:
     std::string pin_, entered_;
@@ -52,6 +56,10 @@ private:
     long frames_ = 0;
     size_t triangles_ = 0;
 };
+
+// The languages the operator can switch on: the manifest's, then the UI
+// table's others (ui_words.h), each once.
+std::vector<std::string> offered_languages(const std::vector<std::string>& scene_languages);
 
 // This process's resident set size in KiB (/proc/self/statm), or -1.
 long resident_kib();

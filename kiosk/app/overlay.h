@@ -29,6 +29,9 @@ public:
     // Draws controls and card into `framebuffer` (width x height). Control texts
     // follow fit_text (never cut off); right-to-left card text is right-aligned.
     void draw(const std::vector<Control>& controls, const LabelCard& card, unsigned framebuffer, int width, int height);
+    // The access modes (access.h) the next draws use: the high-contrast
+    // palette, large text (atlases kLargeTextScale times larger, made when first needed).
+    void set_look(bool high_contrast, bool large_text);
 
 private:
     struct State;

@@ -22,6 +22,8 @@ public:
     void shutdown();
     // `scale` thickens lines and dots on large screens (the overlay's UI scale).
     void draw(const std::vector<PinView>& pins, float scale, unsigned framebuffer, int width, int height);
+    // The high-contrast palette's line colours for the next draws (access.h).
+    void set_high_contrast(bool on);
 
 private:
     struct State;

@@ -4,27 +4,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include "kiosk/app/ui_words.h"
+
 namespace body::kiosk {
 
 namespace {
-
-struct Word {
-    const char* key;
-    const char* en;
-    const char* de;
-    const char* fr;
-    const char* es;
-};
-
-constexpr Word kWords[] = {
-    {"tour", "Tour", "Tour", "Visite", "Recorrido"},
-    {"back", "Back", "Zurück", "Retour", "Atrás"},
-    {"pause", "Pause", "Pause", "Pause", "Pausa"},
-    {"play", "Play", "Weiter", "Lecture", "Seguir"},
-    {"next", "Next", "Weiter", "Suivant", "Siguiente"},
-    {"leave", "Leave", "Beenden", "Quitter", "Salir"},
-    {"still", "Still looking?", "Noch da?", "Toujours là ?", "¿Sigue ahí?"},
-};
 
 Control make(ControlId id, const Rect& r, std::string text, int group = -1, bool active = false) {
     Control c;
@@ -38,16 +22,7 @@ Control make(ControlId id, const Rect& r, std::string text, int group = -1, bool
 
 }  // namespace
 
-std::string tour_text(const std::string& key, const std::string& language) {
-    for (const Word& w : kWords) {
-        if (key != w.key) continue;
-        if (language == "de") return w.de;
-        if (language == "fr") return w.fr;
-        if (language == "es") return w.es;
-        return w.en;
-    }
-    return key;
-}
+std::string tour_text(const std::string& key, const std::string& language) { return ui_word(key, language); }
 
 void add_tour_controls(const UiState& ui, const TourUiState& st, std::vector<Control>& out) {
     const float b = button_size(ui);

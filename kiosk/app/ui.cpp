@@ -1,124 +1,49 @@
-// Finger-sized controls: layout, hit testing and the few UI words per language.
+// Finger-sized controls: layout and hit testing (their words: ui_words.h).
 #include "kiosk/app/ui.h"
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
-#include <iterator>
 
 #include "kiosk/app/text_shaping.h"
+#include "kiosk/app/ui_words.h"
 
 namespace body::kiosk {
-
-namespace {
-
-struct Word {
-    const char* key;
-    const char* en;
-    const char* de;
-    const char* fr;
-    const char* es;
-};
-
-constexpr Word kWords[] = {
-    {"home", "Home", "Start", "Accueil", "Inicio"},  {"style", "Style", "Stil", "Style", "Estilo"},
-    {"group", "Group", "Gruppe", "Groupe", "Grupo"}, {"lod", "Detail", "Detail", "Détail", "Detalle"},
-    {"auto", "Auto", "Auto", "Auto", "Auto"},        {"isolate", "Isolate", "Isolieren", "Isoler", "Aislar"},
-};
-
-// The same words in the scripts the kiosk shapes (text_shaping.h): Cyrillic,
-// Greek, Arabic, Hebrew, Chinese, Japanese; in kWords' key order.
-struct MoreWords {
-    const char* language;
-    const char* words[6];
-};
-
-constexpr MoreWords kMoreWords[] = {
-    {"ru", {"Домой", "Стиль", "Группа", "Детали", "Авто", "Изолировать"}},
-    {"el", {"Αρχή", "Στυλ", "Ομάδα", "Λεπτομέρεια", "Αυτόματο", "Απομόνωση"}},
-    {"ar", {"الرئيسية", "النمط", "المجموعة", "التفاصيل", "تلقائي", "عزل"}},
-    {"he", {"בית", "סגנון", "קבוצה", "פירוט", "אוטומטי", "בידוד"}},
-    {"zh", {"主页", "样式", "组", "细节", "自动", "单独显示"}},
-    {"ja", {"ホーム", "スタイル", "グループ", "詳細", "自動", "単独表示"}},
-};
-
-// The cut plane's words (kiosk/app/cut_plane.h).
-constexpr Word kCutWords[] = {
-    {"cut", "Cut", "Schnitt", "Coupe", "Corte"},
-    {"off", "off", "aus", "non", "no"},
-    {"move", "move", "bewegen", "bouger", "mover"},
-    {"fixed", "fixed", "fest", "fixe", "fijo"},
-    {"axial", "axial", "axial", "axiale", "axial"},
-    {"coronal", "coronal", "koronal", "coronale", "coronal"},
-    {"sagittal", "sagittal", "sagittal", "sagittale", "sagital"},
-};
-
-// The cut plane's words in the other scripts, in kCutWords' key order.
-struct MoreCutWords {
-    const char* language;
-    const char* words[7];
-};
-
-constexpr MoreCutWords kMoreCutWords[] = {
-    {"ru", {"Срез", "выкл", "двигать", "закреплён", "аксиальный", "корональный", "сагиттальный"}},
-    {"el", {"Τομή", "κλειστό", "μετακίνηση", "σταθερό", "αξονικό", "στεφανιαίο", "οβελιαίο"}},
-    {"ar", {"مقطع", "إيقاف", "تحريك", "ثابت", "محوري", "إكليلي", "سهمي"}},
-    {"he", {"חתך", "כבוי", "הזזה", "קבוע", "צירי", "קורונלי", "סגיטלי"}},
-    {"zh", {"剖切", "关", "移动", "固定", "轴位", "冠状位", "矢状位"}},
-    {"ja", {"断面", "オフ", "移動", "固定", "軸位", "冠状断", "矢状断"}},
-};
-
-}  // namespace
 
 float min_target_px(const UiState& s) {
     return std::max(kMinButtonPx, std::ceil(kMinTouchMm * std::max(0.0f, s.px_per_mm)));
 }
 
 float button_size(const UiState& s) {
-    return std::max(min_target_px(s), std::floor(static_cast<float>(std::min(s.width, s.height)) / 11.0f));
+    const float b = std::max(min_target_px(s), std::floor(static_cast<float>(std::min(s.width, s.height)) / 11.0f));
+    return s.large_text ? std::floor(b * kLargeButtonScale) : b;
 }
 
-std::string ui_text(const std::string& key, const std::string& language) {
-    for (size_t i = 0; i < std::size(kWords); ++i) {
-        const Word& w = kWords[i];
-        if (key != w.key) continue;
-        for (const MoreWords& m : kMoreWords)
-            if (language == m.language) return m.words[i];
-        if (language == "de") return w.de;
-        if (language == "fr") return w.fr;
-        if (language == "es") return w.es;
-        return w.en;
-    }
-    for (size_t i = 0; i < std::size(kCutWords); ++i) {
-        const Word& w = kCutWords[i];
-        if (key != w.key) continue;
-        for (const MoreCutWords& m : kMoreCutWords)
-            if (language == m.language) return m.words[i];
-        if (language == "de") return w.de;
-        if (language == "fr") return w.fr;
-        if (language == "es") return w.es;
-        return w.en;
-    }
-    return key;
+Rect column_cell(const UiState& s, int row) {
+    const float b = button_size(s);
+    const float gap = std::floor(b * 0.15f);
+    const float wide = b * 2.2f;
+    const float top = gap + s.drift_y;
+    const float bottom = static_cast<float>(s.height) - b - 2.0f * gap + s.drift_y;
+    const int rows_per_column = std::max(1, static_cast<int>((bottom - top + gap) / (b + gap)));
+    const int column = row / rows_per_column;
+    return Rect{static_cast<float>(s.width) - static_cast<float>(column + 1) * (wide + gap) + s.drift_x,
+                top + static_cast<float>(row % rows_per_column) * (b + gap), wide, b};
 }
+
+std::string ui_text(const std::string& key, const std::string& language) { return ui_word(key, language); }
 
 std::vector<Control> layout_controls(const UiState& s) {
     const float b = button_size(s);
     const float gap = std::floor(b * 0.15f);
     const float wide = b * 2.2f;
-    // Rows of the right-hand column; when they do not fit above the group row,
-    // they flow into further columns to the left.
-    const float top = gap + s.drift_y;
-    const float bottom = static_cast<float>(s.height) - b - 2.0f * gap + s.drift_y;
-    const int rows_per_column = std::max(1, static_cast<int>((bottom - top + gap) / (b + gap)));
+    // Rows of the right-hand column (column_cell).
     int row = 0;
     float x = 0.0f, y = 0.0f;
     std::vector<Control> out;
     auto place = [&] {
-        const int column = row / rows_per_column;
-        x = static_cast<float>(s.width) - static_cast<float>(column + 1) * (wide + gap) + s.drift_x;
-        y = top + static_cast<float>(row % rows_per_column) * (b + gap);
-        ++row;
+        const Rect cell = column_cell(s, row++);
+        x = cell.x;
+        y = cell.y;
     };
     auto add = [&](ControlId id, std::string text, bool enabled, bool active, float w = 0.0f) {
         Control c;

@@ -45,8 +45,11 @@ enum class ControlId {
     OperatorInfo,
     OperatorRestart,
     OperatorClose,
-    Cut,      // the cut plane: off -> move the plane -> move the camera -> off (kiosk/app/cut_plane.h)
-    CutAxis,  // the plane's preset: axial -> coronal -> sagittal
+    OperatorLanguage,  // a language of the set on or off; `group` its index in KioskApp::language_set()
+    Cut,               // the cut plane: off -> move the plane -> move the camera -> off (kiosk/app/cut_plane.h)
+    CutAxis,           // the plane's preset: axial -> coronal -> sagittal
+    Contrast,          // the access modes (kiosk/app/access.h): high contrast on/off
+    LargeText,         // large text on/off
 };
 
 struct Control {
@@ -69,15 +72,19 @@ struct UiState {
     std::string group_style_name;  // style of the selection's group
     std::vector<std::string> group_names;
     std::vector<bool> group_visible;
-    float drift_x = 0.0f, drift_y = 0.0f;      // anti burn-in offset, pixels
-    bool cut_on = false, cut_editing = false;  // the cut plane (kiosk/app/cut_plane.h)
-    std::string cut_axis = "axial";            // its preset (cut_axis_name)
-    float px_per_mm = 0.0f;                    // the display's density; 0: unknown (pixel minimum only)
+    float drift_x = 0.0f, drift_y = 0.0f;            // anti burn-in offset, pixels
+    bool cut_on = false, cut_editing = false;        // the cut plane (kiosk/app/cut_plane.h)
+    std::string cut_axis = "axial";                  // its preset (cut_axis_name)
+    float px_per_mm = 0.0f;                          // the display's density; 0: unknown (pixel minimum only)
+    bool high_contrast = false, large_text = false;  // the access modes (kiosk/app/access.h)
+    bool access_buttons = false;                     // their toggles follow the column
 };
 
 inline constexpr float kMinButtonPx = 64.0f;
 inline constexpr float kMinTouchMm = 9.0f;  // a fingertip: no touch target is smaller on either side
 inline constexpr float kTouchSlopPx = 8.0f;
+inline constexpr float kLargeButtonScale = 1.25f;  // button_size with large text (access.h)
+inline constexpr int kColumnRows = 9;              // rows layout_controls fills in the control column
 
 std::vector<Control> layout_controls(const UiState& state);
 // Mirrors the controls left to right in a screen `width` pixels wide.
@@ -87,8 +94,12 @@ const Control* hit_test(const std::vector<Control>& controls, float x, float y);
 // The smallest side of any touch target in pixels: kMinButtonPx, and kMinTouchMm
 // when the display's density is known.
 float min_target_px(const UiState& state);
-// The side of a control in pixels: a finger's size, at least min_target_px.
+// The side of a control in pixels: a finger's size, at least min_target_px
+// (kLargeButtonScale times that with large text).
 float button_size(const UiState& state);
+// The control column's cell `row` (0: the top; rows that do not fit above the
+// group row flow into further columns to the left), before RTL mirroring.
+Rect column_cell(const UiState& state, int row);
 // A UI word in `language` ("home", "language", "style", "group", "lod", "auto", "isolate", "cut", "off",
 // "move", "fixed", "axial", "coronal", "sagittal"): en, de, fr, es, ru, el, ar, he, zh, ja; English fallback.
 std::string ui_text(const std::string& key, const std::string& language);

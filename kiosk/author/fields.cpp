@@ -399,7 +399,7 @@ std::vector<Field> all_fields() {
                        return input_error("models: use Add model / Remove model");
                    }});
     for (auto* part : {&model_fields, &pin_fields, &group_fields, &camera_fields, &kiosk_fields, &kiosk_tour_fields,
-                       &cut_plane_fields, &tour_fields})
+                       &kiosk_access_fields, &cut_plane_fields, &tour_fields})
         for (Field& f : part()) out.push_back(f);
     return out;
 }

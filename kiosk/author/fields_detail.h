@@ -26,6 +26,8 @@ std::vector<Field> pin_fields();
 std::vector<Field> kiosk_tour_fields();
 // tours, tours[].name/title/steps, steps[].*.
 std::vector<Field> tour_fields();
+// kiosk.high_contrast, kiosk.large_text, kiosk.access_buttons, kiosk.icons (fields_access.cpp).
+std::vector<Field> kiosk_access_fields();
 
 // A model or group renamed from `from` to `to`: tour steps naming it follow.
 void rename_in_tours(scene::Scene& s, const std::string& from, const std::string& to);

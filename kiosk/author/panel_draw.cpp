@@ -1,103 +1,43 @@
 // The editor's 2-D layer (contract in panel_draw.h): solid and atlas-coverage
-// quads in pixel coordinates, in two layers (panel, then help and prompt).
+// quads in pixel coordinates through the kiosk's 2-D batch (app/batch_2d.h),
+// in two layers (panel, then help and prompt).
 #include "kiosk/author/panel_draw.h"
-
-#include <GLES3/gl3.h>
 
 #include <algorithm>
 
+#include "kiosk/app/batch_2d.h"
 #include "kiosk/app/text.h"
-#include "kiosk/render/renderer.h"
 
 namespace body::kiosk::author {
 
 namespace {
 
-const char* kVertex = R"(#version 300 es
-layout(location = 0) in vec2 a_pos;
-layout(location = 1) in vec2 a_uv;
-layout(location = 2) in vec4 a_color;
-uniform vec2 u_screen;
-out vec2 v_uv;
-out vec4 v_color;
-void main() {
-    v_uv = a_uv;
-    v_color = a_color;
-    gl_Position = vec4(a_pos.x / u_screen.x * 2.0 - 1.0, 1.0 - a_pos.y / u_screen.y * 2.0, 0.0, 1.0);
-}
-)";
-
-const char* kFragment = R"(#version 300 es
-precision mediump float;
-uniform sampler2D u_atlas;
-uniform int u_textured;
-in vec2 v_uv;
-in vec4 v_color;
-out vec4 o_color;
-void main() {
-    float a = u_textured == 1 ? texture(u_atlas, v_uv).r : 1.0;
-    o_color = vec4(v_color.rgb, v_color.a * a);
-}
-)";
-
-struct Vertex {
-    float x, y, u, v, r, g, b, a;
-};
-struct Colour {
-    float r, g, b, a;
-};
-constexpr Colour kInk{0.10f, 0.10f, 0.12f, 1.0f}, kFaded{0.10f, 0.10f, 0.12f, 0.5f}, kPanel{0.93f, 0.93f, 0.95f, 0.96f},
+constexpr Rgba kInk{0.10f, 0.10f, 0.12f, 1.0f}, kFaded{0.10f, 0.10f, 0.12f, 0.5f}, kPanel{0.93f, 0.93f, 0.95f, 0.96f},
     kBox{1, 1, 1, 1}, kActive{0.78f, 0.86f, 0.98f, 1.0f}, kEdge{0.55f, 0.55f, 0.62f, 1.0f},
     kHeading{0.84f, 0.84f, 0.88f, 1.0f}, kSelect{0.55f, 0.70f, 0.98f, 0.6f};
 
-void quad(std::vector<Vertex>& out, const Rect& r, Colour c, float s0 = 0, float t0 = 0, float s1 = 0, float t1 = 0) {
-    const float x0 = r.x, y0 = r.y, x1 = r.x + r.w, y1 = r.y + r.h;
-    const Vertex v[6] = {{x0, y0, s0, t0, c.r, c.g, c.b, c.a}, {x1, y0, s1, t0, c.r, c.g, c.b, c.a},
-                         {x1, y1, s1, t1, c.r, c.g, c.b, c.a}, {x0, y0, s0, t0, c.r, c.g, c.b, c.a},
-                         {x1, y1, s1, t1, c.r, c.g, c.b, c.a}, {x0, y1, s0, t1, c.r, c.g, c.b, c.a}};
-    out.insert(out.end(), v, v + 6);
+void quad(std::vector<Vertex2d>& out, const Rect& r, Rgba c, float s0 = 0, float t0 = 0, float s1 = 0, float t1 = 0) {
+    quad_2d(out, r.x, r.y, r.x + r.w, r.y + r.h, c, s0, t0, s1, t1);
 }
 
 struct Layer {
-    std::vector<Vertex> solid, text;
+    std::vector<Vertex2d> solid, text;
 };
 
 }  // namespace
 
 struct PanelPainter::State {
-    GLuint program = 0, vao = 0, vbo = 0, texture = 0;
-    GLint u_screen = -1, u_textured = -1, u_atlas = -1;
+    Batch2d batch;
+    AtlasTexture texture;
     GlyphAtlas atlas;  // glyphs drawn in when first laid out (app/text.h)
     std::string font;
     float pixel_height = 16.0f;
-    uint64_t uploaded = ~0ull;  // the atlas generation in `texture`
-    int texture_width = 0;
     Layer layers[2];
-
-    void upload() {
-        if (uploaded == atlas.generation()) return;
-        glBindTexture(GL_TEXTURE_2D, texture);
-        glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-        if (texture_width != atlas.width()) {
-            glTexImage2D(GL_TEXTURE_2D, 0, GL_R8, atlas.width(), atlas.height(), 0, GL_RED, GL_UNSIGNED_BYTE,
-                         atlas.pixels().data());
-            texture_width = atlas.width();
-            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-        } else {
-            glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, atlas.width(), atlas.height(), GL_RED, GL_UNSIGNED_BYTE,
-                            atlas.pixels().data());
-        }
-        glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-        uploaded = atlas.generation();
-    }
 
     void build(Editor& e, int width, int height);
 
     // Text from its left edge, vertically centred in `r`, clipped at the right; returns the pen's x.
-    float text(Layer& l, const std::string& utf8, const Rect& r, float left, Colour c) {
+    float text(Layer& l, const std::string& utf8, const Rect& r, float left, Rgba c) {
         const float y = r.y + (r.h + atlas.ascent() * 0.75f) * 0.5f;
         float advance = 0;
         for (const GlyphQuad& q : atlas.layout(decode_utf8(utf8), r.x + left, y, &advance)) {
@@ -161,7 +101,7 @@ void PanelPainter::State::box(Layer& l, const std::vector<std::string>& lines, i
     const Rect r{(static_cast<float>(width) - w) * 0.5f - 20,
                  (static_cast<float>(height) - lh * lines.size()) * 0.5f - 16, w + 40,
                  lh * static_cast<float>(lines.size()) + 32};
-    quad(l.solid, r, Colour{1, 1, 1, 0.97f});
+    quad(l.solid, r, Rgba{1, 1, 1, 0.97f});
     quad(l.solid, Rect{r.x, r.y, r.w, 3}, kEdge);
     for (size_t i = 0; i < lines.size(); ++i)
         text(l, lines[i], Rect{r.x, r.y + 16 + lh * static_cast<float>(i), r.w, lh}, 20.0f, kInk);
@@ -174,30 +114,9 @@ Status PanelPainter::init(const std::string& font_file, float scale) {
     auto s = std::make_unique<State>();
     s->font = font_file;
     s->pixel_height = 16.0f * scale;
-    auto program = render::link_program(kVertex, kFragment, "author panel");
-    if (!program) return program.error();
-    s->program = program.value();
-    s->u_screen = glGetUniformLocation(s->program, "u_screen");
-    s->u_textured = glGetUniformLocation(s->program, "u_textured");
-    s->u_atlas = glGetUniformLocation(s->program, "u_atlas");
-    glGenVertexArrays(1, &s->vao);
-    glGenBuffers(1, &s->vbo);
-    glBindVertexArray(s->vao);
-    glBindBuffer(GL_ARRAY_BUFFER, s->vbo);
-    glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, sizeof(Vertex), reinterpret_cast<void*>(0));
-    glVertexAttribPointer(1, 2, GL_FLOAT, GL_FALSE, sizeof(Vertex), reinterpret_cast<void*>(2 * sizeof(float)));
-    glVertexAttribPointer(2, 4, GL_FLOAT, GL_FALSE, sizeof(Vertex), reinterpret_cast<void*>(4 * sizeof(float)));
-    for (GLuint i = 0; i < 3; ++i) glEnableVertexAttribArray(i);
-    glBindVertexArray(0);
-    glGenTextures(1, &s->texture);
     auto atlas = GlyphAtlas::build(font_file, s->pixel_height);
-    if (!atlas) {
-        glDeleteProgram(s->program);
-        glDeleteVertexArrays(1, &s->vao);
-        glDeleteBuffers(1, &s->vbo);
-        glDeleteTextures(1, &s->texture);
-        return atlas.error();
-    }
+    if (!atlas) return atlas.error();
+    if (auto b = s->batch.init("author panel"); !b) return b;
     s->atlas = std::move(atlas).value();
     shutdown();
     s_ = std::move(s);
@@ -206,10 +125,8 @@ Status PanelPainter::init(const std::string& font_file, float scale) {
 
 void PanelPainter::shutdown() {
     if (!s_) return;
-    glDeleteProgram(s_->program);
-    glDeleteVertexArrays(1, &s_->vao);
-    glDeleteBuffers(1, &s_->vbo);
-    glDeleteTextures(1, &s_->texture);
+    s_->batch.shutdown();
+    s_->texture.shutdown();
     s_.reset();
 }
 
@@ -239,36 +156,14 @@ void PanelPainter::draw(Editor& e, unsigned framebuffer, int width, int height) 
     const uint64_t epoch = s.atlas.epoch();
     s.build(e, width, height);
     if (s.atlas.epoch() != epoch) s.build(e, width, height);
-    s.upload();
+    s.texture.upload(s.atlas);
 
-    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
-    glViewport(0, 0, width, height);
-    glDisable(GL_DEPTH_TEST);
-    glDisable(GL_CULL_FACE);
-    glDepthMask(GL_FALSE);
-    glEnable(GL_BLEND);
-    glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-    glUseProgram(s.program);
-    glUniform2f(s.u_screen, static_cast<float>(width), static_cast<float>(height));
-    glUniform1i(s.u_atlas, 0);
-    glActiveTexture(GL_TEXTURE0);
-    glBindTexture(GL_TEXTURE_2D, s.texture);
-    glBindVertexArray(s.vao);
-    glBindBuffer(GL_ARRAY_BUFFER, s.vbo);
-    auto submit = [&](const std::vector<Vertex>& v, int textured) {
-        if (v.empty()) return;
-        glUniform1i(s.u_textured, textured);
-        glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(v.size() * sizeof(Vertex)), v.data(), GL_STREAM_DRAW);
-        glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(v.size()));
-    };
+    s.batch.begin(framebuffer, width, height);
     for (const Layer& l : s.layers) {
-        submit(l.solid, 0);
-        submit(l.text, 1);
+        s.batch.draw(l.solid);
+        s.batch.draw(l.text, s.texture.id());
     }
-    glBindVertexArray(0);
-    glDisable(GL_BLEND);
-    glDepthMask(GL_TRUE);
-    glEnable(GL_DEPTH_TEST);
+    s.batch.end();
 }
 
 }  // namespace body::kiosk::author

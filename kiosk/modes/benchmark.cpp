@@ -127,6 +127,7 @@ private:
     void print_cell(double lod, Style s, const Cell& c) const;
     void print_memory() const;
     Status run_cut_plane();
+    Status full_detail();
 
     platform::Surface& surface_;
     const BenchmarkOptions& options_;
@@ -387,13 +388,19 @@ void Benchmark::print_memory() const {
                     mib(std::max(after_baseline_, after_baseline_current_ + added) - empty_rss_));
 }
 
-// The cut-plane table (benchmark_cut.cpp) at full detail.
-Status Benchmark::run_cut_plane() {
+// The model back at full detail (the cut-plane and pins tables are timed there).
+Status Benchmark::full_detail() {
     source_->set_lod(1.0);
     if (const render::Dirty d = source_->take_dirty(); d.vertex_begin < d.vertex_end || d.index_begin < d.index_end) {
         if (auto s = renderer_.update_model(id_, source_->upload_mesh(), d); !s) return s;
         source_->release_arrays();
     }
+    return ok_status();
+}
+
+// The cut-plane table (benchmark_cut.cpp) at full detail.
+Status Benchmark::run_cut_plane() {
+    if (auto s = full_detail(); !s) return s;
     return compare_cut_plane(renderer_, id_, camera_, frame_, options_.frames, options_.seconds_per_cell);
 }
 
@@ -423,6 +430,7 @@ Status Benchmark::run() {
             return s;
     }
     renderer_.state(id_)->style = Style::Smooth;
+    if (auto s = full_detail(); !s) return s;
     if (auto s =
             compare_pins(renderer_, id_, *source_, frame_, std::max(options_.frames, 30), options_.seconds_per_cell);
         !s)
@@ -446,6 +454,7 @@ int run_benchmark_mode(platform::Surface& surface, const ViewOptions& o, const s
     bo.renderer = o.renderer;
     bo.target_triangles = static_cast<size_t>(o.bench_triangles);
     bo.frames = static_cast<int>(o.bench_frames);
+    bo.seconds_per_cell = o.bench_seconds;
     auto s = run_benchmark(surface, bo);
     return s ? kExitOk : report(s.error());
 }

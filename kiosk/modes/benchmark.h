@@ -45,7 +45,7 @@ Status compare_with_static(render::Renderer& renderer, render::ModelId id, Model
                            const std::string& bpm_path, const render::View& camera, const render::FrameOptions& frame,
                            int min_pairs, double seconds);
 
-// The pinned-label table (benchmark_pins.cpp), run last: the kiosk frame (model
+// The pinned-label table (benchmark_pins.cpp), run last at full detail: the kiosk frame (model
 // `id` of `source` drawn from a turning KioskApp camera, then the overlay)
 // with eight pins and labels against the same frame without, in alternating
 // pairs; median pair ratio and the ratio of the totals (goal <= 1.1x).

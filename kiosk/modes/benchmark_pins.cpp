@@ -58,11 +58,17 @@ struct CpuMesh {
     }
 };
 
+// A source whose arrays the renderer holds (a complete .bpm hands over its
+// indices and vertex data at release_arrays) is read back from the renderer's
+// buffers: the level that is drawn.
 CpuMesh cpu_mesh(const render::Renderer& renderer, render::ModelId id, ModelSource& source) {
     CpuMesh m;
     const render::MeshData d = source.mesh();
-    const size_t nv = std::min(d.vertex_count, d.positions.size());
-    m.positions.assign(d.positions.begin(), d.positions.begin() + static_cast<long>(nv));
+    const size_t nv = d.vertex_count == SIZE_MAX ? d.positions.size() : d.vertex_count;
+    if (d.positions.size() >= nv)
+        m.positions.assign(d.positions.begin(), d.positions.begin() + static_cast<long>(nv));
+    else
+        (void)renderer.read_positions(id, m.positions);
     const size_t ni = d.index_count == SIZE_MAX ? d.indices.size() : d.index_count;
     if (d.indices.size() >= ni) {
         m.indices.assign(d.indices.begin(), d.indices.begin() + static_cast<long>(ni));
@@ -70,6 +76,9 @@ CpuMesh cpu_mesh(const render::Renderer& renderer, render::ModelId id, ModelSour
         renderer.read_indices(id, ni, [&](std::span<const uint32_t> ix) { m.indices.assign(ix.begin(), ix.end()); });
     }
     source.release_arrays();
+    // Corners past the positions (a failed read-back) would read out of bounds.
+    const auto past = [&](uint32_t v) { return v >= m.positions.size(); };
+    if (std::any_of(m.indices.begin(), m.indices.end(), past)) m.indices.clear();
     return m;
 }
 
@@ -92,6 +101,7 @@ scene::Scene bench_scene(bool pins) {
 Status compare_pins(render::Renderer& renderer, render::ModelId id, ModelSource& source,
                     const render::FrameOptions& frame, int min_pairs, double seconds) {
     const CpuMesh mesh = cpu_mesh(renderer, id, source);
+    if (mesh.indices.empty()) return runtime_error("pins table: the model's triangles could not be read for picking");
     Vec3f center;
     float radius = 0.0f;
     renderer.bounds(id, center, radius);

@@ -37,6 +37,7 @@ const std::set<std::string>& view_value_options() {
                                                 "replay",
                                                 "bench-triangles",
                                                 "bench-frames",
+                                                "bench-seconds",
                                                 "buffer-access",
                                                 "soak",
                                                 "touch-calibration",
@@ -176,6 +177,11 @@ Status parse_benchmark(const CliArgs& args, ViewOptions& o) {
     if (!frames) return frames.error();
     if (frames.value() < 1) return input_error("--bench-frames must be at least 1");
     o.bench_frames = frames.value();
+    auto seconds = args.get_double("bench-seconds", o.bench_seconds);
+    if (!seconds) return seconds.error();
+    if (!(seconds.value() >= 0.0 && seconds.value() <= 600.0))
+        return input_error("--bench-seconds must be in [0, 600]");
+    o.bench_seconds = seconds.value();
     return ok_status();
 }
 

@@ -233,4 +233,16 @@ bool Renderer::read_indices(ModelId id, size_t count,
     return true;
 }
 
+bool Renderer::read_positions(ModelId id, std::vector<Vec3f>& out) const {
+    out.clear();
+    auto it = s_->models.find(id);
+    if (it == s_->models.end()) return false;
+    if (it->second.vertex_count == 0) return true;
+    const MappedPositions map(it->second);
+    if (!map.ok()) return false;
+    out.resize(map.size());
+    for (size_t v = 0; v < out.size(); ++v) out[v] = map[v];
+    return true;
+}
+
 }  // namespace body::render

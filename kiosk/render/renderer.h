@@ -165,6 +165,12 @@ public:
     // without calling it, for an unknown model, a count past the buffer or a
     // failed mapping. Context current.
     bool read_indices(ModelId id, size_t count, const std::function<void(std::span<const uint32_t>)>& read) const;
+    // The model's vertex positions [0, vertex count) read back from its
+    // position buffer (floats, or codes decoded as mesh.vert decodes them),
+    // for CPU readers of a source that handed its vertex data over
+    // (pm::ProgressiveMesh::release_vertex_data). False, with `out` empty, for
+    // an unknown model or a failed mapping. Context current.
+    bool read_positions(ModelId id, std::vector<Vec3f>& out) const;
     // World-space bounding sphere of all visible models (radius 0 when none).
     void scene_bounds(Vec3f& center, float& radius) const;
     // World-space bounding box of all visible models; false when none.

@@ -11,6 +11,7 @@
 
 #include "shared/atomic_file.h"
 #include "shared/input_file.h"
+#include "shared/scene/scene_access.h"
 #include "shared/scene/scene_tours.h"
 
 namespace body::scene {
@@ -201,12 +202,14 @@ bool read_camera(Reader& r, const json& v, const std::string& path, HomeCamera& 
 }
 
 bool read_kiosk(Reader& r, const json& v, const std::string& path, KioskSettings& k) {
-    if (!r.only_keys(v, path,
-                     {"idle_seconds", "reset_seconds", "languages", "admin_gesture", "frame_ms_target", "attract_tour",
-                      "countdown_seconds", "pins", "operator_pin"})) {
+    if (!r.only_keys(
+            v, path,
+            {"idle_seconds", "reset_seconds", "languages", "admin_gesture", "frame_ms_target", "attract_tour",
+             "countdown_seconds", "pins", "operator_pin", "high_contrast", "large_text", "access_buttons", "icons"})) {
         return false;
     }
     if (detail::Failure f; !detail::read_kiosk_tour_settings(v, path, k, f)) return r.fail(f.where, f.why);
+    if (detail::Failure f; !detail::read_kiosk_access_settings(v, path, k, f)) return r.fail(f.where, f.why);
     if (v.contains("idle_seconds") && !r.number(v["idle_seconds"], path + ".idle_seconds", 1, 86400, k.idle_seconds)) {
         return false;
     }

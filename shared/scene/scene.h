@@ -93,6 +93,9 @@ struct KioskSettings {
     float countdown_seconds = 10.0f;  // "still looking?" countdown before the reset; 0: none
     bool pins = false;                // show pinned labels (each model's pins, else its default pin)
     std::string operator_pin;         // digits: the admin gesture opens the operator mode; empty: it exits
+    // Access modes (SCENE.md): the start state of high contrast and large text, the visitors'
+    // buttons that toggle them, icons beside the control words.
+    bool high_contrast = false, large_text = false, access_buttons = false, icons = false;
 };
 
 // Tours (kiosk/app/tour.h): named, ordered steps the camera and the scene's

@@ -153,6 +153,10 @@ std::string scene_to_json(const Scene& s) {
     root["kiosk"]["countdown_seconds"] = num(k.countdown_seconds);
     root["kiosk"]["pins"] = k.pins;
     if (!k.operator_pin.empty()) root["kiosk"]["operator_pin"] = k.operator_pin;
+    // The access modes only when on: scenes that do not use them save as before.
+    for (const auto& [key, on] : {std::pair{"high_contrast", k.high_contrast}, std::pair{"large_text", k.large_text},
+                                  std::pair{"access_buttons", k.access_buttons}, std::pair{"icons", k.icons}})
+        if (on) root["kiosk"][key] = true;
     static const char* const kCutPresets[] = {"axial", "coronal", "sagittal"};
     for (size_t i = 0; i < 3; ++i)
         if (const auto& n = s.cut_plane.axes[i]) root["cut_plane"][kCutPresets[i]] = vec3(*n);

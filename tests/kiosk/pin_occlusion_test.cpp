@@ -1,0 +1,54 @@
+// Pins' occlusion rays skip the models they cannot touch (KioskApp::may_occlude):
+// the picker walks only the triangles of models whose bounding sphere lies on
+// the line of sight before the pin, and a model in front still hides it.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "kiosk/app/kiosk_app.h"
+
+namespace body::kiosk {
+namespace {
+
+// A sphere of radius r at c as the "mesh" the picker walks.
+std::optional<float> sphere_hit(const Ray& ray, glm::vec3 c, float r) {
+    const glm::vec3 oc = ray.origin - c;
+    const float b = glm::dot(oc, ray.direction), disc = b * b - (glm::dot(oc, oc) - r * r);
+    if (disc < 0.0f) return std::nullopt;
+    const float t = -b - std::sqrt(disc);
+    return t > 0.0f ? std::optional<float>(t) : std::nullopt;
+}
+
+TEST(PinOcclusion, OnlyModelsOnTheLineOfSightAreWalked) {
+    // Three spheres in a row; the middle one's pin faces the camera; a fourth sphere sits
+    // between the camera and the right one's pin.
+    auto scene = scene::parse_scene(R"({"models": [
+        {"name": "l", "file": "l.obj"}, {"name": "m", "file": "m.obj", "pins": [{"anchor": [0, 0, 40], "label": {"en": "M"}}]},
+        {"name": "r", "file": "r.obj", "pins": [{"anchor": [200, 0, 40], "label": {"en": "R"}}]},
+        {"name": "f", "file": "f.obj"}],
+        "camera": {"target": [0, 0, 0], "distance": 900}, "kiosk": {"pins": true}})",
+                                    "o.json", "");
+    ASSERT_TRUE(scene) << scene.error().message;
+    const std::vector<glm::vec3> centres{{-200, 0, 0}, {0, 0, 0}, {200, 0, 0}, {170, 0, 300}};
+    std::vector<ModelInfo> info;
+    for (const glm::vec3& c : centres) info.push_back(ModelInfo{true, c, 40.0f, 10, 10});
+    KioskApp app(std::move(scene).value(), info, 1280, 800);
+    std::vector<int> walks(4, 0);
+    app.set_picker([&](int m, const Ray& ray) {
+        ++walks[static_cast<size_t>(m)];
+        return sphere_hit(ray, centres[static_cast<size_t>(m)], 40.0f);
+    });
+    app.update(0.0);  // finds the default pins of l and f, tests occlusion
+    ASSERT_EQ(app.pins().size(), 4u);
+    std::fill(walks.begin(), walks.end(), 0);
+    app.camera().rotate(0.01f, 0.0f);
+    app.update(1.0);                    // one occlusion test
+    EXPECT_TRUE(app.pins()[1].shown);   // the middle sphere's front pole
+    EXPECT_FALSE(app.pins()[2].shown);  // the right one's, behind the fourth sphere
+    // Each pin's ray walks its own model, and the right one's also the sphere in front:
+    // 5 walks where every model for every pin would be 16.
+    EXPECT_EQ(walks, (std::vector<int>{1, 1, 1, 2}));
+}
+
+}  // namespace
+}  // namespace body::kiosk
