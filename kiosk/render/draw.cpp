@@ -63,17 +63,20 @@ void draw_coloured(Frame& f, Program& p, const Model& m, const Vec3f& color, boo
     draw_triangles(f, m);
 }
 
-void draw_triangles(const Frame& f, const Model& m) {
-    glBindVertexArray(m.vao);
+void draw_triangles(const Frame& f, const Model& m) { draw_element_range(f, m.vao, 0, m.index_count); }
+
+void draw_element_range(const Frame& f, GLuint vao, size_t first, size_t count) {
+    glBindVertexArray(vao);
     const size_t chunk = 3 * kFlushTriangles;
-    if (!f.flush_large_draws || m.index_count <= chunk) {
-        glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(m.index_count), GL_UNSIGNED_INT, nullptr);
+    if (!f.flush_large_draws || count <= chunk) {
+        glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(count), GL_UNSIGNED_INT,
+                       reinterpret_cast<const void*>(first * sizeof(uint32_t)));
         return;
     }
     FlushPacer pacer;
-    for (size_t first = 0; first < m.index_count; first += chunk) {
-        glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(std::min(chunk, m.index_count - first)), GL_UNSIGNED_INT,
-                       reinterpret_cast<const void*>(first * sizeof(uint32_t)));
+    for (size_t done = 0; done < count; done += chunk) {
+        glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(std::min(chunk, count - done)), GL_UNSIGNED_INT,
+                       reinterpret_cast<const void*>((first + done) * sizeof(uint32_t)));
         pacer.flush();
     }
 }

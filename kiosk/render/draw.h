@@ -80,5 +80,8 @@ void set_lights(Program& p, const Frame& f);
 void draw_coloured(Frame& f, Program& p, const Model& m, const Vec3f& color, bool lit);
 // The model's triangles (its element buffer, index_count entries).
 void draw_triangles(const Frame& f, const Model& m);
+// Entries [first, first + count) of the element buffer of `vao`, flushed in
+// pieces on a software rasterizer (kFlushTriangles).
+void draw_element_range(const Frame& f, GLuint vao, size_t first, size_t count);
 
 }  // namespace body::render

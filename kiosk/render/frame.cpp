@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "kiosk/render/batch.h"
 #include "kiosk/render/data_textures.h"
 #include "kiosk/render/gl_util.h"
 #include "kiosk/render/renderer_state.h"
@@ -108,23 +109,34 @@ bool release_unused_line_data(RendererState& s) {
 
 // Draws the opaque models in their styles; returns the transparent ones
 // (selected, or faded while something is selected and x-ray is on).
+// The models that batched drawing takes (batch.h) are drawn after
+// the others, many per call.
 std::vector<Model*> draw_opaque(RendererState& s, Frame& f, bool fade_rest) {
-    std::vector<Model*> transparent;
-    for (auto& [id, m] : s.models) {
-        if (m.internal || !m.state.visible || m.index_count == 0 || !on_screen(f, m)) continue;
-        const CutSide cut = begin_model_cut(f, m);
-        if (cut == CutSide::Removed) continue;
-        if (m.state.selected || fade_rest) {
-            transparent.push_back(&m);
-            continue;
-        }
+    std::vector<Model*> transparent, batched;
+    auto draw_one = [&](Model& m, CutSide cut) {
         ++s.stats.models_drawn;
         s.stats.triangles += m.index_count / 3;
         ++s.stats.draw_calls;
         kDrawStyle[static_cast<size_t>(m.state.style)](s, f, m);
         if (cut == CutSide::Cut) draw_cut_cap(s, f, m, m.state.color, 1.0f);
         BODY_GL_CHECK(style_name(m.state.style));
+    };
+    for (auto& [id, m] : s.models) {
+        if (m.internal || !m.state.visible || m.index_count == 0 || !on_screen(f, m)) continue;
+        if (s.batches.enabled && batchable(f, m, fade_rest)) {
+            batched.push_back(&m);
+            continue;
+        }
+        const CutSide cut = begin_model_cut(f, m);
+        if (cut == CutSide::Removed) continue;
+        if (m.state.selected || fade_rest) {
+            transparent.push_back(&m);
+            continue;
+        }
+        draw_one(m, cut);
     }
+    if (!batched.empty())
+        for (Model* m : draw_batched(s, f, batched)) draw_one(*m, begin_model_cut(f, *m));
     return transparent;
 }
 

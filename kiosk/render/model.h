@@ -4,6 +4,7 @@
 #include <GLES3/gl3.h>
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 
 #include "kiosk/render/renderer.h"
@@ -47,6 +48,10 @@ struct Model {
     size_t edge_count = 0;
     bool edges_stale = true;
     bool internal = false;  // the manipulation sphere
+    // Batched drawing (kiosk/render/batch.h): the chunk and slot (-1: none yet,
+    // -2: never again), and a count of update_model calls (what the chunk copied).
+    int batch_chunk = -1, batch_slot = -1;
+    uint64_t revision = 0;
 };
 
 // Deletes the model's GL buffers, vertex array and data textures.

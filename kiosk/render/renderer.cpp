@@ -83,6 +83,10 @@ Status Renderer::init(const RendererOptions& options) {
         shutdown();
         return linked;
     }
+    if (Status batched = init_batches(s_->batches, options.batch); !batched) {
+        shutdown();
+        return batched;
+    }
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     create_wire_vertex_array(*s_);
     create_edge_quads(*s_);
@@ -110,6 +114,7 @@ Status Renderer::init(const RendererOptions& options) {
 void Renderer::shutdown() {
     for (auto& [id, m] : s_->models) free_model(m);
     s_->models.clear();
+    shutdown_batches(s_->batches);
     delete_programs(s_->programs);
     free_cut(s_->cut);
     if (s_->tam) glDeleteTextures(1, &s_->tam);
@@ -123,6 +128,7 @@ void Renderer::shutdown() {
 void Renderer::remove_model(ModelId id) {
     auto it = s_->models.find(id);
     if (it == s_->models.end() || it->second.internal) return;
+    forget_batched(*s_, it->second);
     free_model(it->second);
     s_->models.erase(it);
 }
@@ -216,7 +222,7 @@ size_t Renderer::gpu_bytes() const {
         if (m.edge_texture) total += (m.edge_capacity + w - 1) / w * w * sizeof(GpuEdge);
     }
     if (s_->tam) total += 3 * 256 * 256 * 4 * 4 / 3;  // three RGBA8 layers with mip chains
-    return total;
+    return total + batch_gpu_bytes(s_->batches);
 }
 
 bool Renderer::read_indices(ModelId id, size_t count,

@@ -117,6 +117,9 @@ Result<BufferAccess> parse_buffer_access(const std::string& name);
 
 struct RendererOptions {
     BufferAccess buffer_access = BufferAccess::Auto;
+    // Opaque smooth and baseline models drawn many per call (kiosk/render/batch.h);
+    // false (or BODY_BATCH=0 in the environment): one call a model.
+    bool batch = true;
 };
 
 // What buffer reads and writes moved since init (tests, the benchmark).

@@ -6,6 +6,7 @@
 
 #include <map>
 
+#include "kiosk/render/batch.h"
 #include "kiosk/render/buffer_access.h"
 #include "kiosk/render/model.h"
 #include "kiosk/render/programs.h"
@@ -30,6 +31,7 @@ struct RendererState {
     // split and flushed (draw.h, kFlushTriangles).
     bool flush_large_draws = false;
     CutCapState cut;  // the cut plane's programs (styles/cut_cap.h)
+    Batches batches;  // many opaque models per draw call (batch.h)
 };
 
 }  // namespace body::render

@@ -180,8 +180,16 @@ void ModelPart::glide_to(render::Renderer& renderer, size_t level, double now) {
 bool ModelPart::head_for_level(render::Renderer& renderer, double ratio, bool glide, bool streaming, double now) {
     // The level the ratio wants, as far as the stream has delivered it.
     const auto want = static_cast<size_t>(std::llround(static_cast<double>(full_triangles()) * ratio));
-    size_t level = pm_->level_for_triangles(std::max<size_t>(want, 1));
-    const size_t wanted_full = level_wanted(*pm_, want);
+    // Once the file is complete the levels depend on `want` alone: a scene of
+    // thousands of parts asks the same every frame, so the answer is kept.
+    const bool complete = !streaming && pm_->available_level() >= pm_->max_level();
+    if (!complete || want != cached_want_) {
+        cached_level_ = pm_->level_for_triangles(std::max<size_t>(want, 1));
+        cached_wanted_full_ = level_wanted(*pm_, want);
+        cached_want_ = complete ? want : SIZE_MAX;
+    }
+    size_t level = cached_level_;
+    const size_t wanted_full = cached_wanted_full_;
     // While detail streams in, refine in steps that at least quadruple the
     // triangles: each step costs an upload and a geomorph, and frames of a
     // half-way level compete with the decoding thread.

@@ -13,6 +13,7 @@
 // a coarsening glides 1 -> 0 and drops the level when it arrives. The CPU
 // uploads the sources once when a glide starts and puts the positions back
 // once when it stops; nothing per frame.
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -98,6 +99,9 @@ private:
     bool collapsing_ = false;
     size_t pending_level_ = 0;
     std::vector<Vec3f> morph_sources_;  // working memory of start_morph, kept to avoid reallocating
+    // head_for_level's last answer for a complete file: the ratio's triangles
+    // (SIZE_MAX: none kept), its level and the level the whole file gives.
+    size_t cached_want_ = SIZE_MAX, cached_level_ = 0, cached_wanted_full_ = 0;
 };
 
 }  // namespace body::kiosk

@@ -37,6 +37,11 @@ uniform float u_hatch_scale;  // hatching: texture repeats per object-space unit
 // scale and a translation (the scene's), normalize(N n) . L = n . R^T L.
 uniform vec3 u_hatch_key;
 uniform vec4 u_light_levels;  // hatching: key, fill, rim, ambient
+#ifdef BODY_BATCH
+layout(location = 5) in float a_slot;
+uniform vec4 u_slots[BODY_BATCH * 10];
+flat out vec4 v_color;
+#endif
 
 out vec3 v_view_normal;
 // `hatching`: xyz the object position in texture repeats, w the tone
@@ -49,10 +54,21 @@ out vec4 v_hatch;
 #include "normal_code.glsl"
 
 void main() {
+#ifdef BODY_BATCH
+    int s = int(a_slot) * 10;
+    mat4 model_view = mat4(u_slots[s], u_slots[s + 1], u_slots[s + 2], u_slots[s + 3]);
+    mat3 normal_matrix = mat3(u_slots[s + 4].xyz, u_slots[s + 5].xyz, u_slots[s + 6].xyz);
+    vec3 p = u_slots[s + 7].xyz + u_slots[s + 8].xyz * a_position;
+    vec3 n = oct_decode8(a_normal_code);
+    v_color = u_slots[s + 9];
+#else
+    mat4 model_view = u_model_view;
+    mat3 normal_matrix = u_normal_matrix;
     vec3 p = u_pos_origin + u_pos_scale * (gl_VertexID >= u_morph_begin ? mix(a_morph, a_position, u_morph) : a_position);
     vec3 n = u_normal_codes ? oct_decode8(a_normal_code) : a_normal;  // unit (a_normal: to 10 bits)
-    v_view_normal = u_normal_matrix * n;
+#endif
+    v_view_normal = normal_matrix * n;
     float key = max(dot(n, u_hatch_key), 0.0);
     v_hatch = vec4(p * u_hatch_scale, 6.0 - 6.0 * clamp(u_light_levels.x * key + u_light_levels.w, 0.0, 1.0));
-    gl_Position = u_projection * (u_model_view * vec4(p, 1.0));
+    gl_Position = u_projection * (model_view * vec4(p, 1.0));
 }

@@ -11,7 +11,12 @@
 // differs from the axis. Back faces are culled, so no flip toward the eye.
 precision highp float;
 in vec3 v_view_normal;
+#ifdef BODY_BATCH
+flat in vec4 v_color;  // mesh.vert: the slot's colour (kiosk/render/batch.h)
+#define u_color v_color
+#else
 uniform vec4 u_color;
+#endif
 #include "lighting.glsl"
 #include "clip.glsl"
 out vec4 o_color;

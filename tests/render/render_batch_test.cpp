@@ -1,0 +1,154 @@
+// Batched drawing (kiosk/render/batch.h): a scene of 300 small models (position
+// and normal codes, as a .bpm gives them; more than one chunk) drawn batched
+// and one call a model must give the same bytes, the batched one in a few
+// calls, through level-of-detail prefixes, colour, transform and style
+// changes, selection, hidden and removed models.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
+#include <string>
+#include <vector>
+
+#include "tests/render/render_fixture.h"
+
+namespace body::render {
+namespace {
+
+using test::RenderFixture;
+
+#define REQUIRE_GL(f) \
+    if (!(f).ok()) GTEST_SKIP() << "no headless EGL: " << (f).why()
+
+constexpr int kModels = 300;
+
+// 8:8 octahedral code of a unit vector (as the .bpm writer encodes).
+void encode(const Vec3f& n, uint8_t out[2]) {
+    const float l1 = std::abs(n.x) + std::abs(n.y) + std::abs(n.z);
+    float x = n.x / l1, y = n.y / l1;
+    if (n.z < 0.0f) {
+        const float ox = (1.0f - std::abs(y)) * (x < 0.0f ? -1.0f : 1.0f);
+        const float oy = (1.0f - std::abs(x)) * (y < 0.0f ? -1.0f : 1.0f);
+        x = ox;
+        y = oy;
+    }
+    out[0] = static_cast<uint8_t>(std::clamp(std::nearbyint((x * 0.5f + 0.5f) * 255.0f), 0.0f, 255.0f));
+    out[1] = static_cast<uint8_t>(std::clamp(std::nearbyint((y * 0.5f + 0.5f) * 255.0f), 0.0f, 255.0f));
+}
+
+struct Shape {
+    test::GenMesh mesh;
+    std::vector<uint8_t> codes;
+    MeshData data(size_t index_count = SIZE_MAX) const {
+        MeshData d{mesh.positions, {}, mesh.indices};
+        d.normal_codes = codes;
+        d.index_count = index_count;
+        return d;
+    }
+};
+
+Shape make_shape(int kind) {
+    Shape s;
+    s.mesh = kind == 0 ? test::icosphere(2, 0.9f) : test::torus(12, 16, 0.7f, 0.3f);
+    s.codes.resize(s.mesh.positions.size() * 2);
+    for (size_t v = 0; v < s.mesh.positions.size(); ++v) {
+        const Vec3f p = s.mesh.positions[v];
+        // The torus' normal points away from its ring; the sphere's from its centre.
+        const Vec3f ring = kind == 0 ? Vec3f(0.0f) : 0.7f * glm::normalize(Vec3f(p.x, p.y, 0.0f));
+        encode(glm::normalize(p - ring), &s.codes[v * 2]);
+    }
+    return s;
+}
+
+struct Frames {
+    std::vector<Image> images;
+    std::vector<size_t> draw_calls, models_drawn;
+};
+
+// The same scene and edits with batching on or off; an image after each step.
+Frames run(bool batch) {
+    Frames out;
+    RendererOptions options;
+    options.batch = batch;
+    RenderFixture f(320, 240, options);
+    if (!f.ok()) return out;
+    Renderer& r = f.renderer();
+    const Shape shapes[2] = {make_shape(0), make_shape(1)};
+    std::vector<ModelId> ids;
+    for (int i = 0; i < kModels; ++i) {
+        const Shape& shape = shapes[i % 2];
+        auto id = r.add_model(shape.data(), std::to_string(i));
+        if (!id) return out;
+        ids.push_back(id.value());
+        ModelState& st = *r.state(id.value());
+        const float x = static_cast<float>(i % 20) * 2.2f - 21.0f, y = static_cast<float>(i / 20) * 2.2f - 15.0f;
+        st.transform = glm::translate(glm::mat4(1.0f), Vec3f(x, y, 0.3f * static_cast<float>(i % 5)));
+        st.transform = glm::rotate(st.transform, 0.37f * static_cast<float>(i), glm::normalize(Vec3f(1, 2, 3)));
+        st.transform = glm::scale(st.transform, i % 4 == 0 ? Vec3f(1.2f, 0.8f, 1.0f) : Vec3f(1.0f));
+        st.color = Vec3f(0.2f + 0.6f * static_cast<float>(i % 7) / 6.0f, 0.3f + 0.5f * static_cast<float>(i % 5) / 4.0f,
+                         0.9f - 0.6f * static_cast<float>(i % 3) / 2.0f);
+        st.style = i % 3 == 0 ? Style::Baseline : i % 13 == 0 ? Style::Hatching : Style::Smooth;
+        st.visible = i % 11 != 5;
+        st.selected = i == 42;
+    }
+    const View cam = View::framing(Vec3f(0.0f), 25.0f, Vec3f(0.2f, 0.3f, 1.0f));
+    auto take = [&] {
+        out.images.push_back(f.draw(cam));
+        out.draw_calls.push_back(r.last_frame_stats().draw_calls);
+        out.models_drawn.push_back(r.last_frame_stats().models_drawn);
+    };
+    take();
+    // Levels of detail: a third of the models draw a prefix of their triangles.
+    for (int i = 0; i < kModels; i += 3) {
+        const Shape& shape = shapes[i % 2];
+        const size_t prefix = shape.mesh.indices.size() / 3 / 3 * 3;
+        if (!r.update_model(ids[static_cast<size_t>(i)], shape.data(prefix), Dirty{}).ok()) return out;
+    }
+    take();
+    // Colours, transforms and styles change; one model leaves the scene; the
+    // view moves (models leave the frustum).
+    for (int i = 1; i < kModels; i += 4) {
+        ModelState& st = *r.state(ids[static_cast<size_t>(i)]);
+        st.color = Vec3f(1.0f) - st.color;
+        st.transform = glm::translate(st.transform, Vec3f(0.0f, 0.0f, 1.0f));
+        if (i % 20 == 1) st.style = Style::Wireframe;
+    }
+    r.state(ids[10])->style = Style::Baseline;
+    r.state(ids[42])->selected = false;
+    r.remove_model(ids[7]);
+    take();
+    out.images.push_back(f.draw(View::framing(Vec3f(-12.0f, -8.0f, 0.0f), 8.0f, Vec3f(0.1f, 0.2f, 1.0f))));
+    out.draw_calls.push_back(r.last_frame_stats().draw_calls);
+    out.models_drawn.push_back(r.last_frame_stats().models_drawn);
+    return out;
+}
+
+TEST(RenderBatch, SamePixelsAsOneCallAModelInFewCalls) {
+    {
+        RenderFixture probe(16, 16);
+        REQUIRE_GL(probe);
+    }
+    const Frames single = run(false), batched = run(true);
+    ASSERT_EQ(single.images.size(), 4u);
+    ASSERT_EQ(batched.images.size(), 4u);
+    for (size_t k = 0; k < single.images.size(); ++k) {
+        SCOPED_TRACE("step " + std::to_string(k));
+        EXPECT_EQ(single.models_drawn[k], batched.models_drawn[k]);
+        EXPECT_TRUE(single.images[k].rgba == batched.images[k].rgba);
+        // One call a model without batching; with it, the hatched, wireframe
+        // and selected models one each, the rest a few per chunk.
+        EXPECT_GE(single.draw_calls[k], single.models_drawn[k]);
+        EXPECT_LT(batched.draw_calls[k], single.models_drawn[k] / 4);
+    }
+    // Each step changed the picture (the comparison above can fail).
+    for (size_t k = 1; k < batched.images.size(); ++k)
+        EXPECT_FALSE(batched.images[k].rgba == batched.images[k - 1].rgba) << "step " << k;
+    // The scene is on screen: a good part of the view shows models.
+    const Image& first = batched.images[0];
+    const std::vector<bool> fg = test::foreground_mask(first, Vec3f(0.97f, 0.96f, 0.93f));
+    EXPECT_GT(std::count(fg.begin(), fg.end(), true), static_cast<long>(fg.size() / 8));
+}
+
+}  // namespace
+}  // namespace body::render
