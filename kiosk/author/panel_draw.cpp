@@ -138,7 +138,7 @@ void PanelPainter::State::build(Editor& e, int width, int height) {
     for (const PinMarker& p : e.pin_markers()) {  // a square per pin of the selection: drag it to move the pin
         const float h = 5.0f * pixel_height / 16.0f;
         quad(base.solid, Rect{p.x - h - 1, p.y - h - 1, 2 * h + 2, 2 * h + 2}, kInk);
-        quad(base.solid, Rect{p.x - h, p.y - h, 2 * h, 2 * h}, Colour{1.0f, 0.85f, 0.2f, 1.0f});
+        quad(base.solid, Rect{p.x - h, p.y - h, 2 * h, 2 * h}, Rgba{1.0f, 0.85f, 0.2f, 1.0f});
     }
     quad(base.solid, Rect{0, 0, e.panel_width(), static_cast<float>(height)}, kPanel);
     for (const PanelRow& r : e.rows())
