@@ -4,6 +4,7 @@
 #include <GLES3/gl3.h>
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 
 #include "kiosk/render/renderer.h"
@@ -47,6 +48,18 @@ struct Model {
     size_t edge_count = 0;
     bool edges_stale = true;
     bool internal = false;  // the manipulation sphere
+    // Counts changes of the GL positions or indices (mesh_upload.cpp), so
+    // caches of the geometry (the cut section) know when they are stale.
+    uint32_t geometry_version = 0;
+    // The cut plane's section of this model (styles/cut_cap.cpp), kept while
+    // the object-space plane and the geometry stay as they were: the fan
+    // triangles in `section_vbo` and the rectangle of the plane around them.
+    GLuint section_vbo = 0;
+    size_t section_vertices = 0, section_vbo_capacity = 0;
+    bool section_valid = false;
+    glm::vec4 section_plane{0.0f};  // object space
+    uint32_t section_version = 0;
+    Vec3f section_center{0.0f}, section_u{0.0f}, section_v{0.0f};  // object space, half sides
 };
 
 // Deletes the model's GL buffers, vertex array and data textures.

@@ -93,6 +93,9 @@ struct FrameOptions {
 
 struct FrameStats {
     size_t models_drawn = 0, triangles = 0, edges = 0, draw_calls = 0;
+    // Cut sections found on the CPU this frame (styles/cut_cap.h); a model
+    // whose plane and geometry stayed keeps its section from an earlier frame.
+    size_t cut_sections = 0;
 };
 
 // How the renderer writes into its GL buffers (a progressive mesh's packed
