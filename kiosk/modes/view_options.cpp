@@ -36,6 +36,7 @@ const std::set<std::string>& view_value_options() {
                                                 "replay",
                                                 "bench-triangles",
                                                 "bench-frames",
+                                                "bench-only",
                                                 "buffer-access",
                                                 "soak",
                                                 "touch-calibration",
@@ -165,6 +166,8 @@ Status parse_benchmark(const CliArgs& args, ViewOptions& o) {
     if (!frames) return frames.error();
     if (frames.value() < 1) return input_error("--bench-frames must be at least 1");
     o.bench_frames = frames.value();
+    o.bench_only = args.get_or("bench-only", "");
+    if (!o.bench_only.empty() && o.bench_only != "cut") return input_error("--bench-only expects cut");
     return ok_status();
 }
 

@@ -35,6 +35,7 @@ struct ViewOptions {
     bool benchmark = false;
     long bench_triangles = 1000000;
     long bench_frames = 9;
+    std::string bench_only;                  // --bench-only: one table ("cut"); empty: every table
     double soak_minutes = 0.0;               // --soak; 0: no soak
     double display_width_mm = 0.0;           // --display-width-mm; 0: as the display reports it
     bool author = false;                     // --author: the authoring window (kiosk/author/)

@@ -265,7 +265,23 @@ bool read_kiosk(Reader& r, const json& v, const std::string& path, KioskSettings
 
 bool read_cut_plane(Reader& r, const json& v, const std::string& path, CutPlaneSettings& c) {
     const char* names[] = {"axial", "coronal", "sagittal"};
-    if (!r.only_keys(v, path, {names[0], names[1], names[2]})) return false;
+    if (!r.only_keys(v, path, {names[0], names[1], names[2], "slices", "slice_normal"})) return false;
+    if (v.contains("slice_normal")) {
+        std::array<float, 3> n{};
+        if (!r.vec3(v["slice_normal"], path + ".slice_normal", -1e6f, 1e6f, n)) return false;
+        if (std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) < 1e-6f)
+            return r.fail(path + ".slice_normal", "expected a non-zero direction");
+        c.slice_normal = n;
+    }
+    if (v.contains("slices")) {
+        const json& a = v["slices"];
+        if (!a.is_array() || a.size() > 100000) return r.fail(path + ".slices", "expected an array of numbers");
+        for (size_t i = 0; i < a.size(); ++i) {
+            float x = 0.0f;
+            if (!r.number(a[i], path + ".slices[" + std::to_string(i) + "]", -1e7f, 1e7f, x)) return false;
+            c.slices.push_back(x);
+        }
+    }
     for (size_t i = 0; i < 3; ++i) {
         if (!v.contains(names[i])) continue;
         std::array<float, 3> n{};
