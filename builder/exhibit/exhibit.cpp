@@ -206,7 +206,7 @@ void add_slices(const std::vector<Part>& parts, const std::vector<size_t>& kept,
     std::sort(at.begin(), at.end());
     at.erase(std::unique(at.begin(), at.end()), at.end());
     if (!normal || at.empty() || at.size() > 100000) return;
-    scene["cut_plane"] = {{"slices", at}, {"slice_normal", {normal->x, normal->y, normal->z}}};
+    scene["cut_plane"] = {{"slices", at}, {"slice_normal", {normal->x + 0.0, normal->y + 0.0, normal->z + 0.0}}};
 }
 
 nlohmann::json scene_for(const std::vector<Part>& parts, const std::vector<BuiltPart>& built,
