@@ -407,6 +407,24 @@ Field cut_slices_field() {
             }};
 }
 
+// The grey-level volume on the caps, a path relative to the manifest: empty text unsets it.
+Field cut_volume_field() {
+    return {"cut_plane.volume",
+            "cut slices volume",
+            FieldScope::Scene,
+            FieldKind::Text,
+            [](const Scene& s, const FieldTarget&) { return s.cut_plane.volume; },
+            [](Scene& s, const FieldTarget&, const std::string& v) -> Status {
+                const size_t a = v.find_first_not_of(" \t"), b = v.find_last_not_of(" \t");
+                s.cut_plane.volume = a == std::string::npos ? std::string() : v.substr(a, b - a + 1);
+                const std::filesystem::path file(s.cut_plane.volume);
+                s.cut_plane.volume_path = s.cut_plane.volume.empty() || file.is_absolute() || s.base_dir.empty()
+                                              ? s.cut_plane.volume
+                                              : (std::filesystem::path(s.base_dir) / file).string();
+                return ok_status();
+            }};
+}
+
 // The cut plane's preset normals (scene.h CutPlaneSettings): empty text unsets one.
 template <size_t I>
 Field cut_axis_field(const char* key, const char* label) {
@@ -433,8 +451,10 @@ Field cut_axis_field(const char* key, const char* label) {
 std::vector<Field> cut_plane_fields() {
     return {cut_axis_field<0>("cut_plane.axial", "cut axial normal"),
             cut_axis_field<1>("cut_plane.coronal", "cut coronal normal"),
-            cut_axis_field<2>("cut_plane.sagittal", "cut sagittal normal"), cut_slice_normal_field(),
-            cut_slices_field()};
+            cut_axis_field<2>("cut_plane.sagittal", "cut sagittal normal"),
+            cut_slice_normal_field(),
+            cut_slices_field(),
+            cut_volume_field()};
 }
 
 std::vector<Field> all_fields() {

@@ -263,9 +263,16 @@ bool read_kiosk(Reader& r, const json& v, const std::string& path, KioskSettings
     return true;
 }
 
-bool read_cut_plane(Reader& r, const json& v, const std::string& path, CutPlaneSettings& c) {
+bool read_cut_plane(Reader& r, const json& v, const std::string& path, const std::string& base_dir,
+                    CutPlaneSettings& c) {
     const char* names[] = {"axial", "coronal", "sagittal"};
-    if (!r.only_keys(v, path, {names[0], names[1], names[2], "slices", "slice_normal"})) return false;
+    if (!r.only_keys(v, path, {names[0], names[1], names[2], "slices", "slice_normal", "volume"})) return false;
+    if (v.contains("volume")) {
+        if (!r.string(v["volume"], path + ".volume", c.volume)) return false;
+        const std::filesystem::path file(c.volume);
+        c.volume_path =
+            file.is_absolute() || base_dir.empty() ? file.string() : (std::filesystem::path(base_dir) / file).string();
+    }
     if (v.contains("slice_normal")) {
         std::array<float, 3> n{};
         if (!r.vec3(v["slice_normal"], path + ".slice_normal", -1e6f, 1e6f, n)) return false;
@@ -386,7 +393,7 @@ Result<Scene> parse_scene(const std::string& text, const std::string& source, co
         if (!r.integer(root["version"], "version", 1, 1, version)) return input_error(r.message);
     }
     if (root.contains("kiosk") && !read_kiosk(r, root["kiosk"], "kiosk", s.kiosk)) return input_error(r.message);
-    if (root.contains("cut_plane") && !read_cut_plane(r, root["cut_plane"], "cut_plane", s.cut_plane))
+    if (root.contains("cut_plane") && !read_cut_plane(r, root["cut_plane"], "cut_plane", base_dir, s.cut_plane))
         return input_error(r.message);
     if (root.contains("groups")) {
         const json& groups = root["groups"];

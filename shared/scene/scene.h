@@ -141,6 +141,9 @@ struct CutPlaneSettings {
     // slices[i]; slice_normal nullopt: the axial preset's normal.
     std::vector<float> slices;
     std::optional<std::array<float, 3>> slice_normal;
+    // The grey-level volume shown on the caps (shared/scene/slice_volume.h),
+    // as written, and resolved against the manifest's directory; empty: none.
+    std::string volume, volume_path;
 };
 
 struct Scene {

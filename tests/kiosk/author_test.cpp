@@ -173,7 +173,7 @@ const char* kEveryKey = R"({"version": 1,
             "frame_ms_target": 33, "attract_tour": "limbic", "countdown_seconds": 15, "pins": true,
             "operator_pin": "004217"},
   "cut_plane": {"axial": [0, 0, 1], "coronal": [0, 1, 0], "sagittal": [-1, 0, 0.5],
-                "slices": [-2, 0.5, 3], "slice_normal": [0, 0, 2]},
+                "slices": [-2, 0.5, 3], "slice_normal": [0, 0, 2], "volume": "slices.vol"},
   "tours": [
     {"name": "limbic", "title": {"en": "The limbic system", "de": "Das limbische System"},
      "steps": [
@@ -219,6 +219,7 @@ TEST(AuthorSchema, EveryKeyRoundTrips) {
     EXPECT_EQ(b.kiosk.operator_pin, "004217");  // leading zeros kept: a string, not a number
     EXPECT_EQ(b.cut_plane.slices, (std::vector<float>{-2.0f, 0.5f, 3.0f}));
     EXPECT_EQ(b.cut_plane.slice_normal, (std::array<float, 3>{0.0f, 0.0f, 2.0f}));
+    EXPECT_EQ(b.cut_plane.volume, "slices.vol");
     ASSERT_EQ(b.models[0].pins.size(), 2u);
     for (size_t i = 0; i < 2; ++i) {
         EXPECT_EQ(b.models[0].pins[i].anchor, a.models[0].pins[i].anchor);
@@ -317,6 +318,7 @@ const std::map<std::string, std::string> kNewValues = {
     {"step cut", "coronal -5"},
     {"cut slice normal", "0 0 2"},
     {"cut slices", "1 2.5 4"},
+    {"cut slices volume", "grey/ch2.vol"},
 };
 
 // A table key as the saved JSON nests it: a tour's steps are inside tours[].
