@@ -7,6 +7,7 @@
 #include <map>
 
 #include "kiosk/render/buffer_access.h"
+#include "kiosk/render/cut_volume.h"
 #include "kiosk/render/model.h"
 #include "kiosk/render/programs.h"
 #include "kiosk/render/renderer.h"
@@ -29,7 +30,8 @@ struct RendererState {
     // Software rasterizers (GL_RENDERER llvmpipe, softpipe): large draws are
     // split and flushed (draw.h, kFlushTriangles).
     bool flush_large_draws = false;
-    CutCapState cut;  // the cut plane's programs (styles/cut_cap.h)
+    CutCapState cut;            // the cut plane's programs (styles/cut_cap.h)
+    CutVolumeState cut_volume;  // the caps' grey-level volume (cut_volume.h)
 };
 
 }  // namespace body::render

@@ -190,13 +190,15 @@ void mark_section_fan(CutCapState& cut, Frame& f, const Model& m) {
 // The cap where the stencil is set: the section's rectangle (object space) or,
 // without a section, the square of the plane around the model's bounding
 // sphere; depth-tested, it zeroes the stencil it covers.
-void fill_cap(CutCapState& cut, Frame& f, Vec3f center_view, Vec3f axis_u, Vec3f axis_v, Vec3f color, float alpha) {
+void fill_cap(CutCapState& cut, CutVolumeState& volume, Frame& f, Vec3f center_view, Vec3f axis_u, Vec3f axis_v,
+              Vec3f color, float alpha) {
     const glm::vec4 plane = unit_plane(f.options->cut.plane);
     Vec3f normal_view = glm::normalize(glm::mat3(f.view) * Vec3f(plane));
     if (glm::dot(normal_view, center_view) > 0.0f) normal_view = -normal_view;  // the side the eye sees
     const glm::vec4 col = cap_color(f, normal_view, color, alpha);
-    Program& p = cut.cap;
-    f.use(p);
+    Program* grey = use_cut_volume(volume, f);  // the source image on the cap, when the bundle has one
+    Program& p = grey ? *grey : cut.cap;
+    if (!grey) f.use(p);
     glUniformMatrix4fv(p.loc("u_projection"), 1, GL_FALSE, glm::value_ptr(f.projection));
     glUniform3fv(p.loc("u_center"), 1, glm::value_ptr(center_view));
     glUniform3fv(p.loc("u_axis_u"), 1, glm::value_ptr(axis_u));
@@ -282,7 +284,7 @@ void draw_cut_cap(RendererState& s, Frame& f, Model& m, Vec3f color, float alpha
         sphere_square(f, m, center_view, axis_u, axis_v);
         s.stats.triangles += m.index_count / 3 + 2;
     }
-    fill_cap(s.cut, f, center_view, axis_u, axis_v, color, alpha);
+    fill_cap(s.cut, s.cut_volume, f, center_view, axis_u, axis_v, color, alpha);
     s.stats.draw_calls += 2;
 }
 
