@@ -13,7 +13,9 @@
 
 #include "builder/cli/commands.h"
 #include "builder/exhibit/exhibit.h"
+#include "builder/exhibit/slices_volume.h"
 #ifdef BODY_WITH_IMPORT
+#include "builder/import/grey_volume.h"
 #include "builder/import/import.h"
 #endif
 #include "builder/mesh_import/mesh_import.h"
@@ -55,6 +57,9 @@ constexpr const char* kUsage =
     "  build options:  --caps --tiling --correspondence --branching --smooth (bodygen build --help)\n"
     "  lod options:    --min-triangles --chunk-splits --no-normals (bodygen lod --help)\n"
 #ifdef BODY_WITH_IMPORT
+    "  --slices-volume GREY.nii  a grey-level NIfTI image (e.g. the template the labels were drawn\n"
+    "                       on) shown on the kiosk's cut-plane caps: written as slices.vol, windowed\n"
+    "                       to its 0.5-99.5th percentiles, placed as the models are\n"
     "  import options: --labels --axis --step --only --threshold --tolerance --min-area\n"
     "                  (bodygen contours --help)\n"
 #endif
@@ -131,8 +136,10 @@ Result<exhibit::SceneOptions> scene_options_from_args(const CliArgs& args) {
 }
 
 // Writes the built parts and the manifest into `work` (models/ + scene.json).
+// With `volume`, also slices.vol (shared/scene/slice_volume.h) named by cut_plane.volume.
 Status write_sources(const fs::path& work, const std::vector<exhibit::Part>& parts,
-                     const std::vector<exhibit::BuiltPart>& built, const exhibit::SceneOptions& options) {
+                     const std::vector<exhibit::BuiltPart>& built, const exhibit::SceneOptions& options,
+                     const SliceVolume* volume) {
     std::error_code ec;
     fs::create_directories(work / "models", ec);
     if (ec) return runtime_error(work.string() + ": cannot create: " + ec.message());
@@ -144,7 +151,13 @@ Status write_sources(const fs::path& work, const std::vector<exhibit::Part>& par
         Status st = write_file_atomically((work / files[i]).string(), built[i].bpm);
         if (!st) return st;
     }
-    const std::string text = exhibit::scene_for(parts, built, files, options).dump(1) + "\n";
+    nlohmann::json scene = exhibit::scene_for(parts, built, files, options);
+    if (volume) {
+        if (Status st = write_file_atomically((work / "slices.vol").string(), slice_volume_bytes(*volume)); !st)
+            return st;
+        scene["cut_plane"]["volume"] = "slices.vol";
+    }
+    const std::string text = scene.dump(1) + "\n";
     return write_file_atomically((work / "scene.json").string(),
                                  std::span<const uint8_t>(reinterpret_cast<const uint8_t*>(text.data()), text.size()));
 }
@@ -165,16 +178,16 @@ void print_json(const std::vector<exhibit::Part>& parts, const std::vector<exhib
 }  // namespace body::cli
 
 int run_exhibit(const Args& argv) {
-    auto args = CliArgs::parse(argv,
-                               {"output",    "groups",        "translations", "view",           "orientation",
-                                "jobs",      "caps",          "tiling",       "correspondence", "branching",
-                                "smooth",    "min-triangles", "chunk-splits",
+    auto args = CliArgs::parse(
+        argv,
+        {"output",       "groups",         "translations", "view",   "orientation",   "jobs",         "caps",
+         "tiling",       "correspondence", "branching",    "smooth", "min-triangles", "chunk-splits",
 #ifdef BODY_WITH_IMPORT
-                                "labels",    "axis",          "step",         "only",           "threshold",
-                                "tolerance", "min-area"
+         "labels",       "axis",           "step",         "only",   "threshold",     "tolerance",    "min-area",
+         "slices-volume"
 #endif
-                               },
-                               {"help", "quiet", "json", "strict", "no-normals"});
+        },
+        {"help", "quiet", "json", "strict", "no-normals"});
     if (!args) return report(args.error());
     if (args->has("help")) {
         std::printf("%s", kUsage);
@@ -197,6 +210,14 @@ int run_exhibit(const Args& argv) {
     if (!axes) return report(axes.error());
 
     const auto start = std::chrono::steady_clock::now();
+#ifdef BODY_WITH_IMPORT
+    std::optional<GreyImage> grey;  // read first: a bad image writes nothing
+    if (auto g = args->get("slices-volume")) {
+        auto image = read_grey_image(*g);
+        if (!image) return report(image.error());
+        grey = std::move(*image);
+    }
+#endif
     auto parts = load_parts(*args, *axes, quiet);
     if (!parts) return report(parts.error());
     if (!quiet && ::isatty(STDERR_FILENO)) options.progress = progress_bar("structures");
@@ -228,7 +249,16 @@ int run_exhibit(const Args& argv) {
         return report(apart.error());
     fs::path work = bundle;
     work += ".work-" + std::to_string(::getpid());
-    Status st = write_sources(work, *parts, built, *scene_options);
+    std::optional<SliceVolume> volume;
+#ifdef BODY_WITH_IMPORT
+    if (grey) {
+        auto v = exhibit::slices_volume(grey->dim, grey->values, grey->affine,
+                                        exhibit::volume_axes(*parts, built, *axes), *args->get("slices-volume"));
+        if (!v) return report(v.error());
+        volume = std::move(*v);
+    }
+#endif
+    Status st = write_sources(work, *parts, built, *scene_options, volume ? &*volume : nullptr);
     // The sources are this run's scratch: a failure there names the bundle asked for.
     if (!st) st = Error{bundle.string() + "/: " + st.error().message, st.error().exit_code};
     Result<PackSummary> pack = st ? pack_scene((work / "scene.json").string(), bundle.string()) : st.error();

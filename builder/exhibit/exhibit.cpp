@@ -184,6 +184,31 @@ std::vector<std::string> model_stems(const std::vector<Part>& parts) {
     return stems;
 }
 
+// The input slices of the kept contour-built parts in the kiosk's world
+// (scene.json cut_plane.slices, where the kiosk's cut plane snaps): each
+// stack's planes z = c that hold a contour of the part, mirrored and turned as
+// its model is, so the plane is dot(M e_z, p) = +-c. One normal per scene: the
+// first such part's, and the parts whose slices share it.
+void add_slices(const std::vector<Part>& parts, const std::vector<size_t>& kept, nlohmann::json& scene) {
+    std::optional<Vec3> normal;
+    std::vector<double> at;
+    for (size_t i : kept) {
+        const Part& p = parts[i];
+        if (!p.contours) continue;
+        const auto m = kiosk_rotation(proper_axes(p.ras_axes));
+        const Vec3 n(m[0][2], m[1][2], m[2][2]);
+        const double sign = mirror_axis(p.ras_axes) == 2 ? -1.0 : 1.0;
+        if (!normal) normal = n;
+        if (glm::length(n - *normal) > 1e-9) continue;
+        for (const Slice& s : p.contours->slices)
+            if (!s.contours.empty()) at.push_back(sign * s.z + 0.0);  // + 0.0: no -0 in the file
+    }
+    std::sort(at.begin(), at.end());
+    at.erase(std::unique(at.begin(), at.end()), at.end());
+    if (!normal || at.empty() || at.size() > 100000) return;
+    scene["cut_plane"] = {{"slices", at}, {"slice_normal", {normal->x + 0.0, normal->y + 0.0, normal->z + 0.0}}};
+}
+
 nlohmann::json scene_for(const std::vector<Part>& parts, const std::vector<BuiltPart>& built,
                          const std::vector<std::string>& files, const SceneOptions& options) {
     std::vector<size_t> kept;
@@ -239,6 +264,7 @@ nlohmann::json scene_for(const std::vector<Part>& parts, const std::vector<Built
     if (!group_list.empty()) scene["groups"] = std::move(group_list);
     scene["camera"] = {{"azimuth_deg", view_azimuth_deg(options.view)}, {"polar_deg", 90}};
     scene["kiosk"] = {{"languages", languages}};
+    add_slices(parts, kept, scene);
     return scene;
 }
 

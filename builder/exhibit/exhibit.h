@@ -14,7 +14,8 @@
 //   source or assign_colours() (palette.h), titles from names.h and the
 //   translations, groups from the group table, rotates every model from its
 //   source's patient orientation to the kiosk's (orientation.h) and points the
-//   camera at the chosen anatomical view.
+//   camera at the chosen anatomical view; the contour-built parts' slice
+//   planes become cut_plane.slices (the kiosk's cut plane snaps to them).
 #include <array>
 #include <functional>
 #include <nlohmann/json.hpp>

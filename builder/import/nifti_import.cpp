@@ -79,8 +79,11 @@ bool is_integer_type(int datatype) {
     }
 }
 
+}  // namespace
+
 // niftilib fills a short read with zeros and only warns, so a truncated file
-// would pass as a volume with a missing part: check the data length first.
+// would pass as a volume with a missing part: check the data length first
+// (also used by grey_volume.cpp).
 std::string check_data_length(const nifti_image& nim) {
     const std::string file = nim.iname ? nim.iname : "";
     const uint64_t needed = static_cast<uint64_t>(nim.iname_offset > 0 ? nim.iname_offset : 0) +
@@ -117,6 +120,8 @@ std::string check_data_length(const nifti_image& nim) {
     }
     return {};
 }
+
+namespace {
 
 // Phase 1: header, dimensions, data and the voxel -> scanner transform.
 Result<LabelVolume> read_label_volume(const std::string& path, const ImportOptions& options) {

@@ -89,6 +89,8 @@ KioskApp::KioskApp(scene::Scene scene, std::vector<ModelInfo> models, int width,
     }
     operator_ = OperatorMode(scene_.kiosk.operator_pin);
     cut_.configure(center, radius, cut_axes(scene_));
+    const auto& sn = scene_.cut_plane.slice_normal;
+    cut_.set_slices(sn ? glm::vec3((*sn)[0], (*sn)[1], (*sn)[2]) : cut_axes(scene_)[0], scene_.cut_plane.slices);
     reset();
     resets_ = 0;
 }

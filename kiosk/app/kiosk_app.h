@@ -173,6 +173,7 @@ private:
     // Tours, countdown and pins (kiosk_tour.cpp, kiosk_pins.cpp).
     void update_tour(double now);
     void enter_tour_step(double now);
+    void apply_tour_cut(const scene::TourStep& s);
     void tour_gesture(const Gesture& g);
     bool activate_tour(const Control& c, double now);
     void add_tour_and_pin_controls();
@@ -212,6 +213,7 @@ private:
     TourPlayer tour_;
     CameraPose tour_from_, tour_to_;
     bool tour_moving_ = false;
+    bool tour_cut_ = false;           // a step of the running tour set the cut plane (steps[].cut)
     std::vector<char> tour_visible_;  // per model while a step sets `visible`; empty: no override
     bool visited_ = false;            // input since the last reset (the countdown is for a visitor)
     // Pins.

@@ -51,6 +51,8 @@ void KioskApp::leave_tour() {
     tour_.leave();
     tour_visible_.clear();
     tour_moving_ = false;
+    if (tour_cut_) cut_.off();
+    tour_cut_ = false;
     if (selected_ >= 0 && !visible(selected_)) selected_ = -1;
     relayout();
 }
@@ -60,6 +62,22 @@ std::string KioskApp::tour_caption() const {
     const scene::TourStep& s = scene_.tours[static_cast<size_t>(tour_.tour())].steps[static_cast<size_t>(tour_.step())];
     const scene::LabelText* t = scene_.text(s.caption, language_);
     return t ? t->title : std::string();
+}
+
+// A step's cut plane (SCENE.md steps[].cut): set it, or turn off the one an
+// earlier step set; a tour that never sets one leaves the visitor's alone.
+void KioskApp::apply_tour_cut(const scene::TourStep& s) {
+    if (s.cut) {
+        const scene::TourCut& c = *s.cut;
+        const bool preset = c.axis >= 0 && c.axis < 3;
+        const glm::vec3 n =
+            preset ? cut_.axis_normal(static_cast<CutAxis>(c.axis)) : glm::vec3(c.normal[0], c.normal[1], c.normal[2]);
+        cut_.set_fixed(n, c.offset, preset ? std::optional<CutAxis>(static_cast<CutAxis>(c.axis)) : std::nullopt);
+        tour_cut_ = true;
+    } else if (tour_cut_) {
+        cut_.off();
+        tour_cut_ = false;
+    }
 }
 
 // A step's scene state: visibility (names of models or groups), styles, selection.
@@ -83,6 +101,7 @@ void KioskApp::enter_tour_step(double now) {
         const int m = scene_.model_index(name);
         if (m >= 0) set_model_style(m, style);
     }
+    apply_tour_cut(s);
     selected_ = s.select.empty() ? -1 : scene_.model_index(s.select);
     if (selected_ >= 0 && !visible(selected_)) selected_ = -1;
     open_pin_ = -1;

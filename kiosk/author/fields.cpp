@@ -3,6 +3,7 @@
 #include "kiosk/author/fields.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -355,6 +356,75 @@ std::vector<Field> kiosk_fields() {
     };
 }
 
+// The snapping slices' normal (scene.h CutPlaneSettings): empty text unsets it.
+Field cut_slice_normal_field() {
+    return {"cut_plane.slice_normal",
+            "cut slice normal",
+            FieldScope::Scene,
+            FieldKind::Vec3,
+            [](const Scene& s, const FieldTarget&) {
+                return s.cut_plane.slice_normal ? fmt3(*s.cut_plane.slice_normal) : std::string();
+            },
+            [](Scene& s, const FieldTarget&, const std::string& v) -> Status {
+                if (v.find_first_not_of(" \t") == std::string::npos) {
+                    s.cut_plane.slice_normal.reset();
+                    return ok_status();
+                }
+                std::array<float, 3> n{};
+                if (auto r = parse_vec3(v, "cut slice normal", n); !r) return r;
+                if (n[0] == 0.0f && n[1] == 0.0f && n[2] == 0.0f) return input_error("cut slice normal: not all 0");
+                s.cut_plane.slice_normal = n;
+                return ok_status();
+            }};
+}
+
+// The snapping slices' positions, numbers apart by spaces.
+Field cut_slices_field() {
+    return {"cut_plane.slices",
+            "cut slices",
+            FieldScope::Scene,
+            FieldKind::Text,
+            [](const Scene& s, const FieldTarget&) {
+                std::string out;
+                for (float a : s.cut_plane.slices) {
+                    if (!out.empty()) out.push_back(' ');
+                    out.append(fmt(a));
+                }
+                return out;
+            },
+            [](Scene& s, const FieldTarget&, const std::string& v) -> Status {
+                std::istringstream in(v);
+                std::vector<float> at;
+                for (std::string w; in >> w;) {
+                    char* end = nullptr;
+                    const float x = std::strtof(w.c_str(), &end);
+                    if (!end || *end != '\0' || !std::isfinite(x))
+                        return input_error("cut slices: numbers, e.g. \"1 2.5 4\"");
+                    at.push_back(x);
+                }
+                s.cut_plane.slices = std::move(at);
+                return ok_status();
+            }};
+}
+
+// The grey-level volume on the caps, a path relative to the manifest: empty text unsets it.
+Field cut_volume_field() {
+    return {"cut_plane.volume",
+            "cut slices volume",
+            FieldScope::Scene,
+            FieldKind::Text,
+            [](const Scene& s, const FieldTarget&) { return s.cut_plane.volume; },
+            [](Scene& s, const FieldTarget&, const std::string& v) -> Status {
+                const size_t a = v.find_first_not_of(" \t"), b = v.find_last_not_of(" \t");
+                s.cut_plane.volume = a == std::string::npos ? std::string() : v.substr(a, b - a + 1);
+                const std::filesystem::path file(s.cut_plane.volume);
+                s.cut_plane.volume_path = s.cut_plane.volume.empty() || file.is_absolute() || s.base_dir.empty()
+                                              ? s.cut_plane.volume
+                                              : (std::filesystem::path(s.base_dir) / file).string();
+                return ok_status();
+            }};
+}
+
 // The cut plane's preset normals (scene.h CutPlaneSettings): empty text unsets one.
 template <size_t I>
 Field cut_axis_field(const char* key, const char* label) {
@@ -381,7 +451,10 @@ Field cut_axis_field(const char* key, const char* label) {
 std::vector<Field> cut_plane_fields() {
     return {cut_axis_field<0>("cut_plane.axial", "cut axial normal"),
             cut_axis_field<1>("cut_plane.coronal", "cut coronal normal"),
-            cut_axis_field<2>("cut_plane.sagittal", "cut sagittal normal")};
+            cut_axis_field<2>("cut_plane.sagittal", "cut sagittal normal"),
+            cut_slice_normal_field(),
+            cut_slices_field(),
+            cut_volume_field()};
 }
 
 std::vector<Field> all_fields() {

@@ -3,6 +3,10 @@
 // steps (contract in fields.h; helpers in fields_detail.h). Adding and removing
 // pins, tours and steps are the editor's commands (editor.h).
 #include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <iterator>
+#include <optional>
 #include <sstream>
 
 #include "kiosk/author/fields_detail.h"
@@ -89,6 +93,45 @@ std::vector<std::string> model_choices(const Scene& s) {
     for (const scene::Model& m : s.models) c.push_back(m.name);
     return c;
 }
+// A step's cut as one line: "none", "<axis> <offset>" or "<nx> <ny> <nz> <offset>".
+constexpr const char* kCutAxes[] = {"axial", "coronal", "sagittal"};
+std::string cut_text(const std::optional<scene::TourCut>& c) {
+    if (!c) return "none";
+    if (c->axis >= 0 && c->axis < 3) return std::string(kCutAxes[c->axis]) + " " + fmt(c->offset);
+    return fmt3(c->normal) + " " + fmt(c->offset);
+}
+Status parse_cut_text(const std::string& v, std::optional<scene::TourCut>& out) {
+    const auto bad = [] {
+        return input_error("step cut: none, \"axial 10\" (axis, offset) or \"0 1 0 10\" (normal, offset)");
+    };
+    std::istringstream in(v);
+    std::vector<std::string> words;
+    for (std::string w; in >> w;) words.push_back(w);
+    if (words.size() == 1 && words[0] == "none") {
+        out.reset();
+        return ok_status();
+    }
+    scene::TourCut c;
+    const auto number = [](const std::string& w, float& x) {
+        char* end = nullptr;
+        x = std::strtof(w.c_str(), &end);
+        return end && *end == '\0' && end != w.c_str() && std::isfinite(x);
+    };
+    if (words.size() == 2) {
+        const auto* it = std::find(std::begin(kCutAxes), std::end(kCutAxes), words[0]);
+        if (it == std::end(kCutAxes) || !number(words[1], c.offset)) return bad();
+        c.axis = static_cast<int>(it - std::begin(kCutAxes));
+    } else if (words.size() == 4) {
+        for (size_t i = 0; i < 3; ++i)
+            if (!number(words[i], c.normal[i])) return bad();
+        if (!number(words[3], c.offset) || (c.normal[0] == 0 && c.normal[1] == 0 && c.normal[2] == 0)) return bad();
+    } else {
+        return bad();
+    }
+    out = c;
+    return ok_status();
+}
+
 std::vector<std::string> easing_choices(const Scene&) { return {"linear", "ease-in", "ease-out", "ease-in-out"}; }
 
 std::vector<Field> step_fields() {
@@ -194,6 +237,9 @@ std::vector<Field> step_fields() {
              return ok_status();
          },
          easing_choices},
+        {"steps[].cut", "step cut", FieldScope::Step, FieldKind::Text,
+         [](const Scene& s, const FieldTarget& t) { return cut_text(step(s, t).cut); },
+         [](Scene& s, const FieldTarget& t, const std::string& v) { return parse_cut_text(v, step(s, t).cut); }},
     };
 }
 

@@ -417,6 +417,11 @@ Status Benchmark::run() {
     GpuTimer gpu_timer;
     gpu_timer_ = &gpu_timer;
     print_header();
+    if (options_.cut_only) {
+        if (auto s = run_cut_plane(); !s) return s;
+        renderer_.shutdown();
+        return ok_status();
+    }
     for (double lod : {1.0, 0.4, 0.1})
         if (auto s = run_lod(lod); !s) return s;
     step("after every style and LOD");
@@ -455,6 +460,7 @@ int run_benchmark_mode(platform::Surface& surface, const ViewOptions& o, const s
     bo.target_triangles = static_cast<size_t>(o.bench_triangles);
     bo.frames = static_cast<int>(o.bench_frames);
     bo.seconds_per_cell = o.bench_seconds;
+    bo.cut_only = o.bench_only == "cut";
     auto s = run_benchmark(surface, bo);
     return s ? kExitOk : report(s.error());
 }

@@ -23,6 +23,7 @@ struct BenchmarkOptions {
     int frames = 9;                 // at least this many timed style/baseline pairs per cell (after 2 warm-up pairs)
     double seconds_per_cell = 3.0;  // then more pairs until a cell (style x LOD) has taken this long ...
     size_t max_pairs = 200;         // ... or has this many
+    bool cut_only = false;          // --bench-only cut: the cut-plane table alone, after the model loads
     render::RendererOptions renderer = {};  // --buffer-access
 };
 
@@ -60,6 +61,8 @@ Status compare_cut_plane(render::Renderer& renderer, render::ModelId id, const r
 
 // Wall milliseconds of one frame of `r` (glFinish included): the tables' one timer.
 double frame_ms(render::Renderer& r, const render::View& camera, const render::FrameOptions& frame);
+// CPU milliseconds this process has used, all threads (a software rasterizer's included).
+double cpu_now_ms();
 // The median of `values`; 0 when empty.
 double median(std::vector<double> values);
 

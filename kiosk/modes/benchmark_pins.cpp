@@ -25,12 +25,6 @@ namespace {
 
 constexpr int kPins = 8;
 
-double cpu_now_ms() {
-    timespec t{};
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-    return static_cast<double>(t.tv_sec) * 1e3 + static_cast<double>(t.tv_nsec) * 1e-6;
-}
-
 // The model's current level on the CPU, for picking.
 struct CpuMesh {
     std::vector<Vec3f> positions;

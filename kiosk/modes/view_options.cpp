@@ -38,6 +38,7 @@ const std::set<std::string>& view_value_options() {
                                                 "bench-triangles",
                                                 "bench-frames",
                                                 "bench-seconds",
+                                                "bench-only",
                                                 "buffer-access",
                                                 "soak",
                                                 "touch-calibration",
@@ -182,6 +183,8 @@ Status parse_benchmark(const CliArgs& args, ViewOptions& o) {
     if (!(seconds.value() >= 0.0 && seconds.value() <= 600.0))
         return input_error("--bench-seconds must be in [0, 600]");
     o.bench_seconds = seconds.value();
+    o.bench_only = args.get_or("bench-only", "");
+    if (!o.bench_only.empty() && o.bench_only != "cut") return input_error("--bench-only expects cut");
     return ok_status();
 }
 

@@ -16,6 +16,9 @@ struct CutPlane {
     // A fixed colour for every cap (diagrams, the golden test); alpha 0: each
     // model's own colour (the selection colour when selected, faded in x-ray).
     glm::vec4 cap_color{0.0f};
+    // How much of the bundle's grey-level volume (Renderer::set_cut_volume)
+    // shows on the caps: 0 the cap colour only, 1 the grey level only.
+    float volume_mix = 0.7f;
 };
 
 }  // namespace body::render

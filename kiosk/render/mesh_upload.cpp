@@ -226,6 +226,7 @@ void to_float_positions(Model& m, const MeshData& mesh, size_t count) {
     }
     glBindVertexArray(0);
     m.wire_stale = m.edges_stale = true;
+    ++m.geometry_version;
 }
 
 // Writes a source's pending patches into `buffer`'s elements [first, first +
@@ -489,10 +490,13 @@ Status Renderer::update_model(ModelId id, const MeshData& mesh, const Dirty& dir
     // The edge list holds face normals, so any change rebuilds it (lazily, when
     // drawn in `lines`); the wireframe's position texture only follows the vertices.
     if (icount - icount % 3 != m.index_count || dirty.index_begin < dirty.index_end || index_patched ||
-        dirty.vertex_begin < dirty.vertex_end || vertex_patched)
+        dirty.vertex_begin < dirty.vertex_end || vertex_patched) {
         m.edges_stale = true;
+        ++m.geometry_version;
+    }
     const bool vertices_changed = vcount != m.vertex_count || dirty.vertex_begin < dirty.vertex_end || vertex_patched;
     if (vertices_changed) m.wire_stale = true;
+    if (vertices_changed) ++m.geometry_version;
     m.vertex_count = vcount;
     m.index_count = icount - icount % 3;
     ++m.revision;                                                 // batched copies follow (batch.h)
@@ -520,6 +524,7 @@ void free_model(Model& m) {
     glDeleteVertexArrays(1, &m.vao);
     GLuint textures[] = {m.position_texture, m.position_texture_z, m.edge_texture};
     glDeleteTextures(3, textures);
+    if (m.section_vbo) glDeleteBuffers(1, &m.section_vbo);
 }
 
 }  // namespace body::render

@@ -52,6 +52,18 @@ struct Model {
     // -2: never again), and a count of update_model calls (what the chunk copied).
     int batch_chunk = -1, batch_slot = -1;
     uint64_t revision = 0;
+    // Counts changes of the GL positions or indices (mesh_upload.cpp), so
+    // caches of the geometry (the cut section) know when they are stale.
+    uint32_t geometry_version = 0;
+    // The cut plane's section of this model (styles/cut_cap.cpp), kept while
+    // the object-space plane and the geometry stay as they were: the fan
+    // triangles in `section_vbo` and the rectangle of the plane around them.
+    GLuint section_vbo = 0;
+    size_t section_vertices = 0, section_vbo_capacity = 0;
+    bool section_valid = false;
+    glm::vec4 section_plane{0.0f};  // object space
+    uint32_t section_version = 0;
+    Vec3f section_center{0.0f}, section_u{0.0f}, section_v{0.0f};  // object space, half sides
 };
 
 // Deletes the model's GL buffers, vertex array and data textures.

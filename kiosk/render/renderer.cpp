@@ -117,6 +117,7 @@ void Renderer::shutdown() {
     shutdown_batches(s_->batches);
     delete_programs(s_->programs);
     free_cut(s_->cut);
+    free_cut_volume(s_->cut_volume);
     if (s_->tam) glDeleteTextures(1, &s_->tam);
     if (s_->wire_vao) glDeleteVertexArrays(1, &s_->wire_vao);
     if (s_->quad_vao) glDeleteVertexArrays(1, &s_->quad_vao);
@@ -222,6 +223,7 @@ size_t Renderer::gpu_bytes() const {
         if (m.edge_texture) total += (m.edge_capacity + w - 1) / w * w * sizeof(GpuEdge);
     }
     if (s_->tam) total += 3 * 256 * 256 * 4 * 4 / 3;  // three RGBA8 layers with mip chains
+    total += s_->cut_volume.bytes;
     return total + batch_gpu_bytes(s_->batches);
 }
 

@@ -49,6 +49,10 @@
 #include "shared/geometry.h"
 #include "shared/style.h"
 
+namespace body {
+struct SliceVolume;  // shared/scene/slice_volume.h
+}  // namespace body
+
 namespace body::render {
 
 using ModelId = uint32_t;
@@ -93,6 +97,9 @@ struct FrameOptions {
 
 struct FrameStats {
     size_t models_drawn = 0, triangles = 0, edges = 0, draw_calls = 0;
+    // Cut sections found on the CPU this frame (styles/cut_cap.h); a model
+    // whose plane and geometry stayed keeps its section from an earlier frame.
+    size_t cut_sections = 0;
 };
 
 // How the renderer writes into its GL buffers (a progressive mesh's packed
@@ -187,6 +194,10 @@ public:
     // the driver compiles the cut plane's shader variants now (the kiosk: after
     // its first frame) rather than at a visitor's first cut. Model states are restored.
     void warm_up_cut(const Lighting& lighting, const FrameOptions& options);
+    // The grey-level volume shown on the cut plane's caps (kiosk/render/cut_volume.h);
+    // nullptr removes it. Errors (a dimension over GL_MAX_3D_TEXTURE_SIZE, a
+    // refused texture) leave no volume. Context current.
+    Status set_cut_volume(const SliceVolume* volume);
     // Bytes of GL buffers and textures this renderer created (models, lazily
     // built edge lists and data textures, the tonal art map).
     size_t gpu_bytes() const;

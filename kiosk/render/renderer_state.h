@@ -8,6 +8,7 @@
 
 #include "kiosk/render/batch.h"
 #include "kiosk/render/buffer_access.h"
+#include "kiosk/render/cut_volume.h"
 #include "kiosk/render/model.h"
 #include "kiosk/render/programs.h"
 #include "kiosk/render/renderer.h"
@@ -32,6 +33,8 @@ struct RendererState {
     bool flush_large_draws = false;
     CutCapState cut;  // the cut plane's programs (styles/cut_cap.h)
     Batches batches;  // many opaque models per draw call (batch.h)
+    CutCapState cut;            // the cut plane's programs (styles/cut_cap.h)
+    CutVolumeState cut_volume;  // the caps' grey-level volume (cut_volume.h)
 };
 
 }  // namespace body::render

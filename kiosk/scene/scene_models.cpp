@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "kiosk/scene/cut_volume_file.h"
+
 namespace body::kiosk {
 
 glm::mat4 to_model_matrix(const scene::Transform& t) {
@@ -144,6 +146,7 @@ size_t SceneModels::load(render::Renderer& renderer, const LoadOptions& options)
         measure(i);
         if (info_[i].loaded) ++ok;
     }
+    load_cut_volume(scene_, renderer);
     return ok;
 }
 

@@ -266,9 +266,32 @@ bool read_kiosk(Reader& r, const json& v, const std::string& path, KioskSettings
     return true;
 }
 
-bool read_cut_plane(Reader& r, const json& v, const std::string& path, CutPlaneSettings& c) {
+bool read_cut_plane(Reader& r, const json& v, const std::string& path, const std::string& base_dir,
+                    CutPlaneSettings& c) {
     const char* names[] = {"axial", "coronal", "sagittal"};
-    if (!r.only_keys(v, path, {names[0], names[1], names[2]})) return false;
+    if (!r.only_keys(v, path, {names[0], names[1], names[2], "slices", "slice_normal", "volume"})) return false;
+    if (v.contains("volume")) {
+        if (!r.string(v["volume"], path + ".volume", c.volume)) return false;
+        const std::filesystem::path file(c.volume);
+        c.volume_path =
+            file.is_absolute() || base_dir.empty() ? file.string() : (std::filesystem::path(base_dir) / file).string();
+    }
+    if (v.contains("slice_normal")) {
+        std::array<float, 3> n{};
+        if (!r.vec3(v["slice_normal"], path + ".slice_normal", -1e6f, 1e6f, n)) return false;
+        if (std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) < 1e-6f)
+            return r.fail(path + ".slice_normal", "expected a non-zero direction");
+        c.slice_normal = n;
+    }
+    if (v.contains("slices")) {
+        const json& a = v["slices"];
+        if (!a.is_array() || a.size() > 100000) return r.fail(path + ".slices", "expected an array of numbers");
+        for (size_t i = 0; i < a.size(); ++i) {
+            float x = 0.0f;
+            if (!r.number(a[i], path + ".slices[" + std::to_string(i) + "]", -1e7f, 1e7f, x)) return false;
+            c.slices.push_back(x);
+        }
+    }
     for (size_t i = 0; i < 3; ++i) {
         if (!v.contains(names[i])) continue;
         std::array<float, 3> n{};
@@ -373,7 +396,7 @@ Result<Scene> parse_scene(const std::string& text, const std::string& source, co
         if (!r.integer(root["version"], "version", 1, 1, version)) return input_error(r.message);
     }
     if (root.contains("kiosk") && !read_kiosk(r, root["kiosk"], "kiosk", s.kiosk)) return input_error(r.message);
-    if (root.contains("cut_plane") && !read_cut_plane(r, root["cut_plane"], "cut_plane", s.cut_plane))
+    if (root.contains("cut_plane") && !read_cut_plane(r, root["cut_plane"], "cut_plane", base_dir, s.cut_plane))
         return input_error(r.message);
     if (root.contains("groups")) {
         const json& groups = root["groups"];

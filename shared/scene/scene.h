@@ -108,6 +108,15 @@ struct TourCamera {  // a missing value keeps the previous step's
     std::optional<float> azimuth_deg, polar_deg, distance;
 };
 
+// A tour step's cut plane (steps[].cut): a preset's normal (its world normal
+// as CutPlaneSettings gives it) or a world normal, pointing into the removed
+// half, and the plane's signed distance from the scene's centre along it.
+struct TourCut {
+    int axis = -1;  // 0 axial, 1 coronal, 2 sagittal; -1: `normal`
+    std::array<float, 3> normal{0.0f, 1.0f, 0.0f};
+    float offset = 0.0f;
+};
+
 struct TourStep {
     TourCamera camera;
     std::optional<std::vector<std::string>> visible;  // shown; the rest hidden. nullopt: as the manifest
@@ -117,6 +126,7 @@ struct TourStep {
     float duration = 2.0f;           // seconds the transition into this step takes
     float hold = 4.0f;               // seconds the step stays before the next one (when playing)
     Easing easing = Easing::EaseInOut;
+    std::optional<TourCut> cut;  // the plane during the step; nullopt: none (see SCENE.md)
 };
 
 struct Tour {
@@ -130,6 +140,13 @@ struct Tour {
 // exhibits' (+Y superior, +Z anterior, +X left); nullopt keeps that default.
 struct CutPlaneSettings {
     std::array<std::optional<std::array<float, 3>>, 3> axes;  // axial, coronal, sagittal
+    // The input slices the plane snaps to: world planes dot(slice_normal, p) =
+    // slices[i]; slice_normal nullopt: the axial preset's normal.
+    std::vector<float> slices;
+    std::optional<std::array<float, 3>> slice_normal;
+    // The grey-level volume shown on the caps (shared/scene/slice_volume.h),
+    // as written, and resolved against the manifest's directory; empty: none.
+    std::string volume, volume_path;
 };
 
 struct Scene {

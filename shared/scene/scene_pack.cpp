@@ -12,6 +12,7 @@
 #include "shared/pm/bpm_reader.h"
 #include "shared/pm/progressive_mesh.h"
 #include "shared/scene/scene.h"
+#include "shared/scene/slice_volume.h"
 
 namespace body::scene {
 
@@ -79,6 +80,16 @@ Result<PackSummary> pack_scene(const std::string& scene_path, const std::string&
     }
     summary.models = scene->models.size();
     summary.groups = scene->groups.size();
+    // The caps' grey-level volume is checked here and copied as slices.vol.
+    std::vector<uint8_t> volume;
+    if (!scene->cut_plane.volume.empty()) {
+        const std::string where = scene->source + ": cut_plane.volume: '" + scene->cut_plane.volume + "'";
+        auto bytes = read_file(scene->cut_plane.volume_path);
+        if (!bytes) return input_error(where + ": " + bytes.error().message);
+        volume.assign(bytes->begin(), bytes->end());
+        if (auto v = parse_slice_volume(volume, scene->cut_plane.volume_path); !v) return v.error();
+        manifest["cut_plane"]["volume"] = "slices.vol";
+    }
 
     // Staged next to the destination so the final rename stays on one file system.
     fs::path bundle = fs::path(out).lexically_normal();
@@ -99,6 +110,10 @@ Result<PackSummary> pack_scene(const std::string& scene_path, const std::string&
                 return runtime_error(bundle.string() + ": cannot write the bundle's models/" + names[i] + ": " +
                                      ec.message());
             summary.bytes += fs::file_size(staged / "models" / names[i], ec);
+        }
+        if (!volume.empty()) {
+            if (Status st = write_file_atomically((staged / "slices.vol").string(), volume); !st) return st.error();
+            summary.bytes += volume.size();
         }
         const std::string json_text = manifest.dump(2) + "\n";
         summary.bytes += json_text.size();

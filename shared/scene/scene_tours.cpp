@@ -135,10 +135,29 @@ bool camera(const json& v, const std::string& path, TourCamera& c, Failure& f) {
     return true;
 }
 
+// steps[].cut: {"axis": name, "offset": d} or {"normal": [x, y, z], "offset": d}.
+bool tour_cut(const json& v, const std::string& path, TourCut& c, Failure& f) {
+    if (!only_keys(v, path, {"axis", "normal", "offset"}, f)) return false;
+    if (v.contains("axis") == v.contains("normal")) return fail(f, path, "expected one of axis and normal");
+    if (v.contains("axis")) {
+        std::string a;
+        if (!string(v["axis"], path + ".axis", a, f)) return false;
+        c.axis = a == "axial" ? 0 : a == "coronal" ? 1 : a == "sagittal" ? 2 : -1;
+        if (c.axis < 0) return fail(f, path + ".axis", "expected axial, coronal or sagittal");
+    } else {
+        if (!vec3(v["normal"], path + ".normal", c.normal, f)) return false;
+        if (c.normal[0] == 0.0f && c.normal[1] == 0.0f && c.normal[2] == 0.0f)
+            return fail(f, path + ".normal", "expected a non-zero normal");
+    }
+    return !v.contains("offset") || number(v["offset"], path + ".offset", -1e7f, 1e7f, c.offset, f);
+}
+
 bool step(const json& v, const std::string& path, TourStep& s, Failure& f) {
-    if (!only_keys(v, path, {"camera", "visible", "styles", "select", "caption", "duration", "hold", "easing"}, f)) {
+    if (!only_keys(v, path, {"camera", "visible", "styles", "select", "caption", "duration", "hold", "easing", "cut"},
+                   f)) {
         return false;
     }
+    if (v.contains("cut") && !tour_cut(v["cut"], path + ".cut", s.cut.emplace(), f)) return false;
     if (v.contains("camera") && !camera(v["camera"], path + ".camera", s.camera, f)) return false;
     if (v.contains("visible")) {
         s.visible.emplace();

@@ -86,6 +86,16 @@ ordered_json step_json(const TourStep& st) {
     j["duration"] = num(st.duration);
     j["hold"] = num(st.hold);
     j["easing"] = easing_name(st.easing);
+    if (st.cut) {
+        static const char* const kAxes[] = {"axial", "coronal", "sagittal"};
+        ordered_json cut = ordered_json::object();
+        if (st.cut->axis >= 0 && st.cut->axis < 3)
+            cut["axis"] = kAxes[st.cut->axis];
+        else
+            cut["normal"] = vec3(st.cut->normal);
+        cut["offset"] = num(st.cut->offset);
+        j["cut"] = cut;
+    }
     return j;
 }
 
@@ -160,6 +170,12 @@ std::string scene_to_json(const Scene& s) {
     static const char* const kCutPresets[] = {"axial", "coronal", "sagittal"};
     for (size_t i = 0; i < 3; ++i)
         if (const auto& n = s.cut_plane.axes[i]) root["cut_plane"][kCutPresets[i]] = vec3(*n);
+    if (s.cut_plane.slice_normal) root["cut_plane"]["slice_normal"] = vec3(*s.cut_plane.slice_normal);
+    if (!s.cut_plane.volume.empty()) root["cut_plane"]["volume"] = s.cut_plane.volume;
+    if (!s.cut_plane.slices.empty()) {
+        root["cut_plane"]["slices"] = ordered_json::array();
+        for (float a : s.cut_plane.slices) root["cut_plane"]["slices"].push_back(num(a));
+    }
     if (!s.tours.empty()) {
         root["tours"] = ordered_json::array();
         for (const Tour& t : s.tours) root["tours"].push_back(tour_json(t));

@@ -12,6 +12,8 @@
 #include <nlohmann/json.hpp>
 
 #include "builder/exhibit/exhibit.h"
+#include "builder/exhibit/slices_volume.h"
+#include "builder/import/grey_volume.h"
 #include "builder/import/import.h"
 #include "tests/cli/cli_test.h"
 #include "tests/import/nifti_test_util.h"
@@ -234,6 +236,83 @@ TEST(ExhibitCli, LodAndPackHonourQuietAndJson) {
     const auto j = nlohmann::json::parse(r.output, nullptr, false);
     ASSERT_FALSE(j.is_discarded()) << r.output;
     EXPECT_EQ(j["triangles"], 320);
+}
+
+}  // namespace
+}  // namespace body
+
+namespace body {
+namespace {
+
+// The grey-level volume lands where the models do: the block's voxels, read
+// back as a grey image (label 1 -> 255 after the window), have their centres
+// inside the block's mesh in the kiosk frame and half a voxel from its sides,
+// for a RAS, a mirrored (LAS) and a permuted array, sliced along each axis.
+TEST(ExhibitCli, SlicesVolumeIsPlacedAsTheModels) {
+    const float ras[3][4] = {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}};
+    const float las[3][4] = {{-1, 0, 0, 11}, {0, 1, 0, 0}, {0, 0, 1, 0}};
+    const float perm[3][4] = {{0, 1, 0, 0}, {0, 0, 1, 0}, {1, 0, 0, 0}};
+    for (int axis = 0; axis < 3; ++axis)
+        for (const auto& [name, m, mirrored] : {std::tuple{"g_ras.nii", ras, false}, std::tuple{"g_las.nii", las, true},
+                                                std::tuple{"g_perm.nii", perm, false}}) {
+            SCOPED_TRACE(std::string(name) + " axis " + std::to_string(axis));
+            const std::string path = write_block(name, m, mirrored);
+            ImportOptions o;
+            o.axis = axis;
+            auto stack = import_nifti_labels(path, o);
+            ASSERT_TRUE(stack) << stack.error().message;
+            const auto axes = *exhibit::parse_orientation("RAS");
+            const auto parts = exhibit::parts_from_stack(*stack, path, axes);
+            const auto built = exhibit::build_parts(parts, exhibit::PartOptions{});
+            ASSERT_FALSE(built[0].error);
+            auto grey = read_grey_image(path);
+            ASSERT_TRUE(grey) << grey.error().message;
+            auto v = exhibit::slices_volume(grey->dim, grey->values, grey->affine,
+                                            exhibit::volume_axes(parts, built, axes), path);
+            ASSERT_TRUE(v) << v.error().message;
+            Vec3 lo(1e9), hi(-1e9);
+            size_t n = 0;
+            for (uint32_t k = 0; k < v->dims[2]; ++k)
+                for (uint32_t j = 0; j < v->dims[1]; ++j)
+                    for (uint32_t i = 0; i < v->dims[0]; ++i) {
+                        const uint8_t g = v->voxels[(size_t(k) * v->dims[1] + j) * v->dims[0] + i];
+                        ASSERT_TRUE(g == 0 || g == 255) << int(g);
+                        if (g == 0) continue;
+                        ++n;
+                        Vec3 p;
+                        for (size_t r = 0; r < 3; ++r)
+                            p[int(r)] = v->affine[r * 4] * i + v->affine[r * 4 + 1] * j + v->affine[r * 4 + 2] * k +
+                                        v->affine[r * 4 + 3];
+                        lo = glm::min(lo, p), hi = glm::max(hi, p);
+                    }
+            EXPECT_EQ(n, 4u * 8u * 14u);
+            for (int a = 0; a < 3; ++a) {
+                EXPECT_GE(lo[a], built[0].lo[a] - 0.01) << "axis " << a;
+                EXPECT_LE(hi[a], built[0].hi[a] + 0.01) << "axis " << a;
+                EXPECT_NEAR(lo[a] - built[0].lo[a], 0.5, 0.51) << "axis " << a;
+                EXPECT_NEAR(built[0].hi[a] - hi[a], 0.5, 0.51) << "axis " << a;
+            }
+        }
+}
+
+// `--slices-volume`: the bundle gets slices.vol and cut_plane.volume; a bad
+// image is one located line, exit 2 and no bundle.
+TEST(ExhibitCli, SlicesVolumeInTheBundleAndBadImagesStop) {
+    const float ras[3][4] = {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}};
+    const std::string volume = write_block("sv_block.nii", ras, false);
+    const std::string bundle = test::temp_path("sv_bundle");
+    auto r = test::run(bodygen() + " exhibit " + volume + " --slices-volume " + volume + " --quiet -o " + bundle);
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_EQ(read_json(bundle + "/scene.json")["cut_plane"]["volume"], "slices.vol");
+    EXPECT_EQ(fs::file_size(bundle + "/slices.vol"), 68u + 12u * 12u * 20u);
+    const std::string text = test::temp_path("sv_not.nii");
+    write_text(text, "not a nifti image at all");
+    const std::string bad_bundle = test::temp_path("sv_bad");
+    r = test::run(bodygen() + " exhibit " + volume + " --slices-volume " + text + " --quiet -o " + bad_bundle);
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+    EXPECT_NE(r.output.find(text), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(bad_bundle));
 }
 
 }  // namespace

@@ -201,6 +201,22 @@ TEST(ExhibitParts, FailingStructureIsLeftOutOthersBuild) {
     EXPECT_EQ(scene["models"][0]["transform"]["rotate_deg"], nlohmann::json({90.0, 0.0, 180.0}));
     // Kiosk bounds: the pillar's z (superior) extent is now Y.
     EXPECT_NEAR(built[0].hi.y - built[0].lo.y, 3.0, 1.0);
+    // The traced slices z = 0..3 turned with the model: planes dot(+Y, p) = z in the kiosk's world.
+    const Mat m = euler_matrix(scene["models"][0]["transform"]["rotate_deg"].get<std::array<float, 3>>());
+    const Vec3 n = rotate_by(m, Vec3(0, 0, 1));
+    ASSERT_TRUE(scene.contains("cut_plane")) << scene.dump();
+    EXPECT_EQ(scene["cut_plane"]["slices"], nlohmann::json({0.0, 1.0, 2.0, 3.0}));
+    const auto sn = scene["cut_plane"]["slice_normal"].get<std::array<double, 3>>();
+    EXPECT_NEAR(glm::length(Vec3(sn[0], sn[1], sn[2]) - n), 0.0, 1e-6);
+    EXPECT_NEAR(n.y, 1.0, 1e-6);
+    // SAR data is left-handed with z running left-right: z is mirrored (to L, kiosk +X), so the
+    // planes' values flip sign.
+    auto mirrored = parts;
+    mirrored[0].ras_axes = *parse_orientation("SAR");
+    ASSERT_EQ(mirror_axis(mirrored[0].ras_axes), 2);
+    const auto flipped = scene_for(mirrored, built, {"models/Good_L.bpm", ""}, SceneOptions{});
+    EXPECT_EQ(flipped["cut_plane"]["slices"], nlohmann::json({-3.0, -2.0, -1.0, 0.0}));
+    EXPECT_EQ(flipped["cut_plane"]["slice_normal"], nlohmann::json({1.0, 0.0, 0.0}));
 }
 
 }  // namespace

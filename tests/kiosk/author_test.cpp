@@ -173,15 +173,18 @@ const char* kEveryKey = R"({"version": 1,
             "frame_ms_target": 33, "attract_tour": "limbic", "countdown_seconds": 15, "pins": true,
             "operator_pin": "004217", "high_contrast": true, "large_text": true, "access_buttons": true,
             "icons": true},
-  "cut_plane": {"axial": [0, 0, 1], "coronal": [0, 1, 0], "sagittal": [-1, 0, 0.5]},
+  "cut_plane": {"axial": [0, 0, 1], "coronal": [0, 1, 0], "sagittal": [-1, 0, 0.5],
+                "slices": [-2, 0.5, 3], "slice_normal": [0, 0, 2], "volume": "slices.vol"},
   "tours": [
     {"name": "limbic", "title": {"en": "The limbic system", "de": "Das limbische System"},
      "steps": [
        {"camera": {"target": [1, 2, 3], "azimuth_deg": 90, "polar_deg": 70, "distance": 250},
         "visible": ["left", "b"], "styles": {"left": "hatching", "b": "wireframe"}, "select": "a",
         "caption": {"en": "Seen from the right", "de": "Von rechts"}, "duration": 1.5, "hold": 5, "easing": "linear"},
-       {"camera": {"azimuth_deg": -45}, "duration": 0, "hold": 3600, "easing": "ease-in"}]},
-    {"name": "second", "steps": [{"visible": [], "duration": 2, "hold": 4, "easing": "ease-out"}]}]})";
+       {"camera": {"azimuth_deg": -45}, "duration": 0, "hold": 3600, "easing": "ease-in",
+        "cut": {"axis": "coronal", "offset": -2.5}}]},
+    {"name": "second", "steps": [{"visible": [], "duration": 2, "hold": 4, "easing": "ease-out",
+                                  "cut": {"normal": [0, 1, 0.5], "offset": 3}}]}]})";
 
 // Every value of `expected` is in `actual` at the same place (`actual` may add defaults).
 void expect_contains(const json& actual, const json& expected, const std::string& path) {
@@ -215,6 +218,9 @@ TEST(AuthorSchema, EveryKeyRoundTrips) {
     EXPECT_EQ(b.kiosk.countdown_seconds, a.kiosk.countdown_seconds);
     EXPECT_TRUE(b.kiosk.pins);
     EXPECT_EQ(b.kiosk.operator_pin, "004217");  // leading zeros kept: a string, not a number
+    EXPECT_EQ(b.cut_plane.slices, (std::vector<float>{-2.0f, 0.5f, 3.0f}));
+    EXPECT_EQ(b.cut_plane.slice_normal, (std::array<float, 3>{0.0f, 0.0f, 2.0f}));
+    EXPECT_EQ(b.cut_plane.volume, "slices.vol");
     ASSERT_EQ(b.models[0].pins.size(), 2u);
     for (size_t i = 0; i < 2; ++i) {
         EXPECT_EQ(b.models[0].pins[i].anchor, a.models[0].pins[i].anchor);
@@ -241,6 +247,12 @@ TEST(AuthorSchema, EveryKeyRoundTrips) {
             ASSERT_EQ(y.caption.size(), x.caption.size());
             for (size_t c = 0; c < x.caption.size(); ++c) EXPECT_EQ(y.caption[c].title, x.caption[c].title);
             EXPECT_EQ(y.duration, x.duration);
+            ASSERT_EQ(y.cut.has_value(), x.cut.has_value());
+            if (x.cut) {
+                EXPECT_EQ(y.cut->axis, x.cut->axis);
+                EXPECT_EQ(y.cut->normal, x.cut->normal);
+                EXPECT_EQ(y.cut->offset, x.cut->offset);
+            }
             EXPECT_EQ(y.hold, x.hold);
             EXPECT_EQ(y.easing, x.easing);
         }
@@ -304,6 +316,10 @@ const std::map<std::string, std::string> kNewValues = {
     {"caption", "Beschriftung"},
     {"duration (s)", "3"},
     {"hold (s)", "6"},
+    {"step cut", "coronal -5"},
+    {"cut slice normal", "0 0 2"},
+    {"cut slices", "1 2.5 4"},
+    {"cut slices volume", "grey/ch2.vol"},
 };
 
 // A table key as the saved JSON nests it: a tour's steps are inside tours[].

@@ -225,3 +225,90 @@ TEST(CutPlane, SceneAxesOverrideThePresets) {
 
 }  // namespace
 }  // namespace body::kiosk
+
+namespace body::kiosk {
+namespace {
+
+// The kiosk's test scene with input slices on planes y = at[i] (cut_plane.slices).
+KioskApp app_with_slices(const std::vector<float>& at) {
+    auto scene = scene::parse_scene(test::kTestScene, "test.json", "");
+    EXPECT_TRUE(scene);
+    scene->cut_plane.slices = at;
+    std::vector<ModelInfo> info;
+    for (float x : {-100.0f, 0.0f, 100.0f}) info.push_back(ModelInfo{true, {x, 0, 0}, 40.0f, 100000, 1000});
+    return KioskApp(std::move(scene).value(), std::move(info), 1280, 800);
+}
+
+}  // namespace
+
+// Near an input slice the dragged plane lies exactly on it; dragging on past
+// kSnapPixels leaves it; a tilt within kSnapDegrees stays on it.
+TEST(CutPlane, SnapsToInputSlicesWithinTheTolerance) {
+    const float u = [] {
+        KioskApp probe = make_app();
+        probe.update(0.0);
+        return world_per_px(probe);
+    }();
+    const float tol = CutPlane::kSnapPixels;
+    KioskApp app = app_with_slices({40.0f * u, 100.0f * u});
+    app.update(0.0);
+    play(app, 0.1, tap(app, ControlId::Cut, 0.1));
+    EXPECT_EQ(app.cut().snapped_slice(), -1);
+    // 33 px up: 7 px from the slice at 40 px, within the tolerance: exactly on it.
+    play(app, 0.5, finger_drag(0.5, 400, 500, 0, -33));
+    EXPECT_EQ(app.cut().snapped_slice(), 0);
+    EXPECT_EQ(app.cut().normal(), glm::vec3(0.0f, 1.0f, 0.0f));
+    EXPECT_FLOAT_EQ(app.cut().offset(), 40.0f * u);
+    EXPECT_FLOAT_EQ(app.cut().plane().plane.w, -40.0f * u);
+    // 10 px further: the fingers are 3 px past it, still on it.
+    play(app, 1.0, finger_drag(1.0, 400, 500, 0, -10));
+    EXPECT_EQ(app.cut().snapped_slice(), 0);
+    EXPECT_FLOAT_EQ(app.cut().offset(), 40.0f * u);
+    // 20 px further (each drag loses a few pixels to the touch slop): beyond the
+    // tolerance of both slices, the plane follows the fingers.
+    play(app, 1.5, finger_drag(1.5, 400, 500, 0, -20));
+    EXPECT_EQ(app.cut().snapped_slice(), -1);
+    EXPECT_GT(app.cut().offset(), (40.0f + tol) * u);
+    EXPECT_LT(app.cut().offset(), (100.0f - tol) * u);
+    // Up to the second slice, then a tilt of 3 px (0.86 degrees): still on it, normal and all.
+    play(app, 2.0, finger_drag(2.0, 400, 500, 0, -45));
+    EXPECT_EQ(app.cut().snapped_slice(), 1);
+    play(app, 2.5, two_finger_drag(2.5, 640, 400, 0, 3));
+    EXPECT_EQ(app.cut().snapped_slice(), 1);
+    EXPECT_EQ(app.cut().normal(), glm::vec3(0.0f, 1.0f, 0.0f));
+    EXPECT_FLOAT_EQ(app.cut().offset(), 100.0f * u);
+    // Tilted on past kSnapDegrees: off the slice.
+    play(app, 3.0, two_finger_drag(3.0, 640, 400, 0, 20));
+    EXPECT_EQ(app.cut().snapped_slice(), -1);
+    EXPECT_LT(app.cut().normal().y, std::cos(glm::radians(CutPlane::kSnapDegrees)));
+}
+
+TEST(CutPlane, NoSlicesNoSnapping) {
+    KioskApp app = make_app();
+    app.update(0.0);
+    play(app, 0.1, tap(app, ControlId::Cut, 0.1));
+    play(app, 0.5, finger_drag(0.5, 400, 500, 0, -33));
+    EXPECT_EQ(app.cut().snapped_slice(), -1);
+    EXPECT_NEAR(app.cut().offset(), 33.0f * world_per_px(app), 2.0f * world_per_px(app));
+}
+
+}  // namespace body::kiosk
+
+namespace body::kiosk {
+
+TEST(CutPlane, BadSlicesNameThePlace) {
+    const std::pair<const char*, const char*> cases[] = {
+        {R"({"models": [{"name": "a", "file": "a.obj"}], "cut_plane": {"slices": [1, "x"]}})",
+         "s.json: cut_plane.slices[1]: "},
+        {R"({"models": [{"name": "a", "file": "a.obj"}], "cut_plane": {"slices": 3}})", "s.json: cut_plane.slices: "},
+        {R"({"models": [{"name": "a", "file": "a.obj"}], "cut_plane": {"slice_normal": [0, 0, 0]}})",
+         "s.json: cut_plane.slice_normal: expected a non-zero direction"},
+    };
+    for (const auto& [text, prefix] : cases) {
+        auto s = scene::parse_scene(text, "s.json", "");
+        ASSERT_FALSE(s) << text;
+        EXPECT_EQ(s.error().message.rfind(prefix, 0), 0u) << s.error().message;
+    }
+}
+
+}  // namespace body::kiosk

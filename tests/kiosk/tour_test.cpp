@@ -113,6 +113,14 @@ TEST(TourScene, ErrorsNameTheFileAndThePlace) {
         {R"("kiosk": {"attract_tour": "none"}})", "tour.json: kiosk.attract_tour: no tour named 'none' in tours"},
         {R"("kiosk": {"countdown_seconds": -1}})", "tour.json: kiosk.countdown_seconds: expected a number in [0, 600]"},
         {R"("kiosk": {"pins": 1}})", "tour.json: kiosk.pins: expected true or false"},
+        {R"("tours": [{"name": "t", "steps": [{"cut": {"offset": 1}}]}]})",
+         "tour.json: tours[0].steps[0].cut: expected one of axis and normal"},
+        {R"("tours": [{"name": "t", "steps": [{"cut": {"axis": "oblique"}}]}]})",
+         "tour.json: tours[0].steps[0].cut.axis: expected axial, coronal or sagittal"},
+        {R"("tours": [{"name": "t", "steps": [{"cut": {"normal": [0, 0, 0]}}]}]})",
+         "tour.json: tours[0].steps[0].cut.normal: expected a non-zero normal"},
+        {R"("tours": [{"name": "t", "steps": [{"cut": {"axis": "axial", "tilt": 3}}]}]})",
+         "tour.json: tours[0].steps[0].cut.tilt: unknown key"},
     };
     for (const auto& [tail, message] : cases) {
         auto s = scene::parse_scene(base + tail, "tour.json", "");
@@ -259,6 +267,56 @@ TEST(TourReplay, StartPauseStepAndLeaveFromTheControls) {
     EXPECT_FALSE(app.tour().active());
     EXPECT_TRUE(app.visible(2));
     EXPECT_NE(find(app, ControlId::TourStart), nullptr);
+}
+
+// A tour whose steps set the cut plane (steps[].cut): a preset, a normal, then a step without one.
+TEST(TourReplay, StepsSetTheCutPlaneAndLeavingTurnsItOff) {
+    std::string text = kTourScene;
+    const std::string spin =
+        R"({"name": "spin", "steps": [{"camera": {"azimuth_deg": 180}, "duration": 2, "hold": 1},)";
+    const size_t at = text.find(spin);
+    ASSERT_NE(at, std::string::npos);
+    text.insert(at, R"({"name": "cuts", "steps": [
+        {"cut": {"axis": "coronal", "offset": -10}, "duration": 0.5, "hold": 5},
+        {"cut": {"normal": [2, 0, 0], "offset": 30}, "duration": 0.5, "hold": 5},
+        {"duration": 0.5, "hold": 5}]},
+      )");
+    auto scene = scene::parse_scene(text, "tour.json", "");
+    ASSERT_TRUE(scene) << scene.error().message;
+    ASSERT_TRUE(scene->tours[1].steps[0].cut);
+    EXPECT_EQ(scene->tours[1].steps[0].cut->axis, 1);
+    EXPECT_EQ(scene->tours[1].steps[1].cut->normal[0], 2.0f);
+    EXPECT_FALSE(scene->tours[1].steps[2].cut);
+    KioskApp app = make(text);
+    app.update(0.0);
+    // The visitor's plane before the tour.
+    play(app, 0.0, tap(find(app, ControlId::Cut), 0.1) + "0.3 end\n");
+    ASSERT_TRUE(app.cut().on());
+    ASSERT_TRUE(app.cut().editing());
+    // A tour that never sets a plane leaves it alone.
+    play(app, 0.4, tap(find(app, ControlId::TourStart, 0), 0.4) + "0.6 end\n");
+    EXPECT_TRUE(app.cut().on());
+    play(app, 0.7, tap(find(app, ControlId::TourLeave), 0.7) + "0.9 end\n");
+    EXPECT_TRUE(app.cut().on());
+    play(app, 1.0, tap(find(app, ControlId::TourStart, 1), 1.0) + "1.3 end\n");
+    ASSERT_TRUE(app.tour().active());
+    EXPECT_TRUE(app.cut().on());
+    EXPECT_FALSE(app.cut().editing());                                               // fixed: gestures move the camera
+    EXPECT_NEAR(glm::length(app.cut().normal() - glm::vec3(0, 0, 1)), 0.0f, 1e-6f);  // coronal: +Z, as given
+    EXPECT_NEAR(app.cut().offset(), -10.0f, 1e-5f);
+    EXPECT_EQ(app.cut().axis(), CutAxis::Coronal);
+    EXPECT_TRUE(app.cut().plane().enabled);
+    play(app, 1.4, tap(find(app, ControlId::TourNext), 1.4) + "1.6 end\n");
+    EXPECT_NEAR(glm::length(app.cut().normal() - glm::vec3(1, 0, 0)), 0.0f, 1e-6f);
+    EXPECT_NEAR(app.cut().offset(), 30.0f, 1e-5f);
+    play(app, 1.7, tap(find(app, ControlId::TourNext), 1.7) + "1.9 end\n");
+    EXPECT_EQ(app.tour().step(), 2);
+    EXPECT_FALSE(app.cut().on());  // a step without `cut` after one with
+    play(app, 2.0, tap(find(app, ControlId::TourPrevious), 2.0) + "2.2 end\n");
+    EXPECT_TRUE(app.cut().on());
+    play(app, 2.3, tap(find(app, ControlId::TourLeave), 2.3) + "2.5 end\n");
+    EXPECT_FALSE(app.tour().active());
+    EXPECT_FALSE(app.cut().on());  // leaving turns off the plane the tour set
 }
 
 TEST(TourReplay, AWatchedTourIsNotIdleAndTheAttractModePlaysItsTour) {

@@ -125,6 +125,34 @@ TEST_F(TourGolden, TheTourSteps) {
     expect_golden("tour_step2", step2);
 }
 
+// A step with a cut plane (steps[].cut): the same view without and with it;
+// the cut removes the spheres' near halves and caps what is left.
+TEST_F(TourGolden, AStepCutsThroughTheSpheres) {
+    using kiosk::ControlId;
+    std::ofstream(dir_ / "scene.json") << R"({"models": [
+        {"name": "front", "file": "front.obj", "colour": [0.2, 0.5, 0.9]},
+        {"name": "back", "file": "back.obj", "colour": [0.3, 0.75, 0.35]},
+        {"name": "side", "file": "side.obj", "colour": [0.9, 0.5, 0.2]}],
+      "camera": {"polar_deg": 90},
+      "tours": [{"name": "walk", "title": {"en": "Tour"}, "steps": [
+        {"camera": {"azimuth_deg": 35, "polar_deg": 65}, "caption": {"en": "Whole"}, "duration": 0.5, "hold": 20},
+        {"caption": {"en": "Cut"}, "cut": {"axis": "coronal", "offset": 1.0}, "duration": 0.5, "hold": 20}]}]})";
+    const render::Image whole = play(tap(ControlId::TourStart, false, 0.2) + "1.2 end\n");
+    const render::Image cut =
+        play(tap(ControlId::TourStart, false, 0.2) + tap(ControlId::TourNext, true, 1.0) + "2.0 end\n");
+    ASSERT_EQ(whole.width, kWidth);
+    ASSERT_EQ(cut.width, kWidth);
+    size_t changed = 0;
+    for (int y = 0; y < kHeight; ++y)
+        for (int x = 0; x < kWidth; ++x)
+            changed += std::abs(int(whole.at(x, y)[0]) - int(cut.at(x, y)[0])) +
+                           std::abs(int(whole.at(x, y)[2]) - int(cut.at(x, y)[2])) >
+                       40;
+    EXPECT_GT(changed, 2000u);    // the caps and what the plane removed
+    EXPECT_GT(green(cut), 500u);  // the back sphere lies behind the plane, whole
+    expect_golden("tour_step_cut", cut);
+}
+
 TEST_F(TourGolden, PinsHideBehindTheFrontSphere) {
     const render::Image home = play("0.5 end\n");
     // Turn by dragging (the back sphere's front comes out from behind the front one).

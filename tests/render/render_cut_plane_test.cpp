@@ -203,6 +203,49 @@ TEST(CutPlane, CapOnAnInputSliceIsTheTracedContour) {
     }
 }
 
+// The section is found on the CPU once per plane and geometry: a still plane
+// keeps it (and draws the same picture), a moved plane or a turned model
+// finds it again.
+TEST(CutPlane, SectionIsKeptWhileThePlaneStays) {
+    RenderFixture f(640, 400);
+    REQUIRE_GL(f);
+    const BuiltBlob blob = build_blob();
+    ASSERT_FALSE(blob.positions.empty());
+    auto id = f.renderer().add_model({blob.positions, {}, blob.indices}, "blob");
+    ASSERT_TRUE(id.ok());
+    Vec3f lo, hi;
+    ASSERT_TRUE(f.renderer().scene_box(lo, hi));
+    const View view = View::framing_box(lo, hi, Vec3f(0.25f, -0.35f, 1.0f), 640.0f / 400.0f);
+    FrameOptions o = f.frame();
+    o.cut.enabled = true;
+    o.cut.plane = glm::vec4(0.0f, 0.0f, 1.0f, -3.0f);
+    o.cut.cap_color = glm::vec4(kCapRed, 1.0f);
+    const Image first = f.draw(view, {}, o);
+    EXPECT_EQ(f.renderer().last_frame_stats().cut_sections, 1u);
+    const Image kept = f.draw(view, {}, o);
+    EXPECT_EQ(f.renderer().last_frame_stats().cut_sections, 0u);
+    EXPECT_EQ(first.rgba, kept.rgba);
+    EXPECT_GT(diff_masks(colour_mask(kept, kCapRed), contour_mask(blob.stack.slices[3], view, 640, 400), 640, 400).cap,
+              2000u);
+    o.cut.plane.w = -2.0f;
+    (void)f.draw(view, {}, o);
+    EXPECT_EQ(f.renderer().last_frame_stats().cut_sections, 1u);
+    // Raised by one, the model meets the plane z = 3 at its slice 2, now at z = 3: the same
+    // plane in the model's space, so the section is kept and drawn where the model now is.
+    f.renderer().state(id.value())->transform = glm::translate(glm::mat4(1.0f), Vec3f(0.0f, 0.0f, 1.0f));
+    o.cut.plane.w = -3.0f;
+    const Image raised = f.draw(view, {}, o);
+    EXPECT_EQ(f.renderer().last_frame_stats().cut_sections, 0u);
+    Slice slice2 = blob.stack.slices[2];
+    slice2.z = 3.0;
+    const MaskDiff d = diff_masks(colour_mask(raised, kCapRed), contour_mask(slice2, view, 640, 400), 640, 400);
+    EXPECT_GT(d.contour, 2000u);
+    EXPECT_EQ(d.outside_band, 0u);
+    f.renderer().state(id.value())->transform = glm::translate(glm::mat4(1.0f), Vec3f(0.0f, 0.0f, 0.5f));
+    (void)f.draw(view, {}, o);
+    EXPECT_EQ(f.renderer().last_frame_stats().cut_sections, 1u);
+}
+
 // The same check must fail when the cap is off by a slice's worth of plane.
 TEST(CutPlane, CapOffTheSliceIsNotTheContour) {
     RenderFixture f(640, 400);

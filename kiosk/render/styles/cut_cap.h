@@ -8,7 +8,16 @@
 // plane (for a closed mesh seen from outside it); a square of the plane
 // around the model is then coloured where the count is non-zero and clears it
 // for the next model, so each cap has its own model's colour and depth.
+// The stencil comes from the section itself where the model's buffers can be
+// read: the plane's crossing segments (kiosk/render/plane_section.h), found
+// on the CPU when the plane or the geometry changed and kept while they stay,
+// drawn as a fan that flips the stencil (even-odd), and the cap is the
+// rectangle of the plane around them: a cut costs its section's segments,
+// not the model's triangles. The triangles' count above is the fallback
+// (buffers that fail to map).
 #include <GLES3/gl3.h>
+
+#include <vector>
 
 #include "kiosk/render/programs.h"
 #include "shared/geometry.h"
@@ -25,6 +34,10 @@ struct CutCapState {
     Programs clipped;  // the program table with BODY_CLIP defined
     Program cap;       // cap.vert + baseline.frag (unclipped: it is the plane)
     GLuint cap_vao = 0;
+    Program section;  // section.vert + baseline.frag: the section's fan into the stencil
+    GLuint section_vao = 0;
+    std::vector<Vec3f> segments, fan;  // scratch of the section (plane_section.h)
+    std::vector<float> distance;
 };
 
 // Where a model lies against the frame's plane.
@@ -41,6 +54,6 @@ CutSide begin_model_cut(Frame& f, const Model& m);
 void set_clip_uniforms(Program& p, const Frame& f);
 // The stencil pass and cap of a model the plane cuts, in `color`; blended
 // when alpha < 1 (the transparent pass).
-void draw_cut_cap(RendererState& s, Frame& f, const Model& m, Vec3f color, float alpha);
+void draw_cut_cap(RendererState& s, Frame& f, Model& m, Vec3f color, float alpha);
 
 }  // namespace body::render
