@@ -31,9 +31,8 @@ struct RendererState {
     // Software rasterizers (GL_RENDERER llvmpipe, softpipe): large draws are
     // split and flushed (draw.h, kFlushTriangles).
     bool flush_large_draws = false;
-    CutCapState cut;  // the cut plane's programs (styles/cut_cap.h)
-    Batches batches;  // many opaque models per draw call (batch.h)
     CutCapState cut;            // the cut plane's programs (styles/cut_cap.h)
+    Batches batches;            // many opaque models per draw call (batch.h)
     CutVolumeState cut_volume;  // the caps' grey-level volume (cut_volume.h)
 };
 
