@@ -6,13 +6,14 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <utility>
 
 namespace body::kiosk {
 
 namespace {
 
 constexpr int kFirstAtlasSize = 512, kLargestAtlasSize = 4096, kPadding = 1;
-constexpr size_t kShapedCacheLimit = 16384;
+constexpr size_t kShapedCacheLimit = 1024;  // per generation: a few MiB at most
 
 }  // namespace
 
@@ -138,7 +139,8 @@ const ShapedText& GlyphAtlas::shaped(std::u32string_view text, TextDirection dir
     std::u32string key(1, static_cast<char32_t>(direction));
     key += text;
     if (auto it = shaped_.find(key); it != shaped_.end()) return it->second;
-    if (shaped_.size() >= kShapedCacheLimit) shaped_.clear();
+    if (shaped_.size() >= kShapedCacheLimit) shaped_previous_ = std::exchange(shaped_, {});
+    if (auto node = shaped_previous_.extract(key)) return shaped_.insert(std::move(node)).position->second;
     return shaped_.emplace(std::move(key), shape_text(*fonts_, text, em_px_, direction)).first->second;
 }
 

@@ -49,6 +49,8 @@ public:
     // coordinates became stale (the atlas grew or was refilled).
     uint64_t generation() const { return generation_; }
     uint64_t epoch() const { return epoch_; }
+    // Shaped lines held in the cache (bounded, whatever the text seen).
+    size_t shaped_lines() const { return shaped_.size() + shaped_previous_.size(); }
     float pixel_height() const { return pixel_height_; }
     float ascent() const { return ascent_; }
     float line_height() const { return line_height_; }
@@ -81,8 +83,11 @@ private:
     std::vector<uint8_t> pixels_;
     int shelf_x_ = 0, shelf_y_ = 0, shelf_h_ = 0;
     uint64_t generation_ = 0, epoch_ = 0;
-    std::unordered_map<uint64_t, Slot> slots_;               // font << 32 | glyph
-    std::unordered_map<std::u32string, ShapedText> shaped_;  // direction + text
+    std::unordered_map<uint64_t, Slot> slots_;  // font << 32 | glyph
+    // Shaped lines by direction + text, in two generations: a full current one
+    // becomes the previous one, and a hit there moves back. Lines used every
+    // frame stay; the many one-off prefixes wrap() measures are bounded.
+    std::unordered_map<std::u32string, ShapedText> shaped_, shaped_previous_;
 };
 
 // How a control's text fits a w x h box, by rule: one line at full size; else

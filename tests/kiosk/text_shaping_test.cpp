@@ -126,6 +126,29 @@ TEST(LineBreaks, ChineseWrapsWithinTheWidthWithoutLosingCharacters) {
     EXPECT_EQ(joined, text);
 }
 
+// A kiosk wraps every card it shows; each wrap measures many one-off prefixes. The
+// cache must stay bounded over months of visitors, and lines drawn every frame
+// must survive the turnover.
+TEST(ShapedCache, StaysBoundedAndKeepsTheLinesInUse) {
+    if (!std::filesystem::exists(BODY_FONT_FILE)) GTEST_SKIP() << "needs fonts-dejavu-core";
+    auto atlas = GlyphAtlas::build(BODY_FONT_FILE, 20.0f);
+    ASSERT_TRUE(atlas) << atlas.error().message;
+    const std::u32string hot = U"Home";
+    const float hot_width = atlas->measure(hot);
+    size_t most = 0;
+    for (int card = 0; card < 3000; ++card) {
+        std::u32string text = U"Region " + std::u32string(1, static_cast<char32_t>(U'A' + card % 26)) + U" ";
+        for (int w = 0; w < 12; ++w)
+            text += U"word" + std::u32string(1, static_cast<char32_t>(U'a' + (card + w) % 26)) + U" ";
+        text += std::u32string(1, static_cast<char32_t>(0x4E00 + card));  // every card distinct
+        ASSERT_FALSE(atlas->wrap(text, 90.0f).empty());
+        EXPECT_EQ(atlas->measure(hot), hot_width);  // the line in use every frame
+        most = std::max(most, atlas->shaped_lines());
+    }
+    EXPECT_GT(most, 1000u);  // the cache is used...
+    EXPECT_LE(most, 2048u);  // ...and bounded (two generations of 1024)
+}
+
 TEST(MirroredUi, RightToLeftLanguagesMirrorTheControls) {
     UiState s;
     s.width = 1280;
