@@ -3,6 +3,7 @@
 // bench/body_scene.sh uses 18, 2,088 models, which take minutes to build and
 // run on llvmpipe), and the kiosk loads every model of it and draws frames.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <regex>
@@ -16,7 +17,9 @@ namespace {
 TEST(BodyScene, TheScriptBuildsAManyModelSceneTheKioskLoadsWhole) {
     if (!std::filesystem::exists("/usr/share/mricron/templates/aal.nii.gz"))
         GTEST_SKIP() << "mricron-data (the AAL atlas) is not installed";
-    const std::filesystem::path dir = std::filesystem::temp_directory_path() / "body_scene_smoke";
+    // Per process: builds in several checkouts on one machine must not share it.
+    const std::filesystem::path dir =
+        std::filesystem::temp_directory_path() / ("body_scene_smoke-" + std::to_string(::getpid()));
     std::filesystem::remove_all(dir);
     const RunResult built = run("COPIES=2 " + std::string(BODY_SOURCE_DIR) + "/scripts/build-body-scene.sh " +
                                 bin("bodygen") + " " + dir.string());
