@@ -40,7 +40,7 @@ BatchChunk make_chunk(const std::vector<Model*>& models, std::vector<BatchChunk>
         m->batch_slot = static_cast<int>(c.members.size());
         c.members.push_back(m);
         c.vertex_base.push_back(c.vertex_total);
-        c.copied_revision.push_back(UINT64_MAX);
+        c.copied_version.push_back(UINT64_MAX);
         c.vertex_total += m->vertex_capacity;
     }
     std::vector<uint8_t> slots(c.vertex_total);
@@ -91,7 +91,7 @@ void form_chunks(Batches& b, const std::vector<Model*>& drawn) {
 // since; a model whose format left codes leaves the chunk (false).
 bool sync_vertices(BatchChunk& c, size_t slot) {
     Model& m = *c.members[slot];
-    if (c.copied_revision[slot] == m.revision) return true;
+    if (c.copied_version[slot] == m.geometry_version) return true;
     if (!m.quantized || !m.normal_codes) {
         m.batch_chunk = kNotBatched;
         c.members[slot] = nullptr;
@@ -107,14 +107,14 @@ bool sync_vertices(BatchChunk& c, size_t slot) {
     glCopyBufferSubData(GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, 0, base * 2, count * 2);
     glBindBuffer(GL_COPY_READ_BUFFER, 0);
     glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
-    c.copied_revision[slot] = m.revision;
+    c.copied_version[slot] = m.geometry_version;
     return true;
 }
 
 // The element stream of the chunk's `slots` (on screen this frame), by style:
 // each member's index prefix read back from its element buffer, offset to the
 // chunk's vertices. Rebuilt only when the key (slot, style, index count,
-// revision of each) differs from the last frame's.
+// geometry version of each) differs from the last frame's.
 void build_stream(BatchChunk& c, const std::vector<size_t>& slots) {
     std::vector<uint64_t> key;
     key.reserve(slots.size() * 3);
@@ -122,7 +122,7 @@ void build_stream(BatchChunk& c, const std::vector<size_t>& slots) {
         const Model& m = *c.members[slot];
         key.push_back(slot << 8 | static_cast<uint64_t>(m.state.style));
         key.push_back(m.index_count);
-        key.push_back(m.revision);
+        key.push_back(m.geometry_version);
     }
     if (key == c.stream_key) return;
     c.stream_key = std::move(key);

@@ -42,12 +42,12 @@ inline constexpr int kBatchSlotVectors = 10;
 
 struct BatchChunk {
     GLuint vao = 0, vbo_position = 0, vbo_normal = 0, vbo_slot = 0, ebo = 0;
-    std::vector<Model*> members;            // by slot; null: dead (removed, or no longer codes)
-    std::vector<size_t> vertex_base;        // by slot: first vertex in the chunk's buffers
-    std::vector<uint64_t> copied_revision;  // by slot: Model::revision of the vertices copied
+    std::vector<Model*> members;           // by slot; null: dead (removed, or no longer codes)
+    std::vector<size_t> vertex_base;       // by slot: first vertex in the chunk's buffers
+    std::vector<uint64_t> copied_version;  // by slot: Model::geometry_version of the vertices copied
     size_t vertex_total = 0;
     // The element stream drawn last: what it was built from (slot, style,
-    // index count and revision per member) and each style's range in it.
+    // index count and geometry version per member) and each style's range in it.
     std::vector<uint64_t> stream_key;
     size_t stream_entries = 0;
     size_t range_first[2] = {0, 0}, range_count[2] = {0, 0};  // smooth, baseline

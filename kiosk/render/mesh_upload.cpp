@@ -499,7 +499,6 @@ Status Renderer::update_model(ModelId id, const MeshData& mesh, const Dirty& dir
     if (vertices_changed) ++m.geometry_version;
     m.vertex_count = vcount;
     m.index_count = icount - icount % 3;
-    ++m.revision;                                                 // batched copies follow (batch.h)
     if (vpatched && vertices_changed) set_bounds_from_buffer(m);  // no CPU positions to take them from
     BODY_GL_CHECK("update_model");
     return ok_status();

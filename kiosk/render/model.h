@@ -49,11 +49,10 @@ struct Model {
     bool edges_stale = true;
     bool internal = false;  // the manipulation sphere
     // Batched drawing (kiosk/render/batch.h): the chunk and slot (-1: none yet,
-    // -2: never again), and a count of update_model calls (what the chunk copied).
+    // -2: never again).
     int batch_chunk = -1, batch_slot = -1;
-    uint64_t revision = 0;
     // Counts changes of the GL positions or indices (mesh_upload.cpp), so
-    // caches of the geometry (the cut section) know when they are stale.
+    // copies and caches of the geometry (a batch chunk, the cut section) know when they are stale.
     uint32_t geometry_version = 0;
     // The cut plane's section of this model (styles/cut_cap.cpp), kept while
     // the object-space plane and the geometry stay as they were: the fan
