@@ -2,6 +2,7 @@
 
 #include <tiny_obj_loader.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cerrno>
 #include <cmath>
@@ -49,11 +50,55 @@ std::string write_meshes(std::ostream& out, std::span<const Mesh> meshes, const 
     return {};
 }
 
+// 'word', escaped (built by append: GCC 12's -Wrestrict misfires on "'" + s).
+std::string in_quotes(std::string_view word) {
+    std::string out = "'";
+    return out.append(escape_for_message(word, 40)).append("'");
+}
+
+// Why `word` is not a finite float ("" when it is one).
+std::string number_fault(std::string_view word) {
+    const std::string number(word);
+    char* stop = nullptr;
+    const double v = std::strtod(number.c_str(), &stop);
+    if (stop == number.c_str() || *stop != '\0') return in_quotes(number) + " is not a number";
+    if (!std::isfinite(v) || std::fabs(v) > 3.0e38) return in_quotes(number) + " is not a finite float";
+    return {};
+}
+
+// Why face corner `ref` (v, v/t, v//n or v/t/n, 1-based or negative) does not
+// name defined vertices, texture coordinates and normals ("" when it does).
+std::string corner_fault(std::string_view ref, const size_t (&defined)[3]) {
+    static const char* kWhat[3] = {"vertex", "texture coordinate", "normal"};
+    static const char* kPlural[3] = {"vertices", "texture coordinates", "normals"};
+    if (std::count(ref.begin(), ref.end(), '/') > 2) return "has more than 3 parts (v/t/n)";
+    size_t part = 0;
+    for (size_t start = 0; start <= ref.size(); ++part) {
+        size_t slash = ref.find('/', start);
+        if (slash == std::string_view::npos) slash = ref.size();
+        const std::string index(ref.substr(start, slash - start));
+        start = slash + 1;
+        if (index.empty() && part == 1 && slash < ref.size()) continue;  // v//n
+        char* stop = nullptr;
+        errno = 0;
+        const long long i = std::strtoll(index.c_str(), &stop, 10);
+        if (stop == index.c_str() || *stop != '\0' || errno == ERANGE) return "is not an index";
+        const unsigned long long magnitude =
+            i < 0 ? 0ull - static_cast<unsigned long long>(i) : static_cast<unsigned long long>(i);
+        if (i == 0 || magnitude > defined[part])
+            return std::string(kWhat[part]) + " index " + index + " is outside 1.." + std::to_string(defined[part]) +
+                   " (the " + kPlural[part] + " defined so far)";
+    }
+    return {};
+}
+
 // tinyobjloader reads "nan", "one" or a missing coordinate as 0, keeps any
-// face index and drops 2-vertex faces; this pass refuses those first, naming
-// the line: "PATH: line N: reason".
+// face index (texture and normal indices too) and drops 2-vertex faces; this
+// pass refuses those first, naming the line: "PATH: line N: reason".
+// v takes x y z, x y z w or x y z r g b; vt 1 to 3 numbers; vn 3.
 Status check_obj_text(const std::string& text, const std::string& path) {
-    size_t vertices = 0, line_no = 0, pos = 0;
+    size_t defined[3] = {0, 0, 0};  // v, vt, vn so far
+    size_t line_no = 0, pos = 0;
     auto fail = [&](const std::string& why) {
         return input_error(path + ": line " + std::to_string(line_no) + ": " + why);
     };
@@ -74,34 +119,26 @@ Status check_obj_text(const std::string& text, const std::string& path) {
             i = j;
         }
         if (tok.empty()) continue;
-        if (tok[0] == "v") {
-            if (tok.size() < 4) return fail("vertex needs x y z, got " + std::to_string(tok.size() - 1) + " values");
-            for (size_t k = 1; k < tok.size() && k <= 3; ++k) {
-                const std::string number(tok[k]);
-                char* stop = nullptr;
-                const double v = std::strtod(number.c_str(), &stop);
-                if (stop == number.c_str() || *stop != '\0')
-                    return fail("vertex coordinate '" + escape_for_message(number, 40) + "' is not a number");
-                if (!std::isfinite(v) || std::fabs(v) > 3.0e38)
-                    return fail("vertex coordinate '" + escape_for_message(number, 40) + "' is not a finite float");
-            }
-            ++vertices;
+        const size_t values = tok.size() - 1;
+        const int kind = tok[0] == "v" ? 0 : tok[0] == "vt" ? 1 : tok[0] == "vn" ? 2 : -1;
+        if (kind == 0 && values < 3) return fail("vertex needs x y z, got " + std::to_string(values) + " values");
+        if (kind == 0 && values != 3 && values != 4 && values != 6)
+            return fail("vertex has " + std::to_string(values) + " values (x y z, x y z w or x y z r g b)");
+        if (kind == 1 && (values < 1 || values > 3))
+            return fail("texture coordinate has " + std::to_string(values) + " values (1 to 3)");
+        if (kind == 2 && values != 3) return fail("normal has " + std::to_string(values) + " values (x y z)");
+        if (kind >= 0) {
+            static const char* kWhat[3] = {"vertex coordinate ", "texture coordinate ", "normal coordinate "};
+            for (size_t k = 1; k < tok.size(); ++k)
+                if (std::string why = number_fault(tok[k]); !why.empty()) return fail(kWhat[kind] + why);
+            ++defined[kind];
         } else if (tok[0] == "f") {
-            if (tok.size() < 4)
-                return fail("face has " + std::to_string(tok.size() - 1) + " vertices, at least 3 needed");
-            for (size_t k = 1; k < tok.size(); ++k) {
-                const std::string ref(tok[k].substr(0, tok[k].find('/')));
-                char* stop = nullptr;
-                errno = 0;
-                const long long i = std::strtoll(ref.c_str(), &stop, 10);
-                if (stop == ref.c_str() || *stop != '\0' || errno == ERANGE)
-                    return fail("face vertex '" + escape_for_message(tok[k], 40) + "' is not an index");
-                const unsigned long long magnitude =
-                    i < 0 ? 0ull - static_cast<unsigned long long>(i) : static_cast<unsigned long long>(i);
-                if (i == 0 || magnitude > vertices)
-                    return fail("face vertex index " + ref + " is outside 1.." + std::to_string(vertices) +
-                                " (the vertices defined so far)");
-            }
+            if (values < 3) return fail("face has " + std::to_string(values) + " vertices, at least 3 needed");
+            for (size_t k = 1; k < tok.size(); ++k)
+                if (std::string why = corner_fault(tok[k], defined); !why.empty())
+                    return fail(why.find(" index ") != std::string::npos
+                                    ? "face " + why
+                                    : "face vertex " + in_quotes(tok[k]) + " " + why);
         }
     }
     return ok_status();

@@ -1,0 +1,195 @@
+// The PLY and STL checks that run before assimp (builder/mesh_import/
+// ply_check.h, stl_check.h) and the OBJ line checks (shared/obj_io.cpp):
+// every count that disagrees with the data is refused with its place, and
+// well-formed files pass.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <regex>
+#include <string>
+#include <vector>
+
+#include "builder/mesh_import/ply_check.h"
+#include "builder/mesh_import/stl_check.h"
+#include "shared/obj_io.h"
+
+namespace body {
+namespace {
+
+const float kTetra[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+const int kFaces[4][3] = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {2, 0, 3}};
+
+std::string ply_head(const std::string& format, int vertices = 4, int faces = 4) {
+    return "ply\nformat " + format + " 1.0\nelement vertex " + std::to_string(vertices) +
+           "\nproperty float x\nproperty float y\nproperty float z\nelement face " + std::to_string(faces) +
+           "\nproperty list uchar int vertex_indices\nend_header\n";
+}
+
+std::string ascii_vertices() {
+    std::string s;
+    for (const auto& v : kTetra)
+        s += std::to_string(int(v[0])) + " " + std::to_string(int(v[1])) + " " + std::to_string(int(v[2])) + "\n";
+    return s;
+}
+
+std::string ascii_ply(const std::string& faces, int face_count = 4) {
+    return ply_head("ascii", 4, face_count) + ascii_vertices() + faces;
+}
+
+const char* kFaceRows = "3 0 2 1\n3 0 1 3\n3 1 2 3\n3 2 0 3\n";
+
+template <typename T>
+void put(std::string& s, T v) {
+    s.append(reinterpret_cast<const char*>(&v), sizeof v);  // little-endian host (x86-64, aarch64)
+}
+
+std::string binary_ply(unsigned char list_count = 3, int face_count = 4) {
+    std::string s = ply_head("binary_little_endian", 4, face_count);
+    for (const auto& v : kTetra)
+        for (float c : v) put(s, c);
+    for (const auto& f : kFaces) {
+        put(s, list_count);
+        for (int i : f) put(s, int32_t(i));
+    }
+    return s;
+}
+
+std::string binary_stl(uint32_t count = 4, float poison = 0) {
+    std::string s(80, '\0');
+    put(s, count);
+    for (const auto& f : kFaces) {
+        for (int k = 0; k < 3; ++k) put(s, 0.0f);
+        for (int i : f)
+            for (float c : kTetra[i]) put(s, c + poison);
+        put(s, uint16_t(0));
+    }
+    return s;
+}
+
+std::string ascii_stl(const std::string& vertices, const std::string& tail = "endsolid x\n") {
+    return "solid x\nfacet normal 0 0 1\nouter loop\n" + vertices + "endloop\nendfacet\n" + tail;
+}
+const char* kThree = "vertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\n";
+
+void expect_refused(const Status& s, const std::string& shape) {
+    ASSERT_FALSE(s.ok()) << "accepted; expected /" << shape << "/";
+    EXPECT_TRUE(std::regex_search(s.error().message, std::regex(shape)))
+        << "expected /" << shape << "/ in: " << s.error().message;
+    EXPECT_EQ(s.error().message.find('\n'), std::string::npos);
+}
+
+TEST(PlyCheck, WellFormedAsciiAndBinaryPass) {
+    EXPECT_TRUE(check_ply_bytes(ascii_ply(kFaceRows), "m.ply").ok());
+    EXPECT_TRUE(check_ply_bytes(ascii_ply(std::string(kFaceRows) + "\n\n"), "m.ply").ok());  // trailing blank lines
+    EXPECT_TRUE(check_ply_bytes(binary_ply(), "m.ply").ok());
+}
+
+TEST(PlyCheck, AsciiListCountThatDisagreesWithItsValuesIsRefusedAtItsLine) {
+    // 9 header lines: vertex rows on lines 10-13, face rows from line 14.
+    expect_refused(check_ply_bytes(ascii_ply("255 0 1 2\n3 0 1 3\n3 1 2 3\n3 2 0 3\n"), "m.ply"),
+                   "^m\\.ply: PLY line 14 \\(element 'face' row 1\\): list 'vertex_indices' declares 255 values, "
+                   "the row holds 3$");
+    expect_refused(check_ply_bytes(ascii_ply("3 0 2 1\n3 0 1 3 2\n3 1 2 3\n3 2 0 3\n"), "m.ply"),
+                   "^m\\.ply: PLY line 15 \\(element 'face' row 2\\): the row has 5 values, its properties take 4$");
+}
+
+TEST(PlyCheck, AsciiRowsMissingOrLeftOverAreRefused) {
+    expect_refused(check_ply_bytes(ascii_ply("3 0 2 1\n3 0 1 3\n"), "m.ply"),
+                   "PLY line .* \\(element 'face' row 3\\): missing: the file ends after 2 of 4 rows");
+    expect_refused(check_ply_bytes(ascii_ply(kFaceRows, 3), "m.ply"),
+                   "^m\\.ply: PLY line 17: data after the last element's rows$");
+    const std::string short_vertex = ply_head("ascii") + "0 0\n1 0 0\n0 1 0\n0 0 1\n" + kFaceRows;
+    expect_refused(check_ply_bytes(short_vertex, "m.ply"),
+                   "PLY line 10 \\(element 'vertex' row 1\\): the row has 2 values; property 'z' has none");
+}
+
+TEST(PlyCheck, AsciiValuesOutsideTheirTypeAreRefused) {
+    const std::string nan_vertex = ply_head("ascii") + "nan 0 0\n1 0 0\n0 1 0\n0 0 1\n" + kFaceRows;
+    expect_refused(check_ply_bytes(nan_vertex, "m.ply"), "row 1\\): 'x' nan is not a finite float");
+    expect_refused(check_ply_bytes(ascii_ply("300 0 2 1\n3 0 1 3\n3 1 2 3\n3 2 0 3\n"), "m.ply"),
+                   "list count 'vertex_indices' 300 is outside its type's range");
+    expect_refused(check_ply_bytes(ascii_ply("3 0 2 9\n3 0 1 3\n3 1 2 3\n3 2 0 3\n"), "m.ply"),
+                   "'vertex_indices' value 9 is not a vertex index \\(0\\.\\.3\\)");
+    expect_refused(check_ply_bytes(ascii_ply("3 0 2 one\n3 0 1 3\n3 1 2 3\n3 2 0 3\n"), "m.ply"),
+                   "'vertex_indices' value 'one' is not a number of its type");
+}
+
+TEST(PlyCheck, BinaryRowsMustFillTheFileExactly) {
+    std::string trailing = binary_ply() + std::string(9, '\0');
+    expect_refused(check_ply_bytes(trailing, "m.ply"),
+                   "^m\\.ply: PLY byte [0-9]+: 9 bytes after the last element's rows$");
+    expect_refused(check_ply_bytes(binary_ply(3, 3), "m.ply"), "13 bytes after the last element's rows");
+    std::string cut = binary_ply();
+    cut.resize(cut.size() - 20);
+    expect_refused(check_ply_bytes(cut, "m.ply"), "the file ends inside the row");
+    // A list count longer than its values reads the next row's bytes as indices.
+    expect_refused(check_ply_bytes(binary_ply(9), "m.ply"), "PLY byte [0-9]+ \\(element 'face' row 1\\): .*");
+}
+
+TEST(PlyCheck, HeaderFaultsKeepTheirLine) {
+    expect_refused(check_ply_bytes("ply\nformat ascii 1.0\nelement vertex 3\n", "m.ply"),
+                   "PLY header line 3: no end_header");
+    expect_refused(check_ply_bytes(ply_head("ascii", 1000000) + ascii_vertices(), "m.ply"),
+                   "PLY header line 3: declares 1000000 rows");
+}
+
+TEST(StlCheck, WellFormedBinaryAndAsciiPass) {
+    EXPECT_TRUE(check_stl_bytes(binary_stl(), "m.stl").ok());
+    EXPECT_TRUE(check_stl_bytes(ascii_stl(kThree), "m.stl").ok());
+    EXPECT_TRUE(check_stl_bytes(ascii_stl(kThree, "endsolid x\n") + ascii_stl(kThree, "endsolid\n"), "m.stl").ok());
+}
+
+TEST(StlCheck, BinaryCountMustMatchTheFileSize) {
+    expect_refused(check_stl_bytes(binary_stl(5), "m.stl"),
+                   "^m\\.stl: STL byte 80: binary STL declares 5 triangles \\(334 bytes\\), the file has 284 bytes$");
+    expect_refused(check_stl_bytes(binary_stl(4) + "xyz", "m.stl"),
+                   "declares 4 triangles \\(284 bytes\\), the file has 287");
+    // 2^31 + 4 triangles: 50 * count + 84 wraps to the real size in 32 bits.
+    expect_refused(check_stl_bytes(binary_stl(0x80000004u), "m.stl"), "declares 2147483652 triangles");
+    expect_refused(check_stl_bytes(binary_stl(0).substr(0, 84), "m.stl"), "declares no triangles");
+    expect_refused(check_stl_bytes(std::string(80, '\0'), "m.stl"), "80 bytes, less than its 84-byte header");
+}
+
+TEST(StlCheck, BinaryNonFiniteVertexIsRefusedAtItsByte) {
+    expect_refused(check_stl_bytes(binary_stl(4, std::nanf("")), "m.stl"),
+                   "^m\\.stl: STL byte 96 \\(triangle 1\\): vertex coordinate [-]?nan is not finite$");
+}
+
+TEST(StlCheck, AsciiGrammarFaultsAreRefusedAtTheirLine) {
+    expect_refused(check_stl_bytes(ascii_stl(std::string(kThree) + "vertex 1 1 0\n"), "m.stl"),
+                   "^m\\.stl: STL line 7: facet has more than 3 vertices, an STL facet has 3$");
+    expect_refused(check_stl_bytes(ascii_stl("vertex 0 0 0\nvertex 1 0 0\n"), "m.stl"), "facet has 2 vertices");
+    expect_refused(check_stl_bytes(ascii_stl("vertex 0 0 0\nvertex 1 0 0\nvertex 0 1\n"), "m.stl"),
+                   "STL line 7: vertex needs 3 numbers, found 'endloop'");
+    expect_refused(check_stl_bytes(ascii_stl("vertex 0 0 0\nvertex 1 0 0\nvertex 0 nan 0\n"), "m.stl"),
+                   "STL line 6: vertex value 'nan' is not a finite float");
+    expect_refused(check_stl_bytes(ascii_stl(kThree, ""), "m.stl"),
+                   "expected 'facet' or 'endsolid', found the end of the file");
+    expect_refused(check_stl_bytes(ascii_stl(kThree, "endsolid x\ngarbage\n"), "m.stl"),
+                   "STL line 10: expected 'solid' or the end of the file, found 'garbage'");
+    expect_refused(check_stl_bytes("solid x\nendsolid x\n", "m.stl"), "no facets");
+}
+
+TEST(ObjCheck, TextureAndNormalReferencesMustBeDefined) {
+    const std::string tetra = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n";
+    auto status = [](const std::string& text) -> Status {
+        auto meshes = parse_obj(text, "m.obj");
+        if (!meshes) return meshes.error();
+        return ok_status();
+    };
+    EXPECT_TRUE(status(tetra + "vt 0 0\nvn 0 0 1\nf 1/1/1 2/1/1 3/1/1\nf 1//1 2//1 4//1\n").ok());
+    EXPECT_TRUE(status("v 0 0 0 1 0 0\nv 1 0 0 0 1 0\nv 0 1 0 0 0 1\nf 1 2 3\n").ok());  // vertex colours
+    expect_refused(status(tetra + "f 1/9 2/9 3/9\n"),
+                   "^m\\.obj: line 5: face texture coordinate index 9 is outside 1\\.\\.0 \\(the texture coordinates "
+                   "defined so far\\)$");
+    expect_refused(status(tetra + "vn 0 0 1\nf 1//2 2//1 3//1\n"), "line 6: face normal index 2 is outside 1\\.\\.1");
+    expect_refused(status(tetra + "f 1//x 2 3\n"), "line 5: face vertex '1//x' is not an index");
+    expect_refused(status(tetra + "f 1/1/1/1 2 3\n"), "line 5: face vertex '1/1/1/1' has more than 3 parts");
+    expect_refused(status("v 0 0 0 1 1\n"), "line 1: vertex has 5 values");
+    expect_refused(status("vt nan 0\n"), "line 1: texture coordinate 'nan' is not a finite float");
+    expect_refused(status("vn 0 1\n"), "line 1: normal has 2 values");
+}
+
+}  // namespace
+}  // namespace body
