@@ -7,14 +7,15 @@ address-space limit (4 GiB), and checks:
   hang      it ran past the time limit
   leftover  it failed and left a file behind (output or temporary)
   destroyed an input file changed
+  missed    (interrupted writes) the write ended before it could be interrupted
   accepted  a bad input was accepted (exit 0) where the format forbids it
   message   a refusal that is not exit 2 with exactly one line naming the
             file (or the flag) it refuses
 
   scripts/hostile_sweep.py BUILD_DIR [--quick] [--only CLASS] [--keep] [-v]
 
---quick runs a fixed subset (every 9th case of each class, none of the known
-open ones: a slow correspondence, an assimp PLY accept; ctest
+--quick runs a fixed subset (every 9th case of each class, not the known
+slow correspondence; ctest
 hostile_sweep_quick, label cli).
 Exit 0 when no case failed a check. The same seed gives the same inputs.
 """
@@ -382,6 +383,10 @@ def mesh_cases(rng):
         "face index 0": "f 0 1 2\n", "face index beyond": "f 1 2 99\n", "face index -99": "f -99 1 2\n",
         "2-vertex face": "f 1 2\n", "face word": "f a b c\n", "1e300 coordinate": "v 1e300 0 0\n",
         "1e400 coordinate": "v 1e400 0 0\n", "face index float": "f 1.5 2 3\n",
+        "texture index undefined": "f 1/9 2/9 3/9\n", "normal index undefined": "vn 0 0 1\nf 1//2 2//1 3//1\n",
+        "normal index word": "f 1//x 2 3\n", "corner with 4 parts": "f 1/1/1/1 2 3\n",
+        "vertex with 5 values": "v 1 2 3 4 5\n", "texture coordinate nan": "vt nan 0\n",
+        "normal with 2 values": "vn 0 1\n",
     }
     for name, extra in bad_obj.items():
         add(f"OBJ {name}", "in.obj", obj_tetra(extra))
@@ -410,8 +415,33 @@ def mesh_cases(rng):
     add("PLY face index 99", "in.ply", ply(body="".join(f"{x} {y} {z}\n" for x, y, z in TETRA) + "3 0 1 99\n" * 4))
     add("PLY binary truncated", "in.ply", ply(fmt="binary_little_endian 1.0", body="\0" * 10))
     add("PLY list length 255", "in.ply", ply(body="".join(f"{x} {y} {z}\n" for x, y, z in TETRA) + "255 0 1 2\n" * 4))
-    for c in cases[-2:]:
-        c.slow = True  # open: assimp reads a short face list on into the next rows (not in --quick)
+    rows = "".join(f"{x} {y} {z}\n" for x, y, z in TETRA)
+    add("PLY list longer than its row", "in.ply", ply(body=rows + "3 0 1 2 3\n" * 4))
+    add("PLY rows missing", "in.ply", ply(nf=6))
+    add("PLY rows left over", "in.ply", ply(nf=3))
+    add("PLY vertex row short", "in.ply", ply(body="".join(f"{x} {y}\n" for x, y, z in TETRA) + "3 0 1 2\n" * 4))
+    add("PLY NaN vertex", "in.ply", ply(body="nan 0 0\n" + rows[6:] + "3 0 1 2\n" * 4))
+    add("PLY list count 300 in uchar", "in.ply", ply(body=rows + "300 0 1 2\n" * 4))
+    bply = lambda n, extra=b"": (ply(fmt="binary_little_endian 1.0", body="")  # noqa: E731
+                                 + b"".join(struct.pack("<3f", *p) for p in TETRA)
+                                 + b"".join(struct.pack("<B3i", n, *f) for f in TETRA_F) + extra)
+    add("PLY binary bytes after the rows", "in.ply", bply(3, b"\0" * 9))
+    add("PLY binary list count 9", "in.ply", bply(9))
+    add("PLY binary list count 2", "in.ply", bply(2))
+    add("STL trailing bytes", "in.stl", stl_binary() + b"\0" * 50)
+    add("STL count wraps 32 bits", "in.stl", stl_binary(count=4 + 2 ** 31))
+    add("STL binary header says solid", "in.stl", b"solid x" + stl_binary()[7:] + b"\0" * 3)
+    facet = "facet normal 0 0 1\nouter loop\n{}endloop\nendfacet\n"
+    three = "vertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\n"
+    add("STL ASCII 4-vertex facet", "in.stl", ("solid x\n" + facet.format(three + "vertex 1 1 0\n") +
+                                              "endsolid x\n").encode())
+    add("STL ASCII 2-vertex facet", "in.stl", ("solid x\n" + facet.format(three[:28]) + "endsolid x\n").encode())
+    add("STL ASCII no endsolid", "in.stl", ("solid x\n" + facet.format(three)).encode())
+    add("STL ASCII garbage after endsolid", "in.stl", ("solid x\n" + facet.format(three) +
+                                                       "endsolid x\nrubbish 1 2\n").encode())
+    add("STL ASCII word vertex", "in.stl", ("solid x\n" + facet.format(three.replace("1 0 0", "one 0 0")) +
+                                            "endsolid x\n").encode())
+    add("STL ASCII no facets", "in.stl", b"solid x\nendsolid x\n")
     add("PLY no end_header", "in.ply", b"ply\nformat ascii 1.0\nelement vertex 3\n")
     add("PLY empty", "in.ply", b"")
     for i, m in enumerate(mutate_bytes(rng, ply(), 10)):
@@ -618,6 +648,65 @@ def flag_cases(base_obj):
     return cases
 
 
+def big_stack():
+    """A stack whose build writes a few MB: long enough to be interrupted."""
+    return json.dumps(stack([{"z": z, "contours": [{"structure": "a", "points": circle(3000, 50 + 5 * math.sin(z))}]}
+                             for z in range(0, 80, 2)])).encode()
+
+
+def interrupt_cases():
+    """(name, argv, output, signal): a write interrupted once its temporary
+    exists. SIGINT/SIGTERM must leave nothing; after SIGKILL the next write to
+    the same output must sweep what the killed one left. An older output must
+    survive either way."""
+    runs = [("build -o FILE", ["build", "big.contours.json", "-o", "out.obj", "--quiet"], "out.obj"),
+            ("build -o DIR/", ["build", "big.contours.json", "-o", "outdir/", "--quiet"], "outdir"),
+            ("lod -o FILE", ["lod", "big.obj", "-o", "out.bpm", "--quiet"], "out.bpm"),
+            ("exhibit -o BUNDLE/", ["exhibit", "big.obj", "-o", "bundle/", "--quiet"], "bundle")]
+    return [(f"{name} {sig.name}", argv, out, sig) for name, argv, out in runs
+            for sig in (signal.SIGINT, signal.SIGTERM, signal.SIGKILL)]
+
+
+def run_interrupt(spec, bins, work, big_obj):
+    name, argv, output, sig = spec
+    make_files(work, {"big.contours.json": big_stack(), "big.obj": big_obj})
+    # An older output that must survive: the same command run to its end first.
+    subprocess.run([bins["bodygen"]] + argv, cwd=work, check=True, stdout=subprocess.DEVNULL)
+    before = snapshot(work)
+    t0 = time.monotonic()
+    proc = subprocess.Popen([bins["bodygen"]] + argv, cwd=work, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+                            preexec_fn=limits)
+    caught = False
+    while proc.poll() is None and time.monotonic() - t0 < TIME_LIMIT:
+        if any(".tmp-" in e for e in os.listdir(work)):
+            proc.send_signal(sig)
+            caught = True
+            break
+        time.sleep(0.0005)
+    try:
+        proc.communicate(timeout=TIME_LIMIT)
+    except subprocess.TimeoutExpired:
+        os.killpg(proc.pid, signal.SIGKILL)
+        proc.communicate()
+    problems = []
+    if not caught:
+        problems.append("missed (the write ended before its temporary was seen)")
+    elif proc.returncode != -sig:
+        problems.append(f"exit {proc.returncode} (expected death by {sig.name})")
+    after = snapshot(work)
+    if any(before.get(k) != v for k, v in after.items() if k in before) or any(k not in after for k in before):
+        problems.append("destroyed")
+    new = sorted(k for k in after if k not in before)
+    if sig == signal.SIGKILL:
+        # The next write to the same output sweeps the dead process's temporaries.
+        subprocess.run([bins["bodygen"]] + argv, cwd=work, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        new = sorted(k for k in snapshot(work) if k not in before)
+    if new:
+        problems.append("leftover " + ",".join(new[:3]))
+    return {"class": "interrupted write", "name": name, "argv": " ".join(argv), "rc": proc.returncode,
+            "seconds": round(time.monotonic() - t0, 2), "stderr": [], "problems": problems}
+
+
 # ------------------------------------------------------------ running
 
 def make_files(work, files):
@@ -763,13 +852,35 @@ def main():
                     for d in dirnames:
                         os.chmod(os.path.join(dirpath, d), 0o755)
                 shutil.rmtree(work, ignore_errors=True)
+        interrupts = interrupt_cases()
+        big_obj = b""
+        if interrupts:  # a mesh of a few MB for lod and exhibit to write
+            with open(os.path.join(top, "big.contours.json"), "wb") as f:
+                f.write(big_stack())
+            subprocess.run([bins["bodygen"], "build", "big.contours.json", "-o", "big.obj", "--quiet"], cwd=top,
+                           check=True)
+            big_obj = open(os.path.join(top, "big.obj"), "rb").read()
+        if args.only:
+            interrupts = [i for i in interrupts if args.only.lower() in "interrupted write"]
+        if args.quick:
+            interrupts = [i for i in interrupts if i[0].startswith(("build -o DIR/", "exhibit"))][::2]
+        for i, spec in enumerate(interrupts):
+            work = os.path.join(top, f"interrupt{i}")
+            os.mkdir(work)
+            r = run_interrupt(spec, bins, work, big_obj)
+            results.append(r)
+            if r["problems"] or args.v:
+                print(f"[{r['class']}] {r['name']}: exit {r['rc']} in {r['seconds']} s: "
+                      f"{', '.join(r['problems']) or 'ok'}", flush=True)
+            if not args.keep:
+                shutil.rmtree(work, ignore_errors=True)
         table = collections.OrderedDict()
         for r in results:
             row = table.setdefault(r["class"], collections.Counter())
             row["cases"] += 1
             for p in r["problems"]:
                 row[p.split(" ")[0]] += 1
-        kinds = ["crash", "hang", "leftover", "destroyed", "accepted", "message", "exit"]
+        kinds = ["crash", "hang", "leftover", "destroyed", "accepted", "message", "exit", "missed"]
         print("\n| class | cases | " + " | ".join(kinds) + " |")
         print("|---|---|" + "---|" * len(kinds))
         total = collections.Counter()
@@ -782,7 +893,8 @@ def main():
         if args.json:
             with open(args.json, "w") as f:
                 json.dump(results, f, indent=1)
-        failed = sum(1 for r in results if r["problems"])
+        # A missed interruption (the write ended first) proves nothing either way: reported, not failed.
+        failed = sum(1 for r in results if any(not p.startswith("missed") for p in r["problems"]))
         print(f"hostile_sweep: {len(results)} cases, {failed} with a problem")
         return 0 if failed == 0 else 1
     finally:

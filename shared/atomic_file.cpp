@@ -1,5 +1,7 @@
 #include "shared/atomic_file.h"
 
+#include <dirent.h>
+#include <fcntl.h>
 #include <signal.h>
 #include <unistd.h>
 
@@ -45,9 +47,37 @@ void unregister_temp(int slot) {
     g_temps[size_t(slot)].used = false;
 }
 
+// Removes `name` under directory fd `parent`, a directory with everything in
+// it: only system calls (getdents64, unlinkat, openat), so a signal handler
+// may call it. Deeper than 16 levels is left (our staged trees have 2).
+void remove_tree_at(int parent, const char* name, int depth) {
+    if (::unlinkat(parent, name, 0) == 0 || errno != EISDIR || depth > 16) return;
+    const int fd = ::openat(parent, name, O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+    if (fd < 0) return;
+    alignas(8) char buf[2048];
+    for (bool removed = true; removed;) {  // entries removed while listing may hide others: list again
+        removed = false;
+        ::lseek(fd, 0, SEEK_SET);
+        for (ssize_t n; (n = ::getdents64(fd, buf, sizeof buf)) > 0;) {
+            for (ssize_t off = 0; off < n;) {
+                const auto* d = reinterpret_cast<const struct dirent64*>(buf + off);
+                off += d->d_reclen;
+                if (std::strcmp(d->d_name, ".") == 0 || std::strcmp(d->d_name, "..") == 0) continue;
+                remove_tree_at(fd, d->d_name, depth + 1);
+                removed = true;
+            }
+        }
+        if (removed && ::unlinkat(parent, name, AT_REMOVEDIR) == 0) break;
+    }
+    ::close(fd);
+    ::unlinkat(parent, name, AT_REMOVEDIR);
+}
+
 extern "C" void unlink_temporaries(int sig) {
+    const int saved = errno;
     for (TempSlot& t : g_temps)
-        if (t.ready) ::unlink(t.path);  // async-signal-safe
+        if (t.ready) remove_tree_at(AT_FDCWD, t.path, 0);  // files and staged directories alike
+    errno = saved;
     ::signal(sig, SIG_DFL);
     ::raise(sig);
 }
@@ -75,6 +105,18 @@ private:
 std::string temp_name(const std::string& path) { return path + ".tmp-" + std::to_string(::getpid()); }
 
 }  // namespace
+
+ScratchPath::ScratchPath(const std::string& path) {
+    sweep_stale_temporaries(path);
+    path_ = temp_name(path);
+    slot_ = register_temp(path_);
+}
+
+ScratchPath::~ScratchPath() {
+    unregister_temp(slot_);
+    std::error_code ignored;
+    fs::remove_all(path_, ignored);
+}
 
 void remove_temporaries_on_signal() {
     struct sigaction sa {};

@@ -3,7 +3,7 @@
 // in the same directory, is flushed, then renamed over <path>. On failure the
 // temporary file is removed and <path> is untouched. Directories are staged the
 // same way ("<dir>.tmp-<pid>") and swapped into place by renames.
-// Temporaries of this process are removed on SIGINT/SIGTERM/SIGHUP once
+// Temporaries of this process (staged directories whole) are removed on SIGINT/SIGTERM/SIGHUP once
 // remove_temporaries_on_signal() ran; those a killed process left behind
 // (its pid no longer alive) are swept by the next write to the same path.
 #include <functional>
@@ -33,6 +33,23 @@ void remove_temporaries_on_signal();
 
 // Removes "<path>.tmp-<pid>" files and directories whose process is gone.
 void sweep_stale_temporaries(const std::string& path);
+
+// A scratch file or directory of this process, "<path>.tmp-<pid>": stale ones
+// of `path` are swept first; it is removed (whole, if a directory) when this
+// goes out of scope or on SIGINT/SIGTERM/SIGHUP, and by the next sweep after
+// a SIGKILL. Nothing is created: the caller makes path().
+class ScratchPath {
+public:
+    explicit ScratchPath(const std::string& path);
+    ~ScratchPath();
+    ScratchPath(const ScratchPath&) = delete;
+    ScratchPath& operator=(const ScratchPath&) = delete;
+    const std::string& path() const { return path_; }
+
+private:
+    std::string path_;
+    int slot_ = -1;
+};
 
 // Reads a whole file; error names the path and the reason.
 Result<std::string> read_file(const std::string& path);

@@ -247,8 +247,9 @@ int run_exhibit(const Args& argv) {
     if (bundle.filename().empty()) bundle = bundle.parent_path();
     if (Status apart = check_output_apart(bundle.string() + "/", args->positional()); !apart)
         return report(apart.error());
-    fs::path work = bundle;
-    work += ".work-" + std::to_string(::getpid());
+    // This run's sources, "BUNDLE.work.tmp-PID": removed on a signal, swept after a kill.
+    const ScratchPath scratch(bundle.string() + ".work");
+    const fs::path work = scratch.path();
     std::optional<SliceVolume> volume;
 #ifdef BODY_WITH_IMPORT
     if (grey) {
@@ -262,8 +263,6 @@ int run_exhibit(const Args& argv) {
     // The sources are this run's scratch: a failure there names the bundle asked for.
     if (!st) st = Error{bundle.string() + "/: " + st.error().message, st.error().exit_code};
     Result<PackSummary> pack = st ? pack_scene((work / "scene.json").string(), bundle.string()) : st.error();
-    std::error_code ec;
-    fs::remove_all(work, ec);
     if (!pack) return report(pack.error());
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (json_out) print_json(*parts, built, *pack, seconds);

@@ -1,9 +1,13 @@
 #include "shared/atomic_file.h"
 
 #include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
+#include <vector>
 
 namespace body {
 namespace {
@@ -52,6 +56,50 @@ TEST(AtomicFile, MissingDirectoryIsAnErrorNamingThePath) {
     ASSERT_FALSE(st.ok());
     EXPECT_NE(st.error().message.find("/nonexistent-dir/x/y.obj"), std::string::npos);
     EXPECT_FALSE(read_file("/nonexistent-dir/x/y.obj").ok());
+}
+
+// A signal in the middle of a directory write (the kiosk bundle's and
+// build -o DIR/'s case) removes the staged tree whole, nested files included,
+// and the scratch directory of a ScratchPath too; the old directory stays.
+TEST(AtomicFile, SignalDuringADirectoryWriteRemovesTheStagedTree) {
+    for (int sig : {SIGINT, SIGTERM}) {
+        fs::path dir = fresh_dir("signal");
+        const std::string out = (dir / "bundle").string();
+        fs::create_directories(out);
+        { std::ofstream(out + "/old.txt") << "old"; }
+        const pid_t child = ::fork();
+        ASSERT_GE(child, 0);
+        if (child == 0) {
+            remove_temporaries_on_signal();
+            const ScratchPath scratch(out + ".work");
+            fs::create_directories(scratch.path() + "/models");
+            { std::ofstream(scratch.path() + "/models/m.bpm") << "scratch"; }
+            (void)write_directory_atomically(
+                out,
+                [&](const std::string& staged) {
+                    fs::create_directories(staged + "/models/deeper");
+                    for (int k = 0; k < 300; ++k)  // more entries than one getdents64 buffer
+                        std::ofstream(staged + "/models/m" + std::to_string(k) + ".bpm") << "data";
+                    std::ofstream(staged + "/models/deeper/x") << "x";
+                    ::raise(sig);
+                    return ok_status();
+                },
+                [](const std::string&) { return std::string(); });
+            ::_exit(3);  // not reached: the signal ends the process
+        }
+        int status = 0;
+        ASSERT_EQ(::waitpid(child, &status, 0), child);
+        ASSERT_TRUE(WIFSIGNALED(status)) << "status " << status;
+        EXPECT_EQ(WTERMSIG(status), sig);
+        std::vector<std::string> left;
+        for (const auto& e : fs::directory_iterator(dir)) left.push_back(e.path().filename().string());
+        EXPECT_EQ(left, std::vector<std::string>{"bundle"}) << "left: " << left.size() << " entries";
+        std::ifstream old(out + "/old.txt");
+        std::string text;
+        old >> text;
+        EXPECT_EQ(text, "old");
+        fs::remove_all(dir);
+    }
 }
 
 }  // namespace
