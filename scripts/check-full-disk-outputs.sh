@@ -8,19 +8,8 @@
 # where a tmpfs cannot be mounted.
 #   scripts/check-full-disk-outputs.sh BUILD_DIR
 set -uo pipefail
-BUILD=$(cd "${1:?usage: check-full-disk-outputs.sh BUILD_DIR}" && pwd)
+. "$(dirname "$0")/full-disk-tmpfs.sh" check-full-disk-outputs 1m "${1:-}"
 BODYGEN=$BUILD/bin/bodygen
-cd "$(dirname "$0")/.."
-ROOT=$PWD
-tmp=$(mktemp -d)
-mnt=$tmp/disk
-mkdir -p "$mnt"
-cleanup() { mountpoint -q "$mnt" && umount "$mnt"; rm -rf "$tmp"; }
-trap cleanup EXIT
-if ! mount -t tmpfs -o size=1m tmpfs "$mnt" 2>/dev/null; then
-    echo "check-full-disk-outputs: cannot mount a tmpfs here (needs root and mount permission): skipped"
-    exit 77
-fi
 failures=0
 fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
 

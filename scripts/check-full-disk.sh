@@ -6,18 +6,7 @@
 # where a tmpfs cannot be mounted.
 #   scripts/check-full-disk.sh BUILD_DIR
 set -uo pipefail
-BUILD=$(cd "${1:?usage: check-full-disk.sh BUILD_DIR}" && pwd)
-cd "$(dirname "$0")/.."
-ROOT=$PWD
-tmp=$(mktemp -d)
-mnt=$tmp/disk
-mkdir -p "$mnt"
-cleanup() { mountpoint -q "$mnt" && umount "$mnt"; rm -rf "$tmp"; }
-trap cleanup EXIT
-if ! mount -t tmpfs -o size=512k tmpfs "$mnt" 2>/dev/null; then
-    echo "check-full-disk: cannot mount a tmpfs here (needs root and mount permission): skipped"
-    exit 77
-fi
+. "$(dirname "$0")/full-disk-tmpfs.sh" check-full-disk 512k "${1:-}"
 fail() { echo "check-full-disk: $*"; exit 1; }
 # The small bundle that fits, then a scene of models that together do not.
 mkdir -p "$tmp/small" "$tmp/big"
