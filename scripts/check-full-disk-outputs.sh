@@ -2,7 +2,7 @@
 # A full disk leaves nothing half-written (issue 30): on a small tmpfs whose
 # free space is set per case, `bodygen build -o DIR/` (new and over an old
 # output), `build -o X.obj`, `lod -o X.bpm` and `exhibit -o BUNDLE/` that do
-# not fit exit 1 with one line naming the output, and the disk holds exactly
+# not fit exit 1 with one line naming the output (never a temporary), and the disk holds exactly
 # what it held before (old outputs byte-identical, no temporaries). `pack`
 # has its own check (check-full-disk.sh). Needs mount(2): exit 77 (skipped)
 # where a tmpfs cannot be mounted.
@@ -54,6 +54,7 @@ case_() {
     [ "$lines" -eq 1 ] || fail "$name: $lines lines on stderr, expected 1"
     grep -qE -- "^bodygen: $output/?: " "$tmp/err" || fail "$name: the message does not begin with $output"
     grep -qiE "disk full|no space" "$tmp/err" || fail "$name: the message does not say the disk is full"
+    ! grep -qE "\.tmp-[0-9]|\.work" "$tmp/err" || fail "$name: the message names a temporary, gone by now"
     [ "$before" = "$after" ] || { diff <(echo "$before") <(echo "$after"); fail "$name: the disk changed"; }
 }
 

@@ -538,6 +538,12 @@ def scene_cases(rng, base_bpm, base_obj):
     add("every model bad", {"models": [{"name": "bad", "file": "bad.bpm"}]}, {"src/bad.bpm": b"BPM garbage"})
     many = {"models": [{"name": f"m{i}", "file": "b.bpm"} for i in range(2000)]}
     add("2000 models", many, expect="any", view=False)
+    # The kiosk on 10,000 models (one loader thread each once needed 4.2 GB): bounded, no crash.
+    cases.append(Case(cls, "bodyview bundle: 10000 models",
+                      ["@bodyview", "--headless", "--size", "64x48", "--frames", "2", "src/"],
+                      {"src/scene.json": json.dumps({"models": [{"name": f"m{i}", "file": "b.bpm"}
+                                                                for i in range(10000)]}).encode(),
+                       "src/b.bpm": base_bpm}, "any", "src/", slow=True))
     for i, m in enumerate(mutate_bytes(rng, json.dumps(good).encode(), 24)):
         add(f"mutation {i}", m, expect="any", view=i % 4 == 0)
     # A bundle with a FIFO in place of a model: the kiosk must not block.

@@ -106,6 +106,13 @@ std::string temp_name(const std::string& path) { return path + ".tmp-" + std::to
 
 }  // namespace
 
+std::string renamed_in_message(std::string message, const std::string& from, const std::string& to) {
+    if (from.empty()) return message;
+    for (size_t at = message.find(from); at != std::string::npos; at = message.find(from, at + to.size()))
+        message.replace(at, from.size(), to);
+    return message;
+}
+
 ScratchPath::ScratchPath(const std::string& path) {
     sweep_stale_temporaries(path);
     path_ = temp_name(path);
@@ -184,7 +191,9 @@ Status write_directory_atomically(const std::string& dir, const std::function<St
     fs::remove_all(staged.path(), ec);
     fs::create_directories(staged.path(), ec);
     if (ec) return runtime_error(target.string() + ": cannot create the staging directory: " + ec.message());
-    if (Status st = fill(staged.path()); !st) return st;
+    // The staged directory is gone once this returns: a failure names the output instead.
+    if (Status st = fill(staged.path()); !st)
+        return Error{renamed_in_message(st.error().message, staged.path(), target.string()), st.error().exit_code};
     fs::path old;
     if (exists) {
         old = target;

@@ -51,6 +51,10 @@ private:
     int slot_ = -1;
 };
 
+// `message` with every `from` (a temporary path, gone by the time it is read)
+// written as `to` (the output it stood for).
+std::string renamed_in_message(std::string message, const std::string& from, const std::string& to);
+
 // Reads a whole file; error names the path and the reason.
 Result<std::string> read_file(const std::string& path);
 

@@ -261,7 +261,9 @@ int run_exhibit(const Args& argv) {
 #endif
     Status st = write_sources(work, *parts, built, *scene_options, volume ? &*volume : nullptr);
     // The sources are this run's scratch: a failure there names the bundle asked for.
-    if (!st) st = Error{bundle.string() + "/: " + st.error().message, st.error().exit_code};
+    if (!st)
+        st = Error{bundle.string() + "/: " + renamed_in_message(st.error().message, work.string(), bundle.string()),
+                   st.error().exit_code};
     Result<PackSummary> pack = st ? pack_scene((work / "scene.json").string(), bundle.string()) : st.error();
     if (!pack) return report(pack.error());
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
