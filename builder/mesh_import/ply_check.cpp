@@ -263,7 +263,9 @@ Status walk_binary(std::string_view bytes, const std::string& path, const Header
     const bool big = h.format == "binary_big_endian";
     size_t pos = h.body;
     for (const Element& e : h.elements) {
-        for (unsigned long long r = 0; r < e.count; ++r) {
+        // An element without properties has rows of no bytes: nothing to walk (its count may be 10^12).
+        const unsigned long long rows = e.properties.empty() ? 0 : e.count;
+        for (unsigned long long r = 0; r < rows; ++r) {
             const size_t row_start = pos;
             auto bad = [&](size_t at, const std::string& why) {
                 return input_error(path + ": PLY byte " + std::to_string(at) + " (element '" +

@@ -127,6 +127,16 @@ TEST(PlyCheck, BinaryRowsMustFillTheFileExactly) {
     expect_refused(check_ply_bytes(binary_ply(9), "m.ply"), "PLY byte [0-9]+ \\(element 'face' row 1\\): .*");
 }
 
+TEST(PlyCheck, BinaryElementWithoutPropertiesIsNotWalkedRowByRow) {
+    // Rows of no bytes: a count of 10^11 must not mean 10^11 loop turns (found by
+    // fuzz_mesh_checks; walked row by row, this test would not end).
+    std::string s = binary_ply();
+    s.insert(s.find("element face"), "element nothing 100000000000\n");
+    EXPECT_TRUE(check_ply_bytes(s, "m.ply").ok());
+    s += "x";
+    expect_refused(check_ply_bytes(s, "m.ply"), "1 bytes after the last element's rows");
+}
+
 TEST(PlyCheck, HeaderFaultsKeepTheirLine) {
     expect_refused(check_ply_bytes("ply\nformat ascii 1.0\nelement vertex 3\n", "m.ply"),
                    "PLY header line 3: no end_header");
