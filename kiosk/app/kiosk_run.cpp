@@ -212,6 +212,7 @@ render::View KioskLoop::camera_view(double now) const {
 void KioskLoop::draw_overlay(const render::FrameOptions& frame) {
     pin_lines_.set_high_contrast(app_->high_contrast());
     overlay_.set_look(app_->high_contrast(), app_->large_text());
+    overlay_.set_language(app_->language());
     pin_lines_.draw(app_->pins(), ui_scale_, frame.framebuffer, frame.width, frame.height);
     overlay_.draw(app_->controls(), label_card(*app_), frame.framebuffer, frame.width, frame.height);
 }
