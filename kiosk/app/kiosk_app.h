@@ -37,6 +37,7 @@
 #include "kiosk/app/operator_mode.h"
 #include "kiosk/app/pins.h"
 #include "kiosk/app/tour.h"
+#include "kiosk/app/tour_cut.h"
 #include "kiosk/app/ui.h"
 #include "kiosk/scene/scene_models.h"
 #include "shared/scene/scene.h"
@@ -174,6 +175,7 @@ private:
     void update_tour(double now);
     void enter_tour_step(double now);
     void apply_tour_cut(const scene::TourStep& s);
+    void move_tour_cut(float p);
     void tour_gesture(const Gesture& g);
     bool activate_tour(const Control& c, double now);
     void add_tour_and_pin_controls();
@@ -213,7 +215,9 @@ private:
     TourPlayer tour_;
     CameraPose tour_from_, tour_to_;
     bool tour_moving_ = false;
-    bool tour_cut_ = false;           // a step of the running tour set the cut plane (steps[].cut)
+    bool tour_cut_ = false;         // a step of the running tour set the cut plane (steps[].cut)
+    bool tour_cut_moving_ = false;  // the step moves the plane (tour_cut.h) as it moves the camera
+    TourCutPose tour_cut_from_, tour_cut_to_;
     std::vector<char> tour_visible_;  // per model while a step sets `visible`; empty: no override
     bool visited_ = false;            // input since the last reset (the countdown is for a visitor)
     // Pins.
