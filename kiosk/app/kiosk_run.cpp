@@ -272,6 +272,7 @@ int KioskLoop::run() {
         fo.height = surface_.height();
         fo.framebuffer = surface_.framebuffer();
         fo.cut = app_->cut().plane();
+        fo.cut.volume_around = app_->scene().cut_plane.volume_around;
         const render::View view = camera_view(now);
         stream_locks.clear();  // drawing needs only the GL buffers
         renderer_.render(view, render::Lighting{}, fo);

@@ -1,13 +1,12 @@
 // The bodyview golden fixture (contract in kiosk_golden.h).
 #include "tests/render/kiosk_golden.h"
 
-#include <cmath>
-#include <cstdlib>
 #include <fstream>
 
 #include "tests/cli/cli_test.h"
 #include "tests/common/test_dir.h"
 #include "tests/render/render_fixture.h"
+#include "tests/render/render_golden.h"
 
 namespace body::test {
 
@@ -43,17 +42,6 @@ render::Image KioskGolden::play(const std::string& replay) {
     return img ? img.value() : render::Image{};
 }
 
-void KioskGolden::expect_golden(const std::string& name, const render::Image& img) {
-    const std::string path = std::string(BODY_GOLDEN_DIR) + "/" + name + ".png";
-    if (std::getenv("BODY_UPDATE_GOLDENS")) {
-        ASSERT_TRUE(render::write_png(path, img).ok());
-        return;
-    }
-    auto golden = render::read_png(path);
-    ASSERT_TRUE(golden.ok()) << golden.error().message << " (regenerate with BODY_UPDATE_GOLDENS=1)";
-    const auto d = compare(golden.value(), img);
-    EXPECT_LE(d.bad_block_fraction, 0.01) << name;
-    EXPECT_LE(std::abs(d.mean_luma_delta), 1.5) << name;
-}
+void KioskGolden::expect_golden(const std::string& name, const render::Image& img) { test::expect_golden(name, img); }
 
 }  // namespace body::test
