@@ -26,6 +26,7 @@
 //     (operator_mode.h: PIN keypad, diagnostics, restart) instead of exiting.
 #include <functional>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -83,6 +84,12 @@ public:
     KioskApp(scene::Scene scene, std::vector<ModelInfo> models, int width, int height);
 
     void set_picker(Picker picker) { picker_ = std::move(picker); }
+    // Several rays through one model at once: nearest[k] lowered to ray k's
+    // distance to the model's surface (callers fill it with +infinity). When
+    // set, the pins' occlusion test casts every pin's ray through a model in
+    // one call (one walk of its triangles) instead of one call per pin.
+    using ManyPicker = std::function<void(int model, std::span<const Ray> rays, std::span<float> nearest)>;
+    void set_many_picker(ManyPicker picker) { many_picker_ = std::move(picker); }
     void set_viewport(int width, int height);
     // The display's density (platform::Surface::pixels_per_mm); 0: unknown. Touch
     // targets are never smaller than kMinTouchMm on it (ui.h).
@@ -195,6 +202,7 @@ private:
     GestureRecognizer gestures_;
     LodController lod_;
     Picker picker_;
+    ManyPicker many_picker_;
     std::vector<Control> controls_;
     std::vector<std::pair<int, ControlId>> ui_touches_;  // touch id -> control it went down on
     int ui_touch_group_ = -1;

@@ -127,6 +127,9 @@ void KioskLoop::start_app() {
     app_->set_picker([this](int model, const Ray& ray) -> std::optional<float> {
         return models_.pick(static_cast<size_t>(model), placement(model), ray);
     });
+    app_->set_many_picker([this](int model, std::span<const Ray> rays, std::span<float> nearest) {
+        models_.pick_many(static_cast<size_t>(model), placement(model), rays, nearest);
+    });
     const auto ui_start = Clock::now();
     const float ui_scale = std::max(1.0f, static_cast<float>(std::min(surface_.width(), surface_.height())) / 800.0f);
     if (auto s = overlay_.init(options_.font.empty() ? default_font_file() : options_.font, ui_scale); !s)
