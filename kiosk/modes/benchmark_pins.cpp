@@ -83,10 +83,11 @@ enum { kUpdate, kRender, kLines, kOverlay, kFinish, kPhases };
 using PhaseTimes = double[2][kPhases];
 
 void print_phases(const PhaseTimes& ms) {
-    std::printf("wall ms summed over the timed frames, without / with pins: app update %.1f / %.1f, render %.1f / %.1f, "
-                "leader lines %.1f / %.1f, overlay %.1f / %.1f, glFinish %.1f / %.1f\n",
-                ms[0][kUpdate], ms[1][kUpdate], ms[0][kRender], ms[1][kRender], ms[0][kLines], ms[1][kLines],
-                ms[0][kOverlay], ms[1][kOverlay], ms[0][kFinish], ms[1][kFinish]);
+    std::printf(
+        "wall ms summed over the timed frames, without / with pins: app update %.1f / %.1f, render %.1f / %.1f, "
+        "leader lines %.1f / %.1f, overlay %.1f / %.1f, glFinish %.1f / %.1f\n",
+        ms[0][kUpdate], ms[1][kUpdate], ms[0][kRender], ms[1][kRender], ms[0][kLines], ms[1][kLines], ms[0][kOverlay],
+        ms[1][kOverlay], ms[0][kFinish], ms[1][kFinish]);
 }
 
 scene::Scene bench_scene(bool pins) {
@@ -150,7 +151,8 @@ Status compare_pins(render::Renderer& renderer, render::ModelId id, ModelSource&
     without.set_picker(picker);
     // As the kiosk's (SceneModels::pick_many): the pins' rays through the model in one walk.
     const KioskApp::ManyPicker many = [&](int, std::span<const Ray> rays, std::span<float> nearest) {
-        nearest_hits(mesh.indices, [&](uint32_t v) { return mesh.positions[v]; }, rays, nearest);
+        nearest_hits(
+            mesh.indices, [&](uint32_t v) { return mesh.positions[v]; }, rays, nearest);
     };
     with.set_many_picker(many);
     without.set_many_picker(many);

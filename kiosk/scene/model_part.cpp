@@ -1,11 +1,11 @@
 // One structure of a scene model on the GPU (contract in model_part.h).
 #include "kiosk/scene/model_part.h"
 
-#include "kiosk/scene/ray_hits.h"
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+
+#include "kiosk/scene/ray_hits.h"
 
 namespace body::kiosk {
 

@@ -15,8 +15,8 @@
 // once when it stops; nothing per frame.
 #include <cstdint>
 #include <memory>
-#include <span>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "kiosk/render/renderer.h"

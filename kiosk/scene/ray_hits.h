@@ -17,7 +17,8 @@
 namespace body::kiosk {
 
 template <class At>
-void nearest_hits(std::span<const uint32_t> indices, const At& at, std::span<const Ray> rays, std::span<float> nearest) {
+void nearest_hits(std::span<const uint32_t> indices, const At& at, std::span<const Ray> rays,
+                  std::span<float> nearest) {
     for (size_t i = 0; i + 2 < indices.size(); i += 3) {
         const glm::vec3 a = at(indices[i]), b = at(indices[i + 1]), c = at(indices[i + 2]);
         const glm::vec3 e1 = b - a, e2 = c - a;
