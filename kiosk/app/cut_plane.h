@@ -77,6 +77,7 @@ public:
     glm::vec3 normal() const { return normal_; }  // unit, into the removed half
     float offset() const { return offset_; }      // plane's signed distance from the scene centre along normal()
     glm::vec3 point() const { return center_ + normal_ * offset_; }
+    float radius() const { return radius_; }        // the scene's bounding sphere (offsets stay within it)
     render::CutPlane plane() const;                 // enabled only while on()
     int snapped_slice() const { return snapped_; }  // the index into set_slices()'s `at` the plane lies on; -1: none
 

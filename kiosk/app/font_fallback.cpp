@@ -10,8 +10,12 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <cctype>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
+#include <map>
+#include <utility>
 
 #define STBTT_STATIC
 #define STB_TRUETYPE_IMPLEMENTATION
@@ -25,6 +29,7 @@ constexpr int kOversampleX = 2;
 
 struct Font {
     std::string file;
+    int face = 0;        // the face's index in a collection (.ttc); 0 in a single-face file
     bool tried = false;  // opened (or failed to) already
     bool ok = false;
     void* map = nullptr;
@@ -64,11 +69,11 @@ bool open_font(Font& f) {
         return false;
     }
     const auto* data = static_cast<const unsigned char*>(f.map);
-    const int offset = stbtt_GetFontOffsetForIndex(data, 0);  // a collection's first face
+    const int offset = stbtt_GetFontOffsetForIndex(data, f.face);
     if (offset < 0 || !stbtt_InitFont(&f.info, data, offset)) return false;
     hb_blob_t* blob = hb_blob_create(static_cast<const char*>(f.map), static_cast<unsigned>(f.size),
                                      HB_MEMORY_MODE_READONLY, nullptr, nullptr);
-    hb_face_t* face = hb_face_create(blob, 0);
+    hb_face_t* face = hb_face_create(blob, static_cast<unsigned>(f.face));
     hb_blob_destroy(blob);
     f.upem = static_cast<int>(hb_face_get_upem(face));
     f.hb = hb_font_create(face);
@@ -87,11 +92,77 @@ void close_font(Font& f) {
 
 bool draws(Font& f, char32_t c) { return open_font(f) && stbtt_FindGlyphIndex(&f.info, static_cast<int>(c)) != 0; }
 
+// The face of an opened collection whose family name ends in " <tag>" ("Noto
+// Sans CJK SC"), or -1. Read from the name tables, so any collection whose
+// faces are named by region works, whatever their order.
+int face_named(const Font& f, const std::string& tag) {
+    hb_blob_t* blob = hb_blob_create(static_cast<const char*>(f.map), static_cast<unsigned>(f.size),
+                                     HB_MEMORY_MODE_READONLY, nullptr, nullptr);
+    const unsigned count = hb_face_count(blob);
+    int found = -1;
+    for (unsigned k = 0; k < count && found < 0; ++k) {
+        hb_face_t* face = hb_face_create(blob, k);
+        char name[128] = {};
+        unsigned len = sizeof name;
+        hb_ot_name_get_utf8(face, HB_OT_NAME_ID_FONT_FAMILY, hb_language_from_string("en", -1), &len, name);
+        const std::string family(name);
+        if (family.size() > tag.size() && family.compare(family.size() - tag.size(), tag.size(), tag) == 0 &&
+            family[family.size() - tag.size() - 1] == ' ')
+            found = static_cast<int>(k);
+        hb_face_destroy(face);
+    }
+    hb_blob_destroy(blob);
+    return found;
+}
+
 }  // namespace
+
+// The region tags of CJK collection faces for a BCP 47 language, most wanted
+// first: Simplified Chinese SC, Traditional TC (Hong Kong HK, then TC),
+// Japanese JP, Korean KR; none for other languages (a collection's first face).
+std::vector<std::string> cjk_face_tags(const std::string& language) {
+    std::string lang;
+    for (char ch : language) lang += ch == '_' ? '-' : static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+    const std::string primary = lang.substr(0, lang.find('-'));
+    auto has = [&](const char* subtag) {
+        return (lang + "-").find(std::string("-") + subtag + "-") != std::string::npos;
+    };
+    if (primary == "ja") return {"JP"};
+    if (primary == "ko") return {"KR"};
+    if (primary != "zh") return {};
+    if (has("hk") || has("mo")) return {"HK", "TC"};
+    if (has("hant") || has("tw")) return {"TC"};
+    return {"SC"};  // zh, zh-Hans, zh-CN, zh-SG
+}
 
 struct FontSet::Impl {
     std::vector<Font> fonts;
+    size_t listed = 0;              // fonts[0, listed) are the files given; the rest are faces added by variant()
+    std::vector<std::string> tags;  // cjk_face_tags of the language set
+    std::string language;
+    std::map<std::pair<size_t, std::string>, size_t> variants;  // (listed font, first tag) -> font
+    size_t variant(size_t listed_font);
 };
+
+// The face of listed font `i` the language wants: another face of the same
+// collection, added to `fonts` on first use (indices already handed out stay
+// valid), or `i` itself when the file has no such face.
+size_t FontSet::Impl::variant(size_t i) {
+    if (tags.empty()) return i;
+    const auto key = std::make_pair(i, tags.front());
+    if (auto it = variants.find(key); it != variants.end()) return it->second;
+    size_t out = i;
+    if (open_font(fonts[i])) {
+        int face = -1;
+        for (size_t t = 0; t < tags.size() && face < 0; ++t) face = face_named(fonts[i], tags[t]);
+        if (face > 0 && face != fonts[i].face) {
+            fonts.push_back(Font{fonts[i].file, face});
+            out = fonts.size() - 1;
+        }
+    }
+    variants.emplace(key, out);
+    return out;
+}
 
 FontSet::FontSet() : p_(std::make_unique<Impl>()) {}
 
@@ -121,6 +192,7 @@ Result<std::shared_ptr<FontSet>> FontSet::open(const std::vector<std::string>& f
     if (files.empty()) return input_error("no font file given");
     std::shared_ptr<FontSet> set(new FontSet());
     for (const std::string& f : files) set->p_->fonts.push_back(Font{f});
+    set->p_->listed = files.size();
     Font& first = set->p_->fonts.front();
     if (!open_font(first)) {
         std::error_code ec;
@@ -140,15 +212,34 @@ size_t FontSet::loaded() const {
 
 const std::string& FontSet::file(int font) const { return p_->fonts[static_cast<size_t>(font)].file; }
 
+int FontSet::face(int font) const { return p_->fonts[static_cast<size_t>(font)].face; }
+
+bool FontSet::set_language(const std::string& language) {
+    if (language == p_->language) return false;
+    auto tags = cjk_face_tags(language);
+    p_->language = language;
+    const bool changed = tags != p_->tags;
+    p_->tags = std::move(tags);
+    return changed;
+}
+
+const std::string& FontSet::face_tag() const {
+    static const std::string none;
+    return p_->tags.empty() ? none : p_->tags.front();
+}
+
 int FontSet::font_for(char32_t c, int previous) {
     auto& fonts = p_->fonts;
-    const int n = static_cast<int>(fonts.size());
+    const int n = static_cast<int>(p_->listed);
     if (const char* tag = preferred_tag(c)) {
         for (int i = 0; i < n; ++i) {
             if (fonts[static_cast<size_t>(i)].file.find(tag) == std::string::npos) continue;
+            const size_t v = std::strcmp(tag, "CJK") == 0 ? p_->variant(static_cast<size_t>(i)) : size_t(i);
+            if (draws(fonts[v], c)) return static_cast<int>(v);
             if (draws(fonts[static_cast<size_t>(i)], c)) return i;
         }
-    } else if (previous >= 0 && previous < n && draws(fonts[static_cast<size_t>(previous)], c)) {
+    } else if (previous >= 0 && previous < static_cast<int>(fonts.size()) &&
+               draws(fonts[static_cast<size_t>(previous)], c)) {
         return previous;
     }
     for (int i = 0; i < n; ++i) {

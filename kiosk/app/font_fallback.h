@@ -11,6 +11,12 @@
 // it (digits and spaces inside an Arabic word keep the Arabic font's metrics);
 // otherwise the first listed font that draws it. -1 when none does.
 //
+// Faces per language (set_language): in a collection (.ttc) whose faces are
+// named by region, as Noto Sans CJK's JP/KR/SC/TC/HK, Han characters take the
+// face of the language's region (cjk_face_tags), since one character's glyph
+// differs between them (直, 骨); other languages take the collection's first
+// face. The chosen face is a font of its own (its own index, opened lazily).
+//
 // Sizes: every font is scaled to the same em size, derived from the first
 // font so that its ascent-descent equals the requested pixel height.
 #include <cstdint>
@@ -47,6 +53,13 @@ public:
     size_t size() const;    // fonts listed
     size_t loaded() const;  // font files read so far
     const std::string& file(int font) const;
+    int face(int font) const;  // the face index in its file
+
+    // The language (BCP 47) whose CJK face the next font_for calls choose;
+    // true when that changes the face (shaped text cached before is stale).
+    bool set_language(const std::string& language);
+    // The chosen face's region tag ("SC"), or "" for a collection's first face.
+    const std::string& face_tag() const;
 
     // The font that draws `c` (rules above); `previous` is the font of the
     // character before it, or -1.
@@ -70,5 +83,9 @@ private:
 // Installed Debian fallback fonts: fonts-noto-core (Arabic, Hebrew) and
 // fonts-noto-cjk (Chinese, Japanese, Korean); missing files are left out.
 std::vector<std::string> default_fallback_fonts();
+
+// The region tags of the CJK faces `language` (BCP 47: "zh-Hans", "zh-TW",
+// "ja", "ko") wants, most wanted first; empty for other languages.
+std::vector<std::string> cjk_face_tags(const std::string& language);
 
 }  // namespace body::kiosk

@@ -26,6 +26,7 @@
 //     (operator_mode.h: PIN keypad, diagnostics, restart) instead of exiting.
 #include <functional>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -37,6 +38,7 @@
 #include "kiosk/app/operator_mode.h"
 #include "kiosk/app/pins.h"
 #include "kiosk/app/tour.h"
+#include "kiosk/app/tour_cut.h"
 #include "kiosk/app/ui.h"
 #include "kiosk/scene/scene_models.h"
 #include "shared/scene/scene.h"
@@ -82,6 +84,12 @@ public:
     KioskApp(scene::Scene scene, std::vector<ModelInfo> models, int width, int height);
 
     void set_picker(Picker picker) { picker_ = std::move(picker); }
+    // Several rays through one model at once: nearest[k] lowered to ray k's
+    // distance to the model's surface (callers fill it with +infinity). When
+    // set, the pins' occlusion test casts every pin's ray through a model in
+    // one call (one walk of its triangles) instead of one call per pin.
+    using ManyPicker = std::function<void(int model, std::span<const Ray> rays, std::span<float> nearest)>;
+    void set_many_picker(ManyPicker picker) { many_picker_ = std::move(picker); }
     void set_viewport(int width, int height);
     // The display's density (platform::Surface::pixels_per_mm); 0: unknown. Touch
     // targets are never smaller than kMinTouchMm on it (ui.h).
@@ -174,6 +182,7 @@ private:
     void update_tour(double now);
     void enter_tour_step(double now);
     void apply_tour_cut(const scene::TourStep& s);
+    void move_tour_cut(float p);
     void tour_gesture(const Gesture& g);
     bool activate_tour(const Control& c, double now);
     void add_tour_and_pin_controls();
@@ -193,6 +202,7 @@ private:
     GestureRecognizer gestures_;
     LodController lod_;
     Picker picker_;
+    ManyPicker many_picker_;
     std::vector<Control> controls_;
     std::vector<std::pair<int, ControlId>> ui_touches_;  // touch id -> control it went down on
     int ui_touch_group_ = -1;
@@ -213,7 +223,9 @@ private:
     TourPlayer tour_;
     CameraPose tour_from_, tour_to_;
     bool tour_moving_ = false;
-    bool tour_cut_ = false;           // a step of the running tour set the cut plane (steps[].cut)
+    bool tour_cut_ = false;         // a step of the running tour set the cut plane (steps[].cut)
+    bool tour_cut_moving_ = false;  // the step moves the plane (tour_cut.h) as it moves the camera
+    TourCutPose tour_cut_from_, tour_cut_to_;
     std::vector<char> tour_visible_;  // per model while a step sets `visible`; empty: no override
     bool visited_ = false;            // input since the last reset (the countdown is for a visitor)
     // Pins.

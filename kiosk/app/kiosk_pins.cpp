@@ -89,16 +89,41 @@ bool KioskApp::may_occlude(int m, const Ray& ray, float before) const {
 
 void KioskApp::test_pin_occlusion() {
     const glm::vec3 eye = camera_.eye();
+    std::vector<Ray> rays(pins_.size());
+    std::vector<float> dist(pins_.size(), 0.0f);
     for (size_t i = 0; i < pins_.size(); ++i) {
         const glm::vec3 p = glm::vec3(placement(pins_[i].model) * glm::vec4(pins_[i].anchor, 1.0f));
-        const float dist = glm::length(p - eye);
+        dist[i] = glm::length(p - eye);
         pin_occluded_[i] = 0;
-        if (dist <= 0.0f) continue;
-        const Ray ray{eye, (p - eye) / dist};
+        if (dist[i] > 0.0f) rays[i] = Ray{eye, (p - eye) / dist[i]};
+    }
+    if (many_picker_) {  // each model once, with the rays of every pin it may hide
+        std::vector<Ray> batch;
+        std::vector<size_t> which;
+        std::vector<float> nearest;
+        for (int m = 0; m < model_count(); ++m) {
+            if (!visible(m)) continue;
+            batch.clear();
+            which.clear();
+            for (size_t i = 0; i < pins_.size(); ++i) {
+                if (pin_occluded_[i] || dist[i] <= 0.0f || !may_occlude(m, rays[i], dist[i] * 0.99f)) continue;
+                batch.push_back(rays[i]);
+                which.push_back(i);
+            }
+            if (batch.empty()) continue;
+            nearest.assign(batch.size(), INFINITY);
+            many_picker_(m, batch, nearest);
+            for (size_t k = 0; k < batch.size(); ++k)
+                if (nearest[k] < dist[which[k]] * 0.99f) pin_occluded_[which[k]] = 1;
+        }
+        return;
+    }
+    for (size_t i = 0; i < pins_.size(); ++i) {
+        if (dist[i] <= 0.0f) continue;
         for (int m = 0; m < model_count() && !pin_occluded_[i]; ++m) {
-            if (!visible(m) || !may_occlude(m, ray, dist * 0.99f)) continue;
-            const auto t = hit_distance(m, ray);
-            if (t && *t < dist * 0.99f) pin_occluded_[i] = 1;
+            if (!visible(m) || !may_occlude(m, rays[i], dist[i] * 0.99f)) continue;
+            const auto t = hit_distance(m, rays[i]);
+            if (t && *t < dist[i] * 0.99f) pin_occluded_[i] = 1;
         }
     }
 }

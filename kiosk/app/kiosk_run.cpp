@@ -127,6 +127,9 @@ void KioskLoop::start_app() {
     app_->set_picker([this](int model, const Ray& ray) -> std::optional<float> {
         return models_.pick(static_cast<size_t>(model), placement(model), ray);
     });
+    app_->set_many_picker([this](int model, std::span<const Ray> rays, std::span<float> nearest) {
+        models_.pick_many(static_cast<size_t>(model), placement(model), rays, nearest);
+    });
     const auto ui_start = Clock::now();
     const float ui_scale = std::max(1.0f, static_cast<float>(std::min(surface_.width(), surface_.height())) / 800.0f);
     if (auto s = overlay_.init(options_.font.empty() ? default_font_file() : options_.font, ui_scale); !s)
@@ -212,6 +215,7 @@ render::View KioskLoop::camera_view(double now) const {
 void KioskLoop::draw_overlay(const render::FrameOptions& frame) {
     pin_lines_.set_high_contrast(app_->high_contrast());
     overlay_.set_look(app_->high_contrast(), app_->large_text());
+    overlay_.set_language(app_->language());
     pin_lines_.draw(app_->pins(), ui_scale_, frame.framebuffer, frame.width, frame.height);
     overlay_.draw(app_->controls(), label_card(*app_), frame.framebuffer, frame.width, frame.height);
 }
@@ -271,6 +275,7 @@ int KioskLoop::run() {
         fo.height = surface_.height();
         fo.framebuffer = surface_.framebuffer();
         fo.cut = app_->cut().plane();
+        fo.cut.volume_around = app_->scene().cut_plane.volume_around;
         const render::View view = camera_view(now);
         stream_locks.clear();  // drawing needs only the GL buffers
         renderer_.render(view, render::Lighting{}, fo);

@@ -1,6 +1,7 @@
 // KioskApp's tours, idle countdown and their controls (behaviour in
 // kiosk_app.h; the player and interpolation in tour.h, the layout in
 // tour_controls.h).
+#include <algorithm>
 #include <cmath>
 
 #include "kiosk/app/kiosk_app.h"
@@ -50,7 +51,7 @@ void KioskApp::leave_tour() {
     if (!tour_.active()) return;
     tour_.leave();
     tour_visible_.clear();
-    tour_moving_ = false;
+    tour_moving_ = tour_cut_moving_ = false;
     if (tour_cut_) cut_.off();
     tour_cut_ = false;
     if (selected_ >= 0 && !visible(selected_)) selected_ = -1;
@@ -64,20 +65,40 @@ std::string KioskApp::tour_caption() const {
     return t ? t->title : std::string();
 }
 
-// A step's cut plane (SCENE.md steps[].cut): set it, or turn off the one an
-// earlier step set; a tour that never sets one leaves the visitor's alone.
+// A step's cut plane (SCENE.md steps[].cut): where it moves to, or off for
+// the one an earlier step set; a tour that never sets one leaves the
+// visitor's alone. The move itself follows the camera's (update_tour).
 void KioskApp::apply_tour_cut(const scene::TourStep& s) {
+    tour_cut_from_ = TourCutPose{cut_.on(), cut_.normal(), cut_.offset(), cut_.axis()};
+    tour_cut_moving_ = false;
     if (s.cut) {
         const scene::TourCut& c = *s.cut;
         const bool preset = c.axis >= 0 && c.axis < 3;
         const glm::vec3 n =
             preset ? cut_.axis_normal(static_cast<CutAxis>(c.axis)) : glm::vec3(c.normal[0], c.normal[1], c.normal[2]);
-        cut_.set_fixed(n, c.offset, preset ? std::optional<CutAxis>(static_cast<CutAxis>(c.axis)) : std::nullopt);
-        tour_cut_ = true;
+        const float r = cut_.radius();
+        tour_cut_to_ = TourCutPose{true, glm::normalize(n), std::clamp(c.offset, -r, r),
+                                   preset ? std::optional<CutAxis>(static_cast<CutAxis>(c.axis)) : std::nullopt};
+        tour_cut_moving_ = tour_cut_ = true;
     } else if (tour_cut_) {
+        tour_cut_to_ = TourCutPose{};
+        tour_cut_to_.axis = cut_.axis();
+        tour_cut_moving_ = true;
+    }
+    if (tour_cut_moving_ && !tour_cut_from_.on) tour_cut_from_.axis = tour_cut_to_.axis;
+}
+
+// The plane `p` (eased) of the way through the step's move.
+void KioskApp::move_tour_cut(float p) {
+    if (!tour_cut_moving_) return;
+    const TourCutPose c = interpolate_cut(tour_cut_from_, tour_cut_to_, p, cut_.radius());
+    if (c.on) {
+        cut_.set_fixed(c.normal, c.offset, c.axis);
+    } else {
         cut_.off();
         tour_cut_ = false;
     }
+    if (p >= 1.0f) tour_cut_moving_ = false;
 }
 
 // A step's scene state: visibility (names of models or groups), styles, selection.
@@ -117,8 +138,10 @@ void KioskApp::update_tour(double now) {
     if (tour_.update(now, t)) enter_tour_step(now);
     // A visitor watching a playing tour is not idle.
     if (!tour_.looping() && !tour_.paused() && !tour_.finished()) last_input_ = std::max(last_input_, now);
-    if (!tour_moving_ || tour_.paused()) return;
+    if (tour_.paused()) return;
     const float p = tour_.progress(t);
+    move_tour_cut(p);
+    if (!tour_moving_) return;
     camera_.set_pose(interpolate_pose(tour_from_, tour_to_, p));
     if (p >= 1.0f) tour_moving_ = false;
 }

@@ -189,4 +189,9 @@ void Overlay::set_look(bool high_contrast, bool large_text) {
     s_->use_size(large_text ? 1 : 0);
 }
 
+void Overlay::set_language(const std::string& language) {
+    if (!s_) return;
+    if (s_->fonts->set_language(language)) s_->fitted.clear();  // fits measured in the other face
+}
+
 }  // namespace body::kiosk

@@ -32,6 +32,9 @@ public:
     // The access modes (access.h) the next draws use: the high-contrast
     // palette, large text (atlases kLargeTextScale times larger, made when first needed).
     void set_look(bool high_contrast, bool large_text);
+    // The UI language (BCP 47) the next draws shape for: it picks the CJK
+    // font face (FontSet::set_language: Chinese in the SC face, not Japanese).
+    void set_language(const std::string& language);
 
 private:
     struct State;

@@ -137,6 +137,8 @@ const GlyphAtlas::Slot& GlyphAtlas::slot(int font, uint32_t glyph) {
 
 const ShapedText& GlyphAtlas::shaped(std::u32string_view text, TextDirection direction) {
     std::u32string key(1, static_cast<char32_t>(direction));
+    for (char ch : fonts_->face_tag()) key += static_cast<char32_t>(ch);  // the CJK face chooses the glyphs
+    key += U'\0';
     key += text;
     if (auto it = shaped_.find(key); it != shaped_.end()) return it->second;
     if (shaped_.size() >= kShapedCacheLimit) shaped_previous_ = std::exchange(shaped_, {});

@@ -144,6 +144,9 @@ void AuthorLoop::rebuild_app() {
     app_->set_picker([this](int model, const Ray& ray) -> std::optional<float> {
         return models_->pick(static_cast<size_t>(model), placement(model), ray);
     });
+    app_->set_many_picker([this](int model, std::span<const Ray> rays, std::span<float> nearest) {
+        models_->pick_many(static_cast<size_t>(model), placement(model), rays, nearest);
+    });
     if (pose) app_->camera().set_pose(*pose);
     app_->select(editor_.selection().model);
 }

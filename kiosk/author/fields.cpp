@@ -425,6 +425,22 @@ Field cut_volume_field() {
             }};
 }
 
+// The volume's image around the caps as well: true or false.
+Field cut_volume_around_field() {
+    return {
+        "cut_plane.volume_around",
+        "cut volume around caps",
+        FieldScope::Scene,
+        FieldKind::Choice,
+        [](const Scene& s, const FieldTarget&) { return std::string(s.cut_plane.volume_around ? "true" : "false"); },
+        [](Scene& s, const FieldTarget&, const std::string& v) -> Status {
+            if (v != "true" && v != "false") return input_error("cut volume around caps: true or false");
+            s.cut_plane.volume_around = v == "true";
+            return ok_status();
+        },
+        bool_choices};
+}
+
 // The cut plane's preset normals (scene.h CutPlaneSettings): empty text unsets one.
 template <size_t I>
 Field cut_axis_field(const char* key, const char* label) {
@@ -454,7 +470,8 @@ std::vector<Field> cut_plane_fields() {
             cut_axis_field<2>("cut_plane.sagittal", "cut sagittal normal"),
             cut_slice_normal_field(),
             cut_slices_field(),
-            cut_volume_field()};
+            cut_volume_field(),
+            cut_volume_around_field()};
 }
 
 std::vector<Field> all_fields() {

@@ -422,6 +422,15 @@ Status Benchmark::run() {
         renderer_.shutdown();
         return ok_status();
     }
+    if (options_.pins_only) {
+        if (auto s = full_detail(); !s) return s;
+        if (auto s = compare_pins(renderer_, id_, *source_, frame_, std::max(options_.frames, 30),
+                                  options_.seconds_per_cell);
+            !s)
+            return s;
+        renderer_.shutdown();
+        return ok_status();
+    }
     for (double lod : {1.0, 0.4, 0.1})
         if (auto s = run_lod(lod); !s) return s;
     step("after every style and LOD");
@@ -461,6 +470,7 @@ int run_benchmark_mode(platform::Surface& surface, const ViewOptions& o, const s
     bo.frames = static_cast<int>(o.bench_frames);
     bo.seconds_per_cell = o.bench_seconds;
     bo.cut_only = o.bench_only == "cut";
+    bo.pins_only = o.bench_only == "pins";
     auto s = run_benchmark(surface, bo);
     return s ? kExitOk : report(s.error());
 }

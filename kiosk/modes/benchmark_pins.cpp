@@ -4,7 +4,8 @@
 // alternating pairs in one run. The pins' cost is all of it: the app's per
 // frame projection and layout, its occlusion ray casts (through a picker over
 // the model's triangles on the CPU, as the kiosk's), the leader lines and the
-// labels' quads and text.
+// labels' quads and text. A second line gives where the wall time goes,
+// phase by phase (app update = layout and occlusion ray casts).
 #include <GLES3/gl3.h>
 
 #include <algorithm>
@@ -18,6 +19,7 @@
 #include "kiosk/app/overlay.h"
 #include "kiosk/app/pin_lines.h"
 #include "kiosk/modes/benchmark.h"
+#include "kiosk/scene/ray_hits.h"
 
 namespace body::kiosk {
 
@@ -76,6 +78,18 @@ CpuMesh cpu_mesh(const render::Renderer& renderer, render::ModelId id, ModelSour
     return m;
 }
 
+// Where the wall time goes, summed over the timed frames: [without, with] x phase.
+enum { kUpdate, kRender, kLines, kOverlay, kFinish, kPhases };
+using PhaseTimes = double[2][kPhases];
+
+void print_phases(const PhaseTimes& ms) {
+    std::printf(
+        "wall ms summed over the timed frames, without / with pins: app update %.1f / %.1f, render %.1f / %.1f, "
+        "leader lines %.1f / %.1f, overlay %.1f / %.1f, glFinish %.1f / %.1f\n",
+        ms[0][kUpdate], ms[1][kUpdate], ms[0][kRender], ms[1][kRender], ms[0][kLines], ms[1][kLines], ms[0][kOverlay],
+        ms[1][kOverlay], ms[0][kFinish], ms[1][kFinish]);
+}
+
 scene::Scene bench_scene(bool pins) {
     scene::Scene s;
     s.source = "benchmark";
@@ -88,6 +102,33 @@ scene::Scene bench_scene(bool pins) {
     s.kiosk.idle_seconds = 86400.0f;  // no attract mode, no reset: the camera is turned by hand
     s.kiosk.reset_seconds = 86400.0f;
     return s;
+}
+
+// Pins where rays on a ring around the model's centre, seen from the start camera, hit it.
+scene::Scene bench_pins_scene(const CpuMesh& mesh, const std::vector<ModelInfo>& info, Vec3f center, float radius,
+                              const render::FrameOptions& frame) {
+    scene::Scene with_scene = bench_scene(true);
+    KioskApp probe(bench_scene(false), info, frame.width, frame.height);
+    const glm::vec4 clip = probe.camera().projection() * probe.camera().view() * glm::vec4(center, 1.0f);
+    const glm::vec2 px((clip.x / clip.w * 0.5f + 0.5f) * static_cast<float>(frame.width),
+                       (0.5f - clip.y / clip.w * 0.5f) * static_cast<float>(frame.height));
+    const float r = probe.camera().screen_radius(center, radius);
+    for (int k = 0; k < 64 && static_cast<int>(with_scene.models[0].pins.size()) < kPins; ++k) {
+        const float a = 0.7853982f * static_cast<float>(k % 8), d = r * (0.2f + 0.1f * static_cast<float>(k / 8));
+        const Ray ray = probe.camera().ray(px.x + d * std::cos(a), px.y + d * std::sin(a));
+        const auto t = mesh.hit(ray);
+        if (!t) continue;
+        const glm::vec3 p = ray.origin + ray.direction * *t;
+        scene::Pin pin;
+        pin.anchor = {p.x, p.y, p.z};
+        scene::LabelText text;
+        text.language = "en";
+        text.title = std::to_string(with_scene.models[0].pins.size() + 1);
+        text.title.insert(0, "Pin ");
+        pin.labels.push_back(std::move(text));
+        with_scene.models[0].pins.push_back(pin);
+    }
+    return with_scene;
 }
 
 }  // namespace
@@ -103,34 +144,18 @@ Status compare_pins(render::Renderer& renderer, render::ModelId id, ModelSource&
         ModelInfo{true, center, radius, mesh.indices.size() / 3, mesh.indices.size() / 3}};
     KioskApp::Picker picker = [&](int, const Ray& ray) { return mesh.hit(ray); };
 
-    // Pins where rays on a ring around the model's centre, seen from the start camera, hit it.
-    scene::Scene with_scene = bench_scene(true);
-    {
-        KioskApp probe(bench_scene(false), info, frame.width, frame.height);
-        const glm::vec4 clip = probe.camera().projection() * probe.camera().view() * glm::vec4(center, 1.0f);
-        const glm::vec2 px((clip.x / clip.w * 0.5f + 0.5f) * static_cast<float>(frame.width),
-                           (0.5f - clip.y / clip.w * 0.5f) * static_cast<float>(frame.height));
-        const float r = probe.camera().screen_radius(center, radius);
-        for (int k = 0; k < 64 && static_cast<int>(with_scene.models[0].pins.size()) < kPins; ++k) {
-            const float a = 0.7853982f * static_cast<float>(k % 8), d = r * (0.2f + 0.1f * static_cast<float>(k / 8));
-            const Ray ray = probe.camera().ray(px.x + d * std::cos(a), px.y + d * std::sin(a));
-            const auto t = mesh.hit(ray);
-            if (!t) continue;
-            const glm::vec3 p = ray.origin + ray.direction * *t;
-            scene::Pin pin;
-            pin.anchor = {p.x, p.y, p.z};
-            scene::LabelText text;
-            text.language = "en";
-            text.title = std::to_string(with_scene.models[0].pins.size() + 1);
-            text.title.insert(0, "Pin ");
-            pin.labels.push_back(std::move(text));
-            with_scene.models[0].pins.push_back(pin);
-        }
-    }
+    const scene::Scene with_scene = bench_pins_scene(mesh, info, center, radius, frame);
     KioskApp with(with_scene, info, frame.width, frame.height),
         without(bench_scene(false), info, frame.width, frame.height);
     with.set_picker(picker);
     without.set_picker(picker);
+    // As the kiosk's (SceneModels::pick_many): the pins' rays through the model in one walk.
+    const KioskApp::ManyPicker many = [&](int, std::span<const Ray> rays, std::span<float> nearest) {
+        nearest_hits(
+            mesh.indices, [&](uint32_t v) { return mesh.positions[v]; }, rays, nearest);
+    };
+    with.set_many_picker(many);
+    without.set_many_picker(many);
 
     Overlay overlay;
     if (auto s = overlay.init(default_font_file(), 1.0f); !s) return s;
@@ -142,14 +167,27 @@ Status compare_pins(render::Renderer& renderer, render::ModelId id, ModelSource&
     struct Timed {
         double wall, cpu;
     };
+    PhaseTimes phase_ms = {};
+    bool timing = false;
     const auto time_frame = [&](KioskApp& app, bool pins) {
         const auto t0 = std::chrono::steady_clock::now();
         const double c0 = cpu_now_ms();
+        auto mark = t0;
+        const auto lap = [&](int phase) {
+            const auto t = std::chrono::steady_clock::now();
+            if (timing) phase_ms[pins][phase] += std::chrono::duration<double, std::milli>(t - mark).count();
+            mark = t;
+        };
         app.update(now);
+        lap(kUpdate);
         renderer.render(app.camera().render_view(app.drift(now), center, radius), render::Lighting{}, frame);
+        lap(kRender);
         if (pins) lines.draw(app.pins(), 1.0f, frame.framebuffer, frame.width, frame.height);
+        lap(kLines);
         overlay.draw(app.controls(), label_card(app), frame.framebuffer, frame.width, frame.height);
+        lap(kOverlay);
         glFinish();
+        lap(kFinish);
         if (pins) {
             ++frames_with;
             for (const PinView& p : app.pins()) {
@@ -173,6 +211,7 @@ Status compare_pins(render::Renderer& renderer, render::ModelId id, ModelSource&
         (void)time_frame(with, true);
     }
     shown = placed = frames_with = 0;
+    timing = true;
     advance();
     std::vector<Timed> base{time_frame(without, false)}, pinned;
     const auto start = std::chrono::steady_clock::now();
@@ -204,6 +243,7 @@ Status compare_pins(render::Renderer& renderer, render::ModelId id, ModelSource&
     std::printf("%-10zu %9.2f %11.2f %6.3f %10.3f %9.3f %11.1f %11.1f %5zu <= 1.1x %s\n", mesh.indices.size() / 3,
                 median(with_ms), median(without_ms), ratio, mean_ratio, median(cpu), static_cast<double>(shown) / n,
                 static_cast<double>(placed) / n, pinned.size(), ratio <= 1.1 && mean_ratio <= 1.1 ? "ok" : "MISSED");
+    print_phases(phase_ms);
     std::fflush(stdout);
     lines.shutdown();
     overlay.shutdown();

@@ -19,6 +19,10 @@ struct CutPlane {
     // How much of the bundle's grey-level volume (Renderer::set_cut_volume)
     // shows on the caps: 0 the cap colour only, 1 the grey level only.
     float volume_mix = 0.7f;
+    // The volume's grey levels also on the plane around the caps, within the
+    // volume's bounds (kiosk/render/volume_plane.cpp): the slice image the
+    // sections lie in, hiding what is behind the plane there.
+    bool volume_around = false;
 };
 
 }  // namespace body::render

@@ -27,6 +27,7 @@ Program* use_cut_volume(CutVolumeState& volume, Frame& f) {
 void free_cut_volume(CutVolumeState& volume) {
     if (volume.texture) glDeleteTextures(1, &volume.texture);
     if (volume.program.id) glDeleteProgram(volume.program.id);
+    if (volume.plane_program.id) glDeleteProgram(volume.plane_program.id);
     volume = CutVolumeState{};
 }
 
@@ -43,12 +44,21 @@ Status Renderer::set_cut_volume(const SliceVolume* source) {
     auto program = link_shader_pair("cap.vert", "cap_volume.frag");
     if (!program) return program.error();
     volume.program = std::move(program.value());
+    auto plane_program = link_shader_pair("cap.vert", "volume_plane.frag");
+    if (!plane_program) {
+        free_cut_volume(volume);
+        return plane_program.error();
+    }
+    volume.plane_program = std::move(plane_program.value());
     // Voxel index -> world is the file's affine; texture coordinates are (index + 0.5) / dims.
     glm::mat4 to_world(1.0f);
     for (int r = 0; r < 3; ++r)
         for (int c = 0; c < 4; ++c) to_world[c][r] = source->affine[size_t(r * 4 + c)];
     const Vec3f dims(static_cast<float>(source->dims[0]), static_cast<float>(source->dims[1]),
                      static_cast<float>(source->dims[2]));
+    // The box spans voxel indices -0.5 .. dims - 0.5 (texture 0 .. 1).
+    volume.world_center = Vec3f(to_world * glm::vec4(0.5f * dims - 0.5f, 1.0f));
+    volume.world_radius = glm::length(glm::mat3(to_world) * (0.5f * dims));
     volume.world_to_texture = glm::scale(glm::mat4(1.0f), 1.0f / dims) * glm::translate(glm::mat4(1.0f), Vec3f(0.5f)) *
                               glm::inverse(to_world);
     while (glGetError() != GL_NO_ERROR) {

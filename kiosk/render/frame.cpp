@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "kiosk/render/batch.h"
+#include "kiosk/render/cut_volume.h"
 #include "kiosk/render/data_textures.h"
 #include "kiosk/render/gl_util.h"
 #include "kiosk/render/renderer_state.h"
@@ -181,6 +182,7 @@ void Renderer::render(const View& camera, const Lighting& lighting, const FrameO
     f.clipping = o.cut.enabled && prepare_cut(s);
     if (f.clipping) std::swap(s.programs, s.cut.clipped);
     const std::vector<Model*> transparent = draw_opaque(s, f, fade_rest);
+    if (f.clipping) draw_volume_plane(s, f);           // the source image around the caps, when asked
     f.clip_view = glm::vec4(0.0f, 0.0f, 0.0f, -1.0f);  // the spheres are never cut
     if (o.manipulation_sphere && any_selected) draw_manipulation_spheres(s, f);
     draw_transparent(s, f, transparent);

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "kiosk/scene/ray_hits.h"
+
 namespace body::kiosk {
 
 void Geomorph::start(double now, size_t from_triangles, size_t to_triangles) {
@@ -243,6 +245,27 @@ std::optional<float> ModelPart::pick(const render::Renderer& renderer, const glm
     if (best >= 1e30f) return std::nullopt;
     // t is in object units along d; convert to world distance.
     return best * glm::length(glm::vec3(transform * glm::vec4(d, 0.0f)));
+}
+
+void ModelPart::pick_many(const render::Renderer& renderer, const glm::mat4& transform, std::span<const Ray> rays,
+                          std::span<float> nearest) {
+    // An affine map keeps the ray parameter: t along the object-space ray is the world distance.
+    const glm::mat4 inv = glm::inverse(transform);
+    std::vector<Ray> local(rays.size());
+    for (size_t k = 0; k < rays.size(); ++k) {
+        local[k].origin = glm::vec3(inv * glm::vec4(rays[k].origin, 1.0f));
+        local[k].direction = glm::vec3(inv * glm::vec4(rays[k].direction, 0.0f));
+    }
+    const render::MeshData m = mesh();
+    const auto at = [&](uint32_t v) { return pm_ ? pm_->position(v) : m.positions[v]; };
+    if (pm_ && pm_->indices_released())
+        renderer.read_indices(id_, m.index_count, [&](std::span<const uint32_t> ix) {
+            nearest_hits(ix, at, std::span<const Ray>(local), nearest);  // one read-back for every ray
+        });
+    else
+        nearest_hits(m.indices.first(std::min(m.index_count, m.indices.size())), at, std::span<const Ray>(local),
+                     nearest);
+    if (source_) source_->release_arrays();
 }
 
 }  // namespace body::kiosk

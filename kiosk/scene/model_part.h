@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "kiosk/render/renderer.h"
@@ -77,6 +78,11 @@ public:
     // Ray (world) against the current level placed by `transform`; world
     // distance. An OBJ's arrays are decoded for it and freed again.
     std::optional<float> pick(const render::Renderer& renderer, const glm::mat4& transform, const Ray& ray);
+    // pick() for several world rays (unit directions) in one walk of the
+    // triangles (ray_hits.h): nearest[k] lowered to ray k's world distance to
+    // the part, if it hits nearer.
+    void pick_many(const render::Renderer& renderer, const glm::mat4& transform, std::span<const Ray> rays,
+                   std::span<float> nearest);
 
 private:
     void upload_dirty(render::Renderer& renderer);

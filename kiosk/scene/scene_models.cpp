@@ -250,4 +250,9 @@ std::optional<float> SceneModels::pick(size_t model, const glm::mat4& transform,
     return best;
 }
 
+void SceneModels::pick_many(size_t model, const glm::mat4& transform, std::span<const Ray> rays,
+                            std::span<float> nearest) {
+    for (ModelPart& p : models_[model].parts) p.pick_many(*renderer_, transform, rays, nearest);
+}
+
 }  // namespace body::kiosk

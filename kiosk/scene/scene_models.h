@@ -116,6 +116,8 @@ public:
     // Under lock(): the ray's world distance to the model's surface placed by
     // `transform` (an OBJ's arrays are decoded for it and freed again).
     std::optional<float> pick(size_t model, const glm::mat4& transform, const Ray& ray);
+    // Several rays at once (ModelPart::pick_many): nearest[k] lowered to ray k's hit distance.
+    void pick_many(size_t model, const glm::mat4& transform, std::span<const Ray> rays, std::span<float> nearest);
 
 private:
     // A scene model: its parts (a file may hold several structures) and, for a

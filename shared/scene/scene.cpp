@@ -269,7 +269,10 @@ bool read_kiosk(Reader& r, const json& v, const std::string& path, KioskSettings
 bool read_cut_plane(Reader& r, const json& v, const std::string& path, const std::string& base_dir,
                     CutPlaneSettings& c) {
     const char* names[] = {"axial", "coronal", "sagittal"};
-    if (!r.only_keys(v, path, {names[0], names[1], names[2], "slices", "slice_normal", "volume"})) return false;
+    if (!r.only_keys(v, path, {names[0], names[1], names[2], "slices", "slice_normal", "volume", "volume_around"}))
+        return false;
+    if (v.contains("volume_around") && !r.boolean(v["volume_around"], path + ".volume_around", c.volume_around))
+        return false;
     if (v.contains("volume")) {
         if (!r.string(v["volume"], path + ".volume", c.volume)) return false;
         const std::filesystem::path file(c.volume);

@@ -147,6 +147,8 @@ struct CutPlaneSettings {
     // The grey-level volume shown on the caps (shared/scene/slice_volume.h),
     // as written, and resolved against the manifest's directory; empty: none.
     std::string volume, volume_path;
+    // The volume's image also on the plane around the caps, within its bounds.
+    bool volume_around = false;
 };
 
 struct Scene {

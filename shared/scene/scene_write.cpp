@@ -172,6 +172,7 @@ std::string scene_to_json(const Scene& s) {
         if (const auto& n = s.cut_plane.axes[i]) root["cut_plane"][kCutPresets[i]] = vec3(*n);
     if (s.cut_plane.slice_normal) root["cut_plane"]["slice_normal"] = vec3(*s.cut_plane.slice_normal);
     if (!s.cut_plane.volume.empty()) root["cut_plane"]["volume"] = s.cut_plane.volume;
+    if (s.cut_plane.volume_around) root["cut_plane"]["volume_around"] = true;
     if (!s.cut_plane.slices.empty()) {
         root["cut_plane"]["slices"] = ordered_json::array();
         for (float a : s.cut_plane.slices) root["cut_plane"]["slices"].push_back(num(a));

@@ -174,7 +174,8 @@ const char* kEveryKey = R"({"version": 1,
             "operator_pin": "004217", "high_contrast": true, "large_text": true, "access_buttons": true,
             "icons": true},
   "cut_plane": {"axial": [0, 0, 1], "coronal": [0, 1, 0], "sagittal": [-1, 0, 0.5],
-                "slices": [-2, 0.5, 3], "slice_normal": [0, 0, 2], "volume": "slices.vol"},
+                "slices": [-2, 0.5, 3], "slice_normal": [0, 0, 2], "volume": "slices.vol",
+                "volume_around": true},
   "tours": [
     {"name": "limbic", "title": {"en": "The limbic system", "de": "Das limbische System"},
      "steps": [
@@ -221,6 +222,7 @@ TEST(AuthorSchema, EveryKeyRoundTrips) {
     EXPECT_EQ(b.cut_plane.slices, (std::vector<float>{-2.0f, 0.5f, 3.0f}));
     EXPECT_EQ(b.cut_plane.slice_normal, (std::array<float, 3>{0.0f, 0.0f, 2.0f}));
     EXPECT_EQ(b.cut_plane.volume, "slices.vol");
+    EXPECT_TRUE(b.cut_plane.volume_around);
     ASSERT_EQ(b.models[0].pins.size(), 2u);
     for (size_t i = 0; i < 2; ++i) {
         EXPECT_EQ(b.models[0].pins[i].anchor, a.models[0].pins[i].anchor);

@@ -303,6 +303,8 @@ TEST(CutPlane, BadSlicesNameThePlace) {
         {R"({"models": [{"name": "a", "file": "a.obj"}], "cut_plane": {"slices": 3}})", "s.json: cut_plane.slices: "},
         {R"({"models": [{"name": "a", "file": "a.obj"}], "cut_plane": {"slice_normal": [0, 0, 0]}})",
          "s.json: cut_plane.slice_normal: expected a non-zero direction"},
+        {R"({"models": [{"name": "a", "file": "a.obj"}], "cut_plane": {"volume_around": "yes"}})",
+         "s.json: cut_plane.volume_around: expected true or false"},
     };
     for (const auto& [text, prefix] : cases) {
         auto s = scene::parse_scene(text, "s.json", "");

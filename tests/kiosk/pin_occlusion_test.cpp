@@ -3,6 +3,7 @@
 // the line of sight before the pin, and a model in front still hides it.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "kiosk/app/kiosk_app.h"
@@ -48,6 +49,58 @@ TEST(PinOcclusion, OnlyModelsOnTheLineOfSightAreWalked) {
     // Each pin's ray walks its own model, and the right one's also the sphere in front:
     // 5 walks where every model for every pin would be 16.
     EXPECT_EQ(walks, (std::vector<int>{1, 1, 1, 2}));
+}
+
+// With a picker for many rays (the kiosk's: one walk of a model's triangles
+// for every pin's ray), each model on some pin's line of sight is called once
+// with all those rays, and the pins come out as with one ray at a time.
+TEST(PinOcclusion, ManyRaysThroughAModelInOneCall) {
+    auto scene = scene::parse_scene(R"({"models": [
+        {"name": "l", "file": "l.obj"},
+        {"name": "m", "file": "m.obj", "pins": [{"anchor": [0, 0, 40], "label": {"en": "M"}},
+                                                {"anchor": [0, 0, -40], "label": {"en": "Back"}},
+                                                {"anchor": [0, 40, 0], "label": {"en": "Top"}}]},
+        {"name": "r", "file": "r.obj", "pins": [{"anchor": [200, 0, 40], "label": {"en": "R"}}]},
+        {"name": "f", "file": "f.obj"}],
+        "camera": {"target": [0, 0, 0], "distance": 900}, "kiosk": {"pins": true}})",
+                                    "o.json", "");
+    ASSERT_TRUE(scene) << scene.error().message;
+    const std::vector<glm::vec3> centres{{-200, 0, 0}, {0, 0, 0}, {200, 0, 0}, {170, 0, 300}};
+    std::vector<ModelInfo> info;
+    for (const glm::vec3& c : centres) info.push_back(ModelInfo{true, c, 40.0f, 10, 10});
+    const auto one = [&](int m, const Ray& ray) { return sphere_hit(ray, centres[static_cast<size_t>(m)], 40.0f); };
+    KioskApp single(*scene, info, 1280, 800), many(*scene, info, 1280, 800);
+    single.set_picker(one);
+    many.set_picker(one);
+    std::vector<int> calls(4, 0);
+    std::vector<size_t> rays_per_call;
+    many.set_many_picker([&](int m, std::span<const Ray> rays, std::span<float> nearest) {
+        ++calls[static_cast<size_t>(m)];
+        rays_per_call.push_back(rays.size());
+        for (size_t k = 0; k < rays.size(); ++k)
+            if (const auto t = one(m, rays[k])) nearest[k] = std::min(nearest[k], *t);
+    });
+    for (KioskApp* app : {&single, &many}) app->update(0.0);
+    bool any_shown = false, any_hidden = false;
+    std::fill(calls.begin(), calls.end(), 0);
+    rays_per_call.clear();
+    for (int step = 1; step <= 6; ++step) {
+        for (KioskApp* app : {&single, &many}) {
+            app->camera().rotate(0.4f, 0.0f);
+            app->update(static_cast<double>(step));
+        }
+        ASSERT_EQ(single.pins().size(), many.pins().size());
+        for (size_t i = 0; i < single.pins().size(); ++i) {
+            EXPECT_EQ(single.pins()[i].shown, many.pins()[i].shown) << "pin " << i << " at step " << step;
+            (many.pins()[i].shown ? any_shown : any_hidden) = true;
+        }
+    }
+    // The middle sphere carries three pins: their rays come to it together.
+    EXPECT_LE(calls[1], 6);
+    EXPECT_GE(*std::max_element(rays_per_call.begin(), rays_per_call.end()), 3u);
+    // Some pin was hidden and some shown over the turn (the comparison can tell them apart).
+    EXPECT_TRUE(any_shown);
+    EXPECT_TRUE(any_hidden);
 }
 
 }  // namespace

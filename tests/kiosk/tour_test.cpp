@@ -178,6 +178,36 @@ TEST(Tour, PoseInterpolationTakesTheShorterWayRound) {
     EXPECT_EQ(p.distance, 42.0f);
 }
 
+TEST(TourCut, NormalsTurnAlongTheGreatCircleAndPlanesSlideInAndOut) {
+    const glm::vec3 z(0, 0, 1), x(1, 0, 0);
+    const glm::vec3 half = turn_normal(z, x, 0.5f);
+    EXPECT_NEAR(glm::length(half - glm::normalize(glm::vec3(1, 0, 1))), 0.0f, 1e-5f);
+    const glm::vec3 third = turn_normal(z, x, 1.0f / 3.0f);  // 30 degrees of 90: even angles, not an even blend
+    EXPECT_NEAR(std::acos(glm::dot(third, z)), 3.14159265f / 6.0f, 1e-4f);
+    const glm::vec3 flip = turn_normal(z, -z, 0.5f);  // opposite: a quarter turn about some perpendicular axis
+    EXPECT_NEAR(glm::length(flip), 1.0f, 1e-5f);
+    EXPECT_NEAR(glm::dot(flip, z), 0.0f, 1e-4f);
+    EXPECT_NEAR(glm::length(turn_normal(z, -z, 1.0f) + z), 0.0f, 1e-4f);
+
+    const TourCutPose off{}, a{true, z, -4.0f, CutAxis::Coronal}, b{true, x, 6.0f, CutAxis::Sagittal};
+    const float radius = 10.0f;
+    const TourCutPose mid = interpolate_cut(a, b, 0.25f, radius);
+    EXPECT_TRUE(mid.on);
+    EXPECT_NEAR(mid.offset, -1.5f, 1e-5f);
+    EXPECT_EQ(mid.axis, CutAxis::Coronal);
+    EXPECT_EQ(interpolate_cut(a, b, 0.75f, radius).axis, CutAxis::Sagittal);
+    const TourCutPose in = interpolate_cut(off, a, 0.5f, radius);  // from the scene's edge toward -4
+    EXPECT_TRUE(in.on);
+    EXPECT_NEAR(in.offset, 3.0f, 1e-5f);
+    EXPECT_NEAR(glm::length(in.normal - z), 0.0f, 1e-6f);
+    EXPECT_NEAR(interpolate_cut(off, a, 0.0f, radius).offset, radius, 1e-6f);  // nothing removed yet
+    const TourCutPose out = interpolate_cut(a, off, 0.5f, radius);
+    EXPECT_TRUE(out.on);
+    EXPECT_NEAR(out.offset, 3.0f, 1e-5f);
+    EXPECT_FALSE(interpolate_cut(a, off, 1.0f, radius).on);
+    EXPECT_FALSE(interpolate_cut(off, off, 0.5f, radius).on);
+}
+
 TEST(Tour, PlayerMovesHoldsAdvancesPausesAndFinishes) {
     auto s = scene::parse_scene(kTourScene, "tour.json", "");
     ASSERT_TRUE(s);
@@ -298,23 +328,51 @@ TEST(TourReplay, StepsSetTheCutPlaneAndLeavingTurnsItOff) {
     EXPECT_TRUE(app.cut().on());
     play(app, 0.7, tap(find(app, ControlId::TourLeave), 0.7) + "0.9 end\n");
     EXPECT_TRUE(app.cut().on());
-    play(app, 1.0, tap(find(app, ControlId::TourStart, 1), 1.0) + "1.3 end\n");
+    // The first cut step turns the visitor's plane to its own over its 0.5 s, eased like the camera.
+    const glm::vec3 visitors = app.cut().normal();
+    const float visitors_offset = app.cut().offset();
+    play(app, 1.0, tap(find(app, ControlId::TourStart, 1), 1.0) + "1.2 end\n");
     ASSERT_TRUE(app.tour().active());
+    const float radius = app.cut().radius();
+    ASSERT_GT(radius, 30.0f);  // every offset below lies inside the scene
     EXPECT_TRUE(app.cut().on());
-    EXPECT_FALSE(app.cut().editing());                                               // fixed: gestures move the camera
+    EXPECT_FALSE(app.cut().editing());  // fixed: gestures move the camera
+    const float turned = glm::dot(app.cut().normal(), glm::vec3(0, 0, 1));
+    EXPECT_GT(turned, glm::dot(visitors, glm::vec3(0, 0, 1)) + 0.01f);  // on its way from the visitor's normal
+    EXPECT_LT(turned, 0.999f);                                          // not yet at coronal
+    EXPECT_NE(app.cut().offset(), visitors_offset);
+    play(app, 1.2, "1.3 end\n");
+    EXPECT_GT(glm::dot(app.cut().normal(), glm::vec3(0, 0, 1)), turned);  // still turning
+    play(app, 1.3, "1.6 end\n");
     EXPECT_NEAR(glm::length(app.cut().normal() - glm::vec3(0, 0, 1)), 0.0f, 1e-6f);  // coronal: +Z, as given
     EXPECT_NEAR(app.cut().offset(), -10.0f, 1e-5f);
     EXPECT_EQ(app.cut().axis(), CutAxis::Coronal);
     EXPECT_TRUE(app.cut().plane().enabled);
-    play(app, 1.4, tap(find(app, ControlId::TourNext), 1.4) + "1.6 end\n");
+    // The next step turns the normal from +Z to +X and moves the offset from -10 to 30.
+    play(app, 1.6, tap(find(app, ControlId::TourNext), 1.6) + "1.8 end\n");
+    const glm::vec3 n = app.cut().normal();
+    EXPECT_NEAR(glm::length(n), 1.0f, 1e-5f);
+    EXPECT_GT(n.x, 0.05f);  // turning, in the plane of the two normals
+    EXPECT_GT(n.z, 0.05f);
+    EXPECT_NEAR(n.y, 0.0f, 1e-5f);
+    EXPECT_GT(app.cut().offset(), -10.0f);
+    EXPECT_LT(app.cut().offset(), 30.0f);
+    play(app, 1.8, "2.2 end\n");
     EXPECT_NEAR(glm::length(app.cut().normal() - glm::vec3(1, 0, 0)), 0.0f, 1e-6f);
     EXPECT_NEAR(app.cut().offset(), 30.0f, 1e-5f);
-    play(app, 1.7, tap(find(app, ControlId::TourNext), 1.7) + "1.9 end\n");
+    // A step without `cut` after one with: the plane slides out, then turns off.
+    play(app, 2.2, tap(find(app, ControlId::TourNext), 2.2) + "2.4 end\n");
     EXPECT_EQ(app.tour().step(), 2);
-    EXPECT_FALSE(app.cut().on());  // a step without `cut` after one with
-    play(app, 2.0, tap(find(app, ControlId::TourPrevious), 2.0) + "2.2 end\n");
     EXPECT_TRUE(app.cut().on());
-    play(app, 2.3, tap(find(app, ControlId::TourLeave), 2.3) + "2.5 end\n");
+    play(app, 2.4, "2.9 end\n");
+    EXPECT_FALSE(app.cut().on());
+    // Back to step 1 from no plane: it slides in along +X from the scene's edge.
+    play(app, 3.0, tap(find(app, ControlId::TourPrevious), 3.0) + "3.2 end\n");
+    EXPECT_TRUE(app.cut().on());
+    EXPECT_NEAR(glm::length(app.cut().normal() - glm::vec3(1, 0, 0)), 0.0f, 1e-6f);
+    EXPECT_LT(app.cut().offset(), radius - 0.01f);
+    EXPECT_GT(app.cut().offset(), 30.0f + 0.01f);
+    play(app, 3.3, tap(find(app, ControlId::TourLeave), 3.3) + "3.5 end\n");
     EXPECT_FALSE(app.tour().active());
     EXPECT_FALSE(app.cut().on());  // leaving turns off the plane the tour set
 }

@@ -15,9 +15,8 @@
 #include "kiosk/app/operator_mode.h"
 #include "kiosk/render/image.h"
 #include "shared/obj_io.h"
-#include "tests/cli/cli_test.h"
-#include "tests/common/test_dir.h"
 #include "tests/common/test_meshes.h"
+#include "tests/render/kiosk_golden.h"
 #include "tests/render/render_fixture.h"
 
 namespace body {
@@ -25,32 +24,23 @@ namespace {
 
 namespace fs = std::filesystem;
 using kiosk::ControlId;
-constexpr int kWidth = 800, kHeight = 500;
-
-std::string tap_at(const kiosk::Rect& r, double t) {
-    const std::string at = std::to_string(r.x + r.w / 2) + " " + std::to_string(r.y + r.h / 2);
-    return std::to_string(t) + " down 1 " + at + "\n" + std::to_string(t + 0.05) + " up 1 " + at + "\n";
-}
+using test::tap_at;
+constexpr int kWidth = test::kGoldenWidth, kHeight = test::kGoldenHeight;
 
 const kiosk::Control* find(const std::vector<kiosk::Control>& controls, ControlId id, int group = -1) {
-    for (const kiosk::Control& c : controls)
-        if (c.id == id && (group < 0 || c.group == group)) return &c;
-    return nullptr;
+    return test::find_control(controls, id, group);
 }
 
-class AccessGolden : public ::testing::Test {
+class AccessGolden : public test::KioskGolden {
 protected:
     void SetUp() override {
-        if (!fs::exists("/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf")) GTEST_SKIP() << "needs fonts-dejavu-core";
-        dir_ = test::fresh_test_dir("body_access_golden");
+        start("body_access_golden");
+        if (IsSkipped()) return;
         for (const auto& [name, cx] : {std::pair{"left", -1.2}, std::pair{"right", 1.2}}) {
             const Mesh sphere = test::uv_sphere(24, 48, Vec3(cx, 0.0, 0.0), 0.8);
             ASSERT_TRUE(
                 write_obj((dir_ / (std::string(name) + ".obj")).string(), std::span<const Mesh>(&sphere, 1)).ok());
         }
-    }
-    void TearDown() override {
-        if (!dir_.empty()) fs::remove_all(dir_);
     }
 
     // The scene with `kiosk` as its kiosk object.
@@ -65,17 +55,6 @@ protected:
           "kiosk": )" << kiosk << "}";
     }
 
-    render::Image play(const std::string& replay) {
-        std::ofstream(dir_ / "input.replay") << "size 800 500\n" << replay;
-        auto r =
-            test::run(test::bin("bodyview") + " --headless --size 800x500 --scene " + (dir_ / "scene.json").string() +
-                      " --replay " + (dir_ / "input.replay").string() + " --screenshot " + (dir_ / "out.png").string());
-        EXPECT_EQ(r.exit_code, 0) << r.output;
-        auto img = render::read_png((dir_ / "out.png").string());
-        EXPECT_TRUE(img) << r.output;
-        return img ? img.value() : render::Image{};
-    }
-
     static kiosk::UiState ui(bool large_text = false) {
         kiosk::UiState s;
         s.width = kWidth;
@@ -84,21 +63,6 @@ protected:
         s.access_buttons = true;
         return s;
     }
-
-    void expect_golden(const std::string& name, const render::Image& img) {
-        const std::string path = std::string(BODY_GOLDEN_DIR) + "/" + name + ".png";
-        if (std::getenv("BODY_UPDATE_GOLDENS")) {
-            ASSERT_TRUE(render::write_png(path, img).ok());
-            return;
-        }
-        auto golden = render::read_png(path);
-        ASSERT_TRUE(golden.ok()) << golden.error().message << " (regenerate with BODY_UPDATE_GOLDENS=1)";
-        const auto d = test::compare(golden.value(), img);
-        EXPECT_LE(d.bad_block_fraction, 0.01) << name;
-        EXPECT_LE(std::abs(d.mean_luma_delta), 1.5) << name;
-    }
-
-    fs::path dir_;
 };
 
 // Opaque black control boxes: pixels (near) black in the control column.

@@ -14,6 +14,7 @@
 
 #include "builder/pipeline/build_pipeline.h"
 #include "tests/render/render_fixture.h"
+#include "tests/render/render_golden.h"
 
 using namespace body;
 using namespace body::render;
@@ -21,27 +22,7 @@ using body::test::RenderFixture;
 
 namespace {
 
-#define REQUIRE_GL(fixture) \
-    if (!(fixture).ok()) GTEST_SKIP() << "no headless EGL/GLES 3 (Mesa libegl1/libgl1-mesa-dri): " << (fixture).why()
-
-// Compares with golden/<name>.png as render_test.cpp does (BODY_UPDATE_GOLDENS=1 rewrites it).
-void expect_golden(const std::string& name, const Image& img) {
-    const std::string path = std::string(BODY_GOLDEN_DIR) + "/" + name + ".png";
-    if (std::getenv("BODY_UPDATE_GOLDENS")) {
-        ASSERT_TRUE(write_png(path, img).ok());
-        return;
-    }
-    auto golden = read_png(path);
-    ASSERT_TRUE(golden.ok()) << golden.error().message << " (regenerate with BODY_UPDATE_GOLDENS=1)";
-    auto d = test::compare(golden.value(), img);
-    if (d.bad_block_fraction > 0.01 || std::abs(d.mean_luma_delta) > 1.5) {
-        const auto out =
-            std::filesystem::temp_directory_path() / (name + ".actual." + std::to_string(getpid()) + ".png");
-        (void)write_png(out.string(), img);
-        ADD_FAILURE() << name << ": " << d.bad_block_fraction * 100 << "% blocks differ, mean luma delta "
-                      << d.mean_luma_delta << " (actual written to " << out.string() << ")";
-    }
-}
+using test::expect_golden;
 
 // A non-convex blob traced on `slices` planes 1 apart, turning and swelling
 // from slice to slice, and a second one beside it on the middle slices (so

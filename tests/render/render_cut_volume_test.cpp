@@ -9,9 +9,12 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <glm/gtc/matrix_transform.hpp>
+#include <vector>
 
 #include "shared/scene/slice_volume.h"
 #include "tests/render/render_fixture.h"
+#include "tests/render/render_golden.h"
 
 using namespace body;
 using namespace body::render;
@@ -31,31 +34,8 @@ SliceVolume gradient_volume() {
     return v;
 }
 
-// The pixel (column, row from the top) where world point `p` lands.
-std::pair<int, int> pixel_of(const View& view, Vec3f p, int w, int h) {
-    const glm::vec4 c = view.projection(static_cast<float>(w) / static_cast<float>(h)) * view.view() * glm::vec4(p, 1);
-    const float x = (c.x / c.w + 1.0f) * 0.5f * static_cast<float>(w),
-                y = (c.y / c.w + 1.0f) * 0.5f * static_cast<float>(h);
-    return {static_cast<int>(x), h - 1 - static_cast<int>(y)};
-}
-
-void expect_golden(const std::string& name, const Image& img) {
-    const std::string path = std::string(BODY_GOLDEN_DIR) + "/" + name + ".png";
-    if (std::getenv("BODY_UPDATE_GOLDENS")) {
-        ASSERT_TRUE(write_png(path, img).ok());
-        return;
-    }
-    auto golden = read_png(path);
-    ASSERT_TRUE(golden.ok()) << golden.error().message << " (regenerate with BODY_UPDATE_GOLDENS=1)";
-    auto d = test::compare(golden.value(), img);
-    if (d.bad_block_fraction > 0.01 || std::abs(d.mean_luma_delta) > 1.5) {
-        const auto out =
-            std::filesystem::temp_directory_path() / (name + ".actual." + std::to_string(getpid()) + ".png");
-        (void)write_png(out.string(), img);
-        ADD_FAILURE() << name << ": " << d.bad_block_fraction * 100 << "% blocks differ (actual: " << out.string()
-                      << ")";
-    }
-}
+using test::expect_golden;
+using test::pixel_of;
 
 }  // namespace
 
@@ -128,4 +108,75 @@ TEST(CutVolume, CapShowsTheGreyLevelAtItsWorldPosition) {
     o.cut.volume_mix = 0.7f;
     ASSERT_TRUE(r.set_cut_volume(nullptr).ok());
     EXPECT_EQ(f.draw(view, {}, o).rgba, plain.rgba);
+}
+
+// CutPlane::volume_around: the slice image on the plane around the cap as
+// well, within the volume's box. A half-size cube cut at z = 0 inside the
+// gradient volume [-1, 1]^3, a small cube behind the plane inside the box
+// (hidden by the image) and one beside the box (still seen).
+TEST(CutVolume, AroundTheCapTheImageFillsThePlaneWithinTheVolume) {
+    constexpr int kW = 320, kH = 200;
+    RenderFixture f(kW, kH);
+    REQUIRE_GL(f);
+    static const test::GenMesh box = test::cube(1.0f);
+    Renderer& r = f.renderer();
+    auto add = [&](Vec3f at, float half, Vec3f colour) {
+        auto id = r.add_model(box.data(), "box");
+        EXPECT_TRUE(id.ok());
+        ModelState* st = r.state(id.value());
+        st->color = colour;
+        st->transform = glm::translate(glm::mat4(1.0f), at) * glm::scale(glm::mat4(1.0f), Vec3f(half));
+    };
+    add(Vec3f(0.0f), 0.5f, {0.3f, 0.6f, 0.9f});
+    add(Vec3f(-0.7f, 0.6f, -0.6f), 0.15f, {0.1f, 0.8f, 0.1f});  // behind the plane, inside the box
+    add(Vec3f(1.5f, 0.0f, -0.5f), 0.2f, {0.1f, 0.8f, 0.1f});    // behind the plane, beside the box
+    const View view = View::framing(Vec3f(0.0f), 2.0f, Vec3f(0.0f, 0.0f, 1.0f));
+    FrameOptions o = f.frame();
+    o.cut.enabled = true;
+    o.cut.plane = glm::vec4(0.0f, 0.0f, 1.0f, 0.0f);
+    o.cut.cap_color = glm::vec4(1.0f, 0.0f, 0.0f, 1.0f);
+    const SliceVolume v = gradient_volume();
+    ASSERT_TRUE(r.set_cut_volume(&v).ok());
+    const Image caps = f.draw(view, {}, o);
+    o.cut.volume_around = true;
+    const Image around = f.draw(view, {}, o);
+    auto at = [&](const Image& img, Vec3f p) {
+        const auto [col, row] = pixel_of(view, p, kW, kH);
+        return img.at(col, row);
+    };
+    auto grey = [](float x) { return 136.0f * (x + 0.9375f); };
+    // On the cap: as before, the grey mixed with the cap colour.
+    for (const Image* img : {&caps, &around}) {
+        EXPECT_NEAR(at(*img, {0.2f, 0.2f, 0.0f})[0], 76.5f + 0.7f * grey(0.2f), 4.0f);
+        EXPECT_NEAR(at(*img, {0.2f, 0.2f, 0.0f})[1], 0.7f * grey(0.2f), 4.0f);
+    }
+    // Around the cap, inside the box: the grey level alone; without the option the background.
+    for (const Vec3f p : {Vec3f(0.8f, -0.8f, 0.0f), Vec3f(-0.8f, -0.3f, 0.0f), Vec3f(0.3f, 0.8f, 0.0f)}) {
+        const uint8_t* q = at(around, p);
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(q[c], grey(p.x), 4.0f) << "x " << p.x << " channel " << c;
+        EXPECT_EQ(std::vector<uint8_t>(at(caps, p), at(caps, p) + 3),
+                  std::vector<uint8_t>(caps.rgba.begin(), caps.rgba.begin() + 3));
+    }
+    // The small cube behind the plane inside the box is hidden; the one beside the box is not.
+    const uint8_t* hidden_before = at(caps, {-0.7f, 0.6f, -0.45f});
+    EXPECT_GT(hidden_before[1], hidden_before[0] + 60);  // green
+    const uint8_t* hidden = at(around, {-0.7f, 0.6f, -0.45f});
+    const Vec3f eye = view.eye, on_plane = eye + (Vec3f(-0.7f, 0.6f, -0.45f) - eye) * (eye.z / (eye.z + 0.45f));
+    EXPECT_NEAR(hidden[0], grey(on_plane.x), 4.0f);  // the image where the eye's ray crosses the plane
+    EXPECT_NEAR(hidden[1], grey(on_plane.x), 4.0f);
+    const uint8_t* beside = at(around, {1.5f, 0.0f, -0.3f});
+    EXPECT_GT(beside[1], beside[0] + 60);
+    // Outside the box the plane shows nothing.
+    const uint8_t* outside = at(around, {1.25f, 0.8f, 0.0f});
+    EXPECT_EQ(std::vector<uint8_t>(outside, outside + 3),
+              std::vector<uint8_t>(caps.rgba.begin(), caps.rgba.begin() + 3));
+    expect_golden("cut_volume_around", around);
+    ASSERT_TRUE(r.set_cut_volume(nullptr).ok());
+    EXPECT_EQ(f.draw(view, {}, o).rgba, f.draw(view, {},
+                                               [&] {
+                                                   FrameOptions p = o;
+                                                   p.cut.volume_around = false;
+                                                   return p;
+                                               }())
+                                            .rgba);  // without a volume the option draws nothing
 }
