@@ -7,20 +7,6 @@
 
 namespace body::render {
 
-FlushPacer::~FlushPacer() {
-    if (previous_) glDeleteSync(previous_);
-}
-
-void FlushPacer::flush() {
-    GLsync fence = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
-    glFlush();
-    if (previous_) {
-        glClientWaitSync(previous_, 0, GL_TIMEOUT_IGNORED);
-        glDeleteSync(previous_);
-    }
-    previous_ = fence;
-}
-
 void set_matrices(Program& p, const Frame& f, const Model& m) {
     glm::mat4 mv = f.view * m.state.transform;
     glm::mat3 nm = glm::transpose(glm::inverse(glm::mat3(mv)));
@@ -73,11 +59,10 @@ void draw_element_range(const Frame& f, GLuint vao, size_t first, size_t count) 
                        reinterpret_cast<const void*>(first * sizeof(uint32_t)));
         return;
     }
-    FlushPacer pacer;
     for (size_t done = 0; done < count; done += chunk) {
         glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(std::min(chunk, count - done)), GL_UNSIGNED_INT,
                        reinterpret_cast<const void*>((first + done) * sizeof(uint32_t)));
-        pacer.flush();
+        f.pacer->flush();
     }
 }
 

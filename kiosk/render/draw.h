@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <glm/glm.hpp>
 
+#include "kiosk/render/flush_pacer.h"
 #include "kiosk/render/model.h"
 #include "kiosk/render/programs.h"
 #include "kiosk/render/renderer.h"
@@ -15,26 +16,10 @@ namespace body::render {
 
 // Software rasterizers (llvmpipe) bin every triangle of a frame before
 // rasterizing it and keep that memory: large draws are flushed every
-// kFlushTriangles, waiting for the scene before (FlushPacer), which bounds the
+// kFlushTriangles, waiting for the scene before (flush_pacer.h), which bounds the
 // bins to two scenes of that size (tilers on real GPUs would pay a tile
 // resolve per flush, so only software drivers do it; bench/RESULTS.md).
 inline constexpr size_t kFlushTriangles = 4 * 1024;
-
-// A flush alone lets the application run ahead of the rasterizer threads, and
-// every queued scene keeps its bins: how many depends on the machine's load.
-// Waiting for the scene before the last one keeps at most two in flight (one
-// binning, one rasterizing), so the working memory no longer depends on timing.
-class FlushPacer {
-public:
-    FlushPacer() = default;
-    FlushPacer(const FlushPacer&) = delete;
-    FlushPacer& operator=(const FlushPacer&) = delete;
-    ~FlushPacer();
-    void flush();
-
-private:
-    GLsync previous_ = nullptr;
-};
 
 struct Frame;
 // The cut plane's uniforms (kiosk/render/styles/cut_cap.cpp).
@@ -48,6 +33,7 @@ struct Frame {
     const Lighting* lighting;
     const FrameOptions* options;
     bool flush_large_draws = false;  // RendererState::flush_large_draws
+    FlushPacer* pacer = nullptr;     // RendererState::pacer: the flushes of large draws
     uint64_t serial = 0;             // RendererState::frame_serial: this frame's number, from 1
     // The view frustum's planes in world space (inside: dot(xyz, p) + w >= 0,
     // xyz of unit length), and pixels per world unit at view distance 1.

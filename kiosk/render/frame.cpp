@@ -58,6 +58,7 @@ Frame begin_frame(RendererState& s, const View& camera, const Lighting& lighting
     f.lighting = &lighting;
     f.options = &o;
     f.flush_large_draws = s.flush_large_draws;
+    f.pacer = &s.pacer;
     f.serial = ++s.frame_serial;
     // Gribb and Hartmann: the planes are the rows of P V added to or taken from its last row.
     const glm::mat4 pv = f.projection * f.view;

@@ -112,6 +112,7 @@ Status Renderer::init(const RendererOptions& options) {
 }
 
 void Renderer::shutdown() {
+    s_->pacer.release();
     for (auto& [id, m] : s_->models) free_model(m);
     s_->models.clear();
     shutdown_batches(s_->batches);

@@ -16,6 +16,7 @@
 #include "kiosk/render/image.h"
 #include "shared/atomic_file.h"
 #include "shared/obj_io.h"
+#include "tests/common/replay_fixture.h"
 #include "tests/common/test_dir.h"
 #include "tests/common/test_meshes.h"
 
@@ -24,57 +25,15 @@ namespace {
 
 namespace fs = std::filesystem;
 
-void write_sphere(const fs::path& path, float cx, float r) {
-    const Mesh sphere = test::uv_sphere(16, 2 * 16, Vec3(cx, 0.0, 0.0), r);
-    ASSERT_TRUE(write_obj(path.string(), std::span<const Mesh>(&sphere, 1)).ok());
-}
-
-// A replay writer: the panel's rows are 26 px high at 1280x800, their value boxes centred at x 284.
-struct Script {
-    std::ostringstream out;
-    double t = 0.2;
-    Script() { out << "size 1280 800\n"; }
-    void mouse(const char* what, float x, float y, const char* mods = "") {
-        out << t << " mouse-" << what << (std::string(what) == "move" ? "" : " left") << " " << x << " " << y << " "
-            << mods << "\n";
-        t += 0.02;
-    }
-    void click(float x, float y) {
-        mouse("down", x, y);
-        mouse("up", x, y);
-        t += 0.05;
-    }
-    void drag(float x0, float y0, float x1, float y1, const char* mods = "") {
-        mouse("down", x0, y0, mods);
-        for (int i = 1; i <= 5; ++i) mouse("move", x0 + (x1 - x0) * i / 5.0f, y0 + (y1 - y0) * i / 5.0f, mods);
-        mouse("up", x1, y1, mods);
-        t += 0.05;
-    }
-    void row(int index, float x = 284) { click(x, 26.0f * static_cast<float>(index) + 13.0f); }
-    void key(int k, const char* mods = "") {
-        out << t << " key " << k << " " << mods << "\n";
-        t += 0.05;
-    }
-    void type(const std::string& s) {
-        for (unsigned char c : s) out << t << " text " << static_cast<unsigned>(c) << "\n";
-        t += 0.05;
-    }
-    // Ends on the last event: the screenshot is the frame that event was handled in.
-    std::string done() {
-        out << (t - 0.05) << " end\n";
-        return out.str();
-    }
-};
-
 class AuthorFrames : public ::testing::Test {
 protected:
     fs::path dir;
     void SetUp() override {
         if (!fs::exists("/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf")) GTEST_SKIP() << "needs fonts-dejavu-core";
         dir = test::fresh_test_dir("body_author_frames");
-        write_sphere(dir / "a.obj", -1.5f, 0.8f);
-        write_sphere(dir / "b.obj", 1.5f, 0.8f);
-        write_sphere(dir / "c.obj", 0.0f, 0.5f);
+        test::write_sphere_obj(dir / "a.obj", -1.5f, 0.8f);
+        test::write_sphere_obj(dir / "b.obj", 1.5f, 0.8f);
+        test::write_sphere_obj(dir / "c.obj", 0.0f, 0.5f);
     }
     void TearDown() override {
         if (!dir.empty() && !HasFailure()) fs::remove_all(dir);
@@ -101,14 +60,14 @@ bool same(const uint8_t* a, const uint8_t* b) {
 // New scene rows: 3 "(no group)", 4 a, 5 b, 6 add model; with a selected 10 "Model: a", 14 colour, 18 style.
 // The view is centred 200 px right of the screen's centre: a at x ~ 700, c (added) at 840, b at ~ 980.
 TEST_F(AuthorFrames, AddRemoveColourAndStyleShowInTheFrameOfTheEdit) {
-    Script base;
+    test::AuthorScript base;
     base.row(4, 100);  // a selected, then not: every model in its own colour and style
     base.t -= 0.07;
     base.key(256);
     const render::Image before = run("before", base.done());
     ASSERT_GT(before.width, 0);
 
-    Script add;
+    test::AuthorScript add;
     add.row(4, 100);
     add.row(6);
     add.type((dir / "c.obj").string());
@@ -117,7 +76,7 @@ TEST_F(AuthorFrames, AddRemoveColourAndStyleShowInTheFrameOfTheEdit) {
     ASSERT_GT(added.width, 0);
     EXPECT_FALSE(same(before.at(840, 400), added.at(840, 400)));  // c is drawn in that frame
 
-    Script remove = Script();
+    test::AuthorScript remove;
     remove.row(4, 100);
     remove.row(6);
     remove.type((dir / "c.obj").string());
@@ -131,7 +90,7 @@ TEST_F(AuthorFrames, AddRemoveColourAndStyleShowInTheFrameOfTheEdit) {
     for (int x = 420; x < 840 && !ax; ++x)
         if (!same(before.at(x, 400), before.at(830, 400))) ax = x + 40;
     ASSERT_GT(ax, 0);
-    Script colour;
+    test::AuthorScript colour;
     colour.row(4, 100);
     colour.row(14);
     colour.key('A', "ctrl");
@@ -143,7 +102,7 @@ TEST_F(AuthorFrames, AddRemoveColourAndStyleShowInTheFrameOfTheEdit) {
     EXPECT_FALSE(same(before.at(ax, 400), green.at(ax, 400)));
     EXPECT_GT(green.at(ax, 400)[1], green.at(ax, 400)[0]);  // greener than red now
 
-    Script style;
+    test::AuthorScript style;
     style.row(4, 100);
     style.mouse("down", 284, 26 * 18 + 13);  // style: smooth -> wireframe, on the press
     style.t -= 0.02;
@@ -158,8 +117,8 @@ TEST_F(AuthorFrames, AddRemoveColourAndStyleShowInTheFrameOfTheEdit) {
 
 // One sphere a: a pin placed, packed, dragged; then rotate and scale on the manipulation sphere with Ctrl.
 TEST_F(AuthorFrames, PinDragArcballRotateRimScaleSnapAndPack) {
-    write_sphere(dir / "one.obj", 0.0f, 1.0f);
-    Script s;
+    test::write_sphere_obj(dir / "one.obj", 0.0f, 1.0f);
+    test::AuthorScript s;
     s.click(840, 400);  // selects the sphere, marks the point for Add pin
     // Rows: 3 "(no group)", 4 one, 5 add model, 6 buttons, 7 Tours, 8 Add tour, 9 "Model: one", ... 22 Add pin.
     s.row(22, 200);
@@ -205,7 +164,7 @@ TEST_F(AuthorFrames, StlOnTheCommandLineBecomesOneBpmInTheScenesModelsFolder) {
     auto e = test::run(test::bin("bodygen") + " export " + (dir / "ball.obj").string() + " -o " +
                        (dir / "ball.stl").string() + " --quiet");
     ASSERT_EQ(e.exit_code, 0) << e.output;
-    Script s;
+    test::AuthorScript s;
     s.key('S', "ctrl");
     std::ofstream(dir / "stl.replay") << s.done();
     auto r = test::run(test::bin("bodyview") + " --author " + (dir / "exhibit").string() + "/ " +

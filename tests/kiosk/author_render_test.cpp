@@ -17,6 +17,7 @@
 #include "kiosk/render/image.h"
 #include "shared/atomic_file.h"
 #include "shared/obj_io.h"
+#include "tests/common/replay_fixture.h"
 #include "tests/common/test_dir.h"
 #include "tests/common/test_meshes.h"
 
@@ -24,39 +25,6 @@ namespace body {
 namespace {
 
 namespace fs = std::filesystem;
-
-void write_sphere(const fs::path& path, float cx, float r) {
-    const Mesh sphere = test::uv_sphere(16, 2 * 16, Vec3(cx, 0.0, 0.0), r);
-    ASSERT_TRUE(write_obj(path.string(), std::span<const Mesh>(&sphere, 1)).ok());
-}
-
-// A replay writer: the panel's rows are 26 px high at 1280x800 (UI scale 1),
-// their value boxes centred at x 284 (kiosk/author/panel.cpp).
-struct Script {
-    std::ostringstream out;
-    double t = 0.2;
-    Script() { out << "size 1280 800\n"; }
-    void click(float x, float y) {
-        out << t << " mouse-down left " << x << " " << y << "\n"
-            << t + 0.02 << " mouse-up left " << x << " " << y << "\n";
-        t += 0.1;
-    }
-    void row(int index, float x = 284) { click(x, 26.0f * static_cast<float>(index) + 13.0f); }
-    void key(int k, const char* mods = "") {
-        out << t << " key " << k << " " << mods << "\n";
-        t += 0.05;
-    }
-    void type(const std::u32string& s) {
-        for (char32_t c : s) out << t << " text " << static_cast<unsigned>(c) << "\n";
-        t += 0.05;
-    }
-    void set(int index, const std::u32string& value) {
-        row(index);
-        key('A', "ctrl");
-        type(value);
-        key(265);  // Enter
-    }
-};
 
 double mismatch(const render::Image& a, const render::Image& b) {
     if (a.width != b.width || a.height != b.height) return 1.0;
@@ -74,11 +42,11 @@ double mismatch(const render::Image& a, const render::Image& b) {
 TEST(AuthorReplay, BuildEditSaveAndTheKioskShowsThePreview) {
     if (!fs::exists("/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf")) GTEST_SKIP() << "needs fonts-dejavu-core";
     const fs::path dir = test::fresh_test_dir("body_author_replay");
-    write_sphere(dir / "a.obj", -1.5f, 0.8f);
-    write_sphere(dir / "b.obj", 1.5f, 0.8f);
+    test::write_sphere_obj(dir / "a.obj", -1.5f, 0.8f);
+    test::write_sphere_obj(dir / "b.obj", 1.5f, 0.8f);
     const fs::path bundle = dir / "exhibit";
 
-    Script s;
+    test::AuthorScript s;
     // New scene: rows 3 "(no group)", 4 a, 5 b, 6 add model, 7 Add group | Remove, 8 "Tours", 9 Add tour, 10 "Model:
     // a", then name, file, group, colour, translate, rotate, scale, style, LOD, reset, title [en], description [en].
     s.row(4, 100);             // select a
@@ -161,8 +129,8 @@ TEST(AuthorReplay, GlfwWindowUnderXvfbSavesTheEdits) {
     if (!fs::exists("/usr/bin/xvfb-run")) GTEST_SKIP() << "needs xvfb (xvfb-run)";
     if (!fs::exists("/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf")) GTEST_SKIP() << "needs fonts-dejavu-core";
     const fs::path dir = test::fresh_test_dir("body_author_xvfb");
-    write_sphere(dir / "a.obj", 0.0f, 1.0f);
-    Script s;
+    test::write_sphere_obj(dir / "a.obj", 0.0f, 1.0f);
+    test::AuthorScript s;
     // a (rows: 3 "(no group)", 4 a, 5 add model, 6 buttons, 7 "Tours", 8 Add tour, 9 "Model: a", 10 name ...)
     s.row(4, 100);
     s.row(17);                      // style: smooth -> wireframe
@@ -187,8 +155,8 @@ TEST(AuthorReplay, GlfwWindowUnderXvfbSavesTheEdits) {
 TEST(AuthorReplay, PinAtTheClickedPointAndAStepFromTheView) {
     if (!fs::exists("/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf")) GTEST_SKIP() << "needs fonts-dejavu-core";
     const fs::path dir = test::fresh_test_dir("body_author_pins");
-    write_sphere(dir / "a.obj", 0.0f, 1.0f);
-    Script s;
+    test::write_sphere_obj(dir / "a.obj", 0.0f, 1.0f);
+    test::AuthorScript s;
     // The sphere fills the view's centre, 200 px right of the screen's (the panel is 400 px wide).
     s.click(840, 400);  // selects a and marks the point hit
     // Rows: 7 "Tours", 8 Add tour, 9 "Model: a", ... 20 title [en], 21 description [en], 22 Add pin.

@@ -16,6 +16,7 @@
 #include "shared/atomic_file.h"
 #include "shared/scene/scene_write.h"
 #include "tests/common/test_dir.h"
+#include "tests/kiosk/editor_events.h"
 
 namespace body::kiosk::author {
 namespace {
@@ -438,39 +439,9 @@ TEST(AuthorSchema, TheRoundTripSceneUsesEveryDocumentedKey) {
 
 // --- the editor driven by events, as the window feeds it ---------------------
 
-InputEvent key(int k, uint32_t mods = 0) {
-    InputEvent e;
-    e.type = InputEvent::Type::Key;
-    e.key = k;
-    e.pressed = true;
-    e.modifiers = mods;
-    return e;
-}
-
-void type(Editor& ed, const std::u32string& text) {
-    for (char32_t c : text) {
-        InputEvent e;
-        e.type = InputEvent::Type::Text;
-        e.key = static_cast<int>(c);
-        ed.handle(e);
-    }
-}
-
-// Clicks the middle of the value box of the field row called `label` (or the row itself).
-void click(Editor& ed, const std::string& label, uint32_t mods = 0) {
-    for (const PanelRow& r : ed.rows()) {
-        if (r.text != label) continue;
-        const Rect& b = r.kind == RowKind::Field ? r.value_rect : r.rect;
-        InputEvent e;
-        e.type = InputEvent::Type::MouseDown;
-        e.x = b.x + b.w * 0.5f;
-        e.y = b.y + b.h * 0.5f;
-        e.modifiers = mods;
-        EXPECT_TRUE(ed.handle(e)) << label;
-        return;
-    }
-    ADD_FAILURE() << "no panel row '" << label << "'";
-}
+using events::click;
+using events::key;
+using events::type;
 
 TEST(AuthorEditor, PanelEditsUndoRedoSaveAndAddRemove) {
     const fs::path dir = test::fresh_test_dir("body_author");

@@ -17,6 +17,7 @@
 #include "shared/atomic_file.h"
 #include "shared/scene/scene_write.h"
 #include "tests/common/test_dir.h"
+#include "tests/kiosk/editor_events.h"
 
 namespace body::kiosk::author {
 namespace {
@@ -26,27 +27,9 @@ using nlohmann::json;
 
 const char* kTetra = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
 
-InputEvent key(int k, uint32_t mods = 0) {
-    InputEvent e;
-    e.type = InputEvent::Type::Key;
-    e.key = k;
-    e.pressed = true;
-    e.modifiers = mods;
-    return e;
-}
-
-void click(Editor& ed, const std::string& label) {
-    for (const PanelRow& r : ed.rows()) {
-        if (r.text != label) continue;
-        InputEvent e;
-        e.type = InputEvent::Type::MouseDown;
-        e.x = r.rect.x + r.rect.w * 0.5f;
-        e.y = r.rect.y + r.rect.h * 0.5f;
-        EXPECT_TRUE(ed.handle(e)) << label;
-        return;
-    }
-    ADD_FAILURE() << "no panel row '" << label << "'";
-}
+using events::click;
+using events::key;
+using events::type;
 
 // A scene of two tetrahedra in DIR/work/ (scene.json not yet written) and two tours.
 Editor work_editor(const fs::path& dir) {

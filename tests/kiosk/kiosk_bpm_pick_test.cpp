@@ -11,6 +11,7 @@
 #include "../cli/cli_test.h"
 #include "kiosk/render/image.h"
 #include "shared/obj_io.h"
+#include "tests/common/replay_fixture.h"
 #include "tests/common/test_dir.h"
 #include "tests/common/test_meshes.h"
 
@@ -18,12 +19,6 @@ namespace body {
 namespace {
 
 namespace fs = std::filesystem;
-
-// A closed UV sphere (24 bands) centred at (cx, 0, 0), written as OBJ.
-void write_sphere(const fs::path& path, float cx, float r) {
-    const Mesh sphere = test::uv_sphere(24, 2 * 24, Vec3(cx, 0.0, 0.0), r);
-    ASSERT_TRUE(write_obj(path.string(), std::span<const Mesh>(&sphere, 1)).ok());
-}
 
 // Selection purple (transparent over the model): blue and red well above green.
 size_t purple(const render::Image& img, int x0, int y0, int x1, int y1) {
@@ -42,7 +37,7 @@ protected:
     void SetUp() override {
         dir_ = test::fresh_test_dir("body_kiosk_bpm_pick");
         for (const auto& [name, cx] : {std::pair{"a", -1.5f}, std::pair{"b", 1.5f}}) {
-            write_sphere(dir_ / (std::string(name) + ".obj"), cx, 0.8f);
+            test::write_sphere_obj(dir_ / (std::string(name) + ".obj"), cx, 0.8f, 24);
             const auto r = test::run(test::bin("bodygen") + " lod " + (dir_ / (std::string(name) + ".obj")).string() +
                                      " -o " + (dir_ / (std::string(name) + ".bpm")).string());
             ASSERT_EQ(r.exit_code, 0) << r.output;

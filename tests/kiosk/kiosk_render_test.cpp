@@ -10,6 +10,7 @@
 #include "../cli/cli_test.h"
 #include "kiosk/render/image.h"
 #include "shared/obj_io.h"
+#include "tests/common/replay_fixture.h"
 #include "tests/common/test_dir.h"
 #include "tests/common/test_meshes.h"
 
@@ -18,18 +19,12 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// A closed UV sphere (16 bands) centred at (cx, 0, 0), written as OBJ.
-void write_sphere(const fs::path& path, float cx, float r) {
-    const Mesh sphere = test::uv_sphere(16, 2 * 16, Vec3(cx, 0.0, 0.0), r);
-    ASSERT_TRUE(write_obj(path.string(), std::span<const Mesh>(&sphere, 1)).ok());
-}
-
 class KioskReplay : public ::testing::Test {
 protected:
     void SetUp() override {
         dir_ = test::fresh_test_dir("body_kiosk_replay");
-        write_sphere(dir_ / "a.obj", -1.5f, 0.8f);
-        write_sphere(dir_ / "b.obj", 1.5f, 0.8f);
+        test::write_sphere_obj(dir_ / "a.obj", -1.5f, 0.8f);
+        test::write_sphere_obj(dir_ / "b.obj", 1.5f, 0.8f);
         std::ofstream(dir_ / "broken.bpm", std::ios::binary) << std::string("BPM\0xx", 6);
         std::ofstream(dir_ / "scene.json") << R"({"models": [
             {"name": "a", "file": "a.obj", "group": "left", "colour": [0.2, 0.5, 0.9], "label": {"en": {"title": "Alpha sphere",

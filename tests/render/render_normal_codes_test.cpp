@@ -23,19 +23,8 @@ using test::RenderFixture;
 #define REQUIRE_GL(f) \
     if (!(f).ok()) GTEST_SKIP() << "no headless EGL: " << (f).why()
 
-// The .bpm writer's encoding (builder/lod/bpm_writer.cpp), for test meshes.
-void encode(const Vec3f& n, uint8_t out[2]) {
-    const float l1 = std::abs(n.x) + std::abs(n.y) + std::abs(n.z);
-    float x = n.x / l1, y = n.y / l1;
-    if (n.z < 0.0f) {
-        const float ox = (1.0f - std::abs(y)) * (x < 0.0f ? -1.0f : 1.0f);
-        const float oy = (1.0f - std::abs(x)) * (y < 0.0f ? -1.0f : 1.0f);
-        x = ox;
-        y = oy;
-    }
-    out[0] = static_cast<uint8_t>(std::clamp(std::nearbyint((x * 0.5f + 0.5f) * 255.0f), 0.0f, 255.0f));
-    out[1] = static_cast<uint8_t>(std::clamp(std::nearbyint((y * 0.5f + 0.5f) * 255.0f), 0.0f, 255.0f));
-}
+// The .bpm writer's 8:8 octahedral code of a unit vector.
+void encode(const Vec3f& n, uint8_t out[2]) { pm::oct_encode8(n.x, n.y, n.z, out); }
 
 GLuint compile(GLenum type, const char* src) {
     const GLuint s = glCreateShader(type);

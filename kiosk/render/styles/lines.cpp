@@ -144,14 +144,13 @@ void draw_edge_quads(const Frame& f, Program& p, GLuint quad_vao, size_t edges) 
     glBindVertexArray(quad_vao);
     const GLint base = p.loc("u_vertex_base");
     size_t since_flush = 0;
-    FlushPacer pacer;
     for (size_t first = 0; first < edges; first += kQuadEdges) {
         const size_t n = std::min(kQuadEdges, edges - first);
         glUniform1i(base, static_cast<GLint>(first * 4));
         glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(n * 3), GL_UNSIGNED_SHORT, nullptr);
         since_flush += n;
         if (f.flush_large_draws && since_flush >= kFlushTriangles) {
-            pacer.flush();  // bounds the software rasterizer's bins (see kFlushTriangles)
+            f.pacer->flush();  // bounds the software rasterizer's bins (see kFlushTriangles)
             since_flush = 0;
         }
     }

@@ -81,14 +81,13 @@ void draw_wire_chunks(const Frame& f, GLuint vao, GLuint index_buffer, size_t ve
     glBindVertexArray(vao);
     glBindBuffer(GL_ARRAY_BUFFER, index_buffer);
     size_t since_flush = 0;
-    FlushPacer pacer;
     for (size_t first = 0; first < vertices; first += kVertexIdChunk) {
         glVertexAttribIPointer(kWireVertex, 1, GL_UNSIGNED_INT, sizeof(uint32_t),
                                reinterpret_cast<const void*>(first * sizeof(uint32_t)));
         glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(std::min(kVertexIdChunk, vertices - first)));
         since_flush += kVertexIdChunk / 3;
         if (f.flush_large_draws && since_flush >= kFlushTriangles) {
-            pacer.flush();  // bounds the software rasterizer's bins (see kFlushTriangles)
+            f.pacer->flush();  // bounds the software rasterizer's bins (see kFlushTriangles)
             since_flush = 0;
         }
     }
