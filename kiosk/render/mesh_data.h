@@ -29,8 +29,9 @@ struct MeshData {
     size_t index_count = SIZE_MAX;   // SIZE_MAX: indices.size()
     // add_model only: the arrays are written up to vertex_count/index_count and
     // the rest is capacity for later update_model calls (a progressive mesh
-    // still streaming). Buffers are sized to the arrays but only the counted
-    // prefix is read and uploaded. False: the whole arrays are uploaded.
+    // still streaming). Only the counted prefix is read and uploaded, and the
+    // buffers hold it, growing up to the arrays' size with later updates
+    // (buffer_growth.h). False: the whole arrays are uploaded.
     bool prefix_only = false;
     // Optional box holding every position and morph source the model will
     // have (a progressive mesh's bounds). The renderer keeps positions as

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "kiosk/render/buffer_access.h"
+#include "kiosk/render/buffer_growth.h"
 #include "kiosk/render/data_textures.h"
 #include "kiosk/render/gl_formats.h"
 #include "kiosk/render/gl_util.h"
@@ -175,14 +176,6 @@ void upload_positions(const Model& m, const PositionView& src, size_t begin, siz
     }
 }
 
-// The position (or morph) attribute of the model's format, from the buffer bound.
-void position_pointer(const Model& m, GLuint location) {
-    if (m.quantized)
-        glVertexAttribPointer(location, 3, GL_UNSIGNED_SHORT, GL_FALSE, 6, nullptr);
-    else
-        glVertexAttribPointer(location, 3, GL_FLOAT, GL_FALSE, sizeof(Vec3f), nullptr);
-}
-
 // Object-space box and bounding sphere of the drawn vertices.
 void set_bounds(Model& m, const Aabb& box) {
     m.center = Vec3f((box.min + box.max) * 0.5);
@@ -219,7 +212,7 @@ void to_float_positions(Model& m, const MeshData& mesh, size_t count) {
                                      ? PositionView(mesh.morph_sources)
                                      : PositionView(mesh);
         glBindBuffer(GL_ARRAY_BUFFER, buffer);
-        glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(m.vertex_capacity * sizeof(Vec3f)), nullptr,
+        glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(m.vertex_allocated * sizeof(Vec3f)), nullptr,
                      GL_DYNAMIC_DRAW);
         upload_positions(m, src, 0, count);
         position_pointer(m, location);
@@ -334,7 +327,7 @@ void choose_position_format(Model& m, const MeshData& mesh, const PositionView& 
 bool upload_element_buffer(Model& m, const MeshData& mesh, const UploadPlan& u) {
     glGenBuffers(1, &m.ebo);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m.ebo);
-    glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(m.index_capacity * 4), nullptr, GL_DYNAMIC_DRAW);
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(m.index_allocated * 4), nullptr, GL_DYNAMIC_DRAW);
     bool fill_failed = false;
     if (u.filled) {
         MappedRange out(*m.transfers, m.ebo, 0, m.index_capacity * 4, GL_MAP_WRITE_BIT | GL_MAP_INVALIDATE_BUFFER_BIT);
@@ -359,16 +352,10 @@ void upload_normal_buffer(Model& m, const MeshData& mesh, const PositionView& po
     m.normal_codes = !mesh.normal_codes.empty();
     glGenBuffers(1, &m.vbo_normal);
     glBindBuffer(GL_ARRAY_BUFFER, m.vbo_normal);
-    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(m.vertex_capacity * m.normal_stride()), nullptr,
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(m.vertex_allocated * m.normal_stride()), nullptr,
                  GL_DYNAMIC_DRAW);
     upload_normals(m, normals, mesh.normal_codes, 0, vupload);
-    if (m.normal_codes) {
-        glVertexAttribPointer(kNormalCode, 2, GL_UNSIGNED_BYTE, GL_FALSE, 2, nullptr);
-        glEnableVertexAttribArray(kNormalCode);
-    } else {
-        glVertexAttribPointer(kNormal, 4, GL_INT_2_10_10_10_REV, GL_TRUE, 4, nullptr);
-        glEnableVertexAttribArray(kNormal);
-    }
+    normal_pointer(m);
     release_scratch(computed);
 }
 
@@ -378,7 +365,7 @@ GLuint upload_position_buffer(const Model& m, const PositionView& src, size_t vu
     GLuint buffer = 0;
     glGenBuffers(1, &buffer);
     glBindBuffer(GL_ARRAY_BUFFER, buffer);
-    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(m.vertex_capacity * m.position_stride()), nullptr,
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(m.vertex_allocated * m.position_stride()), nullptr,
                  GL_DYNAMIC_DRAW);
     upload_positions(m, src, 0, vupload);
     position_pointer(m, location);
@@ -421,6 +408,9 @@ Result<ModelId> Renderer::add_model(const MeshData& mesh, const std::string& nam
     m.transfers = &s_->transfers;
     m.vertex_capacity = pos.size();
     m.index_capacity = u.isize;
+    // A streaming source's buffers hold what is written; they grow with later updates (buffer_growth.h).
+    m.vertex_allocated = std::max<size_t>(u.vupload, 1);
+    m.index_allocated = u.filled ? u.isize : std::max<size_t>(u.iupload, 3);
     m.vertex_count = u.vcount;
     m.index_count = u.icount - u.icount % 3;
     set_bounds(m, pos, u.vcount);
@@ -465,6 +455,8 @@ Status Renderer::update_model(ModelId id, const MeshData& mesh, const Dirty& dir
         for (size_t i = dirty.index_begin; i < dirty.index_end; ++i)
             if (mesh.indices[i] >= pos.size())
                 return input_error(m.name + ": index " + std::to_string(i) + " out of range");
+    reserve_vertices(m, std::max({vcount, dirty.vertex_end, vpatched ? mesh.position_patch_end : 0}));
+    reserve_indices(m, std::max({icount, dirty.index_end, patched ? mesh.index_patch_end : 0}));
     const bool vertex_patched = vpatched && mesh.position_patch_begin < mesh.position_patch_end;
     if (vertex_patched) {
         // Codes: 3 x 16 bits a vertex (the buffer's layout, Model::quantized).
@@ -507,10 +499,11 @@ Status Renderer::update_model(ModelId id, const MeshData& mesh, const Dirty& dir
 Status Renderer::set_morph_sources(ModelId id, size_t begin, std::span<const Vec3f> sources) {
     auto it = s_->models.find(id);
     if (it == s_->models.end()) return input_error("set_morph_sources: unknown model " + std::to_string(id));
-    const Model& m = it->second;
+    Model& m = it->second;
     if (!m.vbo_morph || begin + sources.size() > m.vertex_capacity)
         return input_error(m.name + ": morph sources outside the uploaded capacity (or none uploaded)");
     if (sources.empty()) return ok_status();
+    reserve_vertices(m, begin + sources.size());
     glBindBuffer(GL_ARRAY_BUFFER, m.vbo_morph);
     // Quantized: clamped to the box (a progressive mesh's parents lie in it).
     upload_positions(m, PositionView(sources, begin), begin, begin + sources.size());

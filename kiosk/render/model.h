@@ -31,6 +31,8 @@ struct Model {
     Vec3f pos_origin{0.0f}, pos_scale{1.0f};
     size_t position_stride() const { return quantized ? 6 : sizeof(Vec3f); }
     size_t vertex_capacity = 0, index_capacity = 0;
+    // What the GL buffers hold now (<= the capacities; kiosk/render/buffer_growth.h).
+    size_t vertex_allocated = 0, index_allocated = 0;
     size_t vertex_count = 0, index_count = 0;
     Vec3f center{0.0f};
     float radius = 0.0f;

@@ -218,8 +218,8 @@ size_t Renderer::gpu_bytes() const {
     size_t total = 0;
     constexpr size_t w = kTextureWidth;
     for (const auto& [id, m] : s_->models) {
-        total += m.vertex_capacity * (m.position_stride() + m.normal_stride()) + m.index_capacity * 4;
-        if (m.vbo_morph) total += m.vertex_capacity * m.position_stride();
+        total += m.vertex_allocated * (m.position_stride() + m.normal_stride()) + m.index_allocated * 4;
+        if (m.vbo_morph) total += m.vertex_allocated * m.position_stride();
         if (m.position_texture) total += (m.vertex_capacity + w - 1) / w * w * 6;
         if (m.edge_texture) total += (m.edge_capacity + w - 1) / w * w * sizeof(GpuEdge);
     }
@@ -231,7 +231,7 @@ size_t Renderer::gpu_bytes() const {
 bool Renderer::read_indices(ModelId id, size_t count,
                             const std::function<void(std::span<const uint32_t>)>& read) const {
     auto it = s_->models.find(id);
-    if (it == s_->models.end() || count > it->second.index_capacity) return false;
+    if (it == s_->models.end() || count > it->second.index_allocated) return false;
     if (count == 0) {
         read({});
         return true;

@@ -12,8 +12,9 @@
 //   r.state(id)->style = Style::Hatching;
 //   r.render(view, lighting, frame);  surface->present();
 //
-// Models: positions/normals/indices are copied into GL buffers sized once to
-// the given arrays (their capacity; see MeshData), then patched with update_model()
+// Models: positions/normals/indices are copied into GL buffers that hold what
+// is written and grow up to the given arrays (their capacity; see MeshData and
+// buffer_growth.h), then patched with update_model()
 // and the dirty ranges of a progressive mesh (shared/pm), drawing the current
 // prefixes vertex_count/index_count. Units are object space; ModelState::transform
 // places a model in the world. The renderer keeps no CPU copy of the mesh: the

@@ -2,6 +2,9 @@
 #include "kiosk/scene/decode_pool.h"
 
 #include <pthread.h>
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
 
 #include <algorithm>
 
@@ -83,10 +86,30 @@ void DecodePool::run() {
     std::unique_lock guard(mutex_);
     for (;;) {
         Entry* e = nullptr;
-        work_.wait(guard, [&] { return stop_ || (e = next()) != nullptr; });
+        work_.wait(guard, [&] {
+            if (stop_ || (e = next()) != nullptr) return true;
+            if (finished_since_trim_ == 0) return false;
+            finished_since_trim_ = 0;  // idle after finishing tasks: their freed memory back now
+            guard.unlock();
+            trim_freed_memory();
+            guard.lock();
+            return stop_ || (e = next()) != nullptr;
+        });
         if (stop_) return;
         step(e->task, buffer, guard);
+        if (finished_since_trim_ >= kTrimEvery) {
+            finished_since_trim_ = 0;
+            guard.unlock();
+            trim_freed_memory();
+            guard.lock();
+        }
     }
+}
+
+void DecodePool::trim_freed_memory() {
+#ifdef __GLIBC__
+    malloc_trim(0);
+#endif
 }
 
 // Under the lock, on an entry not busy: steps it with the lock released.
@@ -99,6 +122,7 @@ void DecodePool::step(DecodeTask* task, std::vector<uint8_t>& buffer, std::uniqu
     Entry* e = find(task);
     e->busy = false;
     e->need = need;
+    if (need == DecodeNeed::Done) ++finished_since_trim_;
     idle_.notify_all();
 }
 
