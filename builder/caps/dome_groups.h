@@ -12,6 +12,7 @@
 // triangle strictly counter-clockwise). A group of k triangles gives k + 2
 // triangles instead of 3k.
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -30,5 +31,18 @@ struct DomeGroup {
 // `cycles` (cleared first).
 void dome_groups(std::span<const Vec2> at, std::span<const uint32_t> triangles, std::vector<DomeGroup>& groups,
                  std::vector<uint32_t>& cycles);
+
+// The lifted groups: each group a fan around its apex, and every group edge
+// that is not on the region's boundary split at its midpoint (shared by the
+// two groups on it), so that no chord of the flat triangulation stays at the
+// boundary's height across the region (a dome over a disc would otherwise keep
+// its diameters flat). `at` holds the loops concatenated, `loop_sizes` their
+// sizes; `ids[i]` is the mesh vertex of at[i]. `lift` gives the 3-D point of
+// an apex or midpoint; new vertices are appended to `positions`. `emit`
+// receives each triangle counter-clockwise seen from +z.
+void lift_groups(std::span<const Vec2> at, std::span<const size_t> loop_sizes, std::span<const DomeGroup> groups,
+                 std::span<const uint32_t> cycles, std::span<const uint32_t> ids,
+                 const std::function<Vec3(const Vec2&)>& lift, std::vector<Vec3>& positions,
+                 const std::function<void(uint32_t, uint32_t, uint32_t)>& emit);
 
 }  // namespace body
