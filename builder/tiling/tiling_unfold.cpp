@@ -38,16 +38,7 @@ struct Scratch {
     std::vector<Vec3> positions;  // lower then upper
     std::vector<uint32_t> triangles;
     std::vector<std::pair<uint32_t, uint32_t>> pairs;
-    size_t counts_left = 0;  // exact counts this band may still make (kCountBudget)
 };
-
-// Exact counts one band's repair may make. Each is O(band) or worse on a
-// folded band, and the greedy search makes up to crossings x candidates of
-// them: a band folded through itself at thousands of pairs (hundreds of
-// concentric rings under one hull) took minutes. A band still crossing when the
-// budget is spent is returned as it stands; the branch cascade then tries its
-// next construction. Ordinary folds need a few hundred counts at most.
-constexpr size_t kCountBudget = 2048;
 
 // Bands up to this many triangles skip the section test: the exact test is
 // cheap enough for them.
@@ -143,7 +134,6 @@ bool sections_cross(const CyclicTiling& tiling, SectionGrid& g) {
 
 // Phase 1: the crossing triangle pairs of the band as it stands.
 size_t crossings(const CyclicTiling& tiling, Scratch& s, bool want_pairs) {
-    if (s.counts_left > 0) --s.counts_left;
     s.triangles.clear();
     tiling.emit(s.triangles);
     s.pairs.clear();
@@ -182,7 +172,6 @@ bool flip_pair(CyclicTiling& tiling, Scratch& s, const std::vector<uint32_t>& fl
             for (size_t q = 0; q < tiling.size(); ++q) {
                 if (q == p || !tiling.flippable(q)) continue;
                 tiling.flip(q);
-                if (s.counts_left == 0) return false;
                 if (keeps_runs(tiling, q) && crossings(tiling, s, false) < current) return true;
                 tiling.flip(q);
             }
@@ -199,19 +188,18 @@ size_t unfold(CyclicTiling& tiling) {
         if (!sections_cross(tiling, grid)) return 0;
     }
     Scratch s;
-    s.counts_left = kCountBudget;
     s.positions.assign(tiling.band->lower.begin(), tiling.band->lower.end());
     s.positions.insert(s.positions.end(), tiling.band->upper.begin(), tiling.band->upper.end());
     size_t current = crossings(tiling, s, true);
     if (current == 0) return 0;
     std::vector<uint32_t> flips;
     // Each accepted flip removes at least one crossing: at most `current` rounds.
-    for (size_t round = 0, limit = current; round < limit && current > 0 && s.counts_left > 0; ++round) {
+    for (size_t round = 0, limit = current; round < limit && current > 0; ++round) {
         candidates(tiling, s, flips);
         size_t best_count = current, best_flip = tiling.size();
         Cost best_cost = tiling.total();
         for (uint32_t p : flips) {
-            if (!tiling.flippable(p) || s.counts_left == 0) continue;
+            if (!tiling.flippable(p)) continue;
             tiling.flip(p);
             if (keeps_runs(tiling, p)) {
                 const size_t count = crossings(tiling, s, false);
