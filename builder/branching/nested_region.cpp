@@ -21,8 +21,8 @@ std::vector<uint32_t> wall(StructureSurface& surface, std::span<const Vec2> xy, 
     return copy;
 }
 
-// The region's height field: one apex per group of its triangles and one
-// point on each chord between groups (dome_groups.h). A point at distance d_o from
+// The region's height field: one apex per group of its triangles
+// (dome_groups.h), each group a fan around it. An apex at distance d_o from
 // the outer ring and d_i from the inner loops sits at the fraction
 // d_o / (d_o + d_i) of the way from the outer wall's top to the inner walls'
 // foot: where the linear blend of the two slices' signed distances is zero
@@ -43,14 +43,12 @@ void lift_region(StructureSurface& surface, std::span<const std::span<const Vec2
         else
             surface.triangles.insert(surface.triangles.end(), {a, c, b});
     };
-    std::vector<size_t> loop_sizes;
-    for (const auto& loop : region) loop_sizes.push_back(loop.size());
     const auto lift = [&](const Vec2& p) {
         const double d_o = to_outer(p), d_i = to_inner(p);
         const double t = d_o + d_i > 0 ? d_o / (d_o + d_i) : 0.5;
         return Vec3(p, z_a + (z_b - z_a) * t);
     };
-    lift_groups(flat, loop_sizes, groups, cycles, ids, lift, surface.positions, emit);
+    lift_groups(groups, cycles, ids, lift, surface.positions, emit);
 }
 
 Status branch_region(StructureSurface& surface, size_t ss, uint32_t single, size_t bs,

@@ -1,7 +1,6 @@
 #include "builder/caps/dome_groups.h"
 
 #include <algorithm>
-#include <unordered_map>
 
 namespace body {
 namespace {
@@ -95,38 +94,14 @@ void dome_groups(std::span<const Vec2> at, std::span<const uint32_t> triangles, 
     close();
 }
 
-void lift_groups(std::span<const Vec2> at, std::span<const size_t> loop_sizes, std::span<const DomeGroup> groups,
-                 std::span<const uint32_t> cycles, std::span<const uint32_t> ids,
+void lift_groups(std::span<const DomeGroup> groups, std::span<const uint32_t> cycles, std::span<const uint32_t> ids,
                  const std::function<Vec3(const Vec2&)>& lift, std::vector<Vec3>& positions,
                  const std::function<void(uint32_t, uint32_t, uint32_t)>& emit) {
-    // Boundary edges join neighbours on one loop.
-    std::vector<uint32_t> loop_first(at.size()), loop_size(at.size());
-    for (size_t k = 0, first = 0; k < loop_sizes.size(); first += loop_sizes[k], ++k)
-        for (size_t i = 0; i < loop_sizes[k]; ++i)
-            loop_first[first + i] = uint32_t(first), loop_size[first + i] = uint32_t(loop_sizes[k]);
-    auto on_boundary = [&](uint32_t a, uint32_t b) {
-        if (loop_first[a] != loop_first[b]) return false;
-        const uint32_t n = loop_size[a], i = a - loop_first[a], j = b - loop_first[a];
-        return (i + 1) % n == j || (j + 1) % n == i;
-    };
-    std::unordered_map<uint64_t, uint32_t> middle;
-    auto midpoint = [&](uint32_t a, uint32_t b) {
-        const uint64_t key = uint64_t(std::min(a, b)) << 32 | std::max(a, b);
-        auto [it, added] = middle.try_emplace(key, uint32_t(positions.size()));
-        if (added) positions.push_back(lift(0.5 * (at[a] + at[b])));
-        return it->second;
-    };
-    std::vector<uint32_t> ring;
     for (const DomeGroup& g : groups) {
-        ring.clear();
-        for (uint32_t i = 0; i < g.count; ++i) {
-            const uint32_t a = cycles[g.first + i], b = cycles[g.first + (i + 1) % g.count];
-            ring.push_back(ids[a]);
-            if (!on_boundary(a, b)) ring.push_back(midpoint(a, b));
-        }
         const uint32_t apex = uint32_t(positions.size());
         positions.push_back(lift(g.apex));
-        for (size_t i = 0; i < ring.size(); ++i) emit(ring[i], ring[(i + 1) % ring.size()], apex);
+        for (uint32_t i = 0; i < g.count; ++i)
+            emit(ids[cycles[g.first + i]], ids[cycles[g.first + (i + 1) % g.count]], apex);
     }
 }
 

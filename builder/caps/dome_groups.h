@@ -32,16 +32,13 @@ struct DomeGroup {
 void dome_groups(std::span<const Vec2> at, std::span<const uint32_t> triangles, std::vector<DomeGroup>& groups,
                  std::vector<uint32_t>& cycles);
 
-// The lifted groups: each group a fan around its apex, and every group edge
-// that is not on the region's boundary split at its midpoint (shared by the
-// two groups on it), so that no chord of the flat triangulation stays at the
-// boundary's height across the region (a dome over a disc would otherwise keep
-// its diameters flat). `at` holds the loops concatenated, `loop_sizes` their
-// sizes; `ids[i]` is the mesh vertex of at[i]. `lift` gives the 3-D point of
-// an apex or midpoint; new vertices are appended to `positions`. `emit`
-// receives each triangle counter-clockwise seen from +z.
-void lift_groups(std::span<const Vec2> at, std::span<const size_t> loop_sizes, std::span<const DomeGroup> groups,
-                 std::span<const uint32_t> cycles, std::span<const uint32_t> ids,
+// The lifted groups: each group a fan around its apex, lifted by `lift` (the
+// 3-D point of an apex) and appended to `positions`; `ids[i]` is the mesh
+// vertex of the region's i-th point. `emit` receives each triangle
+// counter-clockwise seen from +z. Chords between groups stay on the boundary's
+// height (splitting them at lifted midpoints was tried: it broke the AAL
+// smoothing and bunny LOD tests, bench/RESULTS.md).
+void lift_groups(std::span<const DomeGroup> groups, std::span<const uint32_t> cycles, std::span<const uint32_t> ids,
                  const std::function<Vec3(const Vec2&)>& lift, std::vector<Vec3>& positions,
                  const std::function<void(uint32_t, uint32_t, uint32_t)>& emit);
 

@@ -341,14 +341,12 @@ Status build_cap(std::span<const std::span<const Vec2>> loops, std::span<const s
         dist[g] = distance(groups[g].apex);
         dmax = std::max(dmax, dist[g]);
     }
-    std::vector<size_t> loop_sizes;
-    for (const auto& loop : loops) loop_sizes.push_back(loop.size());
     const auto lift = [&](const Vec2& p) {
         const double u = dmax > 0 ? std::min(1.0, distance(p) / dmax) : 0.0;
         const double h = dome_height * (tip ? u * (2 - u) : std::sqrt(u));
         return Vec3(p, z + (up ? h : -h));
     };
-    lift_groups(flat, loop_sizes, groups, cycles, global, lift, positions, emit);
+    lift_groups(groups, cycles, global, lift, positions, emit);
     return ok_status();
 }
 

@@ -78,24 +78,17 @@ void expect_height_field_over(const Cap& cap, const std::vector<std::vector<Vec2
     EXPECT_EQ(open, loop_points);
 }
 
-// One apex per flat triangle and one point on each chord of the flat
-// triangulation (its edges off the boundary), so no chord stays flat.
-TEST(DomeCap, SmallCapHasOneApexPerFlatTriangleAndOnePointPerChord) {
+TEST(DomeCap, SmallCapHasOneApexPerFlatTriangle) {
     const std::vector<std::vector<Vec2>> loops{circle(0, 0, 10, 40), circle(3, 0, 2, 12)};
     const Cap flat = make_cap(loops, CapStyle::Flat, true, 1.0);
     const Cap dome = make_cap(loops, CapStyle::Dome, true, 1.0);
-    const size_t faces = flat.triangles.size() / 3, chords = (3 * faces - 52) / 2;
-    EXPECT_EQ(dome.triangles.size() / 3, 3 * faces + 2 * chords);
-    EXPECT_EQ(dome.positions.size() - dome.rim, faces + chords);
-    for (size_t i = dome.rim; i < dome.positions.size(); ++i) EXPECT_GT(dome.positions[i].z, 1.0);
-    expect_height_field_over(
-        dome, loops, true,
-        (std::abs(signed_area2(loops[0].data(), 40)) - std::abs(signed_area2(loops[1].data(), 12))) / 2);
+    EXPECT_EQ(dome.triangles.size(), 3 * flat.triangles.size());
+    EXPECT_EQ(dome.positions.size() - dome.rim, flat.triangles.size() / 3);
 }
 
-// 20,000 + 6,000 points: the dome stays within twice the flat cap's
-// triangles (one apex per one to seven of them here, one point per chord between groups), still rises to its height,
-// and is a height field over the region (facing up and facing down).
+// 20,000 + 6,000 points: the dome stays within 1.5x the flat cap's
+// triangles (one apex per one to seven of them here), still rises to its height, and is a height field over the
+// region (facing up and facing down).
 TEST(DomeCap, LargeCapNearTheFlatCapsSize) {
     const std::vector<std::vector<Vec2>> loops{wavy_ring(100, 3, 20000, false), wavy_ring(40, 2, 6000, true)};
     const double area = (std::abs(signed_area2(loops[0].data(), loops[0].size())) -
@@ -106,10 +99,8 @@ TEST(DomeCap, LargeCapNearTheFlatCapsSize) {
         const Cap dome = make_cap(loops, CapStyle::Dome, up, 2.0);
         const size_t flat_count = flat.triangles.size() / 3, count = dome.triangles.size() / 3;
         const size_t apexes = dome.positions.size() - dome.rim;
-        // A group of k flat triangles is a fan of k + 2, plus one for each
-        // point on its chords (each shared by two groups).
-        EXPECT_EQ(count, flat_count + 2 * apexes);
-        EXPECT_LT(double(count), 2.0 * double(flat_count));
+        EXPECT_EQ(count, flat_count + 2 * apexes);  // a group of k flat triangles is a fan of k + 2
+        EXPECT_LT(double(count), 1.5 * double(flat_count));
         EXPECT_GE(apexes, flat_count / 16);
         EXPECT_GE(apexes, kDomeSamples / 2);
         double highest = 0;
