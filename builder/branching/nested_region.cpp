@@ -1,7 +1,9 @@
 // Nested-region branching: a height field between two sets of short walls.
 #include "builder/branching/nested_region.h"
 
+#include "builder/caps/boundary_distance.h"
 #include "builder/caps/caps.h"
+#include "builder/caps/dome_groups.h"
 #include "builder/contours/validate.h"
 
 namespace body {
@@ -17,6 +19,36 @@ std::vector<uint32_t> wall(StructureSurface& surface, std::span<const Vec2> xy, 
     else
         prism(surface, copy, ids);
     return copy;
+}
+
+// The region's height field: one apex per group of its triangles
+// (dome_groups.h), each group a fan around it. An apex at distance d_o from
+// the outer ring and d_i from the inner loops sits at the fraction
+// d_o / (d_o + d_i) of the way from the outer wall's top to the inner walls'
+// foot: where the linear blend of the two slices' signed distances is zero
+// (shape-based interpolation), so the region rises towards the loop it is
+// nearer to instead of staying flat over triangles of one loop.
+void lift_region(StructureSurface& surface, std::span<const std::span<const Vec2>> region,
+                 std::span<const uint32_t> ids, double z_a, double z_b, std::span<const uint32_t> local, bool face_up) {
+    std::vector<Vec2> flat;
+    for (const auto& loop : region) flat.insert(flat.end(), loop.begin(), loop.end());
+    std::vector<DomeGroup> groups;
+    std::vector<uint32_t> cycles;
+    dome_groups(flat, local, groups, cycles);
+    if (region.size() < 2) return;  // callers always pass inner loops
+    const BoundaryDistance to_outer(region.first(1)), to_inner(region.subspan(1));
+    auto emit = [&](uint32_t a, uint32_t b, uint32_t c) {
+        if (face_up)
+            surface.triangles.insert(surface.triangles.end(), {a, b, c});
+        else
+            surface.triangles.insert(surface.triangles.end(), {a, c, b});
+    };
+    const auto lift = [&](const Vec2& p) {
+        const double d_o = to_outer(p), d_i = to_inner(p);
+        const double t = d_o + d_i > 0 ? d_o / (d_o + d_i) : 0.5;
+        return Vec3(p, z_a + (z_b - z_a) * t);
+    };
+    lift_groups(groups, cycles, ids, lift, surface.positions, emit);
 }
 
 Status branch_region(StructureSurface& surface, size_t ss, uint32_t single, size_t bs,
@@ -47,13 +79,7 @@ Status nested_region(StructureSurface& surface, std::span<const Vec2> outer_xy, 
     // Triangles come out counter-clockwise from +z: right for the roof over a
     // solid that narrows upwards; the floor (outer above) and holes face the other way.
     const bool face_up = outer_below != hole;
-    for (size_t t = 0; t < local.size(); t += 3) {
-        const uint32_t a = ids[local[t]], b = ids[local[t + 1]], c = ids[local[t + 2]];
-        if (face_up)
-            surface.triangles.insert(surface.triangles.end(), {a, b, c});
-        else
-            surface.triangles.insert(surface.triangles.end(), {a, c, b});
-    }
+    lift_region(surface, region, ids, z_a, z_b, local, face_up);
     return ok_status();
 }
 

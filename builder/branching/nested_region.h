@@ -2,8 +2,10 @@
 // Nested-region branching: when the branches on one slice lie inside the
 // single loop on the other, the single loop rises as a vertical wall, the
 // branches drop as vertical walls, and the planar region between them (outer
-// minus branches) is triangulated and lifted linearly between the walls: a
-// height field over a planar triangulation, so it cannot fold or cross itself.
+// minus branches) is triangulated and lifted between the walls, each group of
+// its triangles a fan around an apex whose height follows the apex's distances
+// to the outer and inner loops (shape-based interpolation): a height field
+// over a planar subdivision, so it cannot fold or cross itself.
 // The union-ring and hull constructions use the same region around a
 // mid-slice ring.
 #include <cstdint>

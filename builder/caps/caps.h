@@ -35,9 +35,12 @@ Status triangulate_polygon_with_holes(std::span<const std::span<const Vec2>> loo
 // faces when `dome_height` > 0 (a solid going on past its last slice), on the
 // other side when < 0 (a hole whose void goes on past it: the cap faces into
 // the void, the dome bulges into the solid). Triangles (global ids) are
-// appended to `triangles`.
+// appended to `triangles`. The dome rises as sqrt(u), u the distance to the
+// boundary over its largest value (steep at the rim: a wall that ends flat),
+// or with `tip` as u (2 - u) (a paraboloid over a disc: an end whose
+// cross-section shrinks linearly to a point, end_height.h).
 Status build_cap(std::span<const std::span<const Vec2>> loops, std::span<const std::span<const uint32_t>> ids, double z,
                  bool up, CapStyle style, double dome_height, std::vector<Vec3>& positions,
-                 std::vector<uint32_t>& triangles);
+                 std::vector<uint32_t>& triangles, bool tip = false);
 
 }  // namespace body

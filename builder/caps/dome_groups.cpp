@@ -94,4 +94,15 @@ void dome_groups(std::span<const Vec2> at, std::span<const uint32_t> triangles, 
     close();
 }
 
+void lift_groups(std::span<const DomeGroup> groups, std::span<const uint32_t> cycles, std::span<const uint32_t> ids,
+                 const std::function<Vec3(const Vec2&)>& lift, std::vector<Vec3>& positions,
+                 const std::function<void(uint32_t, uint32_t, uint32_t)>& emit) {
+    for (const DomeGroup& g : groups) {
+        const uint32_t apex = uint32_t(positions.size());
+        positions.push_back(lift(g.apex));
+        for (uint32_t i = 0; i < g.count; ++i)
+            emit(ids[cycles[g.first + i]], ids[cycles[g.first + (i + 1) % g.count]], apex);
+    }
+}
+
 }  // namespace body

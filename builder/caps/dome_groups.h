@@ -12,6 +12,7 @@
 // triangle strictly counter-clockwise). A group of k triangles gives k + 2
 // triangles instead of 3k.
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -30,5 +31,15 @@ struct DomeGroup {
 // `cycles` (cleared first).
 void dome_groups(std::span<const Vec2> at, std::span<const uint32_t> triangles, std::vector<DomeGroup>& groups,
                  std::vector<uint32_t>& cycles);
+
+// The lifted groups: each group a fan around its apex, lifted by `lift` (the
+// 3-D point of an apex) and appended to `positions`; `ids[i]` is the mesh
+// vertex of the region's i-th point. `emit` receives each triangle
+// counter-clockwise seen from +z. Chords between groups stay on the boundary's
+// height (splitting them at lifted midpoints was tried: it broke the AAL
+// smoothing and bunny LOD tests, bench/RESULTS.md).
+void lift_groups(std::span<const DomeGroup> groups, std::span<const uint32_t> cycles, std::span<const uint32_t> ids,
+                 const std::function<Vec3(const Vec2&)>& lift, std::vector<Vec3>& positions,
+                 const std::function<void(uint32_t, uint32_t, uint32_t)>& emit);
 
 }  // namespace body

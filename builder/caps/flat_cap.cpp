@@ -306,7 +306,7 @@ Status ear_clip(std::span<const std::span<const Vec2>> loops, std::vector<uint32
 
 Status build_cap(std::span<const std::span<const Vec2>> loops, std::span<const std::span<const uint32_t>> ids, double z,
                  bool up, CapStyle style, double dome_height, std::vector<Vec3>& positions,
-                 std::vector<uint32_t>& triangles) {
+                 std::vector<uint32_t>& triangles, bool tip) {
     if (style == CapStyle::None) return ok_status();
     std::vector<uint32_t> local;
     auto status = triangulate_polygon_with_holes(loops, local);
@@ -341,15 +341,12 @@ Status build_cap(std::span<const std::span<const Vec2>> loops, std::span<const s
         dist[g] = distance(groups[g].apex);
         dmax = std::max(dmax, dist[g]);
     }
-    for (size_t g = 0; g < groups.size(); ++g) {
-        const Vec2 c = groups[g].apex;
-        const double h = dmax > 0 ? dome_height * std::sqrt(dist[g] / dmax) : 0.0;
-        const uint32_t apex = uint32_t(positions.size());
-        positions.emplace_back(c.x, c.y, z + (up ? h : -h));
-        const uint32_t* cycle = &cycles[groups[g].first];
-        const uint32_t n = groups[g].count;
-        for (uint32_t i = 0; i < n; ++i) emit(global[cycle[i]], global[cycle[(i + 1) % n]], apex);
-    }
+    const auto lift = [&](const Vec2& p) {
+        const double u = dmax > 0 ? std::min(1.0, distance(p) / dmax) : 0.0;
+        const double h = dome_height * (tip ? u * (2 - u) : std::sqrt(u));
+        return Vec3(p, z + (up ? h : -h));
+    };
+    lift_groups(groups, cycles, global, lift, positions, emit);
     return ok_status();
 }
 

@@ -32,6 +32,7 @@
 #include "builder/branching/branch_cascade.h"
 #include "builder/branching/open_holes.h"
 #include "builder/branching/structure_surface.h"
+#include "builder/caps/end_height.h"
 #include "builder/contours/validate.h"
 #include "builder/correspondence/grouping.h"
 #include "builder/correspondence/link_overrides.h"
@@ -181,7 +182,8 @@ void make_slabs(StructureSurface& surface, size_t s, std::vector<std::vector<uin
 // Caps on slice s facing `up` (or down): over the loops that end there
 // (`slab` false: own rings at the slice's z) or over the slab rings.
 Status cap_slice(StructureSurface& surface, size_t s, bool up, bool slab, CapStyle caps,
-                 const std::vector<std::vector<uint32_t>>& top, const std::vector<std::vector<uint32_t>>& bottom) {
+                 const std::vector<std::vector<uint32_t>>& top, const std::vector<std::vector<uint32_t>>& bottom,
+                 const RungPartners& partners) {
     const auto& loops = surface.loops[s];
     std::vector<bool> in(loops.size(), false);
     for (size_t k = 0; k < loops.size(); ++k) {
@@ -195,7 +197,14 @@ Status cap_slice(StructureSurface& surface, size_t s, bool up, bool slab, CapSty
         std::vector<std::span<const Vec2>> region{loops[k].xy};
         std::vector<std::span<const uint32_t>> ids{slab ? ring[k] : loops[k].ids};
         const double at = surface.positions[ids[0][0]].z;
-        const double dome = slab ? 0.8 * std::abs(at - surface.z[s]) : 0.45 * spacing(surface, s, up);
+        // An end's dome: as high as the bands' slope says it goes on, at most
+        // 0.45 of the gap (end_height.h; under half, so that two ends facing
+        // each other across one gap stay apart); a slab's: most of the slab's half.
+        EndHeight end{0.8 * std::abs(at - surface.z[s]), false};
+        if (!slab)
+            end =
+                end_height(loops[k].xy, loops[k].ids, surface.positions, partners, up, 0.45 * spacing(surface, s, up));
+        const double dome = end.height;
         for (size_t c = 0; c < loops.size(); ++c)
             if (in[c] && loops[c].parent == int(k)) {
                 region.emplace_back(loops[c].xy);
@@ -208,7 +217,8 @@ Status cap_slice(StructureSurface& surface, size_t s, bool up, bool slab, CapSty
         // bulges away from the faces, into the solid (a dome towards the faces
         // would stretch across the void the hole's band bounds).
         const double height = loops[k].hole() && !slab ? -dome : dome;
-        auto status = build_cap(region, ids, at, face_up, style, height, surface.positions, surface.triangles);
+        auto status =
+            build_cap(region, ids, at, face_up, style, height, surface.positions, surface.triangles, end.closing);
         if (!status) return input_error(where(surface, loops[k]) + ": " + status.error().message);
     }
     return ok_status();
@@ -217,12 +227,14 @@ Status cap_slice(StructureSurface& surface, size_t s, bool up, bool slab, CapSty
 // Caps where nothing continues, slabs for contours linked to nothing.
 Status close_ends(StructureSurface& surface, CapStyle caps) {
     std::vector<std::vector<uint32_t>> top, bottom;
+    RungPartners partners;  // of the bands built so far: the caps' slopes
+    rung_partners(surface.positions, surface.triangles, partners);
     for (size_t s = 0; s < surface.loops.size(); ++s) {
         if (surface.loops[s].empty()) continue;
         make_slabs(surface, s, top, bottom);
         for (int up = 0; up < 2; ++up)
             for (int slab = 0; slab < 2; ++slab) {
-                auto status = cap_slice(surface, s, bool(up), bool(slab), caps, top, bottom);
+                auto status = cap_slice(surface, s, bool(up), bool(slab), caps, top, bottom, partners);
                 if (!status) return status;
             }
     }
