@@ -61,6 +61,18 @@ TEST(SoakVerdict, StepThatStaysFails) {
             if (x.minute >= at) x.rss_mib += 6.6;
         EXPECT_FALSE(soak_verdict(m).ok) << "step at minute " << at;
     }
+    // Nor does a dip in the last minute, or a spike at minute 5, hide it (the old
+    // rule, minute 5 vs the last minute, passed both).
+    auto dip = steady(60);
+    for (auto& x : dip)
+        if (x.minute >= 45) x.rss_mib += 6.6;
+    dip.back().rss_mib -= 6.6;
+    EXPECT_FALSE(soak_verdict(dip).ok);
+    auto masked = steady(60);
+    for (auto& x : masked)
+        if (x.minute >= 30) x.rss_mib += 6.6;
+    masked[4].rss_mib += 9.0;
+    EXPECT_FALSE(soak_verdict(masked).ok);
     // One within the allowance (1 MiB/h over the windows' distance + 1 MiB noise) passes.
     auto small = steady(60);
     for (auto& x : small)
