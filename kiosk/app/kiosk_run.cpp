@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "kiosk/app/idle_memory.h"
 #include "kiosk/app/kiosk_app.h"
 #include "kiosk/app/overlay.h"
 #include "kiosk/app/pin_lines.h"
@@ -72,6 +73,7 @@ private:
     float ui_scale_ = 1.0f;
     std::vector<platform::InputEvent> events_;
     double detail_cap_ = 1.0;  // lowered by GL_OUT_OF_MEMORY
+    IdleMemory idle_memory_;   // free heap pages back to the system after each reset
 };
 
 // Reads the context's health into `report`; false when the context is lost.
@@ -314,6 +316,7 @@ int KioskLoop::run() {
             exit_code = kExitRuntime;
             last = true;
         }
+        idle_memory_.frame(app_->resets(), now);
         if (options_.hooks.frame_done && !options_.hooks.frame_done(report)) last = true;
         frame_ms_sum += frame_ms;
         ++frames_counted;

@@ -9,6 +9,9 @@
 #include <filesystem>
 #include <fstream>
 #include <thread>
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
 
 #include "kiosk/app/kiosk_app.h"
 #include "kiosk/app/kiosk_run.h"
@@ -83,11 +86,17 @@ private:
         m.gl_errors = gl_errors_;
         m.fds = open_fds();
         m.threads = thread_count();
+#ifdef __GLIBC__
+        const struct mallinfo2 mi = mallinfo2();
+        m.heap_in_use_mib = static_cast<double>(mi.uordblks + mi.hblkhd) / (1024.0 * 1024.0);
+        m.heap_free_mib = static_cast<double>(mi.fordblks) / (1024.0 * 1024.0);
+#endif
         std::fprintf(stderr,
                      "bodyview: soak minute %d: rss %.2f MiB, %ld frames, p50 %.2f ms, p99 %.2f ms, gl errors %ld, "
-                     "fds %d, threads %d, sessions %ld, actions %ld, attract %ld, resets %d\n",
+                     "fds %d, threads %d, sessions %ld, actions %ld, attract %ld, resets %d, "
+                     "heap in use %.2f MiB, heap free %.2f MiB\n",
                      m.minute, m.rss_mib, m.frames, m.p50_ms, m.p99_ms, m.gl_errors, m.fds, m.threads,
-                     visitors.sessions(), visitors.actions(), attracts_, resets_);
+                     visitors.sessions(), visitors.actions(), attracts_, resets_, m.heap_in_use_mib, m.heap_free_mib);
         log_.push_back(m);
         frame_ms_.clear();
         gl_errors_ = 0;
@@ -109,55 +118,6 @@ uint64_t soak_seed() {
 }
 
 }  // namespace
-
-SoakVerdict soak_verdict(const std::vector<SoakMinute>& minutes, const SoakGoals& goals) {
-    SoakVerdict v;
-    char line[256];
-    auto fail = [&](const char* what) {
-        v.ok = false;
-        v.failures.emplace_back(what);
-    };
-    if (minutes.size() < 2) {
-        fail("soak: fewer than two minutes logged: nothing to compare");
-        return v;
-    }
-    long gl_errors = 0;
-    for (const SoakMinute& m : minutes) gl_errors += m.gl_errors;
-    if (gl_errors > 0) {
-        std::snprintf(line, sizeof line, "soak: %ld GL errors (goal 0)", gl_errors);
-        fail(line);
-    }
-    const double n = static_cast<double>(minutes.size());
-    const double warmup = std::min(goals.warmup_minutes, std::floor(n / 2.0));
-    const SoakMinute& base = minutes[static_cast<size_t>(std::max(0.0, warmup - 1.0))];
-    const SoakMinute& last = minutes.back();
-    const double hours = static_cast<double>(last.minute - base.minute) / 60.0;
-    const double growth = last.rss_mib - base.rss_mib, allowed = goals.rss_mib_per_hour * hours + goals.rss_noise_mib;
-    std::snprintf(line, sizeof line, "soak: RSS %.2f -> %.2f MiB from minute %d to %d (%+.2f MiB, allowed %.2f)",
-                  base.rss_mib, last.rss_mib, base.minute, last.minute, growth, allowed);
-    (growth > allowed ? v.failures : v.notes).emplace_back(line);
-    if (growth > allowed) v.ok = false;
-    if (last.fds > base.fds || last.threads > base.threads) {
-        std::snprintf(line, sizeof line, "soak: file descriptors %d -> %d, threads %d -> %d after the warm-up",
-                      base.fds, last.fds, base.threads, last.threads);
-        fail(line);
-    }
-    const auto w = static_cast<size_t>(goals.p99_window_minutes), first = static_cast<size_t>(warmup);
-    if (minutes.size() >= first + 2 * w) {
-        double a = 0, b = 0;
-        for (size_t i = 0; i < w; ++i) a = std::max(a, minutes[first + i].p99_ms);
-        for (size_t i = minutes.size() - w; i < minutes.size(); ++i) b = std::max(b, minutes[i].p99_ms);
-        std::snprintf(line, sizeof line,
-                      "soak: p99 frame time, worst minute of the first %zu vs the last %zu: "
-                      "%.2f vs %.2f ms (%+.1f %%)",
-                      w, w, a, b, a > 0 ? 100.0 * (b - a) / a : 0.0);
-        (b > a * (1.0 + goals.p99_tolerance) ? v.failures : v.notes).emplace_back(line);
-        if (b > a * (1.0 + goals.p99_tolerance)) v.ok = false;
-    } else {
-        v.notes.emplace_back("soak: p99 stability not judged: the run is shorter than warm-up + two windows");
-    }
-    return v;
-}
 
 int run_soak_mode(platform::Surface& surface, const ViewOptions& o, const scene::Scene& shown) {
     scene::Scene scene = shown;

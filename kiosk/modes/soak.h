@@ -8,9 +8,10 @@
 // session ends that way; frames are paced at 60 Hz like a display's vsync.
 //
 // Every minute one line on stderr: RSS, frames, frame time p50/p99, GL errors,
-// open file descriptors, threads, sessions, attract entries and resets. At the
-// end the minutes are judged against the goals (soak_verdict); the exit code is
-// 0 when every goal holds, 1 otherwise.
+// open file descriptors, threads, sessions, attract entries, resets and the C
+// heap (in use, and free but held). At the end the minutes are judged against
+// the goals (soak_verdict, in soak_verdict.cpp); the exit code is 0 when every
+// goal holds, 1 otherwise.
 #include <string>
 #include <vector>
 
@@ -27,11 +28,15 @@ struct SoakMinute {
     double p50_ms = 0.0, p99_ms = 0.0;  // this minute's frame times
     long gl_errors = 0;                 // glGetError() values other than GL_NO_ERROR, this minute
     int fds = 0, threads = 0;           // at the minute's end
+    // The C heap at the minute's end (glibc's mallinfo2; 0 elsewhere): bytes
+    // handed out, and bytes free but still held (arenas of every thread).
+    double heap_in_use_mib = 0.0, heap_free_mib = 0.0;
 };
 
 struct SoakGoals {
     double warmup_minutes = 5.0;       // RSS, fds and threads are compared from here on
     double rss_mib_per_hour = 1.0;     // allowed RSS growth after the warm-up
+    double rss_window_minutes = 10.0;  // RSS: median of the first vs of the last window after the warm-up
     double rss_noise_mib = 1.0;        // allowed on top: allocator and page granularity
     double p99_window_minutes = 10.0;  // first vs last window after the warm-up ...
     double p99_tolerance = 0.10;       // ... within this fraction (judged only when both fit apart)
@@ -42,6 +47,19 @@ struct SoakVerdict {
     std::vector<std::string> failures;  // one line each
     std::vector<std::string> notes;     // goals measured but not judged (too short a run), figures
 };
+
+// RSS growth after the warm-up: the median of the first `rss_window_minutes`
+// judged (from the warm-up's last minute on) against the median of the last
+// as many (each at most half of the judged minutes), so that a one-minute
+// spike decides nothing while a step that stays counts in full; the allowance
+// grows with the time between the windows' centres.
+struct SoakRssGrowth {
+    bool judged = false;                                           // false: fewer than two minutes
+    int first_from = 0, first_to = 0, last_from = 0, last_to = 0;  // the windows' minutes
+    double first_mib = 0.0, last_mib = 0.0, growth_mib = 0.0, allowed_mib = 0.0, hours = 0.0;
+    double slope_mib_per_hour = 0.0;  // least squares over the judged minutes (logged, not judged)
+};
+SoakRssGrowth soak_rss_growth(const std::vector<SoakMinute>& minutes, const SoakGoals& goals = {});
 
 // Judges a soak's minutes against `goals`. Warm-up shrinks to half the run when
 // the run is shorter than twice the warm-up (a CI soak of two minutes compares

@@ -37,6 +37,88 @@ TEST(SoakVerdict, GrowthBeyondOneMibPerHourAfterWarmupFails) {
     EXPECT_TRUE(soak_verdict(w).ok);
 }
 
+// One minute's spike, at either end of the judged minutes, decides nothing (the
+// old rule compared minute 5 with the last minute and failed on such a spike).
+TEST(SoakVerdict, OneMinuteSpikeDecidesNothing) {
+    auto last = steady(60);
+    last.back().rss_mib += 7.2;
+    EXPECT_TRUE(soak_verdict(last).ok) << soak_verdict(last).failures.front();
+    auto first = steady(60);
+    first[4].rss_mib += 9.0;  // minute 5, the first one judged
+    EXPECT_TRUE(soak_verdict(first).ok);
+    // Spikes every few minutes, as allocator scratch comes and goes.
+    auto often = steady(60);
+    for (auto& x : often)
+        if (x.minute % 7 == 0) x.rss_mib += 10.0;
+    EXPECT_TRUE(soak_verdict(often).ok);
+}
+
+// A step that stays counts in full, wherever it falls after the warm-up.
+TEST(SoakVerdict, StepThatStaysFails) {
+    for (int at : {10, 28, 45}) {
+        auto m = steady(60);
+        for (auto& x : m)
+            if (x.minute >= at) x.rss_mib += 6.6;
+        EXPECT_FALSE(soak_verdict(m).ok) << "step at minute " << at;
+    }
+    // Nor does a dip in the last minute, or a spike at minute 5, hide it (the old
+    // rule, minute 5 vs the last minute, passed both).
+    auto dip = steady(60);
+    for (auto& x : dip)
+        if (x.minute >= 45) x.rss_mib += 6.6;
+    dip.back().rss_mib -= 6.6;
+    EXPECT_FALSE(soak_verdict(dip).ok);
+    auto masked = steady(60);
+    for (auto& x : masked)
+        if (x.minute >= 30) x.rss_mib += 6.6;
+    masked[4].rss_mib += 9.0;
+    EXPECT_FALSE(soak_verdict(masked).ok);
+    // One within the allowance (1 MiB/h over the windows' distance + 1 MiB noise) passes.
+    auto small = steady(60);
+    for (auto& x : small)
+        if (x.minute >= 30) x.rss_mib += 1.2;
+    EXPECT_TRUE(soak_verdict(small).ok);
+}
+
+// The window medians and the least-squares slope on a known line.
+TEST(SoakVerdict, GrowthIsMeasuredBetweenWindowMedians) {
+    auto m = steady(65);
+    for (auto& x : m) x.rss_mib += 2.0 * x.minute / 60.0;  // 2 MiB/h throughout
+    const SoakRssGrowth g = soak_rss_growth(m);
+    ASSERT_TRUE(g.judged);
+    EXPECT_EQ(g.first_from, 5);
+    EXPECT_EQ(g.first_to, 14);
+    EXPECT_EQ(g.last_from, 56);
+    EXPECT_EQ(g.last_to, 65);
+    EXPECT_NEAR(g.hours, 51.0 / 60.0, 1e-9);
+    EXPECT_NEAR(g.growth_mib, 2.0 * 51.0 / 60.0, 1e-9);
+    EXPECT_NEAR(g.slope_mib_per_hour, 2.0, 1e-6);
+    EXPECT_NEAR(g.allowed_mib, 51.0 / 60.0 + 1.0, 1e-9);
+    // A short run: windows of half the judged minutes at most (CI: minute 2 vs minute 4).
+    const SoakRssGrowth ci = soak_rss_growth(steady(4));
+    EXPECT_EQ(ci.first_from, 2);
+    EXPECT_EQ(ci.first_to, 2);
+    EXPECT_EQ(ci.last_from, 4);
+    EXPECT_FALSE(soak_rss_growth(steady(1)).judged);
+}
+
+// The release soak of session 3 (seed 1, minutes 1-60 as logged): two steps that
+// stayed, +6.6 MiB at minute 28 and +13 MiB at minute 45, among one-minute spikes.
+TEST(SoakVerdict, LoggedRunWithStepsFails) {
+    const double rss[] = {127.34, 121.33, 121.84, 123.56, 122.32, 123.33, 133.98, 123.27, 123.07, 122.71,
+                          122.70, 126.56, 123.05, 122.05, 122.39, 122.21, 132.04, 122.12, 123.42, 122.35,
+                          123.67, 122.45, 123.40, 122.05, 122.24, 123.31, 123.00, 129.99, 126.65, 128.91,
+                          128.91, 128.91, 128.98, 129.00, 135.69, 128.94, 133.75, 128.94, 128.94, 129.07,
+                          134.02, 129.00, 129.00, 129.00, 142.11, 141.77, 141.79, 142.01, 142.03, 142.03,
+                          142.03, 142.03, 142.03, 142.03, 142.03, 142.03, 141.91, 142.02, 142.03, 142.04};
+    auto m = steady(60);
+    for (size_t i = 0; i < m.size(); ++i) m[i].rss_mib = rss[i];
+    const SoakRssGrowth g = soak_rss_growth(m);
+    EXPECT_NEAR(g.first_mib, 123.07, 0.3);
+    EXPECT_NEAR(g.last_mib, 142.03, 0.01);
+    EXPECT_FALSE(soak_verdict(m).ok);
+}
+
 TEST(SoakVerdict, GlErrorsDescriptorsAndThreadsFail) {
     auto gl = steady(3);
     gl[2].gl_errors = 1;
