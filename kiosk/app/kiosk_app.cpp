@@ -301,6 +301,7 @@ void KioskApp::apply_gesture(const Gesture& g) {
             const float u = 2.0f * camera_.pose().distance * std::tan(camera_.fov_y() * 0.5f) /
                             static_cast<float>(camera_.height());
             glm::vec3& offset = models_[static_cast<size_t>(selected_)].offset;
+            pick_tree_stale_ = true;
             if (g.button == MouseButton::Left) {  // the X-Z plane
                 offset.x += g.dx * u;
                 offset.z += g.dy * u;
@@ -374,22 +375,6 @@ void KioskApp::activate(const Control& c, double now) {
 }
 
 // ---- actions -------------------------------------------------------------------
-
-int KioskApp::pick(float x, float y) const {
-    const Ray ray = camera_.ray(x, y);
-    int best = -1;
-    float best_t = 1e30f;
-    for (int i = 0; i < model_count(); ++i) {
-        if (!visible(i)) continue;
-        std::optional<float> t =
-            picker_ ? picker_(i, ray) : ray_sphere(ray, model_center(i), info_[static_cast<size_t>(i)].radius);
-        if (t && *t < best_t) {
-            best_t = *t;
-            best = i;
-        }
-    }
-    return best;
-}
 
 std::optional<float> KioskApp::hit_distance(int model, const Ray& ray) const {
     return picker_ ? picker_(model, ray)
@@ -476,6 +461,7 @@ void KioskApp::reset() {
         s.manual_lod = group && group->lod ? manual(*group->lod) : manual(m.lod);
         s.offset = glm::vec3(0.0f);
     }
+    pick_tree_stale_ = true;
     selected_ = -1;
     dragging_object_ = false;
     isolated_ = false;

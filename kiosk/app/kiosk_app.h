@@ -39,6 +39,7 @@
 #include "kiosk/app/tour.h"
 #include "kiosk/app/ui.h"
 #include "kiosk/scene/scene_models.h"
+#include "shared/bvh.h"
 #include "shared/scene/scene.h"
 
 namespace body::kiosk {
@@ -77,6 +78,8 @@ public:
 
     // Returns the ray distance to a model's surface, or nullopt. The default tests
     // the model's bounding sphere; the integration replaces it with triangles.
+    // The surface must lie within the model's bounds (ModelInfo, moved by its
+    // offset): pick() asks only the models whose bounds the ray enters.
     using Picker = std::function<std::optional<float>(int model, const Ray& ray)>;
 
     KioskApp(scene::Scene scene, std::vector<ModelInfo> models, int width, int height);
@@ -160,8 +163,11 @@ public:
     const OperatorMode& operator_mode() const { return operator_; }
     // A model's placement in the scene: its manifest transform, moved by the visitor.
     glm::mat4 placement(int model) const;
-    // The model under pixel (x, y), or -1.
+    // The model under pixel (x, y), or -1 (kiosk_pick.cpp: through a box
+    // hierarchy over the models, so the picker runs only for those on the ray).
     int pick(float x, float y) const;
+    // The visible model nearest along `ray`, or -1; its distance to `distance`.
+    int pick_ray(const Ray& ray, float& distance) const;
 
 private:
     void apply_gesture(const Gesture& g);
@@ -182,6 +188,7 @@ private:
     void test_pin_occlusion();
     std::optional<float> hit_distance(int model, const Ray& ray) const;
     bool may_occlude(int model, const Ray& ray, float before) const;  // kiosk_pins.cpp
+    void refresh_pick_tree() const;                                   // kiosk_pick.cpp
     void activate_operator(const Control& c);                         // kiosk_operator.cpp
 
     scene::Scene scene_;
@@ -229,6 +236,11 @@ private:
     float px_per_mm_ = 0.0f;
     bool high_contrast_ = false, large_text_ = false;
     std::vector<std::string> offered_languages_;  // language_set()'s order
+    // Picking (kiosk_pick.cpp): the models' boxes in a hierarchy, built at the
+    // first pick and refitted when an offset changed (pick_tree_stale_).
+    mutable Bvh pick_tree_;
+    mutable std::vector<glm::vec3> pick_lo_, pick_hi_;
+    mutable bool pick_tree_built_ = false, pick_tree_stale_ = true;
 };
 
 }  // namespace body::kiosk
