@@ -32,6 +32,9 @@ public:
     // The access modes (access.h) the next draws use: the high-contrast
     // palette, large text (atlases kLargeTextScale times larger, made when first needed).
     void set_look(bool high_contrast, bool large_text);
+    // Lines of text shaped so far and held by the atlases (GlyphAtlas::shaped_lines):
+    // text is shaped when a control or card first draws it, never ahead.
+    size_t shaped_lines() const;
 
 private:
     struct State;
