@@ -177,6 +177,7 @@ void KioskApp::relayout() {
     }
     controls_ = layout_controls(ui_state());
     if (scene_.kiosk.access_buttons) add_access_controls(ui_state(), controls_);  // before the pins avoid them
+    add_tree();
     add_tour_and_pin_controls();
     if (scene_.kiosk.icons) add_icons(controls_);
 }
@@ -229,6 +230,7 @@ void KioskApp::handle(const InputEvent& e) {
     const bool is_mouse = e.type == InputEvent::Type::MouseDown || e.type == InputEvent::Type::MouseUp;
     const int touch_id = is_mouse ? -1 : e.id;
     if (down) admin_tap(e.x, e.y, e.time);
+    if (tree_key(e)) return;
 
     // A finger that went down on a control belongs to it until it lifts.
     if (down && !(is_mouse && (e.modifiers & kModShift))) {
@@ -370,6 +372,14 @@ void KioskApp::activate(const Control& c, double now) {
         case ControlId::OperatorLanguage: activate_operator(c); break;
         case ControlId::Contrast: high_contrast_ = !high_contrast_; break;
         case ControlId::LargeText: large_text_ = !large_text_; break;
+        case ControlId::TreeOpen:
+        case ControlId::TreeSearch:
+        case ControlId::TreeBackspace:
+        case ControlId::TreeUp:
+        case ControlId::TreeDown:
+        case ControlId::TreeLetter:
+        case ControlId::TreeGroup:
+        case ControlId::TreeModel: activate_tree(c); break;
     }
     relayout();
 }
@@ -462,6 +472,7 @@ void KioskApp::reset() {
         s.offset = glm::vec3(0.0f);
     }
     pick_tree_stale_ = true;
+    tree_ = TreeState{};
     selected_ = -1;
     dragging_object_ = false;
     isolated_ = false;

@@ -36,6 +36,7 @@
 #include "kiosk/app/lod_controller.h"
 #include "kiosk/app/operator_mode.h"
 #include "kiosk/app/pins.h"
+#include "kiosk/app/structure_tree.h"
 #include "kiosk/app/tour.h"
 #include "kiosk/app/ui.h"
 #include "kiosk/scene/scene_models.h"
@@ -159,7 +160,8 @@ public:
     std::optional<int> countdown() const;
     // Pinned labels (kiosk_pins.cpp): empty unless `kiosk.pins` is on.
     const std::vector<PinView>& pins() const { return pins_; }
-    int open_pin() const;  // index into pins() whose card is open (its model selected), or -1
+    int open_pin() const;                            // index into pins() whose card is open (its model selected), or -1
+    const TreeState& tree() const { return tree_; }  // the structure tree (structure_tree.h)
     const OperatorMode& operator_mode() const { return operator_; }
     // A model's placement in the scene: its manifest transform, moved by the visitor.
     glm::mat4 placement(int model) const;
@@ -190,6 +192,12 @@ private:
     bool may_occlude(int model, const Ray& ray, float before) const;  // kiosk_pins.cpp
     void refresh_pick_tree() const;                                   // kiosk_pick.cpp
     void activate_operator(const Control& c);                         // kiosk_operator.cpp
+    // The structure tree (kiosk_tree.cpp).
+    bool groups_fit() const;
+    TreeContent tree_content() const;
+    void add_tree();
+    void activate_tree(const Control& c);
+    bool tree_key(const InputEvent& e);
 
     scene::Scene scene_;
     std::vector<ModelInfo> info_;
@@ -236,6 +244,7 @@ private:
     float px_per_mm_ = 0.0f;
     bool high_contrast_ = false, large_text_ = false;
     std::vector<std::string> offered_languages_;  // language_set()'s order
+    TreeState tree_;                              // the structure tree (kiosk_tree.cpp)
     // Picking (kiosk_pick.cpp): the models' boxes in a hierarchy, built at the
     // first pick and refitted when an offset changed (pick_tree_stale_).
     mutable Bvh pick_tree_;
