@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 namespace body {
 namespace {
@@ -48,6 +49,12 @@ void build_node(Bvh& bvh, size_t node, uint32_t begin, uint32_t end, std::span<c
 }  // namespace
 
 void bvh_refit(Bvh& bvh, std::span<const glm::vec3> lo, std::span<const glm::vec3> hi) {
+    bvh.item_lo.resize(bvh.items.size());
+    bvh.item_hi.resize(bvh.items.size());
+    for (size_t k = 0; k < bvh.items.size(); ++k) {
+        bvh.item_lo[k] = lo[bvh.items[k]];
+        bvh.item_hi[k] = hi[bvh.items[k]];
+    }
     // Children come after their parents: walking backwards meets them first.
     for (size_t n = bvh.nodes.size(); n-- > 0;) {
         BvhNode& node = bvh.nodes[n];
@@ -118,7 +125,18 @@ int bvh_nearest(const Bvh& bvh, const Ray& ray, const BvhHit& hit, float& distan
         if (e.t > distance) continue;  // entered only past the best hit
         const BvhNode& node = bvh.nodes[e.node];
         if (node.count > 0) {
+            // The leaf's items nearest box first, so that a near hit spares the far ones.
+            std::pair<float, uint32_t> order[kBvhLeaf];
+            uint32_t n = 0;
             for (uint32_t k = node.first; k < node.first + node.count; ++k) {
+                const auto enter = ray_box(ray, inv, bvh.item_lo[k], bvh.item_hi[k]);
+                if (!enter) continue;
+                uint32_t at = n++;  // insertion: a leaf holds at most kBvhLeaf items
+                for (; at > 0 && order[at - 1].first > *enter; --at) order[at] = order[at - 1];
+                order[at] = {*enter, k};
+            }
+            for (uint32_t j = 0; j < n && order[j].first <= distance; ++j) {
+                const uint32_t k = order[j].second;
                 const int item = static_cast<int>(bvh.items[k]);
                 const auto t = hit(bvh.items[k]);
                 // Ties go to the lower item, as a walk over all items in order would.

@@ -13,7 +13,8 @@
 //   out (empty box) gets a box.
 // - bvh_nearest(): the item whose exact hit along `ray` is nearest. `hit(item)`
 //   returns the ray distance to the item's surface or nullopt; it is called
-//   only for items whose box the ray enters before the best distance so far,
+//   only for items whose own box (and its leaf's) the ray enters before the
+//   best distance so far,
 //   children nearer first, so the surface of item i must lie inside its box.
 //   Returns the item (-1: none; equal distances: the lowest item) and writes
 //   its distance to `distance`.
@@ -37,8 +38,9 @@ struct BvhNode {
 };
 
 struct Bvh {
-    std::vector<BvhNode> nodes;   // nodes[0] the root; children after their parent
-    std::vector<uint32_t> items;  // item indices, grouped by leaf
+    std::vector<BvhNode> nodes;               // nodes[0] the root; children after their parent
+    std::vector<uint32_t> items;              // item indices, grouped by leaf
+    std::vector<glm::vec3> item_lo, item_hi;  // their boxes, in the order of `items`
 };
 
 void bvh_build(Bvh& bvh, std::span<const glm::vec3> lo, std::span<const glm::vec3> hi);

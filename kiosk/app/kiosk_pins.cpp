@@ -74,19 +74,6 @@ void KioskApp::find_pin_anchors() {
 
 // Occluded: another surface (of any visible model, its own included) lies on
 // the ray from the eye before the anchor, by more than 1% of the distance.
-// Whether model `m` can hold a surface point on `ray` nearer than `before`:
-// false when the ray misses the sphere around its bounds (ModelInfo's radius
-// is the box's half diagonal over sqrt 3), or enters it only past `before`.
-// Spares the picker's triangle walk for models nowhere near the line of sight.
-bool KioskApp::may_occlude(int m, const Ray& ray, float before) const {
-    const float r = info_[static_cast<size_t>(m)].radius * 1.7320508f * 1.01f;
-    const glm::vec3 oc = ray.origin - model_center(m);
-    const float b = glm::dot(oc, ray.direction), c = glm::dot(oc, oc) - r * r;
-    if (c <= 0.0f) return true;  // the eye inside the sphere
-    const float disc = b * b - c;
-    return b < 0.0f && disc >= 0.0f && -b - std::sqrt(disc) < before;
-}
-
 void KioskApp::test_pin_occlusion() {
     const glm::vec3 eye = camera_.eye();
     for (size_t i = 0; i < pins_.size(); ++i) {
@@ -95,11 +82,9 @@ void KioskApp::test_pin_occlusion() {
         pin_occluded_[i] = 0;
         if (dist <= 0.0f) continue;
         const Ray ray{eye, (p - eye) / dist};
-        for (int m = 0; m < model_count() && !pin_occluded_[i]; ++m) {
-            if (!visible(m) || !may_occlude(m, ray, dist * 0.99f)) continue;
-            const auto t = hit_distance(m, ray);
-            if (t && *t < dist * 0.99f) pin_occluded_[i] = 1;
-        }
+        // The nearest surface on the line of sight, through the picking hierarchy (kiosk_pick.cpp).
+        float t = 0.0f;
+        if (pick_ray(ray, t) >= 0 && t < dist * 0.99f) pin_occluded_[i] = 1;
     }
 }
 
