@@ -41,7 +41,8 @@ void KioskApp::add_tree() {
         return;
     }
     std::erase_if(controls_, [](const Control& c) { return c.id == ControlId::GroupToggle; });
-    add_tree_controls(ui_state(), tree_content(), tree_, controls_);
+    // Closed, the tree is one button: its content (every model's title) only when open.
+    add_tree_controls(ui_state(), tree_.open ? tree_content() : TreeContent{}, tree_, controls_);
 }
 
 // `c` lives in controls_, which the actions lay out anew: read it first.
