@@ -177,6 +177,7 @@ void KioskApp::relayout() {
     }
     controls_ = layout_controls(ui_state());
     if (scene_.kiosk.access_buttons) add_access_controls(ui_state(), controls_);  // before the pins avoid them
+    add_tree();
     add_tour_and_pin_controls();
     if (scene_.kiosk.icons) add_icons(controls_);
 }
@@ -229,6 +230,7 @@ void KioskApp::handle(const InputEvent& e) {
     const bool is_mouse = e.type == InputEvent::Type::MouseDown || e.type == InputEvent::Type::MouseUp;
     const int touch_id = is_mouse ? -1 : e.id;
     if (down) admin_tap(e.x, e.y, e.time);
+    if (tree_key(e)) return;
 
     // A finger that went down on a control belongs to it until it lifts.
     if (down && !(is_mouse && (e.modifiers & kModShift))) {
@@ -301,6 +303,7 @@ void KioskApp::apply_gesture(const Gesture& g) {
             const float u = 2.0f * camera_.pose().distance * std::tan(camera_.fov_y() * 0.5f) /
                             static_cast<float>(camera_.height());
             glm::vec3& offset = models_[static_cast<size_t>(selected_)].offset;
+            pick_tree_stale_ = true;
             if (g.button == MouseButton::Left) {  // the X-Z plane
                 offset.x += g.dx * u;
                 offset.z += g.dy * u;
@@ -369,27 +372,19 @@ void KioskApp::activate(const Control& c, double now) {
         case ControlId::OperatorLanguage: activate_operator(c); break;
         case ControlId::Contrast: high_contrast_ = !high_contrast_; break;
         case ControlId::LargeText: large_text_ = !large_text_; break;
+        case ControlId::TreeOpen:
+        case ControlId::TreeSearch:
+        case ControlId::TreeBackspace:
+        case ControlId::TreeUp:
+        case ControlId::TreeDown:
+        case ControlId::TreeLetter:
+        case ControlId::TreeGroup:
+        case ControlId::TreeModel: activate_tree(c); break;
     }
     relayout();
 }
 
 // ---- actions -------------------------------------------------------------------
-
-int KioskApp::pick(float x, float y) const {
-    const Ray ray = camera_.ray(x, y);
-    int best = -1;
-    float best_t = 1e30f;
-    for (int i = 0; i < model_count(); ++i) {
-        if (!visible(i)) continue;
-        std::optional<float> t =
-            picker_ ? picker_(i, ray) : ray_sphere(ray, model_center(i), info_[static_cast<size_t>(i)].radius);
-        if (t && *t < best_t) {
-            best_t = *t;
-            best = i;
-        }
-    }
-    return best;
-}
 
 std::optional<float> KioskApp::hit_distance(int model, const Ray& ray) const {
     return picker_ ? picker_(model, ray)
@@ -476,6 +471,8 @@ void KioskApp::reset() {
         s.manual_lod = group && group->lod ? manual(*group->lod) : manual(m.lod);
         s.offset = glm::vec3(0.0f);
     }
+    pick_tree_stale_ = true;
+    tree_ = TreeState{};
     selected_ = -1;
     dragging_object_ = false;
     isolated_ = false;

@@ -37,10 +37,12 @@
 #include "kiosk/app/lod_controller.h"
 #include "kiosk/app/operator_mode.h"
 #include "kiosk/app/pins.h"
+#include "kiosk/app/structure_tree.h"
 #include "kiosk/app/tour.h"
 #include "kiosk/app/tour_cut.h"
 #include "kiosk/app/ui.h"
 #include "kiosk/scene/scene_models.h"
+#include "shared/bvh.h"
 #include "shared/scene/scene.h"
 
 namespace body::kiosk {
@@ -79,6 +81,8 @@ public:
 
     // Returns the ray distance to a model's surface, or nullopt. The default tests
     // the model's bounding sphere; the integration replaces it with triangles.
+    // The surface must lie within the model's bounds (ModelInfo, moved by its
+    // offset): pick() asks only the models whose bounds the ray enters.
     using Picker = std::function<std::optional<float>(int model, const Ray& ray)>;
 
     KioskApp(scene::Scene scene, std::vector<ModelInfo> models, int width, int height);
@@ -164,12 +168,16 @@ public:
     std::optional<int> countdown() const;
     // Pinned labels (kiosk_pins.cpp): empty unless `kiosk.pins` is on.
     const std::vector<PinView>& pins() const { return pins_; }
-    int open_pin() const;  // index into pins() whose card is open (its model selected), or -1
+    int open_pin() const;                            // index into pins() whose card is open (its model selected), or -1
+    const TreeState& tree() const { return tree_; }  // the structure tree (structure_tree.h)
     const OperatorMode& operator_mode() const { return operator_; }
     // A model's placement in the scene: its manifest transform, moved by the visitor.
     glm::mat4 placement(int model) const;
-    // The model under pixel (x, y), or -1.
+    // The model under pixel (x, y), or -1 (kiosk_pick.cpp: through a box
+    // hierarchy over the models, so the picker runs only for those on the ray).
     int pick(float x, float y) const;
+    // The visible model nearest along `ray`, or -1; its distance to `distance`.
+    int pick_ray(const Ray& ray, float& distance) const;
 
 private:
     void apply_gesture(const Gesture& g);
@@ -191,7 +199,14 @@ private:
     void test_pin_occlusion();
     std::optional<float> hit_distance(int model, const Ray& ray) const;
     bool may_occlude(int model, const Ray& ray, float before) const;  // kiosk_pins.cpp
+    void refresh_pick_tree() const;                                   // kiosk_pick.cpp
     void activate_operator(const Control& c);                         // kiosk_operator.cpp
+    // The structure tree (kiosk_tree.cpp).
+    bool groups_fit() const;
+    TreeContent tree_content() const;
+    void add_tree();
+    void activate_tree(const Control& c);
+    bool tree_key(const InputEvent& e);
 
     scene::Scene scene_;
     std::vector<ModelInfo> info_;
@@ -241,6 +256,12 @@ private:
     float px_per_mm_ = 0.0f;
     bool high_contrast_ = false, large_text_ = false;
     std::vector<std::string> offered_languages_;  // language_set()'s order
+    TreeState tree_;                              // the structure tree (kiosk_tree.cpp)
+    // Picking (kiosk_pick.cpp): the models' boxes in a hierarchy, built at the
+    // first pick and refitted when an offset changed (pick_tree_stale_).
+    mutable Bvh pick_tree_;
+    mutable std::vector<glm::vec3> pick_lo_, pick_hi_;
+    mutable bool pick_tree_built_ = false, pick_tree_stale_ = true;
 };
 
 }  // namespace body::kiosk

@@ -72,12 +72,10 @@ void KioskApp::find_pin_anchors() {
     pin_occluded_.assign(pins_.size(), 0);
 }
 
-// Occluded: another surface (of any visible model, its own included) lies on
-// the ray from the eye before the anchor, by more than 1% of the distance.
 // Whether model `m` can hold a surface point on `ray` nearer than `before`:
 // false when the ray misses the sphere around its bounds (ModelInfo's radius
 // is the box's half diagonal over sqrt 3), or enters it only past `before`.
-// Spares the picker's triangle walk for models nowhere near the line of sight.
+// Spares the batched picker's triangle walk for models nowhere near the line of sight.
 bool KioskApp::may_occlude(int m, const Ray& ray, float before) const {
     const float r = info_[static_cast<size_t>(m)].radius * 1.7320508f * 1.01f;
     const glm::vec3 oc = ray.origin - model_center(m);
@@ -87,6 +85,8 @@ bool KioskApp::may_occlude(int m, const Ray& ray, float before) const {
     return b < 0.0f && disc >= 0.0f && -b - std::sqrt(disc) < before;
 }
 
+// Occluded: another surface (of any visible model, its own included) lies on
+// the ray from the eye before the anchor, by more than 1% of the distance.
 void KioskApp::test_pin_occlusion() {
     const glm::vec3 eye = camera_.eye();
     std::vector<Ray> rays(pins_.size());
@@ -120,11 +120,9 @@ void KioskApp::test_pin_occlusion() {
     }
     for (size_t i = 0; i < pins_.size(); ++i) {
         if (dist[i] <= 0.0f) continue;
-        for (int m = 0; m < model_count() && !pin_occluded_[i]; ++m) {
-            if (!visible(m) || !may_occlude(m, rays[i], dist[i] * 0.99f)) continue;
-            const auto t = hit_distance(m, rays[i]);
-            if (t && *t < dist[i] * 0.99f) pin_occluded_[i] = 1;
-        }
+        // The nearest surface on the line of sight, through the picking hierarchy (kiosk_pick.cpp).
+        float t = 0.0f;
+        if (pick_ray(rays[i], t) >= 0 && t < dist[i] * 0.99f) pin_occluded_[i] = 1;
     }
 }
 

@@ -312,6 +312,7 @@ int KioskLoop::run() {
         }
         if (!replaying_ || options_.measure_frames_in_replay) app_->report_frame(frame_ms, triangles);
         FrameReport report{frame, now, frame_ms, triangles, app_.get()};
+        report.shaped_lines = overlay_.shaped_lines();
         if (!check_gl(report)) {
             exit_code = kExitRuntime;
             last = true;

@@ -38,6 +38,7 @@ struct FrameReport {
     const KioskApp* app = nullptr;
     int gl_errors = 0;           // glGetError values raised during the frame (the loop reads them, once)
     bool out_of_memory = false;  // one was GL_OUT_OF_MEMORY: detail has been lowered
+    size_t shaped_lines = 0;     // text lines the overlay has shaped so far (Overlay::shaped_lines)
 };
 
 // Optional callbacks into the one loop (the soak's visitors, the service's

@@ -92,6 +92,14 @@ void Overlay::shutdown() {
     s_.reset();
 }
 
+size_t Overlay::shaped_lines() const {
+    size_t n = 0;
+    if (s_) {
+        for (const State::Atlases& a : s_->sizes) n += a.title.shaped_lines() + a.body.shaped_lines();
+    }
+    return n;
+}
+
 // fit_text is a search over scales and cuts: done once per text and box, not every frame.
 const FittedText& Overlay::State::fit(const std::string& utf8, float w, float h) {
     auto key = std::make_tuple(utf8, w, h, size);

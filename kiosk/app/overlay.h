@@ -35,6 +35,9 @@ public:
     // The UI language (BCP 47) the next draws shape for: it picks the CJK
     // font face (FontSet::set_language: Chinese in the SC face, not Japanese).
     void set_language(const std::string& language);
+    // Lines of text shaped so far and held by the atlases (GlyphAtlas::shaped_lines):
+    // text is shaped when a control or card first draws it, never ahead.
+    size_t shaped_lines() const;
 
 private:
     struct State;

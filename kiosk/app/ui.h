@@ -50,6 +50,15 @@ enum class ControlId {
     CutAxis,           // the plane's preset: axial -> coronal -> sagittal
     Contrast,          // the access modes (kiosk/app/access.h): high contrast on/off
     LargeText,         // large text on/off
+    // The structure tree (kiosk/app/structure_tree.h), in place of the group row when it does not fit.
+    TreeOpen,       // the row's one button: opens and closes the panel
+    TreeSearch,     // the letters typed so far; a tap clears them
+    TreeBackspace,  // removes the last letter
+    TreeUp,         // the list a page up
+    TreeDown,       // the list a page down
+    TreeLetter,     // a letter key; `group` holds the letter (a Unicode code point, lower case)
+    TreeGroup,      // a group's row; `group` its index: shows/hides it, as its toggle does, and opens it
+    TreeModel,      // a model's row; `group` the model's index: selects it
 };
 
 struct Control {

@@ -25,6 +25,10 @@ constexpr Word kWords[] = {
     {"auto", {"Auto", "Auto", "Auto", "Auto", "Авто", "Αυτόματο", "تلقائي", "אוטומטי", "自动", "自動"}},
     {"isolate",
      {"Isolate", "Isolieren", "Isoler", "Aislar", "Изолировать", "Απομόνωση", "عزل", "בידוד", "单独显示", "単独表示"}},
+    // The structure tree (structure_tree.h).
+    {"structures",
+     {"Structures", "Strukturen", "Structures", "Estructuras", "Структуры", "Δομές", "البنى", "מבנים", "结构", "構造"}},
+    {"search", {"Search", "Suche", "Chercher", "Buscar", "Поиск", "Αναζήτηση", "بحث", "חיפוש", "搜索", "検索"}},
     // The cut plane (cut_plane.h).
     {"cut", {"Cut", "Schnitt", "Coupe", "Corte", "Срез", "Τομή", "مقطع", "חתך", "剖切", "断面"}},
     {"off", {"off", "aus", "non", "no", "выкл", "κλειστό", "إيقاف", "כבוי", "关", "オフ"}},

@@ -1,6 +1,6 @@
-// Pins' occlusion rays skip the models they cannot touch (KioskApp::may_occlude):
-// the picker walks only the triangles of models whose bounding sphere lies on
-// the line of sight before the pin, and a model in front still hides it.
+// Pins' occlusion rays skip the models they cannot touch (KioskApp::pick_ray):
+// the picker walks only the triangles of models whose bounds lie on the line
+// of sight before the nearest surface found, and a model in front still hides it.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -46,9 +46,10 @@ TEST(PinOcclusion, OnlyModelsOnTheLineOfSightAreWalked) {
     app.update(1.0);                    // one occlusion test
     EXPECT_TRUE(app.pins()[1].shown);   // the middle sphere's front pole
     EXPECT_FALSE(app.pins()[2].shown);  // the right one's, behind the fourth sphere
-    // Each pin's ray walks its own model, and the right one's also the sphere in front:
-    // 5 walks where every model for every pin would be 16.
-    EXPECT_EQ(walks, (std::vector<int>{1, 1, 1, 2}));
+    // Each pin's ray walks its own model, but the right one's only the sphere in
+    // front, whose surface is nearer than the right sphere's bounds: 4 walks
+    // where every model for every pin would be 16.
+    EXPECT_EQ(walks, (std::vector<int>{1, 1, 0, 2}));
 }
 
 // With a picker for many rays (the kiosk's: one walk of a model's triangles
