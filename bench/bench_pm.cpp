@@ -41,6 +41,7 @@
 #include <vector>
 
 #include "builder/lod/bpm_writer.h"
+#include "builder/lod/codec_baselines.h"
 #include "builder/lod/hausdorff.h"
 #include "builder/lod/simplify.h"
 #include "shared/atomic_file.h"
@@ -412,6 +413,22 @@ int decode_only(const std::string& path) {
         "costs %.2fx)\n",
         path.c_str(), bytes.size(), splits, t * 1e3, double(splits) / t / 1e6, plain * 1e3, t / plain);
     print_locality(bytes, path);
+    // Size: the file per split beside the full mesh through static-mesh codecs
+    // at the same quantization (codec_baselines.h).
+    auto pms = pm::read_bpm_bytes(bytes, path, pm::BpmStream::FaceOrder::Refinement);
+    if (pms && pms->size() == 1) {
+        pm::ProgressiveMesh& m = *pms->front();
+        m.set_level(m.max_level());
+        const auto idx = m.indices().first(m.max_triangle_count() * 3);
+        const uint8_t* oct = m.has_normals() ? m.normal_codes().data() : nullptr;
+        const size_t nv = m.max_vertex_count();
+        const auto per_vertex = [&](size_t b) { return double(b) / double(nv); };
+        std::printf("  size: %.2f bytes per split; full mesh per vertex: meshopt codecs %.2f, Draco %.2f (%s)\n",
+                    double(bytes.size()) / double(std::max<size_t>(m.max_level(), 1)),
+                    per_vertex(lod::meshopt_codec_bytes(m.position_codes().data(), oct, nv, idx.data(), idx.size())),
+                    per_vertex(lod::draco_codec_bytes(m.position_codes().data(), oct, nv, idx.data(), idx.size())),
+                    lod::draco_available() ? "level 10" : "not built in");
+    }
     return 0;
 }
 
