@@ -67,6 +67,7 @@ void print_help(std::FILE* out) {
                  "  --bench-frames N  at least N timed pairs per style and LOD, more up to 3 s (default 9)\n"
                  "  --bench-seconds S time per style and LOD beyond those pairs (default 3; 0: N pairs only)\n"
                  "  --bench-only cut  the cut-plane table alone\n"
+                 "  --bench-only order  the draw-order table alone (a .bpm model)\n"
                  "  --config FILE     options from FILE (the service's /etc/bodyview/bodyview.conf;\n"
                  "                    kiosk/modes/service_config.h); the command line wins\n"
                  "  --touch-calibration \"A B C D E F\"  touch: 2x3 matrix applied to the panel's\n"

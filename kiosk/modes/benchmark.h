@@ -24,6 +24,7 @@ struct BenchmarkOptions {
     double seconds_per_cell = 3.0;  // then more pairs until a cell (style x LOD) has taken this long ...
     size_t max_pairs = 200;         // ... or has this many
     bool cut_only = false;          // --bench-only cut: the cut-plane table alone, after the model loads
+    bool order_only = false;        // --bench-only order: the draw-order table alone, likewise
     render::RendererOptions renderer = {};  // --buffer-access
 };
 

@@ -80,7 +80,7 @@ void optimise_window(const uint32_t* indices, uint32_t* order, size_t n, CacheOr
     uint32_t* start = s.start.data();
     uint32_t* by_first = s.by_first.data();
     const uint32_t* local = s.local.data();
-    meshopt_optimizeVertexCacheFifo(sorted, local, n * 3, nv, 16);
+    meshopt_optimizeVertexCache(sorted, local, n * 3, nv);
     std::fill(start, start + nv + 1, 0u);
     for (size_t f = 0; f < n; ++f) ++start[local[f * 3] + 1];
     for (size_t v = 0; v < nv; ++v) start[v + 1] += start[v];

@@ -8,8 +8,8 @@
 // level boundaries (vertex counts B, B r, B r^2, ... N + B, r = kBatchRatio) and,
 // once a batch is decoded, reorders the batch's faces among themselves for the
 // vertex cache on its connectivity at the batch's last level (cache_order:
-// a Morton sort, then Tipsify in windows; whole-batch meshopt_optimizeVertexCache
-// made decoding 2.6x slower, see bench/RESULTS.md). Every boundary level is then a prefix made of
+// a Morton sort, then meshopt_optimizeVertexCache in windows; over whole
+// batches it made decoding 2.5-2.9x slower, see bench/RESULTS.md). Every boundary level is then a prefix made of
 // cache-ordered runs, the newest run the largest (about (r-1)/r of the faces).
 // The price: only boundary levels (and the levels of the batch still
 // arriving) are exact prefixes, so a level is chosen at batch boundaries and
@@ -45,9 +45,10 @@ struct CacheOrderScratch {
 
 // The cache order of `face_count` triangles (`indices`, three per face, each <
 // vertex_count; `qpos`: 3 position codes per vertex): writes to order[i] the
-// face drawn i-th (a permutation of 0 .. face_count-1). Linear time: the faces
-// sorted along a Morton curve, then windows of 1024 consecutive faces each
-// through meshopt_optimizeVertexCacheFifo (Tipsify).
+// face drawn i-th (a permutation of 0 .. face_count-1). The faces sorted along
+// a Morton curve, then windows of 1024 consecutive faces each through
+// meshopt_optimizeVertexCache (a window's tables stay in the CPU's caches;
+// Tipsify there instead decoded faster still, at 5 % more cache misses).
 void cache_order(const uint32_t* indices, size_t face_count, size_t vertex_count, const uint16_t* qpos, uint32_t* order,
                  CacheOrderScratch& scratch);
 

@@ -178,7 +178,7 @@ TEST(DrawOrder, CacheMissesNearAnOptimisedStaticMesh) {
                     refinement = acmr(b, batched->vertex_count());
         std::printf("%3.0f%% (%zu triangles): ACMR batched %.3f, optimised static %.3f (%.2fx), refinement %.3f\n",
                     share * 100, a.size() / 3, ours, best, ours / best, refinement);
-        // Measured (kBatchRatio 2, Morton + windowed Tipsify): 2.35-2.6x the static mesh, 0.69-0.72x the
+        // Measured (kBatchRatio 2, Morton + windowed meshopt): 2.3-2.55x the static mesh, 0.68-0.7x the
         // refinement order. The goal (near 1x) needs more than a
         // prefix layout can give: see draw_order.h.
         EXPECT_LT(ours, 2.7f * best) << share;
