@@ -56,7 +56,9 @@ TEST(CodecBaselines, SizesFollowTheMeshAndTheNormals) {
         EXPECT_LT(s.draco_no_normals, s.draco);
     }
     EXPECT_GT(large.meshopt, 8 * small.meshopt);  // 16x the vertices
-    if (lod::draco_available()) EXPECT_GT(large.draco, 8 * small.draco);
+    if (lod::draco_available()) {
+        EXPECT_GT(large.draco, 8 * small.draco);
+    }
 }
 
 }  // namespace
