@@ -20,7 +20,7 @@ HOST_PACKAGES=(
   libnifti2-dev libdcmtk-dev libpolyclipping-dev libtinygltf-dev libassimp-dev libsystemd-dev libseat-dev libudev-dev systemd
   libegl-mesa0 libgl1-mesa-dri libgles2 xvfb xauth
   glmark2-data python3 python3-pydicom mricron-data dpkg-dev
-  assimp-utils python3-vtk9 python3-numpy nodejs
+  assimp-utils python3-vtk9 python3-numpy nodejs libdraco-dev
   libharfbuzz-dev libfribidi-dev libicu-dev fonts-noto-core fonts-noto-cjk
 )
 CROSS_PACKAGES=(

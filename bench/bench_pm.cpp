@@ -36,10 +36,12 @@
 #include <cstring>
 #include <filesystem>
 #include <map>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "builder/lod/bpm_writer.h"
+#include "builder/lod/codec_baselines.h"
 #include "builder/lod/hausdorff.h"
 #include "builder/lod/simplify.h"
 #include "shared/atomic_file.h"
@@ -351,6 +353,42 @@ void run(const Mesh& mesh, const std::string& label, const std::string& vtk_dir,
     row("SPLT bytes", double(sb.splits), "uncompressed records", raw);
 }
 
+// Vertex cache misses per triangle (ACMR, cache of 16) and vertex fetch overfetch
+// (64-byte lines of the kiosk's 16-byte vertices) at the batch boundary levels
+// nearest 100, 40 and 10 % of the triangles: the batched order, the refinement
+// order, and the same triangles through meshopt (cache then fetch order).
+void print_locality(std::span<const uint8_t> bytes, const std::string& path) {
+    auto batched = pm::read_bpm_bytes(bytes, path, pm::BpmStream::FaceOrder::Batched);
+    auto plain = pm::read_bpm_bytes(bytes, path, pm::BpmStream::FaceOrder::Refinement);
+    if (!batched || !plain || batched->empty()) return;
+    pm::ProgressiveMesh &a = *batched->front(), &b = *plain->front();
+    const auto prefix = [](const pm::ProgressiveMesh& m) {
+        return std::vector<uint32_t>(m.indices().begin(), m.indices().begin() + ptrdiff_t(m.triangle_count() * 3));
+    };
+    for (double share : {1.0, 0.4, 0.1}) {
+        const size_t level = a.level_for_triangles(size_t(share * double(a.max_triangle_count())));
+        a.set_level(level);
+        b.set_level(level);
+        const auto ia = prefix(a), ib = prefix(b);
+        const size_t nv = a.vertex_count();
+        std::vector<uint32_t> is(ia.size()), remap(nv);
+        meshopt_optimizeVertexCache(is.data(), ia.data(), ia.size(), nv);
+        const size_t used = meshopt_optimizeVertexFetchRemap(remap.data(), is.data(), is.size(), nv);
+        meshopt_remapIndexBuffer(is.data(), is.data(), is.size(), remap.data());
+        const auto cache = [&](const std::vector<uint32_t>& i, size_t n) {
+            return meshopt_analyzeVertexCache(i.data(), i.size(), n, 16, 0, 0).acmr;
+        };
+        const auto fetch = [&](const std::vector<uint32_t>& i, size_t n) {
+            return meshopt_analyzeVertexFetch(i.data(), i.size(), n, 16).overfetch;
+        };
+        std::printf(
+            "  %3.0f%% (%zu triangles): ACMR batched %.3f refinement %.3f static %.3f; overfetch batched %.2f "
+            "refinement %.2f static %.2f\n",
+            share * 100, ia.size() / 3, cache(ia, nv), cache(ib, nv), cache(is, used), fetch(ia, nv), fetch(ib, nv),
+            fetch(is, used));
+    }
+}
+
 // --decode: CPU time of reading one file (best of 5), split by phase.
 int decode_only(const std::string& path) {
     auto data = read_file(path);
@@ -374,6 +412,23 @@ int decode_only(const std::string& path) {
         "%s: %zu bytes, %zu splits decoded in %.1f ms (%.2f M splits/s); in refinement order %.1f ms (batched order "
         "costs %.2fx)\n",
         path.c_str(), bytes.size(), splits, t * 1e3, double(splits) / t / 1e6, plain * 1e3, t / plain);
+    print_locality(bytes, path);
+    // Size: the file per split beside the full mesh through static-mesh codecs
+    // at the same quantization (codec_baselines.h).
+    auto pms = pm::read_bpm_bytes(bytes, path, pm::BpmStream::FaceOrder::Refinement);
+    if (pms && pms->size() == 1) {
+        pm::ProgressiveMesh& m = *pms->front();
+        m.set_level(m.max_level());
+        const auto idx = m.indices().first(m.max_triangle_count() * 3);
+        const uint8_t* oct = m.has_normals() ? m.normal_codes().data() : nullptr;
+        const size_t nv = m.max_vertex_count();
+        const auto per_vertex = [&](size_t b) { return double(b) / double(nv); };
+        std::printf("  size: %.2f bytes per split; full mesh per vertex: meshopt codecs %.2f, Draco %.2f (%s)\n",
+                    double(bytes.size()) / double(std::max<size_t>(m.max_level(), 1)),
+                    per_vertex(lod::meshopt_codec_bytes(m.position_codes().data(), oct, nv, idx.data(), idx.size())),
+                    per_vertex(lod::draco_codec_bytes(m.position_codes().data(), oct, nv, idx.data(), idx.size())),
+                    lod::draco_available() ? "level 10" : "not built in");
+    }
     return 0;
 }
 

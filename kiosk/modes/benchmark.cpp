@@ -432,16 +432,22 @@ Status Benchmark::run() {
         return ok_status();
     }
     for (double lod : {1.0, 0.4, 0.1})
-        if (auto s = run_lod(lod); !s) return s;
-    step("after every style and LOD");
-    print_memory();
-    if (auto s = run_cut_plane(); !s) return s;
+        if (auto s = options_.order_only ? ok_status() : run_lod(lod); !s) return s;
+    if (!options_.order_only) {
+        step("after every style and LOD");
+        print_memory();
+        if (auto s = run_cut_plane(); !s) return s;
+    }
     if (source_->progressive() && !options_.model.empty()) {
         renderer_.state(id_)->style = Style::Baseline;
         if (auto s = compare_with_static(renderer_, id_, *source_, options_.model, camera_, frame_, options_.frames,
                                          options_.seconds_per_cell);
             !s)
             return s;
+    }
+    if (options_.order_only) {
+        renderer_.shutdown();
+        return ok_status();
     }
     renderer_.state(id_)->style = Style::Smooth;
     if (auto s = full_detail(); !s) return s;
@@ -471,6 +477,7 @@ int run_benchmark_mode(platform::Surface& surface, const ViewOptions& o, const s
     bo.seconds_per_cell = o.bench_seconds;
     bo.cut_only = o.bench_only == "cut";
     bo.pins_only = o.bench_only == "pins";
+    bo.order_only = o.bench_only == "order";
     auto s = run_benchmark(surface, bo);
     return s ? kExitOk : report(s.error());
 }

@@ -25,6 +25,7 @@ struct BenchmarkOptions {
     size_t max_pairs = 200;         // ... or has this many
     bool cut_only = false;          // --bench-only cut: the cut-plane table alone, after the model loads
     bool pins_only = false;         // --bench-only pins: the pinned-label table alone, at full detail
+    bool order_only = false;        // --bench-only order: the draw-order table alone, after the model loads
     render::RendererOptions renderer = {};  // --buffer-access
 };
 

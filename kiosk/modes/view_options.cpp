@@ -184,8 +184,8 @@ Status parse_benchmark(const CliArgs& args, ViewOptions& o) {
         return input_error("--bench-seconds must be in [0, 600]");
     o.bench_seconds = seconds.value();
     o.bench_only = args.get_or("bench-only", "");
-    if (!o.bench_only.empty() && o.bench_only != "cut" && o.bench_only != "pins")
-        return input_error("--bench-only expects cut or pins");
+    if (!o.bench_only.empty() && o.bench_only != "cut" && o.bench_only != "pins" && o.bench_only != "order")
+        return input_error("--bench-only expects cut, pins or order");
     return ok_status();
 }
 

@@ -36,7 +36,7 @@ struct ViewOptions {
     long bench_triangles = 1000000;
     long bench_frames = 9;
     double bench_seconds = 3.0;              // --bench-seconds: time spent per cell beyond the first bench_frames pairs
-    std::string bench_only;                  // --bench-only: one table ("cut"); empty: every table
+    std::string bench_only;                  // --bench-only: one table ("cut", "order"); empty: every table
     double soak_minutes = 0.0;               // --soak; 0: no soak
     double display_width_mm = 0.0;           // --display-width-mm; 0: as the display reports it
     bool author = false;                     // --author: the authoring window (kiosk/author/)

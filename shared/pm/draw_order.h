@@ -6,9 +6,10 @@
 // GPU's post-transform cache barely hits (2.5x a cache-optimised static mesh on
 // an H100). The reader therefore groups the splits into batches at geometric
 // level boundaries (vertex counts B, B r, B r^2, ... N + B, r = kBatchRatio) and,
-// once a batch is decoded, reorders the batch's faces among themselves with
-// meshopt_optimizeVertexCache on its connectivity at the batch's last level
-// (Forsyth / Tom's algorithm). Every boundary level is then a prefix made of
+// once a batch is decoded, reorders the batch's faces among themselves for the
+// vertex cache on its connectivity at the batch's last level (cache_order:
+// a Morton sort, then meshopt_optimizeVertexCache in windows; over whole
+// batches it made decoding 2.5-2.9x slower, see bench/RESULTS.md). Every boundary level is then a prefix made of
 // cache-ordered runs, the newest run the largest (about (r-1)/r of the faces).
 // The price: only boundary levels (and the levels of the batch still
 // arriving) are exact prefixes, so a level is chosen at batch boundaries and
@@ -20,7 +21,7 @@
 // Limit (measured, issue 24): a prefix layout cannot reach a static mesh's
 // locality. A batch's new faces are mostly pairs around separate split edges
 // and the older faces around a split are patched in place, so ACMR (cache 16)
-// falls from 2.38 (refinement order) to 1.57 on the bunny, against 0.68 for
+// falls from 2.38 (refinement order) to about 1.6 on the bunny, against 0.68 for
 // the same triangles through meshoptimizer. Closing that needs faces
 // re-emitted in the newest batch or a per-level reordered element buffer.
 #include <cstddef>
@@ -36,10 +37,19 @@ inline constexpr double kBatchRatio = 2.0;
 // vertices: ascending, the last == splits, none 0 (level 0 is always a boundary).
 std::vector<uint32_t> batch_levels(size_t base_vertices, size_t splits);
 
+// Working memory of cache_order, caller-owned and reused between calls.
+struct CacheOrderScratch {
+    std::vector<uint64_t> keys;
+    std::vector<uint32_t> local_of, local, sorted, global, start, by_first, window;
+};
+
 // The cache order of `face_count` triangles (`indices`, three per face, each <
-// vertex_count): writes to order[i] the face drawn i-th (a permutation of
-// 0 .. face_count-1). scratch is caller-owned working memory (reused).
-void cache_order(const uint32_t* indices, size_t face_count, size_t vertex_count, uint32_t* order,
-                 std::vector<uint32_t>& scratch);
+// vertex_count; `qpos`: 3 position codes per vertex): writes to order[i] the
+// face drawn i-th (a permutation of 0 .. face_count-1). The faces sorted along
+// a Morton curve, then windows of 1024 consecutive faces each through
+// meshopt_optimizeVertexCache (a window's tables stay in the CPU's caches;
+// Tipsify there instead decoded faster still, at 5 % more cache misses).
+void cache_order(const uint32_t* indices, size_t face_count, size_t vertex_count, const uint16_t* qpos, uint32_t* order,
+                 CacheOrderScratch& scratch);
 
 }  // namespace body::pm

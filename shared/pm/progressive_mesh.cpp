@@ -97,7 +97,7 @@ void ProgressiveMesh::order_batch(size_t level) {
     // The batch's faces at `level`, then their order; scratch: the old entries.
     std::vector<uint32_t> faces(n * 3), order(n);
     for (size_t i = 0; i < n * 3; ++i) faces[i] = replay_.index(f0 * 3 + i);
-    cache_order(faces.data(), n, base_vertices_ + level, order.data(), order_scratch_);
+    cache_order(faces.data(), n, base_vertices_ + level, qpos_.data(), order.data(), order_scratch_);
     std::copy(indices_.begin() + ptrdiff_t(f0 * 3), indices_.begin() + ptrdiff_t(f1 * 3), faces.begin());
     for (size_t t = 0; t < n; ++t) {
         const size_t f = order[t];
@@ -386,7 +386,7 @@ void ProgressiveMesh::release_decoding_state() {
     // Swapped out, not `= {}` (that empties a vector but keeps its storage).
     replay_ = SplitReplay{};
     UninitVector<uint32_t>().swap(face_slot_);
-    std::vector<uint32_t>().swap(order_scratch_);
+    order_scratch_ = {};
     UninitVector<uint16_t>().swap(qpos_);
     if (!has_normals_) UninitVector<uint8_t>().swap(qoct_);  // with normals: kept as them
     // patch_corners_ grew geometrically while the splits arrived: to its size,

@@ -38,6 +38,7 @@
 
 #include "shared/error.h"
 #include "shared/geometry.h"
+#include "shared/pm/draw_order.h"
 #include "shared/pm/large_array.h"
 #include "shared/pm/quantize.h"
 #include "shared/pm/split_replay.h"
@@ -293,7 +294,7 @@ private:
     // in indices_, and the first patch_corners_ entry of the batch arriving.
     UninitVector<uint32_t> face_slot_;
     size_t batch_patch_begin_ = 0;
-    std::vector<uint32_t> order_scratch_;
+    CacheOrderScratch order_scratch_;
     void release_decoding_state();
     bool moves_parent(size_t j) const { return (move_bits_[j / 64] >> (j % 64)) & 1; }
     void move_parent(size_t j, uint32_t parent) {
