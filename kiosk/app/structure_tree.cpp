@@ -79,14 +79,7 @@ int letter_rows(const Frame& f, size_t letters) {
 }
 
 Control control(ControlId id, int group, Rect r, std::string text, bool active = false, bool enabled = true) {
-    Control c;
-    c.id = id;
-    c.group = group;
-    c.rect = r;
-    c.text = std::move(text);
-    c.active = active;
-    c.enabled = enabled;
-    return c;
+    return Control{id, group, r, std::move(text), enabled, active};
 }
 
 }  // namespace

@@ -20,6 +20,12 @@ inline void write_sphere_obj(const std::filesystem::path& path, float cx, float 
     ASSERT_TRUE(write_obj(path.string(), std::span<const Mesh>(&sphere, 1)).ok());
 }
 
+// A one-finger tap at (x, y) lasting 0.05 s from time t, as replay lines.
+inline std::string replay_tap(float x, float y, double t) {
+    const std::string at = std::to_string(x) + " " + std::to_string(y);
+    return std::to_string(t) + " down 1 " + at + "\n" + std::to_string(t + 0.05) + " up 1 " + at + "\n";
+}
+
 // Writes a replay event by event; `t` is the time of the next event.
 struct AuthorScript {
     std::ostringstream out;

@@ -9,6 +9,7 @@
 #include "kiosk/app/replay.h"
 #include "kiosk_test_scene.h"
 #include "many_models_scene.h"
+#include "tests/common/replay_fixture.h"
 
 namespace body::kiosk {
 namespace {
@@ -28,18 +29,7 @@ void play(KioskApp& app, const std::string& text, double t) {
 }
 
 std::string tap(const Control& c, double t) {
-    std::string at = std::to_string(c.rect.x + c.rect.w / 2);
-    at += " ";
-    at += std::to_string(c.rect.y + c.rect.h / 2);
-    std::string s = std::to_string(t);
-    s += " down 1 ";
-    s += at;
-    s += "\n";
-    s += std::to_string(t + 0.05);
-    s += " up 1 ";
-    s += at;
-    s += "\n";
-    return s;
+    return body::test::replay_tap(c.rect.x + c.rect.w / 2, c.rect.y + c.rect.h / 2, t);
 }
 
 const Control* first(const KioskApp& app, ControlId id, int group = -1) {

@@ -18,9 +18,11 @@
 #include "kiosk/render/image.h"
 #include "shared/obj_io.h"
 #include "tests/cli/cli_test.h"
+#include "tests/common/replay_fixture.h"
 #include "tests/common/test_dir.h"
 #include "tests/common/test_meshes.h"
 #include "tests/render/render_fixture.h"
+#include "tests/render/render_golden.h"
 
 namespace body {
 namespace {
@@ -31,20 +33,7 @@ constexpr int kWidth = 800, kHeight = 500;
 const char* kWords[] = {"Arcuate", "Basal",   "Caudate", "Dentate", "Frontal", "Gyrus",
                         "Insula",  "Lingual", "Medial",  "Nucleus", "Optic",   "Pallidum"};
 
-std::string tap_at(const kiosk::Rect& r, double t) {
-    std::string at = std::to_string(r.x + r.w / 2);
-    at += " ";
-    at += std::to_string(r.y + r.h / 2);
-    std::string s = std::to_string(t);
-    s += " down 1 ";
-    s += at;
-    s += "\n";
-    s += std::to_string(t + 0.05);
-    s += " up 1 ";
-    s += at;
-    s += "\n";
-    return s;
-}
+std::string tap_at(const kiosk::Rect& r, double t) { return test::replay_tap(r.x + r.w / 2, r.y + r.h / 2, t); }
 
 class TreeGolden : public ::testing::Test {
 protected:
@@ -121,19 +110,6 @@ protected:
         return img ? img.value() : render::Image{};
     }
 
-    void expect_golden(const std::string& name, const render::Image& img) {
-        const std::string path = std::string(BODY_GOLDEN_DIR) + "/" + name + ".png";
-        if (std::getenv("BODY_UPDATE_GOLDENS")) {
-            ASSERT_TRUE(render::write_png(path, img).ok());
-            return;
-        }
-        auto golden = render::read_png(path);
-        ASSERT_TRUE(golden.ok()) << golden.error().message << " (regenerate with BODY_UPDATE_GOLDENS=1)";
-        const auto d = test::compare(golden.value(), img);
-        EXPECT_LE(d.bad_block_fraction, 0.01) << name;
-        EXPECT_LE(std::abs(d.mean_luma_delta), 1.5) << name;
-    }
-
     fs::path dir_;
 };
 
@@ -151,14 +127,14 @@ size_t blue(const render::Image& img, const kiosk::Rect& r) {
 TEST_F(TreeGolden, SearchedByALetterKey) {
     const render::Image img = open_and_search(R"({"languages": ["en"]})", U'c');
     ASSERT_EQ(img.width, kWidth);
-    expect_golden("tree_search_c", img);
+    test::expect_golden("tree_search_c", img);
 }
 
 TEST_F(TreeGolden, HighContrastAndLargeText) {
     const render::Image img =
         open_and_search(R"({"languages": ["en"], "high_contrast": true, "large_text": true})", U'b');
     ASSERT_EQ(img.width, kWidth);
-    expect_golden("tree_high_contrast_large", img);
+    test::expect_golden("tree_high_contrast_large", img);
 }
 
 TEST_F(TreeGolden, ArabicMirrorsThePanel) {
@@ -174,7 +150,7 @@ TEST_F(TreeGolden, ArabicMirrorsThePanel) {
     EXPECT_GT(blue(ar, ar_row), area / 2);
     EXPECT_GT(blue(en, en_row), area / 2);
     EXPECT_LT(blue(en, ar_row), blue(ar, ar_row) / 2);
-    expect_golden("tree_arabic", ar);
+    test::expect_golden("tree_arabic", ar);
 }
 
 }  // namespace
