@@ -1,12 +1,14 @@
 #pragma once
 // Input files before they are opened: only regular files are read (a FIFO
 // would block the reader, a device never ends), and text taken from a file is
-// escaped before it is echoed in a message.
+// escaped before it is echoed in a message; the words of a text line.
+#include <cctype>
 #include <cstdint>
 #include <initializer_list>
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "shared/error.h"
 
@@ -38,5 +40,18 @@ std::string escape_for_message(std::string_view text, size_t max = 80);
 // `text` with control characters and DEL written as \xHH, everything else (UTF-8
 // names included) kept: a message built from file contents stays one line.
 std::string escape_control_characters(std::string_view text);
+
+// The whitespace-separated words of `line` into `out` (cleared first), as
+// views into `line`: the text mesh formats' (OBJ, PLY) value rows.
+inline void split_words(std::string_view line, std::vector<std::string_view>& out) {
+    out.clear();
+    for (size_t i = 0; i < line.size();) {
+        while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
+        size_t j = i;
+        while (j < line.size() && !std::isspace(static_cast<unsigned char>(line[j]))) ++j;
+        if (j > i) out.push_back(line.substr(i, j - i));
+        i = j;
+    }
+}
 
 }  // namespace body

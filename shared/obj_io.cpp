@@ -111,13 +111,7 @@ Status check_obj_text(const std::string& text, const std::string& path) {
         if (line.find('\0') != std::string_view::npos) return fail("NUL byte (not a text file)");
         if (const size_t hash = line.find('#'); hash != std::string_view::npos) line = line.substr(0, hash);
         std::vector<std::string_view> tok;
-        for (size_t i = 0; i < line.size();) {
-            while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
-            size_t j = i;
-            while (j < line.size() && !std::isspace(static_cast<unsigned char>(line[j]))) ++j;
-            if (j > i) tok.push_back(line.substr(i, j - i));
-            i = j;
-        }
+        split_words(line, tok);
         if (tok.empty()) continue;
         const size_t values = tok.size() - 1;
         const int kind = tok[0] == "v" ? 0 : tok[0] == "vt" ? 1 : tok[0] == "vn" ? 2 : -1;

@@ -170,14 +170,7 @@ Status walk_ascii(std::string_view bytes, const std::string& path, const Header&
             const std::string_view line = bytes.substr(pos, end - pos);
             pos = end + 1;
             ++line_no;
-            tok.clear();
-            for (size_t i = 0; i < line.size();) {
-                while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
-                size_t j = i;
-                while (j < line.size() && !std::isspace(static_cast<unsigned char>(line[j]))) ++j;
-                if (j > i) tok.push_back(line.substr(i, j - i));
-                i = j;
-            }
+            split_words(line, tok);
             if (!tok.empty()) return true;
         }
         return false;
