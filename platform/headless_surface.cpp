@@ -84,6 +84,7 @@ private:
 }  // namespace
 
 Result<std::unique_ptr<Surface>> create_headless_surface(const SurfaceOptions& options) {
+    default_software_rasterizer_threads();
     return init_surface<HeadlessSurface>(options);
 }
 

@@ -98,7 +98,13 @@ bool drm_card_opens() {
 
 }  // namespace
 
+std::string default_software_rasterizer_threads() {
+    ::setenv("LP_NUM_THREADS", "0", 0);  // 0: keeps a value the user set
+    return std::getenv("LP_NUM_THREADS");
+}
+
 Result<std::unique_ptr<Surface>> create_surface(const SurfaceOptions& options) {
+    default_software_rasterizer_threads();
     switch (options.backend) {
         case Backend::Headless: return create_headless_surface(options);
         case Backend::Glfw: return create_glfw_surface(options);

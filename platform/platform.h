@@ -107,6 +107,15 @@ public:
     virtual void cancel_quit() {}
 };
 
+// Mesa's llvmpipe (the software rasterizer of GPU-less machines and of CI)
+// recycles a scene once its fence reads complete, which its rasterizer thread
+// marks before it unlocks the fence's mutex: the fence can be freed under that
+// unlock, a 4-byte write into freed memory (heap corruption after 15-60 soak
+// minutes under load; bench/RESULTS.md). Rasterizing on the calling thread has
+// no such race, so surfaces set LP_NUM_THREADS=0 unless the user set it, before
+// any driver loads. Returns the value in effect. Other drivers ignore it.
+std::string default_software_rasterizer_threads();
+
 // Creates the surface for `options.backend`; Auto picks a display server if
 // one is reachable, else DRM if /dev/dri/card* opens, else fails with a reason.
 // Headless is used only when asked for.

@@ -8,8 +8,10 @@
 // llvmpipe's wait returns as soon as the fence's counter is complete, which
 // its rasterizer thread sets before it unlocks the fence's mutex; deleting
 // the fence just waited for freed it while that thread could still unlock
-// it (a 4-byte write into freed memory: the soak's heap corruption). A newer
-// fence complete means every rasterizer thread finished the older one.
+// it (a 4-byte write into freed memory; Mesa's own scene recycling has the
+// same race, which default_software_rasterizer_threads() in platform.h
+// avoids). A newer fence complete means every rasterizer thread finished the
+// older one.
 // release() (with the context current) finishes the context's work first.
 #include <GLES3/gl3.h>
 

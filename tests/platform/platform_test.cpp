@@ -117,3 +117,26 @@ TEST(Seat, OpensAndClosesADevice) {
     }
     EXPECT_LT(seat->open_device("/nonexistent/event0"), 0);
 }
+
+// The software rasterizer's thread count: 0 (rasterize on the calling thread)
+// unless the user chose, and a surface applies it before the driver loads.
+TEST(Platform, SoftwareRasterizerRunsOnTheCallingThreadUnlessTheUserChose) {
+    const char* before = std::getenv("LP_NUM_THREADS");
+    const std::string saved = before ? before : "";
+    ::unsetenv("LP_NUM_THREADS");
+    EXPECT_EQ(default_software_rasterizer_threads(), "0");
+    ::setenv("LP_NUM_THREADS", "3", 1);
+    EXPECT_EQ(default_software_rasterizer_threads(), "3");
+    ::unsetenv("LP_NUM_THREADS");
+    SurfaceOptions options;
+    options.backend = Backend::Headless;
+    options.width = 16;
+    options.height = 16;
+    auto surface = create_surface(options);
+    ASSERT_NE(std::getenv("LP_NUM_THREADS"), nullptr);
+    EXPECT_STREQ(std::getenv("LP_NUM_THREADS"), "0");
+    if (before)
+        ::setenv("LP_NUM_THREADS", saved.c_str(), 1);
+    else
+        ::unsetenv("LP_NUM_THREADS");
+}
