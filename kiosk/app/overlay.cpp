@@ -14,7 +14,8 @@
 namespace body::kiosk {
 
 struct Overlay::State {
-    Batch2d batch, solid_batch;
+    Batch2d batch, solid_batch;  // atlas shader; colour-only shader, made at the second draw
+    int draws = 0;
     // Per text size (normal, large): the title and body atlases and their textures.
     struct Atlases {
         AtlasTexture textures[2];  // title, body
@@ -80,7 +81,6 @@ Status Overlay::init(const std::string& font_file, float scale) {
     s->scale = scale;
     s->use_size(0);
     if (auto b = s->batch.init("overlay"); !b) return b;
-    if (auto b = s->solid_batch.init("overlay boxes", Batch2d::Shading::Solid); !b) return b;
     shutdown();
     s_ = std::move(s);
     return ok_status();
@@ -189,9 +189,15 @@ void Overlay::draw(const std::vector<Control>& controls, const LabelCard& card, 
     s.upload();
 
     // Lines and boxes in one draw through the colour-only shader: llvmpipe shades
-    // every box pixel, and the atlas shader's texture branch and uv varying cost it there.
-    s.solid_batch.begin(framebuffer, width, height);
-    s.solid_batch.draw(s.solid);
+    // every box pixel, and the atlas shader's texture branch and uv varying cost
+    // it there. That shader is made at the second draw, so the kiosk's first
+    // frame compiles no more than before; the first draw's boxes go through
+    // the atlas shader (at most one level apart on translucent pixels).
+    if (s.draws < 2 && ++s.draws == 2)
+        (void)s.solid_batch.init("overlay boxes", Batch2d::Shading::Solid);  // else: the atlas one
+    Batch2d& boxes = s.solid_batch.ready() ? s.solid_batch : s.batch;
+    boxes.begin(framebuffer, width, height);
+    boxes.draw(s.solid);
     s.batch.begin(framebuffer, width, height);
     s.batch.draw(s.text[0], s.sizes[s.size].textures[0].id());
     s.batch.draw(s.text[1], s.sizes[s.size].textures[1].id());
