@@ -159,4 +159,27 @@ int bvh_nearest(const Bvh& bvh, const Ray& ray, const BvhHit& hit, float& distan
     return best;
 }
 
+void bvh_entered(const Bvh& bvh, const Ray& ray, float before, const BvhEntered& entered) {
+    if (bvh.nodes.empty()) return;
+    const glm::vec3 inv = 1.0f / ray.direction;
+    const auto reaches = [&](const glm::vec3& lo, const glm::vec3& hi) {
+        const auto t = ray_box(ray, inv, lo, hi);
+        return t && *t < before ? t : std::nullopt;
+    };
+    std::vector<uint32_t> stack;
+    stack.reserve(64);
+    if (reaches(bvh.nodes[0].lo, bvh.nodes[0].hi)) stack.push_back(0);
+    while (!stack.empty()) {
+        const BvhNode& node = bvh.nodes[stack.back()];
+        stack.pop_back();
+        if (node.count > 0) {
+            for (uint32_t k = node.first; k < node.first + node.count; ++k)
+                if (const auto t = reaches(bvh.item_lo[k], bvh.item_hi[k])) entered(bvh.items[k], *t);
+            continue;
+        }
+        for (uint32_t c = node.first; c < node.first + 2; ++c)
+            if (reaches(bvh.nodes[c].lo, bvh.nodes[c].hi)) stack.push_back(c);
+    }
+}
+
 }  // namespace body

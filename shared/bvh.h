@@ -18,6 +18,10 @@
 //   children nearer first, so the surface of item i must lie inside its box.
 //   Returns the item (-1: none; equal distances: the lowest item) and writes
 //   its distance to `distance`.
+// - bvh_entered(): every item whose own box the ray enters before `before`,
+//   with the distance at which it enters (0 when the origin is inside), in
+//   no particular order; for batching many rays by item (the kiosk's pin
+//   occlusion: each model walked once for all the rays that reach it).
 // - `ray.direction` need not be unit length; distances are in its units.
 #include <cstdint>
 #include <functional>
@@ -48,6 +52,9 @@ void bvh_refit(Bvh& bvh, std::span<const glm::vec3> lo, std::span<const glm::vec
 
 using BvhHit = std::function<std::optional<float>(uint32_t item)>;
 int bvh_nearest(const Bvh& bvh, const Ray& ray, const BvhHit& hit, float& distance);
+
+using BvhEntered = std::function<void(uint32_t item, float enter)>;
+void bvh_entered(const Bvh& bvh, const Ray& ray, float before, const BvhEntered& entered);
 
 // The distance at which `ray` enters box [lo, hi] (0 when it starts inside), or nullopt.
 std::optional<float> ray_box(const Ray& ray, const glm::vec3& inv_direction, const glm::vec3& lo, const glm::vec3& hi);

@@ -198,9 +198,8 @@ private:
     void find_pin_anchors();
     void test_pin_occlusion();
     std::optional<float> hit_distance(int model, const Ray& ray) const;
-    bool may_occlude(int model, const Ray& ray, float before) const;  // kiosk_pins.cpp
-    void refresh_pick_tree() const;                                   // kiosk_pick.cpp
-    void activate_operator(const Control& c);                         // kiosk_operator.cpp
+    void refresh_pick_tree() const;            // kiosk_pick.cpp
+    void activate_operator(const Control& c);  // kiosk_operator.cpp
     // The structure tree (kiosk_tree.cpp).
     bool groups_fit() const;
     TreeContent tree_content() const;

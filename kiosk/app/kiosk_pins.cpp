@@ -8,8 +8,10 @@
 // sphere); when that ray misses (a ring, a crescent), rays on rings of a
 // quarter, a half and three quarters of the projected radius, eight each, are
 // tried in order and the first hit is taken.
+#include <algorithm>
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
+#include <tuple>
 
 #include "kiosk/app/kiosk_app.h"
 
@@ -72,57 +74,67 @@ void KioskApp::find_pin_anchors() {
     pin_occluded_.assign(pins_.size(), 0);
 }
 
-// Whether model `m` can hold a surface point on `ray` nearer than `before`:
-// false when the ray misses the sphere around its bounds (ModelInfo's radius
-// is the box's half diagonal over sqrt 3), or enters it only past `before`.
-// Spares the batched picker's triangle walk for models nowhere near the line of sight.
-bool KioskApp::may_occlude(int m, const Ray& ray, float before) const {
-    const float r = info_[static_cast<size_t>(m)].radius * 1.7320508f * 1.01f;
-    const glm::vec3 oc = ray.origin - model_center(m);
-    const float b = glm::dot(oc, ray.direction), c = glm::dot(oc, oc) - r * r;
-    if (c <= 0.0f) return true;  // the eye inside the sphere
-    const float disc = b * b - c;
-    return b < 0.0f && disc >= 0.0f && -b - std::sqrt(disc) < before;
-}
-
 // Occluded: another surface (of any visible model, its own included) lies on
 // the ray from the eye before the anchor, by more than 1% of the distance.
+// One walk serves both pickers: the box hierarchy (kiosk_pick.cpp) lists, per
+// pin's ray, the models whose box it enters before the anchor; the models are
+// then taken nearest entry first, each once with the rays of every pin it may
+// still hide (a batched picker walks its triangles once for them all; the
+// single picker is asked ray by ray), so a pin hidden by a near model is not
+// cast again through the models behind it.
 void KioskApp::test_pin_occlusion() {
     const glm::vec3 eye = camera_.eye();
     std::vector<Ray> rays(pins_.size());
-    std::vector<float> dist(pins_.size(), 0.0f);
+    std::vector<float> before(pins_.size(), 0.0f);
     for (size_t i = 0; i < pins_.size(); ++i) {
         const glm::vec3 p = glm::vec3(placement(pins_[i].model) * glm::vec4(pins_[i].anchor, 1.0f));
-        dist[i] = glm::length(p - eye);
+        const float dist = glm::length(p - eye);
         pin_occluded_[i] = 0;
-        if (dist[i] > 0.0f) rays[i] = Ray{eye, (p - eye) / dist[i]};
+        before[i] = dist * 0.99f;
+        if (dist > 0.0f) rays[i] = Ray{eye, (p - eye) / dist};
     }
-    if (many_picker_) {  // each model once, with the rays of every pin it may hide
-        std::vector<Ray> batch;
-        std::vector<size_t> which;
-        std::vector<float> nearest;
-        for (int m = 0; m < model_count(); ++m) {
-            if (!visible(m)) continue;
-            batch.clear();
-            which.clear();
-            for (size_t i = 0; i < pins_.size(); ++i) {
-                if (pin_occluded_[i] || dist[i] <= 0.0f || !may_occlude(m, rays[i], dist[i] * 0.99f)) continue;
-                batch.push_back(rays[i]);
-                which.push_back(i);
-            }
-            if (batch.empty()) continue;
-            nearest.assign(batch.size(), INFINITY);
-            many_picker_(m, batch, nearest);
-            for (size_t k = 0; k < batch.size(); ++k)
-                if (nearest[k] < dist[which[k]] * 0.99f) pin_occluded_[which[k]] = 1;
-        }
-        return;
-    }
+    refresh_pick_tree();
+    struct Reach {
+        float model_enter;  // the model's nearest entry over every ray that reaches it
+        uint32_t model;
+        size_t pin;
+    };
+    std::vector<Reach> reach;
+    std::vector<float> enter(info_.size(), INFINITY);
     for (size_t i = 0; i < pins_.size(); ++i) {
-        if (dist[i] <= 0.0f) continue;
-        // The nearest surface on the line of sight, through the picking hierarchy (kiosk_pick.cpp).
-        float t = 0.0f;
-        if (pick_ray(rays[i], t) >= 0 && t < dist[i] * 0.99f) pin_occluded_[i] = 1;
+        if (before[i] <= 0.0f) continue;
+        bvh_entered(pick_tree_, rays[i], before[i], [&](uint32_t m, float t) {
+            if (!visible(static_cast<int>(m))) return;
+            reach.push_back(Reach{0.0f, m, i});
+            enter[m] = std::min(enter[m], t);
+        });
+    }
+    for (Reach& r : reach) r.model_enter = enter[r.model];
+    std::sort(reach.begin(), reach.end(), [](const Reach& a, const Reach& b) {
+        return std::tie(a.model_enter, a.model, a.pin) < std::tie(b.model_enter, b.model, b.pin);
+    });
+    std::vector<Ray> batch;
+    std::vector<size_t> which;
+    std::vector<float> nearest;
+    for (size_t at = 0; at < reach.size();) {
+        const uint32_t m = reach[at].model;
+        batch.clear();
+        which.clear();
+        for (; at < reach.size() && reach[at].model == m; ++at) {
+            if (pin_occluded_[reach[at].pin]) continue;
+            batch.push_back(rays[reach[at].pin]);
+            which.push_back(reach[at].pin);
+        }
+        if (batch.empty()) continue;
+        nearest.assign(batch.size(), INFINITY);
+        if (many_picker_) {
+            many_picker_(static_cast<int>(m), batch, nearest);
+        } else {
+            for (size_t k = 0; k < batch.size(); ++k)
+                if (const auto t = hit_distance(static_cast<int>(m), batch[k])) nearest[k] = *t;
+        }
+        for (size_t k = 0; k < batch.size(); ++k)
+            if (nearest[k] < before[which[k]]) pin_occluded_[which[k]] = 1;
     }
 }
 

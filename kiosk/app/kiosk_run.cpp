@@ -70,6 +70,7 @@ private:
     std::unique_ptr<KioskApp> app_;
     Overlay overlay_;
     PinLines pin_lines_;  // leader lines under the overlay's pin labels
+    std::vector<Vertex2d> pin_vertices_;
     float ui_scale_ = 1.0f;
     std::vector<platform::InputEvent> events_;
     double detail_cap_ = 1.0;  // lowered by GL_OUT_OF_MEMORY
@@ -137,10 +138,6 @@ void KioskLoop::start_app() {
     if (auto s = overlay_.init(options_.font.empty() ? default_font_file() : options_.font, ui_scale); !s)
         std::fprintf(stderr, "bodyview: labels disabled: %s\n", s.error().message.c_str());
     ui_scale_ = ui_scale;
-    if (scene_.kiosk.pins) {
-        if (auto s = pin_lines_.init(); !s)
-            std::fprintf(stderr, "bodyview: pin leader lines disabled: %s\n", s.error().message.c_str());
-    }
     ui_ms_ = ms_since(ui_start);
 }
 
@@ -218,8 +215,9 @@ void KioskLoop::draw_overlay(const render::FrameOptions& frame) {
     pin_lines_.set_high_contrast(app_->high_contrast());
     overlay_.set_look(app_->high_contrast(), app_->large_text());
     overlay_.set_language(app_->language());
-    pin_lines_.draw(app_->pins(), ui_scale_, frame.framebuffer, frame.width, frame.height);
-    overlay_.draw(app_->controls(), label_card(*app_), frame.framebuffer, frame.width, frame.height);
+    pin_vertices_.clear();
+    pin_lines_.append(app_->pins(), ui_scale_, pin_vertices_);
+    overlay_.draw(app_->controls(), label_card(*app_), frame.framebuffer, frame.width, frame.height, pin_vertices_);
 }
 
 bool KioskLoop::write_screenshot(const render::FrameOptions& frame) {
@@ -333,7 +331,6 @@ int KioskLoop::run() {
         std::fprintf(stderr, "bodyview: %ld frames, %.2f ms/frame mean, LOD controller %s, budget %zu triangles\n",
                      frames_counted, frame_ms_sum / static_cast<double>(frames_counted),
                      options_.auto_lod ? "on" : "off", app_->lod_controller().budget());
-    pin_lines_.shutdown();
     overlay_.shutdown();
     renderer_.shutdown();
     return exit_code;

@@ -1,5 +1,6 @@
-// The 2-D layer: solid and atlas-coverage quads through the shared 2-D batch
-// (batch_2d.h), one draw per texture.
+// The 2-D layer: solid quads (boxes, edges) through the shared 2-D batch's
+// colour-only shader in one draw, then atlas-coverage quads, one draw per
+// texture (batch_2d.h).
 #include "kiosk/app/overlay.h"
 
 #include <algorithm>
@@ -13,7 +14,8 @@
 namespace body::kiosk {
 
 struct Overlay::State {
-    Batch2d batch;
+    Batch2d batch, solid_batch;  // atlas shader; colour-only shader, made at the second draw
+    int draws = 0;
     // Per text size (normal, large): the title and body atlases and their textures.
     struct Atlases {
         AtlasTexture textures[2];  // title, body
@@ -29,7 +31,7 @@ struct Overlay::State {
     std::map<std::tuple<std::string, float, float, int>, FittedText> fitted;  // control text, box, size -> fit
     void use_size(int s);
     const FittedText& fit(const std::string& utf8, float w, float h);
-    void build(const std::vector<Control>& controls, const LabelCard& card);
+    void build(const std::vector<Control>& controls, const LabelCard& card, std::span<const Vertex2d> under);
     void upload();
 };
 
@@ -87,6 +89,7 @@ Status Overlay::init(const std::string& font_file, float scale) {
 void Overlay::shutdown() {
     if (!s_) return;
     s_->batch.shutdown();
+    s_->solid_batch.shutdown();
     for (State::Atlases& a : s_->sizes)
         for (AtlasTexture& t : a.textures) t.shutdown();
     s_.reset();
@@ -108,8 +111,9 @@ const FittedText& Overlay::State::fit(const std::string& utf8, float w, float h)
     return fitted.emplace(std::move(key), fit_text(*body_atlas, decode_utf8(utf8), w, h)).first->second;
 }
 
-void Overlay::State::build(const std::vector<Control>& controls, const LabelCard& card) {
-    solid.clear();
+void Overlay::State::build(const std::vector<Control>& controls, const LabelCard& card,
+                           std::span<const Vertex2d> under) {
+    solid.assign(under.begin(), under.end());
     text[0].clear();
     text[1].clear();
     GlyphAtlas &title = *title_atlas, &body = *body_atlas;
@@ -175,17 +179,26 @@ void Overlay::State::build(const std::vector<Control>& controls, const LabelCard
 }
 
 void Overlay::draw(const std::vector<Control>& controls, const LabelCard& card, unsigned framebuffer, int width,
-                   int height) {
+                   int height, std::span<const Vertex2d> under) {
     if (!s_) return;
     State& s = *s_;
     // Glyphs new this frame may grow an atlas and stale the quads laid out before: then once more.
     const uint64_t epochs = s.title_atlas->epoch() + s.body_atlas->epoch();
-    s.build(controls, card);
-    if (s.title_atlas->epoch() + s.body_atlas->epoch() != epochs) s.build(controls, card);
+    s.build(controls, card, under);
+    if (s.title_atlas->epoch() + s.body_atlas->epoch() != epochs) s.build(controls, card, under);
     s.upload();
 
+    // Lines and boxes in one draw through the colour-only shader: llvmpipe shades
+    // every box pixel, and the atlas shader's texture branch and uv varying cost
+    // it there. That shader is made at the second draw, so the kiosk's first
+    // frame compiles no more than before; the first draw's boxes go through
+    // the atlas shader (at most one level apart on translucent pixels).
+    if (s.draws < 2 && ++s.draws == 2)
+        (void)s.solid_batch.init("overlay boxes", Batch2d::Shading::Solid);  // else: the atlas one
+    Batch2d& boxes = s.solid_batch.ready() ? s.solid_batch : s.batch;
+    boxes.begin(framebuffer, width, height);
+    boxes.draw(s.solid);
     s.batch.begin(framebuffer, width, height);
-    s.batch.draw(s.solid);
     s.batch.draw(s.text[0], s.sizes[s.size].textures[0].id());
     s.batch.draw(s.text[1], s.sizes[s.size].textures[1].id());
     s.batch.end();

@@ -4,9 +4,11 @@
 // from GlyphAtlas textures. Needs a current GLES 3 context; one instance per
 // context. Pixels, origin top-left.
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
+#include "kiosk/app/batch_2d.h"
 #include "kiosk/app/label_card.h"
 #include "kiosk/app/text.h"
 #include "kiosk/app/ui.h"
@@ -28,7 +30,10 @@ public:
     void shutdown();
     // Draws controls and card into `framebuffer` (width x height). Control texts
     // follow fit_text (never cut off); right-to-left card text is right-aligned.
-    void draw(const std::vector<Control>& controls, const LabelCard& card, unsigned framebuffer, int width, int height);
+    // `under`: solid triangles drawn first, in the same draw as the controls'
+    // boxes (the pins' leader lines, pin_lines.h).
+    void draw(const std::vector<Control>& controls, const LabelCard& card, unsigned framebuffer, int width, int height,
+              std::span<const Vertex2d> under = {});
     // The access modes (access.h) the next draws use: the high-contrast
     // palette, large text (atlases kLargeTextScale times larger, made when first needed).
     void set_look(bool high_contrast, bool large_text);

@@ -1,33 +1,26 @@
 #pragma once
-// Draws the pinned labels' leader lines and anchor dots with GLES 3.0, under
-// the overlay (the labels themselves are controls the overlay draws): for each
-// pin with a placed label, a dot on its point and a line to the label's
-// nearest edge. Needs a current GLES 3 context; one instance per context.
-#include <memory>
+// The pinned labels' leader lines and anchor dots as 2-D triangles (no GL):
+// for each pin with a placed label, a dot on its point and a line to the
+// label's nearest edge, in pixels (origin top-left). The overlay draws them
+// first in its one draw of solid quads (Overlay::draw's `under`), so they lie
+// under the labels and cost no draw call of their own.
 #include <vector>
 
+#include "kiosk/app/batch_2d.h"
 #include "kiosk/app/kiosk_app.h"
-#include "shared/error.h"
 
 namespace body::kiosk {
 
 class PinLines {
 public:
-    PinLines();
-    ~PinLines();
-    PinLines(const PinLines&) = delete;
-    PinLines& operator=(const PinLines&) = delete;
-
-    Status init();
-    void shutdown();
-    // `scale` thickens lines and dots on large screens (the overlay's UI scale).
-    void draw(const std::vector<PinView>& pins, float scale, unsigned framebuffer, int width, int height);
-    // The high-contrast palette's line colours for the next draws (access.h).
-    void set_high_contrast(bool on);
+    // Appends the lines and dots of `pins` to `out`; `scale` thickens them on
+    // large screens (the overlay's UI scale).
+    void append(const std::vector<PinView>& pins, float scale, std::vector<Vertex2d>& out) const;
+    // The high-contrast palette's line colours for the next appends (access.h).
+    void set_high_contrast(bool on) { high_contrast_ = on; }
 
 private:
-    struct State;
-    std::unique_ptr<State> s_;
+    bool high_contrast_ = false;
 };
 
 }  // namespace body::kiosk

@@ -1,10 +1,14 @@
-// Pins' occlusion rays skip the models they cannot touch (KioskApp::pick_ray):
-// the picker walks only the triangles of models whose bounds lie on the line
-// of sight before the nearest surface found, and a model in front still hides it.
+// Pins' occlusion rays skip the models they cannot touch (the models' box
+// hierarchy, kiosk_pick.cpp): the picker walks only the triangles of models
+// whose bounds lie on the line of sight before the pin, nearest first, a pin
+// hidden by a near model is not cast through the ones behind, and a model in
+// front still hides it.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
+#include <string>
 
 #include "kiosk/app/kiosk_app.h"
 
@@ -20,24 +24,41 @@ std::optional<float> sphere_hit(const Ray& ray, glm::vec3 c, float r) {
     return t > 0.0f ? std::optional<float>(t) : std::nullopt;
 }
 
-TEST(PinOcclusion, OnlyModelsOnTheLineOfSightAreWalked) {
-    // Three spheres in a row; the middle one's pin faces the camera; a fourth sphere sits
-    // between the camera and the right one's pin.
+// Three spheres of radius 40 in a row (l, m, r) and a fourth (f) between the
+// camera and r's pin; `m_pins` the middle one's pins (JSON), r's pin on its front.
+struct FourSpheres {
+    scene::Scene scene;
+    std::vector<glm::vec3> centres{{-200, 0, 0}, {0, 0, 0}, {200, 0, 0}, {170, 0, 300}};
+    std::vector<ModelInfo> info;
+    std::optional<float> hit(int m, const Ray& ray) const {
+        return sphere_hit(ray, centres[static_cast<size_t>(m)], 40.0f);
+    }
+};
+
+FourSpheres four_spheres(const std::string& m_pins) {
+    FourSpheres f;
     auto scene = scene::parse_scene(R"({"models": [
-        {"name": "l", "file": "l.obj"}, {"name": "m", "file": "m.obj", "pins": [{"anchor": [0, 0, 40], "label": {"en": "M"}}]},
+        {"name": "l", "file": "l.obj"}, {"name": "m", "file": "m.obj", "pins": )" +
+                                        m_pins + R"(},
         {"name": "r", "file": "r.obj", "pins": [{"anchor": [200, 0, 40], "label": {"en": "R"}}]},
         {"name": "f", "file": "f.obj"}],
         "camera": {"target": [0, 0, 0], "distance": 900}, "kiosk": {"pins": true}})",
                                     "o.json", "");
-    ASSERT_TRUE(scene) << scene.error().message;
-    const std::vector<glm::vec3> centres{{-200, 0, 0}, {0, 0, 0}, {200, 0, 0}, {170, 0, 300}};
-    std::vector<ModelInfo> info;
-    for (const glm::vec3& c : centres) info.push_back(ModelInfo{true, c, 40.0f, 10, 10});
-    KioskApp app(std::move(scene).value(), info, 1280, 800);
+    EXPECT_TRUE(scene) << scene.error().message;
+    if (scene) f.scene = std::move(scene).value();
+    for (const glm::vec3& c : f.centres) f.info.push_back(ModelInfo{true, c, 40.0f, 10, 10});
+    return f;
+}
+
+TEST(PinOcclusion, OnlyModelsOnTheLineOfSightAreWalked) {
+    // The middle sphere's pin faces the camera; the fourth sphere hides the right one's.
+    const FourSpheres s = four_spheres(R"([{"anchor": [0, 0, 40], "label": {"en": "M"}}])");
+    ASSERT_EQ(s.scene.models.size(), 4u);
+    KioskApp app(s.scene, s.info, 1280, 800);
     std::vector<int> walks(4, 0);
     app.set_picker([&](int m, const Ray& ray) {
         ++walks[static_cast<size_t>(m)];
-        return sphere_hit(ray, centres[static_cast<size_t>(m)], 40.0f);
+        return s.hit(m, ray);
     });
     app.update(0.0);  // finds the default pins of l and f, tests occlusion
     ASSERT_EQ(app.pins().size(), 4u);
@@ -47,8 +68,8 @@ TEST(PinOcclusion, OnlyModelsOnTheLineOfSightAreWalked) {
     EXPECT_TRUE(app.pins()[1].shown);   // the middle sphere's front pole
     EXPECT_FALSE(app.pins()[2].shown);  // the right one's, behind the fourth sphere
     // Each pin's ray walks its own model, but the right one's only the sphere in
-    // front, whose surface is nearer than the right sphere's bounds: 4 walks
-    // where every model for every pin would be 16.
+    // front: that hides it, so the right sphere (entered later on the ray) is
+    // never walked. 4 walks where every model for every pin would be 16.
     EXPECT_EQ(walks, (std::vector<int>{1, 1, 0, 2}));
 }
 
@@ -56,21 +77,11 @@ TEST(PinOcclusion, OnlyModelsOnTheLineOfSightAreWalked) {
 // for every pin's ray), each model on some pin's line of sight is called once
 // with all those rays, and the pins come out as with one ray at a time.
 TEST(PinOcclusion, ManyRaysThroughAModelInOneCall) {
-    auto scene = scene::parse_scene(R"({"models": [
-        {"name": "l", "file": "l.obj"},
-        {"name": "m", "file": "m.obj", "pins": [{"anchor": [0, 0, 40], "label": {"en": "M"}},
-                                                {"anchor": [0, 0, -40], "label": {"en": "Back"}},
-                                                {"anchor": [0, 40, 0], "label": {"en": "Top"}}]},
-        {"name": "r", "file": "r.obj", "pins": [{"anchor": [200, 0, 40], "label": {"en": "R"}}]},
-        {"name": "f", "file": "f.obj"}],
-        "camera": {"target": [0, 0, 0], "distance": 900}, "kiosk": {"pins": true}})",
-                                    "o.json", "");
-    ASSERT_TRUE(scene) << scene.error().message;
-    const std::vector<glm::vec3> centres{{-200, 0, 0}, {0, 0, 0}, {200, 0, 0}, {170, 0, 300}};
-    std::vector<ModelInfo> info;
-    for (const glm::vec3& c : centres) info.push_back(ModelInfo{true, c, 40.0f, 10, 10});
-    const auto one = [&](int m, const Ray& ray) { return sphere_hit(ray, centres[static_cast<size_t>(m)], 40.0f); };
-    KioskApp single(*scene, info, 1280, 800), many(*scene, info, 1280, 800);
+    const FourSpheres s = four_spheres(R"([{"anchor": [0, 0, 40], "label": {"en": "M"}},
+        {"anchor": [0, 0, -40], "label": {"en": "Back"}}, {"anchor": [0, 40, 0], "label": {"en": "Top"}}])");
+    ASSERT_EQ(s.scene.models.size(), 4u);
+    const auto one = [&](int m, const Ray& ray) { return s.hit(m, ray); };
+    KioskApp single(s.scene, s.info, 1280, 800), many(s.scene, s.info, 1280, 800);
     single.set_picker(one);
     many.set_picker(one);
     std::vector<int> calls(4, 0);

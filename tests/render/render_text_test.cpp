@@ -10,6 +10,7 @@
 
 #include "kiosk/app/label_card.h"
 #include "kiosk/app/overlay.h"
+#include "kiosk/app/pin_lines.h"
 #include "kiosk/render/image.h"
 #include "render_fixture.h"
 
@@ -116,6 +117,55 @@ TEST_P(TextGolden, MatchesGolden) {
         (void)render::write_png(actual.string(), img);
         ADD_FAILURE() << sc.name << ": " << d.bad_block_fraction * 100 << "% blocks differ (actual: " << actual << ")";
     }
+}
+
+// A pin's leader line and dot (pin_lines.h) go through the overlay's solid
+// draw: drawn from the pin to its label, alike on the first draw (atlas
+// shader) and the later ones (colour-only shader), and nothing of them for a
+// hidden pin.
+TEST(OverlayUnder, LeaderLinesLieUnderThePinLabels) {
+    if (!std::filesystem::exists(BODY_FONT_FILE)) GTEST_SKIP() << "needs fonts-dejavu-core";
+    const int w = 400, h = 300;
+    test::RenderFixture f(w, h);
+    if (!f.ok()) GTEST_SKIP() << f.why();
+    kiosk::Overlay overlay;
+    ASSERT_TRUE(overlay.init(BODY_FONT_FILE, 1.0f).ok());
+    kiosk::PinView pin;
+    pin.shown = true;
+    pin.anchor_px = {100.0f, 200.0f};
+    pin.label = kiosk::Rect{200.0f, 60.0f, 120.0f, 50.0f};
+    Control label;
+    label.id = kiosk::ControlId::Pin;
+    label.rect = *pin.label;
+    label.text = "Pin";
+    const render::FrameOptions o = f.frame();
+    const auto frame = [&](bool shown) {
+        pin.shown = shown;
+        std::vector<kiosk::Vertex2d> under;
+        kiosk::PinLines().append({pin}, 1.0f, under);
+        EXPECT_EQ(under.empty(), !shown);
+        (void)f.draw(render::View{});  // the background
+        overlay.draw({label}, LabelCard{}, o.framebuffer, w, h, under);
+        render::Image img;
+        img.width = w;
+        img.height = h;
+        img.rgba = platform::read_pixels_rgba(o.framebuffer, w, h);
+        return img;
+    };
+    const auto luma = [](const render::Image& img, int x, int y) {
+        const uint8_t* p = img.at(x, y);
+        return (p[0] + p[1] + p[2]) / 3;
+    };
+    const render::Image first = frame(true), second = frame(true), hidden = frame(false);
+    const int bg = luma(hidden, 150, 150);  // on the line's way, with no line there
+    for (const render::Image* img : {&first, &second}) {
+        EXPECT_LT(luma(*img, 100, 200), bg - 40);  // the dark dot on the anchor
+        // Half way along the line to the label's nearest corner (200, 110).
+        EXPECT_LT(luma(*img, 150, 155), bg - 40);
+    }
+    EXPECT_EQ(luma(hidden, 100, 200), bg);
+    EXPECT_EQ(test::compare(first, second).bad_block_fraction, 0.0);
+    overlay.shutdown();
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryScript, TextGolden, ::testing::ValuesIn(kScripts),

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -103,6 +104,42 @@ TEST(Bvh, NearestMatchesBruteForceOnRandomScenes) {
         // The point of the tree: a large scene tests a small share of its items.
         if (n == 2400) {
             EXPECT_LT(calls, 300u * n / 20);
+        }
+    }
+}
+
+// Every item whose box the ray enters before the limit, none other, each once,
+// at the distance the slab test gives, after a refit too.
+TEST(Bvh, EnteredListsTheBoxesOnTheRayBeforeTheLimit) {
+    std::mt19937 rng(31);
+    for (size_t n : {1u, 5u, 100u, 2400u}) {
+        const float spread = 2.0f * std::cbrt(static_cast<float>(n));
+        Spheres s = random_scene(rng, n, spread);
+        Bvh bvh;
+        bvh_build(bvh, s.lo, s.hi);
+        size_t listed_any = 0;
+        for (int pass = 0; pass < 2; ++pass) {
+            for (int k = 0; k < 200; ++k) {
+                const Ray r = random_ray(rng, spread);
+                const float before = std::uniform_real_distribution<float>(0.0f, 4.0f * spread)(rng);
+                const glm::vec3 inv = 1.0f / r.direction;
+                std::vector<float> expected(n, -1.0f), got(n, -1.0f);
+                for (size_t i = 0; i < n; ++i)
+                    if (const auto t = ray_box(r, inv, s.lo[i], s.hi[i]); t && *t < before) expected[i] = *t;
+                bvh_entered(bvh, r, before, [&](uint32_t i, float t) {
+                    EXPECT_EQ(got[i], -1.0f) << "item " << i << " listed twice";
+                    got[i] = t;
+                });
+                EXPECT_EQ(got, expected) << "ray " << k << " of " << n << " items";
+                listed_any +=
+                    static_cast<size_t>(std::count_if(got.begin(), got.end(), [](float t) { return t >= 0; }));
+            }
+            for (size_t i = 0; i < n; i += 2) s.centre[i] += glm::vec3(spread * 0.3f, 0.0f, -spread * 0.2f);
+            s.boxes();
+            bvh_refit(bvh, s.lo, s.hi);
+        }
+        if (n >= 100) {
+            EXPECT_GT(listed_any, 100u);  // the rays do reach boxes
         }
     }
 }
