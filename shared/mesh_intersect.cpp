@@ -272,7 +272,10 @@ Snapped snap_mesh(std::span<const Vec3> positions, std::span<const uint32_t> ind
     }
     const Snap snap = Snap::of(m.all);
     m.q.resize(positions.size());
-    for (size_t v = 0; v < positions.size(); ++v) m.q[v] = snap(positions[v]);
+    if (indices.size() < positions.size())  // a few triangles of a large mesh: only their corners
+        for (uint32_t v : indices) m.q[v] = snap(positions[v]);
+    else
+        for (size_t v = 0; v < positions.size(); ++v) m.q[v] = snap(positions[v]);
     for (size_t t = 0; t < tri_count; ++t) {
         const IVec &a = m.q[indices[3 * t]], &b = m.q[indices[3 * t + 1]], &c = m.q[indices[3 * t + 2]];
         auto n = cross(sub(b, a), sub(c, a));
