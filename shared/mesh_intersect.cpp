@@ -296,9 +296,11 @@ size_t count_pairs(std::span<const Vec3> positions, std::span<const uint32_t> in
     Grid grid = make_grid(m.all, m.extent_sum / double(tri_count), tri_count);
     std::vector<std::pair<uint64_t, uint32_t>> entries;
     entries.reserve(tri_count * 2);
+    std::vector<std::array<int, 3>> low_cell(tri_count);  // the cell of each box's lowest corner
     for (size_t t = 0; t < tri_count; ++t) {
         if (m.skip[t]) continue;
-        int lo[3], hi[3];
+        int* lo = low_cell[t].data();
+        int hi[3];
         grid.cell_of(m.boxes[t].min, lo);
         grid.cell_of(m.boxes[t].max, hi);
         for (int z = lo[2]; z <= hi[2]; ++z)
@@ -323,9 +325,10 @@ size_t count_pairs(std::span<const Vec3> positions, std::span<const uint32_t> in
                 const Aabb &b1 = m.boxes[t1], &b2 = m.boxes[t2];
                 Vec3 lo = glm::max(b1.min, b2.min), hi = glm::min(b1.max, b2.max);
                 if (lo.x > hi.x || lo.y > hi.y || lo.z > hi.z) continue;
-                int c[3];
-                grid.cell_of(lo, c);
-                if (grid.key(c[0], c[1], c[2]) != cell_key) continue;
+                // The overlap's lowest corner is the larger of the two lowest corners (cell_of is monotonic).
+                const auto &c1 = low_cell[t1], &c2 = low_cell[t2];
+                if (grid.key(std::max(c1[0], c2[0]), std::max(c1[1], c2[1]), std::max(c1[2], c2[2])) != cell_key)
+                    continue;
                 if (!pair_meets(m.q, &indices[3 * size_t(t1)], &indices[3 * size_t(t2)])) continue;
                 if (pairs) pairs->push_back({std::min(t1, t2), std::max(t1, t2)});
                 if (++found == stop_after) return found;
