@@ -58,7 +58,22 @@ int sign(Wide v) { return v > 0 ? 1 : (v < 0 ? -1 : 0); }
 // Sign of the volume of (a, b, c, d): positive when d is above abc.
 // Coordinates lie in [0, 2^40]: differences < 2^41, cross products < 2^82,
 // each product n[k] e[k] < 2^123 and their sum < 2^125: no overflow.
+// A floating-point filter answers first: the differences are exact in double
+// (< 2^41), so Shewchuk's first error bound for orient3d (7.8e-16 of the
+// permanent) decides every sign that is not near zero; the rest fall back to
+// the exact 128-bit sum.
 int orient3(const IVec& a, const IVec& b, const IVec& c, const IVec& d) {
+    const double bx = double(b[0] - a[0]), by = double(b[1] - a[1]), bz = double(b[2] - a[2]);
+    const double cx = double(c[0] - a[0]), cy = double(c[1] - a[1]), cz = double(c[2] - a[2]);
+    const double dx = double(d[0] - a[0]), dy = double(d[1] - a[1]), dz = double(d[2] - a[2]);
+    const double n0 = by * cz - bz * cy, n1 = bz * cx - bx * cz, n2 = bx * cy - by * cx;
+    const double det = n0 * dx + n1 * dy + n2 * dz;
+    const double permanent = (std::abs(by * cz) + std::abs(bz * cy)) * std::abs(dx) +
+                             (std::abs(bz * cx) + std::abs(bx * cz)) * std::abs(dy) +
+                             (std::abs(bx * cy) + std::abs(by * cx)) * std::abs(dz);
+    const double bound = 7.7715611723761e-16 * permanent;
+    if (det > bound) return 1;
+    if (det < -bound) return -1;
     auto n = cross(sub(b, a), sub(c, a));
     auto e = sub(d, a);
     Wide v = n[0] * e[0] + n[1] * e[1] + n[2] * e[2];
@@ -107,13 +122,17 @@ std::array<IVec2, 6> project(const IVec& a, const IVec& b, const IVec& c, std::s
     return out;
 }
 
-bool is_coplanar(const IVec& a0, const IVec& a1, const IVec& a2, const IVec& b0, const IVec& b1, const IVec& b2) {
-    return orient3(a0, a1, a2, b0) == 0 && orient3(a0, a1, a2, b1) == 0 && orient3(a0, a1, a2, b2) == 0;
-}
+// True when the three signs are all positive or all negative: the points lie
+// strictly on one side of the plane.
+bool one_side(int s0, int s1, int s2) { return (s0 > 0 && s1 > 0 && s2 > 0) || (s0 < 0 && s1 < 0 && s2 < 0); }
 
 bool disjoint_intersect(const IVec& a0, const IVec& a1, const IVec& a2, const IVec& b0, const IVec& b1,
                         const IVec& b2) {
-    if (is_coplanar(a0, a1, a2, b0, b1, b2)) {
+    // Möller's early outs: one triangle strictly on one side of the other's plane.
+    const int sb0 = orient3(a0, a1, a2, b0), sb1 = orient3(a0, a1, a2, b1), sb2 = orient3(a0, a1, a2, b2);
+    if (one_side(sb0, sb1, sb2)) return false;
+    if (one_side(orient3(b0, b1, b2, a0), orient3(b0, b1, b2, a1), orient3(b0, b1, b2, a2))) return false;
+    if (sb0 == 0 && sb1 == 0 && sb2 == 0) {
         const IVec v[6] = {a0, a1, a2, b0, b1, b2};
         auto p = project(a0, a1, a2, std::span<const IVec, 6>(v));
         for (int i = 0; i < 3; ++i)
@@ -128,7 +147,12 @@ bool disjoint_intersect(const IVec& a0, const IVec& a1, const IVec& a2, const IV
 
 // Triangles (v, a, b) and (v, c, d) sharing vertex v: do they meet elsewhere?
 bool vertex_adjacent_intersect(const IVec& v, const IVec& a, const IVec& b, const IVec& c, const IVec& d) {
-    if (is_coplanar(v, a, b, v, c, d)) {
+    // Early outs: c and d strictly on one side of (v, a, b)'s plane, or a and b of (v, c, d)'s.
+    const int sc = orient3(v, a, b, c), sd = orient3(v, a, b, d);
+    if (sc * sd > 0) return false;
+    const int sa = orient3(v, c, d, a), sb = orient3(v, c, d, b);
+    if (sa * sb > 0) return false;
+    if (sc == 0 && sd == 0) {
         // Both lie in their wedges at v; they overlap iff the wedges do.
         const IVec pts[6] = {v, a, b, v, c, d};
         auto p = project(v, a, b, std::span<const IVec, 6>(pts));
@@ -200,94 +224,144 @@ bool triangles_intersect(const Vec3& a0, const Vec3& a1, const Vec3& a2, const V
     return disjoint_intersect(snap(a0), snap(a1), snap(a2), snap(b0), snap(b1), snap(b2));
 }
 
-size_t count_self_intersections(std::span<const Vec3> positions, std::span<const uint32_t> indices, size_t stop_after,
-                                std::vector<std::pair<uint32_t, uint32_t>>* pairs) {
+namespace {
+
+// Pair test by index adjacency on the snapped positions `q` (the contract's rules).
+bool pair_meets(std::span<const IVec> q, const uint32_t* A, const uint32_t* B) {
+    int shared = 0, ai[3] = {-1, -1, -1};
+    for (int p = 0; p < 3; ++p)
+        for (int k = 0; k < 3; ++k)
+            if (A[p] == B[k]) ai[p] = k;
+    for (int p = 0; p < 3; ++p) shared += ai[p] >= 0;
+    if (shared == 0) return disjoint_intersect(q[A[0]], q[A[1]], q[A[2]], q[B[0]], q[B[1]], q[B[2]]);
+    if (shared == 1) {
+        int p = ai[0] >= 0 ? 0 : (ai[1] >= 0 ? 1 : 2), k = ai[p];
+        return vertex_adjacent_intersect(q[A[p]], q[A[(p + 1) % 3]], q[A[(p + 2) % 3]], q[B[(k + 1) % 3]],
+                                         q[B[(k + 2) % 3]]);
+    }
+    if (shared == 2) {
+        int p = ai[0] < 0 ? 0 : (ai[1] < 0 ? 1 : 2);  // A's vertex not shared
+        int k = 0;
+        while (k < 3 && (B[k] == A[(p + 1) % 3] || B[k] == A[(p + 2) % 3])) ++k;
+        return edge_adjacent_intersect(q[A[(p + 1) % 3]], q[A[(p + 2) % 3]], q[A[p]], q[B[k]]);
+    }
+    return true;  // the same triangle twice
+}
+
+// Phase 1: the snap over the triangles' bounding box, the snapped positions
+// and which triangles are degenerate after snapping (skipped).
+struct Snapped {
+    Aabb all;
+    std::vector<Aabb> boxes;
+    std::vector<IVec> q;
+    std::vector<uint8_t> skip;
+    double extent_sum = 0;
+};
+
+Snapped snap_mesh(std::span<const Vec3> positions, std::span<const uint32_t> indices) {
+    Snapped m;
+    const size_t tri_count = indices.size() / 3;
+    m.boxes.resize(tri_count);
+    m.skip.assign(tri_count, 0);
+    for (size_t t = 0; t < tri_count; ++t) {
+        for (int c = 0; c < 3; ++c) m.boxes[t].extend(positions[indices[3 * t + size_t(c)]]);
+        m.all.extend(m.boxes[t].min);
+        m.all.extend(m.boxes[t].max);
+        Vec3 s = m.boxes[t].size();
+        m.extent_sum += std::max({s.x, s.y, s.z});
+    }
+    const Snap snap = Snap::of(m.all);
+    m.q.resize(positions.size());
+    if (indices.size() < positions.size())  // a few triangles of a large mesh: only their corners
+        for (uint32_t v : indices) m.q[v] = snap(positions[v]);
+    else
+        for (size_t v = 0; v < positions.size(); ++v) m.q[v] = snap(positions[v]);
+    for (size_t t = 0; t < tri_count; ++t) {
+        const IVec &a = m.q[indices[3 * t]], &b = m.q[indices[3 * t + 1]], &c = m.q[indices[3 * t + 2]];
+        auto n = cross(sub(b, a), sub(c, a));
+        if (n[0] == 0 && n[1] == 0 && n[2] == 0) m.skip[t] = 1;
+    }
+    return m;
+}
+
+// Phases 2-3: grid entries sorted by cell, then the pairs within each cell
+// (of which one is marked, when `marked` is given), tested only in the cell
+// holding the lowest corner of their boxes' overlap.
+size_t count_pairs(std::span<const Vec3> positions, std::span<const uint32_t> indices, std::span<const uint8_t> marked,
+                   size_t stop_after, std::vector<std::pair<uint32_t, uint32_t>>* pairs) {
     if (pairs) pairs->clear();
     const size_t tri_count = indices.size() / 3;
     if (tri_count < 2) return 0;
-    Aabb all;
-    std::vector<Aabb> boxes(tri_count);
-    std::vector<uint8_t> skip(tri_count, 0);
-    double extent_sum = 0;
-    for (size_t t = 0; t < tri_count; ++t) {
-        const Vec3 &a = positions[indices[3 * t]], &b = positions[indices[3 * t + 1]],
-                   &c = positions[indices[3 * t + 2]];
-        boxes[t].extend(a);
-        boxes[t].extend(b);
-        boxes[t].extend(c);
-        all.extend(boxes[t].min);
-        all.extend(boxes[t].max);
-        Vec3 s = boxes[t].size();
-        extent_sum += std::max({s.x, s.y, s.z});
-    }
-    const Snap snap = Snap::of(all);
-    std::vector<IVec> q(positions.size());  // the snapped positions
-    for (size_t v = 0; v < positions.size(); ++v) q[v] = snap(positions[v]);
-    for (size_t t = 0; t < tri_count; ++t) {  // degenerate after snapping: skipped
-        auto n = cross(sub(q[indices[3 * t + 1]], q[indices[3 * t]]), sub(q[indices[3 * t + 2]], q[indices[3 * t]]));
-        if (n[0] == 0 && n[1] == 0 && n[2] == 0) skip[t] = 1;
-    }
-    Grid grid = make_grid(all, extent_sum / double(tri_count), tri_count);
-
-    // Phase 2: (cell, triangle) entries, sorted by cell.
+    const Snapped m = snap_mesh(positions, indices);
+    Grid grid = make_grid(m.all, m.extent_sum / double(tri_count), tri_count);
     std::vector<std::pair<uint64_t, uint32_t>> entries;
     entries.reserve(tri_count * 2);
+    std::vector<std::array<int, 3>> low_cell(tri_count);  // the cell of each box's lowest corner
     for (size_t t = 0; t < tri_count; ++t) {
-        if (skip[t]) continue;
-        int lo[3], hi[3];
-        grid.cell_of(boxes[t].min, lo);
-        grid.cell_of(boxes[t].max, hi);
+        if (m.skip[t]) continue;
+        int* lo = low_cell[t].data();
+        int hi[3];
+        grid.cell_of(m.boxes[t].min, lo);
+        grid.cell_of(m.boxes[t].max, hi);
         for (int z = lo[2]; z <= hi[2]; ++z)
             for (int y = lo[1]; y <= hi[1]; ++y)
                 for (int x = lo[0]; x <= hi[0]; ++x) entries.push_back({grid.key(x, y, z), uint32_t(t)});
     }
     std::sort(entries.begin(), entries.end());
-
-    // Phase 3: pairs within each cell, tested only in the cell holding the
-    // lowest corner of their boxes' overlap.
+    const bool all_marked = marked.empty();
     size_t found = 0;
     for (size_t begin = 0; begin < entries.size();) {
         size_t end = begin;
-        while (end < entries.size() && entries[end].first == entries[begin].first) ++end;
+        bool any_marked = all_marked;
+        while (end < entries.size() && entries[end].first == entries[begin].first) {
+            any_marked = any_marked || marked[entries[end].second];
+            ++end;
+        }
         const uint64_t cell_key = entries[begin].first;
-        for (size_t i = begin; i < end; ++i)
+        for (size_t i = begin; any_marked && i < end; ++i)
             for (size_t j = i + 1; j < end; ++j) {
                 uint32_t t1 = entries[i].second, t2 = entries[j].second;
-                const Aabb &b1 = boxes[t1], &b2 = boxes[t2];
+                if (!all_marked && !marked[t1] && !marked[t2]) continue;
+                const Aabb &b1 = m.boxes[t1], &b2 = m.boxes[t2];
                 Vec3 lo = glm::max(b1.min, b2.min), hi = glm::min(b1.max, b2.max);
                 if (lo.x > hi.x || lo.y > hi.y || lo.z > hi.z) continue;
-                int c[3];
-                grid.cell_of(lo, c);
-                if (grid.key(c[0], c[1], c[2]) != cell_key) continue;
-                const uint32_t* A = &indices[3 * size_t(t1)];
-                const uint32_t* B = &indices[3 * size_t(t2)];
-                int shared = 0, ai[3] = {-1, -1, -1};
-                for (int p = 0; p < 3; ++p)
-                    for (int q = 0; q < 3; ++q)
-                        if (A[p] == B[q]) ai[p] = q;
-                for (int p = 0; p < 3; ++p) shared += ai[p] >= 0;
-                bool hit = false;
-                if (shared == 0) {
-                    hit = disjoint_intersect(q[A[0]], q[A[1]], q[A[2]], q[B[0]], q[B[1]], q[B[2]]);
-                } else if (shared == 1) {
-                    int p = ai[0] >= 0 ? 0 : (ai[1] >= 0 ? 1 : 2), k = ai[p];
-                    hit = vertex_adjacent_intersect(q[A[p]], q[A[(p + 1) % 3]], q[A[(p + 2) % 3]], q[B[(k + 1) % 3]],
-                                                    q[B[(k + 2) % 3]]);
-                } else if (shared == 2) {
-                    int p = ai[0] < 0 ? 0 : (ai[1] < 0 ? 1 : 2);  // A's vertex not shared
-                    int k = 0;
-                    while (k < 3 && (B[k] == A[(p + 1) % 3] || B[k] == A[(p + 2) % 3])) ++k;
-                    hit = edge_adjacent_intersect(q[A[(p + 1) % 3]], q[A[(p + 2) % 3]], q[A[p]], q[B[k]]);
-                } else {
-                    hit = true;  // the same triangle twice
-                }
-                if (!hit) continue;
+                // The overlap's lowest corner is the larger of the two lowest corners (cell_of is monotonic).
+                const auto &c1 = low_cell[t1], &c2 = low_cell[t2];
+                if (grid.key(std::max(c1[0], c2[0]), std::max(c1[1], c2[1]), std::max(c1[2], c2[2])) != cell_key)
+                    continue;
+                if (!pair_meets(m.q, &indices[3 * size_t(t1)], &indices[3 * size_t(t2)])) continue;
                 if (pairs) pairs->push_back({std::min(t1, t2), std::max(t1, t2)});
                 if (++found == stop_after) return found;
             }
         begin = end;
     }
     return found;
+}
+
+}  // namespace
+
+size_t count_self_intersections(std::span<const Vec3> positions, std::span<const uint32_t> indices, size_t stop_after,
+                                std::vector<std::pair<uint32_t, uint32_t>>* pairs) {
+    return count_pairs(positions, indices, {}, stop_after, pairs);
+}
+
+size_t count_self_intersections_of(std::span<const Vec3> positions, std::span<const uint32_t> indices,
+                                   std::span<const uint8_t> marked, size_t stop_after,
+                                   std::vector<std::pair<uint32_t, uint32_t>>* pairs) {
+    return count_pairs(positions, indices, marked, stop_after, pairs);
+}
+
+std::vector<uint8_t> triangle_pairs_meet(std::span<const Vec3> positions, std::span<const uint32_t> indices,
+                                         std::span<const std::pair<uint32_t, uint32_t>> pairs) {
+    std::vector<uint8_t> out(pairs.size(), 0);
+    if (pairs.empty()) return out;
+    const Snapped m = snap_mesh(positions, indices);
+    for (size_t k = 0; k < pairs.size(); ++k) {
+        const auto [t1, t2] = pairs[k];
+        if (m.skip[t1] || m.skip[t2]) continue;
+        out[k] = pair_meets(m.q, &indices[3 * size_t(t1)], &indices[3 * size_t(t2)]);
+    }
+    return out;
 }
 
 }  // namespace body

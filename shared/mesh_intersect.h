@@ -31,6 +31,20 @@ namespace body {
 size_t count_self_intersections(std::span<const Vec3> positions, std::span<const uint32_t> indices,
                                 size_t stop_after = 1, std::vector<std::pair<uint32_t, uint32_t>>* pairs = nullptr);
 
+// The same count over the pairs of which at least one triangle is marked
+// (`marked[t]` != 0; one entry per triangle): e.g. only the triangles that
+// moved since a mesh was known to be clean.
+size_t count_self_intersections_of(std::span<const Vec3> positions, std::span<const uint32_t> indices,
+                                   std::span<const uint8_t> marked, size_t stop_after = 1,
+                                   std::vector<std::pair<uint32_t, uint32_t>>* pairs = nullptr);
+
+// Whether each given pair of triangles (indices into `indices` / 3) meets,
+// by the rules and on the snap grid of count_self_intersections over the same
+// mesh (a pair it would count answers 1). For checking a few pairs without
+// counting them all.
+std::vector<uint8_t> triangle_pairs_meet(std::span<const Vec3> positions, std::span<const uint32_t> indices,
+                                         std::span<const std::pair<uint32_t, uint32_t>> pairs);
+
 // The pair test on its own: do triangles (a0, a1, a2) and (b0, b1, b2), sharing
 // no vertex, intersect (touching included)?
 bool triangles_intersect(const Vec3& a0, const Vec3& a1, const Vec3& a2, const Vec3& b0, const Vec3& b1,

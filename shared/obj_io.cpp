@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -19,13 +20,37 @@
 namespace body {
 namespace {
 
+// Appends a number as printf's %.Ng would (what the stream wrote before,
+// without the stream's per-number locale work); integers in full.
+void append_number(std::string& row, double value, int precision) {
+    char text[32];
+    row.append(text, std::to_chars(text, text + sizeof(text), value, std::chars_format::general, precision).ptr);
+}
+void append_number(std::string& row, size_t value) {
+    char text[24];
+    row.append(text, std::to_chars(text, text + sizeof(text), value).ptr);
+}
+
+void write_row(std::ostream& out, std::string& row, const char* tag, const Vec3& p, int precision) {
+    row.clear();
+    row.append(tag);
+    for (int k = 0; k < 3; ++k) {
+        row += ' ';
+        append_number(row, p[k], precision);
+    }
+    row += '\n';
+    out.write(row.data(), std::streamsize(row.size()));
+}
+
 std::string write_meshes(std::ostream& out, std::span<const Mesh> meshes, const ObjWriteOptions& options) {
     out.precision(options.precision);
     out << "# bodygen OBJ\n";
     size_t base = 1;
+    const int precision = std::clamp(options.precision, 1, 17);
+    std::string row;
     for (const Mesh& mesh : meshes) {
         out << "o " << (mesh.name.empty() ? std::string("structure") : mesh.name) << "\n";
-        for (const Vec3& p : mesh.positions) out << "v " << p.x << ' ' << p.y << ' ' << p.z << "\n";
+        for (const Vec3& p : mesh.positions) write_row(out, row, "v", p, precision);
         std::vector<Vec3> computed;
         std::span<const Vec3> normals = mesh.normals;
         if (options.normals && normals.size() != mesh.positions.size()) {
@@ -33,17 +58,21 @@ std::string write_meshes(std::ostream& out, std::span<const Mesh> meshes, const 
             normals = computed;
         }
         if (options.normals)
-            for (const Vec3& n : normals) out << "vn " << n.x << ' ' << n.y << ' ' << n.z << "\n";
+            for (const Vec3& n : normals) write_row(out, row, "vn", n, precision);
         for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
-            out << 'f';
+            row.clear();
+            row += 'f';
             for (int k = 0; k < 3; ++k) {
-                size_t i = base + mesh.indices[t + k];
-                if (options.normals)
-                    out << ' ' << i << "//" << i;
-                else
-                    out << ' ' << i;
+                const size_t i = base + mesh.indices[t + k];
+                row += ' ';
+                append_number(row, i);
+                if (options.normals) {
+                    row += "//";
+                    append_number(row, i);
+                }
             }
-            out << "\n";
+            row += '\n';
+            out.write(row.data(), std::streamsize(row.size()));
         }
         base += mesh.positions.size();
     }

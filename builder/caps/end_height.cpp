@@ -5,45 +5,55 @@
 
 namespace body {
 
-void rung_partners(std::span<const Vec3> positions, std::span<const uint32_t> triangles, RungPartners& out) {
+namespace {
+
+// For every vertex v, sums value(w, side) over its edge neighbours w on a lower
+// and on a higher slice; `value` returns false where w has nothing to give.
+// Each triangle edge is seen from both of its triangles: every neighbour
+// counts twice, which a mean does not see.
+template <class Value>
+void sum_over_neighbours(std::span<const Vec3> positions, std::span<const uint32_t> triangles, Value&& value,
+                         std::vector<Vec3>& below, std::vector<uint32_t>& below_n, std::vector<Vec3>& above,
+                         std::vector<uint32_t>& above_n) {
     const size_t n = positions.size();
-    out.below.assign(n, Vec3(0.0));
-    out.above.assign(n, Vec3(0.0));
-    out.below_n.assign(n, 0);
-    out.above_n.assign(n, 0);
-    // Each triangle edge is seen from both of its triangles: every neighbour
-    // counts twice, which the mean does not see.
+    below.assign(n, Vec3(0.0));
+    above.assign(n, Vec3(0.0));
+    below_n.assign(n, 0);
+    above_n.assign(n, 0);
     for (size_t t = 0; t + 2 < triangles.size(); t += 3)
         for (int e = 0; e < 3; ++e) {
             const uint32_t a = triangles[t + e], b = triangles[t + (e + 1) % 3];
             for (const auto& [v, w] : {std::pair{a, b}, std::pair{b, a}}) {
-                if (positions[w].z < positions[v].z) {
-                    out.below[v] += positions[w];
-                    ++out.below_n[v];
-                } else if (positions[w].z > positions[v].z) {
-                    out.above[v] += positions[w];
-                    ++out.above_n[v];
-                }
+                const bool is_below = positions[w].z < positions[v].z;
+                if (!is_below && !(positions[w].z > positions[v].z)) continue;
+                Vec3 given;
+                if (!value(w, is_below, given)) continue;
+                (is_below ? below : above)[v] += given;
+                ++(is_below ? below_n : above_n)[v];
             }
         }
+}
+
+}  // namespace
+
+void rung_partners(std::span<const Vec3> positions, std::span<const uint32_t> triangles, RungPartners& out) {
+    sum_over_neighbours(
+        positions, triangles,
+        [&](uint32_t w, bool, Vec3& given) {
+            given = positions[w];
+            return true;
+        },
+        out.below, out.below_n, out.above, out.above_n);
     // The second level: the means of the partners' own means, one slice further.
-    out.below2.assign(n, Vec3(0.0));
-    out.above2.assign(n, Vec3(0.0));
-    out.below2_n.assign(n, 0);
-    out.above2_n.assign(n, 0);
-    for (size_t t = 0; t + 2 < triangles.size(); t += 3)
-        for (int e = 0; e < 3; ++e) {
-            const uint32_t a = triangles[t + e], b = triangles[t + (e + 1) % 3];
-            for (const auto& [v, w] : {std::pair{a, b}, std::pair{b, a}}) {
-                if (positions[w].z < positions[v].z && out.below_n[w] > 0) {
-                    out.below2[v] += out.below[w] / double(out.below_n[w]);
-                    ++out.below2_n[v];
-                } else if (positions[w].z > positions[v].z && out.above_n[w] > 0) {
-                    out.above2[v] += out.above[w] / double(out.above_n[w]);
-                    ++out.above2_n[v];
-                }
-            }
-        }
+    sum_over_neighbours(
+        positions, triangles,
+        [&](uint32_t w, bool below, Vec3& given) {
+            const uint32_t count = below ? out.below_n[w] : out.above_n[w];
+            if (count == 0) return false;
+            given = (below ? out.below[w] : out.above[w]) / double(count);
+            return true;
+        },
+        out.below2, out.below2_n, out.above2, out.above2_n);
 }
 
 namespace {

@@ -22,8 +22,9 @@ int run_slice(const Args& argv) {
             "usage: bodygen slice IN.obj --planes N [--axis x|y|z] [--structure ID] -o OUT.contours.json\n"
             "  slices a closed mesh (all objects merged) with N planes evenly spaced strictly inside its\n"
             "  extent along the axis (default z); contours are counter-clockwise around solid.\n"
-            "  --avoid-self-intersections  leave out the planes that cross triangles of the mesh that\n"
-            "                              intersect each other (their contours would cross)\n");
+            "  --avoid-self-intersections  move the planes that cross triangles of the mesh that intersect\n"
+            "                              each other (their contours would cross) just past them, within\n"
+            "                              0.45 of the gap; leave out those that cannot move that little\n");
         return kExitOk;
     }
     if (args->positional().size() != 1) return report(input_error("slice: expected one input OBJ file"));
@@ -45,10 +46,14 @@ int run_slice(const Args& argv) {
     Aabb box = mesh_bounds(mesh->positions);
     std::vector<double> heights = evenly_spaced_planes(box.min[axis], box.max[axis], size_t(*planes));
     if (args->has("avoid-self-intersections")) {
-        size_t dropped = drop_planes_through_self_intersections(mesh->positions, mesh->indices, axis, heights);
-        if (dropped && !args->has("quiet"))
+        const PlaneMoves moves = move_planes_off_self_intersections(mesh->positions, mesh->indices, axis, heights);
+        if (moves.moved && !args->has("quiet"))
+            std::fprintf(stderr,
+                         "%s: moved %zu of %ld planes off the mesh's self-intersections (at most %.2f of the gap)\n",
+                         input.c_str(), moves.moved, *planes, moves.largest_move);
+        if (moves.dropped && !args->has("quiet"))
             std::fprintf(stderr, "%s: left out %zu of %ld planes that cross the mesh's self-intersections\n",
-                         input.c_str(), dropped, *planes);
+                         input.c_str(), moves.dropped, *planes);
         if (heights.empty())
             return report(input_error("slice: " + input + ": every plane crosses a self-intersection"));
     }

@@ -339,16 +339,33 @@ private:
 // Phase 5: rungs whose curve makes triangles meet that do not meet on the
 // straight mesh go back on their straight line, until none is left. The
 // straight mesh lies on the input triangles, so its meeting pairs are the
-// children of input triangles that meet (`input_pairs`). After the first
-// round only triangles next to a rung just straightened are tested again
+// children of input triangles that meet: a pair is new when its parents are
+// one triangle or do not meet (asked of the input mesh only for the pairs
+// found). The first round tests only pairs with a triangle off its straight
+// position; later rounds only triangles next to a rung just straightened
 // (any other new pair was found before and had its rungs straightened).
 size_t keep_free_of_new_crossings(Work& w, std::vector<Vec3>& positions, std::span<const uint32_t> indices,
-                                  std::span<const uint32_t> parent,
-                                  const std::vector<std::pair<uint32_t, uint32_t>>& input_pairs, size_t first_new) {
-    const std::set<std::pair<uint32_t, uint32_t>> before(input_pairs.begin(), input_pairs.end());
-    auto is_new = [&](std::pair<uint32_t, uint32_t> pair) {
-        const uint32_t a = parent[pair.first], b = parent[pair.second];
-        return a == b || !before.count({std::min(a, b), std::max(a, b)});
+                                  std::span<const uint32_t> parent, std::span<const uint32_t> input_indices,
+                                  size_t first_new) {
+    std::map<std::pair<uint32_t, uint32_t>, bool> parents_meet;
+    auto new_pairs = [&](const std::vector<std::pair<uint32_t, uint32_t>>& found) {
+        std::vector<std::pair<uint32_t, uint32_t>> ask;
+        for (auto [t1, t2] : found) {
+            const uint32_t a = parent[t1], b = parent[t2];
+            if (a != b && !parents_meet.count({std::min(a, b), std::max(a, b)}))
+                ask.push_back({std::min(a, b), std::max(a, b)});
+        }
+        std::sort(ask.begin(), ask.end());
+        ask.erase(std::unique(ask.begin(), ask.end()), ask.end());
+        const std::vector<uint8_t> meet =
+            triangle_pairs_meet(std::span<const Vec3>(positions).first(first_new), input_indices, ask);
+        for (size_t k = 0; k < ask.size(); ++k) parents_meet[ask[k]] = meet[k] != 0;
+        std::vector<std::pair<uint32_t, uint32_t>> out;
+        for (auto [t1, t2] : found) {
+            const uint32_t a = parent[t1], b = parent[t2];
+            if (a == b || !parents_meet[{std::min(a, b), std::max(a, b)}]) out.push_back({t1, t2});
+        }
+        return out;
     };
     std::vector<uint32_t> rung_at(positions.size() - first_new, 0);
     for (uint32_t r = 0; r < w.rungs.size(); ++r)
@@ -365,13 +382,15 @@ size_t keep_free_of_new_crossings(Work& w, std::vector<Vec3>& positions, std::sp
         if (indices[i] >= first_new) around[fill[rung_at[indices[i] - first_new]]++] = uint32_t(i / 3);
     const NearTriangles near(indices, positions, w.straight);
 
+    std::vector<uint8_t> off_straight(indices.size() / 3, 0);
+    for (size_t i = 0; i < indices.size(); ++i)
+        if (indices[i] >= first_new && positions[indices[i]] != w.straight[indices[i]]) off_straight[i / 3] = 1;
     std::vector<std::pair<uint32_t, uint32_t>> pairs;
-    count_self_intersections(positions, indices, 0, &pairs);
+    count_self_intersections_of(positions, indices, off_straight, 0, &pairs);
     size_t straightened = 0;
     for (int round = 0; round < 64; ++round) {
         std::vector<uint32_t> moved;
-        for (const auto& pair : pairs) {
-            if (!is_new(pair)) continue;
+        for (const auto& pair : new_pairs(pairs)) {
             for (uint32_t t : {pair.first, pair.second})
                 for (int c = 0; c < 3; ++c) {
                     const uint32_t v = indices[3 * size_t(t) + size_t(c)];
@@ -421,13 +440,12 @@ InterpolationStats interpolate_between_slices(std::vector<Vec3>& positions, std:
     w.slice.resize(positions.size());
     for (size_t v = 0; v < positions.size(); ++v) w.slice[v] = slice_of(positions[v].z, slice_z);
     find_rungs(w, indices);
-    std::vector<std::pair<uint32_t, uint32_t>> input_pairs;
-    count_self_intersections(positions, indices, 0, &input_pairs);
     const size_t first_new = positions.size();
     place_points(w, positions, slopes(w, positions, indices));
     std::vector<uint32_t> parent;
+    const std::vector<uint32_t> input_indices = indices;
     indices = retriangulate(w, indices, parent);
-    stats.straightened = keep_free_of_new_crossings(w, positions, indices, parent, input_pairs, first_new);
+    stats.straightened = keep_free_of_new_crossings(w, positions, indices, parent, input_indices, first_new);
     for (const Rung& r : w.rungs) {
         stats.rungs += r.band;
         stats.curved += r.band && r.curved;

@@ -9,7 +9,6 @@
 //   undo_new_intersections  puts back the vertices of triangle pairs that smoothing made intersect
 #include <algorithm>
 #include <cassert>
-#include <set>
 #include <utility>
 #include <vector>
 
@@ -70,23 +69,27 @@ void umbrella_step(std::span<const Vec3> from, std::span<Vec3> to, const std::ve
 // in the input gets its vertices put back where the input had them. A vertex put
 // back can meet a smoothed neighbour, so this repeats; a pair whose six vertices are
 // all back is an input pair, so each round puts back at least one vertex or ends.
-// After kRounds the whole mesh goes back (never seen on the atlas). Returns the
-// number of vertices put back.
+// Only pairs with a triangle off its input position are counted, and the
+// input is asked only about the pairs found. After kRounds the whole mesh
+// goes back (never seen on the atlas). Returns the number of vertices put back.
 size_t undo_new_intersections(std::span<Vec3> positions, std::span<const Vec3> input,
                               std::span<const uint32_t> indices) {
     constexpr int kRounds = 32;
     std::vector<std::pair<uint32_t, uint32_t>> pairs;
-    (void)count_self_intersections(input, indices, 0, &pairs);
-    const std::set<std::pair<uint32_t, uint32_t>> before(pairs.begin(), pairs.end());
-    std::vector<uint8_t> restored(positions.size(), 0);
+    std::vector<uint8_t> restored(positions.size(), 0), moved(indices.size() / 3);
     size_t count = 0;
     for (int round = 0; round < kRounds; ++round) {
-        pairs.clear();
-        (void)count_self_intersections(positions, indices, 0, &pairs);
+        for (size_t t = 0; t < moved.size(); ++t) {
+            moved[t] = 0;
+            for (int k = 0; k < 3; ++k)
+                moved[t] |= positions[indices[3 * t + size_t(k)]] != input[indices[3 * t + size_t(k)]];
+        }
+        (void)count_self_intersections_of(positions, indices, moved, 0, &pairs);
+        const std::vector<uint8_t> met_before = triangle_pairs_meet(input, indices, pairs);
         bool changed = false;
-        for (const auto& pair : pairs) {
-            if (before.count(pair)) continue;
-            for (const uint32_t t : {pair.first, pair.second})
+        for (size_t p = 0; p < pairs.size(); ++p) {
+            if (met_before[p]) continue;
+            for (const uint32_t t : {pairs[p].first, pairs[p].second})
                 for (int k = 0; k < 3; ++k) {
                     const uint32_t v = indices[size_t(t) * 3 + size_t(k)];
                     if (restored[v]) continue;

@@ -109,11 +109,13 @@ static bool clean_loop(std::vector<Vec2>& loop, double tolerance) {
 
 }  // namespace
 
-size_t drop_planes_through_self_intersections(std::span<const Vec3> positions, std::span<const uint32_t> indices,
-                                              int axis, std::vector<double>& planes) {
+// The extents along `axis` of the triangles taking part in a self-intersection,
+// sorted and merged where they overlap.
+static std::vector<std::pair<double, double>> self_intersection_spans(std::span<const Vec3> positions,
+                                                                      std::span<const uint32_t> indices, int axis) {
     std::vector<std::pair<uint32_t, uint32_t>> pairs;
-    if (count_self_intersections(positions, indices, 0, &pairs) == 0) return 0;
-    std::vector<std::pair<double, double>> spans;  // extents along the axis of the triangles involved
+    if (count_self_intersections(positions, indices, 0, &pairs) == 0) return {};
+    std::vector<std::pair<double, double>> spans;
     for (auto [a, b] : pairs)
         for (uint32_t t : {a, b}) {
             double lo = 1e300, hi = -1e300;
@@ -124,6 +126,19 @@ size_t drop_planes_through_self_intersections(std::span<const Vec3> positions, s
             }
             spans.push_back({lo, hi});
         }
+    std::sort(spans.begin(), spans.end());
+    std::vector<std::pair<double, double>> merged;
+    for (auto span : spans)
+        if (!merged.empty() && span.first <= merged.back().second)
+            merged.back().second = std::max(merged.back().second, span.second);
+        else
+            merged.push_back(span);
+    return merged;
+}
+
+size_t drop_planes_through_self_intersections(std::span<const Vec3> positions, std::span<const uint32_t> indices,
+                                              int axis, std::vector<double>& planes) {
+    const auto spans = self_intersection_spans(positions, indices, axis);
     const size_t before = planes.size();
     std::erase_if(planes, [&](double h) {
         for (auto [lo, hi] : spans)
@@ -131,6 +146,46 @@ size_t drop_planes_through_self_intersections(std::span<const Vec3> positions, s
         return false;
     });
     return before - planes.size();
+}
+
+PlaneMoves move_planes_off_self_intersections(std::span<const Vec3> positions, std::span<const uint32_t> indices,
+                                              int axis, std::vector<double>& planes) {
+    PlaneMoves out;
+    const auto spans = self_intersection_spans(positions, indices, axis);
+    if (spans.empty()) return out;
+    std::sort(planes.begin(), planes.end());
+    const std::vector<double> given = planes;
+    std::vector<double> kept;
+    for (size_t k = 0; k < given.size(); ++k) {
+        const double h = given[k];
+        double gap = 1e300;  // to the nearer neighbour; a lone plane may move by its slab's tenth
+        if (k > 0) gap = std::min(gap, h - given[k - 1]);
+        if (k + 1 < given.size()) gap = std::min(gap, given[k + 1] - h);
+        auto blocked = std::find_if(spans.begin(), spans.end(), [&](auto s) { return h >= s.first && h <= s.second; });
+        if (blocked == spans.end()) {
+            kept.push_back(h);
+            continue;
+        }
+        if (gap == 1e300) gap = 10 * (blocked->second - blocked->first) + 1e-300;
+        // Just past either end of the merged span, whichever is nearer; the
+        // margin keeps the plane off the span's end vertices.
+        const double margin = kPlaneMoveMargin * gap;
+        const double below = blocked->first - margin, above = blocked->second + margin;
+        const bool below_free = blocked == spans.begin() || std::prev(blocked)->second < below;
+        const bool above_free = std::next(blocked) == spans.end() || std::next(blocked)->first > above;
+        double best = 1e300;
+        if (below_free && h - below <= kPlaneMoveLimit * gap) best = below;
+        if (above_free && above - h <= kPlaneMoveLimit * gap && above - h < std::abs(h - best)) best = above;
+        if (best == 1e300) {
+            ++out.dropped;
+            continue;
+        }
+        ++out.moved;
+        out.largest_move = std::max(out.largest_move, std::abs(best - h) / gap);
+        kept.push_back(best);
+    }
+    planes = std::move(kept);
+    return out;
 }
 
 std::vector<double> evenly_spaced_planes(double lo, double hi, size_t count) {

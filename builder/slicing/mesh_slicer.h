@@ -42,6 +42,21 @@ Result<ContourStack> slice_mesh(std::span<const Vec3> positions, std::span<const
 size_t drop_planes_through_self_intersections(std::span<const Vec3> positions, std::span<const uint32_t> indices,
                                               int axis, std::vector<double>& planes);
 
+// Moves each plane that crosses such a triangle just past the end (along the
+// axis) of the span those triangles cover, to the nearer end, when that is
+// within kPlaneMoveLimit of the gap to its nearer neighbour (so planes keep
+// their order and no gap doubles); otherwise the plane is removed. `planes`
+// comes back sorted. Returns how many moved, were removed, and the largest
+// move as a fraction of the gap.
+constexpr double kPlaneMoveLimit = 0.45;   // two neighbours moving towards each other stay 0.1 gap apart
+constexpr double kPlaneMoveMargin = 1e-3;  // of the gap, past the span's end
+struct PlaneMoves {
+    size_t moved = 0, dropped = 0;
+    double largest_move = 0;
+};
+PlaneMoves move_planes_off_self_intersections(std::span<const Vec3> positions, std::span<const uint32_t> indices,
+                                              int axis, std::vector<double>& planes);
+
 // `count` heights evenly spaced strictly inside (lo, hi): lo + (k + 0.5) (hi - lo) / count.
 std::vector<double> evenly_spaced_planes(double lo, double hi, size_t count);
 

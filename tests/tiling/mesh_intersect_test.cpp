@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -75,6 +76,37 @@ TEST(SelfIntersections, AdjacentTriangles) {
     EXPECT_EQ(body::count_self_intersections(r, overlap, 0), 1u);
     std::vector<uint32_t> side = {0, 2, 5, 0, 5, 4};
     EXPECT_EQ(body::count_self_intersections(r, side, 0), 0u);
+}
+
+// The marked count finds exactly the pairs of the full count that have a
+// marked triangle, and the pair query agrees with the full count.
+TEST(SelfIntersections, MarkedCountAndPairQueryAgreeWithTheFullCount) {
+    body::Mesh m = uv_sphere(12, 24);
+    body::Mesh other = uv_sphere(12, 24);
+    for (auto& p : other.positions) p += Vec3(0.7, 0.2, 0.1);
+    const size_t first_other = m.indices.size() / 3;
+    append(m, other);
+    std::vector<std::pair<uint32_t, uint32_t>> all, marked_pairs;
+    const size_t total = body::count_self_intersections(m.positions, m.indices, 0, &all);
+    ASSERT_GT(total, 0u);
+    std::vector<uint8_t> marked(m.indices.size() / 3, 0);
+    for (size_t t = first_other; t < marked.size(); t += 2) marked[t] = 1;  // every other triangle of the second
+    body::count_self_intersections_of(m.positions, m.indices, marked, 0, &marked_pairs);
+    std::vector<std::pair<uint32_t, uint32_t>> expected;
+    for (auto p : all)
+        if (marked[p.first] || marked[p.second]) expected.push_back(p);
+    std::sort(expected.begin(), expected.end());
+    std::sort(marked_pairs.begin(), marked_pairs.end());
+    EXPECT_FALSE(expected.empty());
+    EXPECT_LT(expected.size(), all.size());
+    EXPECT_EQ(marked_pairs, expected);
+    std::vector<std::pair<uint32_t, uint32_t>> asked = all;
+    asked.push_back({0, 1});                                   // neighbours on the first sphere
+    asked.push_back({0, uint32_t(m.indices.size() / 3 - 1)});  // far apart
+    const auto meet = body::triangle_pairs_meet(m.positions, m.indices, asked);
+    for (size_t k = 0; k < all.size(); ++k) EXPECT_EQ(meet[k], 1) << k;
+    EXPECT_EQ(meet[all.size()], 0);
+    EXPECT_EQ(meet[all.size() + 1], 0);
 }
 
 }  // namespace

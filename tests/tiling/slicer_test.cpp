@@ -121,4 +121,52 @@ TEST(Slicer, OpenMeshAndBadIndicesAreErrors) {
     EXPECT_NE(stack.error().message.find("index 5"), std::string::npos);
 }
 
+// A unit sphere with a small box poking through its side over z in [-0.02,
+// 0.02]: the plane at z = 0 crosses the self-intersection (the sphere's
+// triangles there span |z| < 0.066). It moves just past the
+// span (no double gap), the others stay, and every slice holds one contour
+// (the overlap's contours would cross).
+TEST(Slicer, PlanesMoveOffSelfIntersectionsInsteadOfLeavingAGap) {
+    auto m = body::test::uv_sphere(48, 48);
+    const auto poke = box_mesh({0.9, -0.1, -0.02}, {1.2, 0.1, 0.02});
+    const uint32_t base = uint32_t(m.positions.size());
+    m.positions.insert(m.positions.end(), poke.positions.begin(), poke.positions.end());
+    for (uint32_t i : poke.indices) m.indices.push_back(base + i);
+    const auto given = body::evenly_spaced_planes(-1, 1, 9);  // the fifth is at z = 0
+    auto dropped = given;
+    EXPECT_EQ(body::drop_planes_through_self_intersections(m.positions, m.indices, 2, dropped), 1u);
+    auto planes = given;
+    const body::PlaneMoves moves = body::move_planes_off_self_intersections(m.positions, m.indices, 2, planes);
+    EXPECT_EQ(moves.moved, 1u);
+    EXPECT_EQ(moves.dropped, 0u);
+    ASSERT_EQ(planes.size(), given.size());
+    const double gap = given[1] - given[0];
+    for (size_t k = 0; k < planes.size(); ++k) {
+        if (k == 4) {
+            EXPECT_GT(std::abs(planes[k]), 0.02) << planes[k];
+            EXPECT_LE(std::abs(planes[k] - given[k]), body::kPlaneMoveLimit * gap);
+        } else {
+            EXPECT_EQ(planes[k], given[k]);
+        }
+        if (k > 0) {
+            EXPECT_GE(planes[k] - planes[k - 1], (1 - 2 * body::kPlaneMoveLimit) * gap);
+        }
+    }
+    auto stack = body::slice_mesh(m.positions, m.indices, 2, planes);
+    ASSERT_TRUE(stack.ok()) << stack.error().message;
+    ASSERT_EQ(stack->slices.size(), given.size());
+    for (const auto& slice : stack->slices) EXPECT_EQ(slice.contours.size(), 1u);
+    // A plane with no room to move (the span covers its whole neighbourhood) is left out.
+    auto wide = box_mesh({0.9, -0.1, -0.8}, {1.2, 0.1, 0.8});
+    body::Mesh w = body::test::uv_sphere(48, 48);
+    const uint32_t wb = uint32_t(w.positions.size());
+    w.positions.insert(w.positions.end(), wide.positions.begin(), wide.positions.end());
+    for (uint32_t i : wide.indices) w.indices.push_back(wb + i);
+    planes = given;
+    const body::PlaneMoves none = body::move_planes_off_self_intersections(w.positions, w.indices, 2, planes);
+    EXPECT_EQ(none.dropped, 7u);  // |z| < 0.8: the middle seven
+    EXPECT_EQ(none.moved, 0u);
+    EXPECT_EQ(planes.size(), 2u);
+}
+
 }  // namespace
