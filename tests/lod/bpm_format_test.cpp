@@ -209,5 +209,48 @@ TEST(BpmFormat, OlderVersionsAreRejectedWithTheirNumber) {
     EXPECT_NE(r.error().message.find("byte 4: unsupported version 3"), std::string::npos) << r.error().message;
 }
 
+// `encode_bpm`'s size accounting (bodygen lod --sizes): the fields add up to
+// exactly the SPLT sections' bytes, asking for them changes no byte, and the
+// per-value estimate (each symbol at its table's cost) is what the rANS coder
+// spends to within a small framing rest.
+TEST(BpmFormat, SplitSizesAccountForEverySplitSectionByte) {
+    const std::vector<Mesh> meshes{test::bumpy_torus(40, 24), test::icosphere(4)};
+    lod::LodOptions options;
+    options.chunk_splits = 700;
+    pm::SplitSizes sizes;
+    auto bytes = lod::encode_bpm(meshes, options, &sizes);
+    ASSERT_TRUE(bytes.ok());
+    auto plain = lod::encode_bpm(meshes, options);
+    ASSERT_TRUE(plain.ok());
+    EXPECT_EQ(*bytes, *plain);
+    // Walk the sections: 16-byte header, then tag, structure, reserved, length, payload, crc.
+    size_t split_bytes = 0, sections = 0;
+    for (size_t at = 16; at + 12 <= bytes->size();) {
+        uint32_t tag, length;
+        std::memcpy(&tag, bytes->data() + at, 4);
+        std::memcpy(&length, bytes->data() + at + 8, 4);
+        if (tag == pm::kTagSplits) {
+            split_bytes += 16 + length;
+            ++sections;
+        }
+        at += 16 + length;
+    }
+    ASSERT_GT(sections, 2u);
+    EXPECT_NEAR(sizes.total_bits() / 8, double(split_bytes), 1e-6);
+    auto pms = pm::read_bpm_bytes(*bytes, "sizes.bpm");
+    ASSERT_TRUE(pms.ok()) << pms.error().message;
+    EXPECT_EQ(sizes.splits, (*pms)[0]->max_level() + (*pms)[1]->max_level());
+    const double* c = sizes.context_bits;
+    EXPECT_GT(c[pm::kCtxParentDelta], 0);
+    EXPECT_GT(c[pm::kCtxChild0] + c[pm::kCtxChild0 + 1] + c[pm::kCtxChild0 + 2], 0);
+    EXPECT_GT(c[pm::kCtxParent0] + c[pm::kCtxParent0 + 1] + c[pm::kCtxParent0 + 2], 0);
+    EXPECT_GT(c[pm::kCtxNormal0] + c[pm::kCtxNormal0 + 1], 0);
+    EXPECT_GT(c[pm::kCtxFanStart] + c[pm::kCtxFanLength], 0);
+    EXPECT_GT(sizes.table_bits, 0);
+    EXPECT_DOUBLE_EQ(sizes.header_bits, 8.0 * 36 * double(sections));
+    EXPECT_GE(sizes.framing_bits, 0);
+    EXPECT_LT(sizes.framing_bits, 0.02 * sizes.total_bits());
+}
+
 }  // namespace
 }  // namespace body
