@@ -411,8 +411,14 @@ Result<std::vector<uint8_t>> encode_chunk(SplitWriter& w, size_t first, size_t c
     w.values.clear();
     w.topo.clear();
     // All parents of the chunk first: the reader prefetches their data splits ahead.
-    for (size_t j = first; j < first + count; ++j)
-        w.values.put(pm::kCtxParentDelta, uint32_t(w.pm.base_vertices + j) - w.pm.splits[j].parent - 1);
+    // Each as the step from the one before (0 before the first): inside a round
+    // of a batch they ascend (split_order.h).
+    uint32_t previous = 0;
+    for (size_t j = first; j < first + count; ++j) {
+        const uint32_t parent = w.pm.splits[j].parent;
+        w.values.put(pm::kCtxParentDelta, pm::zigzag(parent, previous));
+        previous = parent;
+    }
     for (size_t j = first; j < first + count; ++j)
         if (Status st = encode_split(w, j); !st) return st.error();
     std::vector<uint8_t> payload;

@@ -35,7 +35,7 @@ inline Code unzigzag(Code z, Code from) {
 // plus one bit-field read.
 enum SplitContext : uint32_t {
     kCtxKind,                       // split kind: topology form * 2 + parent moves
-    kCtxParentDelta,                // child - parent - 1
+    kCtxParentDelta,                // parent - previous parent (zig-zag)
     kCtxErrorStep,                  // (previous error bits - error bits) >> 16
     kCtxFanStart,                   // compact topology: ring position of the left wing
     kCtxFanLength,                  // compact topology: faces moving to the child

@@ -3,6 +3,8 @@
 // its faces after the split, and what a file with or without normals decodes to.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 
@@ -10,6 +12,7 @@
 #include "builder/lod/simplify.h"
 #include "shared/pm/bpm_container.h"
 #include "shared/pm/bpm_reader.h"
+#include "shared/pm/draw_order.h"
 #include "shared/pm/prediction.h"
 #include "shared/pm/progressive_mesh.h"
 #include "shared/pm/quantize.h"
@@ -200,13 +203,79 @@ TEST(BpmFormat, OlderVersionsAreRejectedWithTheirNumber) {
     auto bytes = lod::encode_bpm(std::vector<Mesh>{test::icosphere(2)}, lod::LodOptions{});
     ASSERT_TRUE(bytes.ok());
     std::vector<uint8_t> old = *bytes;
-    old[4] = 3;
+    old[4] = 4;
     old[5] = 0;
     const uint32_t crc = pm::crc32({old.data(), 12});
     std::memcpy(&old[12], &crc, 4);  // little-endian host, as the format
     auto r = pm::read_bpm_bytes(old, "old.bpm");
     ASSERT_FALSE(r.ok());
-    EXPECT_NE(r.error().message.find("byte 4: unsupported version 3"), std::string::npos) << r.error().message;
+    EXPECT_NE(r.error().message.find("byte 4: unsupported version 4"), std::string::npos) << r.error().message;
+}
+
+// A level as a sorted list of its triangles, each as its three corner positions
+// rotated to start at the smallest (winding kept): equal for the same mesh under
+// any vertex and face numbering.
+std::vector<std::array<double, 9>> triangle_set(const Mesh& m) {
+    std::vector<std::array<double, 9>> out;
+    for (size_t f = 0; f < m.indices.size() / 3; ++f) {
+        std::array<std::array<double, 3>, 3> c;
+        for (int k = 0; k < 3; ++k) {
+            const Vec3 p = m.positions[m.indices[f * 3 + size_t(k)]];
+            c[size_t(k)] = {p.x, p.y, p.z};
+        }
+        const size_t r = size_t(std::min_element(c.begin(), c.end()) - c.begin());
+        std::array<double, 9> t;
+        for (size_t k = 0; k < 3; ++k)
+            for (size_t a = 0; a < 3; ++a) t[k * 3 + a] = c[(r + k) % 3][a];
+        out.push_back(t);
+    }
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
+// Version 5's split order (split_order.h): every batch boundary is the same mesh as
+// in the simplifier's order with its error, errors stay non-increasing, the file
+// replays, and the parent numbers cost a fraction of what they did.
+TEST(BpmFormat, SplitsInRoundsKeepEveryBatchBoundaryAndShrinkTheParents) {
+    const Mesh torus = test::bumpy_torus(60, 40);
+    lod::LodOptions by_error;
+    by_error.batch_rounds = false;
+    auto a = lod::build_progressive_mesh(torus, by_error);
+    auto b = lod::build_progressive_mesh(torus, lod::LodOptions{});
+    ASSERT_TRUE(a.ok() && b.ok());
+    ASSERT_EQ(a->splits.size(), b->splits.size());
+    const std::vector<uint32_t> bounds = pm::batch_levels(a->base_vertices, a->splits.size());
+    ASSERT_GT(bounds.size(), 3u);
+    for (uint32_t level : bounds) {
+        EXPECT_EQ(triangle_set(lod::extract_level(*a, level)), triangle_set(lod::extract_level(*b, level)))
+            << "level " << level;
+        if (level < b->splits.size()) {
+            EXPECT_EQ(a->splits[level].error, b->splits[level].error) << "level " << level;
+        }
+    }
+    size_t moved = 0;
+    for (size_t j = 0; j < b->splits.size(); ++j) {
+        moved += a->splits[j].parent != b->splits[j].parent;
+        if (j > 0) {
+            EXPECT_LE(b->splits[j].error, b->splits[j - 1].error) << "split " << j;
+        }
+        EXPECT_GE(b->splits[j].error, a->splits[j].error) << "split " << j;  // never claims less than by error
+    }
+    EXPECT_GT(moved, b->splits.size() / 2);  // the order did change
+    pm::SplitSizes sa, sb;
+    auto fa = lod::encode_bpm(std::vector<Mesh>{torus}, by_error, &sa);
+    auto fb = lod::encode_bpm(std::vector<Mesh>{torus}, lod::LodOptions{}, &sb);
+    ASSERT_TRUE(fa.ok() && fb.ok());
+    EXPECT_LT(sb.context_bits[pm::kCtxParentDelta], 0.6 * sa.context_bits[pm::kCtxParentDelta]);
+    EXPECT_LT(fb->size(), fa->size());
+    // Both decode to their builds' full mesh (the same surface).
+    for (const auto* f : {&*fa, &*fb}) {
+        auto pms = pm::read_bpm_bytes(*f, "rounds.bpm");
+        ASSERT_TRUE(pms.ok()) << pms.error().message;
+        pm::ProgressiveMesh& m = *(*pms)[0];
+        m.set_level(m.max_level());
+        EXPECT_EQ(m.triangle_count(), torus.triangle_count());
+    }
 }
 
 // `encode_bpm`'s size accounting (bodygen lod --sizes): the fields add up to
