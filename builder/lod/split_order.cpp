@@ -44,7 +44,7 @@ std::vector<uint32_t> rounds(const ProgressiveBuild& pm, const std::vector<uint3
                 for (int k = 0; k < 3; ++k)
                     if (idx[size_t(f) * 3 + k] == p) idx[size_t(f) * 3 + k] = c;
                 auto& s = star[p];
-                s.erase(std::find(s.begin(), s.end(), f));
+                if (auto it = std::find(s.begin(), s.end(), f); it != s.end()) s.erase(it);
                 star[c].push_back(f);
             }
             for (uint32_t f = first_face[j]; f < first_face[j + 1]; ++f)

@@ -278,6 +278,43 @@ TEST(BpmFormat, SplitsInRoundsKeepEveryBatchBoundaryAndShrinkTheParents) {
     }
 }
 
+// A forged file whose first split names a parent that does not exist yet (the SPLT
+// section of a later split, whose parent was born after the base, moved in front:
+// its parent step is from 0 like every chunk's first) is refused with the section,
+// its byte offset and the split.
+TEST(BpmFormat, ParentStepPastTheChildIsRefusedWithItsPlace) {
+    lod::LodOptions options;
+    options.chunk_splits = 1;
+    auto build = lod::build_progressive_mesh(test::icosphere(2), options);
+    ASSERT_TRUE(build.ok());
+    auto bytes = lod::encode_bpm(std::vector<Mesh>{test::icosphere(2)}, options);
+    ASSERT_TRUE(bytes.ok());
+    size_t k = 1;
+    while (k < build->splits.size() && build->splits[k].parent < build->base_vertices) ++k;
+    ASSERT_LT(k, build->splits.size());
+    // Offsets of the SPLT sections (one split each, in order).
+    std::vector<size_t> at;
+    for (size_t pos = 16; pos + 12 <= bytes->size();) {
+        uint32_t tag, length;
+        std::memcpy(&tag, bytes->data() + pos, 4);
+        std::memcpy(&length, bytes->data() + pos + 8, 4);
+        if (tag == pm::kTagSplits) at.push_back(pos);
+        pos += 16 + length;
+    }
+    ASSERT_EQ(at.size(), build->splits.size());
+    std::vector<uint8_t> forged(bytes->begin(), bytes->begin() + ptrdiff_t(at[0]));
+    const size_t section = forged.size();
+    forged.insert(forged.end(), bytes->begin() + ptrdiff_t(at[k]), bytes->begin() + ptrdiff_t(at[k + 1]));
+    std::memset(&forged[section + 12], 0, 4);  // payload's first split: 0
+    const uint32_t crc = pm::crc32({forged.data() + section, forged.size() - section - 4});
+    std::memcpy(&forged[forged.size() - 4], &crc, 4);
+    auto r = pm::read_bpm_bytes(forged, "forged.bpm");
+    ASSERT_FALSE(r.ok());
+    const std::string expected =
+        "forged.bpm: section SPLT of structure 0 at byte " + std::to_string(section) + ": split 0: parent out of range";
+    EXPECT_EQ(r.error().message, expected);
+}
+
 // `encode_bpm`'s size accounting (bodygen lod --sizes): the fields add up to
 // exactly the SPLT sections' bytes, asking for them changes no byte, and the
 // per-value estimate (each symbol at its table's cost) is what the rANS coder
