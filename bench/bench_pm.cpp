@@ -229,9 +229,15 @@ void run(const Mesh& mesh, const std::string& label, const std::string& vtk_dir,
     // The same build with half-edge collapses only (no optimal placement), for comparison.
     lod::LodOptions half_edge = options;
     half_edge.optimal_placement = false;
+    // Its size too: a half-edge split stores no parent move (what the optimal placement costs in bytes).
+    std::vector<uint8_t> he_bytes;
+    if (!accuracy_only) he_bytes = *lod::encode_bpm(one, half_edge);
     auto he_pms = accuracy_only ? Result<std::vector<std::unique_ptr<pm::ProgressiveMesh>>>(
                                       input_error("bench_pm: half-edge build skipped (--accuracy-only)"))
-                                : pm::read_bpm_bytes(*lod::encode_bpm(one, half_edge), label);
+                                : pm::read_bpm_bytes(he_bytes, label);
+    if (he_pms)
+        row("bytes per vertex split (whole file)", double(bytes.size()) / double(m.max_level()),
+            "ours, half-edge collapses only", double(he_bytes.size()) / double((*he_pms)[0]->max_level()));
     for (double pct : {10.0, 2.0}) {
         const size_t target = size_t(double(tris) * pct / 100.0);
         const double ours = hausdorff_at(m, target);

@@ -1,7 +1,9 @@
 // bodygen lod IN.(obj|wrl|stl|ply|gltf|glb) -o OUT.bpm [--min-triangles N] [--chunk-splits N] [--no-normals] [--jobs N]
-//   [--quiet] [--json]: one progressive mesh per OBJ object, written as a .bpm file.
+//   [--quiet] [--json] [--sizes]: one progressive mesh per OBJ object, written as a .bpm file;
+//   --sizes also prints where the SPLT sections' bytes went, per field and split.
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <nlohmann/json.hpp>
@@ -31,9 +33,37 @@ Result<lod::LodOptions> lod_options_from_args(const CliArgs& args) {
     return options;
 }
 
+namespace {
+// The SPLT bytes per field (FORMAT.md's values), per split and as a share.
+void print_split_sizes(const pm::SplitSizes& z) {
+    const double* c = z.context_bits;
+    const struct {
+        const char* name;
+        double bits;
+    } rows[] = {
+        {"parent number", c[pm::kCtxParentDelta]},
+        {"kind", c[pm::kCtxKind]},
+        {"error step", c[pm::kCtxErrorStep]},
+        {"fan topology (start, length)", c[pm::kCtxFanStart] + c[pm::kCtxFanLength]},
+        {"general topology", z.topology_bits},
+        {"child position", c[pm::kCtxChild0] + c[pm::kCtxChild0 + 1] + c[pm::kCtxChild0 + 2]},
+        {"parent move", c[pm::kCtxParent0] + c[pm::kCtxParent0 + 1] + c[pm::kCtxParent0 + 2]},
+        {"child normal", c[pm::kCtxNormal0] + c[pm::kCtxNormal0 + 1]},
+        {"coder tables", z.table_bits},
+        {"coder framing", z.framing_bits},
+        {"section headers", z.header_bits},
+    };
+    const double n = double(std::max<uint64_t>(z.splits, 1)), total = z.total_bits();
+    std::printf("SPLT bytes per split, %llu splits:\n", static_cast<unsigned long long>(z.splits));
+    for (const auto& r : rows)
+        std::printf("  %-30s %6.3f  %5.1f %%\n", r.name, r.bits / 8 / n, total > 0 ? 100 * r.bits / total : 0.0);
+    std::printf("  %-30s %6.3f\n", "total", total / 8 / n);
+}
+}  // namespace
+
 int run_lod(const Args& argv) {
     auto args = CliArgs::parse(argv, {"output", "min-triangles", "chunk-splits", "jobs"},
-                               {"help", "no-normals", "quiet", "json"});
+                               {"help", "no-normals", "quiet", "json", "sizes"});
     if (!args) return report(args.error());
     if (args->has("help")) {
         std::printf(
@@ -45,7 +75,8 @@ int run_lod(const Args& argv) {
             "  --jobs N   threads for the setup and a large mesh's first phase\n"
             "             (default: one per CPU; the same output for any N)\n"
             "  --quiet    no summary line\n"
-            "  --json     the summary as JSON on stdout\n");
+            "  --json     the summary as JSON on stdout\n"
+            "  --sizes    also print where the vertex splits' bytes go, per field\n");
         return kExitOk;
     }
     if (args->positional().size() != 1) return report(input_error("lod: expected one input mesh file"));
@@ -61,7 +92,8 @@ int run_lod(const Args& argv) {
     auto meshes = read_mesh_file(args->positional()[0]);
     if (!meshes) return report(meshes.error());
     const std::string out = *args->get("output");
-    Status st = lod::write_bpm_from_meshes(out, *meshes, *options);
+    pm::SplitSizes sizes;
+    Status st = lod::write_bpm_from_meshes(out, *meshes, *options, args->has("sizes") ? &sizes : nullptr);
     if (!st) return report(st.error());
     size_t tris = 0;
     for (const Mesh& m : *meshes) tris += m.triangle_count();
@@ -76,6 +108,7 @@ int run_lod(const Args& argv) {
     } else if (!args->has("quiet")) {
         std::printf("%s: %zu structures, %zu triangles\n", out.c_str(), meshes->size(), tris);
     }
+    if (args->has("sizes")) print_split_sizes(sizes);
     return kExitOk;
 }
 

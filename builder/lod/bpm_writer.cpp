@@ -235,6 +235,7 @@ struct SplitWriter {
     pm::SplitEncoder values;    // one chunk's values, its storage reused
     std::vector<uint8_t> topo;  // one chunk's topology records
     std::vector<uint32_t> parent_corners, faces, moved;
+    pm::SplitSizes* sizes = nullptr;  // where the SPLT bytes go, when asked
 };
 
 // The replay is bound by memory latency (a parent is anywhere in the mesh): the
@@ -410,8 +411,14 @@ Result<std::vector<uint8_t>> encode_chunk(SplitWriter& w, size_t first, size_t c
     w.values.clear();
     w.topo.clear();
     // All parents of the chunk first: the reader prefetches their data splits ahead.
-    for (size_t j = first; j < first + count; ++j)
-        w.values.put(pm::kCtxParentDelta, uint32_t(w.pm.base_vertices + j) - w.pm.splits[j].parent - 1);
+    // Each as the step from the one before (0 before the first): inside a round
+    // of a batch they ascend (split_order.h).
+    uint32_t previous = 0;
+    for (size_t j = first; j < first + count; ++j) {
+        const uint32_t parent = w.pm.splits[j].parent;
+        w.values.put(pm::kCtxParentDelta, pm::zigzag(parent, previous));
+        previous = parent;
+    }
     for (size_t j = first; j < first + count; ++j)
         if (Status st = encode_split(w, j); !st) return st.error();
     std::vector<uint8_t> payload;
@@ -419,7 +426,13 @@ Result<std::vector<uint8_t>> encode_chunk(SplitWriter& w, size_t first, size_t c
     put_u32(payload, uint32_t(count));
     put_u32(payload, uint32_t(chunk_faces));
     std::vector<uint8_t> coded;
-    w.values.finish(coded);
+    w.values.finish(coded, w.sizes);
+    if (w.sizes) {
+        // first, count, faces, the two payload sizes; the section's tag .. length and checksum.
+        w.sizes->header_bits += 8.0 * (5 * 4 + 12 + 4);
+        w.sizes->topology_bits += 8.0 * double(w.topo.size());
+        w.sizes->splits += count;
+    }
     put_u32(payload, uint32_t(coded.size()));
     payload.insert(payload.end(), coded.begin(), coded.end());
     put_u32(payload, uint32_t(w.topo.size()));
@@ -427,12 +440,14 @@ Result<std::vector<uint8_t>> encode_chunk(SplitWriter& w, size_t first, size_t c
     return payload;
 }
 
-Result<StructureSections> encode_structure(const Mesh& mesh, const ProgressiveBuild& pm, const LodOptions& options) {
+Result<StructureSections> encode_structure(const Mesh& mesh, const ProgressiveBuild& pm, const LodOptions& options,
+                                           pm::SplitSizes* sizes) {
     StructureSections out;
     const Quantized z = quantize(pm, options.normals);
     const size_t ns = pm.splits.size(), chunk = std::max<size_t>(options.chunk_splits, 1);
     out.info = info_section(mesh, pm, z, options.normals, chunk);
     SplitWriter w(mesh, pm, z, options.normals);
+    w.sizes = sizes;
     out.base = base_section(pm, z, w.replay);
     for (size_t first = 0; first < ns; first += chunk) {
         auto payload = encode_chunk(w, first, std::min(chunk, ns - first));
@@ -444,14 +459,15 @@ Result<StructureSections> encode_structure(const Mesh& mesh, const ProgressiveBu
 
 }  // namespace
 
-Result<std::vector<uint8_t>> encode_bpm(std::span<const Mesh> meshes, const LodOptions& options) {
+Result<std::vector<uint8_t>> encode_bpm(std::span<const Mesh> meshes, const LodOptions& options,
+                                        pm::SplitSizes* sizes) {
     if (meshes.empty()) return input_error("lod: no meshes to write");
     if (meshes.size() > 65535) return input_error("lod: too many structures (" + std::to_string(meshes.size()) + ")");
     std::vector<StructureSections> parts;
     for (const Mesh& m : meshes) {
         auto pm = build_progressive_mesh(m, options);
         if (!pm) return pm.error();
-        auto sec = encode_structure(m, *pm, options);
+        auto sec = encode_structure(m, *pm, options, sizes);
         if (!sec) return sec.error();
         parts.push_back(std::move(*sec));
     }
@@ -480,8 +496,9 @@ Result<std::vector<uint8_t>> encode_bpm(std::span<const Mesh> meshes, const LodO
     return out;
 }
 
-Status write_bpm_from_meshes(const std::string& path, std::span<const Mesh> meshes, const LodOptions& options) {
-    auto bytes = encode_bpm(meshes, options);
+Status write_bpm_from_meshes(const std::string& path, std::span<const Mesh> meshes, const LodOptions& options,
+                             pm::SplitSizes* sizes) {
+    auto bytes = encode_bpm(meshes, options, sizes);
     if (!bytes) return bytes.error();
     return write_file_atomically(path, *bytes);
 }

@@ -12,12 +12,16 @@
 #include "builder/lod/simplify.h"
 #include "shared/error.h"
 #include "shared/mesh.h"
+#include "shared/pm/split_codec.h"
 
 namespace body::lod {
 
 // Serializes meshes (one structure each: name, colour, bounds) as a .bpm file image.
-Result<std::vector<uint8_t>> encode_bpm(std::span<const Mesh> meshes, const LodOptions& options = {});
+// `sizes`, when given, gets where the SPLT sections' bytes went (all structures).
+Result<std::vector<uint8_t>> encode_bpm(std::span<const Mesh> meshes, const LodOptions& options = {},
+                                        pm::SplitSizes* sizes = nullptr);
 // Builds the progressive meshes and writes them atomically to `path`.
-Status write_bpm_from_meshes(const std::string& path, std::span<const Mesh> meshes, const LodOptions& options = {});
+Status write_bpm_from_meshes(const std::string& path, std::span<const Mesh> meshes, const LodOptions& options = {},
+                             pm::SplitSizes* sizes = nullptr);
 
 }  // namespace body::lod

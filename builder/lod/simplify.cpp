@@ -37,6 +37,7 @@
 #include <vector>
 
 #include "builder/lod/simplify_state.h"
+#include "builder/lod/split_order.h"
 #include "shared/pm/bpm_container.h"
 #include "shared/pm/quantize.h"
 
@@ -176,7 +177,9 @@ Result<ProgressiveBuild> build_progressive_mesh(const Mesh& mesh, const LodOptio
     s.collapses.swap(collapses);
     s.patch_faces.swap(patch_faces);
     collapse_loop(m, s, std::max<size_t>(options.min_triangles, 1), options);
-    return emit_order(s, normals);
+    ProgressiveBuild out = emit_order(s, normals);
+    if (options.batch_rounds) order_splits_in_batches(out);
+    return out;
 }
 
 Mesh extract_level(const ProgressiveBuild& pm, size_t level) {

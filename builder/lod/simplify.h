@@ -52,6 +52,7 @@ struct LodOptions {
     size_t chunk_splits = 4096;      // vertex splits per SPLT section (streaming granularity)
     bool normals = true;             // store octahedral normals (from the mesh, else area-weighted)
     bool optimal_placement = true;   // false: half-edge collapses only (the parent never moves)
+    bool batch_rounds = true;        // splits in rounds inside each batch (split_order.h); false: by error
     // The lossless phase of a large mesh runs in regions of about this many faces, in
     // parallel (at most 8 regions; none under twice this many faces). Changes the output.
     size_t region_faces = size_t(1) << 18;

@@ -433,11 +433,13 @@ Status BpmStream::parse_splits(ProgressiveMesh& m, std::span<const uint8_t> payl
     // The chunk's parents come first (the loop below prefetches their data).
     std::vector<uint32_t>& parents = split_parents_;
     parents.resize(count);
+    uint32_t previous = 0;
     for (uint32_t i = 0; i < count; ++i) {
-        const uint32_t child = uint32_t(m.base_vertices_ + first + i), delta = values.get(kCtxParentDelta);
-        if (delta >= child || values.past_end())
+        const uint32_t child = uint32_t(m.base_vertices_ + first + i);
+        const uint32_t parent = unzigzag(values.get(kCtxParentDelta), previous);
+        if (parent >= child || values.past_end())
             return input_error(where + ": split " + std::to_string(first + i) + ": parent out of range");
-        parents[i] = child - 1 - delta;
+        parents[i] = previous = parent;
     }
     // Everything below runs per split: no allocation (the message is built on failure only).
     // Geometric growth: reserving the exact need per section would copy the whole

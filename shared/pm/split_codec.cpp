@@ -2,7 +2,10 @@
 #include "shared/pm/split_codec.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
+#include <span>
+#include <utility>
 #include <vector>
 
 #include "shared/pm/bpm_container.h"
@@ -35,7 +38,32 @@ void normalize(const uint32_t* counts, uint32_t m, uint64_t total, uint32_t* fre
 }
 }  // namespace
 
-void SplitEncoder::finish(std::vector<uint8_t>& out) const {
+namespace {
+// SplitSizes of one finished chunk: `table_bytes` of tables, then the coded items.
+void add_sizes(SplitSizes& sizes, size_t out_bytes, size_t table_bytes, const uint32_t (*freq)[kSymbolCount],
+               std::span<const std::pair<uint32_t, uint32_t>> items) {
+    double counted = 0;
+    uint32_t last = 0;
+    for (const auto& [context, value] : items) {
+        uint32_t raw, bits;
+        double b;
+        if (context < kSplitContexts) {
+            const uint32_t s = value_symbol(value, raw, bits);
+            b = double(kRansBits) - std::log2(double(freq[context][s])) + bits;
+            last = context;
+        } else {
+            b = context - kSplitContexts;  // raw bits of the value before
+        }
+        sizes.context_bits[last] += b;
+        counted += b;
+    }
+    sizes.table_bits += 8.0 * double(table_bytes);
+    sizes.framing_bits += 8.0 * double(out_bytes - table_bytes) - counted;
+}
+}  // namespace
+
+void SplitEncoder::finish(std::vector<uint8_t>& out, SplitSizes* sizes) const {
+    const size_t out_start = out.size();
     uint32_t counts[kSplitContexts][kSymbolCount] = {};
     uint64_t totals[kSplitContexts] = {};
     for (const Item& it : values_) {
@@ -57,6 +85,7 @@ void SplitEncoder::finish(std::vector<uint8_t>& out) const {
             put_varint(out, freq[c][s]);
         }
     }
+    const size_t table_bytes = out.size() - out_start;
     // rANS runs backwards: encode the last value first, reverse the bytes at the end.
     // Symbol i (raw items not counted) uses state i mod 2.
     std::vector<uint8_t> rans;
@@ -100,6 +129,14 @@ void SplitEncoder::finish(std::vector<uint8_t>& out) const {
     if (count > 0) raw_bytes.push_back(uint8_t(buffer));
     put_u32(out, uint32_t(raw_bytes.size()));
     out.insert(out.end(), raw_bytes.begin(), raw_bytes.end());
+    if (sizes) {
+        std::vector<std::pair<uint32_t, uint32_t>> items(values_.size());
+        for (size_t i = 0; i < values_.size(); ++i)
+            items[i] = values_[i].context < kRawContext
+                           ? std::pair{values_[i].context, values_[i].value}
+                           : std::pair{kSplitContexts + values_[i].context - kRawContext, 0u};
+        add_sizes(*sizes, out.size() - out_start, table_bytes, freq, items);
+    }
 }
 
 bool SplitDecoder::init(std::span<const uint8_t> bytes) {

@@ -1,5 +1,5 @@
 #pragma once
-// How a SPLT section's values are coded (version 3, kept in version 4): the
+// How a SPLT section's values are coded (version 3, kept in versions 4 and 5): the
 // contexts, the entropy coder (SplitEncoder, writer) and its decoder
 // (SplitDecoder, reader), and the zig-zag residuals of 16- and 8-bit codes.
 // What the values are and how they are predicted: prediction.h, FORMAT.md.
@@ -35,7 +35,7 @@ inline Code unzigzag(Code z, Code from) {
 // plus one bit-field read.
 enum SplitContext : uint32_t {
     kCtxKind,                       // split kind: topology form * 2 + parent moves
-    kCtxParentDelta,                // child - parent - 1
+    kCtxParentDelta,                // parent - previous parent (zig-zag)
     kCtxErrorStep,                  // (previous error bits - error bits) >> 16
     kCtxFanStart,                   // compact topology: ring position of the left wing
     kCtxFanLength,                  // compact topology: faces moving to the child
@@ -63,6 +63,24 @@ inline uint32_t value_symbol(uint32_t v, uint32_t& raw, uint32_t& bits) {
     return 8 + (n - 4) * 2 + ((v >> bits) & 1);
 }
 
+// Where the bytes of SPLT payloads go (SplitEncoder::finish and the writer add to
+// it): per context, its symbols at the chunk table's cost (log2(2^kRansBits / freq)
+// each) plus its raw bits (a shift's low bits count with the value before them);
+// the rest exactly. In bits; a measurement, not part of the format.
+struct SplitSizes {
+    double context_bits[kSplitContexts] = {};
+    double table_bits = 0;     // the frequency tables
+    double framing_bits = 0;   // the coder's sizes, final rANS states, rounding to bytes
+    double topology_bits = 0;  // general-form topology records
+    double header_bits = 0;    // section headers and checksums, first/count/faces, the two payload sizes
+    uint64_t splits = 0;
+    double total_bits() const {
+        double t = table_bits + framing_bits + topology_bits + header_bits;
+        for (double b : context_bits) t += b;
+        return t;
+    }
+};
+
 // Collects the values of one chunk in decoding order and writes them as
 //   per context: u8 m, then m LEB128 frequencies of symbols 0 .. m-1 (sum 4096, or m = 0: unused)
 //   u32 rbytes, u8 rans[rbytes]   rANS: two interleaved 32-bit states, then 16-bit words, read forward
@@ -80,7 +98,8 @@ public:
         put(context, value >> shift);
         put_raw(value, shift);
     }
-    void finish(std::vector<uint8_t>& out) const;
+    // Appends the coded chunk to `out`; adds to `sizes` where its bytes went (if given).
+    void finish(std::vector<uint8_t>& out, SplitSizes* sizes = nullptr) const;
     // Empties the encoder for the next chunk, keeping its storage (a chunk
     // holds some hundred thousand values: regrowing them was costly).
     void clear() { values_.clear(); }

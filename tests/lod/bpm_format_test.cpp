@@ -3,6 +3,8 @@
 // its faces after the split, and what a file with or without normals decodes to.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 
@@ -10,6 +12,7 @@
 #include "builder/lod/simplify.h"
 #include "shared/pm/bpm_container.h"
 #include "shared/pm/bpm_reader.h"
+#include "shared/pm/draw_order.h"
 #include "shared/pm/prediction.h"
 #include "shared/pm/progressive_mesh.h"
 #include "shared/pm/quantize.h"
@@ -200,13 +203,159 @@ TEST(BpmFormat, OlderVersionsAreRejectedWithTheirNumber) {
     auto bytes = lod::encode_bpm(std::vector<Mesh>{test::icosphere(2)}, lod::LodOptions{});
     ASSERT_TRUE(bytes.ok());
     std::vector<uint8_t> old = *bytes;
-    old[4] = 3;
+    old[4] = 4;
     old[5] = 0;
     const uint32_t crc = pm::crc32({old.data(), 12});
     std::memcpy(&old[12], &crc, 4);  // little-endian host, as the format
     auto r = pm::read_bpm_bytes(old, "old.bpm");
     ASSERT_FALSE(r.ok());
-    EXPECT_NE(r.error().message.find("byte 4: unsupported version 3"), std::string::npos) << r.error().message;
+    EXPECT_NE(r.error().message.find("byte 4: unsupported version 4"), std::string::npos) << r.error().message;
+}
+
+// A level as a sorted list of its triangles, each as its three corner positions
+// rotated to start at the smallest (winding kept): equal for the same mesh under
+// any vertex and face numbering.
+std::vector<std::array<double, 9>> triangle_set(const Mesh& m) {
+    std::vector<std::array<double, 9>> out;
+    for (size_t f = 0; f < m.indices.size() / 3; ++f) {
+        std::array<std::array<double, 3>, 3> c;
+        for (int k = 0; k < 3; ++k) {
+            const Vec3 p = m.positions[m.indices[f * 3 + size_t(k)]];
+            c[size_t(k)] = {p.x, p.y, p.z};
+        }
+        const size_t r = size_t(std::min_element(c.begin(), c.end()) - c.begin());
+        std::array<double, 9> t;
+        for (size_t k = 0; k < 3; ++k)
+            for (size_t a = 0; a < 3; ++a) t[k * 3 + a] = c[(r + k) % 3][a];
+        out.push_back(t);
+    }
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
+// Version 5's split order (split_order.h): every batch boundary is the same mesh as
+// in the simplifier's order with its error, errors stay non-increasing, the file
+// replays, and the parent numbers cost a fraction of what they did.
+TEST(BpmFormat, SplitsInRoundsKeepEveryBatchBoundaryAndShrinkTheParents) {
+    const Mesh torus = test::bumpy_torus(60, 40);
+    lod::LodOptions by_error;
+    by_error.batch_rounds = false;
+    auto a = lod::build_progressive_mesh(torus, by_error);
+    auto b = lod::build_progressive_mesh(torus, lod::LodOptions{});
+    ASSERT_TRUE(a.ok() && b.ok());
+    ASSERT_EQ(a->splits.size(), b->splits.size());
+    const std::vector<uint32_t> bounds = pm::batch_levels(a->base_vertices, a->splits.size());
+    ASSERT_GT(bounds.size(), 3u);
+    for (uint32_t level : bounds) {
+        EXPECT_EQ(triangle_set(lod::extract_level(*a, level)), triangle_set(lod::extract_level(*b, level)))
+            << "level " << level;
+        if (level < b->splits.size()) {
+            EXPECT_EQ(a->splits[level].error, b->splits[level].error) << "level " << level;
+        }
+    }
+    size_t moved = 0;
+    for (size_t j = 0; j < b->splits.size(); ++j) {
+        moved += a->splits[j].parent != b->splits[j].parent;
+        if (j > 0) {
+            EXPECT_LE(b->splits[j].error, b->splits[j - 1].error) << "split " << j;
+        }
+        EXPECT_GE(b->splits[j].error, a->splits[j].error) << "split " << j;  // never claims less than by error
+    }
+    EXPECT_GT(moved, b->splits.size() / 2);  // the order did change
+    pm::SplitSizes sa, sb;
+    auto fa = lod::encode_bpm(std::vector<Mesh>{torus}, by_error, &sa);
+    auto fb = lod::encode_bpm(std::vector<Mesh>{torus}, lod::LodOptions{}, &sb);
+    ASSERT_TRUE(fa.ok() && fb.ok());
+    EXPECT_LT(sb.context_bits[pm::kCtxParentDelta], 0.6 * sa.context_bits[pm::kCtxParentDelta]);
+    EXPECT_LT(fb->size(), fa->size());
+    // Both decode to their builds' full mesh (the same surface).
+    for (const auto* f : {&*fa, &*fb}) {
+        auto pms = pm::read_bpm_bytes(*f, "rounds.bpm");
+        ASSERT_TRUE(pms.ok()) << pms.error().message;
+        pm::ProgressiveMesh& m = *(*pms)[0];
+        m.set_level(m.max_level());
+        EXPECT_EQ(m.triangle_count(), torus.triangle_count());
+    }
+}
+
+// A forged file whose first split names a parent that does not exist yet (the SPLT
+// section of a later split, whose parent was born after the base, moved in front:
+// its parent step is from 0 like every chunk's first) is refused with the section,
+// its byte offset and the split.
+TEST(BpmFormat, ParentStepPastTheChildIsRefusedWithItsPlace) {
+    lod::LodOptions options;
+    options.chunk_splits = 1;
+    auto build = lod::build_progressive_mesh(test::icosphere(2), options);
+    ASSERT_TRUE(build.ok());
+    auto bytes = lod::encode_bpm(std::vector<Mesh>{test::icosphere(2)}, options);
+    ASSERT_TRUE(bytes.ok());
+    size_t k = 1;
+    while (k < build->splits.size() && build->splits[k].parent < build->base_vertices) ++k;
+    ASSERT_LT(k, build->splits.size());
+    // Offsets of the SPLT sections (one split each, in order).
+    std::vector<size_t> at;
+    for (size_t pos = 16; pos + 12 <= bytes->size();) {
+        uint32_t tag, length;
+        std::memcpy(&tag, bytes->data() + pos, 4);
+        std::memcpy(&length, bytes->data() + pos + 8, 4);
+        if (tag == pm::kTagSplits) at.push_back(pos);
+        pos += 16 + length;
+    }
+    ASSERT_EQ(at.size(), build->splits.size());
+    std::vector<uint8_t> forged(bytes->begin(), bytes->begin() + ptrdiff_t(at[0]));
+    const size_t section = forged.size();
+    forged.insert(forged.end(), bytes->begin() + ptrdiff_t(at[k]), bytes->begin() + ptrdiff_t(at[k + 1]));
+    std::memset(&forged[section + 12], 0, 4);  // payload's first split: 0
+    const uint32_t crc = pm::crc32({forged.data() + section, forged.size() - section - 4});
+    std::memcpy(&forged[forged.size() - 4], &crc, 4);
+    auto r = pm::read_bpm_bytes(forged, "forged.bpm");
+    ASSERT_FALSE(r.ok());
+    const std::string expected =
+        "forged.bpm: section SPLT of structure 0 at byte " + std::to_string(section) + ": split 0: parent out of range";
+    EXPECT_EQ(r.error().message, expected);
+}
+
+// `encode_bpm`'s size accounting (bodygen lod --sizes): the fields add up to
+// exactly the SPLT sections' bytes, asking for them changes no byte, and the
+// per-value estimate (each symbol at its table's cost) is what the rANS coder
+// spends to within a small framing rest.
+TEST(BpmFormat, SplitSizesAccountForEverySplitSectionByte) {
+    const std::vector<Mesh> meshes{test::bumpy_torus(40, 24), test::icosphere(4)};
+    lod::LodOptions options;
+    options.chunk_splits = 700;
+    pm::SplitSizes sizes;
+    auto bytes = lod::encode_bpm(meshes, options, &sizes);
+    ASSERT_TRUE(bytes.ok());
+    auto plain = lod::encode_bpm(meshes, options);
+    ASSERT_TRUE(plain.ok());
+    EXPECT_EQ(*bytes, *plain);
+    // Walk the sections: 16-byte header, then tag, structure, reserved, length, payload, crc.
+    size_t split_bytes = 0, sections = 0;
+    for (size_t at = 16; at + 12 <= bytes->size();) {
+        uint32_t tag, length;
+        std::memcpy(&tag, bytes->data() + at, 4);
+        std::memcpy(&length, bytes->data() + at + 8, 4);
+        if (tag == pm::kTagSplits) {
+            split_bytes += 16 + length;
+            ++sections;
+        }
+        at += 16 + length;
+    }
+    ASSERT_GT(sections, 2u);
+    EXPECT_NEAR(sizes.total_bits() / 8, double(split_bytes), 1e-6);
+    auto pms = pm::read_bpm_bytes(*bytes, "sizes.bpm");
+    ASSERT_TRUE(pms.ok()) << pms.error().message;
+    EXPECT_EQ(sizes.splits, (*pms)[0]->max_level() + (*pms)[1]->max_level());
+    const double* c = sizes.context_bits;
+    EXPECT_GT(c[pm::kCtxParentDelta], 0);
+    EXPECT_GT(c[pm::kCtxChild0] + c[pm::kCtxChild0 + 1] + c[pm::kCtxChild0 + 2], 0);
+    EXPECT_GT(c[pm::kCtxParent0] + c[pm::kCtxParent0 + 1] + c[pm::kCtxParent0 + 2], 0);
+    EXPECT_GT(c[pm::kCtxNormal0] + c[pm::kCtxNormal0 + 1], 0);
+    EXPECT_GT(c[pm::kCtxFanStart] + c[pm::kCtxFanLength], 0);
+    EXPECT_GT(sizes.table_bits, 0);
+    EXPECT_DOUBLE_EQ(sizes.header_bits, 8.0 * 36 * double(sections));
+    EXPECT_GE(sizes.framing_bits, 0);
+    EXPECT_LT(sizes.framing_bits, 0.02 * sizes.total_bits());
 }
 
 }  // namespace

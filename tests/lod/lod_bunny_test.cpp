@@ -65,8 +65,10 @@ TEST_F(LodBunny, BytesArePinned) {
 TEST_F(LodBunny, CommandsRoundTrip) {
     const std::string dir = std::string(BODY_BINARY_DIR) + "/tests/lod";
     const std::string bpm = dir + "/bunny_cli.bpm", obj = dir + "/bunny_cli_10.obj";
-    auto r = test::run(test::bin("bodygen") + " lod " + kBunny + " -o " + bpm + " --min-triangles 500");
+    auto r = test::run(test::bin("bodygen") + " lod " + kBunny + " -o " + bpm + " --min-triangles 500 --sizes");
     ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find("SPLT bytes per split"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("parent number"), std::string::npos) << r.output;
     r = test::run(test::bin("bodygen") + " info " + bpm);
     ASSERT_EQ(r.exit_code, 0) << r.output;
     EXPECT_NE(r.output.find("69666 triangles"), std::string::npos) << r.output;
