@@ -181,10 +181,13 @@ Status BpmStream::parse_info(std::span<const uint8_t> payload, const std::string
     m->corner_bytes_ = uint64_t(faces) * 3 <= (uint64_t(1) << 24) ? 3 : 4;
     m->qpos_.resize(vertices * 3);
     m->qoct_.resize(vertices * 2);
+    if (m->has_normals_) m->normals_.resize(vertices * 2);
     m->replay_.reset(vertices, faces);
     if (order_ == FaceOrder::Batched && splits > 0) {
         m->batch_levels_ = batch_levels(bv, splits);
         m->face_slot_.resize(faces);
+        m->vertex_slot_.resize(vertices);
+        m->split_children_bytes_.resize(size_t(splits) * m->parent_bytes_);
     }
     meshes_.push_back(std::move(m));
     return ok_status();
@@ -211,7 +214,10 @@ Status BpmStream::parse_base(ProgressiveMesh& m, std::span<const uint8_t> payloa
         }
         m.qoct_[v * 2] = verts[v].oct[0];
         m.qoct_[v * 2 + 1] = verts[v].oct[1];
+        if (m.has_normals_) std::copy_n(verts[v].oct, 2, &m.normals_[v * 2]);
     }
+    if (m.batched())
+        for (size_t v = 0; v < verts.size(); ++v) m.vertex_slot_[v] = uint32_t(v);
     std::copy(decoded_indices_.begin(), decoded_indices_.end(), m.indices_.begin());
     m.replay_.add_faces(0, decoded_indices_);
     if (m.batched())
@@ -384,10 +390,18 @@ void BpmStream::record_split(ProgressiveMesh& m, size_t j, uint32_t parent, uint
                              std::span<const uint32_t> faces, std::span<const uint32_t> moved, const uint16_t from[3],
                              const uint16_t to[3], const uint16_t q[3], const uint8_t oct[2], uint16_t error_high) {
     m.replay_.add_faces(m.decoded_faces_, faces);
-    std::copy(faces.begin(), faces.end(), m.indices_.begin() + ptrdiff_t(m.decoded_faces_ * 3));
     const bool batched = m.batched();
-    if (batched)
+    uint32_t* const face_entries = &m.indices_[m.decoded_faces_ * 3];
+    if (batched) {
+        // The child keeps its number until its batch is complete (order_batch);
+        // the older vertices are in draw order.
+        m.vertex_slot_[child] = child;
+        for (size_t i = 0; i < faces.size(); ++i) face_entries[i] = m.vertex_slot_[faces[i]];
         for (size_t f = m.decoded_faces_; f < m.decoded_faces_ + faces.size() / 3; ++f) m.face_slot_[f] = uint32_t(f);
+        ProgressiveMesh::store_le(&m.split_children_bytes_[j * m.parent_bytes_], child, m.parent_bytes_);
+    } else {
+        std::copy(faces.begin(), faces.end(), face_entries);
+    }
     m.decoded_faces_ += faces.size() / 3;
     m.face_count_bits_[j / 32] |= uint64_t(faces.size() / 3) << (j % 32 * 2);
     if ((j + 1) % 64 == 0) m.face_sample_[(j + 1) / 64] = uint32_t(m.decoded_faces_);
@@ -416,7 +430,9 @@ void BpmStream::record_split(ProgressiveMesh& m, size_t j, uint32_t parent, uint
     }
     m.qoct_[size_t(child) * 2] = oct[0];
     m.qoct_[size_t(child) * 2 + 1] = oct[1];
-    ProgressiveMesh::store_le(&m.split_parents_bytes_[j * m.parent_bytes_], parent, m.parent_bytes_);
+    if (m.has_normals_) std::copy_n(oct, 2, &m.normals_[size_t(child) * 2]);
+    ProgressiveMesh::store_le(&m.split_parents_bytes_[j * m.parent_bytes_], m.vertex_in_draw_order(parent),
+                              m.parent_bytes_);
 }
 
 Status BpmStream::parse_splits(ProgressiveMesh& m, std::span<const uint8_t> payload, const std::string& where) {

@@ -119,4 +119,15 @@ void cache_order(const uint32_t* indices, size_t face_count, size_t vertex_count
         optimise_window(indices, order + w, std::min(kWindowFaces, face_count - w), scratch);
 }
 
+void first_use_order(const uint32_t* indices, size_t index_count, uint32_t first, uint32_t count, uint32_t* number) {
+    std::fill(number, number + count, UINT32_MAX);
+    uint32_t next = first;
+    for (size_t i = 0; i < index_count; ++i) {
+        const uint32_t k = indices[i] - first;  // wraps above count for a vertex below first
+        if (k < count && number[k] == UINT32_MAX) number[k] = next++;
+    }
+    for (uint32_t k = 0; k < count; ++k)
+        if (number[k] == UINT32_MAX) number[k] = next++;
+}
+
 }  // namespace body::pm

@@ -7,7 +7,9 @@
 // an H100). The reader therefore groups the splits into batches at geometric
 // level boundaries (vertex counts B, B r, B r^2, ... N + B, r = kBatchRatio) and,
 // once a batch is decoded, reorders the batch's faces among themselves for the
-// vertex cache on its connectivity at the batch's last level (cache_order:
+// vertex cache on its connectivity at the batch's last level and numbers the
+// batch's vertices among themselves in the order those faces first use them
+// (first_use_order, for vertex fetch) (cache_order:
 // a Morton sort, then meshopt_optimizeVertexCache in windows; over whole
 // batches it made decoding 2.5-2.9x slower, see bench/RESULTS.md). Every boundary level is then a prefix made of
 // cache-ordered runs, the newest run the largest (about (r-1)/r of the faces).
@@ -24,6 +26,9 @@
 // falls from 2.38 (refinement order) to about 1.6 on the bunny, against 0.68 for
 // the same triangles through meshoptimizer. Closing that needs faces
 // re-emitted in the newest batch or a per-level reordered element buffer.
+// Likewise fetch: each batch's run sweeps the whole surface once, so vertex
+// fetch overfetch (meshopt, 128 KiB) stays about 4-5 against 1.1-1.2 for the
+// static mesh (it was 10-11 with vertices in split order).
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -51,5 +56,12 @@ struct CacheOrderScratch {
 // Tipsify there instead decoded faster still, at 5 % more cache misses).
 void cache_order(const uint32_t* indices, size_t face_count, size_t vertex_count, const uint16_t* qpos, uint32_t* order,
                  CacheOrderScratch& scratch);
+
+// Numbers the vertices [first, first + count) in the order `indices` first use
+// them: number[k] is the new number of vertex first + k, a permutation of
+// [first, first + count) (vertices the indices never use come last, in their
+// order). The vertex fetch order of meshopt_optimizeVertexFetchRemap restricted
+// to one batch's vertices, so a batch's renumbering leaves every other number alone.
+void first_use_order(const uint32_t* indices, size_t index_count, uint32_t first, uint32_t count, uint32_t* number);
 
 }  // namespace body::pm

@@ -32,7 +32,7 @@ void ProgressiveMesh::positions(size_t begin, std::span<Vec3f> out) const {
 Vec3f ProgressiveMesh::normal(size_t v) const {
     if (!has_normals_) return Vec3f(0.0f, 0.0f, 1.0f);
     float n[3];
-    oct_decode8(&qoct_[v * 2], n);
+    oct_decode8(&normals_[v * 2], n);
     return Vec3f(n[0], n[1], n[2]);
 }
 
@@ -80,7 +80,8 @@ size_t ProgressiveMesh::drawable_above(size_t level) const {
 
 // Called by the reader when split `level` - 1, the last of batch
 // ordered_batches_, is recorded: sorts the batch's faces into cache order on
-// the connectivity at `level` (the replay's) and renumbers what points at them.
+// the connectivity at `level` (the replay's), numbers the batch's vertices in
+// the order those faces first use them, and renumbers what points at either.
 void ProgressiveMesh::order_batch(size_t level) {
     const size_t lo = ordered_level();
     // A level inside the batch would stop being a prefix: moved to its end first.
@@ -94,24 +95,56 @@ void ProgressiveMesh::order_batch(size_t level) {
     const size_t f0 = triangles_at(lo), f1 = decoded_faces_, n = f1 - f0;
     ++ordered_batches_;
     if (n == 0) return;
-    // The batch's faces at `level`, then their order; scratch: the old entries.
+    // The batch's faces at `level` (the file's numbers; its own vertices still
+    // have their file numbers in draw order too), then their order.
     std::vector<uint32_t> faces(n * 3), order(n);
     for (size_t i = 0; i < n * 3; ++i) faces[i] = replay_.index(f0 * 3 + i);
     cache_order(faces.data(), n, base_vertices_ + level, qpos_.data(), order.data(), order_scratch_);
+    const uint32_t v0 = uint32_t(base_vertices_ + lo), nv = uint32_t(level - lo);
+    std::vector<uint32_t> number(nv), ordered(n * 3);
+    for (size_t t = 0; t < n; ++t) std::copy_n(&faces[size_t(order[t]) * 3], 3, &ordered[t * 3]);
+    first_use_order(ordered.data(), n * 3, v0, nv, number.data());
+    const auto renumber = [&](uint32_t v) { return v - v0 < nv ? number[v - v0] : v; };
+    // The faces' entries at level_ (scratch: the old entries), moved and renumbered.
     std::copy(indices_.begin() + ptrdiff_t(f0 * 3), indices_.begin() + ptrdiff_t(f1 * 3), faces.begin());
     for (size_t t = 0; t < n; ++t) {
         const size_t f = order[t];
-        for (size_t k = 0; k < 3; ++k) indices_[(f0 + t) * 3 + k] = faces[f * 3 + k];
+        for (size_t k = 0; k < 3; ++k) indices_[(f0 + t) * 3 + k] = renumber(faces[f * 3 + k]);
         face_slot_[f0 + f] = uint32_t(f0 + t);
     }
-    // Patches of this batch's splits that name its faces (earlier ones cannot).
-    const size_t w = corner_bytes_, end = patch_corners_.size() / w;
-    for (size_t i = batch_patch_begin_; i < end; ++i) {
-        const uint32_t c = patch_corner(i);
-        if (c >= f0 * 3) store_le(&patch_corners_[i * w], face_slot_[c / 3] * 3 + c % 3, w);
+    // The splits' records: children, parents, and their patches, which name the
+    // batch's faces (renumbered) or older ones (holding, at `level`, the child
+    // of the batch's last split patching them).
+    size_t i = batch_patch_begin_;
+    const size_t w = corner_bytes_;
+    for (size_t j = lo; j < level; ++j) {
+        const uint32_t child = number[j - lo];
+        store_le(&split_children_bytes_[j * parent_bytes_], child, parent_bytes_);
+        store_le(&split_parents_bytes_[j * parent_bytes_], renumber(split_parent(j)), parent_bytes_);
+        for (const size_t e = i + patch_count_[j]; i < e; ++i) {
+            const uint32_t c = patch_corner(i);
+            if (c >= f0 * 3)
+                store_le(&patch_corners_[i * w], face_slot_[c / 3] * 3 + c % 3, w);
+            else if (level_ >= level)
+                indices_[c] = child;
+        }
     }
-    batch_patch_begin_ = end;
+    batch_patch_begin_ = i;
+    // The vertex data in the new numbers (the file's numbers map there from now on).
+    for (uint32_t k = 0; k < nv; ++k) vertex_slot_[v0 + k] = number[k];
+    permute_vertices(v0, number);
+    dirty_vertices_.add(v0, v0 + nv);
     dirty_indices_.add(f0 * 3, f1 * 3);
+}
+
+// Vertex v0 + k moves to number[k] (a permutation of [v0, v0 + number.size())).
+void ProgressiveMesh::permute_vertices(uint32_t v0, std::span<const uint32_t> number) {
+    const size_t nv = number.size();
+    std::vector<uint16_t> codes(positions_.begin() + ptrdiff_t(v0) * 3, positions_.begin() + ptrdiff_t(v0 + nv) * 3);
+    for (size_t k = 0; k < nv; ++k) std::copy_n(&codes[k * 3], 3, &positions_[size_t(number[k]) * 3]);
+    if (!has_normals_) return;
+    std::vector<uint8_t> octs(normals_.begin() + ptrdiff_t(v0) * 2, normals_.begin() + ptrdiff_t(v0 + nv) * 2);
+    for (size_t k = 0; k < nv; ++k) std::copy_n(&octs[k * 2], 2, &normals_[size_t(number[k]) * 2]);
 }
 
 size_t ProgressiveMesh::level_for_error(float error) const {
@@ -127,7 +160,7 @@ size_t ProgressiveMesh::refine_to(size_t level) {
     level = drawable_below(std::min(level, decoded_splits_));
     size_t e = patch_at_level_;
     for (size_t j = level_; j < level; ++j) {
-        const uint32_t child = uint32_t(base_vertices_ + j);
+        const uint32_t child = split_child(j);
         const size_t b = e;
         e = b + patch_count_[j];
         for (size_t i = b; i < e; ++i) {
@@ -298,7 +331,7 @@ bool ProgressiveMesh::release_vertex_data() {
     if (vertices_released_) return true;
     if (decoded_splits_ != split_count_ || !base_ready_) return false;
     UninitVector<uint16_t>().swap(positions_);
-    UninitVector<uint8_t>().swap(qoct_);
+    UninitVector<uint8_t>().swap(normals_);
     vertices_released_ = true;
     position_level_ = level_;
     pending_vertices_ = DirtyRange{};
@@ -330,7 +363,7 @@ void ProgressiveMesh::patch_indices(std::span<uint32_t> window, size_t first) {
     if (index_level_ < level_) {
         for (size_t j = index_level_; j < level_; ++j) at -= patch_count_[j];
         for (size_t j = index_level_; j < level_; ++j) {
-            const uint32_t child = uint32_t(base_vertices_ + j);
+            const uint32_t child = split_child(j);
             for (const size_t e = at + patch_count_[j]; at < e; ++at) put(patch_corner(at), child);
         }
     } else if (index_level_ > level_) {
@@ -346,34 +379,35 @@ void ProgressiveMesh::patch_indices(std::span<uint32_t> window, size_t first) {
 
 size_t ProgressiveMesh::morph_sources(size_t lo, std::vector<Vec3f>& out) const {
     lo = std::min(lo, level_);
-    const size_t lo_vc = base_vertices_ + lo, hi_vc = vertex_count();
-    // The lowest older vertex that a split since lo moves: the sources start there.
-    size_t begin = lo_vc;
+    const size_t hi_vc = vertex_count();
+    // The sources start at the lowest vertex added since lo or moved by a split
+    // since lo (the vertices added since lo are [base + lo, hi_vc) at a drawable
+    // lo, in any order inside a batch).
+    size_t begin = hi_vc;
     for (size_t j = lo; j < level_; ++j) {
-        const uint32_t p = split_parent(j);
-        if (p < begin && moves_parent(j)) begin = p;
+        begin = std::min<size_t>(begin, split_child(j));
+        if (moves_parent(j)) begin = std::min<size_t>(begin, split_parent(j));
     }
-    // Codes first, held exactly as floats (< 2^16): the older vertices where they
-    // are, taken back to lo by undoing the moves since lo (each split's move is
-    // an XOR, so the order does not matter); then each vertex added since lo
-    // takes its parent's source (set before: p < c).
+    // Codes first, held exactly as floats (< 2^16): every vertex where it is;
+    // the moves since lo undone (each split's move is an XOR, so the order does
+    // not matter); then, in split order (a parent before its children), each
+    // vertex added since lo takes its parent's source, which overwrites any
+    // move undone on it.
     out.resize(hi_vc - begin);
     auto code = [&](size_t v) {
         const uint16_t* q = &positions_[v * 3];
         return Vec3f(q[0], q[1], q[2]);
     };
-    for (size_t v = begin; v < lo_vc; ++v) out[v - begin] = code(v);
+    for (size_t v = begin; v < hi_vc; ++v) out[v - begin] = code(v);
     for (size_t j = lo; j < level_; ++j) {
-        const uint32_t p = split_parent(j);
-        if (p < begin || p >= lo_vc || !moves_parent(j)) continue;
-        Vec3f& q = out[p - begin];
+        if (!moves_parent(j)) continue;
+        Vec3f& q = out[split_parent(j) - begin];
         const uint16_t* move = parent_move(j);
         for (int k = 0; k < 3; ++k) q[k] = float(uint16_t(q[k]) ^ move[k]);
     }
     for (size_t j = lo; j < level_; ++j) {
-        const size_t c = base_vertices_ + j;
         const uint32_t p = split_parent(j);
-        out[c - begin] = p >= begin ? out[p - begin] : code(p);
+        out[split_child(j) - begin] = p >= begin ? out[p - begin] : code(p);
     }
     for (Vec3f& q : out) {
         const uint16_t c[3] = {uint16_t(q.x), uint16_t(q.y), uint16_t(q.z)};
@@ -386,9 +420,10 @@ void ProgressiveMesh::release_decoding_state() {
     // Swapped out, not `= {}` (that empties a vector but keeps its storage).
     replay_ = SplitReplay{};
     UninitVector<uint32_t>().swap(face_slot_);
+    UninitVector<uint32_t>().swap(vertex_slot_);
     order_scratch_ = {};
     UninitVector<uint16_t>().swap(qpos_);
-    if (!has_normals_) UninitVector<uint8_t>().swap(qoct_);  // with normals: kept as them
+    UninitVector<uint8_t>().swap(qoct_);
     // patch_corners_ grew geometrically while the splits arrived: to its size,
     // now that the replay's larger arrays are gone (the copy adds no peak).
     patch_corners_.shrink_to_fit();

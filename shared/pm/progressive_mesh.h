@@ -24,7 +24,8 @@
 // Threading: none inside; one ProgressiveMesh per thread at a time.
 // Allocation: arrays are sized when a structure's INFO section arrives; feeding
 // chunks decodes into them; refine_to/coarsen_to never allocate. Once complete
-// (decoding state freed) a structure keeps about 57 bytes a vertex split, 24 of
+// (decoding state freed) a structure keeps about 57 bytes a vertex split (60 in the
+// batched order: each split's vertex number, split_child), 24 of
 // them the index array (which can be released to a renderer: release_indices()).
 #include <algorithm>
 #include <bit>
@@ -131,11 +132,20 @@ public:
     // Two octahedral codes per vertex (oct_decode8 in quantize.h); empty when the
     // file has none.
     std::span<const uint8_t> normal_codes() const {
-        return has_normals_ ? std::span<const uint8_t>(qoct_) : std::span<const uint8_t>();
+        return has_normals_ ? std::span<const uint8_t>(normals_) : std::span<const uint8_t>();
     }
     Vec3f normal(size_t v) const;  // unit; (0,0,1) when the file has none
-    // The vertex a vertex was split off (itself for a base vertex).
-    uint32_t parent(size_t v) const { return v < base_vertices_ ? uint32_t(v) : split_parent(v - base_vertices_); }
+    // The vertex split j (< available_level()) adds, and the vertex it splits off.
+    // In refinement order split j adds vertex base_vertex_count() + j; in the
+    // batched order (draw_order.h) the vertices a batch adds are renumbered
+    // among themselves in the order its faces first use them, so a boundary
+    // level's vertices are still the prefix [0, vertex_count()) but a split's
+    // vertex is only known to lie in its batch's range.
+    uint32_t split_child(size_t j) const {
+        return split_children_bytes_.empty() ? uint32_t(base_vertices_ + j)
+                                             : load_le(&split_children_bytes_[j * parent_bytes_], parent_bytes_);
+    }
+    uint32_t split_parent(size_t j) const { return load_le(&split_parents_bytes_[j * parent_bytes_], parent_bytes_); }
     // Empty once release_indices() handed the array to a caller's copy.
     std::span<const uint32_t> indices() const { return indices_; }
 
@@ -217,12 +227,14 @@ private:
     // past the decoded vertices, faces and splits are indeterminate.
     double step_[3] = {0.0, 0.0, 0.0};  // dequantization step per axis
     UninitVector<uint16_t> positions_;  // 3 per vertex: codes at the current level
+    UninitVector<uint8_t> normals_;     // 2 per vertex: octahedral codes (files with normals)
     UninitVector<uint32_t> indices_;
     // Per split: its parent vertex, parent_bytes_ bytes, least significant
     // first (3 when every vertex number fits 24 bits, else 4).
     UninitVector<uint8_t> split_parents_bytes_;
     size_t parent_bytes_ = 4;
-    uint32_t split_parent(size_t j) const { return load_le(&split_parents_bytes_[j * parent_bytes_], parent_bytes_); }
+    // Batched order: per split the vertex it adds (split_child), parent_bytes_ bytes each.
+    UninitVector<uint8_t> split_children_bytes_;
     // Vertex and entry numbers kept in 3 or 4 bytes, least significant first.
     static uint32_t load_le(const uint8_t* p, size_t bytes) {
         const uint32_t v = uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16;
@@ -284,8 +296,10 @@ private:
     size_t ordered_batches_ = 0;
     size_t ordered_level() const { return ordered_batches_ ? batch_levels_[ordered_batches_ - 1] : 0; }
     void order_batch(size_t level);
-    // Decoding state, released when the structure is complete (qoct_ is kept as
-    // the normals when the file has them).
+    void permute_vertices(uint32_t v0, std::span<const uint32_t> number);
+    // Decoding state, released when the structure is complete. It numbers
+    // vertices and faces as the file does (the replay, qpos_, qoct_); the
+    // arrays above in draw order.
     SplitReplay replay_;
     UninitVector<uint16_t>
         qpos_;  // 3 per vertex: positions at the finest decoded level (children are coded against parents)
@@ -294,6 +308,9 @@ private:
     // in indices_, and the first patch_corners_ entry of the batch arriving.
     UninitVector<uint32_t> face_slot_;
     size_t batch_patch_begin_ = 0;
+    // Batched order: per vertex (the file's numbering) its number in draw order.
+    UninitVector<uint32_t> vertex_slot_;
+    uint32_t vertex_in_draw_order(uint32_t v) const { return vertex_slot_.empty() ? v : vertex_slot_[v]; }
     CacheOrderScratch order_scratch_;
     void release_decoding_state();
     bool moves_parent(size_t j) const { return (move_bits_[j / 64] >> (j % 64)) & 1; }

@@ -160,7 +160,7 @@ TEST(BpmFormat, NormalsRoundTripThroughTheirPredictions) {
     ASSERT_TRUE(build.ok());
     auto bytes = lod::encode_bpm(std::vector<Mesh>{torus}, options);
     ASSERT_TRUE(bytes.ok());
-    auto pms = pm::read_bpm_bytes(*bytes, "torus.bpm");
+    auto pms = pm::read_bpm_bytes(*bytes, "torus.bpm", pm::BpmStream::FaceOrder::Refinement);  // file numbering
     ASSERT_TRUE(pms.ok()) << pms.error().message;
     pm::ProgressiveMesh& m = *(*pms)[0];
     ASSERT_TRUE(m.has_normals());
@@ -183,7 +183,7 @@ TEST(BpmFormat, FileWithoutNormalsDecodesEveryPosition) {
     auto with = lod::encode_bpm(std::vector<Mesh>{torus}, lod::LodOptions{});
     ASSERT_TRUE(with.ok());
     EXPECT_LT(bytes->size(), with->size());  // no normal values at all
-    auto pms = pm::read_bpm_bytes(*bytes, "torus.bpm");
+    auto pms = pm::read_bpm_bytes(*bytes, "torus.bpm", pm::BpmStream::FaceOrder::Refinement);  // file numbering
     ASSERT_TRUE(pms.ok()) << pms.error().message;
     pm::ProgressiveMesh& m = *(*pms)[0];
     EXPECT_FALSE(m.has_normals());

@@ -516,8 +516,9 @@ TEST(Lod, LevelSelectionAndDirtyRanges) {
     size_t moved = 0;
     std::vector<Vec3f> sources;
     for (size_t j = 0; j < m.max_level(); ++j) {
-        const size_t child = m.base_vertex_count() + j;
-        const uint32_t parent = m.parent(child);
+        const size_t child = m.split_child(j);
+        ASSERT_EQ(child, m.base_vertex_count() + j);  // refinement order
+        const uint32_t parent = m.split_parent(j);
         ASSERT_LT(parent, child);
         const Vec3f before = m.position(parent);
         m.clear_dirty();
