@@ -7,46 +7,33 @@
 namespace body {
 namespace {
 
-// Holes of `parent` (slice `ps`) that end towards slice `os` (no hole there
-// links to them) and lie partly outside `other` there.
-std::vector<uint32_t> open_holes(const StructureSurface& surface, size_t ps, uint32_t parent, size_t os,
-                                 uint32_t other) {
+// Holes of `parent` (slice `ps`) that end towards slice `os` (no hole link
+// continues them) and lie partly outside `other` there.
+std::vector<uint32_t> open_holes(const StructureSurface& surface, size_t ps, uint32_t parent, size_t os, uint32_t other,
+                                 std::span<const ContourLink> hole_links) {
     const std::vector<Loop>& here_loops = surface.loops[ps];
     const std::vector<Loop>& there_loops = surface.loops[os];
-    std::vector<uint32_t> holes_here, holes_there;
-    for (uint32_t k = 0; k < here_loops.size(); ++k)
-        if (here_loops[k].hole()) holes_here.push_back(k);
-    for (uint32_t k = 0; k < there_loops.size(); ++k)
-        if (there_loops[k].hole()) holes_there.push_back(k);
-    std::vector<bool> linked(holes_here.size(), false);
-    if (!holes_there.empty() && !holes_here.empty()) {
-        std::vector<PolygonSpan> here, there;
-        for (uint32_t k : holes_here) here.emplace_back(here_loops[k].xy);
-        for (uint32_t k : holes_there) there.emplace_back(there_loops[k].xy);
-        const bool up = os > ps;
-        for (const ContourLink& l :
-             correspond_contours(up ? std::span<const PolygonSpan>(here) : there,
-                                 up ? std::span<const PolygonSpan>(there) : here, surface.correspondence))
-            linked[up ? l.lower : l.upper] = true;
-    }
+    std::vector<bool> linked(here_loops.size(), false);
+    for (const ContourLink& l : hole_links) linked[os > ps ? l.lower : l.upper] = true;
     std::vector<uint32_t> open;
-    for (size_t h = 0; h < holes_here.size(); ++h) {
-        const Loop& loop = here_loops[holes_here[h]];
-        if (linked[h] || loop.parent != int(parent)) continue;
+    for (uint32_t h = 0; h < here_loops.size(); ++h) {
+        const Loop& loop = here_loops[h];
+        if (linked[h] || !loop.hole() || loop.parent != int(parent)) continue;
         size_t outside = 0;
         for (const Vec2& p : loop.xy) outside += !point_in_polygon(p, there_loops[other].xy);
-        if (4 * outside >= loop.xy.size()) open.push_back(holes_here[h]);
+        if (4 * outside >= loop.xy.size()) open.push_back(h);
     }
     return open;
 }
 
 }  // namespace
 
-Result<bool> connect_open_holes(StructureSurface& surface, size_t s, uint32_t lower, uint32_t upper) {
+Result<bool> connect_open_holes(StructureSurface& surface, size_t s, uint32_t lower, uint32_t upper,
+                                std::span<const ContourLink> hole_links) {
     for (int side = 0; side < 2; ++side) {
         const size_t ps = side == 0 ? s : s + 1, os = side == 0 ? s + 1 : s;
         const uint32_t parent = side == 0 ? lower : upper, other = side == 0 ? upper : lower;
-        std::vector<uint32_t> branches = open_holes(surface, ps, parent, os, other);
+        std::vector<uint32_t> branches = open_holes(surface, ps, parent, os, other, hole_links);
         if (branches.empty()) continue;
         branches.insert(branches.begin(), parent);
         // The hole's band has room to climb before it meets chords nearer the

@@ -11,12 +11,14 @@
 namespace body {
 
 // For the solid loops `lower` (slice s) and `upper` (slice s+1), linked 1:1.
-// A hole opens when no hole on the other slice links to it and a quarter or
+// `hole_links` are the slice pair's hole links (loop indices, as built). A hole
+// opens when none of them continues it towards the other slice and a quarter or
 // more of its vertices lie outside the other contour. Chords go at mid-slice,
 // else as close to it as they can towards the notched contour without the
 // construction crossing itself. Returns true when built (the open holes are
 // then linked); false, with nothing built, when no hole opens or every try
 // crosses itself.
-Result<bool> connect_open_holes(StructureSurface& surface, size_t s, uint32_t lower, uint32_t upper);
+Result<bool> connect_open_holes(StructureSurface& surface, size_t s, uint32_t lower, uint32_t upper,
+                                std::span<const ContourLink> hole_links);
 
 }  // namespace body

@@ -44,36 +44,36 @@ std::vector<std::vector<uint32_t>> sort_labelled(const ContourStack& stack, Stru
     return unlabelled;
 }
 
-// Phase 2: unlabelled contours joined to their parent (holes) and to the
-// solid contours they correspond to on the next slice (with the stack's cuts
-// and joins: a cut may split a structure, a join merges two). Nodes are numbered
-// over all unlabelled contours, slice by slice from `first[s]`.
+// Phase 2: unlabelled contours joined to their parent (holes, and solids
+// inside holes: a nest is one piece) and the outermost ones to those they
+// correspond to on the next slice, by the area each encloses (with the stack's
+// cuts and joins: a cut may split a structure, a join merges two). Nodes are
+// numbered over all unlabelled contours, slice by slice from `first[s]`.
 void join_unlabelled(const ContourStack& stack, const std::vector<std::vector<uint32_t>>& unlabelled,
                      const std::vector<uint32_t>& first, CorrespondenceMethod method, UnionFind& uf) {
     const size_t S = stack.slices.size();
-    std::vector<std::vector<uint32_t>> solids(S);  // positions within unlabelled[s]
+    std::vector<std::vector<uint32_t>> outer(S);  // positions within unlabelled[s]
     for (size_t s = 0; s < S; ++s) {
         Nesting n = compute_nesting(stack.slices[s], unlabelled[s]);
         for (uint32_t k = 0; k < unlabelled[s].size(); ++k) {
-            if (n.depth[k] % 2 == 0)
-                solids[s].push_back(k);
-            else if (n.parent[k] >= 0)
+            if (n.parent[k] < 0)
+                outer[s].push_back(k);
+            else
                 uf.unite(first[s] + k, first[s] + uint32_t(n.parent[k]));
         }
     }
     for (size_t s = 0; s + 1 < S; ++s) {
         std::vector<PolygonSpan> lower, upper;
-        for (uint32_t k : solids[s]) lower.emplace_back(stack.slices[s].contours[unlabelled[s][k]].points);
-        for (uint32_t k : solids[s + 1]) upper.emplace_back(stack.slices[s + 1].contours[unlabelled[s + 1][k]].points);
+        for (uint32_t k : outer[s]) lower.emplace_back(stack.slices[s].contours[unlabelled[s][k]].points);
+        for (uint32_t k : outer[s + 1]) upper.emplace_back(stack.slices[s + 1].contours[unlabelled[s + 1][k]].points);
         std::vector<ContourLink> links = correspond_contours(lower, upper, method);
         if (!stack.links.empty()) {
             std::vector<const Contour*> lower_src, upper_src;
-            for (uint32_t k : solids[s]) lower_src.push_back(&stack.slices[s].contours[unlabelled[s][k]]);
-            for (uint32_t k : solids[s + 1]) upper_src.push_back(&stack.slices[s + 1].contours[unlabelled[s + 1][k]]);
+            for (uint32_t k : outer[s]) lower_src.push_back(&stack.slices[s].contours[unlabelled[s][k]]);
+            for (uint32_t k : outer[s + 1]) upper_src.push_back(&stack.slices[s + 1].contours[unlabelled[s + 1][k]]);
             apply_link_overrides(stack.links, lower_src, upper_src, links);
         }
-        for (const ContourLink& l : links)
-            uf.unite(first[s] + solids[s][l.lower], first[s + 1] + solids[s + 1][l.upper]);
+        for (const ContourLink& l : links) uf.unite(first[s] + outer[s][l.lower], first[s + 1] + outer[s + 1][l.upper]);
     }
 }
 

@@ -3,8 +3,9 @@
 // between two slices are joined by one construction.
 //
 // Structures: labelled contours go to their structure (the stack's order);
-// unlabelled ones are grouped by correspondence of their solid contours across
-// slices (holes follow their parent) into structures "auto_1", "auto_2", ...
+// unlabelled ones are grouped by correspondence of their outermost contours
+// across slices (by the whole area each encloses; every nested contour follows
+// its parent) into structures "auto_1", "auto_2", ...
 // named "structure N" with colours from a fixed palette, in order of their
 // first contour (slice, then contour order).
 //

@@ -7,17 +7,23 @@
 #include "builder/contours/contour_links.h"
 #include "builder/correspondence/grouping.h"
 #include "builder/correspondence/link_overrides.h"
+#include "builder/correspondence/material_regions.h"
 
 namespace body {
 namespace {
 
 ContourRef ref_of(const Contour& c) { return {c.source_slice, c.source_contour}; }
 
-// One structure's contours on one slice: which are holes.
-std::vector<bool> hole_flags(const Slice& slice, const std::vector<uint32_t>& members) {
-    const Nesting n = compute_nesting(slice, members);
-    std::vector<bool> out(members.size());
-    for (size_t k = 0; k < members.size(); ++k) out[k] = n.depth[k] % 2 == 1;
+// One structure's contours on one slice, with their nesting.
+struct NestedMembers {
+    std::vector<PolygonSpan> points;
+    Nesting nesting;
+    bool hole(uint32_t k) const { return nesting.depth[k] % 2 == 1; }
+};
+
+NestedMembers nested_members(const Slice& slice, const std::vector<uint32_t>& members) {
+    NestedMembers out{{}, compute_nesting(slice, members)};
+    for (uint32_t c : members) out.points.emplace_back(slice.contours[c].points);
     return out;
 }
 
@@ -29,18 +35,17 @@ struct SlicePair {
     const std::vector<uint32_t>& upper_members;
 };
 
-// Links of one kind (solids or holes) between slices s and s+1; marks the
-// contours (positions in the members) that continue up or down.
+// Links of one kind (solids or holes) between slices s and s+1 (`computed`:
+// positions in `lo` and `up`); marks the contours (positions in the members)
+// that continue up or down.
 void pair_links(const SlicePair& p, const std::vector<uint32_t>& lo, const std::vector<uint32_t>& up, bool hole,
-                CorrespondenceMethod method, LinkTable& table, std::vector<bool>& linked_up,
+                const std::vector<ContourLink>& computed, LinkTable& table, std::vector<bool>& linked_up,
                 std::vector<bool>& linked_down) {
     const Slice& a = p.stack.slices[p.s];
     const Slice& b = p.stack.slices[p.s + 1];
-    std::vector<PolygonSpan> pa, pb;
     std::vector<const Contour*> sa, sb;
-    for (uint32_t k : lo) sa.push_back(&a.contours[p.lower_members[k]]), pa.emplace_back(sa.back()->points);
-    for (uint32_t k : up) sb.push_back(&b.contours[p.upper_members[k]]), pb.emplace_back(sb.back()->points);
-    const std::vector<ContourLink> computed = correspond_contours(pa, pb, method);
+    for (uint32_t k : lo) sa.push_back(&a.contours[p.lower_members[k]]);
+    for (uint32_t k : up) sb.push_back(&b.contours[p.upper_members[k]]);
     std::vector<ContourLink> built = computed;
     apply_link_overrides(p.stack.links, sa, sb, built);
     for (const LinkGroup& g : group_links(built, lo.size(), up.size())) {
@@ -62,21 +67,28 @@ void pair_links(const SlicePair& p, const std::vector<uint32_t>& lo, const std::
 void structure_links(const ContourStack& stack, const std::string& id,
                      const std::vector<std::vector<uint32_t>>& members, CorrespondenceMethod method, LinkTable& table) {
     const size_t S = stack.slices.size();
-    std::vector<std::vector<bool>> holes(S), up(S), down(S);
+    std::vector<NestedMembers> nested(S);
+    std::vector<std::vector<bool>> up(S), down(S);
     for (size_t s = 0; s < S; ++s) {
-        holes[s] = hole_flags(stack.slices[s], members[s]);
+        nested[s] = nested_members(stack.slices[s], members[s]);
         up[s].assign(members[s].size(), false);
         down[s].assign(members[s].size(), false);
     }
     for (size_t s = 0; s + 1 < S; ++s) {
         const SlicePair pair{stack, id, s, members[s], members[s + 1]};
+        const NestedMembers &a = nested[s], &b = nested[s + 1];
+        const std::vector<ContourLink> all =
+            correspond_nested({a.points, a.nesting.parent}, {b.points, b.nesting.parent}, method);
         for (int hole = 0; hole < 2; ++hole) {
-            std::vector<uint32_t> lo, hi;
+            std::vector<uint32_t> lo, hi, at_lo(members[s].size()), at_hi(members[s + 1].size());
             for (uint32_t k = 0; k < members[s].size(); ++k)
-                if (holes[s][k] == bool(hole)) lo.push_back(k);
+                if (a.hole(k) == bool(hole)) at_lo[k] = uint32_t(lo.size()), lo.push_back(k);
             for (uint32_t k = 0; k < members[s + 1].size(); ++k)
-                if (holes[s + 1][k] == bool(hole)) hi.push_back(k);
-            if (!lo.empty() && !hi.empty()) pair_links(pair, lo, hi, bool(hole), method, table, up[s], down[s + 1]);
+                if (b.hole(k) == bool(hole)) at_hi[k] = uint32_t(hi.size()), hi.push_back(k);
+            std::vector<ContourLink> computed;
+            for (const ContourLink& l : all)
+                if (a.hole(l.lower) == bool(hole)) computed.push_back({at_lo[l.lower], at_hi[l.upper]});
+            if (!lo.empty() && !hi.empty()) pair_links(pair, lo, hi, bool(hole), computed, table, up[s], down[s + 1]);
         }
     }
     for (size_t s = 0; s < S; ++s)

@@ -3,7 +3,7 @@
 // review (`bodygen check --links`, `bodyview --contours`). The same stages as
 // the pipeline up to its bands: excluded contours dropped, validation and
 // repair, grouping into structures, nesting, correspondence per structure and
-// slice pair (solids with solids, holes with holes), the stack's cuts and
+// slice pair (material regions: solids with solids, holes with holes), the stack's cuts and
 // joins. Contours are named by their file reference (ContourRef).
 //
 // Which construction the pipeline then picks for a branch, or whether it

@@ -156,11 +156,16 @@ std::vector<ContourLink> correspond_by_overlap(std::span<const PolygonSpan> lowe
         area_lower[i] = std::abs(signed_area2(lower[i].data(), lower[i].size())) / 2;
     for (size_t j = 0; j < upper.size(); ++j)
         area_upper[j] = std::abs(signed_area2(upper[j].data(), upper[j].size())) / 2;
-    for (uint32_t i = 0; i < lower.size(); ++i)
+    std::vector<Box> box_upper(upper.size());
+    for (size_t j = 0; j < upper.size(); ++j) box_upper[j] = box_of(upper[j]);
+    for (uint32_t i = 0; i < lower.size(); ++i) {
+        const Box box_lower = box_of(lower[i]);
         for (uint32_t j = 0; j < upper.size(); ++j) {
+            if (!boxes_overlap(box_lower, box_upper[j])) continue;  // cheap for many small contours
             const double overlap = polygon_overlap_area(lower[i], upper[j]);
             if (overlap > 1e-9 * std::min(area_lower[i], area_upper[j])) links.push_back({i, j});
         }
+    }
     return links;
 }
 

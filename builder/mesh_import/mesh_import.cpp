@@ -5,6 +5,7 @@
 #include <cctype>
 #include <filesystem>
 
+#include "builder/mesh_import/glb_check.h"
 #include "builder/mesh_import/ply_check.h"
 #include "builder/mesh_import/stl_check.h"
 #include "builder/mesh_import/vrml_reader.h"
@@ -63,6 +64,8 @@ Result<std::vector<Mesh>> read_with_assimp(const std::string& path, const std::s
         if (Status checked = check_ply_file(path); !checked) return checked.error();
     if (ext == ".stl")
         if (Status checked = check_stl_file(path); !checked) return checked.error();
+    if (ext == ".glb")
+        if (Status checked = check_glb_file(path); !checked) return checked.error();
     Assimp::Importer importer;
     const aiScene* scene = importer.ReadFile(path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
                                                        aiProcess_FindInvalidData | aiProcess_ValidateDataStructure);

@@ -26,6 +26,7 @@
 #include <cmath>
 #include <functional>
 #include <mutex>
+#include <numeric>
 #include <optional>
 #include <thread>
 
@@ -36,6 +37,7 @@
 #include "builder/contours/validate.h"
 #include "builder/correspondence/grouping.h"
 #include "builder/correspondence/link_overrides.h"
+#include "builder/correspondence/material_regions.h"
 #include "builder/fairing/slice_interpolation.h"
 
 namespace body {
@@ -70,8 +72,8 @@ void make_loops(StructureSurface& surface, const ContourStack& stack,
 // One link group between slices s and s+1: a band for 1:1 (unless a hole
 // opens into a notch), the branching cascade otherwise; with the thesis's
 // overlap branching every link of a branch is a band of its own.
-Status connect_group(StructureSurface& surface, size_t s, const LinkGroup& group, bool hole,
-                     BranchingMethod branching) {
+Status connect_group(StructureSurface& surface, size_t s, const LinkGroup& group, bool hole, BranchingMethod branching,
+                     std::span<const ContourLink> hole_links) {
     for (uint32_t k : group.lower) surface.loops[s][k].linked_up = true;
     for (uint32_t k : group.upper) surface.loops[s + 1][k].linked_down = true;
     const Loop& first_lower = surface.loops[s][group.lower[0]];
@@ -85,7 +87,7 @@ Status connect_group(StructureSurface& surface, size_t s, const LinkGroup& group
     }
     if (group.lower.size() == 1 && group.upper.size() == 1) {
         if (!hole) {
-            auto built = connect_open_holes(surface, s, group.lower[0], group.upper[0]);
+            auto built = connect_open_holes(surface, s, group.lower[0], group.upper[0], hole_links);
             if (!built || *built) return built ? ok_status() : Status(built.error());
         }
         return band(surface, first_lower.ids, surface.loops[s + 1][group.upper[0]].ids, first_lower);
@@ -93,33 +95,45 @@ Status connect_group(StructureSurface& surface, size_t s, const LinkGroup& group
     return connect_branches(surface, s, group.lower, group.upper, hole);
 }
 
-// Correspondence between slices s and s+1 (solids with solids, holes with
-// holes) with the stack's overrides, then one construction per link group.
+// Correspondence between slices s and s+1 (material regions: solids with
+// solids, holes with holes) with the stack's overrides, then one construction
+// per link group.
 Status connect(StructureSurface& surface, size_t s, BranchingMethod branching,
                std::span<const LinkOverride> overrides) {
+    std::vector<PolygonSpan> xy[2];
+    std::vector<int> parent[2];
+    for (int side = 0; side < 2; ++side)
+        for (const Loop& l : surface.loops[s + side]) xy[side].emplace_back(l.xy), parent[side].push_back(l.parent);
+    const std::vector<ContourLink> all =
+        correspond_nested({xy[0], parent[0]}, {xy[1], parent[1]}, surface.correspondence);
+    std::vector<ContourLink> built[2];  // per kind, positions among that kind's loops
+    std::vector<uint32_t> lo[2], up[2];
     for (int hole = 0; hole < 2; ++hole) {
-        std::vector<uint32_t> lo, up;
+        std::vector<uint32_t> at_lo(surface.loops[s].size()), at_up(surface.loops[s + 1].size());
         for (uint32_t k = 0; k < surface.loops[s].size(); ++k)
-            if (surface.loops[s][k].hole() == bool(hole)) lo.push_back(k);
+            if (surface.loops[s][k].hole() == bool(hole)) at_lo[k] = uint32_t(lo[hole].size()), lo[hole].push_back(k);
         for (uint32_t k = 0; k < surface.loops[s + 1].size(); ++k)
-            if (surface.loops[s + 1][k].hole() == bool(hole)) up.push_back(k);
-        if (lo.empty() || up.empty()) continue;
-        std::vector<PolygonSpan> a, b;
-        for (uint32_t k : lo) a.emplace_back(surface.loops[s][k].xy);
-        for (uint32_t k : up) b.emplace_back(surface.loops[s + 1][k].xy);
-        auto links = correspond_contours(a, b, surface.correspondence);
-        if (!overrides.empty()) {
+            if (surface.loops[s + 1][k].hole() == bool(hole))
+                at_up[k] = uint32_t(up[hole].size()), up[hole].push_back(k);
+        for (const ContourLink& l : all)
+            if (surface.loops[s][l.lower].hole() == bool(hole)) built[hole].push_back({at_lo[l.lower], at_up[l.upper]});
+        if (!overrides.empty() && !lo[hole].empty() && !up[hole].empty()) {
             std::vector<const Contour*> lower_src, upper_src;
-            for (uint32_t k : lo) lower_src.push_back(surface.loops[s][k].source);
-            for (uint32_t k : up) upper_src.push_back(surface.loops[s + 1][k].source);
-            apply_link_overrides(overrides, lower_src, upper_src, links);
+            for (uint32_t k : lo[hole]) lower_src.push_back(surface.loops[s][k].source);
+            for (uint32_t k : up[hole]) upper_src.push_back(surface.loops[s + 1][k].source);
+            apply_link_overrides(overrides, lower_src, upper_src, built[hole]);
         }
-        for (LinkGroup& group : group_links(links, lo.size(), up.size())) {
+    }
+    // The hole links as loop indices: an open hole is one that none of them continues.
+    std::vector<ContourLink> hole_links;
+    for (const ContourLink& l : built[1]) hole_links.push_back({lo[1][l.lower], up[1][l.upper]});
+    for (int hole = 0; hole < 2; ++hole) {
+        for (LinkGroup& group : group_links(built[hole], lo[hole].size(), up[hole].size())) {
             // From positions among this kind of loop to loop indices on the slices.
-            for (uint32_t& k : group.lower) k = lo[k];
-            for (uint32_t& k : group.upper) k = up[k];
-            for (ContourLink& l : group.links) l = {lo[l.lower], up[l.upper]};
-            auto status = connect_group(surface, s, group, bool(hole), branching);
+            for (uint32_t& k : group.lower) k = lo[hole][k];
+            for (uint32_t& k : group.upper) k = up[hole][k];
+            for (ContourLink& l : group.links) l = {lo[hole][l.lower], up[hole][l.upper]};
+            auto status = connect_group(surface, s, group, bool(hole), branching, hole_links);
             if (!status) return status;
         }
     }
@@ -191,9 +205,18 @@ Status cap_slice(StructureSurface& surface, size_t s, bool up, bool slab, CapSty
         const bool isolated = !l.linked_up && !l.linked_down;
         in[k] = slab ? isolated : (!isolated && !(up ? l.linked_up : l.linked_down));
     }
+    // A cap region is a loop with the loops inside it that end with it; a loop
+    // ending inside such a region's inner loop (an island in an ending hole)
+    // starts a region of its own. Parents come before children by depth.
+    std::vector<size_t> by_depth(loops.size());
+    std::iota(by_depth.begin(), by_depth.end(), size_t(0));
+    std::stable_sort(by_depth.begin(), by_depth.end(),
+                     [&](size_t a, size_t b) { return loops[a].depth < loops[b].depth; });
+    std::vector<bool> root(loops.size(), false);
+    for (size_t k : by_depth) root[k] = in[k] && !(loops[k].parent >= 0 && root[size_t(loops[k].parent)]);
     const auto& ring = up ? top : bottom;
     for (size_t k = 0; k < loops.size(); ++k) {
-        if (!in[k] || (loops[k].parent >= 0 && in[size_t(loops[k].parent)])) continue;
+        if (!root[k]) continue;
         std::vector<std::span<const Vec2>> region{loops[k].xy};
         std::vector<std::span<const uint32_t>> ids{slab ? ring[k] : loops[k].ids};
         const double at = surface.positions[ids[0][0]].z;

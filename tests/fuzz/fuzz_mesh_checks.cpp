@@ -1,5 +1,5 @@
-// libFuzzer target for the PLY and STL checks that run before assimp
-// (builder/mesh_import/ply_check.h, stl_check.h): ok or one error line naming
+// libFuzzer target for the PLY, STL and GLB checks that run before assimp
+// (builder/mesh_import/ply_check.h, stl_check.h, glb_check.h): ok or one error line naming
 // the file, never a crash or a read outside the input.
 #include <cstddef>
 #include <cstdint>
@@ -7,6 +7,7 @@
 #include <string>
 #include <string_view>
 
+#include "builder/mesh_import/glb_check.h"
 #include "builder/mesh_import/ply_check.h"
 #include "builder/mesh_import/stl_check.h"
 
@@ -24,5 +25,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     const std::string_view bytes(reinterpret_cast<const char*>(data), size);
     expect_one_line(body::check_ply_bytes(bytes, "fuzz.ply"), "fuzz.ply");
     expect_one_line(body::check_stl_bytes(bytes, "fuzz.stl"), "fuzz.stl");
+    expect_one_line(body::check_glb_bytes(bytes, "fuzz.glb"), "fuzz.glb");
     return 0;
 }

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "builder/mesh_import/glb_check.h"
 #include "builder/mesh_import/ply_check.h"
 #include "builder/mesh_import/stl_check.h"
 #include "shared/obj_io.h"
@@ -199,6 +200,37 @@ TEST(ObjCheck, TextureAndNormalReferencesMustBeDefined) {
     expect_refused(status("v 0 0 0 1 1\n"), "line 1: vertex has 5 values");
     expect_refused(status("vt nan 0\n"), "line 1: texture coordinate 'nan' is not a finite float");
     expect_refused(status("vn 0 1\n"), "line 1: normal has 2 values");
+}
+
+// A .glb container: header length = file size, the first chunk JSON, every chunk inside the file.
+std::string glb(std::string json, std::string bin, uint32_t length_delta = 0) {
+    auto u32 = [](uint32_t v) { return std::string{char(v), char(v >> 8), char(v >> 16), char(v >> 24)}; };
+    json.append((4 - json.size() % 4) % 4, ' ');
+    std::string body = u32(uint32_t(json.size())) + "JSON" + json;
+    if (!bin.empty()) body += u32(uint32_t(bin.size())) + std::string("BIN\0", 4) + bin;
+    return "glTF" + u32(2) + u32(uint32_t(12 + body.size()) + length_delta) + body;
+}
+
+TEST(GlbCheck, ContainerFaultsAreRefusedAtTheirByte) {
+    const std::string good = glb("{\"asset\":{\"version\":\"2.0\"}}", std::string(48, '\0'));
+    EXPECT_TRUE(check_glb_bytes(good, "m.glb").ok());
+    auto message = [](const std::string& bytes) {
+        const Status s = check_glb_bytes(bytes, "m.glb");
+        return s.ok() ? std::string("accepted") : s.error().message;
+    };
+    EXPECT_EQ(message(glb("{}", "", 1u << 30)),
+              "m.glb: GLB byte 8: header length 1073741848 but the file has 24 bytes");
+    EXPECT_EQ(message("glTX" + good.substr(4)), "m.glb: GLB byte 0: magic is not \"glTF\"");
+    std::string v1 = good;
+    v1[4] = 1;
+    EXPECT_EQ(message(v1), "m.glb: GLB byte 4: version 1, only 2 is read");
+    std::string long_chunk = good;
+    long_chunk[12] = char(200);  // the JSON chunk's length past the end
+    EXPECT_EQ(message(long_chunk).rfind("m.glb: GLB byte 12: chunk length 200 runs past the end", 0), 0u);
+    std::string bin_first = glb("{}", "");
+    bin_first.replace(16, 4, std::string("BIN\0", 4));
+    EXPECT_EQ(message(bin_first), "m.glb: GLB byte 16: the first chunk is not JSON");
+    EXPECT_EQ(message(good.substr(0, 11)), "m.glb: GLB byte 0: a 12-byte header needed, the file has 11");
 }
 
 }  // namespace
