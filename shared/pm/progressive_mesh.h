@@ -204,6 +204,11 @@ public:
     DirtyRange dirty_indices() const { return dirty_indices_; }
     void clear_dirty() { dirty_vertices_ = dirty_indices_ = DirtyRange{}; }
 
+    // Bytes of storage the structure holds now (every array's capacity, the
+    // decoding state included; progressive_mesh_memory.cpp): what a caller
+    // keeps per structure, for memory budgets and their tests.
+    size_t heap_bytes() const;
+
 private:
     friend class BpmStream;
     std::string name_;

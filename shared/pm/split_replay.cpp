@@ -12,7 +12,10 @@ constexpr uint32_t kMinRegion = 8;  // corners: a typical vertex (valence 6) fit
 }  // namespace
 
 void SplitReplay::reset(size_t vertex_capacity, size_t face_capacity) {
-    regions_.assign(vertex_capacity, Region{});
+    // Regions grow with the vertices that arrive (grow_regions): a file parked
+    // at its base mesh holds its base vertices' only, not its full detail's.
+    UninitVector<Region>().swap(regions_);
+    vertex_capacity_ = vertex_capacity;
     pool_.clear();
     // Every corner once plus the slack of each region; address space only until used.
     pool_.reserve(face_capacity * 3 + vertex_capacity * (kMinRegion + 2));
@@ -20,7 +23,13 @@ void SplitReplay::reset(size_t vertex_capacity, size_t face_capacity) {
     indices_.resize(face_capacity * 3);  // written by add_faces before anything reads them
 }
 
+void SplitReplay::grow_regions(uint32_t v) {
+    const size_t n = std::min(std::max<size_t>({size_t(v) + 1, 2 * regions_.size(), 64}), vertex_capacity_);
+    regions_.resize(std::max<size_t>(n, size_t(v) + 1));  // value-initialised: no corners
+}
+
 uint32_t* SplitReplay::make_room(uint32_t v, size_t count) {
+    if (v >= regions_.size()) grow_regions(v);
     Region& r = regions_[v];
     if (count > r.capacity) {
         const size_t capacity = std::max<size_t>({kMinRegion, 2 * size_t(r.capacity), count});
@@ -37,21 +46,21 @@ void SplitReplay::add_faces(size_t first_face, std::span<const uint32_t> indices
     for (size_t i = 0; i < indices.size(); ++i) {
         const uint32_t c = uint32_t(first_face * 3 + i), v = indices[i];
         indices_[c] = v;
-        const uint32_t n = regions_[v].count;
+        const uint32_t n = region(v).count;
         make_room(v, n + 1)[n] = c;  // the highest corner so far: stays ascending
         regions_[v].count = n + 1;
     }
 }
 
 size_t SplitReplay::corners_of(uint32_t v, uint32_t* out, size_t capacity) const {
-    const Region r = regions_[v];
+    const Region r = region(v);
     if (r.count > capacity) return SIZE_MAX;
     std::copy_n(pool_.data() + r.offset, r.count, out);
     return r.count;
 }
 
 void SplitReplay::corners_of(uint32_t v, std::vector<uint32_t>& out) const {
-    const Region r = regions_[v];
+    const Region r = region(v);
     out.assign(pool_.data() + r.offset, pool_.data() + r.offset + r.count);
 }
 
@@ -123,8 +132,9 @@ bool SplitReplay::apply_mask(uint32_t parent, uint32_t child, uint64_t mask, con
                              uint32_t* moved) {
     if (count < 64 && (mask >> count) != 0) return false;
     const size_t moving = size_t(std::popcount(mask));
-    uint32_t* to = make_room(child, regions_[child].count + moving + 2);  // + the split's new faces
-    uint32_t* from = pool_.data() + regions_[parent].offset;              // after make_room: the pool may have moved
+    if (parent >= regions_.size()) grow_regions(parent);
+    uint32_t* to = make_room(child, region(child).count + moving + 2);  // + the split's new faces
+    uint32_t* from = pool_.data() + regions_[parent].offset;            // after make_room: the pool may have moved
     uint32_t kept = 0, m = regions_[child].count;
     for (size_t i = 0; i < count; ++i) {
         const uint32_t c = corners[i];
@@ -155,6 +165,7 @@ bool SplitReplay::apply_mask(uint32_t parent, uint32_t child, uint64_t mask, std
 
 void SplitReplay::prefetch(uint32_t v, int stage, const uint16_t* qpos) const {
 #if defined(__GNUC__)
+    if (v >= regions_.size()) return;  // a vertex not arrived yet: nothing to fetch
     if (stage == 0) {
         __builtin_prefetch(&regions_[v]);
         return;
@@ -175,7 +186,7 @@ void SplitReplay::prefetch(uint32_t v, int stage, const uint16_t* qpos) const {
         const uint32_t* t = &indices_[c[i] / 3 * 3];
         // The vertex after v in each face: every neighbour once around an interior vertex.
         const uint32_t k = c[i] - c[i] / 3 * 3, n = t[k == 2 ? 0 : k + 1];
-        __builtin_prefetch(&regions_[n]);
+        if (n < regions_.size()) __builtin_prefetch(&regions_[n]);
         if (qpos) __builtin_prefetch(qpos + size_t(n) * 3);
     }
 #else

@@ -65,13 +65,23 @@ public:
     // (stages in this order, a few splits apart). No effect on results; `v` must be
     // a valid vertex.
     void prefetch(uint32_t v, int stage, const uint16_t* qpos = nullptr) const;
+    // Vertices given room for corners so far (those that arrived, and some
+    // room): the rest have none and cost nothing.
+    size_t vertices_held() const { return regions_.size(); }
+    // Bytes of storage held (the arrays' capacities; reserved pool included).
+    size_t heap_bytes() const {
+        return regions_.capacity() * sizeof(Region) + (pool_.capacity() + indices_.capacity()) * sizeof(uint32_t);
+    }
 
 private:
     struct Region {
         uint32_t offset = 0, count = 0, capacity = 0;
     };
     uint32_t* make_room(uint32_t v, size_t count);  // v's region with room for `count` corners
-    UninitVector<Region> regions_;                  // per vertex
+    void grow_regions(uint32_t v);                  // regions_ to cover v (geometrically, up to the capacity)
+    Region region(uint32_t v) const { return v < regions_.size() ? regions_[v] : Region{}; }
+    UninitVector<Region> regions_;  // per vertex arrived so far (and some room); the rest have no corners
+    size_t vertex_capacity_ = 0;
     UninitVector<uint32_t> pool_;     // corners, ascending per region (entries past a region's count unused)
     UninitVector<uint32_t> indices_;  // per corner: the vertex at the replayed level (set by add_faces)
 };
