@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 
 #include "shared/pm/bpm_container.h"
@@ -38,6 +39,9 @@ Status parse_summary(std::span<const uint8_t> payload, const std::string& where,
 }  // namespace
 
 Result<std::vector<StructureSummary>> read_bpm_summary(const std::string& path) {
+    // Never open a FIFO or a device (the open itself could block the kiosk).
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec)) return input_error(path + ": not a regular file");
     std::ifstream in(path, std::ios::binary);
     if (!in) return input_error(path + ": cannot open");
     uint8_t h[kFileHeaderSize];
