@@ -19,6 +19,8 @@ namespace body::kiosk {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+// Per frame, the time given to uploading models that arrived after the first (at least one each frame).
+constexpr auto kUploadSlice = std::chrono::milliseconds(4);
 
 // The display's density: from --display-width-mm when given, else as the surface reports it.
 float display_pixels_per_mm(const platform::Surface& surface, double display_width_mm) {
@@ -114,7 +116,11 @@ int KioskLoop::start() {
         return kExitRuntime;
     }
     init_ms_ = ms_since(load_start_);
-    ok_models_ = models_.load(renderer_, options_.load);
+    // Live, the first frame draws the models whose bases are in and the rest
+    // arrive over the next frames; a replay or a screenshot waits for all of
+    // them, so that its pictures do not depend on the machine's speed.
+    const bool all_first = replaying_ || !options_.screenshot.empty() || options_.load_all_first;
+    ok_models_ = all_first ? models_.load(renderer_, options_.load) : models_.load_ready(renderer_, options_.load);
     load_ms_ = ms_since(load_start_);
     if (ok_models_ == 0) {
         std::fprintf(stderr, "bodyview: %s: no model could be loaded\n", scene_.source.c_str());
@@ -206,7 +212,11 @@ bool KioskLoop::bind_models(long frame, double now, size_t& triangles) {
 render::View KioskLoop::camera_view(double now) const {
     Vec3f center;
     float radius = 0.0f;
-    renderer_.scene_bounds(center, radius);
+    if (models_.pending() > 0)  // the bounds the whole scene will have (models still arriving)
+        models_.scene_bounds([this](size_t i) { return app_->visible(static_cast<int>(i)); },
+                             [this](size_t i) { return placement(static_cast<int>(i)); }, center, radius);
+    else
+        renderer_.scene_bounds(center, radius);
     return app_->camera().render_view(app_->drift(now), center, radius);
 }
 
@@ -264,10 +274,12 @@ int KioskLoop::run() {
         const double now = replaying_ ? static_cast<double>(frame) * step : surface_.time();
         // The streamed structures are shared with their loaders: picking (in the
         // event handlers) and level changes read and write them.
+        if (models_.pending() > 0 && frame > 0) models_.upload_arrived(frame_start + kUploadSlice);
+        const size_t pending_drawn = models_.pending();
         auto stream_locks = models_.lock();
         const bool keep = feed_input(now);
         app_->update(now);
-        const bool streaming = models_.poll_streams();
+        const bool streaming = models_.poll_streams() || models_.pending() > 0;
         size_t triangles = 0;
         const bool at_planned_detail = bind_models(frame, now, triangles);
         render::FrameOptions fo;
@@ -297,10 +309,13 @@ int KioskLoop::run() {
             renderer_.warm_up_cut(render::Lighting{},
                                   fo);  // the cut plane's shaders compiled now, not at a visitor's tap
             if (options_.verbose)
-                std::fprintf(stderr,
-                             "bodyview: first frame %.1f ms after start (renderer init %.1f ms with the loaders "
-                             "starting, %zu/%zu models, base meshes in %.1f ms, label atlases %.1f ms)\n",
-                             first_frame_ms, init_ms_, ok_models_, scene_.models.size(), load_ms_ - init_ms_, ui_ms_);
+                std::fprintf(
+                    stderr,
+                    "bodyview: first frame %.1f ms after start (renderer init %.1f ms with the loaders "
+                    "starting, %zu/%zu models, %zu of them still arriving, base meshes in %.1f ms, label atlases %.1f "
+                    "ms)\n",
+                    first_frame_ms, init_ms_, ok_models_, scene_.models.size(), models_.pending(), load_ms_ - init_ms_,
+                    ui_ms_);
         }
         if (full_detail_ms < 0.0 && !streaming && at_planned_detail) {
             full_detail_ms = since_start;
@@ -311,6 +326,7 @@ int KioskLoop::run() {
         if (!replaying_ || options_.measure_frames_in_replay) app_->report_frame(frame_ms, triangles);
         FrameReport report{frame, now, frame_ms, triangles, app_.get()};
         report.shaped_lines = overlay_.shaped_lines();
+        report.models_pending = pending_drawn;
         if (!check_gl(report)) {
             exit_code = kExitRuntime;
             last = true;

@@ -39,6 +39,7 @@ struct FrameReport {
     int gl_errors = 0;           // glGetError values raised during the frame (the loop reads them, once)
     bool out_of_memory = false;  // one was GL_OUT_OF_MEMORY: detail has been lowered
     size_t shaped_lines = 0;     // text lines the overlay has shaped so far (Overlay::shaped_lines)
+    size_t models_pending = 0;   // models whose base meshes had not arrived when the frame was drawn
 };
 
 // Optional callbacks into the one loop (the soak's visitors, the service's
@@ -68,6 +69,10 @@ struct KioskRunOptions {
     bool measure_frames_in_replay = false;
     render::RendererOptions renderer = {};  // --buffer-access
     LoadOptions load = {};                  // file colours for a model shown alone
+    // Every model's base mesh before the first frame even when live (a replay
+    // or a screenshot always waits so); false: the first frame draws what has
+    // arrived and the rest are uploaded over the next frames.
+    bool load_all_first = false;
     KioskHooks hooks = {};
     double display_width_mm = 0.0;  // > 0: overrides the display's reported size (touch targets)
 };

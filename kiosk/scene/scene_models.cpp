@@ -33,10 +33,21 @@ double screen_size_estimate(const scene::Model& m) {
 SceneModels::SceneModels(const scene::Scene& scene)
     : scene_(scene), models_(scene.models.size()), info_(scene.models.size()) {
     for (const scene::Model& m : scene.models) transforms_.push_back(to_model_matrix(m.transform));
+    // Every file's INFO sections first (no decoding): their bounds order the
+    // decoding by size on screen (the world radius; unreadable ones last).
     for (size_t i = 0; i < scene.models.size(); ++i) {
         const scene::Model& m = scene.models[i];
         if (std::filesystem::path(m.path).extension() != ".bpm") continue;
-        models_[i].loader = std::make_unique<StreamLoader>(m.path, 64 * 1024, screen_size_estimate(m));
+        if (auto summary = pm::read_bpm_summary(m.path)) {
+            models_[i].summary = std::move(summary).value();
+            summarize(i);
+        }
+    }
+    for (size_t i = 0; i < scene.models.size(); ++i) {
+        const scene::Model& m = scene.models[i];
+        if (std::filesystem::path(m.path).extension() != ".bpm") continue;
+        const double priority = info_[i].loaded ? double(info_[i].radius) : 0.0;
+        models_[i].loader = std::make_unique<StreamLoader>(m.path, 64 * 1024, priority);
     }
 }
 
@@ -115,6 +126,7 @@ void SceneModels::measure(size_t index) {
     const glm::mat4& transform = transforms_[index];
     glm::vec3 lo(1e30f), hi(-1e30f);
     ModelInfo& mi = info_[index];
+    mi = ModelInfo{};
     for (const ModelPart& p : models_[index].parts) {
         Vec3f c;
         float r = 0.0f;
@@ -131,21 +143,25 @@ void SceneModels::measure(size_t index) {
     mi.radius = std::max(glm::length(hi - lo) * 0.5f / std::sqrt(3.0f), 1e-3f);
 }
 
+bool SceneModels::upload(size_t i) {
+    if (Status st = load_model(i, load_options_); !st) {
+        std::fprintf(stderr, "bodyview: %s: skipped: %s\n", scene_.models[i].name.c_str(), st.error().message.c_str());
+        for (ModelPart& p : models_[i].parts)
+            if (p.id()) renderer_->remove_model(p.id());
+        models_[i] = Model{};
+        info_[i] = ModelInfo{};
+        return false;
+    }
+    measure(i);
+    return info_[i].loaded;
+}
+
 size_t SceneModels::load(render::Renderer& renderer, const LoadOptions& options) {
     renderer_ = &renderer;
+    load_options_ = options;
     size_t ok = 0;
-    for (size_t i = 0; i < models_.size(); ++i) {
-        if (Status st = load_model(i, options); !st) {
-            std::fprintf(stderr, "bodyview: %s: skipped: %s\n", scene_.models[i].name.c_str(),
-                         st.error().message.c_str());
-            for (ModelPart& p : models_[i].parts)
-                if (p.id()) renderer.remove_model(p.id());
-            models_[i] = Model{};
-            continue;
-        }
-        measure(i);
-        if (info_[i].loaded) ++ok;
-    }
+    for (size_t i = 0; i < models_.size(); ++i)
+        if (upload(i)) ++ok;
     load_cut_volume(scene_, renderer);
     return ok;
 }
@@ -212,7 +228,7 @@ bool SceneModels::poll_streams() {
 
 void SceneModels::wait_until(std::chrono::steady_clock::time_point deadline) const {
     for (const Model& m : models_)
-        if (m.streaming && !m.loader->wait_done_until(deadline)) return;
+        if ((m.streaming || m.pending) && !m.loader->wait_done_until(deadline)) return;
 }
 
 bool SceneModels::bind(size_t model, const ModelBinding& b, double now) {

@@ -17,6 +17,7 @@
 // models first; its structures are touched only under lock(), which bind() and
 // pick() need.
 #include <chrono>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -27,6 +28,7 @@
 #include "kiosk/scene/model_part.h"
 #include "kiosk/scene/stream_loader.h"
 #include "shared/geometry.h"
+#include "shared/pm/bpm_summary.h"
 #include "shared/scene/scene.h"
 
 namespace body::kiosk {
@@ -76,6 +78,23 @@ public:
     // fails is logged ("bodyview: NAME: skipped: reason") and left out.
     // Returns how many models loaded.
     size_t load(render::Renderer& renderer, const LoadOptions& options = {});
+    // The kiosk's start (scene/scene_loading.cpp): uploads the models whose base
+    // meshes are in now and leaves every other .bpm pending, its ModelInfo
+    // already filled from its file's INFO sections (read at construction), so
+    // that the camera and the layout are final before any late model arrives.
+    // A pending model draws nothing and picks nothing until upload_arrived()
+    // uploads it. Returns how many models are loaded or pending.
+    size_t load_ready(render::Renderer& renderer, const LoadOptions& options = {});
+    // Without lock(), once a frame: uploads the pending models whose base meshes
+    // have arrived (until `deadline`, at least one); a pending file that fails
+    // is logged and skipped as load() does. Returns how many are still pending.
+    size_t upload_arrived(std::chrono::steady_clock::time_point deadline);
+    size_t pending() const { return pending_count_; }
+    // The scene's bounds as Renderer::scene_bounds gives them once every model
+    // is uploaded: the visible models' spheres under `placement`, a pending
+    // model's from its INFO boxes.
+    void scene_bounds(const std::function<bool(size_t)>& visible, const std::function<glm::mat4(size_t)>& placement,
+                      Vec3f& center, float& radius) const;
     // The authoring mode's add and remove, after load(): the scene given to the
     // constructor has gained model `index` (inserted there) or lost it, and only
     // that model is uploaded or dropped; the others stay as they are. An
@@ -126,9 +145,17 @@ private:
         std::vector<ModelPart> parts;
         std::unique_ptr<StreamLoader> loader;
         bool streaming = false;
+        bool pending = false;                       // load_ready(): bases not in yet
+        std::vector<pm::StructureSummary> summary;  // the file's INFO sections (empty: unread or not a .bpm)
     };
     Status load_model(size_t index, const LoadOptions& options);
     void measure(size_t index);
+    void summarize(size_t index);  // info_[index] from models_[index].summary
+    // Uploads and measures model `index`, or logs why it is skipped and clears it; true when loaded.
+    bool upload(size_t index);
+    LoadOptions load_options_;
+
+    size_t pending_count_ = 0;
 
     const scene::Scene& scene_;
     render::Renderer* renderer_ = nullptr;

@@ -139,6 +139,7 @@ public:
         {
             std::lock_guard guard(mutex_);
             ranges_.emplace_back(static_cast<char*>(p), bytes);
+            if (started_ && !thread_.joinable()) thread_ = std::thread([this] { run(); });
         }
         cv_.notify_one();
     }
@@ -148,9 +149,12 @@ public:
         std::lock_guard guard(mutex_);
         std::erase_if(ranges_, [p](const std::pair<char*, size_t>& r) { return r.first == p; });
     }
+    // The thread itself starts with the first range to prefault: a scene of
+    // small files, with no array this large, never runs it.
     void start() {
         std::lock_guard guard(mutex_);
-        if (!thread_.joinable()) thread_ = std::thread([this] { run(); });
+        started_ = true;
+        if (!ranges_.empty() && !thread_.joinable()) thread_ = std::thread([this] { run(); });
     }
     ~Prefaulter() {
         g_prefaulter_alive = false;
@@ -184,7 +188,7 @@ private:
     std::mutex mutex_;
     std::condition_variable cv_;
     std::deque<std::pair<char*, size_t>> ranges_;
-    bool stop_ = false;
+    bool stop_ = false, started_ = false;
     std::thread thread_;
 };
 #endif

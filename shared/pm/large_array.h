@@ -36,7 +36,8 @@ void* allocate_large_array(size_t bytes, size_t alignment, PageFill fill);
 void free_large_array(void* p, size_t bytes, size_t alignment, PageFill fill) noexcept;
 
 // From now on a low-priority thread prefaults the PageFill::Later arrays allocated
-// before and after the call. Without it, nothing runs (bodygen never calls it).
+// before and after the call; it starts with the first such array (none: no thread).
+// Without the call, nothing runs (bodygen never calls it).
 void start_background_prefault();
 
 // A cache hint, no effect on results: the split replay (reader and writer) and
