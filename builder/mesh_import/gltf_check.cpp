@@ -15,6 +15,8 @@
 #include <cstring>
 #include <limits>
 #include <vector>
+
+#include "builder/export/gltf_writer.h"
 #endif
 
 namespace body {
@@ -184,6 +186,7 @@ Status check_primitive(const tinygltf::Model& m, size_t mi, size_t pi, const std
 
 Status check_gltf_bytes(std::string_view bytes, bool binary, const std::string& path, const std::string& base_dir) {
     if (bytes.size() > std::numeric_limits<unsigned int>::max()) return input_error(path + ": glTF: larger than 4 GiB");
+    exporter::link_tinygltf();  // our tinygltf, not libdraco's (see gltf_writer.h)
     tinygltf::TinyGLTF loader;
     loader.SetFsCallbacks(tinygltf::FsCallbacks{exists, as_written, read_whole, no_write, nullptr});
     tinygltf::Model model;
