@@ -505,9 +505,25 @@ def gltf_cases(rng):
     add("glTF no meshes", "in.gltf", json.dumps({"asset": {"version": "2.0"}}).encode())
     add("glTF version 1.0", "in.gltf", gltf_tetra(doc_edit=lambda d: d["asset"].update(version="1.0")))
     add("glTF index beyond the vertices", "in.gltf", gltf_tetra(indices=[0, 1, 99] * 4))
-    # Open (no glTF check of our own yet): assimp drops the one bad face and reads the rest.
-    add("glTF one index beyond, three faces good", "in.gltf",
-        gltf_tetra(indices=[0, 2, 1, 0, 1, 3, 1, 2, 3, 2, 0, 99]))
+    # assimp alone drops the one bad face and reads the rest; gltf_check refuses it at its element.
+    one_beyond = gltf_tetra(indices=[0, 2, 1, 0, 1, 3, 1, 2, 3, 2, 0, 99])
+    add("glTF one index beyond, three faces good", "in.gltf", one_beyond)
+    add("glb one index beyond, three faces good", "in.glb", glb(one_beyond))
+    add("glTF points mode", "in.gltf", gltf_tetra(doc_edit=lambda d: d["meshes"][0]["primitives"][0].update(mode=0)))
+    add("glTF float indices", "in.gltf",
+        gltf_tetra(doc_edit=lambda d: d["accessors"][1].update(componentType=5126, count=6)))
+    add("glTF POSITION of shorts", "in.gltf",
+        gltf_tetra(doc_edit=lambda d: d["accessors"][0].update(componentType=5122)))
+    add("glTF view beyond its buffer", "in.gltf",
+        gltf_tetra(doc_edit=lambda d: d["bufferViews"][1].update(byteLength=4000)))
+    add("glTF accessor offset beyond its view", "in.gltf",
+        gltf_tetra(doc_edit=lambda d: d["accessors"][1].update(byteOffset=22)))
+    add("glTF stride below the element", "in.gltf",
+        gltf_tetra(doc_edit=lambda d: d["bufferViews"][0].update(byteStride=4)))
+    add("glTF sparse indices", "in.gltf", gltf_tetra(doc_edit=lambda d: d["accessors"][1].update(
+        sparse={"count": 1, "indices": {"bufferView": 1, "componentType": 5123},
+                "values": {"bufferView": 1}})))
+    add("glTF index count not a multiple of 3", "in.gltf", gltf_tetra(index_count=11))
     add("glTF accessor count beyond its view", "in.gltf", gltf_tetra(count=1000))
     add("glTF index count beyond its view", "in.gltf", gltf_tetra(index_count=1000))
     add("glTF NaN position", "in.gltf", gltf_tetra(positions=[(float("nan"), 0, 0)] + TETRA[1:]))

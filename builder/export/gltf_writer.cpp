@@ -14,6 +14,8 @@
 #include "shared/atomic_file.h"
 
 namespace body::exporter {
+
+void link_tinygltf() {}
 namespace {
 
 // Appends `bytes` to the one buffer, 4-byte aligned; returns its buffer view.

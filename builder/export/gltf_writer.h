@@ -27,6 +27,12 @@
 
 namespace body::exporter {
 
+// Defined beside tinygltf's implementation (this writer's object). Any other
+// user of tinygltf calls it so that this object is linked: libdraco.so (in
+// assimp's link interface) exports a tinygltf of its own, of another version,
+// which would otherwise satisfy tinygltf's symbols first.
+void link_tinygltf();
+
 struct GltfOptions {
     bool binary = true;
     bool meshopt = false;  // quantized + meshopt-compressed (.glb only)

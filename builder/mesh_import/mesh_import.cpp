@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "builder/mesh_import/glb_check.h"
+#include "builder/mesh_import/gltf_check.h"
 #include "builder/mesh_import/ply_check.h"
 #include "builder/mesh_import/stl_check.h"
 #include "builder/mesh_import/vrml_reader.h"
@@ -66,6 +67,8 @@ Result<std::vector<Mesh>> read_with_assimp(const std::string& path, const std::s
         if (Status checked = check_stl_file(path); !checked) return checked.error();
     if (ext == ".glb")
         if (Status checked = check_glb_file(path); !checked) return checked.error();
+    if (ext == ".gltf" || ext == ".glb")  // assimp drops faces whose indices are past the vertices
+        if (Status checked = check_gltf_file(path); !checked) return checked.error();
     Assimp::Importer importer;
     const aiScene* scene = importer.ReadFile(path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
                                                        aiProcess_FindInvalidData | aiProcess_ValidateDataStructure);

@@ -1,16 +1,19 @@
-// The PLY and STL checks that run before assimp (builder/mesh_import/
-// ply_check.h, stl_check.h) and the OBJ line checks (shared/obj_io.cpp):
+// The PLY, STL, GLB and glTF checks that run before assimp (builder/mesh_import/
+// ply_check.h, stl_check.h, glb_check.h, gltf_check.h) and the OBJ line checks (shared/obj_io.cpp):
 // every count that disagrees with the data is refused with its place, and
 // well-formed files pass.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <regex>
 #include <string>
 #include <vector>
 
 #include "builder/mesh_import/glb_check.h"
+#include "builder/mesh_import/gltf_check.h"
 #include "builder/mesh_import/ply_check.h"
 #include "builder/mesh_import/stl_check.h"
 #include "shared/obj_io.h"
@@ -231,6 +234,133 @@ TEST(GlbCheck, ContainerFaultsAreRefusedAtTheirByte) {
     bin_first.replace(16, 4, std::string("BIN\0", 4));
     EXPECT_EQ(message(bin_first), "m.glb: GLB byte 16: the first chunk is not JSON");
     EXPECT_EQ(message(good.substr(0, 11)), "m.glb: GLB byte 0: a 12-byte header needed, the file has 11");
+}
+
+// The tetrahedron as glTF: positions (48 bytes) then 12 unsigned short indices
+// (24 bytes) in one buffer, a data URI (.gltf) or the BIN chunk (.glb).
+std::string tetra_buffer(const std::vector<int>& indices, float poison = 0) {
+    std::string data;
+    for (int v = 0; v < 4; ++v)
+        for (int k = 0; k < 3; ++k) put(data, kTetra[v][k] + (v == 2 && k == 1 ? poison : 0.0f));  // element 2, y
+    for (int i : indices) put(data, uint16_t(i));
+    return data;
+}
+
+std::string base64(const std::string& bytes) {
+    static const char* digits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    std::string out;
+    for (size_t i = 0; i < bytes.size(); i += 3) {
+        const size_t have = std::min<size_t>(3, bytes.size() - i);  // bytes in this group
+        uint32_t v = 0;
+        for (size_t k = 0; k < 3; ++k) v = v << 8 | (k < have ? uint8_t(bytes[i + k]) : 0u);
+        for (size_t k = 0; k < 4; ++k) out += k <= have ? digits[(v >> (18 - 6 * k)) & 63] : '=';
+    }
+    return out;
+}
+
+// `uri` empty: the buffer lives in a .glb's BIN chunk.
+std::string tetra_json(const std::string& uri, size_t data_size) {
+    return "{\"asset\":{\"version\":\"2.0\"},\"scenes\":[{\"nodes\":[0]}],\"scene\":0,\"nodes\":[{\"mesh\":0}],"
+           "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"indices\":1}]}],"
+           "\"buffers\":[{\"byteLength\":" +
+           std::to_string(data_size) + (uri.empty() ? "" : ",\"uri\":\"" + uri + "\"") +
+           "}],"
+           "\"bufferViews\":[{\"buffer\":0,\"byteOffset\":0,\"byteLength\":48},"
+           "{\"buffer\":0,\"byteOffset\":48,\"byteLength\":24}],"
+           "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"type\":\"VEC3\",\"count\":4},"
+           "{\"bufferView\":1,\"componentType\":5123,\"type\":\"SCALAR\",\"count\":12}]}";
+}
+
+std::vector<int> tetra_indices() {
+    std::vector<int> out;
+    for (const auto& f : kFaces) out.insert(out.end(), f, f + 3);
+    return out;
+}
+
+// The check's message for the .gltf whose JSON has `from` replaced by `to` (the first).
+std::string gltf_message(const std::string& from = "", const std::string& to = "",
+                         const std::vector<int>& indices = tetra_indices(), float poison = 0) {
+    const std::string data = tetra_buffer(indices, poison);
+    std::string json = tetra_json("data:application/octet-stream;base64," + base64(data), data.size());
+    if (!from.empty()) {
+        const size_t at = json.find(from);
+        if (at == std::string::npos) return "test fault: '" + from + "' not in the JSON";
+        json.replace(at, from.size(), to);
+    }
+    const Status s = check_gltf_bytes(json, false, "m.gltf", ".");
+    EXPECT_TRUE(s.ok() || s.error().message.find('\n') == std::string::npos);
+    return s.ok() ? std::string("accepted") : s.error().message;
+}
+
+TEST(GltfCheck, WellFormedGltfAndGlbPass) {
+#ifndef BODY_WITH_GLTF
+    GTEST_SKIP() << "built without tinygltf: glTF is checked by assimp alone";
+#endif
+    EXPECT_EQ(gltf_message(), "accepted");
+    EXPECT_EQ(gltf_message("\"indices\":1}", "\"indices\":1,\"mode\":5}"), "accepted");  // a strip
+    const std::string data = tetra_buffer(tetra_indices());
+    const std::string bytes = glb(tetra_json("", data.size()), data);
+    ASSERT_TRUE(check_glb_bytes(bytes, "m.glb").ok());
+    EXPECT_TRUE(check_gltf_bytes(bytes, true, "m.glb", ".").ok());
+}
+
+TEST(GltfCheck, IndexPastThePositionsIsRefusedAtItsElement) {
+#ifndef BODY_WITH_GLTF
+    GTEST_SKIP() << "built without tinygltf";
+#endif
+    std::vector<int> one_beyond = tetra_indices();
+    one_beyond[11] = 99;  // three faces good, the fourth's last index past the 4 positions
+    EXPECT_EQ(gltf_message("", "", one_beyond),
+              "m.gltf: glTF mesh 0 primitive 0 accessor 1 (indices) element 11: index 99 is not below the POSITION "
+              "count 4");
+    const std::string data = tetra_buffer(one_beyond);
+    const Status s = check_gltf_bytes(glb(tetra_json("", data.size()), data), true, "m.glb", ".");
+    ASSERT_FALSE(s.ok());
+    EXPECT_EQ(s.error().message.rfind("m.glb: glTF mesh 0 primitive 0 accessor 1 (indices) element 11: index 99", 0),
+              0u);
+}
+
+TEST(GltfCheck, RangesOutsideTheirDataAreRefusedWithThePlace) {
+#ifndef BODY_WITH_GLTF
+    GTEST_SKIP() << "built without tinygltf";
+#endif
+    EXPECT_EQ(gltf_message("\"byteOffset\":48,\"byteLength\":24", "\"byteOffset\":48,\"byteLength\":4000"),
+              "m.gltf: glTF bufferView 1: bytes 48 + 4000 run past buffer 0 (72 bytes)");
+    EXPECT_EQ(gltf_message("\"count\":4", "\"count\":1000"),
+              "m.gltf: glTF accessor 0: offset 0 + (count 1000 - 1) x stride 12 + element 12 runs past bufferView 0 "
+              "(48 bytes)");
+    EXPECT_EQ(gltf_message("\"bufferView\":1,", "\"bufferView\":1,\"byteOffset\":22,"),
+              "m.gltf: glTF accessor 1: offset 22 + (count 12 - 1) x stride 2 + element 2 runs past bufferView 1 "
+              "(24 bytes)");
+    EXPECT_EQ(gltf_message("\"byteLength\":48}", "\"byteLength\":48,\"byteStride\":4}"),
+              "m.gltf: glTF accessor 0: byte stride 4 is below the element's 12 bytes or not a multiple of 4");
+    EXPECT_EQ(gltf_message("\"count\":12}",
+                           "\"count\":1,\"sparse\":{\"count\":1,\"indices\":{\"bufferView\":1,"
+                           "\"componentType\":5123},\"values\":{\"bufferView\":1}}}"),
+              "m.gltf: glTF accessor 1: sparse accessors are not read");
+}
+
+TEST(GltfCheck, TypesModesAndValuesAreRefusedWithThePlace) {
+#ifndef BODY_WITH_GLTF
+    GTEST_SKIP() << "built without tinygltf";
+#endif
+    EXPECT_EQ(gltf_message("\"indices\":1}", "\"indices\":1,\"mode\":1}"),
+              "m.gltf: glTF mesh 0 primitive 0: mode 1 is not a surface (triangles, strip or fan are read)");
+    EXPECT_EQ(gltf_message("5123,\"type\":\"SCALAR\",\"count\":12", "5126,\"type\":\"SCALAR\",\"count\":6"),
+              "m.gltf: glTF mesh 0 primitive 0 accessor 1 (indices): not SCALAR of unsigned byte, short or int "
+              "(component type 5126)");
+    EXPECT_EQ(gltf_message("5126", "5122"),
+              "m.gltf: glTF mesh 0 primitive 0 accessor 0 (POSITION): not VEC3 of float (component type 5122)");
+    EXPECT_EQ(gltf_message("\"count\":12", "\"count\":11"),
+              "m.gltf: glTF mesh 0 primitive 0 accessor 1 (indices): count 11 is not a multiple of 3");
+    EXPECT_EQ(gltf_message("", "", tetra_indices(), std::numeric_limits<float>::infinity()),
+              "m.gltf: glTF mesh 0 primitive 0 accessor 0 (POSITION) element 2: coordinate 1 is not finite");
+    EXPECT_EQ(gltf_message("\"POSITION\":0", "\"NORMAL\":0"), "m.gltf: glTF mesh 0 primitive 0: no POSITION attribute");
+    const std::string broken = gltf_message("{\"asset\"", "{ not json \"asset\"");
+    EXPECT_EQ(broken.rfind("m.gltf: glTF: ", 0), 0u) << broken;
+    const std::string truncated = gltf_message(";base64,AAAA", ";base64,AAA");  // quoted by tinygltf, cut short
+    EXPECT_EQ(truncated.rfind("m.gltf: glTF: ", 0), 0u) << truncated;
+    EXPECT_LE(truncated.size(), 230u) << truncated;
 }
 
 }  // namespace
