@@ -2,6 +2,7 @@
 #include "shared/pm/bpm_container.h"
 
 #include <array>
+#include <cmath>
 #include <cstring>
 
 namespace body::pm {
@@ -102,6 +103,32 @@ bool ByteReader::bytes(size_t n, std::span<const uint8_t>& out) {
     out = bytes_.subspan(pos_, n);
     pos_ += n;
     return true;
+}
+
+const char* read_info(std::span<const uint8_t> payload, InfoRecord& out) {
+    ByteReader r(payload);
+    uint16_t name_length = 0;
+    float f[9];
+    bool ok = r.u16(name_length) && r.bytes(name_length, out.name);
+    for (float& x : f) ok = ok && r.f32(x);
+    ok = ok && r.u32(out.flags) && r.u32(out.base_vertices) && r.u32(out.base_faces) && r.u32(out.splits) &&
+         r.u32(out.faces) && r.u32(out.chunk_splits);
+    if (!ok) return "INFO payload too short";
+    for (float x : f)
+        if (!std::isfinite(x)) return "non-finite colour or bounds";
+    for (int k = 0; k < 3; ++k)
+        if (!(f[k] >= 0.0f && f[k] <= 1.0f)) return "colour component outside 0..1";
+    if (out.flags & ~1u) return "unknown INFO flags";
+    const uint32_t bv = out.base_vertices, bf = out.base_faces, faces = out.faces;
+    if (bv == 0 || bf == 0 || faces < bf || uint64_t(bv) + out.splits > kMaxVertices || faces > kMaxFaces ||
+        out.chunk_splits == 0 || uint64_t(faces - bf) > 3ull * out.splits)
+        return "inconsistent counts";
+    for (int k = 0; k < 3; ++k) {
+        out.color[k] = f[k];
+        out.box_min[k] = f[3 + k];
+        out.box_max[k] = f[6 + k];
+    }
+    return nullptr;
 }
 
 }  // namespace body::pm

@@ -57,6 +57,18 @@ private:
     size_t pos_ = 0;
 };
 
+// One structure's INFO payload (FORMAT.md), read and checked by the one rule
+// both the decoder (bpm_reader.cpp) and the header-only summary
+// (bpm_summary.cpp) apply.
+struct InfoRecord {
+    std::span<const uint8_t> name;
+    float color[3];
+    float box_min[3], box_max[3];  // quantization box
+    uint32_t flags, base_vertices, base_faces, splits, faces, chunk_splits;
+};
+// nullptr when `payload` is a valid INFO, else the reason (without the place).
+const char* read_info(std::span<const uint8_t> payload, InfoRecord& out);
+
 // Packed vertex of the base chunk (meshopt vertex codec, stride 8).
 struct BaseVertex {
     uint16_t q[3];

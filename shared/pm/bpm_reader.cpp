@@ -129,29 +129,17 @@ Status BpmStream::parse_section(uint32_t tag, uint32_t structure, std::span<cons
 }
 
 Status BpmStream::parse_info(std::span<const uint8_t> payload, const std::string& where) {
-    ByteReader r(payload);
+    InfoRecord info;
+    if (const char* reason = read_info(payload, info)) return input_error(where + ": " + reason);
     auto m = std::make_unique<ProgressiveMesh>();
-    uint16_t name_length = 0;
-    std::span<const uint8_t> name;
-    float f[9];
-    uint32_t flags, bv, bf, splits, faces, chunk;
-    bool ok = r.u16(name_length) && r.bytes(name_length, name);
-    for (float& x : f) ok = ok && r.f32(x);
-    ok = ok && r.u32(flags) && r.u32(bv) && r.u32(bf) && r.u32(splits) && r.u32(faces) && r.u32(chunk);
-    if (!ok) return input_error(where + ": INFO payload too short");
-    for (float x : f)
-        if (!std::isfinite(x)) return input_error(where + ": non-finite colour or bounds");
-    for (int k = 0; k < 3; ++k)
-        if (!(f[k] >= 0.0f && f[k] <= 1.0f)) return input_error(where + ": colour component outside 0..1");
-    if (flags & ~1u) return input_error(where + ": unknown INFO flags");
+    const std::span<const uint8_t> name = info.name;
+    const uint32_t flags = info.flags, bv = info.base_vertices, bf = info.base_faces, splits = info.splits,
+                   faces = info.faces, chunk = info.chunk_splits;
     const uint64_t vertices = uint64_t(bv) + splits;
-    if (bv == 0 || bf == 0 || faces < bf || vertices > kMaxVertices || faces > kMaxFaces || chunk == 0 ||
-        uint64_t(faces - bf) > 3ull * splits)
-        return input_error(where + ": inconsistent counts");
     m->name_.assign(name.begin(), name.end());
-    m->color_ = Vec3f(f[0], f[1], f[2]);
-    m->bbox_min_ = Vec3f(f[3], f[4], f[5]);
-    m->bbox_max_ = Vec3f(f[6], f[7], f[8]);
+    m->color_ = Vec3f(info.color[0], info.color[1], info.color[2]);
+    m->bbox_min_ = Vec3f(info.box_min[0], info.box_min[1], info.box_min[2]);
+    m->bbox_max_ = Vec3f(info.box_max[0], info.box_max[1], info.box_max[2]);
     m->has_normals_ = flags & 1;
     for (int k = 0; k < 3; ++k) m->step_[k] = quantization_step(m->bbox_min_[k], m->bbox_max_[k]);
     m->base_vertices_ = bv;

@@ -14,28 +14,6 @@ namespace {
 
 std::string at(const std::string& path, size_t offset) { return path + ": byte " + std::to_string(offset); }
 
-// One INFO payload's box and counts (the checks of BpmStream::parse_info).
-Status parse_summary(std::span<const uint8_t> payload, const std::string& where, StructureSummary& out) {
-    ByteReader r(payload);
-    uint16_t name_length = 0;
-    std::span<const uint8_t> name;
-    float f[9];
-    uint32_t flags, bv, bf, splits, faces, chunk;
-    bool ok = r.u16(name_length) && r.bytes(name_length, name);
-    for (float& x : f) ok = ok && r.f32(x);
-    ok = ok && r.u32(flags) && r.u32(bv) && r.u32(bf) && r.u32(splits) && r.u32(faces) && r.u32(chunk);
-    if (!ok) return input_error(where + ": INFO payload too short");
-    for (float x : f)
-        if (!std::isfinite(x)) return input_error(where + ": non-finite colour or bounds");
-    if (uint64_t(bv) + splits > kMaxVertices || bv == 0 || bf == 0 || faces < bf || faces > kMaxFaces)
-        return input_error(where + ": inconsistent counts");
-    out.box_min = Vec3f(f[3], f[4], f[5]);
-    out.box_max = Vec3f(f[6], f[7], f[8]);
-    out.base_triangles = bf;
-    out.full_triangles = faces;
-    return ok_status();
-}
-
 }  // namespace
 
 Result<std::vector<StructureSummary>> read_bpm_summary(const std::string& path) {
@@ -73,9 +51,14 @@ Result<std::vector<StructureSummary>> read_bpm_summary(const std::string& path) 
             if (crc32({section.data(), kSectionHeaderSize + length}) !=
                 get_u32(section.data() + kSectionHeaderSize + length))
                 return input_error(where + ": checksum mismatch");
+            InfoRecord info;
+            if (const char* reason = read_info({section.data() + kSectionHeaderSize, length}, info))
+                return input_error(where + ": " + reason);
             StructureSummary summary;
-            if (auto st = parse_summary({section.data() + kSectionHeaderSize, length}, where, summary); !st)
-                return st.error();
+            summary.box_min = Vec3f(info.box_min[0], info.box_min[1], info.box_min[2]);
+            summary.box_max = Vec3f(info.box_max[0], info.box_max[1], info.box_max[2]);
+            summary.base_triangles = info.base_faces;
+            summary.full_triangles = info.faces;
             out.push_back(summary);
         } else if (tag == kTagBase || tag == kTagSplits) {
             if (!in.seekg(std::streamoff(length + kSectionTrailerSize), std::ios::cur))

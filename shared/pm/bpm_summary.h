@@ -4,7 +4,7 @@
 // (seeking past) every BASE and SPLT payload until each structure's INFO is in.
 // The kiosk frames its camera and orders the decoding of thousands of files
 // from these before any base mesh is decoded. Each INFO is checked as the
-// full reader checks it (CRC, finite box, consistent counts); a later section
+// full reader checks it (CRC, then read_info in bpm_container.h); a later section
 // may still be corrupt, which the decoder reports.
 #include <cstddef>
 #include <string>
