@@ -10,6 +10,7 @@
 #include "kiosk/app/kiosk_run.h"
 #include "shared/obj_io.h"
 #include "shared/scene/scene.h"
+#include "tests/common/headless_surface.h"
 #include "tests/common/test_dir.h"
 #include "tests/common/test_meshes.h"
 
@@ -32,11 +33,7 @@ protected:
         auto scene = scene::read_scene((dir_ / "scene.json").string());
         ASSERT_TRUE(scene) << scene.error().message;
         scene_ = std::move(scene).value();
-        platform::SurfaceOptions so;
-        so.backend = platform::Backend::Headless;
-        so.width = 320;
-        so.height = 200;
-        auto surface = platform::create_surface(so);
+        auto surface = body::test::headless_surface();
         if (!surface) GTEST_SKIP() << "no headless GL: " << surface.error().message;
         surface_ = std::move(surface).value();
     }

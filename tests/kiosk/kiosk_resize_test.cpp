@@ -12,6 +12,7 @@
 #include "kiosk/app/kiosk_run.h"
 #include "shared/obj_io.h"
 #include "shared/scene/scene.h"
+#include "tests/common/headless_surface.h"
 #include "tests/common/test_dir.h"
 #include "tests/common/test_meshes.h"
 
@@ -54,11 +55,7 @@ TEST(KioskResize, TheCameraFollowsTheSurfaceSize) {
     std::ofstream(dir / "scene.json") << R"({"models": [{"name": "s", "file": "s.bpm"}]})";
     auto scene = scene::read_scene((dir / "scene.json").string());
     ASSERT_TRUE(scene) << scene.error().message;
-    platform::SurfaceOptions so;
-    so.backend = platform::Backend::Headless;
-    so.width = 320;
-    so.height = 200;
-    auto headless = platform::create_surface(so);
+    auto headless = body::test::headless_surface();
     if (!headless) GTEST_SKIP() << "no headless GL: " << headless.error().message;
     ResizingSurface surface(std::move(headless).value(), 5, 200, 160);
 

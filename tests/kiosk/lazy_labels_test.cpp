@@ -10,6 +10,7 @@
 #include "kiosk/app/kiosk_run.h"
 #include "shared/obj_io.h"
 #include "shared/scene/scene.h"
+#include "tests/common/headless_surface.h"
 #include "tests/common/test_dir.h"
 #include "tests/common/test_meshes.h"
 
@@ -39,11 +40,7 @@ TEST(LazyLabels, TwoThousandModelsShapeOnlyTheLabelsOnScreen) {
     std::ofstream(dir / "scene.json") << json;
     auto scene = scene::read_scene((dir / "scene.json").string());
     ASSERT_TRUE(scene) << scene.error().message;
-    platform::SurfaceOptions so;
-    so.backend = platform::Backend::Headless;
-    so.width = 640;
-    so.height = 400;
-    auto surface = platform::create_surface(so);
+    auto surface = body::test::headless_surface(640, 400);
     if (!surface) GTEST_SKIP() << "no headless GL: " << surface.error().message;
 
     KioskRunOptions o;

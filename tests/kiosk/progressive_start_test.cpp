@@ -19,6 +19,7 @@
 #include "kiosk/app/kiosk_run.h"
 #include "kiosk/scene/decode_pool.h"
 #include "shared/scene/scene.h"
+#include "tests/common/headless_surface.h"
 #include "tests/common/test_dir.h"
 #include "tests/common/test_meshes.h"
 
@@ -64,11 +65,7 @@ TEST(ProgressiveStart, FirstFrameBeforeTheBasesThenEveryModelArrives) {
     std::ofstream(dir / "scene.json") << json.str();
     auto scene = scene::read_scene((dir / "scene.json").string());
     ASSERT_TRUE(scene) << scene.error().message;
-    platform::SurfaceOptions so;
-    so.backend = platform::Backend::Headless;
-    so.width = 320;
-    so.height = 200;
-    auto surface = platform::create_surface(so);
+    auto surface = body::test::headless_surface();
     if (!surface) GTEST_SKIP() << "no headless GL: " << surface.error().message;
 
     DecodePool& pool = DecodePool::shared();
