@@ -402,13 +402,18 @@ def rtstruct_cases(rng):
     return cases
 
 
+def mesh_file_cases(cls, name, fname, data, expect):
+    """One mesh file through both commands that read meshes: lod and exhibit."""
+    return [Case(cls, f"{cmd[0]}: {name}", cmd, {fname: data}, expect, fname)
+            for cmd in (["lod", fname, "-o", "out.bpm", "--quiet"], ["exhibit", fname, "-o", "bundle/", "--quiet"])]
+
+
 def mesh_cases(rng):
     cls = "OBJ/STL/PLY"
     cases = []
 
     def add(name, fname, data, expect="refuse"):
-        for cmd in (["lod", fname, "-o", "out.bpm", "--quiet"], ["exhibit", fname, "-o", "bundle/", "--quiet"]):
-            cases.append(Case(cls, f"{cmd[0]}: {name}", cmd, {fname: data}, expect, fname))
+        cases.extend(mesh_file_cases(cls, name, fname, data, expect))
 
     bad_obj = {
         "nan coordinate": "v nan 0 0\n", "inf coordinate": "v inf 0 0\n", "word coordinate": "v one 0 0\n",
@@ -496,8 +501,7 @@ def gltf_cases(rng):
     cases = []
 
     def add(name, fname, data, expect="refuse"):
-        for cmd in (["lod", fname, "-o", "out.bpm", "--quiet"], ["exhibit", fname, "-o", "bundle/", "--quiet"]):
-            cases.append(Case(cls, f"{cmd[0]}: {name}", cmd, {fname: data}, expect, fname))
+        cases.extend(mesh_file_cases(cls, name, fname, data, expect))
 
     add("glTF good tetrahedron", "in.gltf", gltf_tetra(), expect="any")
     add("glTF empty", "in.gltf", b"")
