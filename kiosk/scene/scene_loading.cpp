@@ -23,23 +23,17 @@ float max_scale(const glm::mat4& t) {
 
 }  // namespace
 
-// The arithmetic of measure(), over the INFO boxes (a part's sphere is its box's).
+// measure()'s sphere, over the INFO boxes (a part's sphere is its box's).
 void SceneModels::summarize(size_t index) {
-    const glm::mat4& transform = transforms_[index];
-    const float scale = scene_.models[index].transform.scale;
-    glm::vec3 lo(1e30f), hi(-1e30f);
+    PartSpheres spheres;
     ModelInfo mi;
     for (const pm::StructureSummary& s : models_[index].summary) {
-        const glm::vec3 wc = glm::vec3(transform * glm::vec4((s.box_min + s.box_max) * 0.5f, 1.0f));
-        const float wr = glm::length(s.box_max - s.box_min) * 0.5f * scale;
-        lo = glm::min(lo, wc - glm::vec3(wr));
-        hi = glm::max(hi, wc + glm::vec3(wr));
+        spheres.add(transforms_[index], scene_.models[index].transform.scale, (s.box_min + s.box_max) * 0.5f,
+                    glm::length(s.box_max - s.box_min) * 0.5f);
         mi.full_triangles += s.full_triangles;
         mi.base_triangles += s.base_triangles;
     }
-    mi.loaded = lo.x <= hi.x;
-    mi.center = (lo + hi) * 0.5f;
-    mi.radius = std::max(glm::length(hi - lo) * 0.5f / std::sqrt(3.0f), 1e-3f);
+    spheres.finish(mi);
     info_[index] = mi;
 }
 

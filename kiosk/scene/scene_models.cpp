@@ -122,25 +122,18 @@ void SceneModels::set_colour(size_t model, const std::array<float, 3>& colour) {
 
 // The world bounding sphere and triangle counts over a model's parts.
 void SceneModels::measure(size_t index) {
-    const scene::Model& m = scene_.models[index];
-    const glm::mat4& transform = transforms_[index];
-    glm::vec3 lo(1e30f), hi(-1e30f);
+    PartSpheres spheres;
     ModelInfo& mi = info_[index];
     mi = ModelInfo{};
     for (const ModelPart& p : models_[index].parts) {
         Vec3f c;
         float r = 0.0f;
         if (!p.bounds(*renderer_, c, r)) continue;
-        const glm::vec3 wc = glm::vec3(transform * glm::vec4(c, 1.0f));
-        const float wr = r * m.transform.scale;
-        lo = glm::min(lo, wc - glm::vec3(wr));
-        hi = glm::max(hi, wc + glm::vec3(wr));
+        spheres.add(transforms_[index], scene_.models[index].transform.scale, c, r);
         mi.full_triangles += p.full_triangles();
         mi.base_triangles += p.base_triangles();
     }
-    mi.loaded = lo.x <= hi.x;
-    mi.center = (lo + hi) * 0.5f;
-    mi.radius = std::max(glm::length(hi - lo) * 0.5f / std::sqrt(3.0f), 1e-3f);
+    spheres.finish(mi);
 }
 
 bool SceneModels::upload(size_t i) {

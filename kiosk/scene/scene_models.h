@@ -16,7 +16,9 @@
 // scene/decode_pool.h: cores - 1 of them, whatever the number of files), larger
 // models first; its structures are touched only under lock(), which bind() and
 // pick() need.
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <functional>
 #include <memory>
 #include <mutex>
@@ -40,6 +42,25 @@ struct ModelInfo {
     float radius = 1.0f;
     size_t full_triangles = 0;
     size_t base_triangles = 0;
+};
+
+// A model's sphere in ModelInfo from its parts' spheres: each part's centre
+// through the model matrix, its radius times the model's scale, the box around
+// them all, and the sphere inscribed in that box's corners (loaded when any
+// part was added). SceneModels measures uploaded parts and files' INFO boxes
+// with it, so the two give the same sphere.
+struct PartSpheres {
+    glm::vec3 lo{1e30f}, hi{-1e30f};
+    void add(const glm::mat4& transform, float scale, const Vec3f& center, float radius) {
+        const glm::vec3 wc = glm::vec3(transform * glm::vec4(center, 1.0f));
+        lo = glm::min(lo, wc - glm::vec3(radius * scale));
+        hi = glm::max(hi, wc + glm::vec3(radius * scale));
+    }
+    void finish(ModelInfo& mi) const {
+        mi.loaded = lo.x <= hi.x;
+        mi.center = (lo + hi) * 0.5f;
+        mi.radius = std::max(glm::length(hi - lo) * 0.5f / std::sqrt(3.0f), 1e-3f);
+    }
 };
 
 // A scene transform as a model matrix (translate * Rz * Ry * Rx * scale: Euler
