@@ -332,6 +332,7 @@ int KioskLoop::run() {
             last = true;
         }
         idle_memory_.frame(app_->resets(), now);
+        report.heap_given_back = idle_memory_.given_back();
         if (options_.hooks.frame_done && !options_.hooks.frame_done(report)) last = true;
         frame_ms_sum += frame_ms;
         ++frames_counted;

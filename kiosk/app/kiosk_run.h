@@ -40,6 +40,7 @@ struct FrameReport {
     bool out_of_memory = false;  // one was GL_OUT_OF_MEMORY: detail has been lowered
     size_t shaped_lines = 0;     // text lines the overlay has shaped so far (Overlay::shaped_lines)
     size_t models_pending = 0;   // models whose base meshes had not arrived when the frame was drawn
+    long heap_given_back = 0;    // idle give-backs of the heap so far (IdleMemory::given_back), this frame's included
 };
 
 // Optional callbacks into the one loop (the soak's visitors, the service's

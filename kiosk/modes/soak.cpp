@@ -2,6 +2,8 @@
 // a minute-by-minute log of the process's resources and the verdict on them.
 #include "kiosk/modes/soak.h"
 
+#include <time.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -41,6 +43,13 @@ int thread_count() {
     return 0;
 }
 
+// CPU time of the calling thread (the kiosk loop's), in milliseconds.
+double thread_cpu_ms() {
+    timespec ts{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return 1e3 * static_cast<double>(ts.tv_sec) + 1e-6 * static_cast<double>(ts.tv_nsec);
+}
+
 double percentile(std::vector<double>& v, double q) {
     if (v.empty()) return 0.0;
     const size_t k = std::min(v.size() - 1, static_cast<size_t>(q * static_cast<double>(v.size())));
@@ -58,6 +67,14 @@ public:
             std::fprintf(stderr, "bodyview: soak: %d GL errors in frame %ld\n", r.gl_errors, r.frame);
         gl_errors_ += r.gl_errors, gl_errors_total_ += r.gl_errors;
         frame_ms_.push_back(r.frame_ms);
+        // The loop thread's CPU time since the last frame's end: the frame's work
+        // and the visitors' input (the pacing below sleeps).
+        const double cpu = thread_cpu_ms();
+        if (last_cpu_ms_ >= 0.0) cpu_ms_.push_back(cpu - last_cpu_ms_);
+        if (r.heap_given_back != given_back_) {  // the heap was given back after a reset in this frame
+            given_back_ = r.heap_given_back;
+            rss_rest_mib_ = static_cast<double>(current_rss_kib()) / 1024.0;
+        }
         const KioskMode mode = r.app->mode();
         if (mode == KioskMode::Attract && last_mode_ != KioskMode::Attract) ++attracts_;
         last_mode_ = mode;
@@ -68,6 +85,7 @@ public:
         // Paced like a 60 Hz display: the loop waits for the next vsync.
         const double rest_ms = 1000.0 / 60.0 - r.frame_ms;
         if (rest_ms > 0) std::this_thread::sleep_for(std::chrono::duration<double, std::milli>(rest_ms));
+        last_cpu_ms_ = thread_cpu_ms();
         return true;
     }
 
@@ -83,6 +101,8 @@ private:
         m.frames = static_cast<long>(frame_ms_.size());
         m.p50_ms = percentile(frame_ms_, 0.50);
         m.p99_ms = percentile(frame_ms_, 0.99);
+        m.cpu_p99_ms = percentile(cpu_ms_, 0.99);
+        m.rss_rest_mib = rss_rest_mib_;
         m.gl_errors = gl_errors_;
         m.fds = open_fds();
         m.threads = thread_count();
@@ -91,20 +111,26 @@ private:
         m.heap_in_use_mib = static_cast<double>(mi.uordblks + mi.hblkhd) / (1024.0 * 1024.0);
         m.heap_free_mib = static_cast<double>(mi.fordblks) / (1024.0 * 1024.0);
 #endif
-        std::fprintf(stderr,
-                     "bodyview: soak minute %d: rss %.2f MiB, %ld frames, p50 %.2f ms, p99 %.2f ms, gl errors %ld, "
-                     "fds %d, threads %d, sessions %ld, actions %ld, attract %ld, resets %d, "
-                     "heap in use %.2f MiB, heap free %.2f MiB\n",
-                     m.minute, m.rss_mib, m.frames, m.p50_ms, m.p99_ms, m.gl_errors, m.fds, m.threads,
-                     visitors.sessions(), visitors.actions(), attracts_, resets_, m.heap_in_use_mib, m.heap_free_mib);
+        std::fprintf(
+            stderr,
+            "bodyview: soak minute %d: rss %.2f MiB, rss at rest %.2f MiB, %ld frames, p50 %.2f ms, p99 %.2f ms, "
+            "cpu p99 %.2f ms, gl errors %ld, fds %d, threads %d, sessions %ld, actions %ld, attract %ld, "
+            "resets %d, heap in use %.2f MiB, heap free %.2f MiB\n",
+            m.minute, m.rss_mib, m.rss_rest_mib, m.frames, m.p50_ms, m.p99_ms, m.cpu_p99_ms, m.gl_errors, m.fds,
+            m.threads, visitors.sessions(), visitors.actions(), attracts_, resets_, m.heap_in_use_mib, m.heap_free_mib);
         log_.push_back(m);
         frame_ms_.clear();
+        cpu_ms_.clear();
+        rss_rest_mib_ = 0.0;
         gl_errors_ = 0;
     }
 
     double minutes_;
     Clock::time_point start_ = Clock::now();
-    std::vector<double> frame_ms_;
+    std::vector<double> frame_ms_, cpu_ms_;
+    double last_cpu_ms_ = -1.0;  // < 0: no frame yet
+    long given_back_ = 0;
+    double rss_rest_mib_ = 0.0;  // this minute's last RSS at rest; 0: none yet
     std::vector<SoakMinute> log_;
     int minutes_logged_ = 0;
     long gl_errors_ = 0, gl_errors_total_ = 0, attracts_ = 0;
