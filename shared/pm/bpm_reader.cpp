@@ -228,9 +228,6 @@ struct ChunkContext {
     const uint8_t* qoct;   // 2 per vertex
     bool normals;
     int32_t axis_weight[3], plane_weight[3];
-    // Batched order (else null): per vertex its draw number, per face its place (record_split's lookups).
-    const uint32_t* vertex_slot = nullptr;
-    const uint32_t* face_slot = nullptr;
 };
 
 // One split as it decodes: its topology (the parent's corners, those moving to
@@ -259,20 +256,9 @@ struct DecodedSplit {
         c.replay.prefetch(p, 1);
         prefetch(&c.qpos[size_t(p) * 3]);
         prefetch(&c.qoct[size_t(p) * 2]);
-        if (c.vertex_slot) prefetch(&c.vertex_slot[p]);
     }
     if (i + kAhead2 < count) c.replay.prefetch(parents[i + kAhead2], 2);
-    if (i + kAhead3 < count) {
-        const uint32_t p = parents[i + kAhead3];
-        c.replay.prefetch(p, 3, c.qpos);
-        // Batched order: record_split looks up the faces' places and the ring's draw numbers.
-        uint32_t corners[16];
-        const size_t n = c.face_slot ? c.replay.corners_of(p, corners, 16) : SIZE_MAX;
-        for (size_t k = 0; n != SIZE_MAX && k < n; ++k) {
-            prefetch(&c.face_slot[corners[k] / 3]);
-            prefetch(&c.vertex_slot[c.replay.neighbour(corners, 2 * k)]);
-        }
-    }
+    if (i + kAhead3 < count) c.replay.prefetch(parents[i + kAhead3], 3, c.qpos);
 }
 
 // Fan form (a manifold split): the fan faces from ring[start] to ring[start + length]
@@ -471,10 +457,6 @@ Status BpmStream::parse_splits(ProgressiveMesh& m, std::span<const uint8_t> payl
     uint32_t previous_error_bits;
     std::memcpy(&previous_error_bits, &previous_error, 4);
     ChunkContext ctx{m.replay_, m.qpos_.data(), m.qoct_.data(), m.has_normals_, {}, {}};
-    if (m.batched()) {
-        ctx.vertex_slot = m.vertex_slot_.data();
-        ctx.face_slot = m.face_slot_.data();
-    }
     const float box_lo[3] = {m.bbox_min_.x, m.bbox_min_.y, m.bbox_min_.z},
                 box_hi[3] = {m.bbox_max_.x, m.bbox_max_.y, m.bbox_max_.z};
     normal_axis_weights(box_lo, box_hi, ctx.axis_weight);
