@@ -6,8 +6,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "shared/pm/large_array.h"
-
 namespace body::pm {
 
 std::vector<uint32_t> batch_levels(size_t base_vertices, size_t splits) {
@@ -66,21 +64,17 @@ void sort_spatially(const uint32_t* indices, size_t face_count, const uint16_t* 
 // UINT32_MAX on entry and on return). meshopt copies index triples corner for
 // corner; each output triangle is matched back to an unused input face through
 // the faces listed by their first corner (a CSR over the window's vertices).
-void optimise_window(uint32_t* tri, uint32_t* order, size_t n, CacheOrderScratch& s) {
+void optimise_window(const uint32_t* indices, uint32_t* order, size_t n, CacheOrderScratch& s) {
     uint32_t nv = 0;
-    constexpr size_t kAhead = 8;  // the vertices' entries a few faces ahead (a miss each, independent)
-    for (size_t t = 0; t < n; ++t) {
-        if (t + kAhead < n)
-            for (size_t k = 0; k < 3; ++k) prefetch(&s.local_of[tri[(t + kAhead) * 3 + k]]);
+    for (size_t t = 0; t < n; ++t)
         for (size_t k = 0; k < 3; ++k) {
-            const uint32_t v = tri[t * 3 + k];
+            const uint32_t v = indices[size_t(order[t]) * 3 + k];
             if (s.local_of[v] == UINT32_MAX) {
                 s.global[nv] = v;
                 s.local_of[v] = nv++;
             }
             s.local[t * 3 + k] = s.local_of[v];
         }
-    }
     for (uint32_t v = 0; v < nv; ++v) s.local_of[s.global[v]] = UINT32_MAX;
     uint32_t* sorted = s.sorted.data();
     uint32_t* start = s.start.data();
@@ -107,13 +101,8 @@ void optimise_window(uint32_t* tri, uint32_t* order, size_t n, CacheOrderScratch
         // meshopt emits its input's triangles; should one not match, keep the window as it is.
         if (window[t] == UINT32_MAX) return;
     }
-    // The window's faces and their corners (meshopt's output, which `sorted` holds) in the new order.
-    for (size_t t = 0; t < n; ++t) {
-        std::copy_n(&tri[size_t(window[t]) * 3], 3, &sorted[t * 3]);
-        window[t] = order[window[t]];
-    }
+    for (size_t t = 0; t < n; ++t) window[t] = order[window[t]];
     std::copy_n(window, n, order);
-    std::copy_n(sorted, 3 * n, tri);
 }
 
 }  // namespace
@@ -121,21 +110,13 @@ void optimise_window(uint32_t* tri, uint32_t* order, size_t n, CacheOrderScratch
 void cache_order(const uint32_t* indices, size_t face_count, size_t vertex_count, const uint16_t* qpos, uint32_t* order,
                  CacheOrderScratch& scratch) {
     sort_spatially(indices, face_count, qpos, order, scratch);
-    // The faces' corners in that order, contiguous for the windows (a gather:
-    // the rows a few faces ahead are pulled in first).
-    scratch.tri.resize(3 * face_count);
-    constexpr size_t kAhead = 16;
-    for (size_t t = 0; t < face_count; ++t) {
-        if (t + kAhead < face_count) prefetch(&indices[size_t(order[t + kAhead]) * 3]);
-        std::copy_n(&indices[size_t(order[t]) * 3], 3, &scratch.tri[t * 3]);
-    }
     scratch.local_of.assign(vertex_count, UINT32_MAX);
     for (auto* v : {&scratch.local, &scratch.sorted, &scratch.global}) v->resize(3 * kWindowFaces);
     scratch.start.resize(3 * kWindowFaces + 1);
     scratch.by_first.resize(kWindowFaces);
     scratch.window.resize(kWindowFaces);
     for (size_t w = 0; w < face_count; w += kWindowFaces)
-        optimise_window(scratch.tri.data() + 3 * w, order + w, std::min(kWindowFaces, face_count - w), scratch);
+        optimise_window(indices, order + w, std::min(kWindowFaces, face_count - w), scratch);
 }
 
 void first_use_order(const uint32_t* indices, size_t index_count, uint32_t first, uint32_t count, uint32_t* number) {

@@ -45,7 +45,7 @@ std::vector<uint32_t> batch_levels(size_t base_vertices, size_t splits);
 // Working memory of cache_order, caller-owned and reused between calls.
 struct CacheOrderScratch {
     std::vector<uint64_t> keys;
-    std::vector<uint32_t> tri, local_of, local, sorted, global, start, by_first, window;
+    std::vector<uint32_t> local_of, local, sorted, global, start, by_first, window;
 };
 
 // The cache order of `face_count` triangles (`indices`, three per face, each <
@@ -54,7 +54,6 @@ struct CacheOrderScratch {
 // a Morton curve, then windows of 1024 consecutive faces each through
 // meshopt_optimizeVertexCache (a window's tables stay in the CPU's caches;
 // Tipsify there instead decoded faster still, at 5 % more cache misses).
-// Afterwards scratch.tri holds the faces' corners in that order (3 per face).
 void cache_order(const uint32_t* indices, size_t face_count, size_t vertex_count, const uint16_t* qpos, uint32_t* order,
                  CacheOrderScratch& scratch);
 

@@ -101,19 +101,13 @@ void ProgressiveMesh::order_batch(size_t level) {
     for (size_t i = 0; i < n * 3; ++i) faces[i] = replay_.index(f0 * 3 + i);
     cache_order(faces.data(), n, base_vertices_ + level, qpos_.data(), order.data(), order_scratch_);
     const uint32_t v0 = uint32_t(base_vertices_ + lo), nv = uint32_t(level - lo);
-    std::vector<uint32_t> number(nv);
-    first_use_order(order_scratch_.tri.data(), n * 3, v0, nv, number.data());
+    std::vector<uint32_t> number(nv), ordered(n * 3);
+    for (size_t t = 0; t < n; ++t) std::copy_n(&faces[size_t(order[t]) * 3], 3, &ordered[t * 3]);
+    first_use_order(ordered.data(), n * 3, v0, nv, number.data());
     const auto renumber = [&](uint32_t v) { return v - v0 < nv ? number[v - v0] : v; };
-    // The faces' entries at level_ (scratch: the old entries), moved and
-    // renumbered (a gather: the rows and numbers a few faces ahead are pulled in first).
+    // The faces' entries at level_ (scratch: the old entries), moved and renumbered.
     std::copy(indices_.begin() + ptrdiff_t(f0 * 3), indices_.begin() + ptrdiff_t(f1 * 3), faces.begin());
-    constexpr size_t kAhead = 16;
     for (size_t t = 0; t < n; ++t) {
-        if (t + kAhead < n) prefetch(&faces[size_t(order[t + kAhead]) * 3]);
-        if (t + kAhead / 2 < n)
-            for (size_t k = 0; k < 3; ++k)
-                if (const uint32_t v = faces[size_t(order[t + kAhead / 2]) * 3 + k]; v - v0 < nv)
-                    prefetch(&number[v - v0]);
         const size_t f = order[t];
         for (size_t k = 0; k < 3; ++k) indices_[(f0 + t) * 3 + k] = renumber(faces[f * 3 + k]);
         face_slot_[f0 + f] = uint32_t(f0 + t);
@@ -122,13 +116,12 @@ void ProgressiveMesh::order_batch(size_t level) {
     // batch's faces (renumbered) or older ones (holding, at `level`, the child
     // of the batch's last split patching them).
     size_t i = batch_patch_begin_;
-    const size_t w = corner_bytes_, patch_end = patch_corners_.size() / w;
+    const size_t w = corner_bytes_;
     for (size_t j = lo; j < level; ++j) {
         const uint32_t child = number[j - lo];
         store_le(&split_children_bytes_[j * parent_bytes_], child, parent_bytes_);
         store_le(&split_parents_bytes_[j * parent_bytes_], renumber(split_parent(j)), parent_bytes_);
         for (const size_t e = i + patch_count_[j]; i < e; ++i) {
-            if (i + kAhead < patch_end) prefetch(&face_slot_[patch_corner(i + kAhead) / 3]);
             const uint32_t c = patch_corner(i);
             if (c >= f0 * 3)
                 store_le(&patch_corners_[i * w], face_slot_[c / 3] * 3 + c % 3, w);
@@ -137,7 +130,6 @@ void ProgressiveMesh::order_batch(size_t level) {
         }
     }
     batch_patch_begin_ = i;
-    std::vector<uint32_t>().swap(order_scratch_.tri);  // a batch's size: not held while the next one streams in
     // The vertex data in the new numbers (the file's numbers map there from now on).
     for (uint32_t k = 0; k < nv; ++k) vertex_slot_[v0 + k] = number[k];
     permute_vertices(v0, number);
