@@ -178,7 +178,7 @@ double cell_size(std::span<const std::span<const Vec2>> loops) {
             box.extend(Vec3(l[i], 0.0));
         }
     for (const auto& l : loops) points += l.size();
-    return std::clamp(0.5 * perimeter / double(points), box.extent() / 4000, box.extent() / 100);
+    return std::clamp(0.25 * perimeter / double(points), box.extent() / 4000, box.extent() / 100);
 }
 
 }  // namespace
@@ -207,7 +207,13 @@ Status connect_union_ring(StructureSurface& surface, size_t s, std::span<const u
         for (const Vec2& p : l)
             if (!point_in_polygon(p, ring)) return input_error("union ring misses a contour");
     // Short walls at the ring: the ring is the widest outline of the pair, and
-    // the sheets reach the contours sooner.
+    // the sheets reach the contours sooner. The ring at its blended heights
+    // first, level at mid-slice when that crosses what was built.
+    const size_t tri0 = surface.triangles.size(), pos0 = surface.positions.size();
+    auto status = connect_through_ring(surface, s, gl, gu, ring, hole, 0.1, true);
+    if (status && crossings_since(surface, tri0) == 0) return status;
+    surface.triangles.resize(tri0);
+    surface.positions.resize(pos0);
     return connect_through_ring(surface, s, gl, gu, ring, hole, 0.1);
 }
 
