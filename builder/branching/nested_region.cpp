@@ -1,9 +1,6 @@
 // Nested-region branching: a height field between two sets of short walls.
 #include "builder/branching/nested_region.h"
 
-#include <algorithm>
-
-#include "builder/branching/chord_heights.h"
 #include "builder/caps/boundary_distance.h"
 #include "builder/caps/caps.h"
 #include "builder/caps/dome_groups.h"
@@ -24,24 +21,6 @@ std::vector<uint32_t> wall(StructureSurface& surface, std::span<const Vec2> xy, 
     return copy;
 }
 
-// The outer ring's wall: each vertex's copy `wall_outer` of the way from the
-// vertex's own height to `z_inner` (the ring may leave one plane: a lifted
-// union ring), joined by a prism as wall() does.
-std::vector<uint32_t> outer_wall(StructureSurface& surface, std::span<const uint32_t> ids, double z_inner,
-                                 double wall_outer, bool copy_above) {
-    std::vector<uint32_t> copy;
-    for (uint32_t id : ids) {
-        const Vec3 p = surface.positions[id];
-        copy.push_back(uint32_t(surface.positions.size()));
-        surface.positions.emplace_back(p.x, p.y, p.z + (z_inner - p.z) * wall_outer);
-    }
-    if (copy_above)
-        prism(surface, ids, copy);
-    else
-        prism(surface, copy, ids);
-    return copy;
-}
-
 // The region's height field: one apex per group of its triangles
 // (dome_groups.h), each group a fan around it. An apex at distance d_o from
 // the outer ring and d_i from the inner loops sits at the fraction
@@ -50,7 +29,7 @@ std::vector<uint32_t> outer_wall(StructureSurface& surface, std::span<const uint
 // (shape-based interpolation), so the region rises towards the loop it is
 // nearer to instead of staying flat over triangles of one loop.
 void lift_region(StructureSurface& surface, std::span<const std::span<const Vec2>> region,
-                 std::span<const uint32_t> ids, double z_b, std::span<const uint32_t> local, bool face_up) {
+                 std::span<const uint32_t> ids, double z_a, double z_b, std::span<const uint32_t> local, bool face_up) {
     std::vector<Vec2> flat;
     for (const auto& loop : region) flat.insert(flat.end(), loop.begin(), loop.end());
     std::vector<DomeGroup> groups;
@@ -64,12 +43,6 @@ void lift_region(StructureSurface& surface, std::span<const std::span<const Vec2
         else
             surface.triangles.insert(surface.triangles.end(), {a, c, b});
     };
-    // A ring that leaves one plane (a blended union ring) lifts the region
-    // from its wall tops' lowest (region below the ring) or highest (above),
-    // so the regions on the two sides of the ring stay apart.
-    double z_a = surface.positions[ids[0]].z;
-    for (size_t k = 0; k < region[0].size(); ++k)
-        z_a = z_b < z_a ? std::min(z_a, surface.positions[ids[k]].z) : std::max(z_a, surface.positions[ids[k]].z);
     const auto lift = [&](const Vec2& p) {
         const double d_o = to_outer(p), d_i = to_inner(p);
         const double t = d_o + d_i > 0 ? d_o / (d_o + d_i) : 0.5;
@@ -91,10 +64,10 @@ Status branch_region(StructureSurface& surface, size_t ss, uint32_t single, size
 Status nested_region(StructureSurface& surface, std::span<const Vec2> outer_xy, std::span<const uint32_t> outer_ids,
                      double z_outer, std::span<const Loop* const> inner, double z_inner, bool hole, const Loop& blame,
                      double wall_outer, double wall_inner) {
-    const double z_b = z_inner - (z_inner - z_outer) * wall_inner;
+    const double z_a = z_outer + (z_inner - z_outer) * wall_outer, z_b = z_inner - (z_inner - z_outer) * wall_inner;
     const bool outer_below = z_outer < z_inner;
     std::vector<std::span<const Vec2>> region{outer_xy};
-    std::vector<uint32_t> ids = outer_wall(surface, outer_ids, z_inner, wall_outer, outer_below);
+    std::vector<uint32_t> ids = wall(surface, outer_xy, outer_ids, z_a, outer_below);
     for (const Loop* branch : inner) {
         std::vector<uint32_t> copy = wall(surface, branch->xy, branch->ids, z_b, !outer_below);
         region.emplace_back(branch->xy);
@@ -106,30 +79,19 @@ Status nested_region(StructureSurface& surface, std::span<const Vec2> outer_xy, 
     // Triangles come out counter-clockwise from +z: right for the roof over a
     // solid that narrows upwards; the floor (outer above) and holes face the other way.
     const bool face_up = outer_below != hole;
-    lift_region(surface, region, ids, z_b, local, face_up);
+    lift_region(surface, region, ids, z_a, z_b, local, face_up);
     return ok_status();
 }
 
 Status connect_through_ring(StructureSurface& surface, size_t s, std::span<const uint32_t> gl,
-                            std::span<const uint32_t> gu, std::span<const Vec2> ring_xy, bool hole, double wall_at_ring,
-                            bool blend_ring) {
+                            std::span<const uint32_t> gu, std::span<const Vec2> ring_xy, bool hole,
+                            double wall_at_ring) {
     const Loop& first_lower = surface.loops[s][gl[0]];
     const double zl = surface.z[s], zu = surface.z[s + 1], zm = 0.5 * (zl + zu);
     const std::vector<uint32_t> mid = lifted_copy(surface, ring_xy, zm);
     std::vector<const Loop*> below, above;
     for (uint32_t k : gl) below.push_back(&surface.loops[s][k]);
     for (uint32_t k : gu) above.push_back(&surface.loops[s + 1][k]);
-    if (blend_ring) {
-        std::vector<std::span<const Vec2>> lower_xy, upper_xy;
-        for (const Loop* l : below) lower_xy.emplace_back(l->xy);
-        for (const Loop* l : above) upper_xy.emplace_back(l->xy);
-        for (uint32_t id : mid) {
-            const Vec2 p(surface.positions[id]);
-            const double d_l = loops_distance(p, lower_xy), d_u = loops_distance(p, upper_xy);
-            const double t = d_l + d_u > 0 ? d_l / (d_l + d_u) : 0.5;
-            surface.positions[id].z = zl + (zu - zl) * std::clamp(t, kRingBlendLow, 1 - kRingBlendLow);
-        }
-    }
     auto status = nested_region(surface, ring_xy, mid, zm, below, zl, hole, first_lower, wall_at_ring);
     if (!status) return status;
     return nested_region(surface, ring_xy, mid, zm, above, zu, hole, first_lower, wall_at_ring);

@@ -27,16 +27,10 @@ Status nested_region(StructureSurface& surface, std::span<const Vec2> outer_xy, 
 
 // A ring at mid-slice between slices s and s+1 (`ring_xy`, appended here as
 // vertices) with the group's loops `gl` below and `gu` above, each side a
-// nested region around it; `wall_at_ring` is the ring's wall fraction. With
-// `blend_ring` each ring vertex leaves mid-slice for the fraction
-// d_l / (d_l + d_u) of the gap (its distances to the loops below and above,
-// within [kRingBlendLow, 1 - kRingBlendLow]): where the ring hugs the wider
-// slice's outline it rises to that slice, as the surface there does, instead of
-// standing half a gap away from it.
+// nested region around it; `wall_at_ring` is the ring's wall fraction.
 Status connect_through_ring(StructureSurface& surface, size_t s, std::span<const uint32_t> gl,
-                            std::span<const uint32_t> gu, std::span<const Vec2> ring_xy, bool hole, double wall_at_ring,
-                            bool blend_ring = false);
-inline constexpr double kRingBlendLow = 0.2;
+                            std::span<const uint32_t> gu, std::span<const Vec2> ring_xy, bool hole,
+                            double wall_at_ring);
 
 // Do `branches` on slice `bs` lie strictly inside loop `single` on slice `ss`
 // (seen from above), with no other loop of the structure inside them or inside

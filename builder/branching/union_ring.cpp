@@ -207,13 +207,7 @@ Status connect_union_ring(StructureSurface& surface, size_t s, std::span<const u
         for (const Vec2& p : l)
             if (!point_in_polygon(p, ring)) return input_error("union ring misses a contour");
     // Short walls at the ring: the ring is the widest outline of the pair, and
-    // the sheets reach the contours sooner. The ring at its blended heights
-    // first, level at mid-slice when that crosses what was built.
-    const size_t tri0 = surface.triangles.size(), pos0 = surface.positions.size();
-    auto status = connect_through_ring(surface, s, gl, gu, ring, hole, 0.1, true);
-    if (status && crossings_since(surface, tri0) == 0) return status;
-    surface.triangles.resize(tri0);
-    surface.positions.resize(pos0);
+    // the sheets reach the contours sooner.
     return connect_through_ring(surface, s, gl, gu, ring, hole, 0.1);
 }
 

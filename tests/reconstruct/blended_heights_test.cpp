@@ -1,6 +1,6 @@
-// Branch constructions at blended heights (chord_heights.h, nested_region.h's
-// blend_ring): a partition chord and a union ring go where the two slices'
-// distance fields blend to zero instead of staying level at one height, and
+// Branch constructions at blended heights (chord_heights.h): a partition
+// chord goes where the two slices' distance fields blend to zero instead of
+// staying level at one height, and
 // the mesh stays a closed outward manifold without self-intersections that
 // keeps every traced contour.
 #include <gtest/gtest.h>
@@ -73,36 +73,6 @@ TEST(BlendedHeights, OpenHoleRimEndsWhereTheDistancesSay) {
             EXPECT_LT(p.z, 0.3) << p.x << " " << p.y;
         }
         EXPECT_GT(rim, 0u);
-    }
-}
-
-// Two small discs below, two wide rectangles above, each disc under both (one
-// 2:2 group: the union ring). The ring hugs the rectangles' outline, beyond the
-// discs' reach, so it rises towards the upper slice instead of standing at
-// mid-slice.
-TEST(BlendedHeights, UnionRingRisesWhereItHugsTheUpperOutline) {
-    auto rectangle = [](double x0, double x1, double y0, double y1) {
-        std::vector<Vec2> r;
-        for (int i = 0; i < 16; ++i) r.emplace_back(x0 + (x1 - x0) * i / 16, y0);
-        for (int i = 0; i < 16; ++i) r.emplace_back(x1, y0 + (y1 - y0) * i / 16);
-        for (int i = 0; i < 16; ++i) r.emplace_back(x1 - (x1 - x0) * i / 16, y1);
-        for (int i = 0; i < 16; ++i) r.emplace_back(x0, y1 - (y1 - y0) * i / 16);
-        return r;
-    };
-    StackBuilder sb;
-    sb.slice(0.0, {circle(0, -0.3, 0.25), circle(0, 0.3, 0.25)});
-    sb.slice(1.0, {rectangle(-1, -0.02, -0.6, 0.6), rectangle(0.02, 1, -0.6, 0.6)});
-    for (int rings : {0, 3}) {
-        SCOPED_TRACE(rings);
-        const StructureMesh m = build_one(sb.stack, rings);
-        expect_good_structure(m, sb.stack, "");
-        size_t near_upper = 0;
-        for (const Vec3& p : m.mesh.positions) {
-            if (!(p.z > 1e-9 && p.z < 1 - 1e-9) || std::abs(p.x) < 0.8) continue;
-            ++near_upper;
-            EXPECT_GT(p.z, 0.7) << p.x << " " << p.y;
-        }
-        EXPECT_GT(near_upper, 0u);
     }
 }
 
