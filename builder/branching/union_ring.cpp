@@ -178,7 +178,7 @@ double cell_size(std::span<const std::span<const Vec2>> loops) {
             box.extend(Vec3(l[i], 0.0));
         }
     for (const auto& l : loops) points += l.size();
-    return std::clamp(0.25 * perimeter / double(points), box.extent() / 4000, box.extent() / 100);
+    return std::clamp(0.5 * perimeter / double(points), box.extent() / 4000, box.extent() / 100);
 }
 
 }  // namespace
