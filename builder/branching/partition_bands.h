@@ -23,7 +23,8 @@ Status split_into_bands(StructureSurface& surface, std::span<const uint32_t> sin
 inline constexpr double kBlendLow = 0.05;
 
 // A group between slices s and s+1 with one single loop on one side: the
-// partition, chords at mid-slice. With `detach`, side branches lying wholly
+// partition, chords at their blended heights, at mid-slice when those cross
+// what was built. With `detach`, side branches lying wholly
 // inside the single loop are detached first (unlinked and marked for flat
 // caps, closed at their own slice) so that they do not pull a far-away arc of
 // it across the others; the largest branch is never detached.
