@@ -36,13 +36,17 @@ Result<bool> connect_open_holes(StructureSurface& surface, size_t s, uint32_t lo
         std::vector<uint32_t> branches = open_holes(surface, ps, parent, os, other, hole_links);
         if (branches.empty()) continue;
         branches.insert(branches.begin(), parent);
-        // The hole's band has room to climb before it meets chords nearer the
-        // notched contour.
-        for (const double w : {0.5, 0.7, 0.85, 0.95}) {
+        // First the chords where the two slices' distance fields blend to zero
+        // (chord_heights.h: the notch's rim dips where its mouth is wide), then
+        // only the parts that dip below mid-slice (near the notch's sides the
+        // hole's band climbs to them), then level chords: the hole's band has
+        // room to climb before it meets chords nearer the notched contour.
+        const double tries[][2] = {{0.5, kBlendLow}, {0.5, 0.5}, {0.5, -1}, {0.7, -1}, {0.85, -1}, {0.95, -1}};
+        for (const auto& [w, blend_low] : tries) {
             const size_t tri0 = surface.triangles.size(), pos0 = surface.positions.size();
-            auto status =
-                split_into_bands(surface, surface.loops[os][other].ids, surface.loops[ps], branches,
-                                 w * surface.z[os] + (1 - w) * surface.z[ps], side == 1, surface.loops[ps][parent]);
+            auto status = split_into_bands(surface, surface.loops[os][other].ids, surface.loops[ps], branches,
+                                           w * surface.z[os] + (1 - w) * surface.z[ps], side == 1,
+                                           surface.loops[ps][parent], blend_low);
             if (status && crossings_since(surface, tri0) == 0) {
                 for (size_t b = 1; b < branches.size(); ++b) {
                     Loop& hole = surface.loops[ps][branches[b]];
