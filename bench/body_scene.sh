@@ -10,8 +10,10 @@
 #              gives small models fewer, their coarse levels being far apart)
 #   UNBATCHED=1  also each scene with BODY_BATCH=0 (one draw call a model; kiosk/render/batch.h)
 #   RUNS=N     runs per scene; the medians are printed (default 3)
-#   FRAMES=N   frames per run (default 300; the frame time is the mean of the
-#              frames after the first 120, when the detail has streamed in)
+#   FRAMES=N   frames per run (default 300); the frame time is the mean of the
+#              frames after the kiosk reported "full detail" (from the next
+#              60-frame mark on: the detail has streamed in and the decoding
+#              threads are idle); "-" when it came later than FRAMES - 60
 #   SIZE=WxH   default 1280x800
 #
 # First frame: the kiosk's own figure (--kiosk-stats), automatic LOD. Threads:
@@ -79,10 +81,13 @@ json.dump(s, open(sys.argv[3], 'w'))" "$scene" "$lod" "$fixed"
     rm -f "$fixed"
     echo "$threads" >> "$out/threads"
     echo "$rss" >> "$out/rss"
-    # The cumulative means at 120 and at FRAMES frames give the mean of the frames in between.
-    awk -v total="$FRAMES" '/ms\/frame, [0-9]* triangles/ {n += 60; m[n] = $2; t = $4}
-      END {printf "%.3f %d\n", (m[total] * total - m[120] * 120) / (total - 120), t}' "$TMP/err" > "$TMP/one"
-    cut -d' ' -f1 "$TMP/one" >> "$out/frame"
+    # The cumulative means at the first 60-frame mark after "full detail" and
+    # at FRAMES frames give the mean of the frames in between.
+    awk -v total="$FRAMES" '/full detail/ {full = 1}
+      /ms\/frame, [0-9]* triangles/ {n += 60; m[n] = $2; t = $4; if (full && !start) start = n}
+      END {if (start && start < total) printf "%.3f %d\n", (m[total] * total - m[start] * start) / (total - start), t
+           else printf "- %d\n", t}' "$TMP/err" > "$TMP/one"
+    cut -d' ' -f1 "$TMP/one" | grep -v -- - >> "$out/frame" || true
     cut -d' ' -f2 "$TMP/one" > "$out/drawn"
   done
 done
