@@ -265,7 +265,7 @@ void run(const Mesh& mesh, const std::string& label, const std::string& vtk_dir,
                                       input_error("bench_pm: half-edge build skipped (--accuracy-only)"))
                                 : pm::read_bpm_bytes(he_bytes, label, pm::BpmStream::FaceOrder::Refinement);
     if (he_pms)
-        row("bytes per vertex split (whole file)", double(bytes.size()) / double(m.max_level()),
+        row("bytes per split (whole file, splits by error)", double(exact_bytes.size()) / double(exact.max_level()),
             "ours, half-edge collapses only", double(he_bytes.size()) / double((*he_pms)[0]->max_level()));
     for (double pct : {10.0, 2.0}) {
         double vtk = -1.0;
