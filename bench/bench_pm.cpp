@@ -9,21 +9,27 @@
 //      Wall time (a large mesh's lossless phase runs on several threads), and the CPU
 //      time of all threads beside it (what the threads cost).
 //   2. symmetric sampled Hausdorff at 10% and 2% of the triangles, ours vs the better
-//      of meshopt_simplify and vtkQuadricDecimation                      goal <= 1.0
+//      of meshopt_simplify and vtkQuadricDecimation, all three at the same triangle
+//      count                                                              goal <= 1.0
 //      (and the same build with half-edge collapses only, for comparison)
 //   3. runtime: vertex splits per second, full coarse -> fine sweep time (vs one
 //      memcpy of the full index array), decoding the whole file (vs meshopt decoding
 //      the full mesh as one vertex + index buffer), bytes per vertex split (goal <= 10 B)
 //
-// usage: bench_pm [--obj FILE] [--vtk-dir DIR] [--write-dir DIR] [--no-big] [--build-only] [--accuracy-only]
+// usage: bench_pm [--obj FILE] [--mesh NAME=FILE]... [--vtk-dir DIR] [--write-dir DIR] [--no-big] [--build-only]
+//                 [--accuracy-only] [--ours-only]
 //                 [--reps N] [--big-reps N] [--threads N] [--no-regions] [--decode FILE.bpm]
 //   --build-only prints the build times only (section 1); --accuracy-only prints section 2 only (one build,
 //   no half-edge comparison build, no runtime) and the bytes per split; --reps N: best of N for the bunny (default 3;
 //   the big mesh gets best of --big-reps, default 1) -- on a busy machine a larger N finds the quiet runs;
 //   --threads N: threads of the build (default: one per hardware thread; the output is the same);
 //   --no-regions: the lossless phase on one heap, as before it ran in regions (a different output);
+//   --ours-only: section 2 for ours alone at the same counts (VTK's files still set them), for trying
+//   simplifier changes without the baselines' minutes on a big mesh;
 //   --decode times reading one .bpm (nothing else);
-//   --write-dir writes the inputs (bunny.obj, bunny_sub.obj) for the VTK script;
+//   --mesh NAME=FILE also runs every section on that OBJ (e.g. bench/loop_bunny.py's 1.1M bunny, a region
+//   built by `bodygen build`), labelled NAME;
+//   --write-dir writes the inputs (bunny.obj, bunny_sub.obj, NAME.obj) for the VTK script;
 //   --vtk-dir reads DIR/<name>_vtk_<percent>.obj written by vtkQuadricDecimation.
 #include <benchmark/benchmark.h>
 #include <meshoptimizer.h>
@@ -55,6 +61,7 @@ namespace {
 
 using namespace body;
 lod::LodOptions g_options;  // --threads, --no-regions
+bool g_ours_only = false;   // --ours-only
 // CPU seconds of this thread: the build machine is shared, so wall time is
 // inflated by other people's work; every timed piece here is single-threaded.
 double cpu_seconds() {
@@ -166,7 +173,8 @@ void run(const Mesh& mesh, const std::string& label, const std::string& vtk_dir,
 
     // 1. build time
     std::vector<uint8_t> bytes;
-    const lod::LodOptions options = g_options;
+    lod::LodOptions options = g_options;
+    if (g_ours_only) options.batch_rounds = false;  // one build serves both readings
     if (accuracy_only) {
         bytes = *lod::encode_bpm(one, options);
     } else {
@@ -213,50 +221,78 @@ void run(const Mesh& mesh, const std::string& label, const std::string& vtk_dir,
     std::printf("  levels: %zu splits, base %zu triangles (%.3f%%)\n", m.max_level(), m.base_triangle_count(),
                 100.0 * double(m.base_triangle_count()) / double(tris));
 
-    // 2. accuracy
+    // 2. accuracy, every method at the same triangle count: vtkQuadricDecimation's output (a
+    // target reduction, so about the percentage) fixes the count when it is there, else the
+    // percentage does; ours and meshopt_simplify stop at or below it. Ours is read in
+    // refinement order from a build whose splits stay in error order (batch_rounds off), so
+    // any count is an exact prefix; the kiosk's batched file draws only its batch boundaries,
+    // whose meshes are the same (split_order.h), and is shown beside it at the nearest
+    // boundary below the count (the level the kiosk draws when asked for that many).
     std::printf(" accuracy (symmetric sampled Hausdorff, object units; bbox diagonal %g)\n",
                 mesh_bounds(mesh.positions).extent());
     lod::SurfaceDistance full(mesh.positions, mesh.indices);
-    auto hausdorff_at = [&](pm::ProgressiveMesh& pmesh, size_t target) {
-        pmesh.set_level(pmesh.level_for_triangles(target));
+    auto distance = [&](const std::vector<Vec3>& ps, const std::vector<uint32_t>& idx) {
+        return std::max(lod::one_sided_hausdorff(ps, idx, full),
+                        lod::one_sided_hausdorff(mesh.positions, mesh.indices, lod::SurfaceDistance(ps, idx)));
+    };
+    auto hausdorff_at_level = [&](pm::ProgressiveMesh& pmesh, size_t level) {
+        pmesh.set_level(level);
         std::vector<Vec3> pos;
         for (size_t v = 0; v < pmesh.vertex_count(); ++v) pos.push_back(Vec3(pmesh.position(v)));
         std::vector<uint32_t> idx(pmesh.indices().begin(),
                                   pmesh.indices().begin() + ptrdiff_t(pmesh.triangle_count() * 3));
-        return std::max(lod::one_sided_hausdorff(pos, idx, full),
-                        lod::one_sided_hausdorff(mesh.positions, mesh.indices, lod::SurfaceDistance(pos, idx)));
+        return distance(pos, idx);
     };
+    auto hausdorff_at = [&](pm::ProgressiveMesh& pmesh, size_t target) {
+        return hausdorff_at_level(pmesh, pmesh.level_for_triangles(target));
+    };
+    lod::LodOptions by_error = options;
+    by_error.batch_rounds = false;
+    const std::vector<uint8_t> exact_bytes = options.batch_rounds ? *lod::encode_bpm(one, by_error) : bytes;
+    auto exact_pms = pm::read_bpm_bytes(exact_bytes, label, pm::BpmStream::FaceOrder::Refinement);
+    if (!exact_pms) {
+        std::printf("read failed: %s\n", exact_pms.error().message.c_str());
+        return;
+    }
+    pm::ProgressiveMesh& exact = *(*exact_pms)[0];
     // The same build with half-edge collapses only (no optimal placement), for comparison.
-    lod::LodOptions half_edge = options;
+    lod::LodOptions half_edge = by_error;
     half_edge.optimal_placement = false;
     // Its size too: a half-edge split stores no parent move (what the optimal placement costs in bytes).
     std::vector<uint8_t> he_bytes;
     if (!accuracy_only) he_bytes = *lod::encode_bpm(one, half_edge);
     auto he_pms = accuracy_only ? Result<std::vector<std::unique_ptr<pm::ProgressiveMesh>>>(
                                       input_error("bench_pm: half-edge build skipped (--accuracy-only)"))
-                                : pm::read_bpm_bytes(he_bytes, label);
+                                : pm::read_bpm_bytes(he_bytes, label, pm::BpmStream::FaceOrder::Refinement);
     if (he_pms)
-        row("bytes per vertex split (whole file)", double(bytes.size()) / double(m.max_level()),
+        row("bytes per split (whole file, splits by error)", double(exact_bytes.size()) / double(exact.max_level()),
             "ours, half-edge collapses only", double(he_bytes.size()) / double((*he_pms)[0]->max_level()));
     for (double pct : {10.0, 2.0}) {
-        const size_t target = size_t(double(tris) * pct / 100.0);
-        const double ours = hausdorff_at(m, target);
-        const std::vector<uint32_t> mo = meshopt_level(mesh, fp, target);
-        const double mopt =
-            std::max(lod::one_sided_hausdorff(mesh.positions, mo, full),
-                     lod::one_sided_hausdorff(mesh.positions, mesh.indices, lod::SurfaceDistance(mesh.positions, mo)));
         double vtk = -1.0;
         size_t vtk_tris = 0;
+        std::vector<Vec3> vtk_positions;
+        std::vector<uint32_t> vtk_indices;
         const std::string vtk_file = vtk_dir + "/" + label + "_vtk_" + std::to_string(int(pct)) + ".obj";
         if (!vtk_dir.empty() && std::filesystem::exists(vtk_file)) {
             if (auto v = read_obj_merged(vtk_file)) {
                 vtk_tris = v->triangle_count();
-                vtk = std::max(lod::one_sided_hausdorff(v->positions, v->indices, full),
-                               lod::one_sided_hausdorff(mesh.positions, mesh.indices,
-                                                        lod::SurfaceDistance(v->positions, v->indices)));
+                vtk = g_ours_only ? 0.0 : distance(v->positions, v->indices);
+                vtk_positions = std::move(v->positions);
+                vtk_indices = std::move(v->indices);
             }
         }
-        std::printf("  at %g%%: ours %zu tris, meshopt %zu tris, vtk %s\n", pct, m.triangle_count(), mo.size() / 3,
+        const size_t target = vtk >= 0 ? vtk_tris : size_t(double(tris) * pct / 100.0);
+        const double ours = hausdorff_at(exact, target);
+        const size_t ours_tris = exact.triangle_count();
+        if (g_ours_only) {
+            std::printf("  at %g%%: count %zu; ours %zu tris, Hausdorff %.6g, stored error %.6g\n", pct, target,
+                        ours_tris, ours, double(exact.error_at(exact.level())));
+            continue;
+        }
+        const std::vector<uint32_t> mo = meshopt_level(mesh, fp, target);
+        const double mopt = distance(mesh.positions, mo);
+        std::printf("  at %g%%: count %zu; ours %zu tris, meshopt %zu tris, vtk %s\n", pct, target, ours_tris,
+                    mo.size() / 3,
                     vtk < 0 ? "not run (bench/pm_vs_vtk.sh)" : (std::to_string(vtk_tris) + " tris").c_str());
         row("ours Hausdorff", ours, "meshopt_simplify", mopt);
         if (vtk >= 0) row("ours Hausdorff", ours, "vtkQuadricDecimation", vtk);
@@ -267,7 +303,7 @@ void run(const Mesh& mesh, const std::string& label, const std::string& vtk_dir,
         // comparison with their vertices snapped to that grid separates the
         // simplifier's accuracy from the format's quantization.
         {
-            const Vec3f lo = m.bounds_min(), hi = m.bounds_max();
+            const Vec3f lo = exact.bounds_min(), hi = exact.bounds_max();
             auto on_grid = [&](const std::vector<Vec3>& ps) {
                 std::vector<Vec3> out(ps.size());
                 for (size_t i = 0; i < ps.size(); ++i)
@@ -278,28 +314,28 @@ void run(const Mesh& mesh, const std::string& label, const std::string& vtk_dir,
                     }
                 return out;
             };
-            auto distance = [&](const std::vector<Vec3>& ps, const std::vector<uint32_t>& idx) {
-                return std::max(lod::one_sided_hausdorff(ps, idx, full),
-                                lod::one_sided_hausdorff(mesh.positions, mesh.indices, lod::SurfaceDistance(ps, idx)));
-            };
-            const std::vector<Vec3> grid = on_grid(mesh.positions);
-            double grid_best = distance(grid, mo);
-            if (vtk >= 0)
-                if (auto v = read_obj_merged(vtk_file))
-                    grid_best = std::min(grid_best, distance(on_grid(v->positions), v->indices));
+            double grid_best = distance(on_grid(mesh.positions), mo);
+            if (vtk >= 0) grid_best = std::min(grid_best, distance(on_grid(vtk_positions), vtk_indices));
             row("ours Hausdorff", ours, vtk >= 0 ? "better, on our 16-bit grid" : "meshopt, on our 16-bit grid",
                 grid_best);
         }
+        // Positions are 16-bit quantized: the stored error bounds the distance together
+        // with the quantization bound (which dominates on nearly flat levels).
+        const double bound = double(exact.error_at(exact.level())) + double(exact.quantization_bound());
+        std::printf("  %-44s %12.6g   (stored error %g + quantization %g; measured/bound %.3f)\n", "ours error bound",
+                    bound, double(exact.error_at(exact.level())), double(exact.quantization_bound()), ours / bound);
         if (he_pms) {
             const double he = hausdorff_at(*(*he_pms)[0], target);
             row("ours Hausdorff", ours, "ours, half-edge collapses only", he);
             row("ours half-edge only Hausdorff", he, vtk >= 0 ? "better of meshopt/vtk" : "meshopt (no vtk)", best);
         }
-        // Positions are 16-bit quantized: the stored error bounds the distance together
-        // with the quantization bound (which dominates on nearly flat levels).
-        const double bound = double(m.error_at(m.level())) + double(m.quantization_bound());
-        std::printf("  %-44s %12.6g   (stored error %g + quantization %g; measured/bound %.3f)\n", "ours error bound",
-                    bound, double(m.error_at(m.level())), double(m.quantization_bound()), ours / bound);
+        // The level the kiosk draws when asked for that many triangles (a batch boundary).
+        const size_t drawn = m.level_for_triangles(target);
+        const double ours_drawn = hausdorff_at_level(m, drawn);
+        const std::vector<uint32_t> mo_drawn = meshopt_level(mesh, fp, m.triangle_count());
+        char what[64];
+        std::snprintf(what, sizeof what, "kiosk's level: %zu tris, Hausdorff", m.triangle_count());
+        row(what, ours_drawn, "meshopt_simplify, same count", distance(mesh.positions, mo_drawn));
     }
 
     if (accuracy_only) {
@@ -468,12 +504,17 @@ int main(int argc, char** argv) {
     std::string obj = "/usr/share/glmark2/models/bunny.obj", vtk_dir, write_dir, decode;
     bool big = true, build_only = false, accuracy_only = false;
     int big_reps = 1;
+    std::setvbuf(stdout, nullptr, _IOLBF, 0);  // each table row as it is measured (the big meshes take minutes)
     int reps = 3;
+    std::vector<std::pair<std::string, std::string>> extra;  // --mesh NAME=FILE, in order
     for (int i = 1; i < argc; ++i) {
         std::string a = argv[i];
         if (a == "--obj" && i + 1 < argc)
             obj = argv[++i];
-        else if (a == "--vtk-dir" && i + 1 < argc)
+        else if (a == "--mesh" && i + 1 < argc && std::strchr(argv[i + 1], '=')) {
+            const std::string m = argv[++i];
+            extra.emplace_back(m.substr(0, m.find('=')), m.substr(m.find('=') + 1));
+        } else if (a == "--vtk-dir" && i + 1 < argc)
             vtk_dir = argv[++i];
         else if (a == "--write-dir" && i + 1 < argc)
             write_dir = argv[++i];
@@ -485,6 +526,8 @@ int main(int argc, char** argv) {
             build_only = true;
         else if (a == "--accuracy-only")
             accuracy_only = true;
+        else if (a == "--ours-only")
+            accuracy_only = g_ours_only = true;
         else if (a == "--reps" && i + 1 < argc)
             reps = std::max(1, std::atoi(argv[++i]));
         else if (a == "--big-reps" && i + 1 < argc)
@@ -494,10 +537,11 @@ int main(int argc, char** argv) {
         else if (a == "--no-regions")
             g_options.region_faces = SIZE_MAX;
         else {
-            std::fprintf(stderr,
-                         "usage: bench_pm [--obj FILE] [--vtk-dir DIR] [--write-dir DIR] [--no-big] [--build-only] "
-                         "[--accuracy-only] "
-                         "[--reps N] [--big-reps N] [--threads N] [--no-regions] [--decode FILE.bpm]\n");
+            std::fprintf(
+                stderr,
+                "usage: bench_pm [--obj FILE] [--mesh NAME=FILE]... [--vtk-dir DIR] [--write-dir DIR] [--no-big] "
+                "[--build-only] [--accuracy-only] [--ours-only] "
+                "[--reps N] [--big-reps N] [--threads N] [--no-regions] [--decode FILE.bpm]\n");
             return 2;
         }
     }
@@ -513,9 +557,21 @@ int main(int argc, char** argv) {
         sub = subdivide(subdivide(*mesh));
         sub.name = "bunny_sub";
     }
+    std::vector<body::Mesh> extra_meshes;
+    for (const auto& [name, file] : extra) {
+        auto e = body::read_obj_merged(file);
+        if (!e) {
+            std::fprintf(stderr, "bench_pm: %s\n", e.error().message.c_str());
+            return 1;
+        }
+        e->name = name;
+        extra_meshes.push_back(std::move(*e));
+    }
     if (!write_dir.empty()) {
         (void)body::write_obj(write_dir + "/bunny.obj", std::vector<body::Mesh>{*mesh});
         if (big) (void)body::write_obj(write_dir + "/bunny_sub.obj", std::vector<body::Mesh>{sub});
+        for (const body::Mesh& e : extra_meshes)
+            (void)body::write_obj(write_dir + "/" + e.name + ".obj", std::vector<body::Mesh>{e});
         std::printf("wrote inputs to %s\n", write_dir.c_str());
         return 0;
     }
@@ -524,5 +580,7 @@ int main(int argc, char** argv) {
         "builds'\n");
     run(*mesh, "bunny", vtk_dir, reps, build_only, accuracy_only);
     if (big) run(sub, "bunny_sub", vtk_dir, big_reps, build_only, accuracy_only);
+    for (const body::Mesh& e : extra_meshes)
+        run(e, e.name, vtk_dir, e.triangle_count() > 200000 ? big_reps : reps, build_only, accuracy_only);
     return 0;
 }

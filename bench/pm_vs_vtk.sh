@@ -1,15 +1,26 @@
 #!/usr/bin/env bash
 # Side by side: our progressive meshes vs meshopt_simplify vs VTK's
-# vtkQuadricDecimation (Garland-Heckbert with optimal placement) on the bunny and
-# the bunny subdivided twice. Prints bench_pm's table (ratios ours / baseline).
+# vtkQuadricDecimation (Garland-Heckbert with optimal placement) on the bunny, the
+# bunny subdivided twice and any NAME=FILE OBJ given, all three at VTK's triangle
+# count. Prints bench_pm's table (ratios ours / baseline).
 #
-# usage: bench/pm_vs_vtk.sh [BUILD_DIR] [--no-big]     (default BUILD_DIR: build)
+# usage: bench/pm_vs_vtk.sh [BUILD_DIR] [--no-big] [--accuracy-only] [NAME=FILE ...]     (default BUILD_DIR: build)
+#   e.g. NAME=FILE: loop=loop.obj (bench/loop_bunny.py), anat=region.obj (`bodygen build` of an AAL region)
 # PM_VTK_CACHE=DIR keeps VTK's outputs (<name>_vtk_<percent>.obj) in DIR and reuses
 # them on later runs: they depend on the inputs only, not on our code.
 # Needs Debian python3-vtk9 (installed with apt-get when missing and run as root).
 set -euo pipefail
 build=${1:-build}
-big=${2:-}
+shift || true
+big= meshes=() names_extra=
+for a in "$@"; do
+  case $a in
+    --no-big) big=--no-big ;;
+    --accuracy-only) meshes+=(--accuracy-only) ;;
+    *=*) meshes+=(--mesh "$a"); names_extra="$names_extra ${a%%=*}" ;;
+    *) echo "pm_vs_vtk: unknown argument $a" >&2; exit 2 ;;
+  esac
+done
 bench="$build/bin/bench_pm"
 [ -x "$bench" ] || { echo "pm_vs_vtk: build bench_pm first ($bench missing)" >&2; exit 1; }
 py=/usr/bin/python3
@@ -23,9 +34,10 @@ if ! "$py" -c 'import vtk' 2>/dev/null; then
 fi
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-"$bench" --write-dir "$work" $big >/dev/null
+"$bench" --write-dir "$work" $big "${meshes[@]}" >/dev/null
 names=bunny
 [ -z "$big" ] && names="bunny bunny_sub"
+names="$names$names_extra"
 cache=${PM_VTK_CACHE:-}
 for name in $names; do
   if [ -n "$cache" ] && [ -f "$cache/${name}_vtk_10.obj" ] && [ -f "$cache/${name}_vtk_2.obj" ]; then
@@ -66,4 +78,4 @@ PY
     cp "$work/${name}_vtk_10.obj" "$work/${name}_vtk_2.obj" "$cache/"
   fi
 done
-"$bench" --vtk-dir "$work" $big
+"$bench" --vtk-dir "$work" $big "${meshes[@]}"
