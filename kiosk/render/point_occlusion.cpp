@@ -92,7 +92,6 @@ bool PointOcclusion::test(const View& camera, const FrameOptions& frame, std::sp
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glDepthMask(GL_TRUE);
     glDepthFunc(GL_LEQUAL);
-    glFlush();  // the queries start on the GPU now, not at the next swap
     BODY_GL_CHECK("point_occlusion test");
     in_flight_ = points.size();
     return true;

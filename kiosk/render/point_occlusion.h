@@ -33,7 +33,9 @@ public:
 
     // Queues one query per point (world coordinates) against `frame`'s depth
     // buffer, seen from `camera` as Renderer::render saw it. False (nothing
-    // queued) before init() or while the last batch is not collected.
+    // queued) before init() or while the last batch is not collected. No
+    // flush: the frame's swap submits them (a flush here would split a tiled
+    // or software renderer's frame in two, the overlay's part reloading the tiles).
     bool test(const View& camera, const FrameOptions& frame, std::span<const Vec3f> points);
     // The last batch's answers, one per point in test()'s order: 1 hidden, 0 seen.
     // False (`hidden` untouched) when no batch is in flight, or when `wait` is
