@@ -157,7 +157,7 @@ Status compare_pins(render::Renderer& renderer, render::ModelId id, ModelSource&
             mesh.indices, [&](uint32_t v) { return mesh.positions[v]; }, rays, nearest);
     };
     with.set_many_picker(many);  // (the frames without pins cast no rays)
-    PinOcclusion occlusion;  // the kiosk's occlusion path; the pickers then serve taps only
+    PinOcclusion occlusion;      // the kiosk's occlusion path; the pickers then serve taps only
     const bool queries = occlusion.init(with);
 
     Overlay overlay;
