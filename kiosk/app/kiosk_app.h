@@ -94,6 +94,13 @@ public:
     // one call (one walk of its triangles) instead of one call per pin.
     using ManyPicker = std::function<void(int model, std::span<const Ray> rays, std::span<float> nearest)>;
     void set_many_picker(ManyPicker picker) { many_picker_ = std::move(picker); }
+    // The pins' occlusion answered by the renderer's depth buffer (pin_occlusion.h):
+    // from then on the app casts no rays for it, and a pin stays hidden until
+    // its first answer. set_pin_occlusion gives one answer per pins() entry (1:
+    // hidden; another count is ignored); `refresh` re-places the pins and the
+    // layout at once (the frame drawn shows its own answer), else the next update() does.
+    void take_pin_occlusion_from_renderer() { pin_occlusion_by_renderer_ = true; }
+    void set_pin_occlusion(std::span<const char> hidden, bool refresh);
     void set_viewport(int width, int height);
     // The display's density (platform::Surface::pixels_per_mm); 0: unknown. Touch
     // targets are never smaller than kMinTouchMm on it (ui.h).
@@ -195,6 +202,7 @@ private:
     bool activate_tour(const Control& c, double now);
     void add_tour_and_pin_controls();
     void update_pins(double now);
+    void place_pins();
     void find_pin_anchors();
     void test_pin_occlusion();
     std::optional<float> hit_distance(int model, const Ray& ray) const;
@@ -249,6 +257,7 @@ private:
     std::vector<float> pin_tested_key_;  // camera and offsets at the last occlusion test
     std::vector<float> pin_last_key_;    // the same at the last frame
     double pin_tested_at_ = -1e30;
+    bool pin_occlusion_by_renderer_ = false;
     int open_pin_ = -1;
     OperatorMode operator_;
     CutPlane cut_;

@@ -1,6 +1,7 @@
 // KioskApp's pinned labels: anchors (the manifest's, or each model's default
 // pin), their place on screen each frame, occlusion by ray casts through the
-// app's picker, and the open pin (behaviour in kiosk_app.h, layout in pins.h).
+// app's picker where no renderer answers it (pin_occlusion.h), and the open
+// pin (behaviour in kiosk_app.h, layout in pins.h).
 //
 // The default pin of a model without pins is its most visible point: the
 // surface point the start camera sees at the centre of the model's silhouette
@@ -71,7 +72,7 @@ void KioskApp::find_pin_anchors() {
         p.anchor = glm::vec3(glm::inverse(placement(m)) * glm::vec4(*hit, 1.0f));
         pins_.push_back(p);
     }
-    pin_occluded_.assign(pins_.size(), 0);
+    pin_occluded_.assign(pins_.size(), pin_occlusion_by_renderer_ ? 1 : 0);
 }
 
 // Occluded: another surface (of any visible model, its own included) lies on
@@ -149,12 +150,26 @@ void KioskApp::update_pins(double now) {
         for (int a = 0; a < 3; ++a) key.push_back(models_[static_cast<size_t>(m)].offset[a]);
     }
     const bool stopped = key == pin_last_key_;
-    if (key != pin_tested_key_ && (stopped || now - pin_tested_at_ >= kOcclusionInterval)) {
+    if (!pin_occlusion_by_renderer_ && key != pin_tested_key_ &&
+        (stopped || now - pin_tested_at_ >= kOcclusionInterval)) {
         test_pin_occlusion();
         pin_tested_key_ = key;
         pin_tested_at_ = now;
     }
     pin_last_key_ = std::move(key);
+    place_pins();
+}
+
+void KioskApp::set_pin_occlusion(std::span<const char> hidden, bool refresh) {
+    if (hidden.size() != pins_.size()) return;
+    pin_occluded_.assign(hidden.begin(), hidden.end());
+    if (!refresh || !scene_.kiosk.pins) return;
+    place_pins();
+    relayout();
+}
+
+// Each pin's point on screen, text and whether it shows, from the current occlusion.
+void KioskApp::place_pins() {
     const glm::mat4 vp = camera_.projection() * camera_.view();
     const glm::vec2 drift_px = drift(now_);
     for (size_t i = 0; i < pins_.size(); ++i) {

@@ -10,6 +10,7 @@
 #include "kiosk/app/kiosk_app.h"
 #include "kiosk/app/overlay.h"
 #include "kiosk/app/pin_lines.h"
+#include "kiosk/app/pin_occlusion.h"
 #include "kiosk/app/replay.h"
 #include "kiosk/render/image.h"
 #include "kiosk/scene/scene_models.h"
@@ -71,7 +72,8 @@ private:
     SceneModels models_;
     std::unique_ptr<KioskApp> app_;
     Overlay overlay_;
-    PinLines pin_lines_;  // leader lines under the overlay's pin labels
+    PinLines pin_lines_;          // leader lines under the overlay's pin labels
+    PinOcclusion pin_occlusion_;  // the pins' occlusion queries
     std::vector<Vertex2d> pin_vertices_;
     float ui_scale_ = 1.0f;
     std::vector<platform::InputEvent> events_;
@@ -139,6 +141,7 @@ void KioskLoop::start_app() {
     app_->set_many_picker([this](int model, std::span<const Ray> rays, std::span<float> nearest) {
         models_.pick_many(static_cast<size_t>(model), placement(model), rays, nearest);
     });
+    (void)pin_occlusion_.init(*app_);  // else the app's own ray test
     const auto ui_start = Clock::now();
     const float ui_scale = std::max(1.0f, static_cast<float>(std::min(surface_.width(), surface_.height())) / 800.0f);
     if (auto s = overlay_.init(options_.font.empty() ? default_font_file() : options_.font, ui_scale); !s)
@@ -278,6 +281,7 @@ int KioskLoop::run() {
         const size_t pending_drawn = models_.pending();
         auto stream_locks = models_.lock();
         const bool keep = feed_input(now);
+        pin_occlusion_.before_update(*app_);
         app_->update(now);
         const bool streaming = models_.poll_streams() || models_.pending() > 0;
         size_t triangles = 0;
@@ -291,6 +295,7 @@ int KioskLoop::run() {
         const render::View view = camera_view(now);
         stream_locks.clear();  // drawing needs only the GL buffers
         renderer_.render(view, render::Lighting{}, fo);
+        pin_occlusion_.after_render(*app_, view, fo, replaying_ || !options_.screenshot.empty());
         draw_overlay(fo);
 
         bool last = app_->exit_requested() || !keep ||
@@ -349,6 +354,7 @@ int KioskLoop::run() {
                      frames_counted, frame_ms_sum / static_cast<double>(frames_counted),
                      options_.auto_lod ? "on" : "off", app_->lod_controller().budget());
     overlay_.shutdown();
+    pin_occlusion_.shutdown();
     renderer_.shutdown();
     return exit_code;
 }
