@@ -15,6 +15,7 @@
 #include "kiosk/render/draw.h"
 #include "kiosk/render/plane_section.h"
 #include "kiosk/render/renderer_state.h"
+#include "kiosk/render/section_fan.h"
 
 namespace body::render {
 namespace {
@@ -109,28 +110,25 @@ bool find_segments(CutCapState& cut, const Model& m, const glm::vec4& plane) {
     return true;
 }
 
-// The fan of the section's first point with every segment (even-odd fill)
-// into the model's section buffer, and the rectangle of the plane around the
-// segments (a little larger, so rounding never leaves a flipped pixel out).
+// The section's even-odd triangles (section_fan.h) into the model's section
+// buffer, and the rectangle of the plane around the segments (a little
+// larger, so rounding never leaves a flipped pixel out).
 void store_section(CutCapState& cut, Model& m, const glm::vec4& plane) {
     const Vec3f n = glm::normalize(Vec3f(plane));
     const Vec3f helper = std::abs(n.x) < 0.9f ? Vec3f(1.0f, 0.0f, 0.0f) : Vec3f(0.0f, 1.0f, 0.0f);
     const Vec3f u = glm::normalize(glm::cross(n, helper)), v = glm::cross(n, u);
-    cut.fan.clear();
     glm::vec2 lo(INFINITY), hi(-INFINITY);
-    const Vec3f apex = cut.segments.empty() ? Vec3f(0.0f) : cut.segments.front();
-    for (size_t i = 0; i + 1 < cut.segments.size(); i += 2) {
-        cut.fan.insert(cut.fan.end(), {apex, cut.segments[i], cut.segments[i + 1]});
-        for (size_t k = i; k < i + 2; ++k) {
-            const glm::vec2 at(glm::dot(cut.segments[k], u), glm::dot(cut.segments[k], v));
-            lo = glm::min(lo, at);
-            hi = glm::max(hi, at);
-        }
+    for (const Vec3f& p : cut.segments) {
+        const glm::vec2 at(glm::dot(p, u), glm::dot(p, v));
+        lo = glm::min(lo, at);
+        hi = glm::max(hi, at);
     }
+    cut.fan.clear();
+    section_fan(cut.segments, n, u, v, lo, hi, section_fan_cells(cut.segments.size() / 2), cut.fan, cut.fan_scratch);
     m.section_vertices = cut.fan.size();
     if (m.section_vertices == 0) return;
     const glm::vec2 mid = 0.5f * (lo + hi), half = 0.5f * (hi - lo) * 1.01f + 1e-4f * (glm::length(hi - lo) + 1e-3f);
-    const float along = glm::dot(apex, n);  // every point is on the plane
+    const float along = glm::dot(cut.segments.front(), n);  // every point is on the plane
     m.section_center = n * along + u * mid.x + v * mid.y;
     m.section_u = u * half.x;
     m.section_v = v * half.y;

@@ -11,7 +11,8 @@
 // The stencil comes from the section itself where the model's buffers can be
 // read: the plane's crossing segments (kiosk/render/plane_section.h), found
 // on the CPU when the plane or the geometry changed and kept while they stay,
-// drawn as a fan that flips the stencil (even-odd), and the cap is the
+// drawn as triangles that flip the stencil (even-odd, short ones:
+// kiosk/render/section_fan.h), and the cap is the
 // rectangle of the plane around them: a cut costs its section's segments,
 // not the model's triangles. The triangles' count above is the fallback
 // (buffers that fail to map).
@@ -20,6 +21,7 @@
 #include <vector>
 
 #include "kiosk/render/programs.h"
+#include "kiosk/render/section_fan.h"
 #include "shared/geometry.h"
 
 namespace body::render {
@@ -38,6 +40,7 @@ struct CutCapState {
     GLuint section_vao = 0;
     std::vector<Vec3f> segments, fan;  // scratch of the section (plane_section.h)
     std::vector<float> distance;
+    SectionFanScratch fan_scratch;
 };
 
 // Where a model lies against the frame's plane.
