@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <glm/gtc/type_ptr.hpp>
 
 #include "kiosk/render/buffer_access.h"
@@ -210,13 +211,38 @@ void fill_cap(CutCapState& cut, CutVolumeState& volume, Frame& f, Vec3f center_v
     glDisable(GL_STENCIL_TEST);
 }
 
+bool offers_extension(const char* name) {
+    GLint count = 0;
+    glGetIntegerv(GL_NUM_EXTENSIONS, &count);
+    for (GLint i = 0; i < count; ++i) {
+        const char* e = reinterpret_cast<const char*>(glGetStringi(GL_EXTENSIONS, static_cast<GLuint>(i)));
+        if (e && std::strcmp(e, name) == 0) return true;
+    }
+    return false;
+}
+
+// The clipped program table: clipped as geometry where the driver offers
+// clip distances (no fragment of the removed side shaded, early depth tests
+// kept), else by clip.glsl's discard.
+bool link_clipped(Programs& clipped) {
+    constexpr const char* kDistance =
+        "#extension GL_EXT_clip_cull_distance : require\n#define BODY_CLIP 1\n#define BODY_CLIP_DISTANCE 1\n";
+    if (offers_extension("GL_EXT_clip_cull_distance") && link_programs(clipped, kDistance)) {
+        for (Program* p :
+             {&clipped.baseline, &clipped.smooth, &clipped.hatching, &clipped.xray, &clipped.lines, &clipped.wireframe})
+            p->clip_distance = true;
+        return true;
+    }
+    return static_cast<bool>(link_programs(clipped, "#define BODY_CLIP 1\n"));
+}
+
 }  // namespace
 
 bool prepare_cut(RendererState& s) {
     CutCapState& cut = s.cut;
     if (cut.tried) return cut.ready;
     cut.tried = true;
-    if (!link_programs(cut.clipped, "#define BODY_CLIP 1\n")) return false;
+    if (!link_clipped(cut.clipped)) return false;
     auto cap = link_shader_pair("cap.vert", "baseline.frag");
     if (!cap) {
         delete_programs(cut.clipped);
@@ -246,7 +272,7 @@ void free_cut(CutCapState& cut) {
 }
 
 CutSide begin_model_cut(Frame& f, const Model& m) {
-    f.clip_view = kKeepAll;
+    f.clip_view = f.clip_object = kKeepAll;
     if (!f.clipping || !m.state.cut) return CutSide::Whole;
     Vec3f c;
     float r = 0.0f;
@@ -257,6 +283,7 @@ CutSide begin_model_cut(Frame& f, const Model& m) {
     if (d <= -r) return CutSide::Whole;
     // Planes map by the inverse transpose of the point transform.
     f.clip_view = glm::transpose(glm::inverse(f.view)) * plane;
+    f.clip_object = object_plane(f, m);
     return CutSide::Cut;
 }
 
@@ -264,6 +291,7 @@ void set_clip_uniforms(Program& p, const Frame& f) {
     glUniform4fv(p.loc("u_clip_plane"), 1, glm::value_ptr(f.clip_view));
     glUniform4fv(p.loc("u_clip_ray"), 1, glm::value_ptr(f.view_ray));
     glUniform2f(p.loc("u_clip_depth"), f.projection[2][2], f.projection[3][2]);
+    glUniform4fv(p.loc("u_clip_object"), 1, glm::value_ptr(f.clip_object));
 }
 
 void draw_cut_cap(RendererState& s, Frame& f, Model& m, Vec3f color, float alpha) {

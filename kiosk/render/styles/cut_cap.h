@@ -1,7 +1,9 @@
 #pragma once
 // The cut plane in the frame (FrameOptions::cut, kiosk/render/cut_plane.h):
 // while a plane is on, the frame draws with the clipped variant of every
-// program (kiosk/shaders/clip.glsl discards the removed side) and caps each
+// program (kiosk/shaders/clip.glsl discards the removed side; where the
+// driver offers GL_EXT_clip_cull_distance, clip_vertex.glsl clips it off as
+// geometry instead, so its fragments are never shaded) and caps each
 // cut model by stencil: its triangles without depth test, back faces
 // incrementing and front faces decrementing the stencil (wrapping), leave a
 // non-zero count exactly where the eye's ray enters the kept solid through the
