@@ -22,6 +22,7 @@ namespace body::render {
 inline constexpr size_t kFlushTriangles = 4 * 1024;
 
 struct Frame;
+inline constexpr GLenum kClipDistance0 = 0x3000;  // GL_CLIP_DISTANCE0_EXT (GL_EXT_clip_cull_distance)
 // The cut plane's uniforms (kiosk/render/styles/cut_cap.cpp).
 void set_clip_uniforms(Program& p, const Frame& f);
 
@@ -47,9 +48,16 @@ struct Frame {
     // plane of the model being drawn ((0, 0, 0, -1) keeps everything).
     bool clipping = false;
     glm::vec4 clip_view{0.0f, 0.0f, 0.0f, -1.0f};
+    glm::vec4 clip_object{0.0f, 0.0f, 0.0f, -1.0f};  // the same plane in the model's object space
+    // GL_CLIP_DISTANCE0_EXT is on exactly while a program that writes it is in use.
+    bool clip_distance_on = false;
     void use(Program& p) {
         glUseProgram(p.id);
         if (clipping) set_clip_uniforms(p, *this);
+        if (p.clip_distance != clip_distance_on) {
+            p.clip_distance ? glEnable(kClipDistance0) : glDisable(kClipDistance0);
+            clip_distance_on = p.clip_distance;
+        }
         first_use |= !p.drawn;
         p.drawn = true;
     }

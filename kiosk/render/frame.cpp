@@ -185,9 +185,11 @@ void Renderer::render(const View& camera, const Lighting& lighting, const FrameO
     const std::vector<Model*> transparent = draw_opaque(s, f, fade_rest);
     if (f.clipping) draw_volume_plane(s, f);           // the source image around the caps, when asked
     f.clip_view = glm::vec4(0.0f, 0.0f, 0.0f, -1.0f);  // the spheres are never cut
+    f.clip_object = f.clip_view;
     if (o.manipulation_sphere && any_selected) draw_manipulation_spheres(s, f);
     draw_transparent(s, f, transparent);
     if (f.clipping) std::swap(s.programs, s.cut.clipped);
+    if (f.clip_distance_on) glDisable(kClipDistance0);  // off for the next frame and the overlay
     glBindVertexArray(0);
     glUseProgram(0);
     if (f.first_use || released) trim_heap();

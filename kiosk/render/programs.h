@@ -20,7 +20,8 @@ inline constexpr GLuint kNormalCode = 4;  // 8:8 octahedral normal codes (mesh.v
 
 struct Program {
     GLuint id = 0;
-    bool drawn = false;  // used by a frame already (its shader variants compiled)
+    bool drawn = false;          // used by a frame already (its shader variants compiled)
+    bool clip_distance = false;  // writes gl_ClipDistance[0] (kiosk/shaders/clip_vertex.glsl)
     // The Frame::serial whose per-frame uniforms (projection, view ray; the
     // lights) this program holds: set once a frame, not once a model.
     uint64_t frame_uniforms = 0, frame_lights = 0;

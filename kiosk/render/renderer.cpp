@@ -78,6 +78,11 @@ Status Renderer::init(const RendererOptions& options) {
     // trim, e.g. a data texture the driver releases in the middle of the next
     // style's first frame. Process-wide, like the trims here.
     mallopt(M_MMAP_THRESHOLD, 1 << 20);
+    // Fixing that threshold also fixes the heap's trim threshold at 128 KiB, so
+    // llvmpipe's scene blocks (64 KiB, freed at each flush) grew and shrank the
+    // heap several times a frame, every page faulted in and zeroed again; twice
+    // the mmap threshold is the ratio glibc keeps when it adjusts both itself.
+    mallopt(M_TRIM_THRESHOLD, 2 << 20);
 #endif
     if (Status linked = link_programs(s_->programs); !linked) {
         shutdown();

@@ -4,7 +4,7 @@
 // at the first cut), since a discard costs early depth testing on many GPUs.
 // No varying: the view position comes from gl_FragCoord and its depth,
 // view z = -B / (ndc z + A) with A = P[2][2], B = P[3][2] of the perspective.
-#ifdef BODY_CLIP
+#if defined(BODY_CLIP) && !defined(BODY_CLIP_DISTANCE)  // else clip_vertex.glsl clips
 uniform highp vec4 u_clip_plane;  // view space; removed where dot(xyz, p) + w > 0
 uniform highp vec4 u_clip_ray;    // gl_FragCoord.xy -> view ray at z = -1 (as u_view_ray)
 uniform highp vec2 u_clip_depth;  // A, B

@@ -35,6 +35,7 @@ uniform vec2 u_viewport;     // pixels
 uniform float u_width_px;    // silhouette width; creases 0.7 of it
 
 #include "normal_code.glsl"
+#include "clip_vertex.glsl"
 
 // A face normal as its 8:8 octahedral code, x in the low byte.
 vec3 unpack_normal(uint bits) { return oct_decode8(vec2(uvec2(bits, bits >> 8u) & uvec2(255u))); }
@@ -62,6 +63,7 @@ void main() {
     vec4 c0 = u_model_view_projection * vec4(p0, 1.0);
     vec4 c1 = u_model_view_projection * vec4(p1, 1.0);
     v_rect = vec2(0.0);
+    clip_vertex(1.0);
     if (!draw || c0.w <= 0.0 || c1.w <= 0.0) {
         gl_Position = vec4(2.0, 2.0, 2.0, 1.0);  // clipped away
         return;
@@ -87,6 +89,7 @@ void main() {
     // Depth as on the quad: z0 at the rectangle's near end, z1 at its far end,
     // so it stays between them over the rectangle.
     float z = mix(z0, z1, along / rect_length);
+    clip_vertex(mix(clip_distance(p0), clip_distance(p1), along / rect_length));  // as the depth
     v_rect = vec2(k == 1 ? 2.0 : 0.0, k == 2 ? 2.0 : 0.0);
     gl_Position = vec4(s / half_viewport, z - 2e-5, 1.0);  // ahead of the fill it outlines
 }

@@ -52,6 +52,7 @@ out vec3 v_view_normal;
 out vec4 v_hatch;
 
 #include "normal_code.glsl"
+#include "clip_vertex.glsl"
 
 void main() {
 #ifdef BODY_BATCH
@@ -71,4 +72,5 @@ void main() {
     float key = max(dot(n, u_hatch_key), 0.0);
     v_hatch = vec4(p * u_hatch_scale, 6.0 - 6.0 * clamp(u_light_levels.x * key + u_light_levels.w, 0.0, 1.0));
     gl_Position = u_projection * (model_view * vec4(p, 1.0));
+    clip_vertex(clip_distance(p));
 }

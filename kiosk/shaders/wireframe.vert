@@ -20,6 +20,8 @@ uniform mat4 u_projection;
 out vec3 v_barycentric;
 out vec3 v_view_pos;
 
+#include "clip_vertex.glsl"
+
 void main() {
     int corner = gl_VertexID % 3;
     int k = int(a_vertex);
@@ -30,4 +32,5 @@ void main() {
     vec4 view = u_model_view * vec4(p, 1.0);
     v_view_pos = view.xyz;
     gl_Position = u_projection * view;
+    clip_vertex(clip_distance(p));
 }

@@ -9,12 +9,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <glm/gtc/type_ptr.hpp>
 
 #include "kiosk/render/buffer_access.h"
 #include "kiosk/render/draw.h"
 #include "kiosk/render/plane_section.h"
 #include "kiosk/render/renderer_state.h"
+#include "kiosk/render/section_fan.h"
 
 namespace body::render {
 namespace {
@@ -109,28 +111,25 @@ bool find_segments(CutCapState& cut, const Model& m, const glm::vec4& plane) {
     return true;
 }
 
-// The fan of the section's first point with every segment (even-odd fill)
-// into the model's section buffer, and the rectangle of the plane around the
-// segments (a little larger, so rounding never leaves a flipped pixel out).
+// The section's even-odd triangles (section_fan.h) into the model's section
+// buffer, and the rectangle of the plane around the segments (a little
+// larger, so rounding never leaves a flipped pixel out).
 void store_section(CutCapState& cut, Model& m, const glm::vec4& plane) {
     const Vec3f n = glm::normalize(Vec3f(plane));
     const Vec3f helper = std::abs(n.x) < 0.9f ? Vec3f(1.0f, 0.0f, 0.0f) : Vec3f(0.0f, 1.0f, 0.0f);
     const Vec3f u = glm::normalize(glm::cross(n, helper)), v = glm::cross(n, u);
-    cut.fan.clear();
     glm::vec2 lo(INFINITY), hi(-INFINITY);
-    const Vec3f apex = cut.segments.empty() ? Vec3f(0.0f) : cut.segments.front();
-    for (size_t i = 0; i + 1 < cut.segments.size(); i += 2) {
-        cut.fan.insert(cut.fan.end(), {apex, cut.segments[i], cut.segments[i + 1]});
-        for (size_t k = i; k < i + 2; ++k) {
-            const glm::vec2 at(glm::dot(cut.segments[k], u), glm::dot(cut.segments[k], v));
-            lo = glm::min(lo, at);
-            hi = glm::max(hi, at);
-        }
+    for (const Vec3f& p : cut.segments) {
+        const glm::vec2 at(glm::dot(p, u), glm::dot(p, v));
+        lo = glm::min(lo, at);
+        hi = glm::max(hi, at);
     }
+    cut.fan.clear();
+    section_fan(cut.segments, n, u, v, lo, hi, section_fan_cells(cut.segments.size() / 2), cut.fan, cut.fan_scratch);
     m.section_vertices = cut.fan.size();
     if (m.section_vertices == 0) return;
     const glm::vec2 mid = 0.5f * (lo + hi), half = 0.5f * (hi - lo) * 1.01f + 1e-4f * (glm::length(hi - lo) + 1e-3f);
-    const float along = glm::dot(apex, n);  // every point is on the plane
+    const float along = glm::dot(cut.segments.front(), n);  // every point is on the plane
     m.section_center = n * along + u * mid.x + v * mid.y;
     m.section_u = u * half.x;
     m.section_v = v * half.y;
@@ -212,13 +211,38 @@ void fill_cap(CutCapState& cut, CutVolumeState& volume, Frame& f, Vec3f center_v
     glDisable(GL_STENCIL_TEST);
 }
 
+bool offers_extension(const char* name) {
+    GLint count = 0;
+    glGetIntegerv(GL_NUM_EXTENSIONS, &count);
+    for (GLint i = 0; i < count; ++i) {
+        const char* e = reinterpret_cast<const char*>(glGetStringi(GL_EXTENSIONS, static_cast<GLuint>(i)));
+        if (e && std::strcmp(e, name) == 0) return true;
+    }
+    return false;
+}
+
+// The clipped program table: clipped as geometry where the driver offers
+// clip distances (no fragment of the removed side shaded, early depth tests
+// kept), else by clip.glsl's discard.
+bool link_clipped(Programs& clipped) {
+    constexpr const char* kDistance =
+        "#extension GL_EXT_clip_cull_distance : require\n#define BODY_CLIP 1\n#define BODY_CLIP_DISTANCE 1\n";
+    if (offers_extension("GL_EXT_clip_cull_distance") && link_programs(clipped, kDistance)) {
+        for (Program* p :
+             {&clipped.baseline, &clipped.smooth, &clipped.hatching, &clipped.xray, &clipped.lines, &clipped.wireframe})
+            p->clip_distance = true;
+        return true;
+    }
+    return static_cast<bool>(link_programs(clipped, "#define BODY_CLIP 1\n"));
+}
+
 }  // namespace
 
 bool prepare_cut(RendererState& s) {
     CutCapState& cut = s.cut;
     if (cut.tried) return cut.ready;
     cut.tried = true;
-    if (!link_programs(cut.clipped, "#define BODY_CLIP 1\n")) return false;
+    if (!link_clipped(cut.clipped)) return false;
     auto cap = link_shader_pair("cap.vert", "baseline.frag");
     if (!cap) {
         delete_programs(cut.clipped);
@@ -248,7 +272,7 @@ void free_cut(CutCapState& cut) {
 }
 
 CutSide begin_model_cut(Frame& f, const Model& m) {
-    f.clip_view = kKeepAll;
+    f.clip_view = f.clip_object = kKeepAll;
     if (!f.clipping || !m.state.cut) return CutSide::Whole;
     Vec3f c;
     float r = 0.0f;
@@ -259,6 +283,7 @@ CutSide begin_model_cut(Frame& f, const Model& m) {
     if (d <= -r) return CutSide::Whole;
     // Planes map by the inverse transpose of the point transform.
     f.clip_view = glm::transpose(glm::inverse(f.view)) * plane;
+    f.clip_object = object_plane(f, m);
     return CutSide::Cut;
 }
 
@@ -266,6 +291,7 @@ void set_clip_uniforms(Program& p, const Frame& f) {
     glUniform4fv(p.loc("u_clip_plane"), 1, glm::value_ptr(f.clip_view));
     glUniform4fv(p.loc("u_clip_ray"), 1, glm::value_ptr(f.view_ray));
     glUniform2f(p.loc("u_clip_depth"), f.projection[2][2], f.projection[3][2]);
+    glUniform4fv(p.loc("u_clip_object"), 1, glm::value_ptr(f.clip_object));
 }
 
 void draw_cut_cap(RendererState& s, Frame& f, Model& m, Vec3f color, float alpha) {

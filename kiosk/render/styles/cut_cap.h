@@ -1,7 +1,9 @@
 #pragma once
 // The cut plane in the frame (FrameOptions::cut, kiosk/render/cut_plane.h):
 // while a plane is on, the frame draws with the clipped variant of every
-// program (kiosk/shaders/clip.glsl discards the removed side) and caps each
+// program (kiosk/shaders/clip.glsl discards the removed side; where the
+// driver offers GL_EXT_clip_cull_distance, clip_vertex.glsl clips it off as
+// geometry instead, so its fragments are never shaded) and caps each
 // cut model by stencil: its triangles without depth test, back faces
 // incrementing and front faces decrementing the stencil (wrapping), leave a
 // non-zero count exactly where the eye's ray enters the kept solid through the
@@ -11,7 +13,8 @@
 // The stencil comes from the section itself where the model's buffers can be
 // read: the plane's crossing segments (kiosk/render/plane_section.h), found
 // on the CPU when the plane or the geometry changed and kept while they stay,
-// drawn as a fan that flips the stencil (even-odd), and the cap is the
+// drawn as triangles that flip the stencil (even-odd, short ones:
+// kiosk/render/section_fan.h), and the cap is the
 // rectangle of the plane around them: a cut costs its section's segments,
 // not the model's triangles. The triangles' count above is the fallback
 // (buffers that fail to map).
@@ -20,6 +23,7 @@
 #include <vector>
 
 #include "kiosk/render/programs.h"
+#include "kiosk/render/section_fan.h"
 #include "shared/geometry.h"
 
 namespace body::render {
@@ -38,6 +42,7 @@ struct CutCapState {
     GLuint section_vao = 0;
     std::vector<Vec3f> segments, fan;  // scratch of the section (plane_section.h)
     std::vector<float> distance;
+    SectionFanScratch fan_scratch;
 };
 
 // Where a model lies against the frame's plane.
