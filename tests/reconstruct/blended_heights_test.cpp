@@ -16,15 +16,6 @@ namespace {
 
 using namespace body::test;
 
-StructureMesh build_one(const ContourStack& stack, int rings) {
-    BuildOptions options;
-    options.interpolate = rings;
-    auto built = build_structures(stack, options, "test");
-    EXPECT_TRUE(built.ok()) << (built.ok() ? "" : built.error().message);
-    if (!built.ok() || built->size() != 1) return {};
-    return std::move(built->front());
-}
-
 TEST(ChordHeights, ZeroOfTheBlendedDistancesWithinTheClamp) {
     const std::vector<Vec2> single = circle(0, 0, 1.0, 256);
     const std::vector<Vec2> left = circle(-0.5, 0, 0.3, 256), right = circle(0.5, 0, 0.3, 256);

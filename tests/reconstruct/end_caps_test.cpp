@@ -45,15 +45,6 @@ void add_sphere(StackBuilder& sb, const Vec3& centre, double lo, double hi, int 
     }
 }
 
-StructureMesh build_one(const ContourStack& stack, int rings) {
-    BuildOptions options;
-    options.interpolate = rings;
-    auto built = build_structures(stack, options, "test");
-    EXPECT_TRUE(built.ok()) << (built.ok() ? "" : built.error().message);
-    if (!built.ok() || built->size() != 1) return {};
-    return std::move(built->front());
-}
-
 double highest(const Mesh& mesh) {
     double z = -1e300;
     for (const Vec3& p : mesh.positions) z = std::max(z, p.z);

@@ -95,15 +95,6 @@ std::function<double(const Vec3&)> ellipsoid_distance(double a, double b, double
     };
 }
 
-StructureMesh build_one(const ContourStack& stack, int rings) {
-    BuildOptions options;
-    options.interpolate = rings;
-    auto built = build_structures(stack, options, "test");
-    EXPECT_TRUE(built.ok()) << (built.ok() ? "" : built.error().message);
-    if (!built.ok() || built->size() != 1) return {};
-    return std::move(built->front());
-}
-
 TEST(Interpolation, SphereKeepsEveryTracedPointAndHalvesTheError) {
     const ContourStack stack = ellipsoid_stack(1.0, 1.0, 0.0, 10, 128);
     const StructureMesh linear = build_one(stack, 0), smooth = build_one(stack, 4);

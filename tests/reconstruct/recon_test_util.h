@@ -233,4 +233,15 @@ inline void expect_good_structure(const StructureMesh& s, const ContourStack& st
     }
 }
 
+// The one structure `stack` builds with `rings` interpolated rings per gap (a
+// failed build or another count fails the test and gives an empty mesh).
+inline StructureMesh build_one(const ContourStack& stack, int rings) {
+    BuildOptions options;
+    options.interpolate = rings;
+    auto built = build_structures(stack, options, "test");
+    EXPECT_TRUE(built.ok()) << (built.ok() ? "" : built.error().message);
+    if (!built.ok() || built->size() != 1) return {};
+    return std::move(built->front());
+}
+
 }  // namespace body::test
