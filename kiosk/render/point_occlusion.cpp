@@ -58,10 +58,10 @@ bool PointOcclusion::test(const View& camera, const FrameOptions& frame, std::sp
     if (!program_ || in_flight_ > 0 || points.empty() || frame.width <= 0 || frame.height <= 0) return false;
     const glm::mat4 pv =
         camera.projection(static_cast<float>(frame.width) / static_cast<float>(frame.height)) * camera.view();
-    std::vector<glm::vec4> clip(points.size());
+    clip_.resize(points.size());
     for (size_t i = 0; i < points.size(); ++i) {
         const glm::vec3 p = points[i] + (camera.eye - points[i]) * kNudge;
-        clip[i] = pv * glm::vec4(p, 1.0f);
+        clip_[i] = pv * glm::vec4(p, 1.0f);
     }
     if (queries_.size() < points.size()) {
         const size_t had = queries_.size();
@@ -79,7 +79,7 @@ bool PointOcclusion::test(const View& camera, const FrameOptions& frame, std::sp
     glUseProgram(program_);
     glBindVertexArray(vao_);
     glBindBuffer(GL_ARRAY_BUFFER, vbo_);
-    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(clip.size() * sizeof(glm::vec4)), clip.data(),
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(clip_.size() * sizeof(glm::vec4)), clip_.data(),
                  GL_STREAM_DRAW);
     for (size_t i = 0; i < points.size(); ++i) {
         glBeginQuery(GL_ANY_SAMPLES_PASSED, queries_[i]);

@@ -45,7 +45,8 @@ public:
 private:
     unsigned program_ = 0, vao_ = 0, vbo_ = 0;
     std::vector<unsigned> queries_;
-    size_t in_flight_ = 0;  // queries issued by the last test(); 0 once collected
+    size_t in_flight_ = 0;         // queries issued by the last test(); 0 once collected
+    std::vector<glm::vec4> clip_;  // the nudged points in clip space, kept between frames
 };
 
 }  // namespace body::render
