@@ -147,36 +147,20 @@ Status BpmStream::parse_info(std::span<const uint8_t> payload, const std::string
     m->split_count_ = splits;
     m->face_count_ = faces;
     m->chunk_splits_ = chunk;
-    // Full capacity, uninitialised: each entry is written when its section
-    // arrives, and only decoded entries are read (no page faults for the rest).
+    // The renderer's arrays at full capacity, uninitialised: each entry is
+    // written when its section arrives, and only decoded entries are read (no
+    // page faults for the rest). The rest grows with the sections (grow_decoded).
     m->positions_.resize(vertices * 3);
     m->parent_bytes_ = vertices <= (uint64_t(1) << 24) ? 3 : 4;
-    m->split_parents_bytes_.resize(size_t(splits) * m->parent_bytes_);
     m->indices_.resize(size_t(faces) * 3);
-    m->face_count_bits_.assign((size_t(splits) + 31) / 32, 0);
-    m->face_sample_.resize(size_t(splits) / 64 + 1);
-    m->face_sample_[0] = bf;
-    // At most one entry per split and per value (non-increasing below 0x7f81):
-    // reserved so that decoding a split never allocates; shrunk once complete.
-    m->error_levels_.reserve(std::min<size_t>(splits, 0x7f81));
-    m->error_highs_.reserve(std::min<size_t>(splits, 0x7f81));
-    m->move_bits_.assign(size_t(splits) / 64 + 1, 0);
-    m->move_rank_.resize(size_t(splits) / 64 + 1);
-    m->moves_.resize(size_t(splits) * 3);  // at most; shrunk to the moves once complete
     m->move_count_ = 0;
-    m->patch_count_.resize(splits);
     m->patch_corners_.clear();
     m->corner_bytes_ = uint64_t(faces) * 3 <= (uint64_t(1) << 24) ? 3 : 4;
-    m->qpos_.resize(vertices * 3);
-    m->qoct_.resize(vertices * 2);
     if (m->has_normals_) m->normals_.resize(vertices * 2);
-    m->replay_.reset(vertices, faces);
-    if (order_ == FaceOrder::Batched && splits > 0) {
-        m->batch_levels_ = batch_levels(bv, splits);
-        m->face_slot_.resize(faces);
-        m->vertex_slot_.resize(vertices);
-        m->split_children_bytes_.resize(size_t(splits) * m->parent_bytes_);
-    }
+    m->replay_.clear(vertices);
+    if (order_ == FaceOrder::Batched && splits > 0) m->batch_levels_ = batch_levels(bv, splits);
+    m->grow_decoded(0, bf);
+    m->face_sample_[0] = bf;
     meshes_.push_back(std::move(m));
     return ok_status();
 }
@@ -431,6 +415,7 @@ Status BpmStream::parse_splits(ProgressiveMesh& m, std::span<const uint8_t> payl
         h.new_faces > m.face_count_ - m.decoded_faces_)
         return input_error(where + ": split range " + std::to_string(first) + "+" + std::to_string(count) +
                            " does not follow split " + std::to_string(m.decoded_splits_));
+    m.grow_decoded(size_t(first) + count, m.decoded_faces_ + h.new_faces);
     SplitDecoder decoder;
     if (!decoder.init(h.values)) return input_error(where + ": split value tables do not decode");
     SplitDecoder::Cursor values = decoder.begin();

@@ -22,8 +22,10 @@
 // file's 8:8 octahedral codes (normal_codes(), 2 bytes a vertex; normal()).
 //
 // Threading: none inside; one ProgressiveMesh per thread at a time.
-// Allocation: arrays are sized when a structure's INFO section arrives; feeding
-// chunks decodes into them; refine_to/coarsen_to never allocate. Once complete
+// Allocation: the arrays a renderer reads (positions, normals, indices) are
+// sized when a structure's INFO section arrives; the split records and the
+// decoding state grow with the sections that arrive (a structure parked
+// half-way holds about half); refine_to/coarsen_to never allocate. Once complete
 // (decoding state freed) a structure keeps about 57 bytes a vertex split (60 in the
 // batched order: each split's vertex number, split_child), 24 of
 // them the index array (which can be released to a renderer: release_indices()).
@@ -228,8 +230,9 @@ private:
     size_t index_level_ = 0, index_pages_released_ = 0;  // bytes of indices_ handed back so far
     DirtyRange pending_indices_;
 
-    // Sized to full capacity by INFO but written only as sections arrive: entries
-    // past the decoded vertices, faces and splits are indeterminate.
+    // Sized to full capacity by INFO (the renderer's spans) but written only as
+    // sections arrive: entries past the decoded vertices, faces and splits are
+    // indeterminate. The per-split arrays below them grow (grow_decoded).
     double step_[3] = {0.0, 0.0, 0.0};  // dequantization step per axis
     UninitVector<uint16_t> positions_;  // 3 per vertex: codes at the current level
     UninitVector<uint8_t> normals_;     // 2 per vertex: octahedral codes (files with normals)
@@ -318,6 +321,11 @@ private:
     uint32_t vertex_in_draw_order(uint32_t v) const { return vertex_slot_.empty() ? v : vertex_slot_[v]; }
     CacheOrderScratch order_scratch_;
     void release_decoding_state();
+    // The split records and decoding state grown to cover `splits` splits and
+    // `faces` faces, geometrically and capped at the file's counts
+    // (progressive_mesh_memory.cpp); the reader calls it before each section.
+    void grow_decoded(size_t splits, size_t faces);
+    size_t grown_splits_ = 0, grown_faces_ = 0;
     bool moves_parent(size_t j) const { return (move_bits_[j / 64] >> (j % 64)) & 1; }
     void move_parent(size_t j, uint32_t parent) {
         if (vertices_released_) {

@@ -1,4 +1,6 @@
 // What a ProgressiveMesh holds (contract at heap_bytes() in progressive_mesh.h).
+#include <algorithm>
+
 #include "shared/pm/progressive_mesh.h"
 
 namespace body::pm {
@@ -9,6 +11,54 @@ size_t bytes_of(const V& v) {
     return v.capacity() * sizeof(typename V::value_type);
 }
 }  // namespace
+
+namespace {
+// The next size of an array that must hold `need` of at most `full` entries,
+// `have` held: doubles (decoding a file in many sections copies each entry a
+// bounded number of times), never past the file's count.
+size_t grown(size_t need, size_t have, size_t full) {
+    return need <= have ? have : std::min(full, std::max(need, 2 * have));
+}
+// Resized to exactly `n` (a plain resize past the capacity may overshoot).
+template <class V>
+void grow_to(V& v, size_t n) {
+    if (v.size() >= n) return;
+    v.reserve(n);
+    v.resize(n);
+}
+template <class V>
+void grow_zeroed(V& v, size_t n) {
+    if (v.size() >= n) return;
+    v.reserve(n);
+    v.resize(n, 0);
+}
+}  // namespace
+
+void ProgressiveMesh::grow_decoded(size_t splits, size_t faces) {
+    const size_t s = grown(splits, grown_splits_, split_count_), f = grown(faces, grown_faces_, face_count_);
+    grown_splits_ = s;
+    grown_faces_ = f;
+    const size_t v = base_vertices_ + s;
+    grow_to(split_parents_bytes_, s * parent_bytes_);
+    grow_zeroed(face_count_bits_, (s + 31) / 32);
+    grow_to(face_sample_, s / 64 + 1);
+    // At most one entry per split and per value (non-increasing below 0x7f81):
+    // reserved so that decoding a split never allocates.
+    error_levels_.reserve(std::min<size_t>(s, 0x7f81));
+    error_highs_.reserve(std::min<size_t>(s, 0x7f81));
+    grow_zeroed(move_bits_, s / 64 + 1);
+    grow_to(move_rank_, s / 64 + 1);
+    grow_to(moves_, s * 3);  // at most; shrunk to the moves once complete
+    grow_to(patch_count_, s);
+    grow_to(qpos_, v * 3);
+    grow_to(qoct_, v * 2);
+    replay_.grow(v, f);
+    if (batched()) {
+        grow_to(face_slot_, f);
+        grow_to(vertex_slot_, v);
+        grow_to(split_children_bytes_, s * parent_bytes_);
+    }
+}
 
 size_t ProgressiveMesh::heap_bytes() const {
     const CacheOrderScratch& s = order_scratch_;

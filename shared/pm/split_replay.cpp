@@ -12,15 +12,29 @@ constexpr uint32_t kMinRegion = 8;  // corners: a typical vertex (valence 6) fit
 }  // namespace
 
 void SplitReplay::reset(size_t vertex_capacity, size_t face_capacity) {
+    UninitVector<Region>().swap(regions_);
+    vertex_capacity_ = vertex_capacity;
+    pool_.clear();  // the writer's next structure reuses the storage
+    indices_.clear();
+    grow(vertex_capacity, face_capacity);
+}
+
+void SplitReplay::clear(size_t vertex_capacity) {
     // Regions grow with the vertices that arrive (grow_regions): a file parked
     // at its base mesh holds its base vertices' only, not its full detail's.
     UninitVector<Region>().swap(regions_);
     vertex_capacity_ = vertex_capacity;
-    pool_.clear();
+    UninitVector<uint32_t>().swap(pool_);
+    UninitVector<uint32_t>().swap(indices_);
+}
+
+void SplitReplay::grow(size_t vertices, size_t faces) {
     // Every corner once plus the slack of each region; address space only until used.
-    pool_.reserve(face_capacity * 3 + vertex_capacity * (kMinRegion + 2));
-    indices_.clear();
-    indices_.resize(face_capacity * 3);  // written by add_faces before anything reads them
+    pool_.reserve(faces * 3 + vertices * (kMinRegion + 2));
+    if (indices_.size() < faces * 3) {
+        indices_.reserve(faces * 3);  // exactly: the caller grows its requests geometrically
+        indices_.resize(faces * 3);   // written by add_faces before anything reads them
+    }
 }
 
 void SplitReplay::grow_regions(uint32_t v) {

@@ -24,6 +24,13 @@ namespace body::pm {
 class SplitReplay {
 public:
     void reset(size_t vertex_capacity, size_t face_capacity);
+    // The reader's form: reset(vertex_capacity, 0) without the room, then grow()
+    // as sections arrive: storage follows the vertices and faces decoded, not
+    // the file's full detail (a structure parked half-way holds half).
+    void clear(size_t vertex_capacity);
+    // Room for the corners of `vertices` vertices and `faces` faces (never
+    // shrinks; faces must stay within what reset/clear's owner announced).
+    void grow(size_t vertices, size_t faces);
     // Appends faces [first_face, first_face + count) with the given indices; their
     // corners must be above every corner added before (faces arrive in order).
     void add_faces(size_t first_face, std::span<const uint32_t> indices);

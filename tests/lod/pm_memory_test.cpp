@@ -2,9 +2,13 @@
 // split_replay.h): the connectivity replay holds the vertices that arrived, not
 // the file's full detail; a complete structure keeps its split records, codes
 // and index array within fixed bytes per split, vertex and triangle, and less
-// once it hands its arrays to a renderer. Sizes only, no timing.
+// once it hands its arrays to a renderer; a structure parked part-way holds
+// split records and decoding state for what arrived, not for its full detail,
+// and decodes to the same mesh. Sizes only, no timing.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <span>
 #include <vector>
 
 #include "builder/lod/bpm_writer.h"
@@ -73,6 +77,75 @@ TEST(PmMemory, StructureStillDecodingHoldsItsReplay) {
     const pm::ProgressiveMesh& m = stream.structure(0);
     ASSERT_LT(m.available_level(), m.max_level());
     EXPECT_GT(m.heap_bytes(), 40 * m.max_level() + 8 * m.max_vertex_count() + 12 * m.max_triangle_count() + 4096);
+}
+
+// A file in many SPLT sections, fed in small pieces until `stop` says so.
+template <class Stop>
+void feed_until(pm::BpmStream& stream, std::span<const uint8_t> bytes, size_t& at, Stop stop) {
+    constexpr size_t kPiece = 97;  // not a section size: sections complete mid-piece
+    while (at < bytes.size() && !(stream.structure_count() == 1 && stop(stream.structure(0)))) {
+        const size_t n = std::min(kPiece, bytes.size() - at);
+        ASSERT_TRUE(stream.feed(bytes.subspan(at, n)).ok());
+        at += n;
+    }
+}
+
+TEST(PmMemory, StructureParkedPartWayHoldsWhatArrived) {
+    const std::vector<Mesh> meshes = {test::icosphere(5)};
+    lod::LodOptions options;
+    options.chunk_splits = 256;
+    auto bytes = lod::encode_bpm(meshes, options);
+    ASSERT_TRUE(bytes.ok()) << bytes.error().message;
+    const std::span<const uint8_t> all(*bytes);
+    pm::BpmStream stream("sphere.bpm");
+    size_t at = 0;
+    // Parked at about a tenth of the splits, then just before the last section.
+    feed_until(stream, all, at, [](const pm::ProgressiveMesh& m) { return m.available_level() * 10 >= m.max_level(); });
+    const pm::ProgressiveMesh& m = stream.structure(0);
+    const size_t early_level = m.available_level(), early = m.heap_bytes();
+    ASSERT_GT(m.max_level(), 5000u);
+    ASSERT_LT(early_level * 5, m.max_level());
+    feed_until(stream, all, at,
+               [](const pm::ProgressiveMesh& s) { return s.available_level() + 256 >= s.max_level(); });
+    const size_t late_level = m.available_level(), late = m.heap_bytes();
+    ASSERT_LT(late_level, m.max_level());
+    // The renderer's arrays are sized at INFO (8 bytes a vertex, 12 a
+    // triangle, full detail); the rest follows the splits decoded, with at
+    // most doubling's slack.
+    const size_t renderer = 8 * m.max_vertex_count() + 12 * m.max_triangle_count() + 4096;
+    ASSERT_GT(late, renderer);
+    const double per_split_late = double(late - renderer) / double(late_level);
+    EXPECT_LE(double(early), double(renderer) + 2.5 * per_split_late * double(early_level))
+        << "a tenth decoded holds about a tenth of the decoding state (" << early << " bytes at level " << early_level
+        << ", " << late << " at " << late_level << ")";
+}
+
+TEST(PmMemory, GrowingWithTheSectionsDecodesTheSameMesh) {
+    const std::vector<Mesh> meshes = {test::icosphere(4)};
+    lod::LodOptions options;
+    options.chunk_splits = 100;
+    auto bytes = lod::encode_bpm(meshes, options);
+    ASSERT_TRUE(bytes.ok()) << bytes.error().message;
+    auto whole = pm::read_bpm_bytes(*bytes, "sphere.bpm");  // every section at once
+    ASSERT_TRUE(whole.ok()) << whole.error().message;
+    pm::BpmStream stream("sphere.bpm");
+    size_t at = 0;
+    feed_until(stream, *bytes, at, [](const pm::ProgressiveMesh&) { return false; });
+    ASSERT_TRUE(stream.finish().ok());
+    pm::ProgressiveMesh& a = *whole->front();
+    pm::ProgressiveMesh& b = stream.structure(0);
+    ASSERT_EQ(b.available_level(), b.max_level());
+    ASSERT_EQ(a.max_level(), b.max_level());
+    for (size_t level : {size_t(0), a.max_level() / 3, a.max_level()}) {
+        a.set_level(level);
+        b.set_level(level);
+        ASSERT_EQ(a.level(), b.level());
+        const size_t n = a.triangle_count() * 3, v = a.vertex_count() * 3;
+        EXPECT_TRUE(std::equal(a.indices().begin(), a.indices().begin() + ptrdiff_t(n), b.indices().begin()));
+        EXPECT_TRUE(std::equal(a.position_codes().begin(), a.position_codes().begin() + ptrdiff_t(v),
+                               b.position_codes().begin()));
+        EXPECT_EQ(a.error_at(level), b.error_at(level));
+    }
 }
 
 }  // namespace
