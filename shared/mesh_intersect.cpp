@@ -320,6 +320,11 @@ size_t count_pairs(std::span<const Vec3> positions, std::span<const uint32_t> in
     std::sort(entries.begin(), entries.end());
     const bool all_marked = marked.empty();
     size_t found = 0;
+    struct Swept {
+        Aabb box;
+        uint32_t t;
+    };
+    std::vector<Swept> sweep;
     for (size_t begin = 0; begin < entries.size();) {
         size_t end = begin;
         bool any_marked = all_marked;
@@ -328,13 +333,25 @@ size_t count_pairs(std::span<const Vec3> positions, std::span<const uint32_t> in
             ++end;
         }
         const uint64_t cell_key = entries[begin].first;
-        for (size_t i = begin; any_marked && i < end; ++i)
-            for (size_t j = i + 1; j < end; ++j) {
-                uint32_t t1 = entries[i].second, t2 = entries[j].second;
+        if (!any_marked) {
+            begin = end;
+            continue;
+        }
+        // Sweep along x within the cell: the boxes sorted by their low x, each
+        // paired only with those that start before it ends.
+        sweep.clear();
+        for (size_t i = begin; i < end; ++i) sweep.push_back({m.boxes[entries[i].second], entries[i].second});
+        std::sort(sweep.begin(), sweep.end(), [](const Swept& a, const Swept& b) {
+            return a.box.min.x != b.box.min.x ? a.box.min.x < b.box.min.x : a.t < b.t;
+        });
+        for (size_t i = 0; i < sweep.size(); ++i)
+            for (size_t j = i + 1; j < sweep.size() && sweep[j].box.min.x <= sweep[i].box.max.x; ++j) {
+                const uint32_t t1 = sweep[i].t, t2 = sweep[j].t;
                 if (!all_marked && !marked[t1] && !marked[t2]) continue;
-                const Aabb &b1 = m.boxes[t1], &b2 = m.boxes[t2];
-                Vec3 lo = glm::max(b1.min, b2.min), hi = glm::min(b1.max, b2.max);
-                if (lo.x > hi.x || lo.y > hi.y || lo.z > hi.z) continue;
+                const Aabb &b1 = sweep[i].box, &b2 = sweep[j].box;
+                if (std::max(b1.min.y, b2.min.y) > std::min(b1.max.y, b2.max.y) ||
+                    std::max(b1.min.z, b2.min.z) > std::min(b1.max.z, b2.max.z))
+                    continue;
                 // The overlap's lowest corner is the larger of the two lowest corners (cell_of is monotonic).
                 const auto &c1 = low_cell[t1], &c2 = low_cell[t2];
                 if (grid.key(std::max(c1[0], c2[0]), std::max(c1[1], c2[1]), std::max(c1[2], c2[2])) != cell_key)
