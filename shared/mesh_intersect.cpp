@@ -272,10 +272,7 @@ Snapped snap_mesh(std::span<const Vec3> positions, std::span<const uint32_t> ind
     }
     const Snap snap = Snap::of(m.all);
     m.q.resize(positions.size());
-    if (indices.size() < positions.size())  // a few triangles of a large mesh: only their corners
-        for (uint32_t v : indices) m.q[v] = snap(positions[v]);
-    else
-        for (size_t v = 0; v < positions.size(); ++v) m.q[v] = snap(positions[v]);
+    for (size_t v = 0; v < positions.size(); ++v) m.q[v] = snap(positions[v]);
     for (size_t t = 0; t < tri_count; ++t) {
         const IVec &a = m.q[indices[3 * t]], &b = m.q[indices[3 * t + 1]], &c = m.q[indices[3 * t + 2]];
         auto n = cross(sub(b, a), sub(c, a));
@@ -292,6 +289,19 @@ size_t count_pairs(std::span<const Vec3> positions, std::span<const uint32_t> in
     if (pairs) pairs->clear();
     const size_t tri_count = indices.size() / 3;
     if (tri_count < 2) return 0;
+    if (indices.size() < positions.size()) {
+        // A few triangles of a large mesh: the same count over their corners
+        // alone (adjacency by index and the snap box are unchanged by renumbering).
+        std::vector<uint32_t> corners(indices.begin(), indices.end());
+        std::sort(corners.begin(), corners.end());
+        corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
+        std::vector<Vec3> local_positions(corners.size());
+        for (size_t i = 0; i < corners.size(); ++i) local_positions[i] = positions[corners[i]];
+        std::vector<uint32_t> local(indices.size());
+        for (size_t i = 0; i < indices.size(); ++i)
+            local[i] = uint32_t(std::lower_bound(corners.begin(), corners.end(), indices[i]) - corners.begin());
+        return count_pairs(local_positions, local, marked, stop_after, pairs);
+    }
     const Snapped m = snap_mesh(positions, indices);
     Grid grid = make_grid(m.all, m.extent_sum / double(tri_count), tri_count);
     std::vector<std::pair<uint64_t, uint32_t>> entries;
@@ -310,6 +320,11 @@ size_t count_pairs(std::span<const Vec3> positions, std::span<const uint32_t> in
     std::sort(entries.begin(), entries.end());
     const bool all_marked = marked.empty();
     size_t found = 0;
+    struct Swept {
+        Aabb box;
+        uint32_t t;
+    };
+    std::vector<Swept> sweep;
     for (size_t begin = 0; begin < entries.size();) {
         size_t end = begin;
         bool any_marked = all_marked;
@@ -318,13 +333,25 @@ size_t count_pairs(std::span<const Vec3> positions, std::span<const uint32_t> in
             ++end;
         }
         const uint64_t cell_key = entries[begin].first;
-        for (size_t i = begin; any_marked && i < end; ++i)
-            for (size_t j = i + 1; j < end; ++j) {
-                uint32_t t1 = entries[i].second, t2 = entries[j].second;
+        if (!any_marked) {
+            begin = end;
+            continue;
+        }
+        // Sweep along x within the cell: the boxes sorted by their low x, each
+        // paired only with those that start before it ends.
+        sweep.clear();
+        for (size_t i = begin; i < end; ++i) sweep.push_back({m.boxes[entries[i].second], entries[i].second});
+        std::sort(sweep.begin(), sweep.end(), [](const Swept& a, const Swept& b) {
+            return a.box.min.x != b.box.min.x ? a.box.min.x < b.box.min.x : a.t < b.t;
+        });
+        for (size_t i = 0; i < sweep.size(); ++i)
+            for (size_t j = i + 1; j < sweep.size() && sweep[j].box.min.x <= sweep[i].box.max.x; ++j) {
+                const uint32_t t1 = sweep[i].t, t2 = sweep[j].t;
                 if (!all_marked && !marked[t1] && !marked[t2]) continue;
-                const Aabb &b1 = m.boxes[t1], &b2 = m.boxes[t2];
-                Vec3 lo = glm::max(b1.min, b2.min), hi = glm::min(b1.max, b2.max);
-                if (lo.x > hi.x || lo.y > hi.y || lo.z > hi.z) continue;
+                const Aabb &b1 = sweep[i].box, &b2 = sweep[j].box;
+                if (std::max(b1.min.y, b2.min.y) > std::min(b1.max.y, b2.max.y) ||
+                    std::max(b1.min.z, b2.min.z) > std::min(b1.max.z, b2.max.z))
+                    continue;
                 // The overlap's lowest corner is the larger of the two lowest corners (cell_of is monotonic).
                 const auto &c1 = low_cell[t1], &c2 = low_cell[t2];
                 if (grid.key(std::max(c1[0], c2[0]), std::max(c1[1], c2[1]), std::max(c1[2], c2[2])) != cell_key)
@@ -355,11 +382,30 @@ std::vector<uint8_t> triangle_pairs_meet(std::span<const Vec3> positions, std::s
                                          std::span<const std::pair<uint32_t, uint32_t>> pairs) {
     std::vector<uint8_t> out(pairs.size(), 0);
     if (pairs.empty()) return out;
-    const Snapped m = snap_mesh(positions, indices);
+    // The whole mesh's snap (its triangles' bounding box), applied only to the
+    // corners of the asked triangles: a few pairs cost one pass over the indices.
+    Aabb all;
+    for (uint32_t v : indices) all.extend(positions[v]);
+    const Snap snap = Snap::of(all);
+    std::vector<uint32_t> corners;
+    corners.reserve(pairs.size() * 6);
+    for (const auto& [t1, t2] : pairs)
+        for (uint32_t t : {t1, t2}) corners.insert(corners.end(), &indices[3 * size_t(t)], &indices[3 * size_t(t)] + 3);
+    std::sort(corners.begin(), corners.end());
+    corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
+    std::vector<IVec> q(corners.size());
+    for (size_t i = 0; i < corners.size(); ++i) q[i] = snap(positions[corners[i]]);
+    auto local = [&](uint32_t t, uint32_t tri[3]) {
+        for (int c = 0; c < 3; ++c)
+            tri[c] = uint32_t(std::lower_bound(corners.begin(), corners.end(), indices[3 * size_t(t) + size_t(c)]) -
+                              corners.begin());
+        auto n = cross(sub(q[tri[1]], q[tri[0]]), sub(q[tri[2]], q[tri[0]]));
+        return !(n[0] == 0 && n[1] == 0 && n[2] == 0);  // degenerate after snapping: skipped
+    };
     for (size_t k = 0; k < pairs.size(); ++k) {
-        const auto [t1, t2] = pairs[k];
-        if (m.skip[t1] || m.skip[t2]) continue;
-        out[k] = pair_meets(m.q, &indices[3 * size_t(t1)], &indices[3 * size_t(t2)]);
+        uint32_t a[3], b[3];
+        if (!local(pairs[k].first, a) || !local(pairs[k].second, b)) continue;
+        out[k] = pair_meets(q, a, b);
     }
     return out;
 }

@@ -15,10 +15,11 @@
 #include "builder/fairing/slice_interpolation.h"
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <map>
 #include <set>
-#include <unordered_map>
+#include <unordered_set>
 #include <utility>
 
 #include "shared/mesh_intersect.h"
@@ -291,7 +292,9 @@ std::vector<uint32_t> retriangulate(const Work& w, std::span<const uint32_t> ind
 
 // Triangles whose boxes over every place their vertices can take (on the
 // curve or straight) share a cell of a uniform grid: the candidates for
-// meeting a given triangle in any state.
+// meeting a given triangle in any state. Only the boxes are kept: the few
+// queries of a round are answered by one pass over them (a cell map of the
+// whole mesh cost more to build than all the rounds' passes).
 class NearTriangles {
 public:
     NearTriangles(std::span<const uint32_t> indices, std::span<const Vec3> curved, std::span<const Vec3> straight) {
@@ -310,30 +313,49 @@ public:
             all_.extend(boxes_[t].max);
         }
         cell_ = std::max(2.0 * sum / double(std::max<size_t>(n, 1)), 1e-9 * std::max(all_.extent(), 1e-300));
-        for (uint32_t t = 0; t < n; ++t) visit(t, [&](uint64_t key) { cells_[key].push_back(t); });
     }
-    // Appends the triangles sharing a cell with `t` (t included, repeats possible).
-    void near(uint32_t t, std::vector<uint32_t>& out) const {
-        visit(t, [&](uint64_t key) {
-            auto it = cells_.find(key);
-            if (it != cells_.end()) out.insert(out.end(), it->second.begin(), it->second.end());
-        });
+    // Appends the triangles sharing a cell with any of `queries` (queries included).
+    void near(std::span<const uint32_t> queries, std::vector<uint32_t>& out) const {
+        std::unordered_set<uint64_t> cells;
+        Range hull{{INT64_MAX, INT64_MAX, INT64_MAX}, {INT64_MIN, INT64_MIN, INT64_MIN}};
+        for (uint32_t q : queries) {
+            const Range r = range(q);
+            for (int a = 0; a < 3; ++a) {
+                hull.lo[a] = std::min(hull.lo[a], r.lo[a]);
+                hull.hi[a] = std::max(hull.hi[a], r.hi[a]);
+            }
+            visit(r, [&](uint64_t key) { cells.insert(key); });
+        }
+        for (uint32_t t = 0; t < boxes_.size(); ++t) {
+            const Range r = range(t);
+            bool hit = true;  // first: does it reach the queries' hull at all?
+            for (int a = 0; a < 3; ++a) hit = hit && r.lo[a] <= hull.hi[a] && hull.lo[a] <= r.hi[a];
+            if (!hit) continue;
+            hit = false;
+            visit(r, [&](uint64_t key) { hit = hit || cells.count(key) != 0; });
+            if (hit) out.push_back(t);
+        }
     }
 
 private:
-    template <class F>
-    void visit(uint32_t t, F&& f) const {
+    struct Range {
+        int64_t lo[3], hi[3];  // cells along x, y, z
+    };
+    Range range(uint32_t t) const {
         auto at = [&](double x, double lo) { return int64_t(std::floor((x - lo) / cell_)); };
         const Aabb& b = boxes_[t];
-        for (int64_t i = at(b.min.x, all_.min.x); i <= at(b.max.x, all_.min.x); ++i)
-            for (int64_t j = at(b.min.y, all_.min.y); j <= at(b.max.y, all_.min.y); ++j)
-                for (int64_t k = at(b.min.z, all_.min.z); k <= at(b.max.z, all_.min.z); ++k)
-                    f(uint64_t(i) << 42 ^ uint64_t(j) << 21 ^ uint64_t(k));
+        return {{at(b.min.x, all_.min.x), at(b.min.y, all_.min.y), at(b.min.z, all_.min.z)},
+                {at(b.max.x, all_.min.x), at(b.max.y, all_.min.y), at(b.max.z, all_.min.z)}};
+    }
+    template <class F>
+    static void visit(const Range& r, F&& f) {
+        for (int64_t i = r.lo[0]; i <= r.hi[0]; ++i)
+            for (int64_t j = r.lo[1]; j <= r.hi[1]; ++j)
+                for (int64_t k = r.lo[2]; k <= r.hi[2]; ++k) f(uint64_t(i) << 42 ^ uint64_t(j) << 21 ^ uint64_t(k));
     }
     std::vector<Aabb> boxes_;
     Aabb all_;
     double cell_ = 1;
-    std::unordered_map<uint64_t, std::vector<uint32_t>> cells_;
 };
 
 // Phase 5: rungs whose curve makes triangles meet that do not meet on the
@@ -406,9 +428,10 @@ size_t keep_free_of_new_crossings(Work& w, std::vector<Vec3>& positions, std::sp
         straightened += moved.size();
         if (moved.empty()) return straightened;
         // The triangles next to those rungs and everything near them, tested again.
-        std::vector<uint32_t> subset;
+        std::vector<uint32_t> queries, subset;
         for (uint32_t r : moved)
-            for (uint32_t i = start[r]; i < start[r + 1]; ++i) near.near(around[i], subset);
+            queries.insert(queries.end(), around.begin() + start[r], around.begin() + start[r + 1]);
+        near.near(queries, subset);
         std::sort(subset.begin(), subset.end());
         subset.erase(std::unique(subset.begin(), subset.end()), subset.end());
         std::vector<uint32_t> sub_indices;

@@ -109,4 +109,39 @@ TEST(SelfIntersections, MarkedCountAndPairQueryAgreeWithTheFullCount) {
     EXPECT_EQ(meet[all.size() + 1], 0);
 }
 
+// A few triangles of a large vertex array are counted over their corners
+// alone: the same pairs as the same triangles copied into their own array.
+TEST(SelfIntersections, SubsetOfALargeMeshCountsLikeItsOwnCopy) {
+    body::Mesh m = uv_sphere(24, 48);
+    body::Mesh other = uv_sphere(12, 24);
+    for (auto& p : other.positions) p += Vec3(0.7, 0.2, 0.1);
+    const uint32_t first_other = uint32_t(m.indices.size() / 3);
+    append(m, other);
+    // Every fifth triangle of the first sphere's upper half and every fourth of the second.
+    std::vector<uint32_t> subset;
+    for (uint32_t t = 0; t < m.indices.size() / 3; ++t)
+        if ((t < first_other && t % 5 == 0 && t > first_other / 2) || (t >= first_other && t % 4 == 0))
+            subset.insert(subset.end(), &m.indices[3 * size_t(t)], &m.indices[3 * size_t(t)] + 3);
+    ASSERT_LT(subset.size(), m.positions.size());  // the subset path
+    std::vector<uint32_t> used = subset;
+    std::sort(used.begin(), used.end());
+    used.erase(std::unique(used.begin(), used.end()), used.end());
+    std::vector<Vec3> own_positions;
+    for (uint32_t v : used) own_positions.push_back(m.positions[v]);
+    std::vector<uint32_t> own;
+    for (uint32_t v : subset) own.push_back(uint32_t(std::lower_bound(used.begin(), used.end(), v) - used.begin()));
+    ASSERT_GE(own.size(), own_positions.size());  // the whole-array path
+    std::vector<std::pair<uint32_t, uint32_t>> fast, slow;
+    const size_t n = body::count_self_intersections(m.positions, subset, 0, &fast);
+    EXPECT_GT(n, 0u);
+    EXPECT_EQ(n, body::count_self_intersections(own_positions, own, 0, &slow));
+    std::sort(fast.begin(), fast.end());
+    std::sort(slow.begin(), slow.end());
+    EXPECT_EQ(fast, slow);
+    std::vector<uint8_t> marked(subset.size() / 3, 0);
+    for (size_t t = 0; t < marked.size(); t += 2) marked[t] = 1;
+    EXPECT_EQ(body::count_self_intersections_of(m.positions, subset, marked, 0),
+              body::count_self_intersections_of(own_positions, own, marked, 0));
+}
+
 }  // namespace
