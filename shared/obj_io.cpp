@@ -7,12 +7,12 @@
 #include <cerrno>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <map>
 #include <ostream>
 #include <string_view>
-#include <unordered_map>
 
 #include "shared/atomic_file.h"
 #include "shared/input_file.h"
@@ -251,24 +251,30 @@ Result<std::vector<Mesh>> parse_obj(const std::string& text, const std::string& 
     const auto& attrib = reader.GetAttrib();
     const size_t vertex_total = attrib.vertices.size() / 3;
     std::vector<Mesh> meshes;
+    // File vertex -> this object's vertex (kUnset: not yet used by it); one array for
+    // all objects, the entries an object set cleared after it.
+    constexpr uint32_t kUnset = UINT32_MAX;
+    std::vector<uint32_t> remap(vertex_total, kUnset);
     for (const auto& shape : reader.GetShapes()) {
         Mesh mesh;
         // Unnamed objects (plain scanner/CAD exports) are named after the file.
         mesh.name = shape.name.empty() ? std::filesystem::path(path).stem().string() : shape.name;
-        std::unordered_map<int, uint32_t> remap;
+        mesh.indices.reserve(shape.mesh.indices.size());
         for (const auto& idx : shape.mesh.indices) {
             if (idx.vertex_index < 0 || size_t(idx.vertex_index) >= vertex_total)
                 return input_error(path + ": object '" + shape.name + "': vertex index out of range");
-            auto [it, inserted] = remap.emplace(idx.vertex_index, uint32_t(mesh.positions.size()));
-            if (inserted) {
+            uint32_t& at = remap[size_t(idx.vertex_index)];
+            if (at == kUnset) {
                 const float* v = &attrib.vertices[3 * size_t(idx.vertex_index)];
                 Vec3 p(v[0], v[1], v[2]);
                 if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
                     return input_error(path + ": object '" + shape.name + "': non-finite vertex");
+                at = uint32_t(mesh.positions.size());
                 mesh.positions.push_back(p);
             }
-            mesh.indices.push_back(it->second);
+            mesh.indices.push_back(at);
         }
+        for (const auto& idx : shape.mesh.indices) remap[size_t(idx.vertex_index)] = kUnset;
         if (!mesh.indices.empty()) meshes.push_back(std::move(mesh));
     }
     if (meshes.empty()) return input_error(path + ": no triangles");
