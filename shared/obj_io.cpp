@@ -7,12 +7,12 @@
 #include <cerrno>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <map>
 #include <ostream>
 #include <string_view>
-#include <unordered_map>
 
 #include "shared/atomic_file.h"
 #include "shared/input_file.h"
@@ -121,6 +121,60 @@ std::string corner_fault(std::string_view ref, const size_t (&defined)[3]) {
     return {};
 }
 
+// The common spellings, checked in place: a plain decimal number ([+-]digits[.digits]
+// [e[+-]digits], at least one digit) below 1e38 (integer digits + exponent <= 38).
+// True only where number_fault would find nothing; anything else goes to it (the
+// check was half of reading a large OBJ: a string and a strtod per number).
+bool plain_number(std::string_view w) {
+    size_t i = 0, digits = 0, int_digits = 0;
+    if (i < w.size() && (w[i] == '+' || w[i] == '-')) ++i;
+    bool leading = true;  // integer digits after leading zeros
+    for (; i < w.size() && w[i] >= '0' && w[i] <= '9'; ++i, ++digits) {
+        leading = leading && w[i] == '0';
+        int_digits += !leading;
+    }
+    if (i < w.size() && w[i] == '.')
+        for (++i; i < w.size() && w[i] >= '0' && w[i] <= '9'; ++i) ++digits;
+    if (digits == 0) return false;
+    int exponent = 0;
+    if (i < w.size() && (w[i] == 'e' || w[i] == 'E')) {
+        ++i;
+        const bool negative = i < w.size() && w[i] == '-';
+        if (i < w.size() && (w[i] == '+' || w[i] == '-')) ++i;
+        size_t e_digits = 0;
+        for (; i < w.size() && w[i] >= '0' && w[i] <= '9' && e_digits < 4; ++i, ++e_digits)
+            exponent = exponent * 10 + (w[i] - '0');
+        if (e_digits == 0) return false;
+        if (negative) exponent = -exponent;
+    }
+    return i == w.size() && int(int_digits) + exponent <= 38;
+}
+
+// The same for a face corner: v, v/t, v//n or v/t/n with each index a plain
+// [-]digits (up to 18) naming a defined element. True only where corner_fault
+// would find nothing.
+bool plain_corner(std::string_view ref, const size_t (&defined)[3]) {
+    size_t part = 0, i = 0;
+    for (;; ++part) {
+        if (part > 2) return false;
+        const bool negative = i < ref.size() && ref[i] == '-';
+        i += negative;
+        size_t digits = 0;
+        unsigned long long value = 0;
+        for (; i < ref.size() && ref[i] >= '0' && ref[i] <= '9' && digits < 18; ++i, ++digits)
+            value = value * 10 + unsigned(ref[i] - '0');
+        if (digits == 0) {
+            // Only v//n: an empty texture part followed by a slash.
+            if (negative || part != 1 || i >= ref.size() || ref[i] != '/') return false;
+        } else if (value == 0 || value > defined[part]) {
+            return false;
+        }
+        if (i == ref.size()) return true;
+        if (ref[i] != '/') return false;
+        ++i;
+    }
+}
+
 // tinyobjloader reads "nan", "one" or a missing coordinate as 0, keeps any
 // face index (texture and normal indices too) and drops 2-vertex faces; this
 // pass refuses those first, naming the line: "PATH: line N: reason".
@@ -131,6 +185,7 @@ Status check_obj_text(const std::string& text, const std::string& path) {
     auto fail = [&](const std::string& why) {
         return input_error(path + ": line " + std::to_string(line_no) + ": " + why);
     };
+    std::vector<std::string_view> tok;
     while (pos < text.size()) {
         size_t end = text.find('\n', pos);
         if (end == std::string::npos) end = text.size();
@@ -139,7 +194,6 @@ Status check_obj_text(const std::string& text, const std::string& path) {
         ++line_no;
         if (line.find('\0') != std::string_view::npos) return fail("NUL byte (not a text file)");
         if (const size_t hash = line.find('#'); hash != std::string_view::npos) line = line.substr(0, hash);
-        std::vector<std::string_view> tok;
         split_words(line, tok);
         if (tok.empty()) continue;
         const size_t values = tok.size() - 1;
@@ -153,15 +207,17 @@ Status check_obj_text(const std::string& text, const std::string& path) {
         if (kind >= 0) {
             static const char* kWhat[3] = {"vertex coordinate ", "texture coordinate ", "normal coordinate "};
             for (size_t k = 1; k < tok.size(); ++k)
-                if (std::string why = number_fault(tok[k]); !why.empty()) return fail(kWhat[kind] + why);
+                if (!plain_number(tok[k]))
+                    if (std::string why = number_fault(tok[k]); !why.empty()) return fail(kWhat[kind] + why);
             ++defined[kind];
         } else if (tok[0] == "f") {
             if (values < 3) return fail("face has " + std::to_string(values) + " vertices, at least 3 needed");
             for (size_t k = 1; k < tok.size(); ++k)
-                if (std::string why = corner_fault(tok[k], defined); !why.empty())
-                    return fail(why.find(" index ") != std::string::npos
-                                    ? "face " + why
-                                    : "face vertex " + in_quotes(tok[k]) + " " + why);
+                if (!plain_corner(tok[k], defined))
+                    if (std::string why = corner_fault(tok[k], defined); !why.empty())
+                        return fail(why.find(" index ") != std::string::npos
+                                        ? "face " + why
+                                        : "face vertex " + in_quotes(tok[k]) + " " + why);
         }
     }
     return ok_status();
@@ -195,24 +251,30 @@ Result<std::vector<Mesh>> parse_obj(const std::string& text, const std::string& 
     const auto& attrib = reader.GetAttrib();
     const size_t vertex_total = attrib.vertices.size() / 3;
     std::vector<Mesh> meshes;
+    // File vertex -> this object's vertex (kUnset: not yet used by it); one array for
+    // all objects, the entries an object set cleared after it.
+    constexpr uint32_t kUnset = UINT32_MAX;
+    std::vector<uint32_t> remap(vertex_total, kUnset);
     for (const auto& shape : reader.GetShapes()) {
         Mesh mesh;
         // Unnamed objects (plain scanner/CAD exports) are named after the file.
         mesh.name = shape.name.empty() ? std::filesystem::path(path).stem().string() : shape.name;
-        std::unordered_map<int, uint32_t> remap;
+        mesh.indices.reserve(shape.mesh.indices.size());
         for (const auto& idx : shape.mesh.indices) {
             if (idx.vertex_index < 0 || size_t(idx.vertex_index) >= vertex_total)
                 return input_error(path + ": object '" + shape.name + "': vertex index out of range");
-            auto [it, inserted] = remap.emplace(idx.vertex_index, uint32_t(mesh.positions.size()));
-            if (inserted) {
+            uint32_t& at = remap[size_t(idx.vertex_index)];
+            if (at == kUnset) {
                 const float* v = &attrib.vertices[3 * size_t(idx.vertex_index)];
                 Vec3 p(v[0], v[1], v[2]);
                 if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
                     return input_error(path + ": object '" + shape.name + "': non-finite vertex");
+                at = uint32_t(mesh.positions.size());
                 mesh.positions.push_back(p);
             }
-            mesh.indices.push_back(it->second);
+            mesh.indices.push_back(at);
         }
+        for (const auto& idx : shape.mesh.indices) remap[size_t(idx.vertex_index)] = kUnset;
         if (!mesh.indices.empty()) meshes.push_back(std::move(mesh));
     }
     if (meshes.empty()) return input_error(path + ": no triangles");

@@ -61,3 +61,44 @@ TEST(ObjIo, UnnamedObjectTakesTheFileStem) {
 
 }  // namespace
 }  // namespace body
+
+namespace body {
+namespace {
+
+// The reader's check takes common spellings on a fast path and sends the rest to the
+// full parse: both sides of each edge of that path give the answer the full parse gives.
+TEST(ObjIo, NumbersAndCornersAtTheEdgesOfThePlainSpelling) {
+    const std::string tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\n";
+    for (const char* good : {"v +.5 1. -2e+3\n", "v 9e37 -0009e37 1e-9999\n", "v 1e38 2.9e38 0\n",
+                             "v 1.5E2 00000000000000000000000000000000000000000001 0\n", "f 1//1 2//1 3//1\n",
+                             "f -1 -2 -3\n", "f 3 2 1 1\n"}) {
+        auto m = parse_obj(tri + good + "f 1 2 3\n", "t.obj");
+        EXPECT_TRUE(m.ok()) << good << ": " << m.error().message;
+    }
+    const struct {
+        const char* line;
+        const char* why;
+    } bad[] = {
+        {"v 1e39 0 0\n", "is not a finite float"},
+        {"v 0 0 -4e38\n", "is not a finite float"},
+        {"v 1e 0 0\n", "is not a number"},
+        {"v . 0 0\n", "is not a number"},
+        {"v 1..5 0 0\n", "is not a number"},
+        {"f 1 2 -0\n", "outside 1..3"},
+        {"f 1 2 4\n", "outside 1..3"},
+        {"f 1 2 -4\n", "outside 1..3"},
+        {"f 1/ 2 3\n", "is not an index"},
+        {"f 1/1/1/1 2 3\n", "more than 3 parts"},
+        {"f 1//2 2 3\n", "normal index 2 is outside 1..1"},
+        {"f 1 2 3x\n", "is not an index"},
+    };
+    for (const auto& b : bad) {
+        auto m = parse_obj(tri + b.line, "t.obj");
+        ASSERT_FALSE(m.ok()) << b.line;
+        EXPECT_NE(m.error().message.find(b.why), std::string::npos) << b.line << ": " << m.error().message;
+        EXPECT_NE(m.error().message.find("t.obj: line 5: "), std::string::npos) << m.error().message;
+    }
+}
+
+}  // namespace
+}  // namespace body
