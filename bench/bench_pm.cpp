@@ -18,12 +18,14 @@
 //
 // usage: bench_pm [--obj FILE] [--mesh NAME=FILE]... [--vtk-dir DIR] [--write-dir DIR] [--no-big] [--build-only]
 //                 [--accuracy-only] [--ours-only]
-//                 [--reps N] [--big-reps N] [--threads N] [--no-regions] [--decode FILE.bpm]
+//                 [--reps N] [--big-reps N] [--threads N] [--no-regions] [--exact-intermediate]
+//                 [--decode FILE.bpm]
 //   --build-only prints the build times only (section 1); --accuracy-only prints section 2 only (one build,
 //   no half-edge comparison build, no runtime) and the bytes per split; --reps N: best of N for the bunny (default 3;
 //   the big mesh gets best of --big-reps, default 1) -- on a busy machine a larger N finds the quiet runs;
 //   --threads N: threads of the build (default: one per hardware thread; the output is the same);
 //   --no-regions: the lossless phase on one heap, as before it ran in regions (a different output);
+//   --exact-intermediate: every position exact (as .bpm version 5), not intermediate ones on grids (FORMAT.md);
 //   --ours-only: section 2 for ours alone at the same counts (VTK's files still set them), for trying
 //   simplifier changes without the baselines' minutes on a big mesh;
 //   --decode times reading one .bpm (nothing else);
@@ -60,7 +62,7 @@
 namespace {
 
 using namespace body;
-lod::LodOptions g_options;  // --threads, --no-regions
+lod::LodOptions g_options;  // --threads, --no-regions, --exact-intermediate
 bool g_ours_only = false;   // --ours-only
 // CPU seconds of this thread: the build machine is shared, so wall time is
 // inflated by other people's work; every timed piece here is single-threaded.
@@ -536,12 +538,14 @@ int main(int argc, char** argv) {
             g_options.threads = unsigned(std::max(1, std::atoi(argv[++i])));
         else if (a == "--no-regions")
             g_options.region_faces = SIZE_MAX;
+        else if (a == "--exact-intermediate")
+            g_options.coarse_intermediate = false;
         else {
             std::fprintf(
                 stderr,
                 "usage: bench_pm [--obj FILE] [--mesh NAME=FILE]... [--vtk-dir DIR] [--write-dir DIR] [--no-big] "
                 "[--build-only] [--accuracy-only] [--ours-only] "
-                "[--reps N] [--big-reps N] [--threads N] [--no-regions] [--decode FILE.bpm]\n");
+                "[--reps N] [--big-reps N] [--threads N] [--no-regions] [--exact-intermediate] [--decode FILE.bpm]\n");
             return 2;
         }
     }

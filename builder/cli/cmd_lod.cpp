@@ -49,6 +49,7 @@ void print_split_sizes(const pm::SplitSizes& z) {
         {"child position", c[pm::kCtxChild0] + c[pm::kCtxChild0 + 1] + c[pm::kCtxChild0 + 2]},
         {"parent move", c[pm::kCtxParent0] + c[pm::kCtxParent0 + 1] + c[pm::kCtxParent0 + 2]},
         {"child normal", c[pm::kCtxNormal0] + c[pm::kCtxNormal0 + 1]},
+        {"position grids", c[pm::kCtxChildCoarse] + c[pm::kCtxParentCoarse]},
         {"coder tables", z.table_bits},
         {"coder framing", z.framing_bits},
         {"section headers", z.header_bits},

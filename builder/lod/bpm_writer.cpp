@@ -219,6 +219,7 @@ struct SplitWriter {
         for (size_t f = 0; f < file_face.size(); ++f) file_face[f] = uint32_t(f);
         pm::normal_axis_weights(z.lo, z.hi, axis_weight);
         pm::plane_axis_weights(z.lo, z.hi, plane_weight);
+        exact.assign(p.positions.size(), 1);
     }
     const Mesh& mesh;
     const ProgressiveBuild& pm;
@@ -228,7 +229,9 @@ struct SplitWriter {
     // The file puts the two new faces of a fan split in one order (one symbol less
     // per split): the builder's face numbers as the file has them.
     std::vector<uint32_t> file_face;
-    std::vector<uint16_t> cur;  // 3 per vertex: codes at the level being encoded
+    std::vector<uint16_t> cur;                     // 3 per vertex: codes at the level being encoded
+    std::vector<uint8_t> exact;                    // per vertex: cur holds its builder position (not on a coarser grid)
+    std::vector<uint8_t> child_grid, parent_grid;  // per split: the grids plan_grids allows
     int32_t axis_weight[3], plane_weight[3];
     uint32_t previous_error = kInfinityBits;
     size_t face;                // the next split's first new face
@@ -237,6 +240,29 @@ struct SplitWriter {
     std::vector<uint32_t> parent_corners, faces, moved;
     pm::SplitSizes* sizes = nullptr;  // where the SPLT bytes go, when asked
 };
+
+// Per split, the grids of the child's position and of the parent's after it: a
+// position that a later split moves (in the builder's codes) is intermediate, and
+// every level showing it has at least that split's error (FORMAT.md, version 6).
+void plan_grids(SplitWriter& w) {
+    const ProgressiveBuild& pm = w.pm;
+    const size_t ns = pm.splits.size();
+    const double step = pm::largest_step(w.z.lo, w.z.hi);
+    w.child_grid.assign(ns, 0);
+    w.parent_grid.assign(ns, 0);
+    if (!(step > 0)) return;
+    std::vector<float> next_move(pm.positions.size(), 0.0f);  // per vertex: error of the split moving it next
+    for (size_t j = ns; j-- > 0;) {
+        const VertexSplit& sp = pm.splits[j];
+        w.child_grid[j] = uint8_t(pm::coarsest_grid(next_move[pm.base_vertices + j], step));
+        w.parent_grid[j] = uint8_t(pm::coarsest_grid(next_move[sp.parent], step));
+        bool moves = false;
+        for (int k = 0; k < 3; ++k)
+            moves |= quantize16(sp.parent_from[k], w.z.lo[k], w.z.hi[k]) !=
+                     quantize16(sp.parent_to[k], w.z.lo[k], w.z.hi[k]);
+        if (moves) next_move[sp.parent] = round_up_coarse(sp.error);
+    }
+}
 
 // The replay is bound by memory latency (a parent is anywhere in the mesh): the
 // data of the splits a few steps ahead is requested in stages, as the reader does.
@@ -293,37 +319,82 @@ Status put_general_topology(SplitWriter& w, size_t j, uint64_t mask, uint32_t pa
     return ok_status();
 }
 
+// One split's positions as the reader will decode them: the values to put (in
+// coding order, on their grids) and the codes they give.
+struct CodedPositions {
+    uint16_t at[3], to[3];  // the child's, the parent's after the split
+    bool moves = false;
+    uint32_t child_grid = 0, parent_grid = 0;
+    uint32_t value[6], shift[6];  // the child's 3 axes, then the parent's when it moves
+};
+
+// One coordinate on a grid of 2^grid steps: the rounded residual (zig-zag) into
+// `value`, the decoded code into `out`; false when it would leave the box.
+bool code_coordinate(uint16_t target, uint16_t predicted, uint32_t grid, uint32_t& value, uint16_t& out) {
+    const int32_t r = int16_t(uint16_t(target - predicted));
+    const int32_t rounded = grid == 0 ? r : (r + (1 << (grid - 1))) >> grid;
+    const int32_t decoded = int32_t(target) + rounded * (1 << grid) - r;
+    if (decoded < 0 || decoded > 65535) return false;
+    value = pm::zigzag(uint16_t(rounded), uint16_t(0));
+    out = uint16_t(decoded);
+    return true;
+}
+
+// A position on a grid (a vertex's child position or its parent's after the
+// split), axes in coding order; with a plane its axis is predicted from the two
+// decoded before. False when a coordinate would leave the box on this grid.
+bool code_position(const pm::FanPrediction& pred, const uint32_t order[3], const uint16_t target[3],
+                   const uint16_t predicted2[3], bool plane_last, const uint16_t from[3], int64_t offset, int64_t scale,
+                   uint32_t grid, uint32_t* value, uint32_t* shift, uint16_t out[3]) {
+    for (uint32_t i = 0; i < 3; ++i) {
+        const uint32_t k = order[i];
+        const bool plane = i == 2 && plane_last;
+        const uint16_t predicted = plane ? pm::plane_coordinate(pred, from, out, offset, scale) : predicted2[k];
+        const uint32_t scale_shift = plane ? pred.axis_shift : pred.shift[k];
+        if (!code_coordinate(target[k], predicted, grid, value[i], out[k])) return false;
+        shift[i] = scale_shift > grid ? scale_shift - grid : 0;
+    }
+    return true;
+}
+
 // The child's position and the parent's move as residuals of their predictions;
-// with a plane, the two other axes first, then the plane's axis.
-void put_positions(pm::SplitEncoder& values, const pm::FanPrediction& pred, const uint16_t from[3],
-                   const uint16_t to[3], const uint16_t at[3], bool moves, bool fan) {
+// with a plane, the two other axes first, then the plane's axis. An intermediate
+// position goes on the coarsest grid allowed (kCoarseFraction) that stays in the box.
+CodedPositions code_positions(const pm::FanPrediction& pred, const uint16_t from[3], const uint16_t to[3],
+                              const uint16_t at[3], bool moves, bool fan, uint32_t child_grid, uint32_t parent_grid) {
+    CodedPositions c;
     uint32_t order[3] = {0, 1, 2};
-    if (pred.axis < 3) {
+    const bool plane = pred.axis < 3;
+    if (plane) {
         pm::plane_axes(pred.axis, order[0], order[1]);
         order[2] = pred.axis;
     }
-    for (uint32_t i = 0; i < 3; ++i) {
-        const uint32_t k = order[i];
-        if (i == 2 && pred.axis < 3) {
-            const uint16_t predicted = pm::plane_coordinate(pred, from, at, pred.child_dot, 4);
-            values.put_scaled(pm::kCtxChild0 + i, pm::zigzag(at[k], predicted), pred.axis_shift);
-        } else {
-            values.put_scaled(pm::kCtxChild0 + i, pm::zigzag(at[k], pred.child[k]), pred.shift[k]);
-        }
+    c.child_grid = child_grid + 1;
+    do --c.child_grid;
+    while (!code_position(pred, order, at, pred.child, plane, from, pred.child_dot, 4, c.child_grid, c.value, c.shift,
+                          c.at));
+    std::copy_n(from, 3, c.to);
+    if (!moves) return c;
+    uint16_t predicted[3];
+    for (int k = 0; k < 3; ++k) {
+        const uint16_t reflected = pm::reflect16(from[k], c.at[k]);
+        predicted[k] = fan ? pm::midpoint16(reflected, pred.parent_centroid[k]) : reflected;
     }
-    if (!moves) return;
-    const int64_t offset = pred.axis < 3 ? pred.parent_dot - 4 * pm::plane_dot(pred, from, at) : 0;
-    for (uint32_t i = 0; i < 3; ++i) {
-        const uint32_t k = order[i];
-        if (i == 2 && pred.axis < 3) {
-            const uint16_t predicted = pm::plane_coordinate(pred, from, to, offset, 8);
-            values.put_scaled(pm::kCtxParent0 + i, pm::zigzag(to[k], predicted), pred.axis_shift);
-            continue;
-        }
-        const uint16_t reflected = pm::reflect16(from[k], at[k]);
-        const uint16_t predicted = fan ? pm::midpoint16(reflected, pred.parent_centroid[k]) : reflected;
-        values.put_scaled(pm::kCtxParent0 + i, pm::zigzag(to[k], predicted), pred.shift[k]);
-    }
+    const int64_t offset = plane ? pred.parent_dot - 4 * pm::plane_dot(pred, from, c.at) : 0;
+    c.parent_grid = parent_grid + 1;
+    do --c.parent_grid;
+    while (!code_position(pred, order, to, predicted, plane, from, offset, 8, c.parent_grid, c.value + 3, c.shift + 3,
+                          c.to));
+    c.moves = c.to[0] != from[0] || c.to[1] != from[1] || c.to[2] != from[2];
+    if (!c.moves) c.parent_grid = 0;
+    return c;
+}
+
+void put_positions(pm::SplitEncoder& values, const CodedPositions& c) {
+    values.put(pm::kCtxChildCoarse, c.child_grid);
+    if (c.moves) values.put(pm::kCtxParentCoarse, c.parent_grid);
+    for (uint32_t i = 0; i < (c.moves ? 6u : 3u); ++i)
+        values.put_scaled((i < 3 ? pm::kCtxChild0 : pm::kCtxParent0) + i % 3, c.value[i], c.shift[i]);
 }
 
 // The child's normal: a residual of its faces' normal after the split (fan form),
@@ -338,15 +409,18 @@ void put_normal(SplitWriter& w, const pm::FanPrediction& pred, const uint16_t fr
 }
 
 // Split j's positions as codes: the parent's before (as the replayed level has
-// it) and after, and the child's.
-Status split_codes(const SplitWriter& w, size_t j, uint16_t from[3], uint16_t to[3], uint16_t at[3]) {
+// it: an intermediate position is where its grid put it) and after, and the child's.
+Status split_codes(const SplitWriter& w, size_t j, uint16_t from[3], uint16_t to[3], uint16_t at[3], bool& moves) {
     const VertexSplit& sp = w.pm.splits[j];
     const uint32_t child = uint32_t(w.pm.base_vertices + j);
+    moves = false;
     for (int k = 0; k < 3; ++k) {
         from[k] = w.cur[size_t(sp.parent) * 3 + k];
-        if (from[k] != quantize16(sp.parent_from[k], w.z.lo[k], w.z.hi[k]))
+        const uint16_t built_from = quantize16(sp.parent_from[k], w.z.lo[k], w.z.hi[k]);
+        if (w.exact[sp.parent] && from[k] != built_from)
             return split_error(w.mesh, j, "moves its parent from elsewhere than it is");
         to[k] = quantize16(sp.parent_to[k], w.z.lo[k], w.z.hi[k]);
+        moves |= to[k] != built_from;
         at[k] = w.z.q[size_t(child) * 3 + k];
     }
     return ok_status();
@@ -368,27 +442,31 @@ Status encode_split(SplitWriter& w, size_t j) {
         std::swap(w.file_face[w.face], w.file_face[w.face + 1]);
     }
     uint16_t from[3], to[3], at[3];
-    if (Status st = split_codes(w, j, from, to, at); !st) return st;
-    const bool moves = from[0] != to[0] || from[1] != to[1] || from[2] != to[2];
+    bool builder_moves = false;
+    if (Status st = split_codes(w, j, from, to, at, builder_moves); !st) return st;
     const uint32_t form = fan.length == 0 ? pm::kTopoGeneral : pm::kTopoFan;
-    w.values.put(pm::kCtxKind, form * 2 + (moves ? 1 : 0));
-    const uint32_t error = error_bits(round_up_coarse(sp.error));
-    if (error > w.previous_error) return split_error(w.mesh, j, "has a larger error than the split before it");
-    w.values.put(pm::kCtxErrorStep, (w.previous_error - error) >> 16);
-    w.previous_error = error;
     pm::FanPrediction pred{{from[0], from[1], from[2]}, {0, 0, 0}, {0, 0, 0}};
-    if (form == pm::kTopoGeneral) {
-        if (Status st = put_general_topology(w, j, mask, parent); !st) return st;
-    } else {
-        w.values.put(pm::kCtxFanStart, fan.start);
-        w.values.put(pm::kCtxFanLength, fan.length - 1);
+    if (form == pm::kTopoFan) {
         // The plane through the parent: its normal (when the file has normals).
         int64_t plane[3];
         pm::plane_normal(&w.z.oct[size_t(parent) * 2], w.plane_weight, plane);
         pm::predict_fan(w.cur.data(), ring, fan.fan, fan.start, fan.length, from, w.normals ? plane : nullptr, pred);
     }
-    put_positions(w.values, pred, from, to, at, moves, fan.length != 0);
-    if (w.normals) put_normal(w, pred, from, to, parent, child, form == pm::kTopoFan);
+    const CodedPositions coded =
+        code_positions(pred, from, to, at, builder_moves, form == pm::kTopoFan, w.child_grid[j], w.parent_grid[j]);
+    w.values.put(pm::kCtxKind, form * 2 + (coded.moves ? 1 : 0));
+    const uint32_t error = error_bits(round_up_coarse(sp.error));
+    if (error > w.previous_error) return split_error(w.mesh, j, "has a larger error than the split before it");
+    w.values.put(pm::kCtxErrorStep, (w.previous_error - error) >> 16);
+    w.previous_error = error;
+    if (form == pm::kTopoGeneral) {
+        if (Status st = put_general_topology(w, j, mask, parent); !st) return st;
+    } else {
+        w.values.put(pm::kCtxFanStart, fan.start);
+        w.values.put(pm::kCtxFanLength, fan.length - 1);
+    }
+    put_positions(w.values, coded);
+    if (w.normals) put_normal(w, pred, from, coded.to, parent, child, form == pm::kTopoFan);
     // (parent_corners are still the parent's: nothing changed the replay since.)
     w.moved.resize(w.parent_corners.size());
     if (!w.replay.apply_mask(parent, child, mask, w.parent_corners.data(), w.parent_corners.size(), w.moved.data()) ||
@@ -397,9 +475,11 @@ Status encode_split(SplitWriter& w, size_t j) {
     w.replay.add_faces(w.face, w.faces);
     w.face += sp.face_count;
     for (int k = 0; k < 3; ++k) {
-        w.cur[size_t(parent) * 3 + k] = to[k];
-        w.cur[size_t(child) * 3 + k] = at[k];
+        w.cur[size_t(parent) * 3 + k] = coded.to[k];
+        w.cur[size_t(child) * 3 + k] = coded.at[k];
     }
+    if (builder_moves) w.exact[parent] = std::equal(to, to + 3, coded.to);
+    w.exact[child] = std::equal(at, at + 3, coded.at);
     return ok_status();
 }
 
@@ -448,6 +528,12 @@ Result<StructureSections> encode_structure(const Mesh& mesh, const ProgressiveBu
     out.info = info_section(mesh, pm, z, options.normals, chunk);
     SplitWriter w(mesh, pm, z, options.normals);
     w.sizes = sizes;
+    if (options.coarse_intermediate)
+        plan_grids(w);
+    else {
+        w.child_grid.assign(ns, 0);
+        w.parent_grid.assign(ns, 0);
+    }
     out.base = base_section(pm, z, w.replay);
     for (size_t first = 0; first < ns; first += chunk) {
         auto payload = encode_chunk(w, first, std::min(chunk, ns - first));

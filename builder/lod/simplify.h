@@ -47,12 +47,13 @@
 namespace body::lod {
 
 struct LodOptions {
-    size_t min_triangles = 0;        // stop collapsing at this many triangles (0: as far as topology allows)
-    double boundary_weight = 100.0;  // weight of the boundary-preserving plane quadrics (x edge length^2)
-    size_t chunk_splits = 4096;      // vertex splits per SPLT section (streaming granularity)
-    bool normals = true;             // store octahedral normals (from the mesh, else area-weighted)
-    bool optimal_placement = true;   // false: half-edge collapses only (the parent never moves)
-    bool batch_rounds = true;        // splits in rounds inside each batch (split_order.h); false: by error
+    size_t min_triangles = 0;         // stop collapsing at this many triangles (0: as far as topology allows)
+    double boundary_weight = 100.0;   // weight of the boundary-preserving plane quadrics (x edge length^2)
+    size_t chunk_splits = 4096;       // vertex splits per SPLT section (streaming granularity)
+    bool normals = true;              // store octahedral normals (from the mesh, else area-weighted)
+    bool optimal_placement = true;    // false: half-edge collapses only (the parent never moves)
+    bool batch_rounds = true;         // splits in rounds inside each batch (split_order.h); false: by error
+    bool coarse_intermediate = true;  // positions a later split moves on coarser grids (FORMAT.md v6); false: exact
     // The lossless phase of a large mesh runs in regions of about this many faces, in
     // parallel (at most 8 regions; none under twice this many faces). Changes the output.
     size_t region_faces = size_t(1) << 18;

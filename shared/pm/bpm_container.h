@@ -11,7 +11,8 @@
 namespace body::pm {
 
 inline constexpr char kMagic[4] = {'B', 'P', 'M', '\0'};
-inline constexpr uint16_t kVersion = 5;  // 5: parents as steps, splits in rounds (4: plane and normal predictions)
+inline constexpr uint16_t kVersion =
+    6;  // 6: intermediate positions on coarser grids (5: parents as steps, splits in rounds)
 inline constexpr size_t kFileHeaderSize = 16;       // magic, version, flags, structure count, header crc
 inline constexpr size_t kSectionHeaderSize = 12;    // tag, structure, reserved, payload length
 inline constexpr size_t kSectionTrailerSize = 4;    // crc32 over header + payload

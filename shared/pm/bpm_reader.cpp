@@ -301,9 +301,18 @@ struct DecodedSplit {
     return "unknown split kind";
 }
 
+// One coordinate on a grid of 2^grid steps: the residual's high part entropy
+// coded, its low bits below the predicted scale (shift - grid) raw.
+[[gnu::always_inline]] inline uint16_t decode_coordinate(SplitDecoder::Cursor& values, uint32_t context,
+                                                         uint16_t predicted, uint32_t shift, uint32_t grid) {
+    const uint32_t z = values.get_scaled(context, shift > grid ? shift - grid : 0);
+    return uint16_t(predicted + (uint32_t(unzigzag(uint16_t(z), uint16_t(0))) << grid));
+}
+
 // The child's position and the parent's move (0 to 1 positions), as residuals of
-// their predictions; with a plane, its axis last.
-[[gnu::always_inline]] inline void decode_positions(SplitDecoder::Cursor& values, bool moves, DecodedSplit& s) {
+// their predictions on their grids; with a plane, its axis last.
+[[gnu::always_inline]] inline void decode_positions(SplitDecoder::Cursor& values, bool moves, uint32_t child_grid,
+                                                    uint32_t parent_grid, DecodedSplit& s) {
     const FanPrediction& pred = s.pred;
     uint32_t order[3] = {0, 1, 2};
     if (pred.axis < 3) {
@@ -312,24 +321,25 @@ struct DecodedSplit {
     }
     for (uint32_t i = 0; i < 2; ++i)
         s.q[order[i]] =
-            unzigzag(uint16_t(values.get_scaled(kCtxChild0 + i, pred.shift[order[i]])), pred.child[order[i]]);
+            decode_coordinate(values, kCtxChild0 + i, pred.child[order[i]], pred.shift[order[i]], child_grid);
     if (pred.axis < 3)
-        s.q[order[2]] = unzigzag(uint16_t(values.get_scaled(kCtxChild0 + 2, pred.axis_shift)),
-                                 plane_coordinate(pred, s.from, s.q, pred.child_dot, 4));
+        s.q[order[2]] =
+            decode_coordinate(values, kCtxChild0 + 2, plane_coordinate(pred, s.from, s.q, pred.child_dot, 4),
+                              pred.axis_shift, child_grid);
     else
-        s.q[2] = unzigzag(uint16_t(values.get_scaled(kCtxChild0 + 2, pred.shift[2])), pred.child[2]);
+        s.q[2] = decode_coordinate(values, kCtxChild0 + 2, pred.child[2], pred.shift[2], child_grid);
     for (int k = 0; k < 3; ++k) s.to[k] = s.from[k];
     if (!moves) return;
     for (uint32_t i = 0; i < (pred.axis < 3 ? 2u : 3u); ++i) {
         const uint32_t k = order[i];
         const uint16_t reflected = reflect16(s.from[k], s.q[k]);
         const uint16_t predicted = s.fan != 0 ? midpoint16(reflected, pred.parent_centroid[k]) : reflected;
-        s.to[k] = unzigzag(uint16_t(values.get_scaled(kCtxParent0 + i, pred.shift[k])), predicted);
+        s.to[k] = decode_coordinate(values, kCtxParent0 + i, predicted, pred.shift[k], parent_grid);
     }
     if (pred.axis < 3) {
         const int64_t offset = pred.parent_dot - 4 * plane_dot(pred, s.from, s.q);
-        s.to[order[2]] = unzigzag(uint16_t(values.get_scaled(kCtxParent0 + 2, pred.axis_shift)),
-                                  plane_coordinate(pred, s.from, s.to, offset, 8));
+        s.to[order[2]] = decode_coordinate(values, kCtxParent0 + 2, plane_coordinate(pred, s.from, s.to, offset, 8),
+                                           pred.axis_shift, parent_grid);
     }
 }
 
@@ -461,7 +471,10 @@ Status BpmStream::parse_splits(ProgressiveMesh& m, std::span<const uint8_t> payl
         previous_error_bits -= error_step << 16;
         if (const char* error = decode_topology(ctx, values, topo, kind >> 1, s)) return fail(error);
         if (s.faces == 0 || face_cursor + s.faces > h.new_faces) return fail("face count out of range");
-        decode_positions(values, kind & 1, s);
+        const uint32_t child_grid = values.get(kCtxChildCoarse);
+        const uint32_t parent_grid = (kind & 1) ? values.get(kCtxParentCoarse) : 0;
+        if (child_grid > kMaxCoarseShift || parent_grid > kMaxCoarseShift) return fail("position grid out of range");
+        decode_positions(values, kind & 1, child_grid, parent_grid, s);
         decode_normal(ctx, values, s);
         if (values.past_end()) return fail("values truncated");
         // Index patches first (on the level before the split), then the new faces.

@@ -14,6 +14,7 @@
 
 #include "shared/pm/bpm_container.h"
 #include "shared/pm/draw_order.h"
+#include "shared/pm/split_codec.h"
 
 namespace body::pm {
 
@@ -23,6 +24,10 @@ float ProgressiveMesh::quantization_bound() const {
     float ulp = 4e-7f * std::max({std::fabs(bbox_min_.x), std::fabs(bbox_min_.y), std::fabs(bbox_min_.z),
                                   std::fabs(bbox_max_.x), std::fabs(bbox_max_.y), std::fabs(bbox_max_.z)});
     return 0.5f * glm::length(step) + 2.0f * ulp;
+}
+
+float ProgressiveMesh::position_bound() const {
+    return quantization_bound() + float(0.5 * std::sqrt(3.0) * kCoarseFraction * double(error_at(level())));
 }
 
 void ProgressiveMesh::positions(size_t begin, std::span<Vec3f> out) const {

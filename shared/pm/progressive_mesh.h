@@ -18,7 +18,8 @@
 // file's 16-bit codes per axis in the structure's bounding box (position_codes(),
 // 6 bytes a vertex; the renderer draws them as they are) and dequantized on
 // demand (position(), positions()), so they differ from the builder's input by
-// at most quantization_bound() (half a step per axis). Normals are kept as the
+// at most quantization_bound() (half a step per axis) at the full level, and by
+// position_bound() at a coarser one. Normals are kept as the
 // file's 8:8 octahedral codes (normal_codes(), 2 bytes a vertex; normal()).
 //
 // Threading: none inside; one ProgressiveMesh per thread at a time.
@@ -74,6 +75,10 @@ public:
     bool has_normals() const { return has_normals_; }
     // Largest distance between a stored and a dequantized position (object units).
     float quantization_bound() const;
+    // Largest distance between a position at the current level and the builder's:
+    // the quantization, plus the coarser grid of a position a later split moves
+    // (version 6: at most kCoarseFraction of the level's error per axis, halved).
+    float position_bound() const;
 
     // --- levels. Level k = k splits applied; 0 is the base mesh.
     size_t max_level() const { return split_count_; }           // all splits of the complete file

@@ -1,9 +1,11 @@
 #pragma once
-// How a SPLT section's values are coded (version 3, kept in versions 4 and 5): the
+// How a SPLT section's values are coded (version 3, kept in versions 4 to 6): the
 // contexts, the entropy coder (SplitEncoder, writer) and its decoder
 // (SplitDecoder, reader), and the zig-zag residuals of 16- and 8-bit codes.
 // What the values are and how they are predicted: prediction.h, FORMAT.md.
+#include <algorithm>
 #include <bit>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -34,16 +36,40 @@ inline Code unzigzag(Code z, Code from) {
 // value costs about its information content, and decoding is one table lookup
 // plus one bit-field read.
 enum SplitContext : uint32_t {
-    kCtxKind,                       // split kind: topology form * 2 + parent moves
-    kCtxParentDelta,                // parent - previous parent (zig-zag)
-    kCtxErrorStep,                  // (previous error bits - error bits) >> 16
-    kCtxFanStart,                   // compact topology: ring position of the left wing
-    kCtxFanLength,                  // compact topology: faces moving to the child
-    kCtxChild0,                     // child position residual, 3 axes in coding order (zig-zag)
-    kCtxParent0 = kCtxChild0 + 3,   // parent move residual, the same order (zig-zag)
-    kCtxNormal0 = kCtxParent0 + 3,  // child normal residual, u v (zig-zag; files with normals)
-    kSplitContexts = kCtxNormal0 + 2,
+    kCtxKind,                           // split kind: topology form * 2 + parent moves
+    kCtxParentDelta,                    // parent - previous parent (zig-zag)
+    kCtxErrorStep,                      // (previous error bits - error bits) >> 16
+    kCtxFanStart,                       // compact topology: ring position of the left wing
+    kCtxFanLength,                      // compact topology: faces moving to the child
+    kCtxChild0,                         // child position residual, 3 axes in coding order (zig-zag)
+    kCtxParent0 = kCtxChild0 + 3,       // parent move residual, the same order (zig-zag)
+    kCtxNormal0 = kCtxParent0 + 3,      // child normal residual, u v (zig-zag; files with normals)
+    kCtxChildCoarse = kCtxNormal0 + 2,  // version 6: the child position's grid, log2 steps (0: exact)
+    kCtxParentCoarse,                   // version 6: the moved parent's grid, log2 steps (0: exact)
+    kSplitContexts,
 };
+// Version 6: a position that a later split moves again (an intermediate one,
+// shown only at coarser levels) is coded on a grid of 2^e quantization steps,
+// e <= kMaxCoarseShift, chosen by the writer so that 2^e times the largest step
+// of the box is at most kCoarseFraction times the stored error of the split that
+// moves it (the error of every level that shows it is at least that). So a
+// decoded position is within ProgressiveMesh::position_bound() of the builder's.
+inline constexpr uint32_t kMaxCoarseShift = 15;
+inline constexpr double kCoarseFraction = 1.0 / 16;
+// The writer's grid for a position that a split with stored error `error` moves
+// again: the largest e <= kMaxCoarseShift with 2^e * largest_step <= kCoarseFraction
+// * error (0 when none). largest_step: the box's largest extent / 65535.
+inline uint32_t coarsest_grid(float error, double largest_step) {
+    const double steps = double(error) * kCoarseFraction / largest_step;
+    if (!(steps >= 1)) return 0;
+    return uint32_t(std::min(std::ilogb(steps), int(kMaxCoarseShift)));
+}
+// The box's largest extent / 65535 (the extents in double, from the INFO floats).
+inline double largest_step(const float lo[3], const float hi[3]) {
+    double s = 0;
+    for (int k = 0; k < 3; ++k) s = std::max(s, (double(hi[k]) - double(lo[k])) / 65535);
+    return s;
+}
 inline constexpr uint32_t kSymbolCount = 66;    // 8 small values + 2 per bit length 4..32
 inline constexpr uint32_t kRansBits = 10;       // table precision: frequencies sum to 1024
 inline constexpr uint32_t kRansLow = 1u << 16;  // rANS state normalisation interval [2^16, 2^32), 16-bit words
@@ -163,8 +189,8 @@ public:
             return (high << shift) | get_raw(shift);
         }
         // True once the cursor went past the end of either stream. The padding
-        // after each holds what one split can read (at most 20 values: 40 bytes
-        // of rANS words, 75 bytes of raw bits): check this at least once per split.
+        // after each holds what one split can read (at most 22 values: 44 bytes
+        // of rANS words, 83 bytes of raw bits): check this at least once per split.
         bool past_end() const { return rans_pos > rans_end || bit_pos > bit_end; }
         // True when every byte was consumed exactly and nothing was read past the end.
         bool ok() const {

@@ -187,29 +187,37 @@ TEST(BpmFormat, FileWithoutNormalsDecodesEveryPosition) {
     ASSERT_TRUE(pms.ok()) << pms.error().message;
     pm::ProgressiveMesh& m = *(*pms)[0];
     EXPECT_FALSE(m.has_normals());
-    // Each vertex where it appears: the base at level 0, vertex B + j at level j + 1.
-    const double bound = double(m.quantization_bound()) * 1.01;
+    // Each vertex where it appears: the base at level 0, vertex B + j at level j + 1
+    // (a position that a later split moves on its grid: position_bound, FORMAT.md v6).
     m.set_level(0);
     const size_t base = m.max_vertex_count() - m.max_level();
     for (size_t v = 0; v < base; ++v)
-        ASSERT_LE(glm::length(Vec3(m.position(v)) - build->positions[v]), bound) << "vertex " << v;
+        ASSERT_LE(glm::length(Vec3(m.position(v)) - build->positions[v]), m.quantization_bound() * 1.01)
+            << "vertex " << v;
+    size_t coarse = 0;
     for (size_t j = 0; j < m.max_level(); ++j) {
         m.set_level(j + 1);
-        ASSERT_LE(glm::length(Vec3(m.position(base + j)) - build->positions[base + j]), bound) << "split " << j;
+        const double d = glm::length(Vec3(m.position(base + j)) - build->positions[base + j]);
+        ASSERT_LE(d, m.position_bound() * 1.01) << "split " << j;
+        coarse += d > m.quantization_bound() * 1.01;
     }
+    // The torus's coarse levels do use grids (else this test would not test them).
+    EXPECT_GT(coarse, 0u);
 }
 
 TEST(BpmFormat, OlderVersionsAreRejectedWithTheirNumber) {
     auto bytes = lod::encode_bpm(std::vector<Mesh>{test::icosphere(2)}, lod::LodOptions{});
     ASSERT_TRUE(bytes.ok());
-    std::vector<uint8_t> old = *bytes;
-    old[4] = 4;
-    old[5] = 0;
-    const uint32_t crc = pm::crc32({old.data(), 12});
-    std::memcpy(&old[12], &crc, 4);  // little-endian host, as the format
-    auto r = pm::read_bpm_bytes(old, "old.bpm");
-    ASSERT_FALSE(r.ok());
-    EXPECT_NE(r.error().message.find("byte 4: unsupported version 4"), std::string::npos) << r.error().message;
+    for (uint8_t version : {4, 5}) {  // 5: every position exact (no grids in SPLT)
+        std::vector<uint8_t> old = *bytes;
+        old[4] = version;
+        old[5] = 0;
+        const uint32_t crc = pm::crc32({old.data(), 12});
+        std::memcpy(&old[12], &crc, 4);  // little-endian host, as the format
+        auto r = pm::read_bpm_bytes(old, "old.bpm");
+        ASSERT_FALSE(r.ok());
+        EXPECT_EQ(r.error().message, "old.bpm: file header at byte 4: unsupported version " + std::to_string(version));
+    }
 }
 
 // A level as a sorted list of its triangles, each as its three corner positions
@@ -356,6 +364,42 @@ TEST(BpmFormat, SplitSizesAccountForEverySplitSectionByte) {
     EXPECT_DOUBLE_EQ(sizes.header_bits, 8.0 * 36 * double(sections));
     EXPECT_GE(sizes.framing_bits, 0);
     EXPECT_LT(sizes.framing_bits, 0.02 * sizes.total_bits());
+}
+
+// Version 6: positions that a later split moves go on coarser grids. The file
+// shrinks, the full level is the same to the bit, and at every level each vertex
+// is within position_bound() of where the exact file puts it.
+TEST(BpmFormat, IntermediatePositionsOnGridsKeepTheFullLevelExact) {
+    const Mesh torus = test::bumpy_torus(48, 24);
+    lod::LodOptions exact_options;
+    exact_options.coarse_intermediate = false;
+    auto exact = lod::encode_bpm(std::vector<Mesh>{torus}, exact_options);
+    auto coarse = lod::encode_bpm(std::vector<Mesh>{torus}, lod::LodOptions{});
+    ASSERT_TRUE(exact.ok() && coarse.ok());
+    EXPECT_LT(coarse->size(), exact->size() * 95 / 100) << coarse->size() << " vs " << exact->size();
+    auto a = pm::read_bpm_bytes(*exact, "exact.bpm", pm::BpmStream::FaceOrder::Refinement);
+    auto b = pm::read_bpm_bytes(*coarse, "coarse.bpm", pm::BpmStream::FaceOrder::Refinement);
+    ASSERT_TRUE(a.ok() && b.ok());
+    pm::ProgressiveMesh &ma = *(*a)[0], &mb = *(*b)[0];
+    ASSERT_EQ(ma.max_level(), mb.max_level());
+    size_t moved = 0;
+    for (size_t level = 0; level <= ma.max_level(); level += 1 + level / 8) {
+        ma.set_level(level);
+        mb.set_level(level);
+        EXPECT_FLOAT_EQ(ma.error_at(level), mb.error_at(level));
+        EXPECT_LE(ma.position_bound(), mb.position_bound() * 1.0001);
+        for (size_t v = 0; v < ma.vertex_count(); ++v) {
+            const double d = glm::length(Vec3(ma.position(v)) - Vec3(mb.position(v)));
+            // Both within their bounds of the builder's position: the exact one within quantization.
+            ASSERT_LE(d, ma.quantization_bound() + mb.position_bound()) << "level " << level << " vertex " << v;
+            moved += d > 0;
+        }
+    }
+    EXPECT_GT(moved, 0u);  // some coarse level does show a gridded position
+    ma.set_level(ma.max_level());
+    mb.set_level(mb.max_level());
+    const auto ca = ma.position_codes(), cb = mb.position_codes();
+    EXPECT_TRUE(std::equal(ca.begin(), ca.begin() + ptrdiff_t(ma.vertex_count() * 3), cb.begin()));
 }
 
 }  // namespace

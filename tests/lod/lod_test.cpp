@@ -192,7 +192,7 @@ TEST(Lod, RuntimeMatchesBuilderLevels) {
         // Same positions (moved parents included) up to quantization.
         ASSERT_EQ(ref.positions.size(), m.vertex_count());
         for (size_t v = 0; v < m.vertex_count(); ++v)
-            ASSERT_LE(glm::length(ref.positions[v] - Vec3(m.position(v))), m.quantization_bound())
+            ASSERT_LE(glm::length(ref.positions[v] - Vec3(m.position(v))), m.position_bound())
                 << "level " << k << " vertex " << v;
     }
 }

@@ -758,6 +758,8 @@ TEST(RenderLod, ProgressiveMeshPatchesMatchFreshUploads) {
         Image patched;
         std::vector<Vec3f> positions, normals;
         std::vector<uint32_t> prefix;
+        bool has_box;
+        Vec3f box_min, box_max;
     };
     std::vector<Level> levels;
     for (Style style : {Style::Smooth, Style::Lines}) {
@@ -771,14 +773,23 @@ TEST(RenderLod, ProgressiveMeshPatchesMatchFreshUploads) {
                               f.draw(cam),
                               {m.positions.begin(), m.positions.end()},
                               {m.normals.begin(), m.normals.end()},
-                              {m.indices.begin(), m.indices.begin() + static_cast<long>(m.index_count)}});
+                              {m.indices.begin(), m.indices.begin() + static_cast<long>(m.index_count)},
+                              m.has_position_box,
+                              m.position_box_min,
+                              m.position_box_max});
         }
         EXPECT_EQ(src.triangles(), src.full_triangles());
     }
     // Fresh uploads of each level, in a second context made afterwards.
     RenderFixture g(200, 200);
     for (const Level& l : levels) {
-        auto fresh = g.renderer().add_model({l.positions, l.normals, l.prefix}, "fresh");
+        // In the patched model's position box: both draw the same 16-bit codes (the
+        // box of a coarse level's own positions would round them onto another grid).
+        MeshData fresh_data{l.positions, l.normals, l.prefix};
+        fresh_data.has_position_box = l.has_box;
+        fresh_data.position_box_min = l.box_min;
+        fresh_data.position_box_max = l.box_max;
+        auto fresh = g.renderer().add_model(fresh_data, "fresh");
         ASSERT_TRUE(fresh.ok());
         g.renderer().state(fresh.value())->style = l.style;
         auto d = test::compare(g.draw(cam), l.patched, 4);
