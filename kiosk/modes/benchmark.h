@@ -61,6 +61,11 @@ Status compare_pins(render::Renderer& renderer, render::ModelId id, ModelSource&
 Status compare_cut_plane(render::Renderer& renderer, render::ModelId id, const render::View& camera,
                          const render::FrameOptions& frame, int min_pairs, double seconds);
 
+// Frames of `r` until model `id` draws its level from the ordered copy the
+// kiosk draws a level that stays from (kiosk/render/level_order.h), at most
+// `seconds`; whether it does. Models drawn from the prefix (small, static) answer false at once.
+bool settle_level(render::Renderer& r, render::ModelId id, const render::View& camera,
+                  const render::FrameOptions& frame, double seconds = 30.0);
 // Wall milliseconds of one frame of `r` (glFinish included): the tables' one timer.
 double frame_ms(render::Renderer& r, const render::View& camera, const render::FrameOptions& frame);
 // CPU milliseconds this process has used, all threads (a software rasterizer's included).

@@ -102,6 +102,7 @@ Status Renderer::init(const RendererOptions& options) {
     s_->transfers.staged =
         options.buffer_access == BufferAccess::Staged || (options.buffer_access == BufferAccess::Auto && own_memory);
     s_->transfers.stats = {};
+    s_->settle_seconds = options.settle_seconds;
     s_->ready = true;
 
     std::vector<Vec3f> sp;
@@ -118,6 +119,7 @@ Status Renderer::init(const RendererOptions& options) {
 
 void Renderer::shutdown() {
     s_->pacer.release();
+    s_->level_orders.stop();
     for (auto& [id, m] : s_->models) free_model(m);
     s_->models.clear();
     shutdown_batches(s_->batches);
@@ -227,6 +229,7 @@ size_t Renderer::gpu_bytes() const {
         if (m.vbo_morph) total += m.vertex_allocated * m.position_stride();
         if (m.position_texture) total += (m.vertex_capacity + w - 1) / w * w * 6;
         if (m.edge_texture) total += (m.edge_capacity + w - 1) / w * w * sizeof(GpuEdge);
+        if (m.order.ebo) total += m.order.count * 4;
     }
     if (s_->tam) total += 3 * 256 * 256 * 4 * 4 / 3;  // three RGBA8 layers with mip chains
     total += s_->cut_volume.bytes;
@@ -243,6 +246,24 @@ bool Renderer::read_indices(ModelId id, size_t count,
     }
     const MappedBuffer<uint32_t> map(it->second, it->second.ebo, count);
     if (map.data().size() != count) return false;
+    read(map.data());
+    return true;
+}
+
+bool Renderer::level_ordered(ModelId id) const {
+    auto it = s_->models.find(id);
+    return it != s_->models.end() && render::level_ordered(it->second);
+}
+
+void Renderer::finish_level_orders() {
+    for (auto& [id, m] : s_->models) finish_level_order(m, s_->level_orders);
+}
+
+bool Renderer::read_ordered_indices(ModelId id, const std::function<void(std::span<const uint32_t>)>& read) const {
+    auto it = s_->models.find(id);
+    if (it == s_->models.end() || !render::level_ordered(it->second)) return false;
+    const MappedBuffer<uint32_t> map(it->second, it->second.order.ebo, it->second.order.count);
+    if (map.data().size() != it->second.order.count) return false;
     read(map.data());
     return true;
 }

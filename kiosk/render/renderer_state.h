@@ -10,6 +10,7 @@
 #include "kiosk/render/buffer_access.h"
 #include "kiosk/render/cut_volume.h"
 #include "kiosk/render/flush_pacer.h"
+#include "kiosk/render/level_order.h"
 #include "kiosk/render/model.h"
 #include "kiosk/render/programs.h"
 #include "kiosk/render/renderer.h"
@@ -32,10 +33,12 @@ struct RendererState {
     // Software rasterizers (GL_RENDERER llvmpipe, softpipe): large draws are
     // split and flushed (draw.h, kFlushTriangles).
     bool flush_large_draws = false;
-    FlushPacer pacer;           // their fences, kept across draws and frames (flush_pacer.h)
-    CutCapState cut;            // the cut plane's programs (styles/cut_cap.h)
-    Batches batches;            // many opaque models per draw call (batch.h)
-    CutVolumeState cut_volume;  // the caps' grey-level volume (cut_volume.h)
+    FlushPacer pacer;               // their fences, kept across draws and frames (flush_pacer.h)
+    CutCapState cut;                // the cut plane's programs (styles/cut_cap.h)
+    Batches batches;                // many opaque models per draw call (batch.h)
+    CutVolumeState cut_volume;      // the caps' grey-level volume (cut_volume.h)
+    LevelOrderWorker level_orders;  // orders settled levels off this thread (level_order.h)
+    double settle_seconds = 0.0;    // RendererOptions::settle_seconds
 };
 
 }  // namespace body::render
