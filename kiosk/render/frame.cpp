@@ -179,6 +179,8 @@ void Renderer::render(const View& camera, const Lighting& lighting, const FrameO
     const double now = std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
     for (auto& [id, m] : s.models)
         if (m.state.visible) refresh_level_order(m, s.level_orders, f.serial, now, s.settle_seconds);
+    s.stats.level_order_ms =
+        1e3 * (std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count() - now);
     // The driver may free released storage only once this frame has unbound
     // it (llvmpipe: the vertex stage's sampler view), so the heap is trimmed
     // again at the end of the frame.

@@ -13,12 +13,16 @@
 
 namespace body::render {
 
-void LevelOrderWorker::submit(std::shared_ptr<LevelOrderJob> job) {
+void LevelOrderWorker::start() {
     std::lock_guard<std::mutex> lock(mutex_);
-    if (!thread_.joinable()) {
-        stopping_ = false;
-        thread_ = std::thread([this] { run(); });
-    }
+    if (thread_.joinable()) return;
+    stopping_ = false;
+    thread_ = std::thread([this] { run(); });
+}
+
+void LevelOrderWorker::submit(std::shared_ptr<LevelOrderJob> job) {
+    start();
+    std::lock_guard<std::mutex> lock(mutex_);
     queue_.push_back(std::move(job));
     wake_.notify_one();
 }
@@ -99,7 +103,7 @@ void install(Model& m) {
 
 void refresh_level_order(Model& m, LevelOrderWorker& worker, uint64_t serial, double seconds, double settle_seconds) {
     LevelOrder& o = m.order;
-    if (!o.enabled) return;
+    if (!o.enabled || settle_seconds < 0.0) return;
     if (m.geometry_version != o.seen_version) {
         o.seen_version = m.geometry_version;
         o.seen_frame = serial;
@@ -131,12 +135,6 @@ GLuint drawn_element_buffer(const Model& m) { return level_ordered(m) ? m.order.
 bool level_ordered(const Model& m) {
     const LevelOrder& o = m.order;
     return o.ebo && o.version == m.geometry_version && o.count == m.index_count;
-}
-
-void finish_level_order(Model& m, LevelOrderWorker& worker) {
-    if (!m.order.job) return;
-    worker.wait(*m.order.job);
-    if (worker.done(*m.order.job)) install(m);
 }
 
 void free_level_order(Model& m) {

@@ -12,12 +12,14 @@
 // Vertices keep their order: a progressive mesh appends them.
 //
 // Only models uploaded with MeshData::order_settled_levels take part (a
-// static mesh arrives ordered). Readers of the element buffer (lines,
-// wireframe, the cut section, picking, batches' copies where not said
-// otherwise) keep the prefix; the batch stream takes the ordered copy.
-// Memory: 4 bytes an index of the level in GL while ordered; the worker's
-// transient, while it orders, is the copy in and out plus meshoptimizer's
-// scratch (about 30 bytes a triangle and 16 a vertex).
+// static mesh arrives ordered). The other readers of the element buffer
+// (lines, wireframe, the cut section, picking) keep the prefix; a batch's
+// element stream (batch.h) copies the ordered level.
+// Memory: 4 bytes an index of the level in GL while ordered (12.8 MiB for
+// 1.1M triangles); while the worker orders, the copy in and out plus
+// meshoptimizer's scratch (about 48 bytes a triangle and 16 a vertex: some
+// 50 MiB for 1.1M triangles, given back when done; bench/RESULTS.md).
+// RendererOptions::settle_seconds < 0 turns ordering off.
 #include <GLES3/gl3.h>
 
 #include <atomic>
@@ -65,11 +67,13 @@ struct LevelOrder {
     std::shared_ptr<LevelOrderJob> job;   // in flight, or done and not yet taken
 };
 
-// The renderer's worker thread (started at the first job, joined at shutdown).
+// The renderer's worker thread, started at init (so that the kiosk's thread
+// count stays as it was from the first frame on) and joined at shutdown.
 class LevelOrderWorker {
 public:
     ~LevelOrderWorker() { stop(); }
-    void submit(std::shared_ptr<LevelOrderJob> job);
+    void start();
+    void submit(std::shared_ptr<LevelOrderJob> job);  // starts the thread if it is not running
     bool done(const LevelOrderJob& job);
     void wait(const LevelOrderJob& job);
     void stop();  // waits for the job in hand; queued ones are dropped
@@ -97,8 +101,6 @@ void refresh_level_order(Model& m, LevelOrderWorker& worker, uint64_t serial, do
 GLuint drawn_element_buffer(const Model& m);
 // Whether `m` draws its level from an ordered copy now.
 bool level_ordered(const Model& m);
-// Waits for `m`'s job in flight, if any, and installs its result.
-void finish_level_order(Model& m, LevelOrderWorker& worker);
 // Frees the ordered buffer and forgets the job (the worker drops its result).
 void free_level_order(Model& m);
 

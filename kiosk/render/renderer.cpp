@@ -103,6 +103,7 @@ Status Renderer::init(const RendererOptions& options) {
         options.buffer_access == BufferAccess::Staged || (options.buffer_access == BufferAccess::Auto && own_memory);
     s_->transfers.stats = {};
     s_->settle_seconds = options.settle_seconds;
+    if (s_->settle_seconds >= 0.0) s_->level_orders.start();
     s_->ready = true;
 
     std::vector<Vec3f> sp;
@@ -255,8 +256,15 @@ bool Renderer::level_ordered(ModelId id) const {
     return it != s_->models.end() && render::level_ordered(it->second);
 }
 
+bool Renderer::orders_level(ModelId id) const {
+    auto it = s_->models.find(id);
+    return it != s_->models.end() && it->second.order.enabled && s_->settle_seconds >= 0.0 &&
+           it->second.index_count >= 3 * kMinOrderedTriangles;
+}
+
 void Renderer::finish_level_orders() {
-    for (auto& [id, m] : s_->models) finish_level_order(m, s_->level_orders);
+    for (auto& [id, m] : s_->models)
+        if (m.order.job) s_->level_orders.wait(*m.order.job);
 }
 
 bool Renderer::read_ordered_indices(ModelId id, const std::function<void(std::span<const uint32_t>)>& read) const {

@@ -170,12 +170,15 @@ TEST(RenderLevelOrder, SmallLevelsAndStaticModelsAreNotOrdered) {
     (void)f.draw(cam);
     EXPECT_FALSE(f.renderer().level_ordered(id.value()));
     EXPECT_FALSE(f.renderer().level_ordered(still.value()));
+    EXPECT_FALSE(f.renderer().orders_level(id.value()));
+    EXPECT_FALSE(f.renderer().orders_level(still.value()));
     // The same torus at full detail is (the test can fail).
     src.set_lod(1.0);
     ASSERT_TRUE(f.renderer().update_model(id.value(), src.upload_mesh(), src.take_dirty()).ok());
     for (int i = 0; i < 10; ++i) (void)f.draw(cam);
     f.renderer().finish_level_orders();
     (void)f.draw(cam);
+    EXPECT_TRUE(f.renderer().orders_level(id.value()));
     EXPECT_TRUE(f.renderer().level_ordered(id.value()));
 }
 
