@@ -24,7 +24,13 @@ void LevelOrderWorker::submit(std::shared_ptr<LevelOrderJob> job) {
     start();
     std::lock_guard<std::mutex> lock(mutex_);
     queue_.push_back(std::move(job));
+    ++pending_;
     wake_.notify_one();
+}
+
+bool LevelOrderWorker::idle() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return pending_ == 0;
 }
 
 bool LevelOrderWorker::done(const LevelOrderJob& job) {
@@ -42,6 +48,7 @@ void LevelOrderWorker::stop() {
         std::lock_guard<std::mutex> lock(mutex_);
         stopping_ = true;
         queue_.clear();
+        pending_ = 0;
         wake_.notify_one();
     }
     if (thread_.joinable()) thread_.join();
@@ -55,7 +62,10 @@ void LevelOrderWorker::run() {
         if (stopping_) return;
         std::shared_ptr<LevelOrderJob> job = std::move(queue_.front());
         queue_.pop_front();
-        if (job->dropped) continue;
+        if (job->dropped) {
+            if (pending_ > 0) --pending_;  // 0 after a stop
+            continue;
+        }
         lock.unlock();
         // Only this thread touches the job's arrays until `done` is set.
         std::vector<uint32_t> ordered = order_level(job->indices, job->vertex_count);
@@ -63,6 +73,7 @@ void LevelOrderWorker::run() {
         lock.lock();
         job->indices = std::move(ordered);
         job->done = true;
+        if (pending_ > 0) --pending_;
         finished_.notify_all();
     }
 }
@@ -101,7 +112,8 @@ void install(Model& m) {
 
 }  // namespace
 
-void refresh_level_order(Model& m, LevelOrderWorker& worker, uint64_t serial, double seconds, double settle_seconds) {
+void refresh_level_order(Model& m, LevelOrderWorker& worker, uint64_t serial, double seconds, double settle_seconds,
+                         bool& read_back) {
     LevelOrder& o = m.order;
     if (!o.enabled || settle_seconds < 0.0) return;
     if (m.geometry_version != o.seen_version) {
@@ -117,6 +129,8 @@ void refresh_level_order(Model& m, LevelOrderWorker& worker, uint64_t serial, do
     }
     if (o.ebo || o.tried_version == m.geometry_version || m.index_count < 3 * kMinOrderedTriangles) return;
     if (serial - o.seen_frame < kSettleFrames || seconds - o.seen_seconds < settle_seconds) return;
+    if (read_back || !worker.idle()) return;
+    read_back = true;
     o.tried_version = m.geometry_version;
     // The prefix read back once (in place where the GPU shares memory; a lost
     // mapping waits for the next change of level).

@@ -75,6 +75,10 @@ public:
     void start();
     void submit(std::shared_ptr<LevelOrderJob> job);  // starts the thread if it is not running
     bool done(const LevelOrderJob& job);
+    // No job queued or being ordered: levels are read back one at a time, so
+    // a scene whose models settle together pays one read-back a frame and
+    // holds one job's memory at a time.
+    bool idle();
     void wait(const LevelOrderJob& job);
     void stop();  // waits for the job in hand; queued ones are dropped
 
@@ -84,6 +88,7 @@ private:
     std::condition_variable wake_, finished_;
     std::deque<std::shared_ptr<LevelOrderJob>> queue_;
     std::thread thread_;
+    size_t pending_ = 0;  // submitted, not yet done or dropped
     bool stopping_ = false;
 };
 
@@ -94,8 +99,11 @@ std::vector<uint32_t> order_level(std::span<const uint32_t> indices, size_t vert
 
 // Called once a frame per model before drawing (frame `serial`, at `seconds`
 // on a steady clock): frees an ordered level the geometry has left, installs
-// a finished job's result, and starts a job once the level has settled.
-void refresh_level_order(Model& m, LevelOrderWorker& worker, uint64_t serial, double seconds, double settle_seconds);
+// a finished job's result, and starts a job once the level has settled, the
+// worker is idle and no other model was read back this frame (`read_back`,
+// false at the frame's start, set when this one is).
+void refresh_level_order(Model& m, LevelOrderWorker& worker, uint64_t serial, double seconds, double settle_seconds,
+                         bool& read_back);
 // The element buffer a triangle style draws `m` from: the ordered level when
 // it is the current one, else the model's own (the prefix).
 GLuint drawn_element_buffer(const Model& m);

@@ -3,8 +3,9 @@
 // torus) the ordered copy holds exactly the level's live faces (the same
 // triangles, each with its corners in the same order) in a better cache
 // order, draws the same picture (also cut), is made off the render thread
-// (frames go on while it is made, no waiting call needed), and a change of
-// level falls back to the prefix at once and orders the new level again.
+// (frames go on while it is made, no waiting call needed), models that settle
+// together are read back one at a time, and a change of level falls back to
+// the prefix at once and orders the new level again.
 #include <gtest/gtest.h>
 #include <meshoptimizer.h>
 
@@ -180,6 +181,28 @@ TEST(RenderLevelOrder, SmallLevelsAndStaticModelsAreNotOrdered) {
     (void)f.draw(cam);
     EXPECT_TRUE(f.renderer().orders_level(id.value()));
     EXPECT_TRUE(f.renderer().level_ordered(id.value()));
+}
+
+// Models that settle together are read back one at a time (one job's memory, one read-back a frame).
+TEST(RenderLevelOrder, ModelsSettlingTogetherAreOrderedOneAtATime) {
+    RendererOptions options;
+    options.settle_seconds = 0.0;
+    RenderFixture f(96, 96, options);
+    REQUIRE_GL(f);
+    const std::vector<uint8_t> bytes = torus_bpm();
+    ModelSource a = source_of(bytes), b = source_of(bytes);
+    auto ia = f.renderer().add_model(a.upload_mesh(), "a");
+    auto ib = f.renderer().add_model(b.upload_mesh(), "b");
+    ASSERT_TRUE(ia.ok() && ib.ok());
+    const View cam = View::framing(Vec3f(0.0f), 1.5f);
+    for (uint64_t i = 0; i <= kSettleFrames; ++i) (void)f.draw(cam);  // both settled; one read back
+    f.renderer().finish_level_orders();
+    (void)f.draw(cam);  // the first one's copy goes up, the second one is read back
+    EXPECT_NE(f.renderer().level_ordered(ia.value()), f.renderer().level_ordered(ib.value()));
+    f.renderer().finish_level_orders();
+    (void)f.draw(cam);
+    EXPECT_TRUE(f.renderer().level_ordered(ia.value()));
+    EXPECT_TRUE(f.renderer().level_ordered(ib.value()));
 }
 
 TEST(RenderLevelOrder, OrderLevelKeepsEveryTriangleAndRefusesBadInput) {
