@@ -33,12 +33,14 @@ struct RendererState {
     // Software rasterizers (GL_RENDERER llvmpipe, softpipe): large draws are
     // split and flushed (draw.h, kFlushTriangles).
     bool flush_large_draws = false;
-    FlushPacer pacer;               // their fences, kept across draws and frames (flush_pacer.h)
-    CutCapState cut;                // the cut plane's programs (styles/cut_cap.h)
-    Batches batches;                // many opaque models per draw call (batch.h)
-    CutVolumeState cut_volume;      // the caps' grey-level volume (cut_volume.h)
-    LevelOrderWorker level_orders;  // orders settled levels off this thread (level_order.h)
-    double settle_seconds = 0.0;    // RendererOptions::settle_seconds
+    FlushPacer pacer;           // their fences, kept across draws and frames (flush_pacer.h)
+    CutCapState cut;            // the cut plane's programs (styles/cut_cap.h)
+    Batches batches;            // many opaque models per draw call (batch.h)
+    CutVolumeState cut_volume;  // the caps' grey-level volume (cut_volume.h)
+    // Settled levels ordered off this thread (level_order.h), once they stayed
+    // RendererOptions::settle_seconds.
+    LevelOrderWorker level_orders;
+    double settle_seconds = 0.0;
 };
 
 }  // namespace body::render
