@@ -61,6 +61,13 @@ Status compare_pins(render::Renderer& renderer, render::ModelId id, ModelSource&
 Status compare_cut_plane(render::Renderer& renderer, render::ModelId id, const render::View& camera,
                          const render::FrameOptions& frame, int min_pairs, double seconds);
 
+// Frames of `r` until model `id` draws its level from the ordered copy the
+// kiosk draws a level that stays from (kiosk/render/level_order.h), at most
+// `seconds`; whether it does (false at once for a model never ordered: small,
+// static). `order_ms`, when given, is raised to the largest
+// FrameStats::level_order_ms of those frames.
+bool settle_level(render::Renderer& r, render::ModelId id, const render::View& camera,
+                  const render::FrameOptions& frame, double seconds = 30.0, double* order_ms = nullptr);
 // Wall milliseconds of one frame of `r` (glFinish included): the tables' one timer.
 double frame_ms(render::Renderer& r, const render::View& camera, const render::FrameOptions& frame);
 // CPU milliseconds this process has used, all threads (a software rasterizer's included).

@@ -112,17 +112,19 @@ bool sync_vertices(BatchChunk& c, size_t slot) {
 }
 
 // The element stream of the chunk's `slots` (on screen this frame), by style:
-// each member's index prefix read back from its element buffer, offset to the
-// chunk's vertices. Rebuilt only when the key (slot, style, index count,
-// geometry version of each) differs from the last frame's.
+// each member's index prefix (or its ordered level, level_order.h) read back
+// from its element buffer, offset to the chunk's vertices. Rebuilt only when
+// the key (slot, style, index count, geometry version and element buffer of
+// each) differs from the last frame's.
 void build_stream(BatchChunk& c, const std::vector<size_t>& slots) {
     std::vector<uint64_t> key;
-    key.reserve(slots.size() * 3);
+    key.reserve(slots.size() * 4);
     for (size_t slot : slots) {
         const Model& m = *c.members[slot];
         key.push_back(slot << 8 | static_cast<uint64_t>(m.state.style));
         key.push_back(m.index_count);
         key.push_back(m.geometry_version);
+        key.push_back(drawn_element_buffer(m));
     }
     if (key == c.stream_key) return;
     c.stream_key = std::move(key);
@@ -133,7 +135,7 @@ void build_stream(BatchChunk& c, const std::vector<size_t>& slots) {
         for (size_t slot : slots) {
             const Model& m = *c.members[slot];
             if (m.state.style != style) continue;
-            const MappedBuffer<uint32_t> map(m, m.ebo, m.index_count);
+            const MappedBuffer<uint32_t> map(m, drawn_element_buffer(m), m.index_count);
             if (map.data().size() != m.index_count) continue;  // not drawn this time (a lost mapping)
             const auto base = static_cast<uint32_t>(c.vertex_base[slot]);
             for (uint32_t i : map.data()) stream.push_back(i + base);

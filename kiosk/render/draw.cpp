@@ -49,7 +49,18 @@ void draw_coloured(Frame& f, Program& p, const Model& m, const Vec3f& color, boo
     draw_triangles(f, m);
 }
 
-void draw_triangles(const Frame& f, const Model& m) { draw_element_range(f, m.vao, 0, m.index_count); }
+void draw_triangles(const Frame& f, const Model& m) {
+    const GLuint ebo = drawn_element_buffer(m);
+    if (ebo == m.ebo) {
+        draw_element_range(f, m.vao, 0, m.index_count);
+        return;
+    }
+    // The ordered level for this draw; the vertex array keeps the prefix.
+    glBindVertexArray(m.vao);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, ebo);
+    draw_element_range(f, m.vao, 0, m.index_count);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m.ebo);
+}
 
 void draw_element_range(const Frame& f, GLuint vao, size_t first, size_t count) {
     glBindVertexArray(vao);

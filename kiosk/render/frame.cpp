@@ -5,6 +5,7 @@
 #include <GLES3/gl3.h>
 
 #include <algorithm>
+#include <chrono>
 #include <iterator>
 #include <utility>
 #include <vector>
@@ -175,6 +176,12 @@ void Renderer::render(const View& camera, const Lighting& lighting, const FrameO
     bool any_selected = false;
     for (auto& [id, m] : s.models) any_selected |= !m.internal && m.state.visible && m.state.selected;
     const bool fade_rest = o.xray_unselected && any_selected;
+    const double now = std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+    bool read_back = false;
+    for (auto& [id, m] : s.models)
+        if (m.state.visible) refresh_level_order(m, s.level_orders, f.serial, now, s.settle_seconds, read_back);
+    s.stats.level_order_ms =
+        1e3 * (std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count() - now);
     // The driver may free released storage only once this frame has unbound
     // it (llvmpipe: the vertex stage's sampler view), so the heap is trimmed
     // again at the end of the frame.

@@ -87,6 +87,10 @@ struct MeshData {
     // its array over for good can free it while it goes up (the two copies
     // never coexist in full). Not called for a prefix_only upload.
     std::function<void(size_t end)> indices_uploaded = {};
+    // add_model only: the index prefix is a progressive mesh's (refinement
+    // order), so a level that stays is drawn from an ordered copy
+    // (kiosk/render/level_order.h).
+    bool order_settled_levels = false;
 };
 
 // Half-open element ranges changed since the last upload (vertices: positions

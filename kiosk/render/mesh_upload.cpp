@@ -413,6 +413,7 @@ Result<ModelId> Renderer::add_model(const MeshData& mesh, const std::string& nam
     m.index_allocated = u.filled ? u.isize : std::max<size_t>(u.iupload, 3);
     m.vertex_count = u.vcount;
     m.index_count = u.icount - u.icount % 3;
+    m.order.enabled = mesh.order_settled_levels;
     set_bounds(m, pos, u.vcount);
     choose_position_format(m, mesh, pos, u.vupload);
     if (!upload_buffers(m, mesh, pos, u)) {
@@ -517,6 +518,7 @@ void free_model(Model& m) {
     GLuint textures[] = {m.position_texture, m.position_texture_z, m.edge_texture};
     glDeleteTextures(3, textures);
     if (m.section_vbo) glDeleteBuffers(1, &m.section_vbo);
+    free_level_order(m);
 }
 
 }  // namespace body::render

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <string>
 
+#include "kiosk/render/level_order.h"
 #include "kiosk/render/renderer.h"
 
 namespace body::render {
@@ -65,6 +66,8 @@ struct Model {
     glm::vec4 section_plane{0.0f};  // object space
     uint32_t section_version = 0;
     Vec3f section_center{0.0f}, section_u{0.0f}, section_v{0.0f};  // object space, half sides
+    // The settled level in vertex-cache order (kiosk/render/level_order.h).
+    LevelOrder order;
 };
 
 // Deletes the model's GL buffers, vertex array and data textures.

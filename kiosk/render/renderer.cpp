@@ -102,6 +102,8 @@ Status Renderer::init(const RendererOptions& options) {
     s_->transfers.staged =
         options.buffer_access == BufferAccess::Staged || (options.buffer_access == BufferAccess::Auto && own_memory);
     s_->transfers.stats = {};
+    s_->settle_seconds = options.settle_seconds;
+    if (s_->settle_seconds >= 0.0) s_->level_orders.start();
     s_->ready = true;
 
     std::vector<Vec3f> sp;
@@ -118,6 +120,7 @@ Status Renderer::init(const RendererOptions& options) {
 
 void Renderer::shutdown() {
     s_->pacer.release();
+    s_->level_orders.stop();
     for (auto& [id, m] : s_->models) free_model(m);
     s_->models.clear();
     shutdown_batches(s_->batches);
@@ -227,6 +230,7 @@ size_t Renderer::gpu_bytes() const {
         if (m.vbo_morph) total += m.vertex_allocated * m.position_stride();
         if (m.position_texture) total += (m.vertex_capacity + w - 1) / w * w * 6;
         if (m.edge_texture) total += (m.edge_capacity + w - 1) / w * w * sizeof(GpuEdge);
+        if (m.order.ebo) total += m.order.count * 4;
     }
     if (s_->tam) total += 3 * 256 * 256 * 4 * 4 / 3;  // three RGBA8 layers with mip chains
     total += s_->cut_volume.bytes;
@@ -243,6 +247,31 @@ bool Renderer::read_indices(ModelId id, size_t count,
     }
     const MappedBuffer<uint32_t> map(it->second, it->second.ebo, count);
     if (map.data().size() != count) return false;
+    read(map.data());
+    return true;
+}
+
+bool Renderer::level_ordered(ModelId id) const {
+    auto it = s_->models.find(id);
+    return it != s_->models.end() && render::level_ordered(it->second);
+}
+
+bool Renderer::orders_level(ModelId id) const {
+    auto it = s_->models.find(id);
+    return it != s_->models.end() && it->second.order.enabled && s_->settle_seconds >= 0.0 &&
+           it->second.index_count >= 3 * kMinOrderedTriangles;
+}
+
+void Renderer::finish_level_orders() {
+    for (auto& [id, m] : s_->models)
+        if (m.order.job) s_->level_orders.wait(*m.order.job);
+}
+
+bool Renderer::read_ordered_indices(ModelId id, const std::function<void(std::span<const uint32_t>)>& read) const {
+    auto it = s_->models.find(id);
+    if (it == s_->models.end() || !render::level_ordered(it->second)) return false;
+    const MappedBuffer<uint32_t> map(it->second, it->second.order.ebo, it->second.order.count);
+    if (map.data().size() != it->second.order.count) return false;
     read(map.data());
     return true;
 }

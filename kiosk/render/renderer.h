@@ -101,6 +101,10 @@ struct FrameStats {
     // Cut sections found on the CPU this frame (styles/cut_cap.h); a model
     // whose plane and geometry stayed keeps its section from an earlier frame.
     size_t cut_sections = 0;
+    // Milliseconds this frame spent reading levels back for ordering and
+    // uploading ordered ones (kiosk/render/level_order.h; the ordering itself
+    // runs on a worker).
+    double level_order_ms = 0.0;
 };
 
 // How the renderer writes into its GL buffers (a progressive mesh's packed
@@ -128,6 +132,10 @@ struct RendererOptions {
     // Opaque smooth and baseline models drawn many per call (kiosk/render/batch.h);
     // false (or BODY_BATCH=0 in the environment): one call a model.
     bool batch = true;
+    // A progressive model's level that stays this long (and kSettleFrames
+    // frames) is drawn from a copy in vertex-cache order (level_order.h);
+    // negative: never (the copy and its making cost memory, see there).
+    double settle_seconds = 0.25;
 };
 
 // What buffer reads and writes moved since init (tests, the benchmark).
@@ -176,6 +184,18 @@ public:
     // without calling it, for an unknown model, a count past the buffer or a
     // failed mapping. Context current.
     bool read_indices(ModelId id, size_t count, const std::function<void(std::span<const uint32_t>)>& read) const;
+    // Whether the model draws its current level from a copy in vertex-cache
+    // order (MeshData::order_settled_levels, kiosk/render/level_order.h).
+    bool level_ordered(ModelId id) const;
+    // Whether it will once its level stays (a progressive model's level of at
+    // least kMinOrderedTriangles).
+    bool orders_level(ModelId id) const;
+    // Waits for the orderings in flight (for the benchmark and tests; the
+    // kiosk never waits); the next frame draws their results.
+    void finish_level_orders();
+    // Like read_indices, the ordered copy's entries; false when the model
+    // draws no ordered level now.
+    bool read_ordered_indices(ModelId id, const std::function<void(std::span<const uint32_t>)>& read) const;
     // The model's vertex positions [0, vertex count) read back from its
     // position buffer (floats, or codes decoded as mesh.vert decodes them),
     // for CPU readers of a source that handed its vertex data over

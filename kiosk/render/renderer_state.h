@@ -10,6 +10,7 @@
 #include "kiosk/render/buffer_access.h"
 #include "kiosk/render/cut_volume.h"
 #include "kiosk/render/flush_pacer.h"
+#include "kiosk/render/level_order.h"
 #include "kiosk/render/model.h"
 #include "kiosk/render/programs.h"
 #include "kiosk/render/renderer.h"
@@ -36,6 +37,10 @@ struct RendererState {
     CutCapState cut;            // the cut plane's programs (styles/cut_cap.h)
     Batches batches;            // many opaque models per draw call (batch.h)
     CutVolumeState cut_volume;  // the caps' grey-level volume (cut_volume.h)
+    // Settled levels ordered off this thread (level_order.h), once they stayed
+    // RendererOptions::settle_seconds.
+    LevelOrderWorker level_orders;
+    double settle_seconds = 0.0;
 };
 
 }  // namespace body::render

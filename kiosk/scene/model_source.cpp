@@ -127,6 +127,7 @@ render::MeshData mesh_data_of(pm::ProgressiveMesh& pm) {
     m.indices = pm.indices();
     m.vertex_count = pm.vertex_count();
     m.index_count = 3 * pm.triangle_count();
+    m.order_settled_levels = true;  // refinement order: a level that stays is drawn reordered
     pm::ProgressiveMesh* p = &pm;
     if (pm.vertex_data_released()) {
         // The renderer's buffers are the positions and normals: the parents'

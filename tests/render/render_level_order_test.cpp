@@ -1,0 +1,217 @@
+// A settled level drawn in vertex-cache order (kiosk/render/level_order.h):
+// at random levels of real meshes (the glmark2 bunny where installed, a
+// torus) the ordered copy holds exactly the level's live faces (the same
+// triangles, each with its corners in the same order) in a better cache
+// order, draws the same picture (also cut), is made off the render thread
+// (frames go on while it is made, no waiting call needed), models that settle
+// together are read back one at a time, and a change of level falls back to
+// the prefix at once and orders the new level again.
+#include <gtest/gtest.h>
+#include <meshoptimizer.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <filesystem>
+#include <random>
+#include <thread>
+#include <vector>
+
+#include "builder/lod/bpm_writer.h"
+#include "kiosk/render/level_order.h"
+#include "kiosk/scene/model_source.h"
+#include "shared/obj_io.h"
+#include "shared/pm/bpm_reader.h"
+#include "tests/render/render_fixture.h"
+
+namespace body::render {
+using kiosk::ModelSource;
+namespace {
+
+using test::RenderFixture;
+
+#define REQUIRE_GL(f) \
+    if (!(f).ok()) GTEST_SKIP() << "no headless EGL: " << (f).why()
+
+constexpr const char* kBunny = "/usr/share/glmark2/models/bunny.obj";
+
+std::vector<uint8_t> bpm_of(const Mesh& mesh) {
+    const std::vector<Mesh> meshes = {mesh};
+    auto bytes = lod::encode_bpm(meshes, {});
+    EXPECT_TRUE(bytes.ok()) << (bytes.ok() ? "" : bytes.error().message);
+    return bytes.ok() ? *bytes : std::vector<uint8_t>{};
+}
+
+std::vector<uint8_t> torus_bpm() {
+    const test::GenMesh t = test::torus(96, 48, 0.7f, 0.3f);
+    Mesh mesh;
+    for (const Vec3f& p : t.positions) mesh.positions.emplace_back(p);
+    mesh.indices = t.indices;
+    return bpm_of(mesh);
+}
+
+ModelSource source_of(const std::vector<uint8_t>& bytes) {
+    auto meshes = pm::read_bpm_bytes(bytes, "level.bpm");
+    EXPECT_TRUE(meshes.ok() && meshes->size() == 1);
+    return ModelSource(std::move(meshes->front()));
+}
+
+using Triangle = std::array<uint32_t, 3>;
+std::vector<Triangle> sorted_triangles(std::span<const uint32_t> idx) {
+    std::vector<Triangle> t(idx.size() / 3);
+    for (size_t i = 0; i < t.size(); ++i) t[i] = {idx[3 * i], idx[3 * i + 1], idx[3 * i + 2]};
+    std::sort(t.begin(), t.end());
+    return t;
+}
+
+float acmr(std::span<const uint32_t> idx, size_t vertices) {
+    return meshopt_analyzeVertexCache(idx.data(), idx.size(), vertices, 16, 0, 0).acmr;
+}
+
+// Frames until the model draws an ordered level, without waiting for the
+// worker (the kiosk's way); the count drawn, or -1 after 20000.
+int frames_until_ordered(RenderFixture& f, ModelId id, const View& cam) {
+    for (int n = 1; n <= 20000; ++n) {
+        (void)f.draw(cam);
+        if (f.renderer().level_ordered(id)) return n;
+        std::this_thread::sleep_for(std::chrono::microseconds(200));
+    }
+    return -1;
+}
+
+void random_levels(const std::vector<uint8_t>& bytes, double min_lod, unsigned seed) {
+    ASSERT_FALSE(bytes.empty());
+    ModelSource src = source_of(bytes);
+    RendererOptions options;
+    options.settle_seconds = 0.0;  // frames alone settle a level here
+    RenderFixture f(160, 160, options);
+    REQUIRE_GL(f);
+    auto id = f.renderer().add_model(src.upload_mesh(), "level");
+    ASSERT_TRUE(id.ok()) << id.error().message;
+    (void)src.take_dirty();
+    src.release_arrays();  // the element buffer becomes the only index copy, as in the kiosk
+    const View cam = View::framing(Vec3f(0.0f), 1.0f, Vec3f(0.3f, 0.6f, 1.0f));
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> pick(min_lod, 1.0);
+    for (int round = 0; round < 5; ++round) {
+        // A level other than the last (nearby ratios can share one).
+        if (round == 0) src.set_lod(1.0);
+        const size_t last = round == 0 ? 0 : src.triangles();
+        double lod = 1.0;
+        for (int tries = 0; tries < 100 && src.triangles() == last; ++tries) {
+            lod = round == 0 ? 1.0 : pick(rng);
+            src.set_lod(lod);
+        }
+        ASSERT_NE(src.triangles(), last);
+        SCOPED_TRACE("LOD " + std::to_string(lod));
+        const Dirty dirty = src.take_dirty();
+        ASSERT_TRUE(f.renderer().update_model(id.value(), src.upload_mesh(), dirty).ok());
+        const size_t n = 3 * src.triangles();
+        ASSERT_GE(n, 3 * kMinOrderedTriangles);
+        // The level changed: drawn from the prefix at once, for the settling
+        // frames (also cut through the middle, with caps).
+        FrameOptions cut = f.frame();
+        cut.cut.enabled = true;
+        cut.cut.plane = glm::vec4(0.0f, 0.0f, 1.0f, -0.02f);
+        const Image prefix_picture = f.draw(cam);
+        EXPECT_FALSE(f.renderer().level_ordered(id.value()));
+        const Image prefix_cut = f.draw(cam, Lighting{}, cut);
+        for (uint64_t i = 2; i <= kSettleFrames; ++i) (void)f.draw(cam);
+        // The frame that started the ordering did not wait for it.
+        EXPECT_FALSE(f.renderer().level_ordered(id.value()));
+        EXPECT_GT(frames_until_ordered(f, id.value(), cam), 0);
+        ASSERT_TRUE(f.renderer().level_ordered(id.value()));
+        std::vector<uint32_t> prefix, ordered;
+        ASSERT_TRUE(f.renderer().read_indices(id.value(), n,
+                                              [&](std::span<const uint32_t> i) { prefix.assign(i.begin(), i.end()); }));
+        ASSERT_TRUE(f.renderer().read_ordered_indices(
+            id.value(), [&](std::span<const uint32_t> i) { ordered.assign(i.begin(), i.end()); }));
+        ASSERT_EQ(ordered.size(), n);
+        // The same triangles, corners in the same order (winding kept), reordered for the cache.
+        const std::vector<Triangle> triangles = sorted_triangles(ordered);
+        EXPECT_EQ(triangles, sorted_triangles(prefix));
+        EXPECT_NE(ordered, prefix);
+        const size_t vertices = *std::max_element(prefix.begin(), prefix.end()) + size_t{1};
+        EXPECT_LT(acmr(ordered, vertices), 0.8f * acmr(prefix, vertices));
+        EXPECT_EQ(f.renderer().last_frame_stats().triangles, src.triangles());
+        // The same pictures as the prefix's.
+        EXPECT_EQ(test::compare(prefix_picture, f.draw(cam), 1).bad_block_fraction, 0.0);
+        EXPECT_EQ(test::compare(prefix_cut, f.draw(cam, Lighting{}, cut), 1).bad_block_fraction, 0.0);
+    }
+}
+
+TEST(RenderLevelOrder, RandomLevelsOfATorusAreOrderedExactly) { random_levels(torus_bpm(), 0.15, 24); }
+
+TEST(RenderLevelOrder, RandomLevelsOfTheBunnyAreOrderedExactly) {
+    if (!std::filesystem::exists(kBunny)) GTEST_SKIP() << "needs " << kBunny << " (Debian package glmark2-data)";
+    auto mesh = read_obj_merged(kBunny);
+    ASSERT_TRUE(mesh.ok()) << mesh.error().message;
+    random_levels(bpm_of(*mesh), 0.03, 7);
+}
+
+// Small levels and static models stay on their own element buffer.
+TEST(RenderLevelOrder, SmallLevelsAndStaticModelsAreNotOrdered) {
+    RendererOptions options;
+    options.settle_seconds = 0.0;
+    RenderFixture f(96, 96, options);
+    REQUIRE_GL(f);
+    ModelSource src = source_of(torus_bpm());
+    auto id = f.renderer().add_model(src.upload_mesh(), "torus");
+    ASSERT_TRUE(id.ok());
+    (void)src.take_dirty();
+    src.set_lod(0.05);
+    ASSERT_LT(src.triangles(), kMinOrderedTriangles);
+    ASSERT_TRUE(f.renderer().update_model(id.value(), src.upload_mesh(), src.take_dirty()).ok());
+    const test::GenMesh sphere = test::icosphere(5);  // 20480 triangles, uploaded as a static mesh
+    auto still = f.renderer().add_model(sphere.data(), "sphere");
+    ASSERT_TRUE(still.ok());
+    const View cam = View::framing(Vec3f(0.0f), 1.5f);
+    for (int i = 0; i < 10; ++i) (void)f.draw(cam);
+    f.renderer().finish_level_orders();
+    (void)f.draw(cam);
+    EXPECT_FALSE(f.renderer().level_ordered(id.value()));
+    EXPECT_FALSE(f.renderer().level_ordered(still.value()));
+    EXPECT_FALSE(f.renderer().orders_level(id.value()));
+    EXPECT_FALSE(f.renderer().orders_level(still.value()));
+    // The same torus at full detail is (the test can fail).
+    src.set_lod(1.0);
+    ASSERT_TRUE(f.renderer().update_model(id.value(), src.upload_mesh(), src.take_dirty()).ok());
+    for (int i = 0; i < 10; ++i) (void)f.draw(cam);
+    f.renderer().finish_level_orders();
+    (void)f.draw(cam);
+    EXPECT_TRUE(f.renderer().orders_level(id.value()));
+    EXPECT_TRUE(f.renderer().level_ordered(id.value()));
+}
+
+// Models that settle together are read back one at a time (one job's memory, one read-back a frame).
+TEST(RenderLevelOrder, ModelsSettlingTogetherAreOrderedOneAtATime) {
+    RendererOptions options;
+    options.settle_seconds = 0.0;
+    RenderFixture f(96, 96, options);
+    REQUIRE_GL(f);
+    const std::vector<uint8_t> bytes = torus_bpm();
+    ModelSource a = source_of(bytes), b = source_of(bytes);
+    auto ia = f.renderer().add_model(a.upload_mesh(), "a");
+    auto ib = f.renderer().add_model(b.upload_mesh(), "b");
+    ASSERT_TRUE(ia.ok() && ib.ok());
+    const View cam = View::framing(Vec3f(0.0f), 1.5f);
+    for (uint64_t i = 0; i <= kSettleFrames; ++i) (void)f.draw(cam);  // both settled; one read back
+    f.renderer().finish_level_orders();
+    (void)f.draw(cam);  // the first one's copy goes up, the second one is read back
+    EXPECT_NE(f.renderer().level_ordered(ia.value()), f.renderer().level_ordered(ib.value()));
+    f.renderer().finish_level_orders();
+    (void)f.draw(cam);
+    EXPECT_TRUE(f.renderer().level_ordered(ia.value()));
+    EXPECT_TRUE(f.renderer().level_ordered(ib.value()));
+}
+
+TEST(RenderLevelOrder, OrderLevelKeepsEveryTriangleAndRefusesBadInput) {
+    const test::GenMesh s = test::icosphere(3);
+    const std::vector<uint32_t> out = order_level(s.indices, s.positions.size());
+    EXPECT_EQ(sorted_triangles(out), sorted_triangles(s.indices));
+    EXPECT_TRUE(order_level(s.indices, 3).empty());  // an index past the vertices
+    EXPECT_TRUE(order_level(std::span<const uint32_t>(s.indices).first(4), s.positions.size()).empty());
+}
+
+}  // namespace
+}  // namespace body::render
