@@ -258,6 +258,23 @@ struct Snapped {
     double extent_sum = 0;
 };
 
+// A triangle whose snapped corners are collinear has no plane: it is skipped.
+bool degenerate(const IVec& a, const IVec& b, const IVec& c) {
+    const auto n = cross(sub(b, a), sub(c, a));
+    return n[0] == 0 && n[1] == 0 && n[2] == 0;
+}
+
+// The distinct vertices of `corners`, ascending: a subset's own numbering
+// (local_corner maps a vertex onto it).
+std::vector<uint32_t> distinct_corners(std::vector<uint32_t> corners) {
+    std::sort(corners.begin(), corners.end());
+    corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
+    return corners;
+}
+uint32_t local_corner(const std::vector<uint32_t>& corners, uint32_t v) {
+    return uint32_t(std::lower_bound(corners.begin(), corners.end(), v) - corners.begin());
+}
+
 Snapped snap_mesh(std::span<const Vec3> positions, std::span<const uint32_t> indices) {
     Snapped m;
     const size_t tri_count = indices.size() / 3;
@@ -273,11 +290,8 @@ Snapped snap_mesh(std::span<const Vec3> positions, std::span<const uint32_t> ind
     const Snap snap = Snap::of(m.all);
     m.q.resize(positions.size());
     for (size_t v = 0; v < positions.size(); ++v) m.q[v] = snap(positions[v]);
-    for (size_t t = 0; t < tri_count; ++t) {
-        const IVec &a = m.q[indices[3 * t]], &b = m.q[indices[3 * t + 1]], &c = m.q[indices[3 * t + 2]];
-        auto n = cross(sub(b, a), sub(c, a));
-        if (n[0] == 0 && n[1] == 0 && n[2] == 0) m.skip[t] = 1;
-    }
+    for (size_t t = 0; t < tri_count; ++t)
+        m.skip[t] = degenerate(m.q[indices[3 * t]], m.q[indices[3 * t + 1]], m.q[indices[3 * t + 2]]);
     return m;
 }
 
@@ -292,14 +306,11 @@ size_t count_pairs(std::span<const Vec3> positions, std::span<const uint32_t> in
     if (indices.size() < positions.size()) {
         // A few triangles of a large mesh: the same count over their corners
         // alone (adjacency by index and the snap box are unchanged by renumbering).
-        std::vector<uint32_t> corners(indices.begin(), indices.end());
-        std::sort(corners.begin(), corners.end());
-        corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
+        const std::vector<uint32_t> corners = distinct_corners({indices.begin(), indices.end()});
         std::vector<Vec3> local_positions(corners.size());
         for (size_t i = 0; i < corners.size(); ++i) local_positions[i] = positions[corners[i]];
         std::vector<uint32_t> local(indices.size());
-        for (size_t i = 0; i < indices.size(); ++i)
-            local[i] = uint32_t(std::lower_bound(corners.begin(), corners.end(), indices[i]) - corners.begin());
+        for (size_t i = 0; i < indices.size(); ++i) local[i] = local_corner(corners, indices[i]);
         return count_pairs(local_positions, local, marked, stop_after, pairs);
     }
     const Snapped m = snap_mesh(positions, indices);
@@ -387,20 +398,16 @@ std::vector<uint8_t> triangle_pairs_meet(std::span<const Vec3> positions, std::s
     Aabb all;
     for (uint32_t v : indices) all.extend(positions[v]);
     const Snap snap = Snap::of(all);
-    std::vector<uint32_t> corners;
-    corners.reserve(pairs.size() * 6);
+    std::vector<uint32_t> asked;
+    asked.reserve(pairs.size() * 6);
     for (const auto& [t1, t2] : pairs)
-        for (uint32_t t : {t1, t2}) corners.insert(corners.end(), &indices[3 * size_t(t)], &indices[3 * size_t(t)] + 3);
-    std::sort(corners.begin(), corners.end());
-    corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
+        for (uint32_t t : {t1, t2}) asked.insert(asked.end(), &indices[3 * size_t(t)], &indices[3 * size_t(t)] + 3);
+    const std::vector<uint32_t> corners = distinct_corners(std::move(asked));
     std::vector<IVec> q(corners.size());
     for (size_t i = 0; i < corners.size(); ++i) q[i] = snap(positions[corners[i]]);
     auto local = [&](uint32_t t, uint32_t tri[3]) {
-        for (int c = 0; c < 3; ++c)
-            tri[c] = uint32_t(std::lower_bound(corners.begin(), corners.end(), indices[3 * size_t(t) + size_t(c)]) -
-                              corners.begin());
-        auto n = cross(sub(q[tri[1]], q[tri[0]]), sub(q[tri[2]], q[tri[0]]));
-        return !(n[0] == 0 && n[1] == 0 && n[2] == 0);  // degenerate after snapping: skipped
+        for (int c = 0; c < 3; ++c) tri[c] = local_corner(corners, indices[3 * size_t(t) + size_t(c)]);
+        return !degenerate(q[tri[0]], q[tri[1]], q[tri[2]]);  // degenerate after snapping: skipped
     };
     for (size_t k = 0; k < pairs.size(); ++k) {
         uint32_t a[3], b[3];
