@@ -127,7 +127,7 @@ void refresh_level_order(Model& m, LevelOrderWorker& worker, uint64_t serial, do
         if (worker.done(*o.job)) install(m);
         return;
     }
-    if (o.ebo || o.tried_version == m.geometry_version || m.index_count < 3 * kMinOrderedTriangles) return;
+    if (o.ebo || o.tried_version == m.geometry_version || !orders_level(m, settle_seconds)) return;
     if (serial - o.seen_frame < kSettleFrames || seconds - o.seen_seconds < settle_seconds) return;
     if (read_back || !worker.idle()) return;
     read_back = true;
@@ -142,6 +142,10 @@ void refresh_level_order(Model& m, LevelOrderWorker& worker, uint64_t serial, do
     job->version = m.geometry_version;
     o.job = job;
     worker.submit(std::move(job));
+}
+
+bool orders_level(const Model& m, double settle_seconds) {
+    return m.order.enabled && settle_seconds >= 0.0 && m.index_count >= 3 * kMinOrderedTriangles;
 }
 
 GLuint drawn_element_buffer(const Model& m) { return level_ordered(m) ? m.order.ebo : m.ebo; }

@@ -36,7 +36,6 @@
 namespace body::render {
 
 struct Model;
-struct Transfers;
 
 // Frames a model's geometry must stay unchanged before its level is ordered.
 inline constexpr uint64_t kSettleFrames = 3;
@@ -107,6 +106,10 @@ void refresh_level_order(Model& m, LevelOrderWorker& worker, uint64_t serial, do
 // The element buffer a triangle style draws `m` from: the ordered level when
 // it is the current one, else the model's own (the prefix).
 GLuint drawn_element_buffer(const Model& m);
+// Whether `m`'s current level is one to order once it settles: a progressive
+// model's (MeshData::order_settled_levels), of at least kMinOrderedTriangles,
+// with ordering on (settle_seconds >= 0).
+bool orders_level(const Model& m, double settle_seconds);
 // Whether `m` draws its level from an ordered copy now.
 bool level_ordered(const Model& m);
 // Frees the ordered buffer and forgets the job (the worker drops its result).

@@ -258,8 +258,7 @@ bool Renderer::level_ordered(ModelId id) const {
 
 bool Renderer::orders_level(ModelId id) const {
     auto it = s_->models.find(id);
-    return it != s_->models.end() && it->second.order.enabled && s_->settle_seconds >= 0.0 &&
-           it->second.index_count >= 3 * kMinOrderedTriangles;
+    return it != s_->models.end() && render::orders_level(it->second, s_->settle_seconds);
 }
 
 void Renderer::finish_level_orders() {
