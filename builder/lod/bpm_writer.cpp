@@ -244,13 +244,14 @@ struct SplitWriter {
 // Per split, the grids of the child's position and of the parent's after it: a
 // position that a later split moves (in the builder's codes) is intermediate, and
 // every level showing it has at least that split's error (FORMAT.md, version 6).
-void plan_grids(SplitWriter& w) {
+// Without `coarse` every grid is 0: every position exact.
+void plan_grids(SplitWriter& w, bool coarse) {
     const ProgressiveBuild& pm = w.pm;
     const size_t ns = pm.splits.size();
     const double step = pm::largest_step(w.z.lo, w.z.hi);
     w.child_grid.assign(ns, 0);
     w.parent_grid.assign(ns, 0);
-    if (!(step > 0)) return;
+    if (!coarse || !(step > 0)) return;
     std::vector<float> next_move(pm.positions.size(), 0.0f);  // per vertex: error of the split moving it next
     for (size_t j = ns; j-- > 0;) {
         const VertexSplit& sp = pm.splits[j];
@@ -528,12 +529,7 @@ Result<StructureSections> encode_structure(const Mesh& mesh, const ProgressiveBu
     out.info = info_section(mesh, pm, z, options.normals, chunk);
     SplitWriter w(mesh, pm, z, options.normals);
     w.sizes = sizes;
-    if (options.coarse_intermediate)
-        plan_grids(w);
-    else {
-        w.child_grid.assign(ns, 0);
-        w.parent_grid.assign(ns, 0);
-    }
+    plan_grids(w, options.coarse_intermediate);
     out.base = base_section(pm, z, w.replay);
     for (size_t first = 0; first < ns; first += chunk) {
         auto payload = encode_chunk(w, first, std::min(chunk, ns - first));
