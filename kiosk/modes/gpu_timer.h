@@ -7,7 +7,8 @@
 #include <GLES2/gl2ext.h>
 
 #include <limits>
-#include <string>
+
+#include "kiosk/render/gl_util.h"
 
 namespace body::kiosk {
 
@@ -18,14 +19,7 @@ namespace body::kiosk {
 class GpuTimer {
 public:
     GpuTimer() {
-        GLint count = 0;
-        glGetIntegerv(GL_NUM_EXTENSIONS, &count);
-        bool listed = false;
-        for (GLint i = 0; i < count && !listed; ++i) {
-            const char* e = reinterpret_cast<const char*>(glGetStringi(GL_EXTENSIONS, static_cast<GLuint>(i)));
-            listed = e && std::string(e) == "GL_EXT_disjoint_timer_query";
-        }
-        if (!listed) return;
+        if (!render::gl_has_extension("GL_EXT_disjoint_timer_query")) return;
         gen_ = reinterpret_cast<PFNGLGENQUERIESEXTPROC>(eglGetProcAddress("glGenQueriesEXT"));
         delete_ = reinterpret_cast<PFNGLDELETEQUERIESEXTPROC>(eglGetProcAddress("glDeleteQueriesEXT"));
         begin_ = reinterpret_cast<PFNGLBEGINQUERYEXTPROC>(eglGetProcAddress("glBeginQueryEXT"));

@@ -1,12 +1,13 @@
 #pragma once
-// Small helpers shared by the renderer's files: the debug-build GL error check
-// and handing freed heap memory back to the system.
+// Small helpers shared by the renderer's files: the debug-build GL error check,
+// the context's extension list and handing freed heap memory back to the system.
 #include <GLES3/gl3.h>
 #ifdef __GLIBC__
 #include <malloc.h>
 #endif
 
 #include <cstdio>
+#include <cstring>
 
 #ifdef BODY_GL_DEBUG
 #define BODY_GL_CHECK(where)                                                                               \
@@ -21,6 +22,17 @@
 #endif
 
 namespace body::render {
+
+// Whether the current context lists the GL extension `name`.
+inline bool gl_has_extension(const char* name) {
+    GLint count = 0;
+    glGetIntegerv(GL_NUM_EXTENSIONS, &count);
+    for (GLint i = 0; i < count; ++i) {
+        const char* e = reinterpret_cast<const char*>(glGetStringi(GL_EXTENSIONS, static_cast<GLuint>(i)));
+        if (e && std::strcmp(e, name) == 0) return true;
+    }
+    return false;
+}
 
 // Gives the heap's free memory back to the system (glibc keeps large freed
 // blocks resident; software drivers keep textures and compiler scratch there).

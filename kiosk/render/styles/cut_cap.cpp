@@ -9,11 +9,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <glm/gtc/type_ptr.hpp>
 
 #include "kiosk/render/buffer_access.h"
 #include "kiosk/render/draw.h"
+#include "kiosk/render/gl_util.h"
 #include "kiosk/render/plane_section.h"
 #include "kiosk/render/renderer_state.h"
 #include "kiosk/render/section_fan.h"
@@ -211,23 +211,13 @@ void fill_cap(CutCapState& cut, CutVolumeState& volume, Frame& f, Vec3f center_v
     glDisable(GL_STENCIL_TEST);
 }
 
-bool offers_extension(const char* name) {
-    GLint count = 0;
-    glGetIntegerv(GL_NUM_EXTENSIONS, &count);
-    for (GLint i = 0; i < count; ++i) {
-        const char* e = reinterpret_cast<const char*>(glGetStringi(GL_EXTENSIONS, static_cast<GLuint>(i)));
-        if (e && std::strcmp(e, name) == 0) return true;
-    }
-    return false;
-}
-
 // The clipped program table: clipped as geometry where the driver offers
 // clip distances (no fragment of the removed side shaded, early depth tests
 // kept), else by clip.glsl's discard.
 bool link_clipped(Programs& clipped) {
     constexpr const char* kDistance =
         "#extension GL_EXT_clip_cull_distance : require\n#define BODY_CLIP 1\n#define BODY_CLIP_DISTANCE 1\n";
-    if (offers_extension("GL_EXT_clip_cull_distance") && link_programs(clipped, kDistance)) {
+    if (gl_has_extension("GL_EXT_clip_cull_distance") && link_programs(clipped, kDistance)) {
         for (Program* p :
              {&clipped.baseline, &clipped.smooth, &clipped.hatching, &clipped.xray, &clipped.lines, &clipped.wireframe})
             p->clip_distance = true;
