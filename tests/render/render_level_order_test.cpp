@@ -22,6 +22,7 @@
 #include "kiosk/scene/model_source.h"
 #include "shared/obj_io.h"
 #include "shared/pm/bpm_reader.h"
+#include "tests/render/bpm_models.h"
 #include "tests/render/render_fixture.h"
 
 namespace body::render {
@@ -35,26 +36,9 @@ using test::RenderFixture;
 
 constexpr const char* kBunny = "/usr/share/glmark2/models/bunny.obj";
 
-std::vector<uint8_t> bpm_of(const Mesh& mesh) {
-    const std::vector<Mesh> meshes = {mesh};
-    auto bytes = lod::encode_bpm(meshes, {});
-    EXPECT_TRUE(bytes.ok()) << (bytes.ok() ? "" : bytes.error().message);
-    return bytes.ok() ? *bytes : std::vector<uint8_t>{};
-}
-
-std::vector<uint8_t> torus_bpm() {
-    const test::GenMesh t = test::torus(96, 48, 0.7f, 0.3f);
-    Mesh mesh;
-    for (const Vec3f& p : t.positions) mesh.positions.emplace_back(p);
-    mesh.indices = t.indices;
-    return bpm_of(mesh);
-}
-
-ModelSource source_of(const std::vector<uint8_t>& bytes) {
-    auto meshes = pm::read_bpm_bytes(bytes, "level.bpm");
-    EXPECT_TRUE(meshes.ok() && meshes->size() == 1);
-    return ModelSource(std::move(meshes->front()));
-}
+using test::bpm_of;
+std::vector<uint8_t> torus_bpm() { return test::torus_bpm(96, 48); }
+ModelSource source_of(const std::vector<uint8_t>& bytes) { return test::source_of(bytes, "level.bpm"); }
 
 using Triangle = std::array<uint32_t, 3>;
 std::vector<Triangle> sorted_triangles(std::span<const uint32_t> idx) {

@@ -13,6 +13,7 @@
 #include "builder/lod/simplify.h"
 #include "kiosk/scene/model_source.h"
 #include "shared/pm/bpm_reader.h"
+#include "tests/render/bpm_models.h"
 #include "tests/render/render_fixture.h"
 
 namespace body::render {
@@ -24,22 +25,8 @@ using test::RenderFixture;
 #define REQUIRE_GL(f) \
     if (!(f).ok()) GTEST_SKIP() << "no headless EGL: " << (f).why()
 
-std::vector<uint8_t> torus_bpm() {
-    const test::GenMesh t = test::torus(48, 24, 0.7f, 0.3f);
-    Mesh mesh;
-    for (const Vec3f& p : t.positions) mesh.positions.emplace_back(p);
-    mesh.indices = t.indices;
-    const std::vector<Mesh> meshes = {mesh};
-    auto bytes = lod::encode_bpm(meshes, {});
-    EXPECT_TRUE(bytes.ok()) << (bytes.ok() ? "" : bytes.error().message);
-    return bytes.ok() ? *bytes : std::vector<uint8_t>{};
-}
-
-ModelSource source_of(const std::vector<uint8_t>& bytes) {
-    auto meshes = pm::read_bpm_bytes(bytes, "torus.bpm");
-    EXPECT_TRUE(meshes.ok() && meshes->size() == 1);
-    return ModelSource(std::move(meshes->front()));
-}
+std::vector<uint8_t> torus_bpm() { return test::torus_bpm(48, 24); }
+ModelSource source_of(const std::vector<uint8_t>& bytes) { return test::source_of(bytes, "torus.bpm"); }
 
 // The buffer filled, patched and read back (lines, wireframe) with `access`.
 void patched_buffer_draws_like_fresh_uploads(BufferAccess access) {
