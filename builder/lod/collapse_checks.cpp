@@ -24,14 +24,12 @@ static bool third_vertex(const State& s, uint32_t face, uint32_t u, uint32_t v, 
     return has_v;
 }
 
-// Unit normal of face f with vertices u and v placed at p.
-static Vec3 face_normal(const State& s, uint32_t f, uint32_t u, uint32_t v, const Vec3& p) {
+// Normal (not normalised) of face f with vertices u and v placed at p.
+static Vec3 face_normal_raw(const State& s, uint32_t f, uint32_t u, uint32_t v, const Vec3& p) {
     const uint32_t* t = &s.idx[f * 3];
     Vec3 r[3];
     for (int k = 0; k < 3; ++k) r[k] = t[k] == u || t[k] == v ? p : s.pos[t[k]];
-    const Vec3 n = glm::cross(r[1] - r[0], r[2] - r[0]);
-    const double l = glm::length(n);
-    return l > 0.0 ? n / l : Vec3(0.0);
+    return glm::cross(r[1] - r[0], r[2] - r[0]);
 }
 
 // The live face traversing edge b -> a (the neighbour of a face with edge a -> b).
@@ -180,7 +178,8 @@ bool geometry_allowed(State& s, uint32_t u, uint32_t v, const Vec3& target, cons
         fan.insert(fan.end(), s.cv.begin(), s.cv.end());
     }
     auto removed = [&](uint32_t f) { return f == shared[0] || (shared_count == 2 && f == shared[1]); };
-    // Unit normals before/after, kept for the fold guard below (as face_normal computes them).
+    // Normals before/after (not normalised: the fold guard below first tests the sign of
+    // their dot products, and a fold needs a negative one), zero for the removed faces.
     auto& fan_old = s.fan_old;
     auto& fan_new = s.fan_new;
     fan_old.resize(fan.size());
@@ -206,19 +205,22 @@ bool geometry_allowed(State& s, uint32_t u, uint32_t v, const Vec3& target, cons
         if (!(glm::dot(n0, n1) > kMinTurnCos * std::sqrt(glm::dot(n0, n0) * glm::dot(n1, n1)))) return false;
         const double l2 = std::max({glm::dot(r[1] - r[0], r[1] - r[0]), glm::dot(r[2] - r[1], r[2] - r[1]),
                                     glm::dot(r[0] - r[2], r[0] - r[2])});
-        if (glm::dot(n1, n1) <= 1e-12 * l2 * l2) return false;
+        if (glm::dot(n1, n1) <= 1e-12 * l2 * l2) return false;  // (so n1 is not zero)
         if (flat_on_grid(r, n1, l2, s.settings)) {
             const double l2_before = std::max({glm::dot(p[1] - p[0], p[1] - p[0]), glm::dot(p[2] - p[1], p[2] - p[1]),
                                                glm::dot(p[0] - p[2], p[0] - p[2])});
             if (!flat_on_grid(p, n0, l2_before, s.settings)) return false;
         }
-        fan_old[i] = unit(n0);
-        fan_new[i] = unit(n1);
+        fan_old[i] = n0;
+        fan_new[i] = n1;
     }
     // Fold guard: a moved face must not end up (nearly) back to back with a
     // neighbour unless it already was. Neighbours across the fan edges are other
     // faces of the fan; across the edge opposite the moving vertex, one lookup
     // (its face's corners, then their positions, requested for the whole fan first).
+    // The angles are compared between unit normals; a non-negative dot product of the
+    // unnormalised ones is far from kFoldCos (short of underflow, below 1e-300), so most
+    // pairs need no normalisation: the same decisions as normalising every normal.
     for (size_t i = 0; i < fan.size(); ++i) {
         const uint32_t g = s.across[fan[i] / 3 * 3 + (fan[i] % 3 + 1) % 3];
         if (g < kUnknown) prefetch(&s.idx[g * 3]);
@@ -235,18 +237,22 @@ bool geometry_allowed(State& s, uint32_t u, uint32_t v, const Vec3& target, cons
         const uint32_t known = s.across[f * 3 + (k + 1) % 3];
         const uint32_t g = known == kUnknown ? face_across(s, x, y) : known;
         if (g != kNone && !removed(g)) {
-            const Vec3 ng = face_normal(s, g, u, v, target);
-            const double after = glm::dot(fan_new[i], ng), before = glm::dot(fan_old[i], ng);
-            if (after < kFoldCos && after < before) return false;
+            const Vec3 ng = face_normal_raw(s, g, u, v, target);
+            if (glm::dot(fan_new[i], ng) < 0.0) {
+                const Vec3 unit_g = unit(ng), unit_new = unit(fan_new[i]);
+                const double after = glm::dot(unit_new, unit_g), before = glm::dot(unit(fan_old[i]), unit_g);
+                if (after < kFoldCos && after < before) return false;
+            }
         }
         // Nearly every pair is far from folded: test the angle first, adjacency after
         // (a removed face's zero normal never passes the angle test).
         for (size_t j = i + 1; j < fan.size(); ++j) {
-            const double after = glm::dot(fan_new[i], fan_new[j]);
+            if (!(glm::dot(fan_new[i], fan_new[j]) < 0.0)) continue;
+            const double after = glm::dot(unit(fan_new[i]), unit(fan_new[j]));
             if (!(after < kFoldCos)) continue;
             const uint32_t* t = &s.idx[fan[j] / 3 * 3];
             if (t[0] != x && t[1] != x && t[2] != x && t[0] != y && t[1] != y && t[2] != y) continue;
-            if (after < glm::dot(fan_old[i], fan_old[j])) return false;
+            if (after < glm::dot(unit(fan_old[i]), unit(fan_old[j]))) return false;
         }
     }
     return true;
