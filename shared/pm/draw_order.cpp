@@ -68,12 +68,15 @@ void optimise_window(const uint32_t* indices, uint32_t* order, size_t n, CacheOr
     uint32_t nv = 0;
     for (size_t t = 0; t < n; ++t)
         for (size_t k = 0; k < 3; ++k) {
-            const uint32_t v = indices[size_t(order[t]) * 3 + k];
-            if (s.local_of[v] == UINT32_MAX) {
-                s.global[nv] = v;
-                s.local_of[v] = nv++;
-            }
-            s.local[t * 3 + k] = s.local_of[v];
+            // Without branches (whether a vertex is new is unpredictable): global[nv]
+            // is written every time and kept only when nv moves on.
+            const uint32_t v = indices[size_t(order[t]) * 3 + k], known = s.local_of[v];
+            const uint32_t fresh = 0u - uint32_t(known == UINT32_MAX);  // all ones or 0
+            s.global[nv] = v;
+            const uint32_t local = known ^ ((known ^ nv) & fresh);
+            s.local_of[v] = local;
+            s.local[t * 3 + k] = local;
+            nv -= fresh;  // + 1 when fresh
         }
     for (uint32_t v = 0; v < nv; ++v) s.local_of[s.global[v]] = UINT32_MAX;
     uint32_t* sorted = s.sorted.data();
@@ -110,7 +113,9 @@ void optimise_window(const uint32_t* indices, uint32_t* order, size_t n, CacheOr
 void cache_order(const uint32_t* indices, size_t face_count, size_t vertex_count, const uint16_t* qpos, uint32_t* order,
                  CacheOrderScratch& scratch) {
     sort_spatially(indices, face_count, qpos, order, scratch);
-    scratch.local_of.assign(vertex_count, UINT32_MAX);
+    // Every entry is UINT32_MAX between windows (optimise_window restores them):
+    // only the new vertices' entries are written.
+    if (scratch.local_of.size() < vertex_count) scratch.local_of.resize(vertex_count, UINT32_MAX);
     for (auto* v : {&scratch.local, &scratch.sorted, &scratch.global}) v->resize(3 * kWindowFaces);
     scratch.start.resize(3 * kWindowFaces + 1);
     scratch.by_first.resize(kWindowFaces);
@@ -122,9 +127,15 @@ void cache_order(const uint32_t* indices, size_t face_count, size_t vertex_count
 void first_use_order(const uint32_t* indices, size_t index_count, uint32_t first, uint32_t count, uint32_t* number) {
     std::fill(number, number + count, UINT32_MAX);
     uint32_t next = first;
+    if (count == 0) return;
+    // Without branches (whether a vertex is new is unpredictable): a vertex
+    // outside the range reads and rewrites entry 0 unchanged.
     for (size_t i = 0; i < index_count; ++i) {
         const uint32_t k = indices[i] - first;  // wraps above count for a vertex below first
-        if (k < count && number[k] == UINT32_MAX) number[k] = next++;
+        const uint32_t inside = 0u - uint32_t(k < count), at = k & inside;
+        const uint32_t fresh = inside & (0u - uint32_t(number[at] == UINT32_MAX));  // all ones or 0
+        number[at] ^= (number[at] ^ next) & fresh;
+        next -= fresh;  // + 1 when fresh
     }
     for (uint32_t k = 0; k < count; ++k)
         if (number[k] == UINT32_MAX) number[k] = next++;

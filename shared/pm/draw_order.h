@@ -42,7 +42,8 @@ inline constexpr double kBatchRatio = 2.0;
 // vertices: ascending, the last == splits, none 0 (level 0 is always a boundary).
 std::vector<uint32_t> batch_levels(size_t base_vertices, size_t splits);
 
-// Working memory of cache_order, caller-owned and reused between calls.
+// Working memory of cache_order, caller-owned and reused between calls (its
+// contents belong to cache_order: local_of stays all UINT32_MAX between calls).
 struct CacheOrderScratch {
     std::vector<uint64_t> keys;
     std::vector<uint32_t> local_of, local, sorted, global, start, by_first, window;

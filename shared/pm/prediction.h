@@ -60,10 +60,9 @@ inline int64_t floor_div(int64_t a, int64_t b) {  // b > 0
 }
 // a / b rounded to nearest (halves up), b != 0.
 [[gnu::always_inline]] inline int64_t round_div(int64_t a, int64_t b) {
-    if (b < 0) {
-        a = -a;
-        b = -b;
-    }
+    const int64_t sign = b >> 63;  // 0 or -1: both negated when b < 0, without a branch
+    a = (a ^ sign) - sign;
+    b = (b ^ sign) - sign;
     const int64_t num = 2 * a + b, den = 2 * b;
     // The same quotient with a 32-bit division when both fit (64-bit ones are slow on some CPUs).
     if (num >= 0 && num < (int64_t(1) << 31) && den < (int64_t(1) << 31)) return int64_t(uint32_t(num) / uint32_t(den));
@@ -89,8 +88,10 @@ void predict_fan(const uint16_t* q, const uint32_t* ring, uint32_t k, uint32_t s
                  const uint16_t v[3], const int64_t* plane, FanPrediction& out);
 // The other two axes of pred.axis (< 3), ascending.
 inline void plane_axes(uint32_t axis, uint32_t& a, uint32_t& b) {
-    a = axis == 0 ? 1 : 0;
-    b = axis == 2 ? 1 : 2;
+    // By table: comparisons here compiled to branches that mispredicted.
+    static constexpr uint32_t kFirst[3] = {1, 0, 0}, kSecond[3] = {2, 2, 1};
+    a = kFirst[axis];
+    b = kSecond[axis];
 }
 // The coordinate along pred.axis (< 3) of the point whose other two coordinates are
 // those of `t`, on the plane through v with normal pred.normal moved off it by

@@ -106,10 +106,13 @@ void ProgressiveMesh::order_batch(size_t level) {
     for (size_t i = 0; i < n * 3; ++i) faces[i] = replay_.index(f0 * 3 + i);
     cache_order(faces.data(), n, base_vertices_ + level, qpos_.data(), order.data(), order_scratch_);
     const uint32_t v0 = uint32_t(base_vertices_ + lo), nv = uint32_t(level - lo);
-    std::vector<uint32_t> number(nv), ordered(n * 3);
+    std::vector<uint32_t> number(std::max<uint32_t>(nv, 1)), ordered(n * 3);
     for (size_t t = 0; t < n; ++t) std::copy_n(&faces[size_t(order[t]) * 3], 3, &ordered[t * 3]);
     first_use_order(ordered.data(), n * 3, v0, nv, number.data());
-    const auto renumber = [&](uint32_t v) { return v - v0 < nv ? number[v - v0] : v; };
+    const auto renumber = [&](uint32_t v) {  // without a branch: older vertices are interleaved unpredictably
+        const uint32_t k = v - v0, inside = 0u - uint32_t(k < nv), renumbered = number[k & inside];
+        return v ^ ((v ^ renumbered) & inside);
+    };
     // The faces' entries at level_ (scratch: the old entries), moved and renumbered.
     std::copy(indices_.begin() + ptrdiff_t(f0 * 3), indices_.begin() + ptrdiff_t(f1 * 3), faces.begin());
     for (size_t t = 0; t < n; ++t) {
@@ -137,7 +140,7 @@ void ProgressiveMesh::order_batch(size_t level) {
     batch_patch_begin_ = i;
     // The vertex data in the new numbers (the file's numbers map there from now on).
     for (uint32_t k = 0; k < nv; ++k) vertex_slot_[v0 + k] = number[k];
-    permute_vertices(v0, number);
+    permute_vertices(v0, {number.data(), nv});
     dirty_vertices_.add(v0, v0 + nv);
     dirty_indices_.add(f0 * 3, f1 * 3);
 }

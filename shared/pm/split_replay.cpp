@@ -9,6 +9,9 @@ namespace body::pm {
 
 namespace {
 constexpr uint32_t kMinRegion = 8;  // corners: a typical vertex (valence 6) fits with room to grow
+// The corner after and before corner k (0 .. 2) in its face, by table: a
+// comparison there compiled to a branch that mispredicted about once a split.
+constexpr uint32_t kNextCorner[3] = {1, 2, 0}, kPreviousCorner[3] = {2, 0, 1};
 }  // namespace
 
 void SplitReplay::reset(size_t vertex_capacity, size_t face_capacity) {
@@ -113,15 +116,15 @@ size_t SplitReplay::ordered_fan(const uint32_t* corners, size_t count, uint32_t*
     uint32_t after[64], before[64];  // the vertices after and before v in each face
     for (size_t i = 0; i < count; ++i) {
         const uint32_t c = corners[i], f = c / 3 * 3, k = c - f;
-        after[i] = indices_[f + (k == 2 ? 0 : k + 1)];
-        before[i] = indices_[f + (k == 0 ? 2 : k - 1)];
+        after[i] = indices_[f + kNextCorner[k]];
+        before[i] = indices_[f + kPreviousCorner[k]];
         slot_face[after[i] % kSlots] = 0xff;
         slot_face[before[i] % kSlots] = 0xff;
     }
     bool hashed = true;
     for (size_t i = 0; i < count; ++i) {
         uint8_t& s = slot_face[after[i] % kSlots];
-        hashed = hashed && s == 0xff;
+        hashed &= s == 0xff;
         s = uint8_t(i);
     }
     // Walk from face 0 to the face that starts where this one ends. Returning to
@@ -150,14 +153,15 @@ bool SplitReplay::apply_mask(uint32_t parent, uint32_t child, uint64_t mask, con
     uint32_t* to = make_room(child, region(child).count + moving + 2);  // + the split's new faces
     uint32_t* from = pool_.data() + regions_[parent].offset;            // after make_room: the pool may have moved
     uint32_t kept = 0, m = regions_[child].count;
+    // Without branches (the mask's bits are unpredictable): every corner is
+    // written to both lists, and only the list it belongs to moves on.
     for (size_t i = 0; i < count; ++i) {
-        const uint32_t c = corners[i];
-        if (i < 64 && (mask >> i) & 1) {
-            indices_[c] = child;
-            to[m++] = c;
-        } else {
-            from[kept++] = c;
-        }
+        const uint32_t c = corners[i], moves = (uint32_t(mask >> (i & 63)) & 1u) & uint32_t(i < 64);
+        indices_[c] ^= (indices_[c] ^ child) & (0u - moves);  // a mask, not a select: GCC made that a branch
+        to[m] = c;
+        from[kept] = c;
+        m += moves;
+        kept += 1 - moves;
     }
     std::copy_n(to + regions_[child].count, moving, moved);
     regions_[child].count = m;
@@ -199,7 +203,7 @@ void SplitReplay::prefetch(uint32_t v, int stage, const uint16_t* qpos) const {
     for (uint32_t i = 0; i < r.count && i < 16; ++i) {
         const uint32_t* t = &indices_[c[i] / 3 * 3];
         // The vertex after v in each face: every neighbour once around an interior vertex.
-        const uint32_t k = c[i] - c[i] / 3 * 3, n = t[k == 2 ? 0 : k + 1];
+        const uint32_t n = t[kNextCorner[c[i] - c[i] / 3 * 3]];
         if (n < regions_.size()) __builtin_prefetch(&regions_[n]);
         if (qpos) __builtin_prefetch(qpos + size_t(n) * 3);
     }
