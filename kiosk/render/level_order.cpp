@@ -1,15 +1,15 @@
 // A settled level drawn in vertex-cache order (see level_order.h). Phases a
 // frame, per model: forget what the geometry left, take a finished job, start
-// one once the level settled; the worker orders one job at a time.
+// one once the level settled (a GPU copy of the prefix, mapped, and the cell
+// of each vertex); the worker orders one job at a time, in place.
 #include "kiosk/render/level_order.h"
-
-#include <meshoptimizer.h>
 
 #include <algorithm>
 #include <utility>
 
 #include "kiosk/render/buffer_access.h"
 #include "kiosk/render/model.h"
+#include "kiosk/render/window_order.h"
 
 namespace body::render {
 
@@ -23,6 +23,7 @@ void LevelOrderWorker::start() {
 void LevelOrderWorker::submit(std::shared_ptr<LevelOrderJob> job) {
     start();
     std::lock_guard<std::mutex> lock(mutex_);
+    job->worker = this;
     queue_.push_back(std::move(job));
     ++pending_;
     wake_.notify_one();
@@ -43,10 +44,17 @@ void LevelOrderWorker::wait(const LevelOrderJob& job) {
     finished_.wait(lock, [&] { return job.done || !thread_.joinable() || stopping_; });
 }
 
+void LevelOrderWorker::release(LevelOrderJob& job) {
+    std::unique_lock<std::mutex> lock(mutex_);
+    job.dropped = true;  // under the mutex: a queued job is skipped, the one in hand stops
+    finished_.wait(lock, [&] { return current_ != &job; });
+}
+
 void LevelOrderWorker::stop() {
     {
         std::lock_guard<std::mutex> lock(mutex_);
         stopping_ = true;
+        if (current_) current_->dropped = true;
         queue_.clear();
         pending_ = 0;
         wake_.notify_one();
@@ -66,24 +74,18 @@ void LevelOrderWorker::run() {
             if (pending_ > 0) --pending_;  // 0 after a stop
             continue;
         }
+        current_ = job.get();
         lock.unlock();
-        // Only this thread touches the job's arrays until `done` is set.
-        std::vector<uint32_t> ordered = order_level(job->indices, job->vertex_count);
-        std::vector<uint32_t>().swap(job->indices);
+        // Only this thread touches the job's indices until current_ is reset.
+        const bool ordered = order_in_windows(job->indices, job->cells, &job->dropped);
+        std::vector<uint16_t>().swap(job->cells);
         lock.lock();
-        job->indices = std::move(ordered);
+        current_ = nullptr;
+        job->ordered = ordered;
         job->done = true;
         if (pending_ > 0) --pending_;
         finished_.notify_all();
     }
-}
-
-std::vector<uint32_t> order_level(std::span<const uint32_t> indices, size_t vertex_count) {
-    if (indices.size() % 3 != 0) return {};
-    if (std::any_of(indices.begin(), indices.end(), [&](uint32_t i) { return i >= vertex_count; })) return {};
-    std::vector<uint32_t> out(indices.size());
-    meshopt_optimizeVertexCache(out.data(), indices.data(), indices.size(), vertex_count);
-    return out;
 }
 
 namespace {
@@ -94,20 +96,88 @@ void free_buffer(LevelOrder& o) {
     o.count = 0;
 }
 
-// The finished job's triangles in a new element buffer, when they are still
-// the model's level (bound to GL_COPY_WRITE_BUFFER: no vertex array's state).
+// Unmaps and deletes the job's buffer (bound to GL_COPY_WRITE_BUFFER: no
+// vertex array's state); whether its contents were kept while mapped.
+bool unmap_pending(LevelOrder& o, bool keep) {
+    if (!o.pending) return false;
+    glBindBuffer(GL_COPY_WRITE_BUFFER, o.pending);
+    const bool kept = glUnmapBuffer(GL_COPY_WRITE_BUFFER) == GL_TRUE;
+    glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
+    if (!keep || !kept) {
+        glDeleteBuffers(1, &o.pending);
+        o.pending = 0;
+    }
+    return kept;
+}
+
+// The finished job's buffer drawn from, when it holds the model's level in
+// cache order (staged: copied into a new buffer on the GPU first).
 void install(Model& m) {
     LevelOrder& o = m.order;
     const std::shared_ptr<LevelOrderJob> job = std::move(o.job);
-    if (job->version != m.geometry_version || job->indices.size() != m.index_count) return;
+    const bool current = job->ordered && job->version == m.geometry_version && job->indices.size() == m.index_count;
+    if (!unmap_pending(o, current) || !current) return;
     free_buffer(o);
-    glGenBuffers(1, &o.ebo);
-    glBindBuffer(GL_COPY_WRITE_BUFFER, o.ebo);
-    glBufferData(GL_COPY_WRITE_BUFFER, static_cast<GLsizeiptr>(job->indices.size() * sizeof(uint32_t)),
-                 job->indices.data(), GL_STATIC_DRAW);
-    glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
+    const GLsizeiptr bytes = static_cast<GLsizeiptr>(job->indices.size() * sizeof(uint32_t));
+    if (o.pending_staged) {
+        glGenBuffers(1, &o.ebo);
+        glBindBuffer(GL_COPY_READ_BUFFER, o.pending);
+        glBindBuffer(GL_COPY_WRITE_BUFFER, o.ebo);
+        glBufferData(GL_COPY_WRITE_BUFFER, bytes, nullptr, GL_STATIC_DRAW);
+        glCopyBufferSubData(GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, 0, 0, bytes);
+        glBindBuffer(GL_COPY_READ_BUFFER, 0);
+        glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
+        glDeleteBuffers(1, &o.pending);
+        m.transfers->stats.staged_bytes += static_cast<size_t>(bytes);
+    } else {
+        o.ebo = o.pending;
+    }
+    o.pending = 0;
     o.count = job->indices.size();
     o.version = job->version;
+}
+
+// The cell (window_order.h) of each vertex in the model's box; empty when
+// the positions could not be mapped.
+std::vector<uint16_t> vertex_cells(const Model& m) {
+    const MappedPositions p(m);
+    if (!p.ok()) return {};
+    std::vector<uint16_t> cells(p.size());
+    const Vec3f extent = m.box_max - m.box_min;
+    const Vec3f inv(extent.x > 0.0f ? 1.0f / extent.x : 0.0f, extent.y > 0.0f ? 1.0f / extent.y : 0.0f,
+                    extent.z > 0.0f ? 1.0f / extent.z : 0.0f);
+    for (size_t v = 0; v < cells.size(); ++v) {
+        const Vec3f t = (p[v] - m.box_min) * inv;
+        cells[v] = order_cell(t.x, t.y, t.z);
+    }
+    return cells;
+}
+
+// A mapped copy of the prefix made on the GPU (in a staging buffer where
+// maps that write are staged, see buffer_access.h); 0 when it failed.
+GLuint copy_prefix(Model& m, void*& data) {
+    const GLsizeiptr bytes = static_cast<GLsizeiptr>(m.index_count * sizeof(uint32_t));
+    const bool staged = m.transfers->staged;
+    GLuint copy = 0;
+    glGenBuffers(1, &copy);
+    glBindBuffer(GL_COPY_READ_BUFFER, m.ebo);
+    glBindBuffer(GL_COPY_WRITE_BUFFER, copy);
+    glBufferData(GL_COPY_WRITE_BUFFER, bytes, nullptr, staged ? GL_STREAM_READ : GL_STATIC_DRAW);
+    glCopyBufferSubData(GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, 0, 0, bytes);
+    glBindBuffer(GL_COPY_READ_BUFFER, 0);
+    data = glMapBufferRange(GL_COPY_WRITE_BUFFER, 0, bytes, GL_MAP_READ_BIT | GL_MAP_WRITE_BIT);
+    glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
+    if (!data) {
+        glDeleteBuffers(1, &copy);
+        return 0;
+    }
+    if (staged) {
+        m.transfers->stats.staged_bytes += static_cast<size_t>(bytes);
+    } else {
+        ++m.transfers->stats.in_place_maps;
+        ++m.transfers->stats.in_place_writes;
+    }
+    return copy;
 }
 
 }  // namespace
@@ -132,13 +202,15 @@ void refresh_level_order(Model& m, LevelOrderWorker& worker, uint64_t serial, do
     if (read_back || !worker.idle()) return;
     read_back = true;
     o.tried_version = m.geometry_version;
-    // The prefix read back once (in place where the GPU shares memory; a lost
-    // mapping waits for the next change of level).
-    const MappedBuffer<uint32_t> map(m, m.ebo, m.index_count);
-    if (map.data().size() != m.index_count) return;
+    // A lost mapping or positions that cannot be read wait for the next change of level.
     auto job = std::make_shared<LevelOrderJob>();
-    job->indices.assign(map.data().begin(), map.data().end());
-    job->vertex_count = m.vertex_count;
+    job->cells = vertex_cells(m);
+    if (job->cells.size() != m.vertex_count) return;
+    void* data = nullptr;
+    o.pending = copy_prefix(m, data);
+    if (!o.pending) return;
+    o.pending_staged = m.transfers->staged;
+    job->indices = std::span<uint32_t>(static_cast<uint32_t*>(data), m.index_count);
     job->version = m.geometry_version;
     o.job = job;
     worker.submit(std::move(job));
@@ -157,9 +229,10 @@ bool level_ordered(const Model& m) {
 
 void free_level_order(Model& m) {
     LevelOrder& o = m.order;
-    free_buffer(o);
-    if (o.job) o.job->dropped = true;  // the worker skips it if it has not begun
+    if (o.job) o.job->worker->release(*o.job);
     o.job.reset();
+    (void)unmap_pending(o, false);
+    free_buffer(o);
 }
 
 }  // namespace body::render

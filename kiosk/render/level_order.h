@@ -3,23 +3,24 @@
 // buffer holds its live faces as a prefix in refinement order, which reuses
 // the GPU's post-transform cache poorly (about twice the vertex work of a
 // static mesh; bench/RESULTS.md, issue 24). Once a model's geometry has not
-// changed for kSettleFrames frames and RendererOptions::settle_seconds, its
-// prefix is read back once and handed to the renderer's worker thread, which
-// orders the same triangles (corners untouched, so the winding stays) with
-// meshopt_optimizeVertexCache; the next frame uploads the result to a second
-// element buffer and the triangle styles draw from it until the geometry
-// changes again, which frees it (the prefix is drawn meanwhile, as before).
-// Vertices keep their order: a progressive mesh appends them.
+// changed for kSettleFrames frames and RendererOptions::settle_seconds, the
+// prefix is copied on the GPU into a second element buffer, which stays
+// mapped while the renderer's worker thread orders its triangles in place
+// (window_order.h: corners untouched, so the winding stays); the frame that
+// finds the job done unmaps it and the triangle styles draw from it until the
+// geometry changes again, which frees it (the prefix is drawn meanwhile, as
+// before). Vertices keep their order: a progressive mesh appends them.
 //
 // Only models uploaded with MeshData::order_settled_levels take part (a
 // static mesh arrives ordered). The other readers of the element buffer
 // (lines, wireframe, the cut section, picking) keep the prefix; a batch's
 // element stream (batch.h) copies the ordered level.
 // Memory: 4 bytes an index of the level in GL while ordered (12.8 MiB for
-// 1.1M triangles); while the worker orders, the copy in and out plus
-// meshoptimizer's scratch (about 48 bytes a triangle and 16 a vertex: some
-// 50 MiB for 1.1M triangles, given back when done; bench/RESULTS.md).
-// RendererOptions::settle_seconds < 0 turns ordering off.
+// 1.1M triangles); while the worker orders, a cell code a vertex (2 bytes)
+// and one window's scratch (window_order.h; a few MiB, given back when done).
+// Staged buffer access (discrete GPUs) orders in a staging buffer copied
+// into the drawn one at the end. RendererOptions::settle_seconds < 0 turns
+// ordering off.
 #include <GLES3/gl3.h>
 
 #include <atomic>
@@ -43,13 +44,18 @@ inline constexpr uint64_t kSettleFrames = 3;
 // would cost a job and a buffer for a draw that is cheap anyway).
 inline constexpr size_t kMinOrderedTriangles = 1024;
 
-// One ordering: the level's indices in (render thread), ordered out (worker).
+class LevelOrderWorker;
+
+// One ordering: the mapped copy of the level's indices (render thread), ordered
+// in place (worker; nobody else touches them until `done`).
 struct LevelOrderJob {
-    std::vector<uint32_t> indices;
-    size_t vertex_count = 0;
-    uint32_t version = 0;              // Model::geometry_version the prefix was read at
-    bool done = false;                 // under LevelOrderWorker's mutex
-    std::atomic<bool> dropped{false};  // the level changed: nobody takes the result
+    std::span<uint32_t> indices;         // LevelOrder::pending, mapped
+    std::vector<uint16_t> cells;         // window_order.h's cell of each vertex
+    uint32_t version = 0;                // Model::geometry_version the prefix was copied at
+    bool done = false;                   // under LevelOrderWorker's mutex
+    bool ordered = false;                // set before `done`: the triangles are in cache order
+    std::atomic<bool> dropped{false};    // the level changed: nobody takes the result
+    LevelOrderWorker* worker = nullptr;  // the one it was submitted to
 };
 
 // A model's ordered level (Model::order).
@@ -64,6 +70,8 @@ struct LevelOrder {
     double seen_seconds = 0.0;
     uint32_t tried_version = UINT32_MAX;  // the geometry a job was last started for
     std::shared_ptr<LevelOrderJob> job;   // in flight, or done and not yet taken
+    GLuint pending = 0;                   // the job's buffer, mapped while it is ordered
+    bool pending_staged = false;          // a staging buffer: copied into a new one at the end
 };
 
 // The renderer's worker thread, started at init (so that the kiosk's thread
@@ -79,7 +87,10 @@ public:
     // holds one job's memory at a time.
     bool idle();
     void wait(const LevelOrderJob& job);
-    void stop();  // waits for the job in hand; queued ones are dropped
+    // Drops `job` and returns once the worker no longer touches its indices
+    // (at once if it is queued; the one in hand stops at its next window).
+    void release(LevelOrderJob& job);
+    void stop();  // the job in hand stops at its next window; queued ones are dropped
 
 private:
     void run();
@@ -87,19 +98,15 @@ private:
     std::condition_variable wake_, finished_;
     std::deque<std::shared_ptr<LevelOrderJob>> queue_;
     std::thread thread_;
-    size_t pending_ = 0;  // submitted, not yet done or dropped
+    LevelOrderJob* current_ = nullptr;  // the job being ordered
+    size_t pending_ = 0;                // submitted, not yet done or dropped
     bool stopping_ = false;
 };
-
-// The triangles of `indices` (a whole number of them, every index below
-// vertex_count) in meshoptimizer's vertex cache order, each triangle's
-// corners as they were.
-std::vector<uint32_t> order_level(std::span<const uint32_t> indices, size_t vertex_count);
 
 // Called once a frame per model before drawing (frame `serial`, at `seconds`
 // on a steady clock): frees an ordered level the geometry has left, installs
 // a finished job's result, and starts a job once the level has settled, the
-// worker is idle and no other model was read back this frame (`read_back`,
+// worker is idle and no other model was copied this frame (`read_back`,
 // false at the frame's start, set when this one is).
 void refresh_level_order(Model& m, LevelOrderWorker& worker, uint64_t serial, double seconds, double settle_seconds,
                          bool& read_back);
@@ -112,7 +119,8 @@ GLuint drawn_element_buffer(const Model& m);
 bool orders_level(const Model& m, double settle_seconds);
 // Whether `m` draws its level from an ordered copy now.
 bool level_ordered(const Model& m);
-// Frees the ordered buffer and forgets the job (the worker drops its result).
+// Frees the ordered buffer and forgets the job (waits for the worker to let
+// go of its mapped indices: at most one window).
 void free_level_order(Model& m);
 
 }  // namespace body::render

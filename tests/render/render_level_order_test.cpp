@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <chrono>
 #include <filesystem>
 #include <random>
@@ -19,6 +20,7 @@
 
 #include "builder/lod/bpm_writer.h"
 #include "kiosk/render/level_order.h"
+#include "kiosk/render/window_order.h"
 #include "kiosk/scene/model_source.h"
 #include "shared/obj_io.h"
 #include "shared/pm/bpm_reader.h"
@@ -63,11 +65,13 @@ int frames_until_ordered(RenderFixture& f, ModelId id, const View& cam) {
     return -1;
 }
 
-void random_levels(const std::vector<uint8_t>& bytes, double min_lod, unsigned seed) {
+void random_levels(const std::vector<uint8_t>& bytes, double min_lod, unsigned seed,
+                   BufferAccess access = BufferAccess::Auto) {
     ASSERT_FALSE(bytes.empty());
     ModelSource src = source_of(bytes);
     RendererOptions options;
     options.settle_seconds = 0.0;  // frames alone settle a level here
+    options.buffer_access = access;
     RenderFixture f(160, 160, options);
     REQUIRE_GL(f);
     auto id = f.renderer().add_model(src.upload_mesh(), "level");
@@ -125,6 +129,11 @@ void random_levels(const std::vector<uint8_t>& bytes, double min_lod, unsigned s
 }
 
 TEST(RenderLevelOrder, RandomLevelsOfATorusAreOrderedExactly) { random_levels(torus_bpm(), 0.15, 24); }
+
+// Discrete GPUs' way: ordered in a staging buffer, copied into the drawn one.
+TEST(RenderLevelOrder, RandomLevelsAreOrderedExactlyWithStagedBuffers) {
+    random_levels(torus_bpm(), 0.15, 25, BufferAccess::Staged);
+}
 
 TEST(RenderLevelOrder, RandomLevelsOfTheBunnyAreOrderedExactly) {
     if (!std::filesystem::exists(kBunny)) GTEST_SKIP() << "needs " << kBunny << " (Debian package glmark2-data)";
@@ -189,12 +198,49 @@ TEST(RenderLevelOrder, ModelsSettlingTogetherAreOrderedOneAtATime) {
     EXPECT_TRUE(f.renderer().level_ordered(ib.value()));
 }
 
-TEST(RenderLevelOrder, OrderLevelKeepsEveryTriangleAndRefusesBadInput) {
+// The cell of each vertex of a generated mesh (positions in [-1, 1]).
+std::vector<uint16_t> cells_of(const test::GenMesh& s) {
+    std::vector<uint16_t> cells;
+    for (const Vec3f& p : s.positions)
+        cells.push_back(order_cell(0.5f * (p.x + 1), 0.5f * (p.y + 1), 0.5f * (p.z + 1)));
+    return cells;
+}
+
+// Windows much smaller than the mesh (many cuts between them) keep every
+// triangle with its corners and stay near meshoptimizer's whole-mesh order.
+TEST(RenderLevelOrder, WindowedOrderKeepsEveryTriangleNearTheWholeMeshOrder) {
+    const test::GenMesh s = test::icosphere(5);  // 20480 triangles, 10242 vertices
+    const std::vector<uint16_t> cells = cells_of(s);
+    std::vector<uint32_t> whole(s.indices.size());
+    meshopt_optimizeVertexCache(whole.data(), s.indices.data(), s.indices.size(), s.positions.size());
+    for (size_t window : {size_t{512}, size_t{4096}, kOrderWindowFaces}) {
+        SCOPED_TRACE("window " + std::to_string(window));
+        std::vector<uint32_t> idx = s.indices;
+        ASSERT_TRUE(order_in_windows(idx, cells, nullptr, window));
+        EXPECT_EQ(sorted_triangles(idx), sorted_triangles(s.indices));
+        EXPECT_LT(acmr(idx, s.positions.size()), 1.1f * acmr(whole, s.positions.size()));
+    }
+    // Unordered input (the faces shuffled) is ordered as well.
+    std::vector<Triangle> t = sorted_triangles(s.indices);
+    std::shuffle(t.begin(), t.end(), std::mt19937(3));
+    std::vector<uint32_t> shuffled;
+    for (const Triangle& x : t) shuffled.insert(shuffled.end(), x.begin(), x.end());
+    const float before = acmr(shuffled, s.positions.size());
+    ASSERT_TRUE(order_in_windows(shuffled, cells, nullptr, 4096));
+    EXPECT_LT(acmr(shuffled, s.positions.size()), 0.5f * before);
+}
+
+TEST(RenderLevelOrder, WindowedOrderRefusesBadInputUntouchedAndStopsWhenCancelled) {
     const test::GenMesh s = test::icosphere(3);
-    const std::vector<uint32_t> out = order_level(s.indices, s.positions.size());
-    EXPECT_EQ(sorted_triangles(out), sorted_triangles(s.indices));
-    EXPECT_TRUE(order_level(s.indices, 3).empty());  // an index past the vertices
-    EXPECT_TRUE(order_level(std::span<const uint32_t>(s.indices).first(4), s.positions.size()).empty());
+    const std::vector<uint16_t> cells = cells_of(s);
+    std::vector<uint32_t> idx = s.indices;
+    EXPECT_FALSE(order_in_windows(idx, std::span<const uint16_t>(cells).first(3)));  // an index past the cells
+    EXPECT_EQ(idx, s.indices);
+    EXPECT_FALSE(order_in_windows(std::span<uint32_t>(idx).first(4), cells));  // not whole triangles
+    EXPECT_EQ(idx, s.indices);
+    const std::atomic<bool> cancel{true};
+    EXPECT_FALSE(order_in_windows(idx, cells, &cancel));
+    EXPECT_EQ(sorted_triangles(idx), sorted_triangles(s.indices));
 }
 
 }  // namespace
