@@ -350,9 +350,12 @@ int KioskLoop::run() {
     }
     if (app_->exit_requested()) std::fprintf(stderr, "bodyview: admin exit\n");
     if (options_.verbose && frames_counted > 0)
-        std::fprintf(stderr, "bodyview: %ld frames, %.2f ms/frame mean, LOD controller %s, budget %zu triangles\n",
+        std::fprintf(stderr,
+                     "bodyview: %ld frames, %.2f ms/frame mean, LOD controller %s, budget %zu triangles, "
+                     "GL buffers %.1f MiB\n",
                      frames_counted, frame_ms_sum / static_cast<double>(frames_counted),
-                     options_.auto_lod ? "on" : "off", app_->lod_controller().budget());
+                     options_.auto_lod ? "on" : "off", app_->lod_controller().budget(),
+                     static_cast<double>(renderer_.gpu_bytes()) / 1048576.0);
     overlay_.shutdown();
     pin_occlusion_.shutdown();
     renderer_.shutdown();
