@@ -376,7 +376,156 @@ size_t count_pairs(std::span<const Vec3> positions, std::span<const uint32_t> in
     return found;
 }
 
+// A shortcut of pair_meets for adjacent triangles on either side of one
+// plane z = Z (snapped): they can meet only in that plane, where each is its
+// corners at height Z. When those are the shared corner alone on one side, or
+// the shared edge on both, they meet nowhere else, and pair_meets says no.
+bool apart_in_z(std::span<const IVec> q, const uint32_t* A, const uint32_t* B) {
+    const int64_t a_lo = std::min({q[A[0]][2], q[A[1]][2], q[A[2]][2]});
+    const int64_t a_hi = std::max({q[A[0]][2], q[A[1]][2], q[A[2]][2]});
+    const int64_t b_lo = std::min({q[B[0]][2], q[B[1]][2], q[B[2]][2]});
+    const int64_t b_hi = std::max({q[B[0]][2], q[B[1]][2], q[B[2]][2]});
+    int64_t z = 0;
+    if (a_hi == b_lo && a_lo < a_hi && b_lo < b_hi)
+        z = a_hi;
+    else if (b_hi == a_lo && a_lo < a_hi && b_lo < b_hi)
+        z = b_hi;
+    else
+        return false;
+    int shared = 0, a_on = 0, b_on = 0;
+    for (int i = 0; i < 3; ++i) {
+        shared += A[i] == B[0] || A[i] == B[1] || A[i] == B[2];
+        a_on += q[A[i]][2] == z;
+        b_on += q[B[i]][2] == z;
+    }
+    return (shared == 1 && (a_on == 1 || b_on == 1)) || (shared == 2 && a_on == 2 && b_on == 2);
+}
+
+// The layer of height z among the ascending `cuts`: 0 below the first cut,
+// k from cuts[k - 1] (included) to cuts[k] (excluded).
+size_t layer_of(std::span<const double> cuts, double z) {
+    return size_t(std::upper_bound(cuts.begin(), cuts.end(), z) - cuts.begin());
+}
+
+// One layer's search: `members` are the triangles whose boxes reach into it,
+// on a grid of their own (boxes clamped to the layer); a pair is tested in
+// the lowest shared cell, and only in the layer holding its overlap's bottom.
+struct LayerSearch {
+    std::span<const uint32_t> indices;
+    std::span<const uint8_t> marked;
+    std::span<const double> cuts;
+    const Snapped* m = nullptr;
+    std::vector<uint32_t> cell_start, fill, in_cell;      // members by cell (CSR)
+    std::vector<std::array<int, 3>> low_cell, high_cell;  // per member
+    struct Swept {
+        Aabb box;
+        uint32_t t, local;
+    };
+    std::vector<Swept> sweep;
+
+    void run(size_t layer, std::span<const uint32_t> members, std::vector<std::pair<uint32_t, uint32_t>>& pairs) {
+        Aabb bounds;
+        double extent_sum = 0;
+        for (uint32_t t : members) {
+            const Aabb& b = m->boxes[t];
+            bounds.extend(b.min);
+            bounds.extend(b.max);
+            const Vec3 d = b.size();
+            extent_sum += std::max({d.x, d.y, d.z});
+        }
+        if (layer > 0) bounds.min.z = std::max(bounds.min.z, cuts[layer - 1]);
+        if (layer < cuts.size()) bounds.max.z = std::min(bounds.max.z, cuts[layer]);
+        const Grid grid = make_grid(bounds, extent_sum / double(members.size()), members.size());
+        // The members by cell (a counting sort: a layer's grid has about as many cells as members).
+        const size_t cells = size_t(grid.dims[0]) * size_t(grid.dims[1]) * size_t(grid.dims[2]);
+        cell_start.assign(cells + 1, 0);
+        low_cell.resize(members.size());
+        high_cell.resize(members.size());
+        for (uint32_t i = 0; i < members.size(); ++i) {
+            int *lo = low_cell[i].data(), *hi = high_cell[i].data();
+            grid.cell_of(m->boxes[members[i]].min, lo);
+            grid.cell_of(m->boxes[members[i]].max, hi);
+            for (int z = lo[2]; z <= hi[2]; ++z)
+                for (int y = lo[1]; y <= hi[1]; ++y)
+                    for (int x = lo[0]; x <= hi[0]; ++x) ++cell_start[grid.key(x, y, z) + 1];
+        }
+        for (size_t c = 0; c < cells; ++c) cell_start[c + 1] += cell_start[c];
+        in_cell.resize(cell_start[cells]);
+        fill.assign(cell_start.begin(), cell_start.end() - 1);
+        for (uint32_t i = 0; i < members.size(); ++i) {
+            const int *lo = low_cell[i].data(), *hi = high_cell[i].data();
+            for (int z = lo[2]; z <= hi[2]; ++z)
+                for (int y = lo[1]; y <= hi[1]; ++y)
+                    for (int x = lo[0]; x <= hi[0]; ++x) in_cell[fill[grid.key(x, y, z)]++] = i;
+        }
+        for (size_t c = 0; c < cells; ++c) {
+            bool any_marked = false;
+            for (uint32_t k = cell_start[c]; k < cell_start[c + 1] && !any_marked; ++k)
+                any_marked = marked[members[in_cell[k]]] != 0;
+            if (any_marked && cell_start[c + 1] - cell_start[c] > 1)
+                cell(layer, grid, c, cell_start[c], cell_start[c + 1], members, pairs);
+        }
+    }
+
+    void cell(size_t layer, const Grid& grid, uint64_t cell_key, size_t begin, size_t end,
+              std::span<const uint32_t> members, std::vector<std::pair<uint32_t, uint32_t>>& pairs) {
+        sweep.clear();
+        for (size_t i = begin; i < end; ++i) {
+            const uint32_t local = in_cell[i];
+            sweep.push_back({m->boxes[members[local]], members[local], local});
+        }
+        std::sort(sweep.begin(), sweep.end(), [](const Swept& a, const Swept& b) {
+            return a.box.min.x != b.box.min.x ? a.box.min.x < b.box.min.x : a.t < b.t;
+        });
+        for (size_t i = 0; i < sweep.size(); ++i)
+            for (size_t j = i + 1; j < sweep.size() && sweep[j].box.min.x <= sweep[i].box.max.x; ++j) {
+                const uint32_t t1 = sweep[i].t, t2 = sweep[j].t;
+                if (!marked[t1] && !marked[t2]) continue;
+                const Aabb &b1 = sweep[i].box, &b2 = sweep[j].box;
+                if (std::max(b1.min.y, b2.min.y) > std::min(b1.max.y, b2.max.y) ||
+                    std::max(b1.min.z, b2.min.z) > std::min(b1.max.z, b2.max.z))
+                    continue;
+                const auto &c1 = low_cell[sweep[i].local], &c2 = low_cell[sweep[j].local];
+                if (grid.key(std::max(c1[0], c2[0]), std::max(c1[1], c2[1]), std::max(c1[2], c2[2])) != cell_key)
+                    continue;
+                if (layer_of(cuts, std::max(b1.min.z, b2.min.z)) != layer) continue;
+                const uint32_t *A = &indices[3 * size_t(t1)], *B = &indices[3 * size_t(t2)];
+                if (apart_in_z(m->q, A, B) || !pair_meets(m->q, A, B)) continue;
+                pairs.push_back({std::min(t1, t2), std::max(t1, t2)});
+            }
+    }
+};
+
 }  // namespace
+
+void self_intersections_by_layer(std::span<const Vec3> positions, std::span<const uint32_t> indices,
+                                 std::span<const uint8_t> marked, std::span<const double> cuts,
+                                 std::vector<std::pair<uint32_t, uint32_t>>& pairs) {
+    pairs.clear();
+    const size_t tri_count = indices.size() / 3;
+    if (tri_count < 2) return;
+    const Snapped m = snap_mesh(positions, indices);
+    // Each triangle listed in every layer its box reaches (CSR by layer).
+    std::vector<uint32_t> start(cuts.size() + 2, 0);
+    for (size_t t = 0; t < tri_count; ++t)
+        if (!m.skip[t])
+            for (size_t l = layer_of(cuts, m.boxes[t].min.z); l <= layer_of(cuts, m.boxes[t].max.z); ++l)
+                ++start[l + 1];
+    for (size_t l = 0; l + 1 < start.size(); ++l) start[l + 1] += start[l];
+    std::vector<uint32_t> members(start.back()), fill(start.begin(), start.end() - 1);
+    std::vector<uint8_t> layer_marked(cuts.size() + 1, 0);
+    for (uint32_t t = 0; t < tri_count; ++t)
+        if (!m.skip[t])
+            for (size_t l = layer_of(cuts, m.boxes[t].min.z); l <= layer_of(cuts, m.boxes[t].max.z); ++l) {
+                members[fill[l]++] = t;
+                layer_marked[l] = layer_marked[l] || marked[t];
+            }
+    LayerSearch search{indices, marked, cuts, &m, {}, {}, {}, {}, {}, {}};
+    for (size_t l = 0; l <= cuts.size(); ++l)
+        if (layer_marked[l] && start[l + 1] - start[l] > 1)
+            search.run(l, std::span<const uint32_t>(members).subspan(start[l], start[l + 1] - start[l]), pairs);
+    std::sort(pairs.begin(), pairs.end());
+}
 
 size_t count_self_intersections(std::span<const Vec3> positions, std::span<const uint32_t> indices, size_t stop_after,
                                 std::vector<std::pair<uint32_t, uint32_t>>* pairs) {

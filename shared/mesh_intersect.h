@@ -38,6 +38,17 @@ size_t count_self_intersections_of(std::span<const Vec3> positions, std::span<co
                                    std::span<const uint8_t> marked, size_t stop_after = 1,
                                    std::vector<std::pair<uint32_t, uint32_t>>* pairs = nullptr);
 
+// The pairs count_self_intersections_of(positions, indices, marked, 0, &pairs)
+// finds, sorted, searched layer by layer along z: `cuts` are ascending
+// heights that part the mesh into layers (below the first cut, between
+// consecutive ones, above the last). Each layer gets a grid of its own that
+// stays in cache; a triangle is listed in every layer its box reaches, so
+// cuts where few triangles cross (the slices of a contour stack) pay best.
+// The snap grid is the whole mesh's, as for the count.
+void self_intersections_by_layer(std::span<const Vec3> positions, std::span<const uint32_t> indices,
+                                 std::span<const uint8_t> marked, std::span<const double> cuts,
+                                 std::vector<std::pair<uint32_t, uint32_t>>& pairs);
+
 // Whether each given pair of triangles (indices into `indices` / 3) meets,
 // by the rules and on the snap grid of count_self_intersections over the same
 // mesh (a pair it would count answers 1). For checking a few pairs without

@@ -407,8 +407,10 @@ size_t keep_free_of_new_crossings(Work& w, std::vector<Vec3>& positions, std::sp
     std::vector<uint8_t> off_straight(indices.size() / 3, 0);
     for (size_t i = 0; i < indices.size(); ++i)
         if (indices[i] >= first_new && positions[indices[i]] != w.straight[indices[i]]) off_straight[i / 3] = 1;
+    // The first round's search, slab by slab: a triangle between two slices
+    // (a band's strip) reaches no other slab, so each slab's grid stays small.
     std::vector<std::pair<uint32_t, uint32_t>> pairs;
-    count_self_intersections_of(positions, indices, off_straight, 0, &pairs);
+    self_intersections_by_layer(positions, indices, off_straight, w.slice_z, pairs);
     size_t straightened = 0;
     for (int round = 0; round < 64; ++round) {
         std::vector<uint32_t> moved;

@@ -144,4 +144,38 @@ TEST(SelfIntersections, SubsetOfALargeMeshCountsLikeItsOwnCopy) {
               body::count_self_intersections_of(own_positions, own, marked, 0));
 }
 
+// The layered search finds the marked count's pairs, with cuts through the
+// sphere's rows (every triangle touches a cut, many touch one only there) and
+// through the plane where adjacent triangles above and below meet along an edge.
+TEST(SelfIntersections, LayeredSearchFindsTheMarkedCountsPairs) {
+    body::Mesh m = uv_sphere(12, 24);
+    body::Mesh other = uv_sphere(12, 24);
+    for (auto& p : other.positions) p += Vec3(0.7, 0.2, 0.1);
+    append(m, other);
+    // Below z = 3: (0, 1, 2) with its top edge on the plane; above: (0, 3, 4) along
+    // the same edge (they meet beyond vertex 0), (0, 5, 6) touching at 0 only.
+    const uint32_t v = uint32_t(m.positions.size());
+    for (Vec3 p : {Vec3(0, 0, 3), Vec3(1, 0, 3), Vec3(0.5, 0, 2), Vec3(2, 0, 3), Vec3(0.5, 1, 4), Vec3(-1, -1, 3.5),
+                   Vec3(-1, 1, 3.5)})
+        m.positions.push_back(p + Vec3(3, 0, 0));
+    m.indices.insert(m.indices.end(), {v, v + 1, v + 2, v, v + 3, v + 4, v, v + 5, v + 6});
+    std::vector<double> cuts;
+    for (const Vec3& p : m.positions) cuts.push_back(p.z);
+    std::sort(cuts.begin(), cuts.end());
+    cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());
+    std::vector<uint8_t> marked(m.indices.size() / 3, 0);
+    for (size_t t = 0; t < marked.size(); t += 3) marked[t] = 1;
+    marked[marked.size() - 2] = 1;  // (0, 3, 4)
+    std::vector<std::pair<uint32_t, uint32_t>> expected, layered, one_layer;
+    body::count_self_intersections_of(m.positions, m.indices, marked, 0, &expected);
+    std::sort(expected.begin(), expected.end());
+    const uint32_t last = uint32_t(marked.size() - 1);
+    ASSERT_TRUE(std::binary_search(expected.begin(), expected.end(), std::pair(last - 2, last - 1)));
+    ASSERT_FALSE(std::binary_search(expected.begin(), expected.end(), std::pair(last - 2, last)));
+    body::self_intersections_by_layer(m.positions, m.indices, marked, cuts, layered);
+    EXPECT_EQ(layered, expected);
+    body::self_intersections_by_layer(m.positions, m.indices, marked, {}, one_layer);
+    EXPECT_EQ(one_layer, expected);
+}
+
 }  // namespace
