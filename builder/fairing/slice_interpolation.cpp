@@ -19,6 +19,7 @@
 #include <cmath>
 #include <map>
 #include <set>
+#include <unordered_map>
 #include <unordered_set>
 #include <utility>
 
@@ -45,11 +46,21 @@ struct Rung {
 struct Work {
     std::span<const double> slice_z;
     int rings = 0;
-    std::vector<int> slice;                                     // per input vertex
-    std::map<std::pair<uint32_t, uint32_t>, uint32_t> rung_of;  // (min, max) vertex -> rung
+    std::vector<int> slice;                          // per input vertex
+    std::unordered_map<uint64_t, uint32_t> rung_of;  // edge_key -> rung
     std::vector<Rung> rungs;
     std::vector<Vec3> straight;  // positions with every rung on its straight line
 };
+
+uint64_t edge_key(uint32_t a, uint32_t b) { return uint64_t(std::min(a, b)) << 32 | std::max(a, b); }
+
+constexpr uint32_t kNoRung = UINT32_MAX;
+
+// The rung on edge (a, b) that is split, or kNoRung.
+uint32_t split_rung(const Work& w, uint32_t a, uint32_t b) {
+    auto it = w.rung_of.find(edge_key(a, b));
+    return it != w.rung_of.end() && w.rungs[it->second].band ? it->second : kNoRung;
+}
 
 bool is_band(const Work& w, const uint32_t* t) {
     const int s0 = w.slice[t[0]], s1 = w.slice[t[1]], s2 = w.slice[t[2]];
@@ -59,6 +70,7 @@ bool is_band(const Work& w, const uint32_t* t) {
 
 // Phase 1: rungs, the edges joining adjacent slices, and which are split.
 void find_rungs(Work& w, std::span<const uint32_t> indices) {
+    w.rung_of.reserve(indices.size() / 2);
     for (size_t t = 0; t + 2 < indices.size(); t += 3) {
         const bool band = is_band(w, &indices[t]);
         for (int e = 0; e < 3; ++e) {
@@ -66,7 +78,7 @@ void find_rungs(Work& w, std::span<const uint32_t> indices) {
             const int sa = w.slice[a], sb = w.slice[b];
             if (sa == kNoSlice || sb == kNoSlice || std::abs(sa - sb) != 1) continue;
             if (sa > sb) std::swap(a, b);
-            auto [it, fresh] = w.rung_of.try_emplace({std::min(a, b), std::max(a, b)}, uint32_t(w.rungs.size()));
+            auto [it, fresh] = w.rung_of.try_emplace(edge_key(a, b), uint32_t(w.rungs.size()));
             if (fresh) w.rungs.push_back({a, b});
             Rung& r = w.rungs[it->second];
             r.band = r.band || band;
@@ -191,20 +203,21 @@ void place_points(Work& w, std::vector<Vec3>& positions, std::span<const Vec2> s
     }
 }
 
-// Point k (0 = `from`, rings + 1 = the other end) along the rung (from, to).
-uint32_t along(const Work& w, uint32_t from, uint32_t to, int k) {
+// Point k (0 = `from`, rings + 1 = the other end) along split rung `rung` from `from`.
+uint32_t along(const Work& w, uint32_t rung, uint32_t from, int k) {
+    const Rung& r = w.rungs[rung];
     if (k == 0) return from;
-    if (k == w.rings + 1) return to;
-    const Rung& r = w.rungs[w.rung_of.at({std::min(from, to), std::max(from, to)})];
+    if (k == w.rings + 1) return from == r.lo ? r.hi : r.lo;
     return r.first + uint32_t(from == r.lo ? k - 1 : w.rings - k);
 }
 
 // A band triangle (p, q on one slice, r on the other) as a strip from the
 // base (p, q) to the apex r, each quad split along its shorter diagonal.
 void strip(const Work& w, uint32_t p, uint32_t q, uint32_t r, std::vector<uint32_t>& out) {
+    const uint32_t pr = split_rung(w, p, r), qr = split_rung(w, q, r);
     for (int k = 0; k <= w.rings; ++k) {
-        const uint32_t p0 = along(w, p, r, k), q0 = along(w, q, r, k);
-        const uint32_t p1 = along(w, p, r, k + 1), q1 = along(w, q, r, k + 1);
+        const uint32_t p0 = along(w, pr, p, k), q0 = along(w, qr, q, k);
+        const uint32_t p1 = along(w, pr, p, k + 1), q1 = along(w, qr, q, k + 1);
         if (k == w.rings) {
             out.insert(out.end(), {p0, q0, r});
         } else if (glm::length(w.straight[p0] - w.straight[q1]) <= glm::length(w.straight[q0] - w.straight[p1])) {
@@ -230,9 +243,9 @@ void fan(const Work& w, const uint32_t* t, std::vector<uint32_t>& out) {
     for (int e = 0; e < 3; ++e) {
         const uint32_t a = t[e], b = t[(e + 1) % 3];
         poly.push_back(a);
-        auto it = w.rung_of.find({std::min(a, b), std::max(a, b)});
-        if (it == w.rung_of.end() || !w.rungs[it->second].band) continue;
-        for (int k = 1; k <= w.rings; ++k) poly.push_back(along(w, a, b, k));
+        const uint32_t rung = split_rung(w, a, b);
+        if (rung == kNoRung) continue;
+        for (int k = 1; k <= w.rings; ++k) poly.push_back(along(w, rung, a, k));
     }
     const auto& P = w.straight;
     const Vec3 n = glm::cross(P[t[1]] - P[t[0]], P[t[2]] - P[t[0]]);
@@ -277,10 +290,7 @@ std::vector<uint32_t> retriangulate(const Work& w, std::span<const uint32_t> ind
             continue;
         }
         bool split = false;
-        for (int e = 0; e < 3; ++e) {
-            auto it = w.rung_of.find({std::min(tri[e], tri[(e + 1) % 3]), std::max(tri[e], tri[(e + 1) % 3])});
-            split = split || (it != w.rung_of.end() && w.rungs[it->second].band);
-        }
+        for (int e = 0; e < 3; ++e) split = split || split_rung(w, tri[e], tri[(e + 1) % 3]) != kNoRung;
         if (split)
             fan(w, tri, out);
         else
