@@ -410,15 +410,18 @@ size_t layer_of(std::span<const double> cuts, double z) {
 // One layer's search: `members` are the triangles whose boxes reach into it,
 // on a grid of their own (boxes clamped to the layer); a pair is tested in
 // the lowest shared cell, and only in the layer holding its overlap's bottom.
+// Boxes are the members' own (a layer's arrays stay in cache and are reused).
 struct LayerSearch {
+    std::span<const Vec3> positions;
     std::span<const uint32_t> indices;
     std::span<const uint8_t> marked;
     std::span<const double> cuts;
-    const Snapped* m = nullptr;
-    std::vector<uint32_t> cell_start, fill, in_cell;      // members by cell (CSR)
+    std::span<const IVec> q;
+    std::vector<Aabb> boxes;                              // per member
     std::vector<std::array<int, 3>> low_cell, high_cell;  // per member
+    std::vector<uint32_t> cell_start, fill, in_cell;      // members by cell (CSR)
     struct Swept {
-        Aabb box;
+        double min_x, max_x;
         uint32_t t, local;
     };
     std::vector<Swept> sweep;
@@ -426,11 +429,12 @@ struct LayerSearch {
     void run(size_t layer, std::span<const uint32_t> members, std::vector<std::pair<uint32_t, uint32_t>>& pairs) {
         Aabb bounds;
         double extent_sum = 0;
-        for (uint32_t t : members) {
-            const Aabb& b = m->boxes[t];
-            bounds.extend(b.min);
-            bounds.extend(b.max);
-            const Vec3 d = b.size();
+        boxes.assign(members.size(), Aabb{});
+        for (size_t i = 0; i < members.size(); ++i) {
+            for (int c = 0; c < 3; ++c) boxes[i].extend(positions[indices[3 * size_t(members[i]) + size_t(c)]]);
+            bounds.extend(boxes[i].min);
+            bounds.extend(boxes[i].max);
+            const Vec3 d = boxes[i].size();
             extent_sum += std::max({d.x, d.y, d.z});
         }
         if (layer > 0) bounds.min.z = std::max(bounds.min.z, cuts[layer - 1]);
@@ -443,8 +447,8 @@ struct LayerSearch {
         high_cell.resize(members.size());
         for (uint32_t i = 0; i < members.size(); ++i) {
             int *lo = low_cell[i].data(), *hi = high_cell[i].data();
-            grid.cell_of(m->boxes[members[i]].min, lo);
-            grid.cell_of(m->boxes[members[i]].max, hi);
+            grid.cell_of(boxes[i].min, lo);
+            grid.cell_of(boxes[i].max, hi);
             for (int z = lo[2]; z <= hi[2]; ++z)
                 for (int y = lo[1]; y <= hi[1]; ++y)
                     for (int x = lo[0]; x <= hi[0]; ++x) ++cell_start[grid.key(x, y, z) + 1];
@@ -467,21 +471,21 @@ struct LayerSearch {
         }
     }
 
+    // One cell's pairs, swept along x.
     void cell(size_t layer, const Grid& grid, uint64_t cell_key, size_t begin, size_t end,
               std::span<const uint32_t> members, std::vector<std::pair<uint32_t, uint32_t>>& pairs) {
         sweep.clear();
         for (size_t i = begin; i < end; ++i) {
             const uint32_t local = in_cell[i];
-            sweep.push_back({m->boxes[members[local]], members[local], local});
+            sweep.push_back({boxes[local].min.x, boxes[local].max.x, members[local], local});
         }
-        std::sort(sweep.begin(), sweep.end(), [](const Swept& a, const Swept& b) {
-            return a.box.min.x != b.box.min.x ? a.box.min.x < b.box.min.x : a.t < b.t;
-        });
+        std::sort(sweep.begin(), sweep.end(),
+                  [](const Swept& a, const Swept& b) { return a.min_x != b.min_x ? a.min_x < b.min_x : a.t < b.t; });
         for (size_t i = 0; i < sweep.size(); ++i)
-            for (size_t j = i + 1; j < sweep.size() && sweep[j].box.min.x <= sweep[i].box.max.x; ++j) {
+            for (size_t j = i + 1; j < sweep.size() && sweep[j].min_x <= sweep[i].max_x; ++j) {
                 const uint32_t t1 = sweep[i].t, t2 = sweep[j].t;
                 if (!marked[t1] && !marked[t2]) continue;
-                const Aabb &b1 = sweep[i].box, &b2 = sweep[j].box;
+                const Aabb &b1 = boxes[sweep[i].local], &b2 = boxes[sweep[j].local];
                 if (std::max(b1.min.y, b2.min.y) > std::min(b1.max.y, b2.max.y) ||
                     std::max(b1.min.z, b2.min.z) > std::min(b1.max.z, b2.max.z))
                     continue;
@@ -490,11 +494,18 @@ struct LayerSearch {
                     continue;
                 if (layer_of(cuts, std::max(b1.min.z, b2.min.z)) != layer) continue;
                 const uint32_t *A = &indices[3 * size_t(t1)], *B = &indices[3 * size_t(t2)];
-                if (apart_in_z(m->q, A, B) || !pair_meets(m->q, A, B)) continue;
+                if (apart_in_z(q, A, B) || !pair_meets(q, A, B)) continue;
                 pairs.push_back({std::min(t1, t2), std::max(t1, t2)});
             }
     }
 };
+
+// The layers a triangle's box reaches, first and last.
+std::pair<size_t, size_t> layers_of(std::span<const Vec3> positions, const uint32_t* tri,
+                                    std::span<const double> cuts) {
+    const double z0 = positions[tri[0]].z, z1 = positions[tri[1]].z, z2 = positions[tri[2]].z;
+    return {layer_of(cuts, std::min({z0, z1, z2})), layer_of(cuts, std::max({z0, z1, z2}))};
+}
 
 }  // namespace
 
@@ -504,23 +515,33 @@ void self_intersections_by_layer(std::span<const Vec3> positions, std::span<cons
     pairs.clear();
     const size_t tri_count = indices.size() / 3;
     if (tri_count < 2) return;
-    const Snapped m = snap_mesh(positions, indices);
-    // Each triangle listed in every layer its box reaches (CSR by layer).
+    // The snap of the count: over the triangles' corners, every vertex snapped.
+    Aabb all;
+    for (uint32_t v : indices) all.extend(positions[v]);
+    const Snap snap = Snap::of(all);
+    std::vector<IVec> q(positions.size());
+    for (size_t v = 0; v < positions.size(); ++v) q[v] = snap(positions[v]);
+    // Each triangle that is not degenerate, listed in every layer its box reaches (CSR by layer).
+    std::vector<uint8_t> skip(tri_count), layer_marked(cuts.size() + 1, 0);
     std::vector<uint32_t> start(cuts.size() + 2, 0);
-    for (size_t t = 0; t < tri_count; ++t)
-        if (!m.skip[t])
-            for (size_t l = layer_of(cuts, m.boxes[t].min.z); l <= layer_of(cuts, m.boxes[t].max.z); ++l)
-                ++start[l + 1];
+    for (size_t t = 0; t < tri_count; ++t) {
+        const uint32_t* tri = &indices[3 * t];
+        skip[t] = degenerate(q[tri[0]], q[tri[1]], q[tri[2]]);
+        if (skip[t]) continue;
+        const auto [first, last] = layers_of(positions, tri, cuts);
+        for (size_t l = first; l <= last; ++l) {
+            ++start[l + 1];
+            layer_marked[l] = layer_marked[l] || marked[t];
+        }
+    }
     for (size_t l = 0; l + 1 < start.size(); ++l) start[l + 1] += start[l];
     std::vector<uint32_t> members(start.back()), fill(start.begin(), start.end() - 1);
-    std::vector<uint8_t> layer_marked(cuts.size() + 1, 0);
-    for (uint32_t t = 0; t < tri_count; ++t)
-        if (!m.skip[t])
-            for (size_t l = layer_of(cuts, m.boxes[t].min.z); l <= layer_of(cuts, m.boxes[t].max.z); ++l) {
-                members[fill[l]++] = t;
-                layer_marked[l] = layer_marked[l] || marked[t];
-            }
-    LayerSearch search{indices, marked, cuts, &m, {}, {}, {}, {}, {}, {}};
+    for (uint32_t t = 0; t < tri_count; ++t) {
+        if (skip[t]) continue;
+        const auto [first, last] = layers_of(positions, &indices[3 * size_t(t)], cuts);
+        for (size_t l = first; l <= last; ++l) members[fill[l]++] = t;
+    }
+    LayerSearch search{positions, indices, marked, cuts, q, {}, {}, {}, {}, {}, {}, {}};
     for (size_t l = 0; l <= cuts.size(); ++l)
         if (layer_marked[l] && start[l + 1] - start[l] > 1)
             search.run(l, std::span<const uint32_t>(members).subspan(start[l], start[l + 1] - start[l]), pairs);
