@@ -205,8 +205,8 @@ void place_points(Work& w, std::vector<Vec3>& positions, std::span<const Vec2> s
 
 // Point k (0 = `from`, rings + 1 = the other end) along split rung `rung` from `from`.
 uint32_t along(const Work& w, uint32_t rung, uint32_t from, int k) {
-    const Rung& r = w.rungs[rung];
     if (k == 0) return from;
+    const Rung& r = w.rungs[rung];
     if (k == w.rings + 1) return from == r.lo ? r.hi : r.lo;
     return r.first + uint32_t(from == r.lo ? k - 1 : w.rings - k);
 }
