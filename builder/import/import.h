@@ -20,6 +20,14 @@
 //   simplification. Along the slice axis the surface convention is up to the
 //   pipeline's caps: the voxels of a region span half a voxel beyond its first
 //   and last slice planes.
+// - With label_smooth > 0 the contours follow a level of each label's blurred
+//   indicator instead: between voxel centres, changing gradually from slice
+//   to slice. The level is 0.5 lowered (to 0.3 at most) until as many voxel
+//   centres of the blurred box lie above it as the label has voxels, so each
+//   region keeps about its voxel volume (at 0.5 the blur shrinks thin and
+//   convex parts). The blurred indicators of disjoint labels sum to at most 1,
+//   so at 0.5 two regions could only meet; below it, neighbours may overlap in
+//   a band along their shared boundary (bodygen's repairs count the pairs).
 // - Diagonal-only pixel contacts are not connections (4-connected regions per
 //   label), consistently for every label, so regions of different labels never
 //   overlap and the rings of one structure on a slice never touch or cross,
@@ -48,6 +56,12 @@ struct ImportOptions {
     // are dropped (holes filled): per-slice speckle cleanup, 0 keeps everything.
     // At most 8, so no dropped island can contain a hole.
     double min_area = 0.0;
+    // Sub-voxel contours: each label's indicator blurred in 3-D by a Gaussian
+    // of this standard deviation (voxels, 0-4), traced at the volume-keeping
+    // level (see above, usually just under 0.5) with linear
+    // interpolation along cell edges (gaussian_blur.h, trace_field_isolines in
+    // marching_squares.h). 0: the voxel-face boundary described above.
+    double label_smooth = 0.0;
     int jobs = 1;  // worker threads across structures
     // Called from the calling thread as structures finish: (done, total).
     std::function<void(size_t, size_t)> progress;
