@@ -34,7 +34,7 @@ constexpr const char* kUsage =
     "                    0.5; 0 keeps every vertex)\n"
     "  --min-area A      drop islands and fill holes smaller than A voxels per slice (0-8, default 0)\n"
     "  --label-smooth S  label volumes: blur each label by a Gaussian of S voxels (0-4) and trace\n"
-    "                    it between voxel centres at the level that keeps its voxel volume\n"
+    "                    it between voxel centres, keeping its voxel volume against the background\n"
     "                    (default 2; 0: the voxel faces, terraced)\n"
     "  --jobs N          structures extracted in parallel (default 1)\n"
     "  --strict          refuse extracted contours with any problem instead of repairing them\n"

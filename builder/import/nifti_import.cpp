@@ -338,45 +338,61 @@ void extract_label(const LabelVolume& vol, const SliceFrame& f, int32_t label, c
     }
 }
 
-// The level a blurred indicator is traced at: 0.5 (where disjoint labels
-// cannot overlap), lowered so that as many voxel centres lie above it as the
-// label has voxels (the blur shrinks convex and thin parts at 0.5), down to
-// at most kLowestLevel.
-float label_level(std::vector<float> field, size_t voxels) {
-    constexpr float kLowestLevel = 0.3f;
-    if (voxels == 0 || voxels > field.size()) return 0.5f;
-    std::nth_element(field.begin(), field.begin() + static_cast<long>(voxels - 1), field.end(), std::greater<float>());
-    return std::clamp(field[voxels - 1], kLowestLevel, 0.5f);
+// The weight c of the blurred background in the traced field f + c * bg: 0
+// (f's 0.5 level: the blur shrinks convex and thin parts there), raised until
+// as many voxel centres lie above 0.5 as the label has voxels, to at most
+// kMostBackground. The background term moves only the boundary against
+// unlabelled voxels: where another label is the neighbour bg is about 0.
+float background_weight(const std::vector<float>& field, const std::vector<float>& bg, size_t voxels) {
+    constexpr float kMostBackground = 0.45f;
+    size_t above = 0;
+    std::vector<float> needed;  // per voxel below the level: the weight that lifts it to 0.5
+    for (size_t i = 0; i < field.size(); ++i) {
+        if (field[i] > 0.5f)
+            ++above;
+        else if (bg[i] > 0.0f && field[i] > 0.0f)
+            needed.push_back((0.5f - field[i]) / bg[i]);
+    }
+    if (above >= voxels || needed.empty()) return 0.0f;
+    const size_t k = std::min(voxels - above, needed.size()) - 1;
+    std::nth_element(needed.begin(), needed.begin() + static_cast<long>(k), needed.end());
+    return std::min(needed[k], kMostBackground);
 }
 
-// One label with label_smooth > 0: its indicator over its bounding box padded
-// by the blur's radius (so memory follows the structure, not the volume),
-// blurred, and every sampled slice plane of the box traced at 0.5.
+// One label with label_smooth > 0: its indicator and the background's (label
+// 0, and beyond the volume) over its bounding box padded by twice the blur's
+// radius (so both blurs are exact where the level can lie, and memory follows
+// the structure, not the volume), blurred; every sampled slice plane of the box
+// traced where f + c * bg = 0.5.
 void extract_label_smoothed(const LabelVolume& vol, const SliceFrame& f, int32_t label, const Extent& e,
                             const ImportOptions& o, LabelResult& out) {
     out.label = label;
-    const long pad = static_cast<long>(gaussian_radius(o.label_smooth));
+    const long pad = 2 * static_cast<long>(gaussian_radius(o.label_smooth));
     long lo[3];
     size_t size[3];
     for (int d = 0; d < 3; ++d) {
         lo[d] = static_cast<long>(e.lo[d]) - pad;
         size[d] = e.hi[d] - e.lo[d] + 1 + 2 * static_cast<size_t>(pad);
     }
-    std::vector<float> field(size[0] * size[1] * size[2], 0.0f);
-    for (size_t k = e.lo[2]; k <= e.hi[2]; ++k) {
-        for (size_t j = e.lo[1]; j <= e.hi[1]; ++j) {
-            for (size_t i = e.lo[0]; i <= e.hi[0]; ++i) {
-                if (vol.labels[vol.index(i, j, k)] != label) continue;
-                const size_t at[3] = {i - static_cast<size_t>(lo[0]), j - static_cast<size_t>(lo[1]),
-                                      k - static_cast<size_t>(lo[2])};
-                field[(at[2] * size[1] + at[1]) * size[0] + at[0]] = 1.0f;
+    std::vector<float> field(size[0] * size[1] * size[2], 0.0f), bg(field.size(), 0.0f);
+    size_t n = 0;
+    for (size_t z = 0; z < size[2]; ++z) {
+        for (size_t y = 0; y < size[1]; ++y) {
+            for (size_t x = 0; x < size[0]; ++x, ++n) {
+                const long i = lo[0] + long(x), j = lo[1] + long(y), k = lo[2] + long(z);
+                const bool in_volume =
+                    i >= 0 && j >= 0 && k >= 0 && i < long(vol.dim[0]) && j < long(vol.dim[1]) && k < long(vol.dim[2]);
+                const int32_t l = in_volume ? vol.labels[vol.index(size_t(i), size_t(j), size_t(k))] : 0;
+                field[n] = l == label ? 1.0f : 0.0f;
+                bg[n] = l == 0 ? 1.0f : 0.0f;
             }
         }
     }
     gaussian_blur_3d(field, size, o.label_smooth);
-    const float level = label_level(field, e.voxels);
+    gaussian_blur_3d(bg, size, o.label_smooth);
+    const float c = background_weight(field, bg, e.voxels);
     // The level is never reached beyond the volume's slice range: the
-    // indicator is 0 there and the blur is a mean.
+    // indicator is 0 there and c < 0.5.
     const size_t w = size[f.u], h = size[f.v];
     std::vector<float> plane(w * h);
     std::vector<std::vector<Vec2>> rings;
@@ -392,13 +408,14 @@ void extract_label_smoothed(const LabelVolume& vol, const SliceFrame& f, int32_t
             at[f.v] = y;
             for (size_t x = 0; x < w; ++x) {
                 at[f.u] = x;
-                const float value = field[(at[2] * size[1] + at[1]) * size[0] + at[0]];
+                const size_t i = (at[2] * size[1] + at[1]) * size[0] + at[0];
+                const float value = field[i] + c * bg[i];
                 plane[y * w + x] = value;
-                any |= value > level;
+                any |= value > 0.5f;
             }
         }
         if (!any) continue;
-        trace_field_isolines(plane, w, h, level, rings);
+        trace_field_isolines(plane, w, h, 0.5f, rings);
         finish_rings(f, static_cast<double>(lo[f.u]), static_cast<double>(lo[f.v]), static_cast<size_t>(k), o, rings,
                      out);
     }
