@@ -10,7 +10,8 @@
 #     BODYGEN  default build/bin/bodygen
 #     OUT_DIR  default build/sample
 #   JOBS=N     worker threads (default: all cores)
-#   SMOOTH=N   Taubin smoothing steps per region (default 10; 0: the raw contour meshes)
+#   SMOOTH=N   Taubin smoothing steps per region (default 0: the contours of each region's
+#              blurred labels are smooth already, and stay on their slice planes)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ROOT=$PWD
@@ -31,7 +32,8 @@ fi
 [ -x "$BODYGEN" ] || { echo "build-sample: $BODYGEN not built (cmake --build build)" >&2; exit 1; }
 mkdir -p "$OUT"
 # --min-area 3: per-slice islands of 1-3 voxels are atlas speckle: dropping them gives
-# cleaner models. --smooth: the atlas is 2 mm voxels; unsmoothed regions show stairs.
+# cleaner models. The atlas's voxel stairs are taken out by the contours themselves
+# (--label-smooth, default 2 voxels), less terraced than --smooth 10 on voxel faces.
 "$BODYGEN" exhibit "$ATLAS" --groups "$ROOT/builder/import/aal_groups.tsv" --min-area 3 \
-  --smooth "${SMOOTH:-10}" --view left --jobs "$JOBS" -o "$OUT/bundle"
+  --smooth "${SMOOTH:-0}" --view left --jobs "$JOBS" -o "$OUT/bundle"
 echo "build-sample: done: open it with: bodyview $OUT/bundle"

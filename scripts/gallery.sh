@@ -76,7 +76,7 @@ echo "gallery: $out/mixed_scene.png $out/selection_xray.png"
 # shown from their home camera: the sample (AAL, scripts/build-sample.sh) and JHU white matter.
 atlases=/usr/share/mricron/templates
 if [ -x "$bodygen" ] && [ -f "$atlases/aal.nii.gz" ] && [ -f "$atlases/JHU-WhiteMatter-labels-1mm.nii.gz" ]; then
-  "$bodygen" exhibit "$atlases/aal.nii.gz" --groups builder/import/aal_groups.tsv --min-area 3 --smooth 10 \
+  "$bodygen" exhibit "$atlases/aal.nii.gz" --groups builder/import/aal_groups.tsv --min-area 3 \
     --view left --jobs "$(nproc)" --quiet -o "$tmp/aal"
   "$bodygen" exhibit "$atlases/JHU-WhiteMatter-labels-1mm.nii.gz" --min-area 3 --smooth 10 --view left \
     --jobs "$(nproc)" --quiet -o "$tmp/jhu"
@@ -84,6 +84,8 @@ if [ -x "$bodygen" ] && [ -f "$atlases/aal.nii.gz" ] && [ -f "$atlases/JHU-White
     "$bodyview" --headless --size "${SIZE:-640x400}" --ssaa 2 "$tmp/$name" --screenshot "$out/exhibit_$name.png"
   done
   echo "gallery: $out/exhibit_aal.png $out/exhibit_jhu.png"
+  # 5. The AAL atlas from voxel-face contours smoothed by --smooth 10 and from blurred labels.
+  scripts/gallery_labels.sh "$build"
 else
   echo "gallery: no bodygen or mricron-data: exhibit pictures skipped" >&2
 fi

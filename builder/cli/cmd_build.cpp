@@ -150,7 +150,7 @@ void print_usage() {
         "  --json                             statistics as JSON on stdout\n"
         "  --jobs N                           structures built on N threads (default 1)\n"
 #ifdef BODY_WITH_IMPORT
-        "  --labels, --axis, --step, --only, --threshold, --tolerance, --min-area\n"
+        "  --labels, --axis, --step, --only, --threshold, --tolerance, --min-area, --label-smooth\n"
         "                                     import options for label volumes (see bodygen contours --help)\n"
 #endif
     );
@@ -249,7 +249,7 @@ int run_build(const Args& argv) {
                                {"output", "caps", "tiling", "correspondence", "branching", "jobs", "smooth",
                                 "interpolate", "repair-tolerance", "min-area",
 #ifdef BODY_WITH_IMPORT
-                                "labels", "axis", "step", "only", "threshold", "tolerance"
+                                "labels", "axis", "step", "only", "threshold", "tolerance", "label-smooth"
 #endif
                                },
                                {"help", "quiet", "json", "normals", "strict"});

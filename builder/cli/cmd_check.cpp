@@ -76,7 +76,7 @@ constexpr const char* kUsage =
     "                            with the links section's cuts, joins and exclusions\n"
     "  --correspondence overlap|ellipse   the matching method, as for build (default overlap)\n"
 #ifdef BODY_WITH_IMPORT
-    "  --labels, --axis, --step, --only, --threshold, --tolerance, --min-area\n"
+    "  --labels, --axis, --step, --only, --threshold, --tolerance, --min-area, --label-smooth\n"
     "                            import options for label volumes (see bodygen contours --help)\n"
 #endif
     ;
@@ -132,7 +132,7 @@ int run_contours_check(const Args& argv) {
     auto args = CliArgs::parse(argv,
                                {"repair-tolerance", "min-area", "correspondence",
 #ifdef BODY_WITH_IMPORT
-                                "labels", "axis", "step", "only", "threshold", "tolerance"
+                                "labels", "axis", "step", "only", "threshold", "tolerance", "label-smooth"
 #endif
                                },
                                {"help", "strict", "json", "links"});

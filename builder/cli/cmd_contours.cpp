@@ -30,8 +30,12 @@ constexpr const char* kUsage =
     "  --step K          every K-th slice (default 1)\n"
     "  --only 3,7,12     only these labels (RT-STRUCT: ROI numbers)\n"
     "  --threshold T     non-integer volumes: extract value >= T as one mask\n"
-    "  --tolerance V     simplification tolerance in voxels (default 0.5; 0 keeps every vertex)\n"
+    "  --tolerance V     simplification tolerance in voxels (default 0.1, with --label-smooth 0\n"
+    "                    0.5; 0 keeps every vertex)\n"
     "  --min-area A      drop islands and fill holes smaller than A voxels per slice (0-8, default 0)\n"
+    "  --label-smooth S  label volumes: blur each label by a Gaussian of S voxels (0-4) and trace\n"
+    "                    it between voxel centres, keeping its voxel volume against the background\n"
+    "                    (default 2; 0: the voxel faces, terraced)\n"
     "  --jobs N          structures extracted in parallel (default 1)\n"
     "  --strict          refuse extracted contours with any problem instead of repairing them\n"
     "  --repair-tolerance D  largest distance a contour repair may move a point (see bodygen check)\n"
@@ -47,6 +51,11 @@ bool stack_input(const CliArgs& args);                                // cmd_che
 void print_repairs(const RepairLog& log);                             // cmd_check.cpp
 
 namespace {
+
+// --label-smooth's default and --tolerance's default with it, in voxels
+// (chosen on the AAL atlas: bench/RESULTS.md, issue 23 labels).
+constexpr double kDefaultLabelSmooth = 2.0;
+constexpr double kSmoothTolerance = 0.1;
 
 Result<std::vector<int64_t>> parse_only(const std::string& text) {
     std::vector<int64_t> out;
@@ -95,15 +104,22 @@ Result<ImportOptions> import_options_from_args(const CliArgs& args) {
         if (!t) return t.error();
         o.threshold = *t;
     }
-    auto tol = args.get_double("tolerance", o.tolerance);
-    if (!tol) return tol.error();
-    if (*tol < 0.0 || *tol > 10.0) return input_error("option --tolerance: must be between 0 and 10 voxels");
-    o.tolerance = *tol;
     auto min_area = args.get_double("min-area", 0.0);
     if (!min_area) return min_area.error();
     if (!stack_input(args) && (*min_area < 0.0 || *min_area > 8.0))
         return input_error("option --min-area: must be between 0 and 8 voxels");
     o.min_area = *min_area;
+    auto label_smooth = args.get_double("label-smooth", kDefaultLabelSmooth);
+    if (!label_smooth) return label_smooth.error();
+    if (!(*label_smooth >= 0.0) || *label_smooth > 4.0)
+        return input_error("option --label-smooth: must be between 0 and 4 voxels");
+    o.label_smooth = *label_smooth;
+    // Smooth contours simplified by half a voxel become facets that differ
+    // from slice to slice and show as streaks.
+    auto tol = args.get_double("tolerance", o.label_smooth > 0.0 ? kSmoothTolerance : o.tolerance);
+    if (!tol) return tol.error();
+    if (*tol < 0.0 || *tol > 10.0) return input_error("option --tolerance: must be between 0 and 10 voxels");
+    o.tolerance = *tol;
     auto jobs = args.get_jobs(1);
     if (!jobs) return jobs.error();
     o.jobs = static_cast<int>(*jobs);
@@ -111,10 +127,10 @@ Result<ImportOptions> import_options_from_args(const CliArgs& args) {
 }
 
 int run_contours(const Args& argv) {
-    auto args = CliArgs::parse(
-        argv,
-        {"labels", "axis", "step", "only", "threshold", "tolerance", "min-area", "jobs", "output", "repair-tolerance"},
-        {"help", "quiet", "json", "strict"});
+    auto args = CliArgs::parse(argv,
+                               {"labels", "axis", "step", "only", "threshold", "tolerance", "min-area", "label-smooth",
+                                "jobs", "output", "repair-tolerance"},
+                               {"help", "quiet", "json", "strict"});
     if (!args) return report(args.error());
     if (args->has("help")) {
         std::printf("%s", kUsage);

@@ -54,13 +54,14 @@ constexpr const char* kUsage =
     "  --strict             fail (and write nothing) when any structure fails\n"
     "  --quiet              no progress bar, warnings or summary\n"
     "  --json               the summary as JSON on stdout\n"
-    "  build options:  --caps --tiling --correspondence --branching --smooth (bodygen build --help)\n"
+    "  build options:  --caps --tiling --correspondence --branching --smooth --interpolate\n"
+    "                  (bodygen build --help)\n"
     "  lod options:    --min-triangles --chunk-splits --no-normals (bodygen lod --help)\n"
 #ifdef BODY_WITH_IMPORT
     "  --slices-volume GREY.nii  a grey-level NIfTI image (e.g. the template the labels were drawn\n"
     "                       on) shown on the kiosk's cut-plane caps: written as slices.vol, windowed\n"
     "                       to its 0.5-99.5th percentiles, placed as the models are\n"
-    "  import options: --labels --axis --step --only --threshold --tolerance --min-area\n"
+    "  import options: --labels --axis --step --only --threshold --tolerance --min-area --label-smooth\n"
     "                  (bodygen contours --help)\n"
 #endif
     "colours: the source's (RT-STRUCT ROI colours, colour tables beside label volumes), else\n"
@@ -180,11 +181,11 @@ void print_json(const std::vector<exhibit::Part>& parts, const std::vector<exhib
 int run_exhibit(const Args& argv) {
     auto args = CliArgs::parse(
         argv,
-        {"output",       "groups",         "translations", "view",   "orientation",   "jobs",         "caps",
-         "tiling",       "correspondence", "branching",    "smooth", "min-triangles", "chunk-splits",
+        {"output",       "groups",         "translations", "view",   "orientation", "jobs",          "caps",
+         "tiling",       "correspondence", "branching",    "smooth", "interpolate", "min-triangles", "chunk-splits",
 #ifdef BODY_WITH_IMPORT
-         "labels",       "axis",           "step",         "only",   "threshold",     "tolerance",    "min-area",
-         "slices-volume"
+         "labels",       "axis",           "step",         "only",   "threshold",   "tolerance",     "min-area",
+         "label-smooth", "slices-volume"
 #endif
         },
         {"help", "quiet", "json", "strict", "no-normals"});

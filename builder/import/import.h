@@ -20,6 +20,17 @@
 //   simplification. Along the slice axis the surface convention is up to the
 //   pipeline's caps: the voxels of a region span half a voxel beyond its first
 //   and last slice planes.
+// - With label_smooth > 0 the contours follow the 0.5 level of f + c * bg
+//   instead, f the label's indicator and bg the background's (label 0 and
+//   beyond the volume), both blurred: between voxel centres, changing
+//   gradually from slice to slice. c (0-0.45 per label) is the least that
+//   puts as many voxel centres above 0.5 as the label has voxels: the blur
+//   shrinks thin and convex parts at f = 0.5, and bg moves only boundaries
+//   against unlabelled voxels. Blurred indicators of disjoint labels and the
+//   background sum to 1, so two labels' regions cannot overlap (up to the
+//   linear interpolation inside a cell and the simplification). Thin parts
+//   enclosed by other labels still shrink, and bridges thinner than the blur
+//   may break.
 // - Diagonal-only pixel contacts are not connections (4-connected regions per
 //   label), consistently for every label, so regions of different labels never
 //   overlap and the rings of one structure on a slice never touch or cross,
@@ -48,6 +59,11 @@ struct ImportOptions {
     // are dropped (holes filled): per-slice speckle cleanup, 0 keeps everything.
     // At most 8, so no dropped island can contain a hole.
     double min_area = 0.0;
+    // Sub-voxel contours: each label's indicator blurred in 3-D by a Gaussian
+    // of this standard deviation (voxels, 0-4), traced as above with linear
+    // interpolation along cell edges (gaussian_blur.h, trace_field_isolines in
+    // marching_squares.h). 0: the voxel-face boundary described above.
+    double label_smooth = 0.0;
     int jobs = 1;  // worker threads across structures
     // Called from the calling thread as structures finish: (done, total).
     std::function<void(size_t, size_t)> progress;

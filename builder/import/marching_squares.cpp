@@ -1,8 +1,11 @@
-// Marching squares on a binary mask (Lorensen & Cline 1987 in 2-D; the saddle
-// rule fixed to a 4-connected inside, as in the consistent-topology variants of
-// Nielson & Hamann 1991, "The asymptotic decider").
+// Marching squares on a binary mask and on a scalar field (Lorensen & Cline
+// 1987 in 2-D; the saddle rule fixed per cell, as in the consistent-topology
+// variants of Nielson & Hamann 1991, "The asymptotic decider": the mask's
+// inside 4-connected, the field's inside corners joined when the cell's mean is
+// above the level).
 #include "builder/import/marching_squares.h"
 
+#include <algorithm>
 #include <cassert>
 
 namespace body {
@@ -23,24 +26,29 @@ struct EdgeGrid {
     uint32_t vertical(long x, long y) const {
         return horizontal_count + static_cast<uint32_t>((y + 1) * (w + 2) + (x + 1));
     }
-    Vec2 midpoint(uint32_t id) const {
+    // The edge's first pixel (x, y); the second is (x + 1, y) or (x, y + 1).
+    bool first_pixel(uint32_t id, long& x, long& y) const {
         if (id < horizontal_count) {
-            long x = static_cast<long>(id) % (w + 1) - 1, y = static_cast<long>(id) / (w + 1) - 1;
-            return {static_cast<double>(x) + 0.5, static_cast<double>(y)};
+            x = static_cast<long>(id) % (w + 1) - 1, y = static_cast<long>(id) / (w + 1) - 1;
+            return true;  // horizontal
         }
         long v = static_cast<long>(id - horizontal_count);
-        long x = v % (w + 2) - 1, y = v / (w + 2) - 1;
+        x = v % (w + 2) - 1, y = v / (w + 2) - 1;
+        return false;
+    }
+    Vec2 midpoint(uint32_t id) const {
+        long x = 0, y = 0;
+        if (first_pixel(id, x, y)) return {static_cast<double>(x) + 0.5, static_cast<double>(y)};
         return {static_cast<double>(x), static_cast<double>(y) + 0.5};
     }
 };
 
 // Phase 1: one directed segment per boundary crossing of every cell; next[e]
-// is the edge the boundary leaves to after entering at edge e.
-void link_cells(std::span<const uint8_t> mask, const EdgeGrid& g, std::vector<uint32_t>& next) {
-    auto inside = [&](long x, long y) -> bool {
-        if (x < 0 || y < 0 || x >= g.w || y >= g.h) return false;
-        return mask[static_cast<size_t>(y * g.w + x)] != 0;
-    };
+// is the edge the boundary leaves to after entering at edge e. `inside(x, y)`
+// classifies pixels (false outside the grid); `join(cx, cy)` says whether a
+// saddle cell's two inside corners are connected through the cell.
+template <typename Inside, typename Join>
+void link_cells(const EdgeGrid& g, Inside inside, Join join, std::vector<uint32_t>& next) {
     for (long cy = -1; cy < g.h; ++cy) {
         for (long cx = -1; cx < g.w; ++cx) {
             // Corners counter-clockwise: a (cx,cy), b (cx+1,cy), c (cx+1,cy+1), d (cx,cy+1).
@@ -51,13 +59,21 @@ void link_cells(std::span<const uint8_t> mask, const EdgeGrid& g, std::vector<ui
             const uint32_t edge[4] = {g.horizontal(cx, cy), g.vertical(cx + 1, cy), g.horizontal(cx, cy + 1),
                                       g.vertical(cx, cy)};
             if (n_in == 2 && corner[0] == corner[2]) {
-                // Saddle: cut around each inside corner separately (4-connected inside).
-                if (corner[0]) {
+                // Saddle: cut around each inside corner (separate), or around
+                // each outside corner (the inside joined across the cell).
+                const bool joined = join(cx, cy);
+                if (corner[0] && !joined) {
                     next[edge[0]] = edge[3];  // around a
                     next[edge[2]] = edge[1];  // around c
-                } else {
+                } else if (corner[0]) {
+                    next[edge[0]] = edge[1];  // around b
+                    next[edge[2]] = edge[3];  // around d
+                } else if (!joined) {
                     next[edge[1]] = edge[0];  // around b
                     next[edge[3]] = edge[2];  // around d
+                } else {
+                    next[edge[1]] = edge[2];  // around c
+                    next[edge[3]] = edge[0];  // around a
                 }
                 continue;
             }
@@ -77,18 +93,20 @@ void link_cells(std::span<const uint8_t> mask, const EdgeGrid& g, std::vector<ui
 }
 
 bool collinear(const Vec2& a, const Vec2& b, const Vec2& c) {
-    return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x) == 0.0;  // exact: half-integers
+    return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x) == 0.0;  // exact for half-integers
 }
 
-// Phase 2: follow next[] into closed rings, dropping collinear vertices.
-void follow_rings(const EdgeGrid& g, std::vector<uint32_t>& next, std::vector<std::vector<Vec2>>& rings) {
+// Phase 2: follow next[] into closed rings, dropping collinear vertices;
+// `point(e)` is where the boundary crosses edge e.
+template <typename Point>
+void follow_rings(std::vector<uint32_t>& next, Point point, std::vector<std::vector<Vec2>>& rings) {
     std::vector<Vec2> ring;
     for (uint32_t start = 0; start < next.size(); ++start) {
         if (next[start] == kNone) continue;
         ring.clear();
         uint32_t e = start;
         while (next[e] != kNone) {
-            ring.push_back(g.midpoint(e));
+            ring.push_back(point(e));
             uint32_t n = next[e];
             next[e] = kNone;
             e = n;
@@ -116,8 +134,48 @@ void trace_mask_boundaries(std::span<const uint8_t> mask, size_t width, size_t h
     g.h = static_cast<long>(height);
     g.horizontal_count = static_cast<uint32_t>((g.h + 2) * (g.w + 1));
     std::vector<uint32_t> next(g.horizontal_count + static_cast<size_t>((g.h + 1) * (g.w + 2)), kNone);
-    link_cells(mask, g, next);
-    follow_rings(g, next, rings);
+    auto inside = [&](long x, long y) -> bool {
+        if (x < 0 || y < 0 || x >= g.w || y >= g.h) return false;
+        return mask[static_cast<size_t>(y * g.w + x)] != 0;
+    };
+    link_cells(
+        g, inside, [](long, long) { return false; }, next);
+    follow_rings(
+        next, [&](uint32_t e) { return g.midpoint(e); }, rings);
+}
+
+void trace_field_isolines(std::span<const float> field, size_t width, size_t height, float level,
+                          std::vector<std::vector<Vec2>>& rings) {
+    assert(field.size() >= width * height && level > 0.0f);
+    rings.clear();
+    if (width == 0 || height == 0) return;
+    EdgeGrid g;
+    g.w = static_cast<long>(width);
+    g.h = static_cast<long>(height);
+    g.horizontal_count = static_cast<uint32_t>((g.h + 2) * (g.w + 1));
+    std::vector<uint32_t> next(g.horizontal_count + static_cast<size_t>((g.h + 1) * (g.w + 2)), kNone);
+    auto value = [&](long x, long y) -> double {
+        if (x < 0 || y < 0 || x >= g.w || y >= g.h) return 0.0;
+        return field[static_cast<size_t>(y * g.w + x)];
+    };
+    auto inside = [&](long x, long y) { return value(x, y) > level; };
+    auto join = [&](long cx, long cy) {
+        const double sum = value(cx, cy) + value(cx + 1, cy) + value(cx + 1, cy + 1) + value(cx, cy + 1);
+        return sum > 4.0 * level;
+    };
+    link_cells(g, inside, join, next);
+    // Linear along the edge, kept kEdgeMargin off the pixel centres so that
+    // two crossings never meet at a centre whose value equals the level.
+    constexpr double kEdgeMargin = 1.0 / 128.0;
+    auto point = [&](uint32_t e) -> Vec2 {
+        long x = 0, y = 0;
+        const bool horizontal = g.first_pixel(e, x, y);
+        const double v0 = value(x, y), v1 = horizontal ? value(x + 1, y) : value(x, y + 1);
+        const double t = std::clamp((level - v0) / (v1 - v0), kEdgeMargin, 1.0 - kEdgeMargin);
+        if (horizontal) return {static_cast<double>(x) + t, static_cast<double>(y)};
+        return {static_cast<double>(x), static_cast<double>(y) + t};
+    };
+    follow_rings(next, point, rings);
 }
 
 }  // namespace body

@@ -31,4 +31,27 @@ namespace body {
 void trace_mask_boundaries(std::span<const uint8_t> mask, size_t width, size_t height,
                            std::vector<std::vector<Vec2>>& rings);
 
+// Marching squares on a scalar field: the boundary of {value > level} as
+// closed polygons, each vertex where linear interpolation along a cell edge
+// between two pixel centres reaches `level`.
+//
+// Contract:
+// - `field` holds width * height values, row-major; pixels outside the grid
+//   have value 0, and level > 0 (an indicator smoothed, traced at 0.5).
+// - Same coordinates, orientation (inside on the left), closure and dropping
+//   of exactly collinear vertices as trace_mask_boundaries.
+// - Saddle cells (inside corners diagonal): the two inside corners are joined
+//   through the cell when the mean of its four values is above `level`, else
+//   cut apart; one rule for every cell, so each cell edge is crossed at most
+//   once and the rings of one field never touch or cross. Fields whose values
+//   sum to at most 1 (smoothed indicators of disjoint labels) never join the
+//   same cell for two labels.
+// - Crossings are kept 1/128 pixel off the pixel centres, so no two vertices
+//   coincide where a value equals the level.
+// - On a 0/1 field with level 0.5 the result equals trace_mask_boundaries of
+//   the same mask, point for point.
+// - `rings` is cleared first; scratch is proportional to the field.
+void trace_field_isolines(std::span<const float> field, size_t width, size_t height, float level,
+                          std::vector<std::vector<Vec2>>& rings);
+
 }  // namespace body

@@ -1,5 +1,6 @@
 // NIfTI label volume -> contour stack: read with niftilib, then per label and
-// per slice marching squares (marching_squares.h) and topology-preserving
+// per slice marching squares (marching_squares.h; on the label's blurred
+// indicator with --label-smooth, gaussian_blur.h) and topology-preserving
 // Douglas-Peucker (ring_simplify.h). Structures are independent and run on
 // `jobs` threads.
 // - NIfTI-1 format: Cox et al., "A (sort of) new image data format standard:
@@ -13,6 +14,7 @@
 #include <condition_variable>
 #include <cstring>
 #include <filesystem>
+#include <functional>
 #include <limits>
 #include <map>
 #include <memory>
@@ -21,6 +23,7 @@
 #include <optional>
 #include <thread>
 
+#include "builder/import/gaussian_blur.h"
 #include "builder/import/import.h"
 #include "builder/import/label_table.h"
 #include "builder/import/marching_squares.h"
@@ -288,9 +291,28 @@ struct LabelResult {
     std::vector<std::pair<size_t, std::vector<std::vector<Vec2>>>> slices;  // slice index -> rings (output frame)
 };
 
-// Phase 3: one label, all its slices.
-void extract_label(const LabelVolume& vol, const SliceFrame& f, int32_t label, const Extent& e, int step,
-                   double tolerance, double min_area, LabelResult& out) {
+// Phase 3: one slice's rings: specks dropped, simplified, into the output frame.
+// (u0, v0) is the voxel index of the traced grid's pixel (0, 0).
+bool finish_rings(const SliceFrame& f, double u0, double v0, size_t k, const ImportOptions& o,
+                  std::vector<std::vector<Vec2>>& rings, LabelResult& out) {
+    if (o.min_area > 0.0) {
+        std::erase_if(rings, [&](const std::vector<Vec2>& r) {
+            return std::fabs(signed_area2(r.data(), r.size())) < 2.0 * o.min_area;
+        });
+    }
+    if (rings.empty()) return false;
+    simplify_rings(rings, o.tolerance);
+    for (auto& ring : rings) {
+        for (Vec2& p : ring) p = f.in_plane(u0 + p.x, v0 + p.y, static_cast<double>(k));
+    }
+    out.slices.emplace_back(k, std::move(rings));
+    rings = {};
+    return true;
+}
+
+// One label, all its slices: the voxel-face boundary of its mask.
+void extract_label(const LabelVolume& vol, const SliceFrame& f, int32_t label, const Extent& e, const ImportOptions& o,
+                   LabelResult& out) {
     out.label = label;
     const size_t u0 = e.lo[f.u], v0 = e.lo[f.v];
     const size_t w = e.hi[f.u] - u0 + 1, h = e.hi[f.v] - v0 + 1;
@@ -298,7 +320,7 @@ void extract_label(const LabelVolume& vol, const SliceFrame& f, int32_t label, c
     std::vector<std::vector<Vec2>> rings;
     size_t idx[3];
     for (size_t k = e.lo[f.axis]; k <= e.hi[f.axis]; ++k) {
-        if (k % static_cast<size_t>(step) != 0) continue;
+        if (k % static_cast<size_t>(o.step) != 0) continue;
         idx[f.axis] = k;
         bool any = false;
         for (size_t y = 0; y < h; ++y) {
@@ -312,20 +334,90 @@ void extract_label(const LabelVolume& vol, const SliceFrame& f, int32_t label, c
         }
         if (!any) continue;
         trace_mask_boundaries(mask, w, h, rings);
-        if (min_area > 0.0) {
-            std::erase_if(rings, [&](const std::vector<Vec2>& r) {
-                return std::fabs(signed_area2(r.data(), r.size())) < 2.0 * min_area;
-            });
-            if (rings.empty()) continue;
-        }
-        simplify_rings(rings, tolerance);
-        for (auto& ring : rings) {
-            for (Vec2& p : ring) {
-                p = f.in_plane(static_cast<double>(u0) + p.x, static_cast<double>(v0) + p.y, static_cast<double>(k));
+        finish_rings(f, static_cast<double>(u0), static_cast<double>(v0), k, o, rings, out);
+    }
+}
+
+// The weight c of the blurred background in the traced field f + c * bg: 0
+// (f's 0.5 level: the blur shrinks convex and thin parts there), raised until
+// as many voxel centres lie above 0.5 as the label has voxels, to at most
+// kMostBackground. The background term moves only the boundary against
+// unlabelled voxels: where another label is the neighbour bg is about 0.
+float background_weight(const std::vector<float>& field, const std::vector<float>& bg, size_t voxels) {
+    constexpr float kMostBackground = 0.45f;
+    size_t above = 0;
+    std::vector<float> needed;  // per voxel below the level: the weight that lifts it to 0.5
+    for (size_t i = 0; i < field.size(); ++i) {
+        if (field[i] > 0.5f)
+            ++above;
+        else if (bg[i] > 0.0f && field[i] > 0.0f)
+            needed.push_back((0.5f - field[i]) / bg[i]);
+    }
+    if (above >= voxels || needed.empty()) return 0.0f;
+    const size_t k = std::min(voxels - above, needed.size()) - 1;
+    std::nth_element(needed.begin(), needed.begin() + static_cast<long>(k), needed.end());
+    return std::min(needed[k], kMostBackground);
+}
+
+// One label with label_smooth > 0: its indicator and the background's (label
+// 0, and beyond the volume) over its bounding box padded by twice the blur's
+// radius (so both blurs are exact where the level can lie, and memory follows
+// the structure, not the volume), blurred; every sampled slice plane of the box
+// traced where f + c * bg = 0.5.
+void extract_label_smoothed(const LabelVolume& vol, const SliceFrame& f, int32_t label, const Extent& e,
+                            const ImportOptions& o, LabelResult& out) {
+    out.label = label;
+    const long pad = 2 * static_cast<long>(gaussian_radius(o.label_smooth));
+    long lo[3];
+    size_t size[3];
+    for (int d = 0; d < 3; ++d) {
+        lo[d] = static_cast<long>(e.lo[d]) - pad;
+        size[d] = e.hi[d] - e.lo[d] + 1 + 2 * static_cast<size_t>(pad);
+    }
+    std::vector<float> field(size[0] * size[1] * size[2], 0.0f), bg(field.size(), 0.0f);
+    size_t n = 0;
+    for (size_t z = 0; z < size[2]; ++z) {
+        for (size_t y = 0; y < size[1]; ++y) {
+            for (size_t x = 0; x < size[0]; ++x, ++n) {
+                const long i = lo[0] + long(x), j = lo[1] + long(y), k = lo[2] + long(z);
+                const bool in_volume =
+                    i >= 0 && j >= 0 && k >= 0 && i < long(vol.dim[0]) && j < long(vol.dim[1]) && k < long(vol.dim[2]);
+                const int32_t l = in_volume ? vol.labels[vol.index(size_t(i), size_t(j), size_t(k))] : 0;
+                field[n] = l == label ? 1.0f : 0.0f;
+                bg[n] = l == 0 ? 1.0f : 0.0f;
             }
         }
-        out.slices.emplace_back(k, std::move(rings));
-        rings = {};
+    }
+    gaussian_blur_3d(field, size, o.label_smooth);
+    gaussian_blur_3d(bg, size, o.label_smooth);
+    const float c = background_weight(field, bg, e.voxels);
+    // The level is never reached beyond the volume's slice range: the
+    // indicator is 0 there and c < 0.5.
+    const size_t w = size[f.u], h = size[f.v];
+    std::vector<float> plane(w * h);
+    std::vector<std::vector<Vec2>> rings;
+    size_t at[3];
+    const long k_first = std::max<long>(lo[f.axis], 0);
+    const long k_last =
+        std::min<long>(lo[f.axis] + static_cast<long>(size[f.axis]), static_cast<long>(vol.dim[f.axis])) - 1;
+    for (long k = k_first; k <= k_last; ++k) {
+        if (k % o.step != 0) continue;
+        at[f.axis] = static_cast<size_t>(k - lo[f.axis]);
+        bool any = false;
+        for (size_t y = 0; y < h; ++y) {
+            at[f.v] = y;
+            for (size_t x = 0; x < w; ++x) {
+                at[f.u] = x;
+                const size_t i = (at[2] * size[1] + at[1]) * size[0] + at[0];
+                const float value = field[i] + c * bg[i];
+                plane[y * w + x] = value;
+                any |= value > 0.5f;
+            }
+        }
+        if (!any) continue;
+        trace_field_isolines(plane, w, h, 0.5f, rings);
+        finish_rings(f, static_cast<double>(lo[f.u]), static_cast<double>(lo[f.v]), static_cast<size_t>(k), o, rings,
+                     out);
     }
 }
 
@@ -426,14 +518,19 @@ std::vector<LabelResult> extract_labels(const LabelVolume& vol, const SliceFrame
                                         const std::vector<int32_t>& labels, std::map<int32_t, Extent>& extents,
                                         const ImportOptions& options) {
     std::vector<LabelResult> results(labels.size());
+    auto extract_one = [&](int32_t label, LabelResult& out) {
+        if (options.label_smooth > 0.0)
+            extract_label_smoothed(vol, frame, label, extents.at(label), options, out);
+        else
+            extract_label(vol, frame, label, extents.at(label), options, out);
+    };
     std::atomic<size_t> next{0};
     size_t done = 0;
     std::mutex mutex;
     std::condition_variable cv;
     auto work = [&] {
         for (size_t i = next++; i < labels.size(); i = next++) {
-            extract_label(vol, frame, labels[i], extents[labels[i]], options.step, options.tolerance, options.min_area,
-                          results[i]);
+            extract_one(labels[i], results[i]);
             std::lock_guard lock(mutex);
             ++done;
             cv.notify_one();
@@ -444,8 +541,7 @@ std::vector<LabelResult> extract_labels(const LabelVolume& vol, const SliceFrame
     for (size_t t = 0; jobs > 1 && t < jobs; ++t) threads.emplace_back(work);
     if (jobs == 1) {
         for (size_t i = 0; i < labels.size(); ++i) {
-            extract_label(vol, frame, labels[i], extents[labels[i]], options.step, options.tolerance, options.min_area,
-                          results[i]);
+            extract_one(labels[i], results[i]);
             if (options.progress) options.progress(i + 1, labels.size());
         }
     } else {
@@ -519,6 +615,9 @@ Result<ContourStack> import_nifti_labels(const std::string& path, const ImportOp
     }
     if (!(options.min_area >= 0.0) || options.min_area > 8.0) {
         return input_error("--min-area must be between 0 and 8 voxels");
+    }
+    if (!(options.label_smooth >= 0.0) || options.label_smooth > 4.0) {
+        return input_error("--label-smooth must be between 0 and 4 voxels");
     }
     auto vol = read_label_volume(path, options);
     if (!vol) return vol.error();

@@ -5,8 +5,10 @@
 // Contract:
 // - `rings` are closed polygons (last point not repeated) that neither touch
 //   nor cross each other or themselves, in pixel units. Marching squares output
-//   qualifies; its coordinates are half-integers, which makes every
-//   orientation test below exact.
+//   qualifies; the mask tracer's coordinates are half-integers, which makes
+//   every orientation test below exact (the field tracer's are not: its tests
+//   are exact in double precision only up to rounding, and a ring misjudged
+//   there is left for the contour validation's repairs).
 // - Each ring is replaced by a subset of its own vertices (in order) such that
 //   every dropped vertex lies within `tolerance` (pixel units) of the kept
 //   polyline. The result again has no touching or crossing segments, keeps

@@ -53,6 +53,35 @@ TEST(ContoursCli, LabelVolumeToContourStack) {
     EXPECT_EQ(r.exit_code, 0) << r.output;
 }
 
+// --label-smooth 0 --tolerance 0.5 is the voxel-face route (the library's
+// defaults), point for point; the default (2 voxels) gives other, sub-voxel
+// points; exhibit takes the build option --interpolate.
+TEST(ContoursCli, LabelSmoothZeroIsTheVoxelFaceRoute) {
+    const std::string in = write_ball("ball_s.nii.gz");
+    const std::string faces = test::temp_path("faces.contours.json"), smooth = test::temp_path("smooth.contours.json");
+    auto r = test::run(bodygen() + " contours " + in + " --label-smooth 0 --tolerance 0.5 --quiet -o " + faces);
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    r = test::run(bodygen() + " contours " + in + " --quiet -o " + smooth);
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    auto library = import_nifti_labels(in, {});
+    auto a = read_contour_stack(faces), b = read_contour_stack(smooth);
+    ASSERT_TRUE(library.ok() && a.ok() && b.ok());
+    ASSERT_EQ(a->slices.size(), library->slices.size());
+    bool sub_voxel = false;
+    for (size_t s = 0; s < a->slices.size(); ++s) {
+        ASSERT_EQ(a->slices[s].contours.size(), library->slices[s].contours.size()) << "slice " << s;
+        for (size_t c = 0; c < a->slices[s].contours.size(); ++c)
+            EXPECT_EQ(a->slices[s].contours[c].points, library->slices[s].contours[c].points) << "slice " << s;
+    }
+    for (const Slice& slice : b->slices)
+        for (const Contour& c : slice.contours)
+            for (const Vec2& p : c.points)  // voxel faces put one coordinate of every point on a half voxel
+                sub_voxel |= std::fabs(p.x - std::round(p.x)) != 0.5 && std::fabs(p.y - std::round(p.y)) != 0.5;
+    EXPECT_TRUE(sub_voxel);
+    r = test::run(bodygen() + " exhibit " + in + " --interpolate 1 --quiet -o " + test::temp_path("ball_bundle"));
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+}
+
 TEST(ContoursCli, BadInputsExitTwoWithAReasonAndWriteNothing) {
     const std::string good = write_ball("ball2.nii.gz");
     const std::string out = test::temp_path("never.contours.json");

@@ -1,0 +1,23 @@
+#pragma once
+// Separable Gaussian blur of a 3-D float volume, in place.
+//
+// Contract:
+// - `field` holds size[0] * size[1] * size[2] values, x fastest.
+// - Each axis is convolved with a Gaussian of standard deviation `sigma`
+//   (in voxels, the same on every axis) truncated at radius ceil(3 sigma) and
+//   normalised to sum 1, so a constant region away from the edges stays
+//   constant and the sum of the blurred fields of disjoint indicators stays
+//   at most 1 everywhere. Values beyond the volume count as 0: pad the volume
+//   by the radius to blur without losing mass at its edges.
+// - sigma <= 0 leaves the field unchanged. Scratch: one line of the longest axis.
+#include <cstddef>
+#include <span>
+
+namespace body {
+
+// The truncation radius in voxels for `sigma` (0 for sigma <= 0).
+size_t gaussian_radius(double sigma);
+
+void gaussian_blur_3d(std::span<float> field, const size_t size[3], double sigma);
+
+}  // namespace body

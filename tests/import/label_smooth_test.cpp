@@ -1,0 +1,195 @@
+// Sub-voxel contours of label volumes: the scalar-field marching squares, the
+// Gaussian blur and the importer's --label-smooth route.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <random>
+
+#include "builder/import/gaussian_blur.h"
+#include "builder/import/import.h"
+#include "builder/import/marching_squares.h"
+#include "builder/import/ring_simplify.h"
+#include "tests/import/nifti_test_util.h"
+
+namespace body {
+namespace {
+
+[[maybe_unused]] ::testing::Environment* const kCleanup = ::testing::AddGlobalTestEnvironment(new test::TempCleanup);
+
+std::vector<uint8_t> random_blobs(std::mt19937& rng, size_t n) {
+    std::vector<uint8_t> mask(n * n, 0);
+    std::uniform_real_distribution<double> pos(1.0, n - 2.0), rad(0.7, 5.0);
+    for (int k = 0; k < 6; ++k) {
+        const double cx = pos(rng), cy = pos(rng), r = rad(rng);
+        for (size_t y = 0; y < n; ++y)
+            for (size_t x = 0; x < n; ++x)
+                if (std::hypot(x - cx, y - cy) <= r) mask[y * n + x] ^= 1;
+    }
+    return mask;
+}
+
+// On a 0/1 field the scalar tracer is the mask tracer, point for point
+// (diagonal contacts, holes and the one-pixel border included).
+TEST(FieldIsolines, ZeroOneFieldEqualsTheMaskTracer) {
+    std::mt19937 rng(11);
+    for (int trial = 0; trial < 30; ++trial) {
+        const size_t n = 20;
+        const std::vector<uint8_t> mask = random_blobs(rng, n);
+        std::vector<float> field(mask.begin(), mask.end());
+        std::vector<std::vector<Vec2>> from_mask, from_field;
+        trace_mask_boundaries(mask, n, n, from_mask);
+        trace_field_isolines(field, n, n, 0.5f, from_field);
+        ASSERT_FALSE(from_mask.empty());
+        ASSERT_EQ(from_field, from_mask) << "trial " << trial;
+    }
+}
+
+// Saddles: joined when the cell's mean is above the level, cut apart below;
+// either way the rings stay simple.
+TEST(FieldIsolines, SaddleFollowsTheCellMean) {
+    std::vector<std::vector<Vec2>> rings;
+    const std::vector<float> joined = {0.9f, 0.2f, 0.2f, 0.9f};  // mean 0.55 > 0.5: one region
+    trace_field_isolines(joined, 2, 2, 0.5f, rings);
+    EXPECT_EQ(rings.size(), 1u);
+    EXPECT_TRUE(rings_are_simple(rings));
+    const std::vector<float> apart = {0.6f, 0.1f, 0.1f, 0.6f};  // mean 0.35: two regions
+    trace_field_isolines(apart, 2, 2, 0.5f, rings);
+    EXPECT_EQ(rings.size(), 2u);
+    EXPECT_TRUE(rings_are_simple(rings));
+}
+
+TEST(GaussianBlur, KeepsMassAndConstantsAndIsSymmetric) {
+    const size_t size[3] = {21, 17, 19};
+    std::vector<float> field(size[0] * size[1] * size[2], 0.0f);
+    auto at = [&](size_t x, size_t y, size_t z) -> float& { return field[(z * size[1] + y) * size[0] + x]; };
+    for (size_t z = 4; z < 15; ++z)
+        for (size_t y = 4; y < 13; ++y)
+            for (size_t x = 4; x < 17; ++x) at(x, y, z) = 1.0f;
+    const double before = std::accumulate(field.begin(), field.end(), 0.0);
+    gaussian_blur_3d(field, size, 1.0);  // radius 3 < the 4-voxel padding
+    EXPECT_NEAR(std::accumulate(field.begin(), field.end(), 0.0), before, 1e-3);
+    EXPECT_NEAR(at(10, 8, 9), 1.0f, 1e-6);  // 3 voxels from every face: still constant
+    EXPECT_NEAR(at(4, 8, 9), at(16, 8, 9), 1e-6);
+    EXPECT_LT(at(4, 8, 9), 0.9f);  // the face voxel lost some to the outside
+    EXPECT_GT(at(3, 8, 9), 0.1f);
+}
+
+// A ball of radius 9.3 voxels, off the grid: each slice's smoothed contour
+// stays close to the true circle, far closer than the voxel staircase.
+TEST(LabelSmooth, SphereSlicesFollowTheTrueCircle) {
+    test::VolumeSpec spec;
+    spec.nx = spec.ny = spec.nz = 32;
+    const double cx = 15.6, cy = 16.2, cz = 15.4, radius = 9.3;
+    std::vector<int16_t> data(32 * 32 * 32, 0);
+    for (int z = 0; z < 32; ++z)
+        for (int y = 0; y < 32; ++y)
+            for (int x = 0; x < 32; ++x)
+                if (std::hypot(x - cx, y - cy, z - cz) <= radius) data[(z * 32 + y) * 32 + x] = 3;
+    const std::string path = test::temp_path("ball.nii");
+    test::write_nifti(path, spec, data, DT_INT16);
+    auto worst_error = [&](double sigma) {
+        ImportOptions o;
+        o.tolerance = 0.0;
+        o.label_smooth = sigma;
+        auto stack = import_nifti_labels(path, o);
+        EXPECT_TRUE(stack.ok()) << stack.error().message;
+        double worst = 0.0;
+        size_t slices = 0;
+        for (const Slice& s : stack->slices) {
+            const double dz = s.z - cz;
+            if (radius * radius - dz * dz < 16.0) continue;  // near the poles a circle is a few voxels
+            const double r = std::sqrt(radius * radius - dz * dz);
+            EXPECT_EQ(s.contours.size(), 1u) << "z " << s.z;
+            for (const Contour& c : s.contours)
+                for (const Vec2& p : c.points) worst = std::max(worst, std::fabs(std::hypot(p.x - cx, p.y - cy) - r));
+            ++slices;
+        }
+        EXPECT_GE(slices, 15u);
+        return worst;
+    };
+    const double staircase = worst_error(0.0), smooth = worst_error(1.5);
+    EXPECT_GT(staircase, 0.4);  // the voxel corners
+    EXPECT_LT(smooth, 0.3);
+    EXPECT_LT(smooth, 0.5 * staircase);
+}
+
+bool inside_rings(const std::vector<std::vector<Vec2>>& rings, const Vec2& p) {
+    bool in = false;  // even-odd over every ring: holes included
+    for (const auto& r : rings)
+        for (size_t i = 0, j = r.size() - 1; i < r.size(); j = i++)
+            if ((r[i].y > p.y) != (r[j].y > p.y) &&
+                p.x < r[j].x + (p.y - r[j].y) * (r[i].x - r[j].x) / (r[i].y - r[j].y))
+                in = !in;
+    return in;
+}
+
+// Two labels sharing an interface (halves of a ball, the cut plane oblique to
+// the voxels, plus an interleaved comb): per label and slice the rings neither
+// touch nor cross, the two labels' regions overlap by a sliver at most (none
+// before simplification: the background term moves only boundaries against
+// unlabelled voxels), and each label keeps its voxel volume within a few percent.
+TEST(LabelSmooth, TwoLabelsGiveSimpleRingsAndKeepTheirVolumes) {
+    test::VolumeSpec spec;
+    spec.nx = 30, spec.ny = 28, spec.nz = 24;
+    std::vector<int16_t> data(size_t(30) * 28 * 24, 0);
+    size_t voxels[3] = {0, 0, 0};
+    for (int z = 0; z < 24; ++z)
+        for (int y = 0; y < 28; ++y)
+            for (int x = 0; x < 30; ++x) {
+                if (std::hypot(x - 14.5, y - 13.2, z - 11.7) > 10.0) continue;
+                int16_t label = (x + 0.6 * y + 0.3 * z < 22.0) ? 1 : 2;
+                if (y > 20 && x % 4 == 0) label = 3 - label;  // comb teeth of the other label
+                data[(size_t(z) * 28 + y) * 30 + x] = label;
+                ++voxels[label];
+            }
+    const std::string path = test::temp_path("halves.nii");
+    test::write_nifti(path, spec, data, DT_INT16);
+    for (double tolerance : {0.0, 0.1}) {
+        ImportOptions o;
+        o.label_smooth = 1.0;
+        o.tolerance = tolerance;
+        auto stack = import_nifti_labels(path, o);
+        ASSERT_TRUE(stack.ok()) << stack.error().message;
+        ASSERT_EQ(stack->structures.size(), 2u);
+        double area[3] = {0.0, 0.0, 0.0}, overlap = 0.0;
+        for (const Slice& s : stack->slices) {
+            std::vector<std::vector<Vec2>> rings[3];
+            for (int label = 1; label <= 2; ++label) {
+                for (const Contour& c : s.contours)
+                    if (c.structure == "label_" + std::to_string(label)) rings[label].push_back(c.points);
+                EXPECT_TRUE(rings_are_simple(rings[label])) << "z " << s.z << " label " << label;
+                for (const auto& r : rings[label]) area[label] += 0.5 * signed_area2(r.data(), r.size());
+            }
+            constexpr double kStep = 0.1;  // overlap sampled on a 0.1-voxel grid
+            for (double y = 0.0; y < 28.0; y += kStep)
+                for (double x = 0.0; x < 30.0; x += kStep)
+                    if (inside_rings(rings[1], {x, y}) && inside_rings(rings[2], {x, y})) overlap += kStep * kStep;
+        }
+        if (tolerance == 0.0) {
+            EXPECT_LT(overlap, 0.05);  // a few grid samples on shared edges
+        }
+        EXPECT_LT(overlap, 0.005 * std::min(area[1], area[2]));
+        for (int label = 1; label <= 2; ++label) {
+            // Slices 1 voxel apart: the summed areas approximate the volume.
+            EXPECT_NEAR(area[label], double(voxels[label]), 0.06 * voxels[label]) << "label " << label;
+        }
+    }
+}
+
+TEST(LabelSmooth, OutOfRangeIsBadInput) {
+    test::VolumeSpec spec;
+    spec.nx = spec.ny = spec.nz = 4;
+    std::vector<int16_t> data(64, 1);
+    const std::string path = test::temp_path("cube.nii");
+    test::write_nifti(path, spec, data, DT_INT16);
+    ImportOptions o;
+    o.label_smooth = 4.5;
+    auto stack = import_nifti_labels(path, o);
+    ASSERT_FALSE(stack.ok());
+    EXPECT_NE(stack.error().message.find("--label-smooth"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace body
