@@ -196,16 +196,11 @@ Status BpmStream::parse_info(std::span<const uint8_t> payload, const std::string
     m->split_count_ = splits;
     m->face_count_ = faces;
     m->chunk_splits_ = chunk;
-    // The renderer's arrays at full capacity, uninitialised: each entry is
-    // written when its section arrives, and only decoded entries are read (no
-    // page faults for the rest). The rest grows with the sections (grow_decoded).
-    m->positions_.resize(vertices * 3);
+    // Every array, the renderer's too, grows with the sections (grow_decoded).
     m->parent_bytes_ = vertices <= (uint64_t(1) << 24) ? 3 : 4;
-    m->indices_.resize(size_t(faces) * 3);
     m->move_count_ = 0;
     m->patch_corners_.clear();
     m->corner_bytes_ = uint64_t(faces) * 3 <= (uint64_t(1) << 24) ? 3 : 4;
-    if (m->has_normals_) m->normals_.resize(vertices * 2);
     m->replay_.clear(vertices);
     if (order_ == FaceOrder::Batched && splits > 0) m->batch_levels_ = batch_levels(bv, splits);
     m->grow_decoded(0, bf);
