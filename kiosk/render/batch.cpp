@@ -31,22 +31,46 @@ Result<Program> link_batch(const char* frag, int slots) {
     return p;  // a_slot has its location in the shader (kSlot)
 }
 
-// A chunk for `models` (batchable, none in a chunk yet): buffers sized to
-// their vertex capacities, the slot numbers written once.
+// The room a slot gets: what the model's own buffers hold now.
+size_t room_of(const Model& m) { return std::max(m.vertex_count, std::min(m.vertex_allocated, m.vertex_capacity)); }
+
+// Lays out the chunk's buffers for its members' rooms: bases, slot numbers,
+// buffers (re)allocated; every member's vertices are copied again when next drawn.
+void lay_out(BatchChunk& c) {
+    c.vertex_total = 0;
+    for (size_t i = 0; i < c.members.size(); ++i) {
+        c.vertex_base[i] = c.vertex_total;
+        c.vertex_room[i] = c.members[i] ? room_of(*c.members[i]) : 0;
+        c.copied_version[i] = UINT64_MAX;
+        c.vertex_total += c.vertex_room[i];
+    }
+    c.stream_key.clear();
+    std::vector<uint8_t> slots(c.vertex_total);
+    for (size_t i = 0; i < c.members.size(); ++i)
+        std::fill_n(slots.begin() + static_cast<std::ptrdiff_t>(c.vertex_base[i]), c.vertex_room[i],
+                    static_cast<uint8_t>(i));
+    const auto total = static_cast<GLsizeiptr>(std::max<size_t>(c.vertex_total, 1));
+    glBindBuffer(GL_ARRAY_BUFFER, c.vbo_position);
+    glBufferData(GL_ARRAY_BUFFER, total * 6, nullptr, GL_DYNAMIC_DRAW);
+    glBindBuffer(GL_ARRAY_BUFFER, c.vbo_normal);
+    glBufferData(GL_ARRAY_BUFFER, total * 2, nullptr, GL_DYNAMIC_DRAW);
+    glBindBuffer(GL_ARRAY_BUFFER, c.vbo_slot);
+    glBufferData(GL_ARRAY_BUFFER, total, slots.empty() ? nullptr : slots.data(), GL_STATIC_DRAW);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+}
+
+// A chunk for `models` (batchable, none in a chunk yet), its buffers laid out
+// for their rooms.
 BatchChunk make_chunk(const std::vector<Model*>& models, std::vector<BatchChunk>& chunks) {
     BatchChunk c;
     for (Model* m : models) {
         m->batch_chunk = static_cast<int>(chunks.size());
         m->batch_slot = static_cast<int>(c.members.size());
         c.members.push_back(m);
-        c.vertex_base.push_back(c.vertex_total);
-        c.copied_version.push_back(UINT64_MAX);
-        c.vertex_total += m->vertex_capacity;
     }
-    std::vector<uint8_t> slots(c.vertex_total);
-    for (size_t i = 0; i < c.members.size(); ++i)
-        std::fill_n(slots.begin() + static_cast<std::ptrdiff_t>(c.vertex_base[i]), c.members[i]->vertex_capacity,
-                    static_cast<uint8_t>(i));
+    c.vertex_base.resize(c.members.size());
+    c.vertex_room.resize(c.members.size());
+    c.copied_version.resize(c.members.size());
     glGenVertexArrays(1, &c.vao);
     glBindVertexArray(c.vao);
     GLuint buffers[4];
@@ -55,17 +79,14 @@ BatchChunk make_chunk(const std::vector<Model*>& models, std::vector<BatchChunk>
     c.vbo_normal = buffers[1];
     c.vbo_slot = buffers[2];
     c.ebo = buffers[3];
-    const auto total = static_cast<GLsizeiptr>(c.vertex_total);
+    lay_out(c);
     glBindBuffer(GL_ARRAY_BUFFER, c.vbo_position);
-    glBufferData(GL_ARRAY_BUFFER, total * 6, nullptr, GL_DYNAMIC_DRAW);
     glVertexAttribPointer(kPosition, 3, GL_UNSIGNED_SHORT, GL_FALSE, 6, nullptr);
     glEnableVertexAttribArray(kPosition);
     glBindBuffer(GL_ARRAY_BUFFER, c.vbo_normal);
-    glBufferData(GL_ARRAY_BUFFER, total * 2, nullptr, GL_DYNAMIC_DRAW);
     glVertexAttribPointer(kNormalCode, 2, GL_UNSIGNED_BYTE, GL_FALSE, 2, nullptr);
     glEnableVertexAttribArray(kNormalCode);
     glBindBuffer(GL_ARRAY_BUFFER, c.vbo_slot);
-    glBufferData(GL_ARRAY_BUFFER, total, slots.data(), GL_STATIC_DRAW);
     glVertexAttribPointer(kSlot, 1, GL_UNSIGNED_BYTE, GL_FALSE, 1, nullptr);
     glEnableVertexAttribArray(kSlot);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, c.ebo);
@@ -234,6 +255,11 @@ bool batchable(const Frame& f, const Model& m, bool fade_rest) {
 std::vector<Model*> draw_batched(RendererState& s, Frame& f, const std::vector<Model*>& drawn) {
     Batches& b = s.batches;
     form_chunks(b, drawn);
+    // Chunks whose members outgrew their rooms laid out again, before any copy this frame.
+    for (Model* m : drawn) {
+        BatchChunk& c = b.chunks[static_cast<size_t>(m->batch_chunk)];
+        if (m->vertex_count > c.vertex_room[static_cast<size_t>(m->batch_slot)]) lay_out(c);
+    }
     // The slots on screen per chunk, in slot order.
     std::vector<std::vector<size_t>> on_screen(b.chunks.size());
     std::vector<Model*> left;

@@ -21,7 +21,11 @@
 // (geomorph) and no cut plane is on; everything else takes the per-model path
 // (frame.cpp). Chunks are formed at the frame that first sees such models and
 // keep their members; a removed model or one whose format changes leaves a
-// dead slot.
+// dead slot. A slot has room for the vertices its model's own buffers hold
+// (Model::vertex_allocated, grown with a streamed mesh), not its capacity: a
+// scene of thousands of models drawn coarse would otherwise hold every
+// model's full detail twice; a member that outgrows its room has the chunk
+// laid out again (buffers reallocated, every member copied anew).
 #include <GLES3/gl3.h>
 
 #include <cstddef>
@@ -44,6 +48,7 @@ struct BatchChunk {
     GLuint vao = 0, vbo_position = 0, vbo_normal = 0, vbo_slot = 0, ebo = 0;
     std::vector<Model*> members;           // by slot; null: dead (removed, or no longer codes)
     std::vector<size_t> vertex_base;       // by slot: first vertex in the chunk's buffers
+    std::vector<size_t> vertex_room;       // by slot: vertices it has room for (relaid when one outgrows it)
     std::vector<uint64_t> copied_version;  // by slot: Model::geometry_version of the vertices copied
     size_t vertex_total = 0;
     // The element stream drawn last: what it was built from (slot, style,

@@ -33,6 +33,10 @@ struct MeshData {
     // buffers hold it, growing up to the arrays' size with later updates
     // (buffer_growth.h). False: the whole arrays are uploaded.
     bool prefix_only = false;
+    // prefix_only: the vertices and index entries the model may grow to, when
+    // more than the arrays hold now (a stream whose arrays grow with what it
+    // decodes); later updates pass arrays up to that size. 0: the arrays' sizes.
+    size_t vertex_capacity = 0, index_capacity = 0;
     // Optional box holding every position and morph source the model will
     // have (a progressive mesh's bounds). The renderer keeps positions as
     // 16-bit codes in a box (6 bytes a vertex instead of 12; exact for .bpm

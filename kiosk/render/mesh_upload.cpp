@@ -294,7 +294,10 @@ Result<UploadPlan> plan_upload(const MeshData& mesh, const PositionView& pos, co
         if (mesh.indices[i] >= pos.size())
             return input_error(name + ": index " + std::to_string(i) + " refers to vertex " +
                                std::to_string(mesh.indices[i]) + " of " + std::to_string(pos.size()));
-    if (pos.size() > static_cast<size_t>(kTextureWidth) * 8192 || u.isize > static_cast<size_t>(kTextureWidth) * 8192)
+    const size_t vertex_capacity = std::max(pos.size(), mesh.prefix_only ? mesh.vertex_capacity : 0);
+    const size_t index_capacity = std::max(u.isize, mesh.prefix_only ? mesh.index_capacity : 0);
+    if (vertex_capacity > static_cast<size_t>(kTextureWidth) * 8192 ||
+        index_capacity > static_cast<size_t>(kTextureWidth) * 8192)
         return input_error(name + ": too large for one model");
     return u;
 }
@@ -406,8 +409,8 @@ Result<ModelId> Renderer::add_model(const MeshData& mesh, const std::string& nam
     Model m;
     m.name = name;
     m.transfers = &s_->transfers;
-    m.vertex_capacity = pos.size();
-    m.index_capacity = u.isize;
+    m.vertex_capacity = std::max(pos.size(), mesh.prefix_only ? mesh.vertex_capacity : 0);
+    m.index_capacity = std::max(u.isize, mesh.prefix_only ? mesh.index_capacity : 0);
     // A streaming source's buffers hold what is written; they grow with later updates (buffer_growth.h).
     m.vertex_allocated = std::max<size_t>(u.vupload, 1);
     m.index_allocated = u.filled ? u.isize : std::max<size_t>(u.iupload, 3);

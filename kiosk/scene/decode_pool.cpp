@@ -41,7 +41,9 @@ DecodePool::Entry* DecodePool::find(DecodeTask* task) {
 DecodePool::Entry* DecodePool::next() {
     Entry* best = nullptr;
     for (Entry& e : entries_) {
-        if (e.busy || e.need == DecodeNeed::Done || (e.need == DecodeNeed::Detail && !e.released)) continue;
+        if (e.busy || e.need == DecodeNeed::Done || e.need == DecodeNeed::Paused ||
+            (e.need == DecodeNeed::Detail && !e.released))
+            continue;
         if (!best || (e.need == DecodeNeed::Bases && best->need != DecodeNeed::Bases) ||
             (e.need == best->need && e.priority > best->priority))
             best = &e;
@@ -64,6 +66,21 @@ void DecodePool::release(DecodeTask* task) {
         Entry* e = find(task);
         if (!e || e->released) return;
         e->released = true;
+    }
+    work_.notify_one();
+}
+
+void DecodePool::wake(DecodeTask* task) {
+    {
+        std::lock_guard guard(mutex_);
+        Entry* e = find(task);
+        if (!e) return;
+        if (e->busy)
+            e->woken = true;
+        else if (e->need == DecodeNeed::Paused)
+            e->need = DecodeNeed::Detail;
+        else
+            return;
     }
     work_.notify_one();
 }
@@ -121,8 +138,9 @@ void DecodePool::step(DecodeTask* task, std::vector<uint8_t>& buffer, std::uniqu
     // Entries may have moved while unlocked (add, remove): look it up again.
     Entry* e = find(task);
     e->busy = false;
-    e->need = need;
-    if (need == DecodeNeed::Done) ++finished_since_trim_;
+    e->need = need == DecodeNeed::Paused && e->woken ? DecodeNeed::Detail : need;
+    e->woken = false;
+    if (need == DecodeNeed::Done || need == DecodeNeed::Paused) ++finished_since_trim_;  // scratch freed
     idle_.notify_all();
 }
 

@@ -33,6 +33,7 @@ namespace body::kiosk {
 enum class DecodeNeed {
     Bases,   // more work before its base meshes are in
     Detail,  // its bases are in; more work once released
+    Paused,  // nothing wanted now; more work once woken (wake())
     Done,    // nothing more
 };
 
@@ -58,6 +59,9 @@ public:
     void add(DecodeTask* task, double priority);
     // Lets the task's detail be decoded. Idempotent.
     void release(DecodeTask* task);
+    // A paused task (its last step returned Paused, or the step in flight
+    // will) is runnable again.
+    void wake(DecodeTask* task);
     // Steps `task` on the calling thread when it still needs its bases and no
     // pool thread is stepping it (a caller that would wait for those bases
     // lends its core instead). False when it did not.
@@ -72,6 +76,7 @@ private:
         double priority;
         DecodeNeed need = DecodeNeed::Bases;
         bool released = false, busy = false;
+        bool woken = false;  // wake() while busy: a Paused from the step in flight counts as Detail
     };
     void run();
     void step(DecodeTask* task, std::vector<uint8_t>& buffer, std::unique_lock<std::mutex>& guard);

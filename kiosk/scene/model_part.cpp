@@ -29,9 +29,14 @@ void log_error(const Status& s) {
 }
 
 // The level `want` triangles would give once the whole file has arrived.
-size_t level_wanted(const pm::ProgressiveMesh& m, size_t want) {
+// Unknown while the file decodes (the batch arriving is not in its final
+// order), or when the decoded levels do not reach past `want`: then assume it
+// needs more. A file paused on demand stops at a batch boundary, so a level
+// below it is the whole file's.
+size_t level_wanted(const pm::ProgressiveMesh& m, size_t want, bool decoding) {
     if (want >= m.max_triangle_count()) return m.max_level();
-    if (m.available_level() < m.max_level()) return m.max_level();  // unknown yet: assume it needs more
+    if (m.available_level() < m.max_level() && (decoding || m.triangles_at(m.available_level()) <= want))
+        return m.max_level();
     return m.level_for_triangles(want);
 }
 
@@ -187,7 +192,7 @@ bool ModelPart::head_for_level(render::Renderer& renderer, double ratio, bool gl
     const bool complete = !streaming && pm_->available_level() >= pm_->max_level();
     if (!complete || want != cached_want_) {
         cached_level_ = pm_->level_for_triangles(std::max<size_t>(want, 1));
-        cached_wanted_full_ = level_wanted(*pm_, want);
+        cached_wanted_full_ = level_wanted(*pm_, want, streaming);
         cached_want_ = complete ? want : SIZE_MAX;
     }
     size_t level = cached_level_;
@@ -208,6 +213,14 @@ bool ModelPart::head_for_level(render::Renderer& renderer, double ratio, bool gl
         glide_to(renderer, level, now);
     }
     return level >= wanted_full;
+}
+
+size_t ModelPart::wanted_splits(double ratio) const {
+    if (!pm_) return 0;
+    const auto want = static_cast<size_t>(std::llround(static_cast<double>(full_triangles()) * ratio));
+    const size_t have = pm_->available_level(), triangles = pm_->triangles_at(have);
+    if (triangles > want || have >= pm_->max_level()) return have;
+    return have + (want - triangles) / 2 + 1;
 }
 
 bool ModelPart::head_for(render::Renderer& renderer, double ratio, bool automatic, bool glide, bool streaming,

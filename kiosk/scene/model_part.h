@@ -64,11 +64,15 @@ public:
     // Heads for the level `ratio` x full triangles gives (OBJ: the meshoptimizer
     // preview, only for a fixed ratio). `glide`: a progressive part geomorphs
     // there (call again each frame while gliding()); else it jumps. `streaming`:
-    // its file is still decoding, so it refines only in steps that at least
+    // its file is decoding now (not paused on demand), so it refines only in steps that at least
     // quadruple the triangles. Returns true when the part is at the level the
     // whole file would give for `ratio`.
     bool head_for(render::Renderer& renderer, double ratio, bool automatic, bool glide, bool streaming, double now);
     bool gliding() const { return morph_end_ > morph_begin_; }
+    // Splits a streamed part must decode for the level `ratio` asks: what is
+    // decoded when that reaches past the ratio's triangles, else an estimate
+    // (two triangles a split); the stream rounds it up to a batch boundary.
+    size_t wanted_splits(double ratio) const;
     // The renderer's geomorph state for this part.
     void apply_morph(render::ModelState& state) const;
     // A complete progressive part with normals hands its index array to the

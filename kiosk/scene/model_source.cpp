@@ -127,6 +127,9 @@ render::MeshData mesh_data_of(pm::ProgressiveMesh& pm) {
     m.indices = pm.indices();
     m.vertex_count = pm.vertex_count();
     m.index_count = 3 * pm.triangle_count();
+    // The arrays grow with the splits decoded; the renderer's limits are the file's.
+    m.vertex_capacity = pm.max_vertex_count();
+    m.index_capacity = 3 * pm.max_triangle_count();
     m.order_settled_levels = true;  // refinement order: a level that stays is drawn reordered
     pm::ProgressiveMesh* p = &pm;
     if (pm.vertex_data_released()) {

@@ -47,7 +47,8 @@ SceneModels::SceneModels(const scene::Scene& scene)
         const scene::Model& m = scene.models[i];
         if (std::filesystem::path(m.path).extension() != ".bpm") continue;
         const double priority = info_[i].loaded ? double(info_[i].radius) : 0.0;
-        models_[i].loader = std::make_unique<StreamLoader>(m.path, 64 * 1024, priority);
+        // On demand: past the bases only what bind()'s levels want (the kiosk's memory follows what it draws).
+        models_[i].loader = std::make_unique<StreamLoader>(m.path, 64 * 1024, priority, DecodePool::shared(), true);
     }
 }
 
@@ -214,20 +215,22 @@ bool SceneModels::poll_streams() {
         Model& m = models_[i];
         if (!m.streaming) continue;
         check_stream(*m.loader, m.streaming, scene_.models[i].name);
-        any = any || m.streaming;
+        any = any || (m.streaming && !m.loader->paused());
     }
     return any;
 }
 
 void SceneModels::wait_until(std::chrono::steady_clock::time_point deadline) const {
     for (const Model& m : models_)
-        if ((m.streaming || m.pending) && !m.loader->wait_done_until(deadline)) return;
+        if ((m.streaming || m.pending) && !m.loader->wait_idle_until(deadline)) return;
 }
 
 bool SceneModels::bind(size_t model, const ModelBinding& b, double now) {
     Model& m = models_[model];
     bool at_detail = true;
-    for (ModelPart& p : m.parts) {
+    const bool decoding = m.streaming && !m.loader->paused();
+    for (size_t i = 0; i < m.parts.size(); ++i) {
+        ModelPart& p = m.parts[i];
         render::ModelState* st = renderer_->state(p.id());
         st->style = b.style;
         st->visible = b.visible;
@@ -237,7 +240,8 @@ bool SceneModels::bind(size_t model, const ModelBinding& b, double now) {
         if (b.hold_level)
             at_detail = at_detail && !p.progressive();
         else
-            at_detail = p.head_for(*renderer_, b.lod_ratio, b.lod_automatic, b.glide, m.streaming, now) && at_detail;
+            at_detail = p.head_for(*renderer_, b.lod_ratio, b.lod_automatic, b.glide, decoding, now) && at_detail;
+        if (m.streaming) m.loader->want_splits(i, p.wanted_splits(b.lod_ratio));  // parts are the file's structures
         if (!m.streaming) p.hand_over_indices(*renderer_);
         p.apply_morph(*st);
     }

@@ -139,14 +139,16 @@ public:
     // Holds every streaming loader's lock (needed by bind() and pick()).
     std::vector<std::unique_lock<std::mutex>> lock() const;
     // Under lock(): notes streams that ended (logging why one ended early).
-    // True while any model still streams.
+    // True while any model still decodes (a stream paused on demand does not).
     bool poll_streams();
-    // Blocks until every stream has ended or `deadline` passed (gives the loaders the CPU).
+    // Blocks until every stream has ended or paused, or `deadline` passed (gives the loaders the CPU).
     void wait_until(std::chrono::steady_clock::time_point deadline) const;
 
     // Under lock(): applies `binding` to every structure of `model` and heads
-    // for its level of detail. Returns whether the model is at the detail the
-    // whole file would give (false while streaming or gliding towards it).
+    // for its level of detail; a file still streaming is asked to decode as far
+    // as that level needs (StreamLoader::want_splits), and no further. Returns
+    // whether the model is at the detail the whole file would give (false while
+    // decoding or gliding towards it).
     bool bind(size_t model, const ModelBinding& binding, double now);
     // Draws every structure of `model` in `colour` from now on (the authoring
     // mode's colour edits; the manifest's colour is applied at load).

@@ -25,9 +25,19 @@ constexpr size_t kSliceBytes = 16 * 1024;
 constexpr size_t kBaseSliceBytes = 2 * 1024;
 }  // namespace
 
-StreamLoader::StreamLoader(std::string path, size_t chunk_bytes, double priority, DecodePool& pool)
+StreamLoader::StreamLoader(std::string path, size_t chunk_bytes, double priority, DecodePool& pool, bool on_demand)
     : path_(std::move(path)), chunk_bytes_(chunk_bytes ? chunk_bytes : 1), pool_(pool), stream_(path_) {
-    pool_.add(this, priority);  // last: a pool thread may step it at once
+    if (on_demand) stream_.set_wanted_splits_all(0);  // the bases, then what want_splits asks
+    pool_.add(this, priority);                        // last: a pool thread may step it at once
+}
+
+void StreamLoader::want_splits(size_t structure, size_t splits) {
+    // Under the lock: the step that paused did so under it, so either it sees the new want or paused_ is set.
+    stream_.set_wanted_splits(structure, splits);
+    if (paused_.load(std::memory_order_relaxed) && stream_.wants_more()) {
+        paused_.store(false, std::memory_order_relaxed);
+        pool_.wake(this);
+    }
 }
 
 StreamLoader::~StreamLoader() {
@@ -72,13 +82,18 @@ void StreamLoader::release_detail() {
 void StreamLoader::wait_until_done() {
     release_detail();
     std::unique_lock guard = lock();
+    stream_.set_wanted_splits_all(SIZE_MAX);
+    if (paused_.load(std::memory_order_relaxed) && stream_.wants_more()) {
+        paused_.store(false, std::memory_order_relaxed);
+        pool_.wake(this);
+    }
     cv_.wait(guard, [&] { return done_.load(std::memory_order_relaxed); });
 }
 
-bool StreamLoader::wait_done_until(std::chrono::steady_clock::time_point deadline) const {
+bool StreamLoader::wait_idle_until(std::chrono::steady_clock::time_point deadline) const {
     // Polls instead of waiting on the condition: waking from a timed wait would
     // re-take the mutex past the decoder's fairness check (see lock()).
-    while (!done_.load(std::memory_order_acquire)) {
+    while (!done_.load(std::memory_order_acquire) && !paused_.load(std::memory_order_acquire)) {
         if (std::chrono::steady_clock::now() >= deadline) return false;
         std::this_thread::sleep_for(std::chrono::milliseconds(1));
     }
@@ -139,6 +154,11 @@ DecodeNeed StreamLoader::step(std::vector<uint8_t>& chunk) {
                 return finish(st.error().message);
             decoded_ += slice_bytes;
             off += slice_bytes;
+            if (stream_.paused()) {  // nothing more wanted: the next step reads on from where the stream stopped
+                decoded_ = stream_.bytes_consumed();
+                paused_.store(true, std::memory_order_release);
+                return DecodeNeed::Paused;
+            }
             if (!had_bases && bases_ready()) cv_.notify_all();
         }
         std::lock_guard guard(mutex_);

@@ -18,6 +18,12 @@
 // `priority` first), then, once release_detail() was called (the kiosk calls
 // it after its first frame, so that detail does not compete with the first
 // picture), the rest.
+//
+// On demand (`on_demand`): past the bases the file is decoded only as far as
+// want_splits() asks (pm::BpmStream::set_wanted_splits: up to the next batch
+// boundary), then the loader pauses, holding no bytes and no scratch, and
+// resumes when a want rises. So a scene of thousands of models drawn coarse
+// holds coarse levels, not every file's full detail.
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
@@ -38,7 +44,7 @@ public:
     // Queues `path` on `pool` for reading and decoding, `chunk_bytes` per read;
     // `priority`: its place among the pool's tasks (larger first).
     explicit StreamLoader(std::string path, size_t chunk_bytes = 64 * 1024, double priority = 0.0,
-                          DecodePool& pool = DecodePool::shared());
+                          DecodePool& pool = DecodePool::shared(), bool on_demand = false);
     ~StreamLoader() override;  // stops decoding (between two slices) and leaves the pool
     StreamLoader(const StreamLoader&) = delete;
     StreamLoader& operator=(const StreamLoader&) = delete;
@@ -49,10 +55,10 @@ public:
     // Lets decoding go past the base meshes. Idempotent.
     void release_detail();
     // Blocks until decoding is done (whole file decoded, or failed). Releases
-    // the detail first. For replays: frames that do not depend on timing.
+    // the detail and lifts every want first. For replays: frames that do not depend on timing.
     void wait_until_done();
-    // Blocks until decoding is done or `deadline` passed; true when done.
-    bool wait_done_until(std::chrono::steady_clock::time_point deadline) const;
+    // Blocks until decoding is done or paused, or `deadline` passed; true when done or paused.
+    bool wait_idle_until(std::chrono::steady_clock::time_point deadline) const;
 
     // Hold this while touching stream() or its structures. The decoding thread
     // lets a waiting caller in before its next slice (a mutex alone is not fair:
@@ -67,6 +73,10 @@ public:
     pm::BpmStream& stream() { return stream_; }
     bool bases_ready() const;                                            // every declared structure has its base mesh
     bool done() const { return done_.load(std::memory_order_relaxed); }  // nothing more will be decoded
+    // Nothing more wanted for now (on demand); want_splits() resumes it.
+    bool paused() const { return paused_.load(std::memory_order_relaxed); }
+    // Splits of structure `structure` wanted (on demand; BpmStream::set_wanted_splits).
+    void want_splits(size_t structure, size_t splits);
     // Why decoding stopped early: a read error, a corrupt section, or a file that
     // ended too soon (BpmStream::finish). Empty when the whole file decoded.
     const std::string& error() const { return error_; }
@@ -84,8 +94,9 @@ private:
     mutable std::mutex mutex_;
     mutable std::atomic<int> waiting_{0};  // callers blocked in lock()
     // Nothing more will be decoded; set under the lock, and atomic so that
-    // wait_done_until can poll it without the lock.
+    // wait_idle_until can poll it without the lock.
     std::atomic<bool> done_{false};
+    std::atomic<bool> paused_{false};  // likewise: the stream paused (set under the lock)
     mutable std::condition_variable cv_;
     pm::BpmStream stream_;
     bool released_ = false, stop_ = false;

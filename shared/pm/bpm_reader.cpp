@@ -35,6 +35,7 @@ std::string where_of(const std::string& source, uint32_t tag, uint32_t structure
 
 Status BpmStream::feed(std::span<const uint8_t> bytes) {
     if (failed_) return input_error(failure_);
+    paused_ = false;
     pending_.insert(pending_.end(), bytes.begin(), bytes.end());
     auto fail = [&](std::string message) -> Status {
         failed_ = true;
@@ -67,18 +68,66 @@ Status BpmStream::feed(std::span<const uint8_t> bytes) {
         if (get_u16(s + 6) != 0)
             return fail(where + ": reserved field (byte " + std::to_string(offset + 6) + ") not 0");
         if (length > (1u << 30)) return fail(where + ": section length " + std::to_string(length) + " too large");
+        // Nothing more wanted: stop before the splits (the bytes are read again later).
+        if (tag == kTagSplits && !wants_more()) paused_ = true;
+        if (paused_) break;
         const size_t total = kSectionHeaderSize + size_t(length) + kSectionTrailerSize;
         if (pending_.size() - pos < total) break;
         if (crc32({s, kSectionHeaderSize + length}) != get_u32(s + kSectionHeaderSize + length))
             return fail(where + ": checksum mismatch");
         Status st = parse_section(tag, structure, {s + kSectionHeaderSize, length}, offset);
         if (!st) return fail(st.error().message);
+        if (parked_.offset == offset) {  // stopped inside: this section is read again on resuming
+            paused_ = true;
+            break;
+        }
         pos += total;
     }
-    pending_.erase(pending_.begin(), pending_.begin() + ptrdiff_t(pos));
     consumed_ += pos;
+    if (paused_) {
+        std::vector<uint8_t>().swap(pending_);  // a paused stream holds no bytes
+        release_scratch();
+        return ok_status();
+    }
+    pending_.erase(pending_.begin(), pending_.begin() + ptrdiff_t(pos));
+    // Thousands of streams: a section's worth of capacity kept by each adds up.
+    if (pending_.empty()) std::vector<uint8_t>().swap(pending_);
+    if (complete_) release_scratch();
     return ok_status();
 }
+
+void BpmStream::release_scratch() {
+    std::vector<uint32_t>().swap(split_parents_);
+    std::vector<uint32_t>().swap(decoded_indices_);
+    for (auto& m : meshes_) m->order_scratch_ = {};
+}
+
+void BpmStream::set_wanted_splits(size_t structure, size_t splits) {
+    if (structure < wanted_.size()) wanted_[structure] = splits;
+}
+
+void BpmStream::set_wanted_splits_all(size_t splits) {
+    default_wanted_ = splits;
+    std::fill(wanted_.begin(), wanted_.end(), splits);
+}
+
+size_t BpmStream::split_limit(size_t structure) const {
+    const ProgressiveMesh& m = *meshes_[structure];
+    const size_t want = std::min(wanted_[structure], m.split_count_);
+    if (!m.batched() || want == 0) return want;
+    // Batch boundaries: a level inside a batch is drawable only while it arrives.
+    return *std::lower_bound(m.batch_levels_.begin(), m.batch_levels_.end(), uint32_t(want));
+}
+
+bool BpmStream::wants_more_except(size_t structure) const {
+    if (complete_) return false;
+    if (!header_done_ || meshes_.size() < declared_structures_) return true;
+    for (size_t i = 0; i < meshes_.size(); ++i)
+        if (i != structure && (!meshes_[i]->base_ready_ || meshes_[i]->decoded_splits_ < split_limit(i))) return true;
+    return false;
+}
+
+bool BpmStream::wants_more() const { return wants_more_except(SIZE_MAX); }
 
 Status BpmStream::finish() const {
     if (failed_) return input_error(failure_);
@@ -125,7 +174,7 @@ Status BpmStream::parse_section(uint32_t tag, uint32_t structure, std::span<cons
         return parse_base(m, payload, where);
     }
     if (!m.base_ready_) return input_error(where + ": SPLT before BASE");
-    return parse_splits(m, payload, where);
+    return parse_splits(structure, payload, offset, where);
 }
 
 Status BpmStream::parse_info(std::span<const uint8_t> payload, const std::string& where) {
@@ -147,21 +196,17 @@ Status BpmStream::parse_info(std::span<const uint8_t> payload, const std::string
     m->split_count_ = splits;
     m->face_count_ = faces;
     m->chunk_splits_ = chunk;
-    // The renderer's arrays at full capacity, uninitialised: each entry is
-    // written when its section arrives, and only decoded entries are read (no
-    // page faults for the rest). The rest grows with the sections (grow_decoded).
-    m->positions_.resize(vertices * 3);
+    // Every array, the renderer's too, grows with the sections (grow_decoded).
     m->parent_bytes_ = vertices <= (uint64_t(1) << 24) ? 3 : 4;
-    m->indices_.resize(size_t(faces) * 3);
     m->move_count_ = 0;
     m->patch_corners_.clear();
     m->corner_bytes_ = uint64_t(faces) * 3 <= (uint64_t(1) << 24) ? 3 : 4;
-    if (m->has_normals_) m->normals_.resize(vertices * 2);
     m->replay_.clear(vertices);
     if (order_ == FaceOrder::Batched && splits > 0) m->batch_levels_ = batch_levels(bv, splits);
     m->grow_decoded(0, bf);
     m->face_sample_[0] = bf;
     meshes_.push_back(std::move(m));
+    wanted_.push_back(default_wanted_);
     return ok_status();
 }
 
@@ -417,15 +462,28 @@ void BpmStream::record_split(ProgressiveMesh& m, size_t j, uint32_t parent, uint
                               m.parent_bytes_);
 }
 
-Status BpmStream::parse_splits(ProgressiveMesh& m, std::span<const uint8_t> payload, const std::string& where) {
+Status BpmStream::parse_splits(size_t structure, std::span<const uint8_t> payload, size_t offset,
+                               const std::string& where) {
+    ProgressiveMesh& m = *meshes_[structure];
     ChunkHeader h;
     if (!read_chunk_header(payload, h)) return input_error(where + ": SPLT payload sizes do not add up");
+    // A section stopped part-way (decoding on demand) goes on where it stopped.
+    Parked at = parked_.offset == offset ? parked_ : Parked{};
+    parked_.offset = SIZE_MAX;
     const uint32_t first = h.first, count = h.count;
-    if (first != m.decoded_splits_ || count == 0 || count > m.split_count_ - m.decoded_splits_ ||
-        h.new_faces > m.face_count_ - m.decoded_faces_)
+    const size_t faces_before = m.decoded_faces_ - at.face_cursor;
+    if (first + at.next != m.decoded_splits_ || count == 0 || count > m.split_count_ - first ||
+        h.new_faces > m.face_count_ - faces_before)
         return input_error(where + ": split range " + std::to_string(first) + "+" + std::to_string(count) +
                            " does not follow split " + std::to_string(m.decoded_splits_));
-    m.grow_decoded(size_t(first) + count, m.decoded_faces_ + h.new_faces);
+    // Where to stop: the structure's limit, unless another structure wants more.
+    const uint32_t stop =
+        wants_more_except(structure)
+            ? count
+            : uint32_t(std::clamp<size_t>(split_limit(structure), first + at.next + 1, size_t(first) + count) - first);
+    // A split adds 1 to 3 faces: grown for what is decoded now, not the whole section.
+    m.grow_decoded(size_t(first) + stop,
+                   std::min(faces_before + h.new_faces, m.decoded_faces_ + 3 * size_t(stop - at.next)));
     SplitDecoder decoder;
     if (!decoder.init(h.values)) return input_error(where + ": split value tables do not decode");
     SplitDecoder::Cursor values = decoder.begin();
@@ -440,24 +498,33 @@ Status BpmStream::parse_splits(ProgressiveMesh& m, std::span<const uint8_t> payl
             return input_error(where + ": split " + std::to_string(first + i) + ": parent out of range");
         parents[i] = previous = parent;
     }
+    ByteReader topo(h.topology);
+    size_t face_cursor = at.face_cursor;
+    uint32_t previous_error_bits = at.error_bits;
+    if (at.next == 0) {
+        const float previous_error = first == 0 ? INFINITY : m.error_at(first - 1);
+        std::memcpy(&previous_error_bits, &previous_error, 4);
+    } else {
+        std::span<const uint8_t> skipped;
+        (void)topo.bytes(at.topology_at, skipped);
+        values.rans_pos = at.rans_pos;
+        values.bit_pos = at.bit_pos;
+        values.state = at.state;
+        values.other_state = at.other_state;
+    }
     // Everything below runs per split: no allocation (the message is built on failure only).
     // Geometric growth: reserving the exact need per section would copy the whole
     // array at every section (quadratic in the file's size).
-    if (const size_t need = m.patch_corners_.size() + size_t(count) * 4 * m.corner_bytes_;
+    if (const size_t need = m.patch_corners_.size() + size_t(stop - at.next) * 4 * m.corner_bytes_;
         need > m.patch_corners_.capacity())
         m.patch_corners_.reserve(std::max(need, 2 * m.patch_corners_.capacity()));
-    ByteReader topo(h.topology);
-    size_t face_cursor = 0;
-    float previous_error = first == 0 ? INFINITY : m.error_at(first - 1);
-    uint32_t previous_error_bits;
-    std::memcpy(&previous_error_bits, &previous_error, 4);
     ChunkContext ctx{m.replay_, m.qpos_.data(), m.qoct_.data(), m.has_normals_, {}, {}};
     const float box_lo[3] = {m.bbox_min_.x, m.bbox_min_.y, m.bbox_min_.z},
                 box_hi[3] = {m.bbox_max_.x, m.bbox_max_.y, m.bbox_max_.z};
     normal_axis_weights(box_lo, box_hi, ctx.axis_weight);
     plane_axis_weights(box_lo, box_hi, ctx.plane_weight);
     uint32_t moved[64];
-    for (uint32_t i = 0; i < count; ++i) {
+    for (uint32_t i = at.next; i < stop; ++i) {
         prefetch_ahead(ctx, parents, i);
         const size_t j = first + i;
         DecodedSplit s;
@@ -486,12 +553,17 @@ Status BpmStream::parse_splits(ProgressiveMesh& m, std::span<const uint8_t> payl
         if (m.batched() && j + 1 == m.batch_levels_[m.ordered_batches_]) m.order_batch(j + 1);
     }
     const size_t first_child = m.base_vertices_ + first;
-    m.dirty_vertices_.add(first_child, first_child + count);
-    m.dirty_indices_.add((m.decoded_faces_ - face_cursor) * 3, m.decoded_faces_ * 3);
+    m.dirty_vertices_.add(first_child + at.next, first_child + stop);
+    m.dirty_indices_.add((m.decoded_faces_ - (face_cursor - at.face_cursor)) * 3, m.decoded_faces_ * 3);
+    m.decoded_splits_ = size_t(first) + stop;
+    if (stop < count) {  // nothing more wanted: the decoder's place kept, the section read again later
+        parked_ = Parked{offset,          stop,           face_cursor,  topo.offset(),     previous_error_bits,
+                         values.rans_pos, values.bit_pos, values.state, values.other_state};
+        return ok_status();
+    }
     if (face_cursor != h.new_faces || topo.left() != 0)
         return input_error(where + ": split face count does not match its records");
     if (!values.ok()) return input_error(where + ": split values do not end where the chunk does");
-    m.decoded_splits_ += count;
     if (m.decoded_splits_ == m.split_count_) {
         if (m.decoded_faces_ != m.face_count_) return input_error(where + ": face count does not match INFO");
         m.release_decoding_state();

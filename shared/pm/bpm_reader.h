@@ -38,11 +38,32 @@ public:
     // Error for a stream that ended early: names the section being received and its offset.
     Status finish() const;
 
+    // --- decoding on demand (the kiosk decodes a file only as far as its levels are wanted).
+    // Splits of structure `structure` (< structure_count()) wanted. The stream stops
+    // once every structure has what it wants: at the first batch boundary at or
+    // above the want (draw_order.h; refinement order: at the want), inside a SPLT
+    // section if need be. Raising a want lets it go on. A want never undecodes.
+    // Default: every split (the whole file).
+    void set_wanted_splits(size_t structure, size_t splits);
+    // The want of every structure, those whose INFO has not arrived included.
+    void set_wanted_splits_all(size_t splits);
+    // True when a structure wants more than it has (or has not arrived).
+    bool wants_more() const;
+    // True when the last feed() stopped because nothing more was wanted. The bytes
+    // from bytes_consumed() on were dropped: feed again from there once a want
+    // rose. A stop inside a section keeps only the decoder's place (a few numbers,
+    // no bytes): the section is read again, checked again, and decoding goes on
+    // after its last decoded split, giving exactly what an uninterrupted decode gives.
+    bool paused() const { return paused_; }
+
 private:
     Status parse_section(uint32_t tag, uint32_t structure, std::span<const uint8_t> payload, size_t offset);
     Status parse_info(std::span<const uint8_t> payload, const std::string& where);
     Status parse_base(ProgressiveMesh& m, std::span<const uint8_t> payload, const std::string& where);
-    Status parse_splits(ProgressiveMesh& m, std::span<const uint8_t> payload, const std::string& where);
+    Status parse_splits(size_t structure, std::span<const uint8_t> payload, size_t offset, const std::string& where);
+    size_t split_limit(size_t structure) const;  // where decoding on demand stops (set_wanted_splits)
+    bool wants_more_except(size_t structure) const;
+    void release_scratch();  // the per-section scratch, while paused and once complete
     // Appends a decoded split to m's arrays: its new faces, the corners it moved to
     // the child, its parent's move, the child's codes and the level's error.
     static void record_split(ProgressiveMesh& m, size_t j, uint32_t parent, uint32_t child,
@@ -59,6 +80,21 @@ private:
     std::vector<std::unique_ptr<ProgressiveMesh>> meshes_;
     std::vector<uint32_t> decoded_indices_;
     std::vector<uint32_t> split_parents_;  // parse_splits: the parents of a chunk's splits (reused)
+    // Decoding on demand: per structure the splits wanted (default_wanted_ until set).
+    std::vector<size_t> wanted_;
+    size_t default_wanted_ = SIZE_MAX;
+    bool paused_ = false;
+    // A SPLT section decoded part-way: its file offset (SIZE_MAX: none), the
+    // splits of it decoded, the faces they added, the error bits of the last,
+    // and where its value and topology streams stand.
+    struct Parked {
+        size_t offset = SIZE_MAX;
+        uint32_t next = 0;
+        size_t face_cursor = 0, topology_at = 0;
+        uint32_t error_bits = 0;
+        size_t rans_pos = 0, bit_pos = 0;
+        uint32_t state = 0, other_state = 0;
+    } parked_;
 };
 
 // Reads a whole file; errors name the path, section and byte offset.

@@ -23,10 +23,10 @@
 // file's 8:8 octahedral codes (normal_codes(), 2 bytes a vertex; normal()).
 //
 // Threading: none inside; one ProgressiveMesh per thread at a time.
-// Allocation: the arrays a renderer reads (positions, normals, indices) are
-// sized when a structure's INFO section arrives; the split records and the
-// decoding state grow with the sections that arrive (a structure parked
-// half-way holds about half); refine_to/coarsen_to never allocate. Once complete
+// Allocation: every array (those a renderer reads: positions, normals,
+// indices; the split records; the decoding state) grows with the splits
+// decoded, doubling, up to the file's counts (a structure parked half-way
+// holds about half); refine_to/coarsen_to never allocate. Once complete
 // (decoding state freed) a structure keeps about 57 bytes a vertex split (60 in the
 // batched order: each split's vertex number, split_child), 24 of
 // them the index array (which can be released to a renderer: release_indices()).
@@ -126,7 +126,8 @@ public:
     // memory than `out` (caller-owned, reused across calls: no allocation once grown).
     size_t morph_sources(size_t lo, std::vector<Vec3f>& out) const;
 
-    // --- arrays, sized max_vertex_count() / 3 * max_triangle_count(); entries past
+    // --- arrays, at least the decoded vertices / 3 * the decoded triangles
+    // (max_vertex_count() / 3 * max_triangle_count() once complete); entries past
     // the current prefix are valid once decoded but are not part of this level.
     // Three codes per vertex in [bounds_min(), bounds_max()]: axis k of vertex v
     // is dequantize16(code, bounds_min()[k], step) with step = (double(max) -
@@ -235,9 +236,8 @@ private:
     size_t index_level_ = 0, index_pages_released_ = 0;  // bytes of indices_ handed back so far
     DirtyRange pending_indices_;
 
-    // Sized to full capacity by INFO (the renderer's spans) but written only as
-    // sections arrive: entries past the decoded vertices, faces and splits are
-    // indeterminate. The per-split arrays below them grow (grow_decoded).
+    // Grown with the decoded splits (grow_decoded), written as they decode:
+    // entries past the decoded vertices, faces and splits are indeterminate.
     double step_[3] = {0.0, 0.0, 0.0};  // dequantization step per axis
     UninitVector<uint16_t> positions_;  // 3 per vertex: codes at the current level
     UninitVector<uint8_t> normals_;     // 2 per vertex: octahedral codes (files with normals)

@@ -39,6 +39,10 @@ void ProgressiveMesh::grow_decoded(size_t splits, size_t faces) {
     grown_splits_ = s;
     grown_faces_ = f;
     const size_t v = base_vertices_ + s;
+    // The renderer's arrays: entries are written as splits decode, only decoded ones are read.
+    grow_to(positions_, v * 3);
+    if (has_normals_) grow_to(normals_, v * 2);
+    grow_to(indices_, f * 3);
     grow_to(split_parents_bytes_, s * parent_bytes_);
     grow_zeroed(face_count_bits_, (s + 31) / 32);
     grow_to(face_sample_, s / 64 + 1);
@@ -64,8 +68,8 @@ size_t ProgressiveMesh::heap_bytes() const {
     const CacheOrderScratch& s = order_scratch_;
     const size_t scratch = bytes_of(s.keys) + bytes_of(s.local_of) + bytes_of(s.local) + bytes_of(s.sorted) +
                            bytes_of(s.global) + bytes_of(s.start) + bytes_of(s.by_first) + bytes_of(s.window);
-    return sizeof(*this) + name_.capacity() + bytes_of(packed_indices_) + bytes_of(positions_) + bytes_of(indices_) +
-           bytes_of(split_parents_bytes_) + bytes_of(face_count_bits_) + bytes_of(face_sample_) +
+    return sizeof(*this) + name_.capacity() + bytes_of(packed_indices_) + bytes_of(positions_) + bytes_of(normals_) +
+           bytes_of(indices_) + bytes_of(split_parents_bytes_) + bytes_of(face_count_bits_) + bytes_of(face_sample_) +
            bytes_of(error_levels_) + bytes_of(error_highs_) + bytes_of(patch_count_) + bytes_of(move_bits_) +
            bytes_of(move_rank_) + bytes_of(moves_) + bytes_of(patch_corners_) + bytes_of(batch_levels_) +
            replay_.heap_bytes() + bytes_of(qpos_) + bytes_of(qoct_) + bytes_of(face_slot_) + scratch;

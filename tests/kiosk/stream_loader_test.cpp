@@ -156,5 +156,76 @@ TEST(StreamLoader, StopsWhileWaitingForRelease) {
     ::unlink(path.c_str());
 }
 
+// Waits (bounded) until the loader paused or finished; false on time-out.
+bool settle(const StreamLoader& loader) {
+    return loader.wait_idle_until(std::chrono::steady_clock::now() + std::chrono::seconds(20));
+}
+
+// The levels of `got` up to its decoded level equal those of the one-shot read's:
+// triangles (index prefix) and vertices (position codes).
+void expect_prefix_levels(pm::ProgressiveMesh& got, pm::ProgressiveMesh want) {
+    for (size_t level : {size_t(0), got.available_level() / 2, got.available_level()}) {
+        ASSERT_EQ(got.set_level(level), want.set_level(level));
+        const size_t n = got.triangle_count() * 3, v = got.vertex_count() * 3;
+        ASSERT_EQ(n, want.triangle_count() * 3);
+        EXPECT_TRUE(std::equal(got.indices().begin(), got.indices().begin() + ptrdiff_t(n), want.indices().begin()));
+        EXPECT_TRUE(std::equal(got.position_codes().begin(), got.position_codes().begin() + ptrdiff_t(v),
+                               want.position_codes().begin()));
+    }
+}
+
+// On demand: past the bases a file decodes only as far as each structure's want
+// (rounded up to a batch boundary), pauses holding that level exactly as a whole
+// read gives it, and resumes when a want rises, to the same file in the end.
+TEST(StreamLoader, OnDemandPausesAtTheWantedLevelAndResumes) {
+    const std::vector<uint8_t> bytes = two_sphere_bpm();
+    const std::string path = temp_file(bytes);
+    auto expected = pm::read_bpm_bytes(bytes, path);
+    ASSERT_TRUE(expected) << expected.error().message;
+    {
+        StreamLoader loader(path, 4096, 0.0, DecodePool::shared(), true);
+        loader.wait_for_bases();
+        loader.release_detail();
+        ASSERT_TRUE(settle(loader));
+        {
+            auto held = loader.lock();
+            ASSERT_TRUE(loader.paused()) << "nothing wanted past the bases";
+            EXPECT_EQ(loader.stream().structure(0).available_level(), 0u);
+            EXPECT_EQ(loader.stream().structure(1).available_level(), 0u);
+            loader.want_splits(0, 300);  // the second structure stays at its base
+        }
+        ASSERT_TRUE(settle(loader));
+        {
+            auto held = loader.lock();
+            ASSERT_TRUE(loader.paused());
+            pm::ProgressiveMesh& first = loader.stream().structure(0);
+            const auto bl = first.batch_levels();
+            EXPECT_EQ(first.available_level(), *std::lower_bound(bl.begin(), bl.end(), 300u));
+            expect_prefix_levels(first, *expected.value()[0]);
+            EXPECT_LT(loader.bytes_decoded(), bytes.size() / 2);
+            loader.want_splits(1, 1000);
+        }
+        ASSERT_TRUE(settle(loader));
+        {
+            auto held = loader.lock();
+            ASSERT_TRUE(loader.paused());
+            pm::ProgressiveMesh& second = loader.stream().structure(1);
+            const auto bl = second.batch_levels();
+            EXPECT_EQ(second.available_level(), *std::lower_bound(bl.begin(), bl.end(), 1000u));
+            expect_prefix_levels(second, *expected.value()[1]);
+        }
+        loader.wait_until_done();  // lifts every want
+        auto held = loader.lock();
+        EXPECT_TRUE(loader.error().empty()) << loader.error();
+        ASSERT_TRUE(loader.stream().complete());
+        for (size_t s = 0; s < 2; ++s) {
+            pm::ProgressiveMesh& got = loader.stream().structure(s);
+            ASSERT_EQ(got.available_level(), got.max_level());
+            expect_prefix_levels(got, *expected.value()[s]);
+        }
+    }
+    ::unlink(path.c_str());
+}
+
 }  // namespace
 }  // namespace body::kiosk

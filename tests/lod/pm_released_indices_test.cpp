@@ -198,7 +198,8 @@ TEST(PmReleasedIndices, NotReleasedWhileSplitsAreStillStreaming) {
     EXPECT_FALSE(m.release_vertex_data());
     EXPECT_FALSE(m.indices_released());
     EXPECT_FALSE(m.vertex_data_released());
-    EXPECT_EQ(m.indices().size(), 3 * m.max_triangle_count());
+    // Nothing freed: the array still holds every decoded triangle (it grows with them).
+    EXPECT_GE(m.indices().size(), 3 * m.triangles_at(m.available_level()));
 }
 
 }  // namespace

@@ -2,7 +2,8 @@
 // and normal codes, as a .bpm gives them; more than one chunk) drawn batched
 // and one call a model must give the same bytes, the batched one in a few
 // calls, through level-of-detail prefixes, colour, transform and style
-// changes, selection, hidden and removed models.
+// changes, selection, hidden and removed models, and streamed models whose
+// buffers grow past their room in a chunk after it formed.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -38,6 +39,34 @@ struct Shape {
     }
 };
 
+// A streamed model's upload: the faces ordered by their highest vertex, so a
+// prefix of them uses a prefix of the vertices; `faces` of them and the
+// vertices they use, the rest capacity (MeshData::prefix_only), in the box of
+// every vertex.
+MeshData streamed(const Shape& shape, std::vector<uint32_t>& sorted, size_t faces) {
+    if (sorted.empty()) {
+        const std::vector<uint32_t>& ix = shape.mesh.indices;
+        std::vector<size_t> order(ix.size() / 3);
+        for (size_t f = 0; f < order.size(); ++f) order[f] = f;
+        auto top = [&](size_t f) { return std::max({ix[f * 3], ix[f * 3 + 1], ix[f * 3 + 2]}); };
+        std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return top(a) < top(b); });
+        for (size_t f : order)
+            sorted.insert(sorted.end(), ix.begin() + ptrdiff_t(f * 3), ix.begin() + ptrdiff_t(f * 3 + 3));
+    }
+    MeshData d{shape.mesh.positions, {}, sorted};
+    d.normal_codes = shape.codes;
+    d.index_count = faces * 3;
+    d.vertex_count = 1 + *std::max_element(sorted.begin(), sorted.begin() + ptrdiff_t(faces * 3));
+    d.prefix_only = true;
+    d.has_position_box = true;
+    d.position_box_min = d.position_box_max = shape.mesh.positions[0];
+    for (const Vec3f& p : shape.mesh.positions) {
+        d.position_box_min = glm::min(d.position_box_min, p);
+        d.position_box_max = glm::max(d.position_box_max, p);
+    }
+    return d;
+}
+
 Shape make_shape(int kind) {
     Shape s;
     s.mesh = kind == 0 ? test::icosphere(2, 0.9f) : test::torus(12, 16, 0.7f, 0.3f);
@@ -65,10 +94,15 @@ Frames run(bool batch) {
     if (!f.ok()) return out;
     Renderer& r = f.renderer();
     const Shape shapes[2] = {make_shape(0), make_shape(1)};
+    std::vector<uint32_t> sorted[2];
     std::vector<ModelId> ids;
+    // Every fifth model streams: a third of its faces first.
+    auto is_streamed = [](int i) { return i % 5 == 2; };
     for (int i = 0; i < kModels; ++i) {
         const Shape& shape = shapes[i % 2];
-        auto id = r.add_model(shape.data(), std::to_string(i));
+        const size_t faces = shape.mesh.indices.size() / 3;
+        auto id =
+            r.add_model(is_streamed(i) ? streamed(shape, sorted[i % 2], faces / 3) : shape.data(), std::to_string(i));
         if (!id) return out;
         ids.push_back(id.value());
         ModelState& st = *r.state(id.value());
@@ -89,11 +123,21 @@ Frames run(bool batch) {
         out.models_drawn.push_back(r.last_frame_stats().models_drawn);
     };
     take();
-    // Levels of detail: a third of the models draw a prefix of their triangles.
-    for (int i = 0; i < kModels; i += 3) {
+    // Levels of detail: a third of the models draw a prefix of their triangles;
+    // the streamed ones get the rest of their vertices and faces.
+    for (int i = 0; i < kModels; ++i) {
         const Shape& shape = shapes[i % 2];
-        const size_t prefix = shape.mesh.indices.size() / 3 / 3 * 3;
-        if (!r.update_model(ids[static_cast<size_t>(i)], shape.data(prefix), Dirty{}).ok()) return out;
+        const size_t faces = shape.mesh.indices.size() / 3;
+        const ModelId id = ids[static_cast<size_t>(i)];
+        if (is_streamed(i)) {
+            const MeshData part = streamed(shape, sorted[i % 2], faces / 3),
+                           all = streamed(shape, sorted[i % 2], faces);
+            if (!r.update_model(id, all, Dirty{part.vertex_count, all.vertex_count, part.index_count, all.index_count})
+                     .ok())
+                return out;
+        } else if (i % 3 == 0) {
+            if (!r.update_model(id, shape.data(faces / 3 * 3), Dirty{}).ok()) return out;
+        }
     }
     take();
     // Colours, transforms and styles change; one model leaves the scene; the
