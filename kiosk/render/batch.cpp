@@ -248,7 +248,7 @@ void shutdown_batches(Batches& b) {
 bool batchable(const Frame& f, const Model& m, bool fade_rest) {
     const ModelState& st = m.state;
     return !f.clipping && !m.internal && !st.selected && !fade_rest && style_index(st.style) >= 0 &&
-           m.batch_chunk != kNotBatched && m.quantized && m.normal_codes &&
+           m.batch_chunk != kNotBatched && m.vertex_capacity <= kMaxBatchedVertices && m.quantized && m.normal_codes &&
            !(m.vbo_morph && st.morph < 1.0f && st.morph_begin < m.vertex_count);
 }
 

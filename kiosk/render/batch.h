@@ -16,7 +16,7 @@
 // colour go to mesh.vert as one uniform array (BODY_BATCH); the arithmetic is
 // the per-model path's, so a batched model draws the same pixels.
 //
-// A model is batched when it is opaque (not selected or faded), in `smooth`
+// A model is batched when it has at most kMaxBatchedVertices, is opaque (not selected or faded), in `smooth`
 // or `baseline`, uploaded as position codes with normal codes, not gliding
 // (geomorph) and no cut plane is on; everything else takes the per-model path
 // (frame.cpp). Chunks are formed at the frame that first sees such models and
@@ -39,6 +39,13 @@
 namespace body::render {
 
 struct RendererState;
+
+// Models with more vertex capacity are drawn alone: their one draw call is
+// nothing next to their triangles, and a chunk would hold a second copy of
+// their vertex codes and of their level's indices (plus the stream's rebuild
+// on the CPU at each change: +30 MiB peak for a 1.1M-triangle model on
+// llvmpipe, bench/RESULTS.md).
+inline constexpr size_t kMaxBatchedVertices = 65536;
 
 // vec4s per slot in mesh.vert's u_slots: model-view (4), normal matrix (3),
 // position origin and scale (2), colour (1).

@@ -2,8 +2,8 @@
 // Vertex-cache order of a triangle list in place, in bounded memory: the
 // triangles sorted along a Morton curve of their first corner's cell (an
 // in-place bucket sort), then runs of about kOrderWindowFaces consecutive
-// triangles each through meshopt_optimizeVertexCache with their vertices
-// numbered among themselves. The scratch is that of one window plus one
+// triangles each through pm::cache_order_window's in-place form (shared with
+// the decoder's batch order, shared/pm/cache_window.h). The scratch is that of one window plus one
 // entry a vertex, not meshoptimizer's whole-mesh tables and a second copy
 // (about 3x the index bytes for a 1.1M-triangle level; bench/RESULTS.md).
 // Used by level_order.h on the mapped element buffer itself.

@@ -33,6 +33,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "shared/pm/cache_window.h"
+
 namespace body::pm {
 
 // Ratio of the vertex counts at consecutive batch boundaries.
@@ -46,15 +48,16 @@ std::vector<uint32_t> batch_levels(size_t base_vertices, size_t splits);
 // contents belong to cache_order: local_of stays all UINT32_MAX between calls).
 struct CacheOrderScratch {
     std::vector<uint64_t> keys;
-    std::vector<uint32_t> local_of, local, sorted, global, start, by_first, window;
+    CacheWindowScratch window;
 };
 
 // The cache order of `face_count` triangles (`indices`, three per face, each <
 // vertex_count; `qpos`: 3 position codes per vertex): writes to order[i] the
-// face drawn i-th (a permutation of 0 .. face_count-1). The faces sorted along
-// a Morton curve, then windows of 1024 consecutive faces each through
-// meshopt_optimizeVertexCache (a window's tables stay in the CPU's caches;
-// Tipsify there instead decoded faster still, at 5 % more cache misses).
+// face drawn i-th (a permutation of 0 .. face_count-1). The faces sorted stably
+// by the Morton code of their first corner (10 bits per axis), then windows of
+// 1024 consecutive faces each through cache_order_window (cache_window.h; a
+// window's tables stay in the CPU's caches; Tipsify there instead decoded
+// faster still, at 5 % more cache misses).
 void cache_order(const uint32_t* indices, size_t face_count, size_t vertex_count, const uint16_t* qpos, uint32_t* order,
                  CacheOrderScratch& scratch);
 

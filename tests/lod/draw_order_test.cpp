@@ -14,6 +14,7 @@
 
 #include "builder/lod/bpm_writer.h"
 #include "shared/pm/bpm_reader.h"
+#include "shared/pm/cache_window.h"
 #include "shared/pm/progressive_mesh.h"
 #include "tests/lod/lod_test_util.h"
 
@@ -116,6 +117,50 @@ TEST(DrawOrder, CacheOrderIsAPermutationThatHelpsTheCache) {
                 acmr(out, g * g), acmr(best, g * g));
     EXPECT_LT(acmr(out, g * g), 0.5f * acmr(shuffled, g * g));
     EXPECT_LT(acmr(out, g * g), 1.3f * acmr(best, g * g));
+}
+
+// The window kernel's two forms (shared/pm/cache_window.h) give the same
+// order: the kiosk's in place over the triangles, the decoder's as a
+// permutation of face numbers. Over windows of a shuffled grid with a
+// duplicate and a degenerate face, and once more with the scratch reused.
+TEST(DrawOrder, CacheWindowFormsAgree) {
+    const uint32_t g = 40;
+    std::vector<uint32_t> idx;
+    for (uint32_t y = 0; y + 1 < g; ++y)
+        for (uint32_t x = 0; x + 1 < g; ++x) {
+            const uint32_t a = y * g + x;
+            idx.insert(idx.end(), {a, a + 1, a + g, a + 1, a + g + 1, a + g});
+        }
+    idx.insert(idx.end(), {0, 1, g, 5, 5, 5});
+    const size_t faces = idx.size() / 3;
+    std::vector<uint32_t> shuffled;
+    for (size_t f = 0; f < faces; ++f) {
+        const size_t s = f * 7919 % faces;
+        shuffled.insert(shuffled.end(), {idx[s * 3], idx[s * 3 + 1], idx[s * 3 + 2]});
+    }
+    pm::CacheWindowScratch permutation_scratch, in_place_scratch;
+    for (size_t window : {size_t{97}, size_t{1024}, faces}) {
+        std::vector<uint32_t> in_place = shuffled, by_faces;
+        pm::reserve_cache_window(in_place_scratch, window, g * g);
+        pm::reserve_cache_window(permutation_scratch, window, g * g);
+        for (size_t w = 0; w < faces; w += window) {
+            const size_t n = std::min(window, faces - w);
+            std::vector<uint32_t> order(n);
+            for (size_t t = 0; t < n; ++t) order[t] = uint32_t(w + t);
+            ASSERT_TRUE(pm::cache_order_window(shuffled.data(), order.data(), n, permutation_scratch));
+            for (uint32_t f : order)
+                by_faces.insert(by_faces.end(), {shuffled[f * 3], shuffled[f * 3 + 1], shuffled[f * 3 + 2]});
+            pm::cache_order_window(in_place.data() + 3 * w, n, in_place_scratch);
+        }
+        EXPECT_EQ(in_place, by_faces) << "window " << window;
+        EXPECT_EQ(triangle_set(in_place), triangle_set(shuffled));
+        // One window over all is the cache order itself (short shuffled windows share few vertices).
+        if (window == faces) {
+            EXPECT_LT(acmr(in_place, g * g), 0.6f * acmr(shuffled, g * g));
+        }
+        EXPECT_TRUE(std::all_of(in_place_scratch.local_of.begin(), in_place_scratch.local_of.end(),
+                                [](uint32_t l) { return l == UINT32_MAX; }));
+    }
 }
 
 TEST(DrawOrder, BoundaryLevelsHoldTheRefinementTriangles) {

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "kiosk/render/batch.h"
 #include "shared/pm/quantize.h"
 #include "tests/render/render_fixture.h"
 
@@ -182,6 +183,40 @@ TEST(RenderBatch, SamePixelsAsOneCallAModelInFewCalls) {
     const Image& first = batched.images[0];
     const std::vector<bool> fg = test::foreground_mask(first, Vec3f(0.97f, 0.96f, 0.93f));
     EXPECT_GT(std::count(fg.begin(), fg.end(), true), static_cast<long>(fg.size() / 8));
+}
+
+// A model above kMaxBatchedVertices is drawn alone: the same pixels with
+// batching on and off, and no chunk holding a second copy of its vertex codes
+// and indices (the renderer's GL bytes equal). A small model beside it still
+// draws the same.
+TEST(RenderBatch, LargeModelDrawnAloneWithoutAChunkCopy) {
+    Shape large;
+    large.mesh = test::icosphere(7, 0.9f);  // 163,842 vertices
+    ASSERT_GT(large.mesh.positions.size(), kMaxBatchedVertices);
+    large.codes.resize(large.mesh.positions.size() * 2);
+    for (size_t v = 0; v < large.mesh.positions.size(); ++v)
+        encode(glm::normalize(large.mesh.positions[v]), &large.codes[v * 2]);
+    const Shape small = make_shape(1);
+    std::vector<Image> images;
+    std::vector<size_t> gl_bytes;
+    for (bool batch : {false, true}) {
+        RendererOptions options;
+        options.batch = batch;
+        RenderFixture f(160, 120, options);
+        REQUIRE_GL(f);
+        Renderer& r = f.renderer();
+        auto a = r.add_model(large.data(), "large");
+        auto b = r.add_model(small.data(), "small");
+        ASSERT_TRUE(a && b);
+        r.state(a.value())->style = Style::Smooth;
+        r.state(b.value())->transform = glm::translate(glm::mat4(1.0f), Vec3f(1.5f, 0.0f, 0.0f));
+        images.push_back(f.draw(View::framing(Vec3f(0.5f, 0.0f, 0.0f), 2.5f, Vec3f(0.2f, 0.3f, 1.0f))));
+        gl_bytes.push_back(r.gpu_bytes());
+        ASSERT_EQ(r.last_frame_stats().models_drawn, 2u);
+    }
+    EXPECT_TRUE(images[0].rgba == images[1].rgba);
+    // Batched, only the small model's chunk is added (its codes, slots and stream), not the large one's 5 MiB.
+    EXPECT_LT(gl_bytes[1], gl_bytes[0] + 64 * 1024);
 }
 
 }  // namespace
