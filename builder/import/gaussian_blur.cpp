@@ -27,10 +27,9 @@ void blur_axis(std::span<float> field, const size_t size[3], int axis, const std
                std::vector<double>& line) {
     const size_t radius = k.size() / 2;
     const size_t n = size[axis];
-    const size_t stride = axis == 0 ? 1 : axis == 1 ? size[0] : size[0] * size[1];
+    const size_t strides[3] = {1, size[0], size[0] * size[1]};
     const int a = (axis + 1) % 3, b = (axis + 2) % 3;
-    const size_t stride_a = a == 0 ? 1 : a == 1 ? size[0] : size[0] * size[1];
-    const size_t stride_b = b == 0 ? 1 : b == 1 ? size[0] : size[0] * size[1];
+    const size_t stride = strides[axis], stride_a = strides[a], stride_b = strides[b];
     line.assign(n + 2 * radius, 0.0);
     for (size_t j = 0; j < size[b]; ++j) {
         for (size_t i = 0; i < size[a]; ++i) {

@@ -41,7 +41,17 @@ struct EdgeGrid {
         if (first_pixel(id, x, y)) return {static_cast<double>(x) + 0.5, static_cast<double>(y)};
         return {static_cast<double>(x), static_cast<double>(y) + 0.5};
     }
+    // Every edge id's slot in `next`, unlinked.
+    size_t edge_count() const { return horizontal_count + static_cast<size_t>((h + 1) * (w + 2)); }
 };
+
+EdgeGrid edge_grid(size_t width, size_t height) {
+    EdgeGrid g;
+    g.w = static_cast<long>(width);
+    g.h = static_cast<long>(height);
+    g.horizontal_count = static_cast<uint32_t>((g.h + 2) * (g.w + 1));
+    return g;
+}
 
 // Phase 1: one directed segment per boundary crossing of every cell; next[e]
 // is the edge the boundary leaves to after entering at edge e. `inside(x, y)`
@@ -129,11 +139,8 @@ void trace_mask_boundaries(std::span<const uint8_t> mask, size_t width, size_t h
     assert(mask.size() >= width * height);
     rings.clear();
     if (width == 0 || height == 0) return;
-    EdgeGrid g;
-    g.w = static_cast<long>(width);
-    g.h = static_cast<long>(height);
-    g.horizontal_count = static_cast<uint32_t>((g.h + 2) * (g.w + 1));
-    std::vector<uint32_t> next(g.horizontal_count + static_cast<size_t>((g.h + 1) * (g.w + 2)), kNone);
+    const EdgeGrid g = edge_grid(width, height);
+    std::vector<uint32_t> next(g.edge_count(), kNone);
     auto inside = [&](long x, long y) -> bool {
         if (x < 0 || y < 0 || x >= g.w || y >= g.h) return false;
         return mask[static_cast<size_t>(y * g.w + x)] != 0;
@@ -149,11 +156,8 @@ void trace_field_isolines(std::span<const float> field, size_t width, size_t hei
     assert(field.size() >= width * height && level > 0.0f);
     rings.clear();
     if (width == 0 || height == 0) return;
-    EdgeGrid g;
-    g.w = static_cast<long>(width);
-    g.h = static_cast<long>(height);
-    g.horizontal_count = static_cast<uint32_t>((g.h + 2) * (g.w + 1));
-    std::vector<uint32_t> next(g.horizontal_count + static_cast<size_t>((g.h + 1) * (g.w + 2)), kNone);
+    const EdgeGrid g = edge_grid(width, height);
+    std::vector<uint32_t> next(g.edge_count(), kNone);
     auto value = [&](long x, long y) -> double {
         if (x < 0 || y < 0 || x >= g.w || y >= g.h) return 0.0;
         return field[static_cast<size_t>(y * g.w + x)];

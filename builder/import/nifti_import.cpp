@@ -293,21 +293,20 @@ struct LabelResult {
 
 // Phase 3: one slice's rings: specks dropped, simplified, into the output frame.
 // (u0, v0) is the voxel index of the traced grid's pixel (0, 0).
-bool finish_rings(const SliceFrame& f, double u0, double v0, size_t k, const ImportOptions& o,
+void finish_rings(const SliceFrame& f, double u0, double v0, size_t k, const ImportOptions& o,
                   std::vector<std::vector<Vec2>>& rings, LabelResult& out) {
     if (o.min_area > 0.0) {
         std::erase_if(rings, [&](const std::vector<Vec2>& r) {
             return std::fabs(signed_area2(r.data(), r.size())) < 2.0 * o.min_area;
         });
     }
-    if (rings.empty()) return false;
+    if (rings.empty()) return;
     simplify_rings(rings, o.tolerance);
     for (auto& ring : rings) {
         for (Vec2& p : ring) p = f.in_plane(u0 + p.x, v0 + p.y, static_cast<double>(k));
     }
     out.slices.emplace_back(k, std::move(rings));
     rings = {};
-    return true;
 }
 
 // One label, all its slices: the voxel-face boundary of its mask.
