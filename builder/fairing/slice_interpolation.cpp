@@ -23,6 +23,7 @@
 #include <unordered_set>
 #include <utility>
 
+#include "shared/edge_key.h"
 #include "shared/mesh_intersect.h"
 
 namespace body {
@@ -51,8 +52,6 @@ struct Work {
     std::vector<Rung> rungs;
     std::vector<Vec3> straight;  // positions with every rung on its straight line
 };
-
-uint64_t edge_key(uint32_t a, uint32_t b) { return uint64_t(std::min(a, b)) << 32 | std::max(a, b); }
 
 constexpr uint32_t kNoRung = UINT32_MAX;
 

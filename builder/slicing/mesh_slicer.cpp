@@ -12,6 +12,7 @@
 #include <cmath>
 #include <unordered_map>
 
+#include "shared/edge_key.h"
 #include "shared/mesh_intersect.h"
 
 namespace body {
@@ -23,8 +24,6 @@ Vec3 permuted(const Vec3& p, int axis) {
 }
 
 constexpr double kMergeDistance = 1e-5;  // relative to the mesh's bounding-box diagonal
-
-uint64_t edge_key(uint32_t a, uint32_t b) { return a < b ? (uint64_t(a) << 32) | b : (uint64_t(b) << 32) | a; }
 
 struct Segment {
     uint64_t from, to;  // the mesh edges whose crossings start and end it

@@ -9,6 +9,7 @@
 #include <unordered_map>
 
 #include "kiosk/modes/benchmark.h"
+#include "shared/edge_key.h"
 #include "shared/obj_io.h"
 
 namespace body::kiosk {
@@ -19,8 +20,7 @@ void subdivide(std::vector<Vec3f>& p, std::vector<uint32_t>& idx) {
     std::unordered_map<uint64_t, uint32_t> mid;
     mid.reserve(idx.size());
     auto midpoint = [&](uint32_t a, uint32_t b) {
-        uint64_t key = (static_cast<uint64_t>(std::min(a, b)) << 32) | std::max(a, b);
-        auto [it, inserted] = mid.emplace(key, static_cast<uint32_t>(p.size()));
+        auto [it, inserted] = mid.emplace(edge_key(a, b), static_cast<uint32_t>(p.size()));
         if (inserted) p.push_back((p[a] + p[b]) * 0.5f);
         return it->second;
     };
