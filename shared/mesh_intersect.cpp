@@ -248,6 +248,39 @@ bool pair_meets(std::span<const IVec> q, const uint32_t* A, const uint32_t* B) {
     return true;  // the same triangle twice
 }
 
+// One grid cell's candidate pairs, the broad phase shared by the count and
+// the layered search. `sweep` holds the cell's entries: `local` indexes
+// `boxes` and `low_cell` (the cell of each box's lowest corner), `t` is the
+// triangle. Sorted along x (ties by triangle), each entry is paired only with
+// those that start before it ends; a pair is passed to `test(i, j)` (entries
+// of `sweep`) when one of its triangles is marked (`marked` empty: all are),
+// its boxes overlap, and this cell holds the lowest corner of that overlap,
+// so each pair is seen in one cell only. Returns true when `test` does (stop).
+struct Swept {
+    double min_x, max_x;
+    uint32_t t, local;
+};
+template <class Test>
+bool sweep_cell(std::vector<Swept>& sweep, std::span<const Aabb> boxes, std::span<const std::array<int, 3>> low_cell,
+                const Grid& grid, uint64_t cell_key, std::span<const uint8_t> marked, Test&& test) {
+    std::sort(sweep.begin(), sweep.end(),
+              [](const Swept& a, const Swept& b) { return a.min_x != b.min_x ? a.min_x < b.min_x : a.t < b.t; });
+    const bool all_marked = marked.empty();
+    for (size_t i = 0; i < sweep.size(); ++i)
+        for (size_t j = i + 1; j < sweep.size() && sweep[j].min_x <= sweep[i].max_x; ++j) {
+            if (!all_marked && !marked[sweep[i].t] && !marked[sweep[j].t]) continue;
+            const Aabb &b1 = boxes[sweep[i].local], &b2 = boxes[sweep[j].local];
+            if (std::max(b1.min.y, b2.min.y) > std::min(b1.max.y, b2.max.y) ||
+                std::max(b1.min.z, b2.min.z) > std::min(b1.max.z, b2.max.z))
+                continue;
+            // The overlap's lowest corner is the larger of the two lowest corners (cell_of is monotonic).
+            const auto &c1 = low_cell[sweep[i].local], &c2 = low_cell[sweep[j].local];
+            if (grid.key(std::max(c1[0], c2[0]), std::max(c1[1], c2[1]), std::max(c1[2], c2[2])) != cell_key) continue;
+            if (test(i, j)) return true;
+        }
+    return false;
+}
+
 // Phase 1: the snap over the triangles' bounding box, the snapped positions
 // and which triangles are degenerate after snapping (skipped).
 struct Snapped {
@@ -331,10 +364,6 @@ size_t count_pairs(std::span<const Vec3> positions, std::span<const uint32_t> in
     std::sort(entries.begin(), entries.end());
     const bool all_marked = marked.empty();
     size_t found = 0;
-    struct Swept {
-        Aabb box;
-        uint32_t t;
-    };
     std::vector<Swept> sweep;
     for (size_t begin = 0; begin < entries.size();) {
         size_t end = begin;
@@ -348,29 +377,18 @@ size_t count_pairs(std::span<const Vec3> positions, std::span<const uint32_t> in
             begin = end;
             continue;
         }
-        // Sweep along x within the cell: the boxes sorted by their low x, each
-        // paired only with those that start before it ends.
         sweep.clear();
-        for (size_t i = begin; i < end; ++i) sweep.push_back({m.boxes[entries[i].second], entries[i].second});
-        std::sort(sweep.begin(), sweep.end(), [](const Swept& a, const Swept& b) {
-            return a.box.min.x != b.box.min.x ? a.box.min.x < b.box.min.x : a.t < b.t;
+        for (size_t i = begin; i < end; ++i) {
+            const uint32_t t = entries[i].second;
+            sweep.push_back({m.boxes[t].min.x, m.boxes[t].max.x, t, t});
+        }
+        const bool stopped = sweep_cell(sweep, m.boxes, low_cell, grid, cell_key, marked, [&](size_t i, size_t j) {
+            const uint32_t t1 = sweep[i].t, t2 = sweep[j].t;
+            if (!pair_meets(m.q, &indices[3 * size_t(t1)], &indices[3 * size_t(t2)])) return false;
+            if (pairs) pairs->push_back({std::min(t1, t2), std::max(t1, t2)});
+            return ++found == stop_after;
         });
-        for (size_t i = 0; i < sweep.size(); ++i)
-            for (size_t j = i + 1; j < sweep.size() && sweep[j].box.min.x <= sweep[i].box.max.x; ++j) {
-                const uint32_t t1 = sweep[i].t, t2 = sweep[j].t;
-                if (!all_marked && !marked[t1] && !marked[t2]) continue;
-                const Aabb &b1 = sweep[i].box, &b2 = sweep[j].box;
-                if (std::max(b1.min.y, b2.min.y) > std::min(b1.max.y, b2.max.y) ||
-                    std::max(b1.min.z, b2.min.z) > std::min(b1.max.z, b2.max.z))
-                    continue;
-                // The overlap's lowest corner is the larger of the two lowest corners (cell_of is monotonic).
-                const auto &c1 = low_cell[t1], &c2 = low_cell[t2];
-                if (grid.key(std::max(c1[0], c2[0]), std::max(c1[1], c2[1]), std::max(c1[2], c2[2])) != cell_key)
-                    continue;
-                if (!pair_meets(m.q, &indices[3 * size_t(t1)], &indices[3 * size_t(t2)])) continue;
-                if (pairs) pairs->push_back({std::min(t1, t2), std::max(t1, t2)});
-                if (++found == stop_after) return found;
-            }
+        if (stopped) return found;
         begin = end;
     }
     return found;
@@ -420,10 +438,6 @@ struct LayerSearch {
     std::vector<Aabb> boxes;                              // per member
     std::vector<std::array<int, 3>> low_cell, high_cell;  // per member
     std::vector<uint32_t> cell_start, fill, in_cell;      // members by cell (CSR)
-    struct Swept {
-        double min_x, max_x;
-        uint32_t t, local;
-    };
     std::vector<Swept> sweep;
 
     void run(size_t layer, std::span<const uint32_t> members, std::vector<std::pair<uint32_t, uint32_t>>& pairs) {
@@ -479,24 +493,14 @@ struct LayerSearch {
             const uint32_t local = in_cell[i];
             sweep.push_back({boxes[local].min.x, boxes[local].max.x, members[local], local});
         }
-        std::sort(sweep.begin(), sweep.end(),
-                  [](const Swept& a, const Swept& b) { return a.min_x != b.min_x ? a.min_x < b.min_x : a.t < b.t; });
-        for (size_t i = 0; i < sweep.size(); ++i)
-            for (size_t j = i + 1; j < sweep.size() && sweep[j].min_x <= sweep[i].max_x; ++j) {
-                const uint32_t t1 = sweep[i].t, t2 = sweep[j].t;
-                if (!marked[t1] && !marked[t2]) continue;
-                const Aabb &b1 = boxes[sweep[i].local], &b2 = boxes[sweep[j].local];
-                if (std::max(b1.min.y, b2.min.y) > std::min(b1.max.y, b2.max.y) ||
-                    std::max(b1.min.z, b2.min.z) > std::min(b1.max.z, b2.max.z))
-                    continue;
-                const auto &c1 = low_cell[sweep[i].local], &c2 = low_cell[sweep[j].local];
-                if (grid.key(std::max(c1[0], c2[0]), std::max(c1[1], c2[1]), std::max(c1[2], c2[2])) != cell_key)
-                    continue;
-                if (layer_of(cuts, std::max(b1.min.z, b2.min.z)) != layer) continue;
-                const uint32_t *A = &indices[3 * size_t(t1)], *B = &indices[3 * size_t(t2)];
-                if (apart_in_z(q, A, B) || !pair_meets(q, A, B)) continue;
-                pairs.push_back({std::min(t1, t2), std::max(t1, t2)});
-            }
+        sweep_cell(sweep, boxes, low_cell, grid, cell_key, marked, [&](size_t i, size_t j) {
+            const uint32_t t1 = sweep[i].t, t2 = sweep[j].t;
+            const Aabb &b1 = boxes[sweep[i].local], &b2 = boxes[sweep[j].local];
+            if (layer_of(cuts, std::max(b1.min.z, b2.min.z)) != layer) return false;
+            const uint32_t *A = &indices[3 * size_t(t1)], *B = &indices[3 * size_t(t2)];
+            if (!apart_in_z(q, A, B) && pair_meets(q, A, B)) pairs.push_back({std::min(t1, t2), std::max(t1, t2)});
+            return false;
+        });
     }
 };
 
