@@ -55,30 +55,42 @@ std::array<Wide, 3> cross(const std::array<Wide, 3>& a, const std::array<Wide, 3
 }
 int sign(Wide v) { return v > 0 ? 1 : (v < 0 ? -1 : 0); }
 
-// Sign of the volume of (a, b, c, d): positive when d is above abc.
+// Sign of the volume of (a, b, c, d): positive when d is above abc, for the
+// points d of one plane abc (its cross product computed once).
 // Coordinates lie in [0, 2^40]: differences < 2^41, cross products < 2^82,
 // each product n[k] e[k] < 2^123 and their sum < 2^125: no overflow.
 // A floating-point filter answers first: the differences are exact in double
 // (< 2^41), so Shewchuk's first error bound for orient3d (7.8e-16 of the
 // permanent) decides every sign that is not near zero; the rest fall back to
 // the exact 128-bit sum.
-int orient3(const IVec& a, const IVec& b, const IVec& c, const IVec& d) {
-    const double bx = double(b[0] - a[0]), by = double(b[1] - a[1]), bz = double(b[2] - a[2]);
-    const double cx = double(c[0] - a[0]), cy = double(c[1] - a[1]), cz = double(c[2] - a[2]);
-    const double dx = double(d[0] - a[0]), dy = double(d[1] - a[1]), dz = double(d[2] - a[2]);
-    const double n0 = by * cz - bz * cy, n1 = bz * cx - bx * cz, n2 = bx * cy - by * cx;
-    const double det = n0 * dx + n1 * dy + n2 * dz;
-    const double permanent = (std::abs(by * cz) + std::abs(bz * cy)) * std::abs(dx) +
-                             (std::abs(bz * cx) + std::abs(bx * cz)) * std::abs(dy) +
-                             (std::abs(bx * cy) + std::abs(by * cx)) * std::abs(dz);
-    const double bound = 7.7715611723761e-16 * permanent;
-    if (det > bound) return 1;
-    if (det < -bound) return -1;
-    auto n = cross(sub(b, a), sub(c, a));
-    auto e = sub(d, a);
-    Wide v = n[0] * e[0] + n[1] * e[1] + n[2] * e[2];
-    return sign(v);
-}
+class Plane {
+public:
+    Plane(const IVec& a, const IVec& b, const IVec& c) : a_(a), b_(b), c_(c) {
+        const double bx = double(b[0] - a[0]), by = double(b[1] - a[1]), bz = double(b[2] - a[2]);
+        const double cx = double(c[0] - a[0]), cy = double(c[1] - a[1]), cz = double(c[2] - a[2]);
+        n0_ = by * cz - bz * cy, n1_ = bz * cx - bx * cz, n2_ = bx * cy - by * cx;
+        p0_ = std::abs(by * cz) + std::abs(bz * cy);
+        p1_ = std::abs(bz * cx) + std::abs(bx * cz);
+        p2_ = std::abs(bx * cy) + std::abs(by * cx);
+    }
+    int side(const IVec& d) const {
+        const double dx = double(d[0] - a_[0]), dy = double(d[1] - a_[1]), dz = double(d[2] - a_[2]);
+        const double det = n0_ * dx + n1_ * dy + n2_ * dz;
+        const double bound = 7.7715611723761e-16 * (p0_ * std::abs(dx) + p1_ * std::abs(dy) + p2_ * std::abs(dz));
+        if (det > bound) return 1;
+        if (det < -bound) return -1;
+        auto n = cross(sub(b_, a_), sub(c_, a_));
+        auto e = sub(d, a_);
+        Wide v = n[0] * e[0] + n[1] * e[1] + n[2] * e[2];
+        return sign(v);
+    }
+
+private:
+    const IVec &a_, &b_, &c_;
+    double n0_, n1_, n2_, p0_, p1_, p2_;
+};
+
+int orient3(const IVec& a, const IVec& b, const IVec& c, const IVec& d) { return Plane(a, b, c).side(d); }
 
 using IVec2 = std::array<int64_t, 2>;
 int orient2(const IVec2& a, const IVec2& b, const IVec2& c) {
@@ -86,9 +98,10 @@ int orient2(const IVec2& a, const IVec2& b, const IVec2& c) {
     return sign(v);
 }
 
-// Segment pq against triangle abc (p, q not both in its plane).
-bool segment_crosses_triangle(const IVec& p, const IVec& q, const IVec& a, const IVec& b, const IVec& c) {
-    int sp = orient3(a, b, c, p), sq = orient3(a, b, c, q);
+// Segment pq against triangle abc (p, q not both in its plane), given the
+// sides of abc's plane they lie on (`sp`, `sq`: orient3(a, b, c, p or q)).
+bool segment_crosses_triangle(const IVec& p, const IVec& q, int sp, int sq, const IVec& a, const IVec& b,
+                              const IVec& c) {
     if (sp == sq) return false;  // same side, or both in the plane (the coplanar case is handled elsewhere)
     int s1 = orient3(p, q, a, b), s2 = orient3(p, q, b, c), s3 = orient3(p, q, c, a);
     bool has_neg = s1 < 0 || s2 < 0 || s3<0, has_pos = s1> 0 || s2 > 0 || s3 > 0;
@@ -129,9 +142,12 @@ bool one_side(int s0, int s1, int s2) { return (s0 > 0 && s1 > 0 && s2 > 0) || (
 bool disjoint_intersect(const IVec& a0, const IVec& a1, const IVec& a2, const IVec& b0, const IVec& b1,
                         const IVec& b2) {
     // Möller's early outs: one triangle strictly on one side of the other's plane.
-    const int sb0 = orient3(a0, a1, a2, b0), sb1 = orient3(a0, a1, a2, b1), sb2 = orient3(a0, a1, a2, b2);
+    const Plane pa(a0, a1, a2);
+    const int sb0 = pa.side(b0), sb1 = pa.side(b1), sb2 = pa.side(b2);
     if (one_side(sb0, sb1, sb2)) return false;
-    if (one_side(orient3(b0, b1, b2, a0), orient3(b0, b1, b2, a1), orient3(b0, b1, b2, a2))) return false;
+    const Plane pb(b0, b1, b2);
+    const int sa0 = pb.side(a0), sa1 = pb.side(a1), sa2 = pb.side(a2);
+    if (one_side(sa0, sa1, sa2)) return false;
     if (sb0 == 0 && sb1 == 0 && sb2 == 0) {
         const IVec v[6] = {a0, a1, a2, b0, b1, b2};
         auto p = project(a0, a1, a2, std::span<const IVec, 6>(v));
@@ -140,17 +156,22 @@ bool disjoint_intersect(const IVec& a0, const IVec& a1, const IVec& a2, const IV
                 if (segments_cross_2d(p[i], p[(i + 1) % 3], p[3 + j], p[3 + (j + 1) % 3])) return true;
         return point_in_triangle_2d(p[0], p[3], p[4], p[5]) || point_in_triangle_2d(p[3], p[0], p[1], p[2]);
     }
-    return segment_crosses_triangle(a0, a1, b0, b1, b2) || segment_crosses_triangle(a1, a2, b0, b1, b2) ||
-           segment_crosses_triangle(a2, a0, b0, b1, b2) || segment_crosses_triangle(b0, b1, a0, a1, a2) ||
-           segment_crosses_triangle(b1, b2, a0, a1, a2) || segment_crosses_triangle(b2, b0, a0, a1, a2);
+    return segment_crosses_triangle(a0, a1, sa0, sa1, b0, b1, b2) ||
+           segment_crosses_triangle(a1, a2, sa1, sa2, b0, b1, b2) ||
+           segment_crosses_triangle(a2, a0, sa2, sa0, b0, b1, b2) ||
+           segment_crosses_triangle(b0, b1, sb0, sb1, a0, a1, a2) ||
+           segment_crosses_triangle(b1, b2, sb1, sb2, a0, a1, a2) ||
+           segment_crosses_triangle(b2, b0, sb2, sb0, a0, a1, a2);
 }
 
 // Triangles (v, a, b) and (v, c, d) sharing vertex v: do they meet elsewhere?
 bool vertex_adjacent_intersect(const IVec& v, const IVec& a, const IVec& b, const IVec& c, const IVec& d) {
     // Early outs: c and d strictly on one side of (v, a, b)'s plane, or a and b of (v, c, d)'s.
-    const int sc = orient3(v, a, b, c), sd = orient3(v, a, b, d);
+    const Plane pab(v, a, b);
+    const int sc = pab.side(c), sd = pab.side(d);
     if (sc * sd > 0) return false;
-    const int sa = orient3(v, c, d, a), sb = orient3(v, c, d, b);
+    const Plane pcd(v, c, d);
+    const int sa = pcd.side(a), sb = pcd.side(b);
     if (sa * sb > 0) return false;
     if (sc == 0 && sd == 0) {
         // Both lie in their wedges at v; they overlap iff the wedges do.
@@ -173,7 +194,7 @@ bool vertex_adjacent_intersect(const IVec& v, const IVec& a, const IVec& b, cons
     }
     // The intersection is a segment from v along the planes' common line; its
     // far end lies on the edge opposite v of one triangle, inside the other.
-    return segment_crosses_triangle(a, b, v, c, d) || segment_crosses_triangle(c, d, v, a, b);
+    return segment_crosses_triangle(a, b, sa, sb, v, c, d) || segment_crosses_triangle(c, d, sc, sd, v, a, b);
 }
 
 // Triangles (u, v, a) and (v, u, b) sharing edge uv: they meet beyond it only
