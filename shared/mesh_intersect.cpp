@@ -517,7 +517,8 @@ struct LayerSearch {
         sweep_cell(sweep, boxes, low_cell, grid, cell_key, marked, [&](size_t i, size_t j) {
             const uint32_t t1 = sweep[i].t, t2 = sweep[j].t;
             const Aabb &b1 = boxes[sweep[i].local], &b2 = boxes[sweep[j].local];
-            if (layer_of(cuts, std::max(b1.min.z, b2.min.z)) != layer) return false;
+            // The overlap's bottom lies below this layer's top (both boxes start below it): is it above its floor?
+            if (layer > 0 && std::max(b1.min.z, b2.min.z) < cuts[layer - 1]) return false;
             const uint32_t *A = &indices[3 * size_t(t1)], *B = &indices[3 * size_t(t2)];
             if (!apart_in_z(q, A, B) && pair_meets(q, A, B)) pairs.push_back({std::min(t1, t2), std::max(t1, t2)});
             return false;
