@@ -11,6 +11,36 @@ size_t find_root(std::vector<uint32_t>& parent, uint32_t x) {
     return x;
 }
 
+// The common case first: when each link vertex starts exactly one of the
+// `n` link edges (a, b) and ends exactly one (an oriented fan), every degree is
+// 2 and the link is a union of cycles; returns their number (1: manifold),
+// or 0 when the link is not of that kind (or too large to check this way).
+int oriented_link_cycles(const uint32_t* link, uint32_t n) {
+    constexpr uint32_t kMax = 32;
+    if (n > kMax) return 0;
+    uint8_t next[kMax], ended[kMax] = {}, seen[kMax] = {};
+    for (uint32_t i = 0; i < n; ++i) {
+        int found = -1;
+        for (uint32_t j = 0; j < n; ++j) {
+            if (j != i && link[2 * j] == link[2 * i]) return 0;  // a repeated start
+            if (link[2 * j] == link[2 * i + 1]) {
+                if (found >= 0) return 0;
+                found = int(j);
+            }
+        }
+        if (found < 0 || ended[found]) return 0;  // an end that starts nothing, or a repeated end
+        ended[found] = 1;
+        next[i] = uint8_t(found);
+    }
+    int cycles = 0;
+    for (uint32_t i = 0; i < n; ++i) {
+        if (seen[i]) continue;
+        ++cycles;
+        for (uint32_t k = i; !seen[k]; k = next[k]) seen[k] = 1;
+    }
+    return cycles;
+}
+
 // A vertex is manifold when the edges opposite it in its triangles (its link)
 // form a single path or cycle: every link vertex has degree <= 2 and the link is connected.
 size_t count_nonmanifold_vertices(size_t vertex_count, std::span<const uint32_t> indices) {
@@ -30,6 +60,10 @@ size_t count_nonmanifold_vertices(size_t vertex_count, std::span<const uint32_t>
     std::vector<uint32_t> ids, parent, degree;  // the link's distinct vertices, sorted; their local union-find
     for (size_t v = 0; v < vertex_count; ++v) {
         if (start[v] == start[v + 1]) continue;
+        if (const int cycles = oriented_link_cycles(&link[start[v]], (start[v + 1] - start[v]) / 2); cycles > 0) {
+            bad += cycles != 1;
+            continue;
+        }
         ids.assign(link.begin() + start[v], link.begin() + start[v + 1]);
         std::sort(ids.begin(), ids.end());
         ids.erase(std::unique(ids.begin(), ids.end()), ids.end());

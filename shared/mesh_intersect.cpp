@@ -55,30 +55,42 @@ std::array<Wide, 3> cross(const std::array<Wide, 3>& a, const std::array<Wide, 3
 }
 int sign(Wide v) { return v > 0 ? 1 : (v < 0 ? -1 : 0); }
 
-// Sign of the volume of (a, b, c, d): positive when d is above abc.
+// Sign of the volume of (a, b, c, d): positive when d is above abc, for the
+// points d of one plane abc (its cross product computed once).
 // Coordinates lie in [0, 2^40]: differences < 2^41, cross products < 2^82,
 // each product n[k] e[k] < 2^123 and their sum < 2^125: no overflow.
 // A floating-point filter answers first: the differences are exact in double
 // (< 2^41), so Shewchuk's first error bound for orient3d (7.8e-16 of the
 // permanent) decides every sign that is not near zero; the rest fall back to
 // the exact 128-bit sum.
-int orient3(const IVec& a, const IVec& b, const IVec& c, const IVec& d) {
-    const double bx = double(b[0] - a[0]), by = double(b[1] - a[1]), bz = double(b[2] - a[2]);
-    const double cx = double(c[0] - a[0]), cy = double(c[1] - a[1]), cz = double(c[2] - a[2]);
-    const double dx = double(d[0] - a[0]), dy = double(d[1] - a[1]), dz = double(d[2] - a[2]);
-    const double n0 = by * cz - bz * cy, n1 = bz * cx - bx * cz, n2 = bx * cy - by * cx;
-    const double det = n0 * dx + n1 * dy + n2 * dz;
-    const double permanent = (std::abs(by * cz) + std::abs(bz * cy)) * std::abs(dx) +
-                             (std::abs(bz * cx) + std::abs(bx * cz)) * std::abs(dy) +
-                             (std::abs(bx * cy) + std::abs(by * cx)) * std::abs(dz);
-    const double bound = 7.7715611723761e-16 * permanent;
-    if (det > bound) return 1;
-    if (det < -bound) return -1;
-    auto n = cross(sub(b, a), sub(c, a));
-    auto e = sub(d, a);
-    Wide v = n[0] * e[0] + n[1] * e[1] + n[2] * e[2];
-    return sign(v);
-}
+class Plane {
+public:
+    Plane(const IVec& a, const IVec& b, const IVec& c) : a_(a), b_(b), c_(c) {
+        const double bx = double(b[0] - a[0]), by = double(b[1] - a[1]), bz = double(b[2] - a[2]);
+        const double cx = double(c[0] - a[0]), cy = double(c[1] - a[1]), cz = double(c[2] - a[2]);
+        n0_ = by * cz - bz * cy, n1_ = bz * cx - bx * cz, n2_ = bx * cy - by * cx;
+        p0_ = std::abs(by * cz) + std::abs(bz * cy);
+        p1_ = std::abs(bz * cx) + std::abs(bx * cz);
+        p2_ = std::abs(bx * cy) + std::abs(by * cx);
+    }
+    int side(const IVec& d) const {
+        const double dx = double(d[0] - a_[0]), dy = double(d[1] - a_[1]), dz = double(d[2] - a_[2]);
+        const double det = n0_ * dx + n1_ * dy + n2_ * dz;
+        const double bound = 7.7715611723761e-16 * (p0_ * std::abs(dx) + p1_ * std::abs(dy) + p2_ * std::abs(dz));
+        if (det > bound) return 1;
+        if (det < -bound) return -1;
+        auto n = cross(sub(b_, a_), sub(c_, a_));
+        auto e = sub(d, a_);
+        Wide v = n[0] * e[0] + n[1] * e[1] + n[2] * e[2];
+        return sign(v);
+    }
+
+private:
+    const IVec &a_, &b_, &c_;
+    double n0_, n1_, n2_, p0_, p1_, p2_;
+};
+
+int orient3(const IVec& a, const IVec& b, const IVec& c, const IVec& d) { return Plane(a, b, c).side(d); }
 
 using IVec2 = std::array<int64_t, 2>;
 int orient2(const IVec2& a, const IVec2& b, const IVec2& c) {
@@ -86,9 +98,10 @@ int orient2(const IVec2& a, const IVec2& b, const IVec2& c) {
     return sign(v);
 }
 
-// Segment pq against triangle abc (p, q not both in its plane).
-bool segment_crosses_triangle(const IVec& p, const IVec& q, const IVec& a, const IVec& b, const IVec& c) {
-    int sp = orient3(a, b, c, p), sq = orient3(a, b, c, q);
+// Segment pq against triangle abc (p, q not both in its plane), given the
+// sides of abc's plane they lie on (`sp`, `sq`: orient3(a, b, c, p or q)).
+bool segment_crosses_triangle(const IVec& p, const IVec& q, int sp, int sq, const IVec& a, const IVec& b,
+                              const IVec& c) {
     if (sp == sq) return false;  // same side, or both in the plane (the coplanar case is handled elsewhere)
     int s1 = orient3(p, q, a, b), s2 = orient3(p, q, b, c), s3 = orient3(p, q, c, a);
     bool has_neg = s1 < 0 || s2 < 0 || s3<0, has_pos = s1> 0 || s2 > 0 || s3 > 0;
@@ -129,9 +142,12 @@ bool one_side(int s0, int s1, int s2) { return (s0 > 0 && s1 > 0 && s2 > 0) || (
 bool disjoint_intersect(const IVec& a0, const IVec& a1, const IVec& a2, const IVec& b0, const IVec& b1,
                         const IVec& b2) {
     // Möller's early outs: one triangle strictly on one side of the other's plane.
-    const int sb0 = orient3(a0, a1, a2, b0), sb1 = orient3(a0, a1, a2, b1), sb2 = orient3(a0, a1, a2, b2);
+    const Plane pa(a0, a1, a2);
+    const int sb0 = pa.side(b0), sb1 = pa.side(b1), sb2 = pa.side(b2);
     if (one_side(sb0, sb1, sb2)) return false;
-    if (one_side(orient3(b0, b1, b2, a0), orient3(b0, b1, b2, a1), orient3(b0, b1, b2, a2))) return false;
+    const Plane pb(b0, b1, b2);
+    const int sa0 = pb.side(a0), sa1 = pb.side(a1), sa2 = pb.side(a2);
+    if (one_side(sa0, sa1, sa2)) return false;
     if (sb0 == 0 && sb1 == 0 && sb2 == 0) {
         const IVec v[6] = {a0, a1, a2, b0, b1, b2};
         auto p = project(a0, a1, a2, std::span<const IVec, 6>(v));
@@ -140,17 +156,22 @@ bool disjoint_intersect(const IVec& a0, const IVec& a1, const IVec& a2, const IV
                 if (segments_cross_2d(p[i], p[(i + 1) % 3], p[3 + j], p[3 + (j + 1) % 3])) return true;
         return point_in_triangle_2d(p[0], p[3], p[4], p[5]) || point_in_triangle_2d(p[3], p[0], p[1], p[2]);
     }
-    return segment_crosses_triangle(a0, a1, b0, b1, b2) || segment_crosses_triangle(a1, a2, b0, b1, b2) ||
-           segment_crosses_triangle(a2, a0, b0, b1, b2) || segment_crosses_triangle(b0, b1, a0, a1, a2) ||
-           segment_crosses_triangle(b1, b2, a0, a1, a2) || segment_crosses_triangle(b2, b0, a0, a1, a2);
+    return segment_crosses_triangle(a0, a1, sa0, sa1, b0, b1, b2) ||
+           segment_crosses_triangle(a1, a2, sa1, sa2, b0, b1, b2) ||
+           segment_crosses_triangle(a2, a0, sa2, sa0, b0, b1, b2) ||
+           segment_crosses_triangle(b0, b1, sb0, sb1, a0, a1, a2) ||
+           segment_crosses_triangle(b1, b2, sb1, sb2, a0, a1, a2) ||
+           segment_crosses_triangle(b2, b0, sb2, sb0, a0, a1, a2);
 }
 
 // Triangles (v, a, b) and (v, c, d) sharing vertex v: do they meet elsewhere?
 bool vertex_adjacent_intersect(const IVec& v, const IVec& a, const IVec& b, const IVec& c, const IVec& d) {
     // Early outs: c and d strictly on one side of (v, a, b)'s plane, or a and b of (v, c, d)'s.
-    const int sc = orient3(v, a, b, c), sd = orient3(v, a, b, d);
+    const Plane pab(v, a, b);
+    const int sc = pab.side(c), sd = pab.side(d);
     if (sc * sd > 0) return false;
-    const int sa = orient3(v, c, d, a), sb = orient3(v, c, d, b);
+    const Plane pcd(v, c, d);
+    const int sa = pcd.side(a), sb = pcd.side(b);
     if (sa * sb > 0) return false;
     if (sc == 0 && sd == 0) {
         // Both lie in their wedges at v; they overlap iff the wedges do.
@@ -173,7 +194,7 @@ bool vertex_adjacent_intersect(const IVec& v, const IVec& a, const IVec& b, cons
     }
     // The intersection is a segment from v along the planes' common line; its
     // far end lies on the edge opposite v of one triangle, inside the other.
-    return segment_crosses_triangle(a, b, v, c, d) || segment_crosses_triangle(c, d, v, a, b);
+    return segment_crosses_triangle(a, b, sa, sb, v, c, d) || segment_crosses_triangle(c, d, sc, sd, v, a, b);
 }
 
 // Triangles (u, v, a) and (v, u, b) sharing edge uv: they meet beyond it only
@@ -246,6 +267,39 @@ bool pair_meets(std::span<const IVec> q, const uint32_t* A, const uint32_t* B) {
         return edge_adjacent_intersect(q[A[(p + 1) % 3]], q[A[(p + 2) % 3]], q[A[p]], q[B[k]]);
     }
     return true;  // the same triangle twice
+}
+
+// One grid cell's candidate pairs, the broad phase shared by the count and
+// the layered search. `sweep` holds the cell's entries: `local` indexes
+// `boxes` and `low_cell` (the cell of each box's lowest corner), `t` is the
+// triangle. Sorted along x (ties by triangle), each entry is paired only with
+// those that start before it ends; a pair is passed to `test(i, j)` (entries
+// of `sweep`) when one of its triangles is marked (`marked` empty: all are),
+// its boxes overlap, and this cell holds the lowest corner of that overlap,
+// so each pair is seen in one cell only. Returns true when `test` does (stop).
+struct Swept {
+    double min_x, max_x;
+    uint32_t t, local;
+};
+template <class Test>
+bool sweep_cell(std::vector<Swept>& sweep, std::span<const Aabb> boxes, std::span<const std::array<int, 3>> low_cell,
+                const Grid& grid, uint64_t cell_key, std::span<const uint8_t> marked, Test&& test) {
+    std::sort(sweep.begin(), sweep.end(),
+              [](const Swept& a, const Swept& b) { return a.min_x != b.min_x ? a.min_x < b.min_x : a.t < b.t; });
+    const bool all_marked = marked.empty();
+    for (size_t i = 0; i < sweep.size(); ++i)
+        for (size_t j = i + 1; j < sweep.size() && sweep[j].min_x <= sweep[i].max_x; ++j) {
+            if (!all_marked && !marked[sweep[i].t] && !marked[sweep[j].t]) continue;
+            const Aabb &b1 = boxes[sweep[i].local], &b2 = boxes[sweep[j].local];
+            if (std::max(b1.min.y, b2.min.y) > std::min(b1.max.y, b2.max.y) ||
+                std::max(b1.min.z, b2.min.z) > std::min(b1.max.z, b2.max.z))
+                continue;
+            // The overlap's lowest corner is the larger of the two lowest corners (cell_of is monotonic).
+            const auto &c1 = low_cell[sweep[i].local], &c2 = low_cell[sweep[j].local];
+            if (grid.key(std::max(c1[0], c2[0]), std::max(c1[1], c2[1]), std::max(c1[2], c2[2])) != cell_key) continue;
+            if (test(i, j)) return true;
+        }
+    return false;
 }
 
 // Phase 1: the snap over the triangles' bounding box, the snapped positions
@@ -331,10 +385,6 @@ size_t count_pairs(std::span<const Vec3> positions, std::span<const uint32_t> in
     std::sort(entries.begin(), entries.end());
     const bool all_marked = marked.empty();
     size_t found = 0;
-    struct Swept {
-        Aabb box;
-        uint32_t t;
-    };
     std::vector<Swept> sweep;
     for (size_t begin = 0; begin < entries.size();) {
         size_t end = begin;
@@ -348,29 +398,18 @@ size_t count_pairs(std::span<const Vec3> positions, std::span<const uint32_t> in
             begin = end;
             continue;
         }
-        // Sweep along x within the cell: the boxes sorted by their low x, each
-        // paired only with those that start before it ends.
         sweep.clear();
-        for (size_t i = begin; i < end; ++i) sweep.push_back({m.boxes[entries[i].second], entries[i].second});
-        std::sort(sweep.begin(), sweep.end(), [](const Swept& a, const Swept& b) {
-            return a.box.min.x != b.box.min.x ? a.box.min.x < b.box.min.x : a.t < b.t;
+        for (size_t i = begin; i < end; ++i) {
+            const uint32_t t = entries[i].second;
+            sweep.push_back({m.boxes[t].min.x, m.boxes[t].max.x, t, t});
+        }
+        const bool stopped = sweep_cell(sweep, m.boxes, low_cell, grid, cell_key, marked, [&](size_t i, size_t j) {
+            const uint32_t t1 = sweep[i].t, t2 = sweep[j].t;
+            if (!pair_meets(m.q, &indices[3 * size_t(t1)], &indices[3 * size_t(t2)])) return false;
+            if (pairs) pairs->push_back({std::min(t1, t2), std::max(t1, t2)});
+            return ++found == stop_after;
         });
-        for (size_t i = 0; i < sweep.size(); ++i)
-            for (size_t j = i + 1; j < sweep.size() && sweep[j].box.min.x <= sweep[i].box.max.x; ++j) {
-                const uint32_t t1 = sweep[i].t, t2 = sweep[j].t;
-                if (!all_marked && !marked[t1] && !marked[t2]) continue;
-                const Aabb &b1 = sweep[i].box, &b2 = sweep[j].box;
-                if (std::max(b1.min.y, b2.min.y) > std::min(b1.max.y, b2.max.y) ||
-                    std::max(b1.min.z, b2.min.z) > std::min(b1.max.z, b2.max.z))
-                    continue;
-                // The overlap's lowest corner is the larger of the two lowest corners (cell_of is monotonic).
-                const auto &c1 = low_cell[t1], &c2 = low_cell[t2];
-                if (grid.key(std::max(c1[0], c2[0]), std::max(c1[1], c2[1]), std::max(c1[2], c2[2])) != cell_key)
-                    continue;
-                if (!pair_meets(m.q, &indices[3 * size_t(t1)], &indices[3 * size_t(t2)])) continue;
-                if (pairs) pairs->push_back({std::min(t1, t2), std::max(t1, t2)});
-                if (++found == stop_after) return found;
-            }
+        if (stopped) return found;
         begin = end;
     }
     return found;
@@ -420,10 +459,6 @@ struct LayerSearch {
     std::vector<Aabb> boxes;                              // per member
     std::vector<std::array<int, 3>> low_cell, high_cell;  // per member
     std::vector<uint32_t> cell_start, fill, in_cell;      // members by cell (CSR)
-    struct Swept {
-        double min_x, max_x;
-        uint32_t t, local;
-    };
     std::vector<Swept> sweep;
 
     void run(size_t layer, std::span<const uint32_t> members, std::vector<std::pair<uint32_t, uint32_t>>& pairs) {
@@ -479,24 +514,15 @@ struct LayerSearch {
             const uint32_t local = in_cell[i];
             sweep.push_back({boxes[local].min.x, boxes[local].max.x, members[local], local});
         }
-        std::sort(sweep.begin(), sweep.end(),
-                  [](const Swept& a, const Swept& b) { return a.min_x != b.min_x ? a.min_x < b.min_x : a.t < b.t; });
-        for (size_t i = 0; i < sweep.size(); ++i)
-            for (size_t j = i + 1; j < sweep.size() && sweep[j].min_x <= sweep[i].max_x; ++j) {
-                const uint32_t t1 = sweep[i].t, t2 = sweep[j].t;
-                if (!marked[t1] && !marked[t2]) continue;
-                const Aabb &b1 = boxes[sweep[i].local], &b2 = boxes[sweep[j].local];
-                if (std::max(b1.min.y, b2.min.y) > std::min(b1.max.y, b2.max.y) ||
-                    std::max(b1.min.z, b2.min.z) > std::min(b1.max.z, b2.max.z))
-                    continue;
-                const auto &c1 = low_cell[sweep[i].local], &c2 = low_cell[sweep[j].local];
-                if (grid.key(std::max(c1[0], c2[0]), std::max(c1[1], c2[1]), std::max(c1[2], c2[2])) != cell_key)
-                    continue;
-                if (layer_of(cuts, std::max(b1.min.z, b2.min.z)) != layer) continue;
-                const uint32_t *A = &indices[3 * size_t(t1)], *B = &indices[3 * size_t(t2)];
-                if (apart_in_z(q, A, B) || !pair_meets(q, A, B)) continue;
-                pairs.push_back({std::min(t1, t2), std::max(t1, t2)});
-            }
+        sweep_cell(sweep, boxes, low_cell, grid, cell_key, marked, [&](size_t i, size_t j) {
+            const uint32_t t1 = sweep[i].t, t2 = sweep[j].t;
+            const Aabb &b1 = boxes[sweep[i].local], &b2 = boxes[sweep[j].local];
+            // The overlap's bottom lies below this layer's top (both boxes start below it): is it above its floor?
+            if (layer > 0 && std::max(b1.min.z, b2.min.z) < cuts[layer - 1]) return false;
+            const uint32_t *A = &indices[3 * size_t(t1)], *B = &indices[3 * size_t(t2)];
+            if (!apart_in_z(q, A, B) && pair_meets(q, A, B)) pairs.push_back({std::min(t1, t2), std::max(t1, t2)});
+            return false;
+        });
     }
 };
 

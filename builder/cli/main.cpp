@@ -1,5 +1,10 @@
 // bodygen: the offline builder. Dispatches to one subcommand per file in builder/cli/.
+#include <malloc.h>
+#include <sys/mman.h>
+
+#include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <exception>
 #include <filesystem>
@@ -63,6 +68,21 @@ void print_help(std::FILE* out) {
                  "  --version  print the version\n\nexit codes: 0 ok, 1 runtime failure, 2 bad usage or bad input\n");
 }
 
+// The heap's first 128 MB grown at once and advised for transparent huge
+// pages (the kernel here only gives them where advised), then freed to the
+// heap, which keeps it (no trim): a large build's arrays then fault once per
+// 2 MB instead of once per 4 KB. Address space only; pages come when touched.
+void advise_heap_huge_pages() {
+    constexpr size_t kChunk = 16 << 20, kChunks = 8;
+    void* chunk[kChunks];
+    for (size_t i = 0; i < kChunks; ++i) chunk[i] = std::malloc(kChunk);
+    const auto first = reinterpret_cast<uintptr_t>(chunk[0]), last = reinterpret_cast<uintptr_t>(chunk[kChunks - 1]);
+    constexpr uintptr_t kHuge = 2 << 20;
+    const uintptr_t from = (first + kHuge - 1) & ~(kHuge - 1), to = (last + kChunk) & ~(kHuge - 1);
+    if (chunk[0] && chunk[kChunks - 1] && to > from) madvise(reinterpret_cast<void*>(from), to - from, MADV_HUGEPAGE);
+    for (size_t i = kChunks; i-- > 0;) std::free(chunk[i]);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -79,6 +99,13 @@ int main(int argc, char** argv) {
         std::printf("bodygen %s\n", BODY_VERSION_STRING);
         return body::kExitOk;
     }
+    // Arrays up to 32 MB (a large build's per-triangle arrays, allocated and
+    // freed round after round) come from the heap, which keeps what is freed:
+    // otherwise each one is a fresh mapping whose every page faults on first
+    // touch, a sixth of an interpolated build's time. Costs a few % of peak RSS.
+    mallopt(M_MMAP_THRESHOLD, 32 << 20);
+    mallopt(M_TRIM_THRESHOLD, 1 << 30);
+    advise_heap_huge_pages();
     body::remove_temporaries_on_signal();
     for (const Command& c : kCommands) {
         if (first != c.name) continue;

@@ -183,6 +183,10 @@ std::vector<Vec2> slopes(Work& w, std::span<const Vec3> positions, std::span<con
 // Phase 3: each split rung's points, on its curve (`positions`) and on its
 // straight line (`w.straight`).
 void place_points(Work& w, std::vector<Vec3>& positions, std::span<const Vec2> slope) {
+    size_t split = 0;
+    for (const Rung& r : w.rungs) split += r.band;
+    positions.reserve(positions.size() + split * size_t(w.rings));
+    w.straight.reserve(positions.capacity());
     w.straight = positions;
     for (Rung& r : w.rungs) {
         if (!r.band) continue;

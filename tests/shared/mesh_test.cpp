@@ -3,6 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
+#include <random>
+#include <set>
 
 namespace body {
 namespace {
@@ -67,6 +70,64 @@ TEST(MeshTopology, DegenerateTriangleIsReported) {
     Mesh m = cube();
     m.indices.insert(m.indices.end(), {0, 0, 1});
     EXPECT_EQ(analyze_topology(m.positions, m.indices).degenerate_triangles, 1u);
+}
+
+// The link definition, written plainly: a vertex is manifold when the edges
+// opposite it (its link) form one path or cycle.
+size_t nonmanifold_vertices_by_definition(size_t vertex_count, const std::vector<uint32_t>& indices) {
+    size_t bad = 0;
+    for (uint32_t v = 0; v < vertex_count; ++v) {
+        std::map<uint32_t, std::set<size_t>> edges_at;  // link vertex -> link edges touching it
+        std::map<uint32_t, size_t> degree;
+        size_t edge = 0;
+        for (size_t t = 0; t < indices.size(); t += 3)
+            for (int k = 0; k < 3; ++k) {
+                if (indices[t + size_t(k)] != v) continue;
+                const uint32_t a = indices[t + size_t(k + 1) % 3], b = indices[t + size_t(k + 2) % 3];
+                edges_at[a].insert(edge);
+                edges_at[b].insert(edge);
+                ++degree[a], ++degree[b], ++edge;
+            }
+        if (edge == 0) continue;
+        std::set<uint32_t> reached{edges_at.begin()->first}, todo{edges_at.begin()->first};
+        while (!todo.empty()) {  // connectivity through shared link edges
+            const uint32_t x = *todo.begin();
+            todo.erase(todo.begin());
+            for (const auto& [y, at] : edges_at)
+                for (size_t e : at)
+                    if (edges_at[x].count(e) && reached.insert(y).second) todo.insert(y);
+        }
+        bool ok = reached.size() == edges_at.size();
+        for (const auto& [x, d] : degree) ok = ok && d <= 2;
+        bad += !ok;
+    }
+    return bad;
+}
+
+// Random edits of two welded cubes (flips, removals, duplicates, stray
+// triangles) give vertices of every kind: fans closed, open, doubled, crossed.
+TEST(MeshTopology, NonManifoldVerticesFollowTheLinkDefinition) {
+    std::mt19937 rng(7);
+    for (int round = 0; round < 200; ++round) {
+        Mesh m = cube();
+        const uint32_t base = uint32_t(m.positions.size());
+        for (const Vec3& p : cube().positions) m.positions.push_back(p + Vec3(1, 1, 1));
+        for (uint32_t i : cube().indices) m.indices.push_back(i == 0 ? 7u : base + i);
+        std::uniform_int_distribution<size_t> pick_triangle(0, m.indices.size() / 3 - 1);
+        std::uniform_int_distribution<uint32_t> pick_vertex(0, uint32_t(m.positions.size() - 1));
+        for (int edit = int(rng() % 4); edit > 0; --edit) {
+            const size_t t = 3 * pick_triangle(rng);
+            switch (rng() % 4) {
+                case 0: std::swap(m.indices[t], m.indices[t + 1]); break;
+                case 1: m.indices.erase(m.indices.begin() + long(t), m.indices.begin() + long(t) + 3); break;
+                case 2: m.indices.insert(m.indices.end(), {m.indices[t], m.indices[t + 1], m.indices[t + 2]}); break;
+                default: m.indices.insert(m.indices.end(), {pick_vertex(rng), pick_vertex(rng), pick_vertex(rng)});
+            }
+        }
+        EXPECT_EQ(analyze_topology(m.positions, m.indices).nonmanifold_vertices,
+                  nonmanifold_vertices_by_definition(m.positions.size(), m.indices))
+            << round;
+    }
 }
 
 TEST(MeshNormals, CubeCornerNormalPointsOutward) {

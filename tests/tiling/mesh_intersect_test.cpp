@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <random>
 #include <vector>
 
 #include "shared/mesh.h"
@@ -176,6 +177,50 @@ TEST(SelfIntersections, LayeredSearchFindsTheMarkedCountsPairs) {
     EXPECT_EQ(layered, expected);
     body::self_intersections_by_layer(m.positions, m.indices, marked, {}, one_layer);
     EXPECT_EQ(one_layer, expected);
+}
+
+// The grid broad phase and its per-cell sweep (shared by the count and the
+// layered search) against every pair asked directly: random soups over a small
+// point pool (so triangles share corners and edges), points on a few heights
+// that double as cuts (so pairs meet in a cut's plane), some marked.
+TEST(SelfIntersections, GridSearchesFindEveryPairOfARandomSoup) {
+    for (uint32_t seed = 1; seed <= 6; ++seed) {
+        std::mt19937 rng(seed);
+        std::uniform_real_distribution<double> u(0.0, 1.0);
+        const std::vector<double> heights = {0.25, 0.5, 0.75};
+        std::vector<Vec3> points;
+        for (int i = 0; i < 60; ++i)
+            points.push_back({u(rng), u(rng), i % 3 == 0 ? heights[size_t(i / 3) % 3] : u(rng)});
+        std::vector<uint32_t> indices;
+        std::uniform_int_distribution<uint32_t> pick(0, uint32_t(points.size() - 1));
+        while (indices.size() < 3 * 120) {
+            const uint32_t a = pick(rng), b = pick(rng), c = pick(rng);
+            if (a != b && b != c && a != c) indices.insert(indices.end(), {a, b, c});
+        }
+        const uint32_t n = uint32_t(indices.size() / 3);
+        std::vector<std::pair<uint32_t, uint32_t>> all;
+        for (uint32_t i = 0; i < n; ++i)
+            for (uint32_t j = i + 1; j < n; ++j) all.push_back({i, j});
+        const std::vector<uint8_t> meet = body::triangle_pairs_meet(points, indices, all);
+        std::vector<uint8_t> marked(n, 0);
+        for (uint32_t t = 0; t < n; ++t) marked[t] = u(rng) < 0.3;
+        std::vector<std::pair<uint32_t, uint32_t>> brute, brute_marked;
+        for (size_t k = 0; k < all.size(); ++k) {
+            if (!meet[k]) continue;
+            brute.push_back(all[k]);
+            if (marked[all[k].first] || marked[all[k].second]) brute_marked.push_back(all[k]);
+        }
+        ASSERT_GT(brute.size(), 20u) << seed;  // the soup is tangled: the comparison means something
+        std::vector<std::pair<uint32_t, uint32_t>> counted, counted_marked, layered;
+        EXPECT_EQ(body::count_self_intersections(points, indices, 0, &counted), brute.size()) << seed;
+        std::sort(counted.begin(), counted.end());
+        EXPECT_EQ(counted, brute) << seed;
+        body::count_self_intersections_of(points, indices, marked, 0, &counted_marked);
+        std::sort(counted_marked.begin(), counted_marked.end());
+        EXPECT_EQ(counted_marked, brute_marked) << seed;
+        body::self_intersections_by_layer(points, indices, marked, heights, layered);
+        EXPECT_EQ(layered, brute_marked) << seed;
+    }
 }
 
 }  // namespace
