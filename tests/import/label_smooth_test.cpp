@@ -9,7 +9,7 @@
 
 #include "builder/import/gaussian_blur.h"
 #include "builder/import/import.h"
-#include "builder/import/marching_squares.h"
+#include "builder/slicing/marching_squares.h"
 #include "builder/import/ring_simplify.h"
 #include "tests/import/nifti_test_util.h"
 
