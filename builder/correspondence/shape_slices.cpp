@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <limits>
 
+#include "builder/contours/repair.h"
 #include "builder/slicing/marching_squares.h"
 
 namespace body {
@@ -197,7 +198,10 @@ std::vector<std::vector<Vec2>> shape_mid_slice(Polygons lower, Polygons upper) {
     const double min_area2 = 4.0 * r.cell * r.cell;  // twice the area: 2 square cells
     std::erase_if(rings, [&](std::vector<Vec2>& ring) {
         for (Vec2& p : ring) p = r.origin + p * r.cell;
-        return std::abs(signed_area2(ring.data(), ring.size())) < min_area2;
+        // Steps of 1/128 cell and nearly straight runs would give caps and
+        // bands slivers of no area.
+        clean_contour(ring, 0.01 * r.cell);
+        return ring.size() < 3 || std::abs(signed_area2(ring.data(), ring.size())) < min_area2;
     });
     return rings;
 }

@@ -28,8 +28,9 @@
 //   marching squares (slicing/marching_squares.h) on a raster of
 //   kShapeTraceCells cells along the longer side, the same transform's
 //   distances (within 0.71 of a cell of the exact ones): closed, simple, not
-//   crossing each other, with the inside on the left; rings under 2 square
-//   cells are dropped. Empty when not needed.
+//   crossing each other, with the inside on the left, cleaned of points
+//   within 0.01 cell of their neighbours' segment (contours/repair.h); rings
+//   under 2 square cells are dropped. Empty when not needed.
 // - Limit: a section with a hole that neither slice has (C shapes whose
 //   openings are narrower than the wall) is inserted too, but the pipeline's
 //   hole constructions do not yet join that hole to the C shapes' notches
