@@ -177,9 +177,10 @@ bool topology_changes_between(Polygons lower, Polygons upper) {
     const std::vector<double> fa = signed_field(a, r), fb = signed_field(b, r);
     std::vector<uint8_t> mid(r.size());
     for (size_t k = 0; k < r.size(); ++k) mid[k] = fa[k] + fb[k] < 0.0;
-    const Topology ta = topology(a, r), tb = topology(b, r), tm = topology(mid, r);
+    // The mid section first: it usually matches the lower slice, and then the upper is not counted.
     auto same = [](Topology x, Topology y) { return x.solids == y.solids && x.holes == y.holes; };
-    return tm.solids > 0 && !same(tm, ta) && !same(tm, tb);
+    const Topology tm = topology(mid, r);
+    return tm.solids > 0 && !same(tm, topology(a, r)) && !same(tm, topology(b, r));
 }
 
 }  // namespace

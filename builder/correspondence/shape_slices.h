@@ -44,7 +44,7 @@
 
 namespace body {
 
-inline constexpr int kShapeDetectCells = 48;
+inline constexpr int kShapeDetectCells = 32;
 inline constexpr int kShapeTraceCells = 256;
 
 std::vector<std::vector<Vec2>> shape_mid_slice(std::span<const std::span<const Vec2>> lower,
