@@ -26,9 +26,9 @@
 #include "builder/import/gaussian_blur.h"
 #include "builder/import/import.h"
 #include "builder/import/label_table.h"
-#include "builder/import/marching_squares.h"
 #include "builder/import/nifti_header.h"
 #include "builder/import/ring_simplify.h"
+#include "builder/slicing/marching_squares.h"
 #include "shared/input_file.h"
 
 namespace body {

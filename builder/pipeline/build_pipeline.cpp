@@ -38,6 +38,7 @@
 #include "builder/correspondence/grouping.h"
 #include "builder/correspondence/link_overrides.h"
 #include "builder/correspondence/material_regions.h"
+#include "builder/correspondence/shape_slices.h"
 #include "builder/fairing/slice_interpolation.h"
 
 namespace body {
@@ -264,6 +265,79 @@ Status close_ends(StructureSurface& surface, CapStyle caps) {
     return ok_status();
 }
 
+// --------------------------------- stage 3a: shape-based slices between
+
+// Halvings of a gap at most: each inserted slice can need one more between it
+// and a neighbour.
+constexpr int kShapeSliceDepth = 2;
+
+// Shape-based slices between `lower` and `upper` (at zl, zu), in z order, appended to `out`.
+void shape_slices_between(std::span<const std::span<const Vec2>> lower, std::span<const std::span<const Vec2>> upper,
+                          double zl, double zu, int depth, std::vector<std::pair<double, std::vector<Contour>>>& out) {
+    if (depth == 0) return;
+    std::vector<std::vector<Vec2>> rings = shape_mid_slice(lower, upper);
+    if (rings.empty()) return;
+    const double zm = 0.5 * (zl + zu);
+    std::vector<std::span<const Vec2>> mid(rings.begin(), rings.end());
+    std::vector<std::pair<double, std::vector<Contour>>> below, above;
+    shape_slices_between(lower, mid, zl, zm, depth - 1, below);
+    shape_slices_between(mid, upper, zm, zu, depth - 1, above);
+    std::vector<Contour> contours(rings.size());
+    for (size_t k = 0; k < rings.size(); ++k) contours[k].points = std::move(rings[k]);
+    for (auto& b : below) out.push_back(std::move(b));
+    out.emplace_back(zm, std::move(contours));
+    for (auto& a : above) out.push_back(std::move(a));
+}
+
+// The structure's own stack with shape-based slices inserted where a slice
+// pair's topology changes between them; false (nothing filled) when none is.
+// Stacks with link overrides keep their slices (the overrides name adjacent
+// slices of the file). An inserted contour names the lower slice's first
+// member as its source (for messages).
+bool with_shape_slices(const ContourStack& stack, const std::vector<std::vector<uint32_t>>& members,
+                       ContourStack& local, std::vector<std::vector<uint32_t>>& local_members,
+                       std::vector<bool>& inserted) {
+    if (!stack.links.empty()) return false;
+    std::vector<std::vector<std::pair<double, std::vector<Contour>>>> between(stack.slices.size());
+    bool any = false;
+    std::vector<std::span<const Vec2>> polys[2];
+    for (size_t s = 0; s + 1 < stack.slices.size(); ++s) {
+        if (members[s].empty() || members[s + 1].empty()) continue;
+        for (int side = 0; side < 2; ++side) {
+            polys[side].clear();
+            for (uint32_t k : members[s + side]) polys[side].emplace_back(stack.slices[s + side].contours[k].points);
+        }
+        shape_slices_between(polys[0], polys[1], stack.slices[s].z, stack.slices[s + 1].z, kShapeSliceDepth,
+                             between[s]);
+        any = any || !between[s].empty();
+    }
+    if (!any) return false;
+    local.slices.clear();
+    local_members.clear();
+    inserted.clear();
+    auto add = [&](Slice slice, bool is_inserted) {
+        local_members.emplace_back(slice.contours.size());
+        std::iota(local_members.back().begin(), local_members.back().end(), uint32_t(0));
+        local.slices.push_back(std::move(slice));
+        inserted.push_back(is_inserted);
+    };
+    for (size_t s = 0; s < stack.slices.size(); ++s) {
+        Slice own{stack.slices[s].z, {}, stack.slices[s].source_index};
+        for (uint32_t k : members[s]) own.contours.push_back(stack.slices[s].contours[k]);
+        add(std::move(own), false);
+        for (auto& [z, contours] : between[s]) {
+            const Contour& src = stack.slices[s].contours[members[s][0]];
+            for (Contour& c : contours) {
+                c.structure = src.structure;
+                c.source_slice = src.source_slice;
+                c.source_contour = src.source_contour;
+            }
+            add(Slice{z, std::move(contours), stack.slices[s].source_index}, true);
+        }
+    }
+    return true;
+}
+
 // ------------------------------------------------ stage 3: one structure
 
 // The surface of one structure: loops, then per slab bands and branches, then
@@ -290,12 +364,23 @@ Result<StructureMesh> build_structure(const ContourStack& stack, const Structure
     size_t contours = 0;
     for (const auto& v : members) contours += v.size();
     const auto start = std::chrono::steady_clock::now();
+    // Inserted slices do not count for progress: one step per stack slice.
+    ContourStack local;
+    std::vector<std::vector<uint32_t>> local_members;
+    std::vector<bool> inserted;
+    const bool shaped = with_shape_slices(stack, members, local, local_members, inserted);
+    size_t step = 0;
+    const std::function<void()> own_advance = [&] {
+        if (!shaped || step >= inserted.size() || !inserted[step]) advance();
+        ++step;
+    };
+    const ContourStack& used = shaped ? local : stack;
     StructureSurface surface;
     surface.path = source_path;
-    for (const Slice& slice : stack.slices) surface.z.push_back(slice.z);
+    for (const Slice& slice : used.slices) surface.z.push_back(slice.z);
     surface.tiling = options.tiling;
     surface.correspondence = options.correspondence;
-    auto status = build_surface(surface, stack, options, members, advance);
+    auto status = build_surface(surface, used, options, shaped ? local_members : members, own_advance);
     if (!status) return status.error();
     StructureMesh sm;
     sm.id = grouping.infos[i].id;

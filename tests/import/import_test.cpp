@@ -13,8 +13,8 @@
 #include <random>
 
 #include "builder/import/label_table.h"
-#include "builder/import/marching_squares.h"
 #include "builder/import/ring_simplify.h"
+#include "builder/slicing/marching_squares.h"
 #include "shared/atomic_file.h"
 #include "tests/import/nifti_test_util.h"
 

@@ -9,8 +9,8 @@
 
 #include "builder/import/gaussian_blur.h"
 #include "builder/import/import.h"
-#include "builder/import/marching_squares.h"
 #include "builder/import/ring_simplify.h"
+#include "builder/slicing/marching_squares.h"
 #include "tests/import/nifti_test_util.h"
 
 namespace body {

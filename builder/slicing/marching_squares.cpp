@@ -3,7 +3,7 @@
 // variants of Nielson & Hamann 1991, "The asymptotic decider": the mask's
 // inside 4-connected, the field's inside corners joined when the cell's mean is
 // above the level).
-#include "builder/import/marching_squares.h"
+#include "builder/slicing/marching_squares.h"
 
 #include <algorithm>
 #include <cassert>
