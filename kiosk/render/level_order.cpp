@@ -9,6 +9,7 @@
 
 #include "kiosk/render/batch.h"
 #include "kiosk/render/buffer_access.h"
+#include "kiosk/render/gl_util.h"
 #include "kiosk/render/model.h"
 #include "kiosk/render/window_order.h"
 
@@ -206,9 +207,10 @@ void refresh_in_place(Model& m, uint64_t serial, double seconds, double settle_s
     read_back = true;
     MappedRange map(*m.transfers, m.ebo, 0, bytes, GL_MAP_READ_BIT | GL_MAP_WRITE_BIT);
     if (!map.data()) return;  // the next frame tries again
-    (void)step_sliced_order(o.sliced, std::span<uint32_t>(static_cast<uint32_t*>(map.data()), m.index_count),
-                            kOrderSliceFaces);
+    const bool done = step_sliced_order(
+        o.sliced, std::span<uint32_t>(static_cast<uint32_t*>(map.data()), m.index_count), kOrderSliceFaces);
     if (!map.unmap()) o.sliced = SlicedOrder{};  // the store was lost: nothing left to restore
+    if (done) trim_heap();  // the windows' scratch (below glibc's grown mmap threshold) back to the system
 }
 
 }  // namespace
