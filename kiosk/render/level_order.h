@@ -28,7 +28,9 @@
 // (window_order.h's SlicedOrder; between slices it holds the level's
 // triangles in some order, all drawable), keeping a permutation (4 bytes a
 // triangle instead of the copy's 12) that puts the prefix back before the
-// next change of its indices (restore_level_prefix, from update_model).
+// next change of its indices (restore_level_prefix, from update_model). Its
+// other readers (lines, wireframe, the cut section, picking) then read the
+// same triangles in that order.
 #include <GLES3/gl3.h>
 
 #include <atomic>
