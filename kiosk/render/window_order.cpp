@@ -87,15 +87,37 @@ void swap_triangles(std::span<uint32_t> idx, std::vector<uint32_t>& perm, size_t
     std::swap(perm[f], perm[g]);
 }
 
+// s.moved = the window's corners numbered 0, 1, ... in the order they are
+// first used (the numbers the kernel gives them anyway), found by sorting the
+// corners, not through a map over every vertex of the mesh; the count.
+uint32_t number_window(SlicedOrder& s, const uint32_t* tri, size_t corners) {
+    s.corners.resize(corners);
+    std::iota(s.corners.begin(), s.corners.end(), 0u);
+    std::sort(s.corners.begin(), s.corners.end(),
+              [&](uint32_t x, uint32_t y) { return tri[x] < tri[y] || (tri[x] == tri[y] && x < y); });
+    s.firsts.clear();  // per vertex: its first corner, and where its run starts in s.corners
+    for (size_t i = 0; i < corners; ++i)
+        if (i == 0 || tri[s.corners[i]] != tri[s.corners[i - 1]]) s.firsts.push_back(uint64_t{s.corners[i]} << 32 | i);
+    std::sort(s.firsts.begin(), s.firsts.end());
+    s.moved.resize(corners);
+    for (size_t l = 0; l < s.firsts.size(); ++l) {
+        const uint32_t v = tri[s.firsts[l] >> 32];
+        for (size_t i = uint32_t(s.firsts[l]); i < corners && tri[s.corners[i]] == v; ++i)
+            s.moved[s.corners[i]] = uint32_t(l);
+    }
+    return uint32_t(s.firsts.size());
+}
+
 // One window [a, b) through the kernel's permutation form (the in-place form's
 // order), its triangles and their perm entries moved alike.
 void order_window(SlicedOrder& s, std::span<uint32_t> idx, size_t a, size_t b) {
     const size_t n = b - a;
-    pm::reserve_cache_window(s.scratch, n, s.vertex_count);  // whole cells: may pass kOrderWindowFaces
+    uint32_t* tri = idx.data() + 3 * a;
+    const uint32_t nv = number_window(s, tri, 3 * n);
+    pm::reserve_cache_window(s.scratch, n, nv);  // whole cells: may pass kOrderWindowFaces
     s.faces.resize(n);
     std::iota(s.faces.begin(), s.faces.end(), 0u);
-    uint32_t* tri = idx.data() + 3 * a;
-    if (!pm::cache_order_window(tri, s.faces.data(), n, s.scratch)) return;  // left in cell order
+    if (!pm::cache_order_window(s.moved.data(), s.faces.data(), n, s.scratch)) return;  // left in cell order
     s.moved.assign(s.perm.begin() + static_cast<std::ptrdiff_t>(a), s.perm.begin() + static_cast<std::ptrdiff_t>(b));
     for (size_t t = 0; t < n; ++t) s.perm[a + t] = s.moved[s.faces[t]];
     s.moved.assign(tri, tri + 3 * n);
@@ -165,6 +187,8 @@ bool step_sliced_order(SlicedOrder& s, std::span<uint32_t> idx, size_t budget) {
     free_vector(s.next);
     free_vector(s.faces);
     free_vector(s.moved);
+    free_vector(s.corners);
+    free_vector(s.firsts);
     s.scratch = pm::CacheWindowScratch{};
     return true;
 }

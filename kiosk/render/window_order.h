@@ -52,6 +52,8 @@ struct SlicedOrder {
     size_t window_cell = 1, window_begin = 0;
     pm::CacheWindowScratch scratch;
     std::vector<uint32_t> faces, moved;  // one window's order, and what it moves
+    std::vector<uint32_t> corners;       // one window's corners by vertex (its own numbering)
+    std::vector<uint64_t> firsts;
     bool begun = false, finished = false;
     bool done() const { return finished; }
 };
