@@ -7,7 +7,9 @@
 #include <algorithm>
 #include <utility>
 
+#include "kiosk/render/batch.h"
 #include "kiosk/render/buffer_access.h"
+#include "kiosk/render/gl_util.h"
 #include "kiosk/render/model.h"
 #include "kiosk/render/window_order.h"
 
@@ -180,12 +182,47 @@ GLuint copy_prefix(Model& m, void*& data) {
     return copy;
 }
 
+// The in-place form (see level_order.h): one slice a frame, the first frame
+// after the level settled only counting the buckets.
+void refresh_in_place(Model& m, uint64_t serial, double seconds, double settle_seconds, bool& read_back) {
+    LevelOrder& o = m.order;
+    if (m.geometry_version != o.seen_version) {
+        o.seen_version = m.geometry_version;
+        o.seen_frame = serial;
+        o.seen_seconds = seconds;
+    }
+    if (o.sliced.done() || read_back) return;
+    const size_t bytes = m.index_count * sizeof(uint32_t);
+    if (!o.sliced.begun) {
+        if (o.tried_version == m.geometry_version || !orders_level(m, settle_seconds)) return;
+        if (serial - o.seen_frame < kSettleFrames || seconds - o.seen_seconds < settle_seconds) return;
+        read_back = true;
+        o.tried_version = m.geometry_version;
+        std::vector<uint16_t> cells = vertex_cells(m);
+        if (cells.size() != m.vertex_count) return;
+        const MappedBuffer<uint32_t> map(m, m.ebo, m.index_count);
+        if (map.data().size() == m.index_count) (void)begin_sliced_order(o.sliced, map.data(), std::move(cells));
+        return;
+    }
+    read_back = true;
+    MappedRange map(*m.transfers, m.ebo, 0, bytes, GL_MAP_READ_BIT | GL_MAP_WRITE_BIT);
+    if (!map.data()) return;  // the next frame tries again
+    const bool done = step_sliced_order(
+        o.sliced, std::span<uint32_t>(static_cast<uint32_t*>(map.data()), m.index_count), kOrderSliceFaces);
+    if (!map.unmap()) o.sliced = SlicedOrder{};  // the store was lost: nothing left to restore
+    if (done) trim_heap();  // the windows' scratch (below glibc's grown mmap threshold) back to the system
+}
+
 }  // namespace
 
 void refresh_level_order(Model& m, LevelOrderWorker& worker, uint64_t serial, double seconds, double settle_seconds,
                          bool& read_back) {
     LevelOrder& o = m.order;
     if (!o.enabled || settle_seconds < 0.0) return;
+    if (orders_in_place(m)) {
+        refresh_in_place(m, serial, seconds, settle_seconds, read_back);
+        return;
+    }
     if (m.geometry_version != o.seen_version) {
         o.seen_version = m.geometry_version;
         o.seen_frame = serial;
@@ -220,11 +257,41 @@ bool orders_level(const Model& m, double settle_seconds) {
     return m.order.enabled && settle_seconds >= 0.0 && m.index_count >= 3 * kMinOrderedTriangles;
 }
 
-GLuint drawn_element_buffer(const Model& m) { return level_ordered(m) ? m.order.ebo : m.ebo; }
+GLuint drawn_element_buffer(const Model& m) { return level_ordered(m) && m.order.ebo ? m.order.ebo : m.ebo; }
 
 bool level_ordered(const Model& m) {
     const LevelOrder& o = m.order;
+    if (o.sliced.done()) return o.sliced.perm.size() * 3 == m.index_count;
     return o.ebo && o.version == m.geometry_version && o.count == m.index_count;
+}
+
+size_t level_order_bytes(const Model& m) {
+    const LevelOrder& o = m.order;
+    const SlicedOrder& s = o.sliced;
+    const auto bytes = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
+    const pm::CacheWindowScratch& w = s.scratch;
+    size_t total = o.count * sizeof(uint32_t) + (o.job ? o.job->indices.size_bytes() + bytes(o.job->cells) : 0);
+    total += bytes(s.cells) + bytes(s.perm) + bytes(s.start) + bytes(s.next) + bytes(s.faces) + bytes(s.moved) +
+             bytes(s.corners) + bytes(s.firsts);
+    for (const auto* v : {&w.local_of, &w.local, &w.global, &w.sorted, &w.start, &w.by_first, &w.window})
+        total += bytes(*v);
+    return total;
+}
+
+bool orders_in_place(const Model& m) { return m.vertex_capacity > kMaxBatchedVertices && !m.transfers->staged; }
+
+bool restore_level_prefix(Model& m) {
+    SlicedOrder& s = m.order.sliced;
+    if (!s.begun) return true;
+    const size_t count = s.perm.size() * 3;
+    bool ok = count == 0;
+    if (!ok) {
+        MappedRange map(*m.transfers, m.ebo, 0, count * sizeof(uint32_t), GL_MAP_READ_BIT | GL_MAP_WRITE_BIT);
+        if (map.data()) restore_order(std::span<uint32_t>(static_cast<uint32_t*>(map.data()), count), s.perm);
+        ok = map.data() && map.unmap();
+    }
+    s = SlicedOrder{};
+    return ok;
 }
 
 void free_level_order(Model& m) {
@@ -233,6 +300,7 @@ void free_level_order(Model& m) {
     o.job.reset();
     (void)unmap_pending(o, false);
     free_buffer(o);
+    o.sliced = SlicedOrder{};
 }
 
 }  // namespace body::render

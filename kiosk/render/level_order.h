@@ -21,6 +21,16 @@
 // Staged buffer access (discrete GPUs) orders in a staging buffer copied
 // into the drawn one at the end. RendererOptions::settle_seconds < 0 turns
 // ordering off.
+//
+// A model too large to batch (batch.h's kMaxBatchedVertices) with buffers
+// mapped in place is ordered without the copy: its own element buffer is
+// mapped between frames and ordered a slice a frame on the render thread
+// (window_order.h's SlicedOrder; between slices it holds the level's
+// triangles in some order, all drawable), keeping a permutation (4 bytes a
+// triangle instead of the copy's 12) that puts the prefix back before the
+// next change of its indices (restore_level_prefix, from update_model). Its
+// other readers (lines, wireframe, the cut section, picking) then read the
+// same triangles in that order.
 #include <GLES3/gl3.h>
 
 #include <atomic>
@@ -34,6 +44,8 @@
 #include <thread>
 #include <vector>
 
+#include "kiosk/render/window_order.h"
+
 namespace body::render {
 
 struct Model;
@@ -43,6 +55,9 @@ inline constexpr uint64_t kSettleFrames = 3;
 // Levels below this many triangles are drawn from the prefix (ordering them
 // would cost a job and a buffer for a draw that is cheap anyway).
 inline constexpr size_t kMinOrderedTriangles = 1024;
+// Triangle moves of a model ordered in place, a frame (SlicedOrder's budget:
+// about one window; 1.1M triangles take some 70 frames).
+inline constexpr size_t kOrderSliceFaces = 32768;
 
 class LevelOrderWorker;
 
@@ -72,6 +87,7 @@ struct LevelOrder {
     std::shared_ptr<LevelOrderJob> job;   // in flight, or done and not yet taken
     GLuint pending = 0;                   // the job's buffer, mapped while it is ordered
     bool pending_staged = false;          // a staging buffer: copied into a new one at the end
+    SlicedOrder sliced;                   // ordered in place (orders_in_place): the model's own buffer
 };
 
 // The renderer's worker thread, started at init (so that the kiosk's thread
@@ -119,6 +135,15 @@ GLuint drawn_element_buffer(const Model& m);
 bool orders_level(const Model& m, double settle_seconds);
 // Whether `m` draws its level from an ordered copy now.
 bool level_ordered(const Model& m);
+// Whether `m` is ordered in place (see the top): drawn alone, buffers mapped in place.
+bool orders_in_place(const Model& m);
+// Puts the prefix back into `m`'s element buffer when it was (partly) ordered
+// in place, and forgets that order; false when the buffer could not be mapped
+// or was lost while mapped (its contents are then undefined).
+bool restore_level_prefix(Model& m);
+// Bytes `m`'s order holds: its GL copy (and one being ordered), or its
+// in-place order's permutation and working memory (capacities).
+size_t level_order_bytes(const Model& m);
 // Frees the ordered buffer and forgets the job (waits for the worker to let
 // go of its mapped indices: at most one window).
 void free_level_order(Model& m);

@@ -459,6 +459,11 @@ Status Renderer::update_model(ModelId id, const MeshData& mesh, const Dirty& dir
         for (size_t i = dirty.index_begin; i < dirty.index_end; ++i)
             if (mesh.indices[i] >= pos.size())
                 return input_error(m.name + ": index " + std::to_string(i) + " out of range");
+    // A level ordered in place holds its triangles out of the prefix's order: put back before the indices move.
+    const bool index_writes =
+        patched ? mesh.index_patch_begin < mesh.index_patch_end : dirty.index_begin < dirty.index_end;
+    if ((index_writes || icount - icount % 3 != m.index_count) && !restore_level_prefix(m))
+        return runtime_error(m.name + ": the index buffer could not be mapped to restore its level's order");
     reserve_vertices(m, std::max({vcount, dirty.vertex_end, vpatched ? mesh.position_patch_end : 0}));
     reserve_indices(m, std::max({icount, dirty.index_end, patched ? mesh.index_patch_end : 0}));
     const bool vertex_patched = vpatched && mesh.position_patch_begin < mesh.position_patch_end;

@@ -266,11 +266,18 @@ void Renderer::finish_level_orders() {
         if (m.order.job) s_->level_orders.wait(*m.order.job);
 }
 
+size_t Renderer::level_order_bytes() const {
+    size_t total = 0;
+    for (const auto& [id, m] : s_->models) total += render::level_order_bytes(m);
+    return total;
+}
+
 bool Renderer::read_ordered_indices(ModelId id, const std::function<void(std::span<const uint32_t>)>& read) const {
     auto it = s_->models.find(id);
     if (it == s_->models.end() || !render::level_ordered(it->second)) return false;
-    const MappedBuffer<uint32_t> map(it->second, it->second.order.ebo, it->second.order.count);
-    if (map.data().size() != it->second.order.count) return false;
+    const Model& m = it->second;
+    const MappedBuffer<uint32_t> map(m, drawn_element_buffer(m), m.index_count);
+    if (map.data().size() != m.index_count) return false;
     read(map.data());
     return true;
 }

@@ -193,6 +193,9 @@ public:
     // Waits for the orderings in flight (for the benchmark and tests; the
     // kiosk never waits); the next frame draws their results.
     void finish_level_orders();
+    // Bytes the settled-level orders hold now (level_order.h): GL copies of
+    // ordered levels, permutations of levels ordered in place, and their working memory.
+    size_t level_order_bytes() const;
     // Like read_indices, the ordered copy's entries; false when the model
     // draws no ordered level now.
     bool read_ordered_indices(ModelId id, const std::function<void(std::span<const uint32_t>)>& read) const;

@@ -11,6 +11,9 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <vector>
+
+#include "shared/pm/cache_window.h"
 
 namespace body::render {
 
@@ -31,5 +34,40 @@ uint16_t order_cell(float tx, float ty, float tz);
 // cancelled (`indices` then holds the same triangles in some order).
 bool order_in_windows(std::span<uint32_t> indices, std::span<const uint16_t> cells,
                       const std::atomic<bool>* cancel = nullptr, size_t window_faces = kOrderWindowFaces);
+
+// The same order, resumable, for an element buffer that may be mapped only
+// between frames (the one being drawn, kiosk/render/level_order.h): the bucket
+// sort and the windows advance a slice at a time on the triangles in place,
+// and every move is mirrored in `perm` (perm[i]: the position the triangle now
+// at i had when the order began), so that between slices the buffer holds the
+// same triangles and restore_order() can put them back. The final order is
+// order_in_windows()'s. Memory besides perm (4 bytes a triangle): the cells
+// (2 a vertex), the bucket bounds and one window's scratch, until done.
+struct SlicedOrder {
+    std::vector<uint16_t> cells;  // order_cell of each vertex (freed once sorted)
+    size_t vertex_count = 0;
+    std::vector<uint32_t> perm;         // one entry a triangle of the level
+    std::vector<uint32_t> start, next;  // bucket bounds, and each bucket's next unplaced triangle
+    size_t bucket = 0;                  // the bucket being filled; == its count: windows
+    size_t window_cell = 1, window_begin = 0;
+    pm::CacheWindowScratch scratch;
+    std::vector<uint32_t> faces, moved;  // one window's order, and what it moves
+    std::vector<uint32_t> corners;       // one window's corners by vertex (its own numbering)
+    std::vector<uint64_t> firsts;
+    bool begun = false, finished = false;
+    bool done() const { return finished; }
+};
+
+// Starts ordering `indices` (3 per triangle, each < cells.size()): counts the
+// buckets, perm the identity. False (nothing started, `s` cleared) when the
+// input is bad as order_in_windows() would refuse it.
+bool begin_sliced_order(SlicedOrder& s, std::span<const uint32_t> indices, std::vector<uint16_t> cells);
+// Advances by about `budget` triangle moves (at least one bucket step or one
+// window); `indices` as given to begin. Returns done(); once done the
+// working memory is freed and only perm is kept.
+bool step_sliced_order(SlicedOrder& s, std::span<uint32_t> indices, size_t budget);
+// Puts the triangles of `indices` (ordered partly or wholly by a SlicedOrder
+// whose perm this is) back where they stood, in place, and empties perm.
+void restore_order(std::span<uint32_t> indices, std::vector<uint32_t>& perm);
 
 }  // namespace body::render

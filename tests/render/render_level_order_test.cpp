@@ -5,7 +5,9 @@
 // order, draws the same picture (also cut), is made off the render thread
 // (frames go on while it is made, no waiting call needed), models that settle
 // together are read back one at a time, and a change of level falls back to
-// the prefix at once and orders the new level again.
+// the prefix at once and orders the new level again. A model too large to
+// batch is ordered in its own buffer, a slice a frame, with no GL copy, and
+// put back exactly before its next level is patched in.
 #include <gtest/gtest.h>
 #include <meshoptimizer.h>
 
@@ -241,6 +243,108 @@ TEST(RenderLevelOrder, WindowedOrderRefusesBadInputUntouchedAndStopsWhenCancelle
     const std::atomic<bool> cancel{true};
     EXPECT_FALSE(order_in_windows(idx, cells, &cancel));
     EXPECT_EQ(sorted_triangles(idx), sorted_triangles(s.indices));
+}
+
+// A model over kMaxBatchedVertices (here 73,728 vertices) is ordered in its
+// own element buffer: the same triangles and picture, no GL copy (only the
+// permutation, 4 bytes a triangle), and each change of level first puts the
+// prefix back, so the patched level is exactly a never-ordered model's.
+TEST(RenderLevelOrder, LargeLevelsAreOrderedInPlaceAndPutBackBeforeTheNextLevel) {
+    const std::vector<uint8_t> bytes = test::torus_bpm(384, 192);
+    ASSERT_FALSE(bytes.empty());
+    RendererOptions options;
+    options.settle_seconds = 0.0;
+    RenderFixture f(160, 160, options);
+    REQUIRE_GL(f);
+    ModelSource src = source_of(bytes), ref = source_of(bytes);
+    auto id = f.renderer().add_model(src.upload_mesh(), "large");
+    auto rid = f.renderer().add_model(ref.upload_mesh(), "reference");
+    ASSERT_TRUE(id.ok() && rid.ok());
+    for (ModelSource* s : {&src, &ref}) {
+        (void)s->take_dirty();
+        s->release_arrays();  // the element buffers are the only index copies
+    }
+    f.renderer().state(rid.value())->visible = false;  // never drawn, so never ordered: the prefix
+    const View cam = View::framing(Vec3f(0.0f), 1.0f, Vec3f(0.3f, 0.6f, 1.0f));
+    const auto indices = [&](ModelId m, size_t n) {
+        std::vector<uint32_t> out;
+        EXPECT_TRUE(
+            f.renderer().read_indices(m, n, [&](std::span<const uint32_t> i) { out.assign(i.begin(), i.end()); }));
+        return out;
+    };
+    for (double lod : {1.0, 0.5, 1.0, 0.3}) {
+        SCOPED_TRACE("LOD " + std::to_string(lod));
+        for (ModelSource* s : {&src, &ref}) s->set_lod(lod);
+        ASSERT_TRUE(f.renderer().update_model(id.value(), src.upload_mesh(), src.take_dirty()).ok());
+        ASSERT_TRUE(f.renderer().update_model(rid.value(), ref.upload_mesh(), ref.take_dirty()).ok());
+        const size_t n = 3 * src.triangles();
+        ASSERT_GE(n, 3 * kMinOrderedTriangles);
+        // Put back, then patched: the reference's array entry for entry.
+        EXPECT_EQ(f.renderer().level_order_bytes(), 0u);
+        const std::vector<uint32_t> prefix = indices(id.value(), n);
+        ASSERT_EQ(prefix, indices(rid.value(), n));
+        const size_t gl_bytes = f.renderer().gpu_bytes();
+        const Image picture = f.draw(cam);
+        EXPECT_GT(frames_until_ordered(f, id.value(), cam), 1);  // a slice a frame
+        const std::vector<uint32_t> ordered = indices(id.value(), n);
+        std::vector<uint32_t> drawn;
+        ASSERT_TRUE(f.renderer().read_ordered_indices(
+            id.value(), [&](std::span<const uint32_t> i) { drawn.assign(i.begin(), i.end()); }));
+        EXPECT_EQ(drawn, ordered);  // the model's own buffer is the ordered one
+        EXPECT_EQ(sorted_triangles(ordered), sorted_triangles(prefix));
+        EXPECT_NE(ordered, prefix);
+        const size_t vertices = *std::max_element(prefix.begin(), prefix.end()) + size_t{1};
+        EXPECT_LT(acmr(ordered, vertices), 0.8f * acmr(prefix, vertices));
+        EXPECT_EQ(f.renderer().gpu_bytes(), gl_bytes);                          // no GL copy
+        EXPECT_EQ(f.renderer().level_order_bytes(), n / 3 * sizeof(uint32_t));  // the permutation alone
+        EXPECT_EQ(test::compare(picture, f.draw(cam), 1).bad_block_fraction, 0.0);
+    }
+}
+
+// Sliced in any budget, the order is order_in_windows()'s; its permutation
+// says where each triangle came from, and restore_order() puts them back from
+// any point, done or not.
+TEST(RenderLevelOrder, SlicedOrderIsTheWindowedOrderAndPutsBackFromAnyPoint) {
+    const test::GenMesh s = test::icosphere(6);  // 81920 triangles: several windows
+    const std::vector<uint16_t> cells = cells_of(s);
+    std::vector<Triangle> t = sorted_triangles(s.indices);
+    std::shuffle(t.begin(), t.end(), std::mt19937(5));
+    std::vector<uint32_t> input;
+    for (const Triangle& x : t) input.insert(input.end(), x.begin(), x.end());
+    std::vector<uint32_t> whole = input;
+    ASSERT_TRUE(order_in_windows(whole, cells));
+    int small_steps = 0;  // slices of 1000
+    for (size_t budget : {size_t{1000}, kOrderWindowFaces, size_t{1} << 30}) {
+        SCOPED_TRACE("budget " + std::to_string(budget));
+        std::vector<uint32_t> idx = input;
+        SlicedOrder o;
+        ASSERT_TRUE(begin_sliced_order(o, idx, cells));
+        int steps = 0;
+        while (!step_sliced_order(o, idx, budget)) ASSERT_LT(++steps, 100000);
+        if (budget == 1000) small_steps = steps;
+        EXPECT_EQ(idx, whole);
+        ASSERT_EQ(o.perm.size(), t.size());
+        for (size_t i = 0; i < o.perm.size(); ++i)
+            for (size_t k = 0; k < 3; ++k) ASSERT_EQ(idx[3 * i + k], input[3 * size_t(o.perm[i]) + k]);
+        restore_order(idx, o.perm);
+        EXPECT_EQ(idx, input);
+        EXPECT_TRUE(o.perm.empty());
+    }
+    // Stopped early in the sort, and in the last windows.
+    ASSERT_GT(small_steps, 10);
+    for (int stop : {3, small_steps - 1}) {
+        std::vector<uint32_t> idx = input;
+        SlicedOrder o;
+        ASSERT_TRUE(begin_sliced_order(o, idx, cells));
+        for (int i = 0; i < stop; ++i) ASSERT_FALSE(step_sliced_order(o, idx, 1000));
+        EXPECT_NE(idx, input);
+        restore_order(idx, o.perm);
+        EXPECT_EQ(idx, input);
+    }
+    // Bad input is refused as order_in_windows refuses it.
+    SlicedOrder o;
+    EXPECT_FALSE(begin_sliced_order(o, input, std::vector<uint16_t>(cells.begin(), cells.begin() + 3)));
+    EXPECT_FALSE(o.begun);
 }
 
 }  // namespace
