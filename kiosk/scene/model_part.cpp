@@ -28,14 +28,35 @@ void log_error(const Status& s) {
     if (!s) std::fprintf(stderr, "bodyview: %s\n", s.error().message.c_str());
 }
 
+// The level a streamed file is decoded to for `want` triangles (decoding on
+// demand): the last batch boundary whose triangles stay within `want`. Once a
+// batch is complete only its boundaries are drawn, so the next boundary would be
+// decoded and never drawn (a small file's first batch is 64 splits: 16 times
+// its 4-vertex base). Its triangles are estimated before it is decoded at the
+// file's mean faces a split (exact for a closed surface: 2). Never below what
+// is decoded; the whole file for its full detail.
+size_t level_to_decode(const pm::ProgressiveMesh& m, size_t want) {
+    const size_t have = m.available_level(), splits = m.max_level();
+    if (want >= m.max_triangle_count()) return splits;
+    const size_t triangles = m.triangles_at(have);
+    if (have >= splits || triangles >= want) return have;
+    const double per_split = double(m.max_triangle_count() - m.base_triangle_count()) / double(splits);
+    const size_t reach = have + static_cast<size_t>(static_cast<double>(want - triangles) / std::max(per_split, 1.0));
+    if (!m.batched()) return std::max(reach, have + 1);
+    const auto levels = m.batch_levels();
+    const auto it =
+        std::upper_bound(levels.begin(), levels.end(), static_cast<uint32_t>(std::min<size_t>(reach, UINT32_MAX)));
+    return it == levels.begin() ? have : std::max<size_t>(*(it - 1), have);
+}
+
 // The level `want` triangles would give once the whole file has arrived.
 // Unknown while the file decodes (the batch arriving is not in its final
-// order), or when the decoded levels do not reach past `want`: then assume it
-// needs more. A file paused on demand stops at a batch boundary, so a level
+// order), or when the file is to be decoded further for `want`: then assume it
+// needs more. A file paused on demand stops at level_to_decode, so a level
 // below it is the whole file's.
 size_t level_wanted(const pm::ProgressiveMesh& m, size_t want, bool decoding) {
     if (want >= m.max_triangle_count()) return m.max_level();
-    if (m.available_level() < m.max_level() && (decoding || m.triangles_at(m.available_level()) <= want))
+    if (m.available_level() < m.max_level() && (decoding || level_to_decode(m, want) > m.available_level()))
         return m.max_level();
     return m.level_for_triangles(want);
 }
@@ -217,10 +238,7 @@ bool ModelPart::head_for_level(render::Renderer& renderer, double ratio, bool gl
 
 size_t ModelPart::wanted_splits(double ratio) const {
     if (!pm_) return 0;
-    const auto want = static_cast<size_t>(std::llround(static_cast<double>(full_triangles()) * ratio));
-    const size_t have = pm_->available_level(), triangles = pm_->triangles_at(have);
-    if (triangles > want || have >= pm_->max_level()) return have;
-    return have + (want - triangles) / 2 + 1;
+    return level_to_decode(*pm_, static_cast<size_t>(std::llround(static_cast<double>(full_triangles()) * ratio)));
 }
 
 bool ModelPart::head_for(render::Renderer& renderer, double ratio, bool automatic, bool glide, bool streaming,

@@ -70,8 +70,9 @@ public:
     bool head_for(render::Renderer& renderer, double ratio, bool automatic, bool glide, bool streaming, double now);
     bool gliding() const { return morph_end_ > morph_begin_; }
     // Splits a streamed part must decode for the level `ratio` asks: what is
-    // decoded when that reaches past the ratio's triangles, else an estimate
-    // (two triangles a split); the stream rounds it up to a batch boundary.
+    // decoded when that reaches the ratio's triangles, else the last batch
+    // boundary within them (estimated at the file's mean faces a split; a
+    // batch past it would not be drawn), the whole file for full detail.
     size_t wanted_splits(double ratio) const;
     // The renderer's geomorph state for this part.
     void apply_morph(render::ModelState& state) const;

@@ -87,6 +87,8 @@ Status BpmStream::feed(std::span<const uint8_t> bytes) {
     if (paused_) {
         std::vector<uint8_t>().swap(pending_);  // a paused stream holds no bytes
         release_scratch();
+        // Nor decoding state: rebuilt from the drawn arrays when its next split decodes.
+        for (auto& m : meshes_) m->park_decoding_state();
         return ok_status();
     }
     pending_.erase(pending_.begin(), pending_.begin() + ptrdiff_t(pos));
@@ -481,6 +483,7 @@ Status BpmStream::parse_splits(size_t structure, std::span<const uint8_t> payloa
         wants_more_except(structure)
             ? count
             : uint32_t(std::clamp<size_t>(split_limit(structure), first + at.next + 1, size_t(first) + count) - first);
+    m.unpark_decoding_state();  // a structure paused before: its state back first
     // A split adds 1 to 3 faces: grown for what is decoded now, not the whole section.
     m.grow_decoded(size_t(first) + stop,
                    std::min(faces_before + h.new_faces, m.decoded_faces_ + 3 * size_t(stop - at.next)));

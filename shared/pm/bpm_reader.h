@@ -54,6 +54,8 @@ public:
     // rose. A stop inside a section keeps only the decoder's place (a few numbers,
     // no bytes): the section is read again, checked again, and decoding goes on
     // after its last decoded split, giving exactly what an uninterrupted decode gives.
+    // A paused structure keeps no decoding state either (the replay, the codes
+    // of the decoded level): rebuilt from its drawn arrays before its next split.
     bool paused() const { return paused_; }
 
 private:

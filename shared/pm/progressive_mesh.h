@@ -326,6 +326,16 @@ private:
     uint32_t vertex_in_draw_order(uint32_t v) const { return vertex_slot_.empty() ? v : vertex_slot_[v]; }
     CacheOrderScratch order_scratch_;
     void release_decoding_state();
+    // Decoding on demand (decoding_state.cpp): a paused structure drops the
+    // replay, qpos_ and qoct_ (park) and rebuilds them before its next split
+    // (unpark) from what it keeps: the drawn arrays brought to the decoded
+    // level by the split records, mapped to the file's numbering through
+    // face_slot_ and vertex_slot_ (kept: they record the batches' cache order,
+    // which only the decode computes). Exactly the state a decode without the
+    // pause has (each vertex's corners ascending; the pool's layout may differ).
+    void park_decoding_state();
+    void unpark_decoding_state();
+    bool decoding_state_parked_ = false;
     // The split records and decoding state grown to cover `splits` splits and
     // `faces` faces, geometrically and capped at the file's counts
     // (progressive_mesh_memory.cpp); the reader calls it before each section.

@@ -73,7 +73,8 @@ size_t ProgressiveMesh::heap_bytes() const {
            bytes_of(indices_) + bytes_of(split_parents_bytes_) + bytes_of(face_count_bits_) + bytes_of(face_sample_) +
            bytes_of(error_levels_) + bytes_of(error_highs_) + bytes_of(patch_count_) + bytes_of(move_bits_) +
            bytes_of(move_rank_) + bytes_of(moves_) + bytes_of(patch_corners_) + bytes_of(batch_levels_) +
-           replay_.heap_bytes() + bytes_of(qpos_) + bytes_of(qoct_) + bytes_of(face_slot_) + scratch;
+           replay_.heap_bytes() + bytes_of(qpos_) + bytes_of(qoct_) + bytes_of(face_slot_) + bytes_of(vertex_slot_) +
+           bytes_of(split_children_bytes_) + scratch;
 }
 
 }  // namespace body::pm

@@ -7,11 +7,14 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 #include <fstream>
+#include <memory>
 #include <thread>
 
 #include "builder/lod/bpm_writer.h"
 #include "builder/lod/simplify.h"
+#include "kiosk/scene/model_part.h"
 #include "shared/pm/bpm_reader.h"
 #include "tests/common/test_meshes.h"
 
@@ -223,6 +226,52 @@ TEST(StreamLoader, OnDemandPausesAtTheWantedLevelAndResumes) {
             ASSERT_EQ(got.available_level(), got.max_level());
             expect_prefix_levels(got, *expected.value()[s]);
         }
+    }
+    ::unlink(path.c_str());
+}
+
+// A part's want (ModelPart::wanted_splits) decodes a file to the level the
+// ratio draws and no further: the last batch boundary within the ratio's
+// triangles, as a whole read draws it; the next batch would be decoded and
+// never drawn (a complete batch is drawn at its boundaries only).
+TEST(StreamLoader, OnDemandDecodesTheLevelTheRatioDrawsAndNoFurther) {
+    const std::vector<uint8_t> bytes = two_sphere_bpm();
+    const std::string path = temp_file(bytes);
+    auto expected = pm::read_bpm_bytes(bytes, path);
+    ASSERT_TRUE(expected) << expected.error().message;
+    {
+        StreamLoader loader(path, 4096, 0.0, DecodePool::shared(), true);
+        loader.wait_for_bases();
+        loader.release_detail();
+        ASSERT_TRUE(settle(loader));
+        pm::ProgressiveMesh& whole = *expected.value()[0];
+        std::unique_ptr<ModelPart> part;
+        {
+            auto held = loader.lock();
+            part = std::make_unique<ModelPart>(loader.stream().structure(0));
+        }
+        size_t inside_batches = 0;
+        for (double ratio : {0.01, 0.05, 0.2, 0.45, 0.7, 1.0}) {
+            const auto want =
+                static_cast<size_t>(std::llround(static_cast<double>(whole.max_triangle_count()) * ratio));
+            const size_t drawn = whole.level_for_triangles(want);  // a whole read: boundaries only
+            for (int round = 0; round < 8; ++round) {              // each want decodes at most one step
+                auto held = loader.lock();
+                const size_t splits = part->wanted_splits(ratio);
+                if (splits <= loader.stream().structure(0).available_level()) break;
+                loader.want_splits(0, splits);
+                held.unlock();
+                ASSERT_TRUE(settle(loader));
+            }
+            auto held = loader.lock();
+            pm::ProgressiveMesh& got = loader.stream().structure(0);
+            EXPECT_EQ(got.available_level(), drawn) << "ratio " << ratio;
+            EXPECT_EQ(got.level_for_triangles(want), drawn) << "ratio " << ratio;
+            if (drawn < got.max_level() && whole.triangles_at(drawn) < want) ++inside_batches;
+        }
+        EXPECT_GE(inside_batches, 3u) << "ratios between two boundaries";
+        auto held = loader.lock();
+        expect_prefix_levels(loader.stream().structure(0), *expected.value()[0]);
     }
     ::unlink(path.c_str());
 }
