@@ -30,7 +30,7 @@
 //   regions cannot overlap (up to the linear interpolation inside a cell and
 //   the simplification). A label that this would shrink below 90 % of its
 //   voxel centres or split (thin parts, bridges enclosed by other labels) is
-//   blurred less (half, a quarter, none), scaled to keep its voxel area, and
+//   blurred less (half or a quarter), scaled to keep its voxel area, and
 //   it and the labels around it compared blur against blur at the narrower
 //   width of each pair: still no overlap (label_smooth.cpp).
 // - Diagonal-only pixel contacts are not connections (4-connected regions per

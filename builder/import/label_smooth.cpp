@@ -22,7 +22,7 @@ namespace body::label_import {
 // smoothing, and wipe out structures a few slices thick.
 void axis_sigmas(const LabelVolume& vol, double s, int level, double out[3]) {
     const double finest = std::min({vol.spacing[0], vol.spacing[1], vol.spacing[2]});
-    const double scale = level + 1 >= kSmoothLevels ? 0.0 : std::ldexp(1.0, -level);
+    const double scale = std::ldexp(1.0, -level);
     for (int d = 0; d < 3; ++d) out[d] = s * scale * finest / vol.spacing[d];
 }
 
@@ -97,19 +97,20 @@ float background_weight(const std::vector<float>& field, const std::vector<float
     return std::min(needed[k], kMostBackground);
 }
 
-// 6-connected pieces of a box mask (consumed).
-size_t count_pieces(std::vector<uint8_t> mask, const size_t size[3]) {
+// Calls fn(voxel indices) for every 6-connected piece of a box mask (consumed).
+template <typename Fn>
+void for_each_piece(std::vector<uint8_t> mask, const size_t size[3], Fn&& fn) {
     const size_t sx = size[0], sxy = size[0] * size[1];
-    size_t pieces = 0;
     std::vector<size_t> stack;
     for (size_t start = 0; start < mask.size(); ++start) {
         if (!mask[start]) continue;
-        ++pieces;
+        std::vector<size_t> piece;
         mask[start] = 0;
         stack.push_back(start);
         while (!stack.empty()) {
             const size_t i = stack.back();
             stack.pop_back();
+            piece.push_back(i);
             const size_t x = i % sx, y = (i / sx) % size[1], z = i / sxy;
             auto visit = [&](bool ok, size_t j) {
                 if (ok && mask[j]) mask[j] = 0, stack.push_back(j);
@@ -118,8 +119,40 @@ size_t count_pieces(std::vector<uint8_t> mask, const size_t size[3]) {
             visit(y > 0, i - sx), visit(y + 1 < size[1], i + sx);
             visit(z > 0, i - sxy), visit(z + 1 < size[2], i + sxy);
         }
+        fn(std::move(piece));
     }
+}
+
+// 6-connected pieces of a box mask.
+size_t count_pieces(const std::vector<uint8_t>& mask, const size_t size[3]) {
+    size_t pieces = 0;
+    for_each_piece(mask, size, [&](std::vector<size_t>&&) { ++pieces; });
     return pieces;
+}
+
+// A label's pieces under kMinPiece voxels removed from its mask (all but the
+// largest when every piece is that small): specks the full blur removes, not
+// parts a narrower blur must keep. Returns the pieces kept.
+size_t keep_large_pieces(std::vector<uint8_t>& mask, const size_t size[3]) {
+    constexpr size_t kMinPiece = 20;
+    std::vector<std::vector<size_t>> small;
+    size_t kept = 0;
+    for_each_piece(mask, size, [&](std::vector<size_t>&& piece) {
+        if (piece.size() >= kMinPiece)
+            ++kept;
+        else
+            small.push_back(std::move(piece));
+    });
+    if (kept == 0 && !small.empty()) {
+        std::swap(*std::max_element(small.begin(), small.end(),
+                                    [](const auto& a, const auto& b) { return a.size() < b.size(); }),
+                  small.back());
+        small.pop_back();
+        kept = 1;
+    }
+    for (const auto& piece : small)
+        for (size_t i : piece) mask[i] = 0;
+    return kept;
 }
 
 // Whether the region {inside(i)} keeps the label: at least kKeptShare of its
@@ -135,7 +168,7 @@ bool keeps_label(const std::vector<uint8_t>& own, size_t voxels, size_t own_piec
         kept[i] = own[i] && inside(i);
         count += kept[i];
     }
-    return double(count) >= kKeptShare * double(voxels) && count_pieces(std::move(kept), size) <= own_pieces;
+    return double(count) >= kKeptShare * double(voxels) && count_pieces(kept, size) <= own_pieces;
 }
 
 // The traced plane values of one label: field f + c * bg at level 0.5, or
@@ -230,7 +263,8 @@ float thin_gain(const std::vector<float>& s, const std::vector<float>& others, s
 // extract_labels). Returns the smoothing level the label needs: 0 when the
 // full width keeps it (keeps_label), else the first narrower level that keeps
 // it against everything else labelled blurred alike (with the gain that gives
-// it its voxel count), else the last (voxel faces).
+// it its voxel count), else the last. Pieces under 20 voxels are left out
+// (specks the full blur removes).
 ThinLabel extract_label_smoothed(const LabelVolume& vol, const SliceFrame& fr, int32_t label, const Extent& e,
                                  const ImportOptions& o, LabelResult& out) {
     out.label = label;
@@ -243,9 +277,9 @@ ThinLabel extract_label_smoothed(const LabelVolume& vol, const SliceFrame& fr, i
     lf.c = background_weight(lf.f, lf.bg, nullptr, e.voxels);
     std::vector<uint8_t> own(lf.box.count());
     for_box(vol, lf.box, [&](size_t n, int32_t l) { own[n] = l == label; });
-    const size_t own_pieces = count_pieces(own, lf.box.size);
-    if (keeps_label(own, e.voxels, own_pieces, lf.box.size,
-                    [&](size_t i) { return lf.f[i] + lf.c * lf.bg[i] > 0.5f; })) {
+    const size_t own_pieces = keep_large_pieces(own, lf.box.size);
+    const size_t voxels = static_cast<size_t>(std::count(own.begin(), own.end(), uint8_t(1)));
+    if (keeps_label(own, voxels, own_pieces, lf.box.size, [&](size_t i) { return lf.f[i] + lf.c * lf.bg[i] > 0.5f; })) {
         trace_label(vol, fr, lf, o, out);
         return {};
     }
@@ -253,11 +287,12 @@ ThinLabel extract_label_smoothed(const LabelVolume& vol, const SliceFrame& fr, i
     for (t.level = 1; t.level < kSmoothLevels; ++t.level) {
         double narrow[3];
         axis_sigmas(vol, o.label_smooth, t.level, narrow);
-        const std::vector<float> s = blurred(vol, lf.box, narrow, [&](int32_t l) { return l == label; });
+        std::vector<float> s(own.begin(), own.end());
+        gaussian_blur_3d(s, lf.box.size, narrow);
         const std::vector<float> others = blurred(vol, lf.box, narrow, [&](int32_t l) { return l != label; });
-        t.gain = thin_gain(s, others, e.voxels, lf.box.size, fr.axis);
+        t.gain = thin_gain(s, others, voxels, lf.box.size, fr.axis);
         auto inside = [&](size_t i) { return t.gain * s[i] > others[i]; };
-        if (t.level + 1 == kSmoothLevels || keeps_label(own, e.voxels, own_pieces, lf.box.size, inside)) break;
+        if (t.level + 1 == kSmoothLevels || keeps_label(own, voxels, own_pieces, lf.box.size, inside)) break;
     }
     return t;
 }
@@ -285,7 +320,7 @@ void extract_label_among_thin(const LabelVolume& vol, const SliceFrame& fr, int3
     lf.box = label_box(e, full);
     // Per voxel of the box: kOwn, kBackground or the level of its label, and
     // the gain of its label.
-    constexpr int8_t kOwn = -2, kBackground = -1;
+    constexpr int8_t kSpeck = -3, kOwn = -2, kBackground = -1;
     std::vector<int8_t> tag(lf.box.count());
     std::vector<float> gain(lf.box.count(), 1.0f);
     for_box(vol, lf.box, [&](size_t n, int32_t l) {
@@ -297,6 +332,13 @@ void extract_label_among_thin(const LabelVolume& vol, const SliceFrame& fr, int3
         tag[n] = static_cast<int8_t>(it == thin.end() ? 0 : it->second.level);
         if (it != thin.end()) gain[n] = it->second.gain;
     });
+    if (own.level > 0) {  // its specks go as in pass 1 (neither it nor a rival)
+        std::vector<uint8_t> mask(tag.size());
+        for (size_t i = 0; i < tag.size(); ++i) mask[i] = tag[i] == kOwn;
+        keep_large_pieces(mask, lf.box.size);
+        for (size_t i = 0; i < tag.size(); ++i)
+            if (tag[i] == kOwn && !mask[i]) tag[i] = kSpeck;
+    }
     auto tagged = [&](const double width[3], auto&& pick) {
         std::vector<float> field(tag.size());
         for (size_t i = 0; i < tag.size(); ++i) field[i] = pick(tag[i]) ? gain[i] : 0.0f;

@@ -57,8 +57,8 @@ void finish_rings(const SliceFrame& f, double u0, double v0, size_t k, const Imp
                   std::vector<std::vector<Vec2>>& rings, LabelResult& out);
 
 // --label-smooth (label_smooth.cpp). Smoothing levels: 0 the full width,
-// each next one half of it, the last 0 (voxel faces).
-constexpr int kSmoothLevels = 4;
+// each next one half of it (s, s/2, s/4).
+constexpr int kSmoothLevels = 3;
 
 // Blur widths per voxel axis for --label-smooth s at `level`: s voxels of the
 // finest axis, the same in millimetres on every axis.
