@@ -177,7 +177,8 @@ struct LabelFields {
     Box box;
     std::vector<float> f, bg, margin;  // margin empty: none
     float c = 0.0f;
-    bool half_rule = true;  // false: the margin alone (thin labels)
+    bool half_rule = true;     // false: the margin alone (thin labels)
+    bool drop_specks = false;  // rings under kMinRingArea dropped (pass 2)
 };
 
 // Every sampled slice plane of the box traced where the label's value passes 0.5.
@@ -189,6 +190,7 @@ void trace_label(const LabelVolume& vol, const SliceFrame& fr, const LabelFields
     const size_t w = b.size[fr.u], h = b.size[fr.v];
     std::vector<float> plane(w * h);
     std::vector<std::vector<Vec2>> rings;
+    std::vector<std::pair<size_t, std::vector<std::vector<Vec2>>>> traced;  // slice -> rings
     size_t at[3];
     const long k_first = std::max<long>(b.lo[fr.axis], 0);
     const long k_last =
@@ -211,8 +213,23 @@ void trace_label(const LabelVolume& vol, const SliceFrame& fr, const LabelFields
         }
         if (!any) continue;
         trace_field_isolines(plane, w, h, 0.5f, rings);
-        finish_rings(fr, static_cast<double>(b.lo[fr.u]), static_cast<double>(b.lo[fr.v]), static_cast<size_t>(k), o,
-                     rings, out);
+        traced.emplace_back(static_cast<size_t>(k), std::move(rings));
+        rings = {};
+    }
+    // Pass 2 compares labels on blurs of 1/2 or 1/4 the width: a ragged edge's
+    // single voxels come back as rings of a few voxel faces that meet
+    // nothing on the next slice, each its own mesh piece (pinholes likewise):
+    // dropped, unless the label has no larger ring (it must not vanish).
+    constexpr double kMinRingArea = 4.0;  // voxel faces (2 x 2)
+    auto small = [](const std::vector<Vec2>& r) {
+        return std::fabs(signed_area2(r.data(), r.size())) < 2.0 * kMinRingArea;
+    };
+    const bool any_large = std::any_of(traced.begin(), traced.end(), [&](const auto& t) {
+        return std::any_of(t.second.begin(), t.second.end(), [&](const auto& r) { return !small(r); });
+    });
+    for (auto& [k, slice_rings] : traced) {
+        if (lf.drop_specks && any_large) std::erase_if(slice_rings, small);
+        finish_rings(fr, static_cast<double>(b.lo[fr.u]), static_cast<double>(b.lo[fr.v]), k, o, slice_rings, out);
     }
 }
 
@@ -361,6 +378,7 @@ void extract_label_among_thin(const LabelVolume& vol, const SliceFrame& fr, int3
             lf.margin[i] = std::min(lf.margin[i], own.gain * self[i] - others[i]);
     }
     lf.half_rule = own.level == 0;
+    lf.drop_specks = true;
     if (lf.half_rule) lf.c = background_weight(lf.f, lf.bg, &lf.margin, e.voxels);
     trace_label(vol, fr, lf, o, out);
 }
