@@ -53,12 +53,12 @@ void blur_axis(std::span<float> field, const size_t size[3], int axis, const std
 
 size_t gaussian_radius(double sigma) { return sigma > 0.0 ? static_cast<size_t>(std::ceil(3.0 * sigma)) : 0; }
 
-void gaussian_blur_3d(std::span<float> field, const size_t size[3], double sigma) {
+void gaussian_blur_3d(std::span<float> field, const size_t size[3], const double sigma[3]) {
     assert(field.size() >= size[0] * size[1] * size[2]);
-    if (!(sigma > 0.0)) return;
-    const std::vector<double> k = kernel(sigma, gaussian_radius(sigma));
     std::vector<double> line;
-    for (int axis = 0; axis < 3; ++axis) blur_axis(field, size, axis, k, line);
+    for (int axis = 0; axis < 3; ++axis) {
+        if (sigma[axis] > 0.0) blur_axis(field, size, axis, kernel(sigma[axis], gaussian_radius(sigma[axis])), line);
+    }
 }
 
 }  // namespace body

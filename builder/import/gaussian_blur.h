@@ -3,13 +3,15 @@
 //
 // Contract:
 // - `field` holds size[0] * size[1] * size[2] values, x fastest.
-// - Each axis is convolved with a Gaussian of standard deviation `sigma`
-//   (in voxels, the same on every axis) truncated at radius ceil(3 sigma) and
+// - Axis d is convolved with a Gaussian of standard deviation `sigma[d]`
+//   (in voxels of that axis: a blur isotropic in millimetres on anisotropic
+//   voxels has a smaller sigma on the longer axes) truncated at radius
+//   ceil(3 sigma[d]) and
 //   normalised to sum 1, so a constant region away from the edges stays
 //   constant and the sum of the blurred fields of disjoint indicators stays
 //   at most 1 everywhere. Values beyond the volume count as 0: pad the volume
 //   by the radius to blur without losing mass at its edges.
-// - sigma <= 0 leaves the field unchanged. Scratch: one line of the longest axis.
+// - An axis with sigma <= 0 is left as it is. Scratch: one line of the longest axis.
 #include <cstddef>
 #include <span>
 
@@ -18,6 +20,6 @@ namespace body {
 // The truncation radius in voxels for `sigma` (0 for sigma <= 0).
 size_t gaussian_radius(double sigma);
 
-void gaussian_blur_3d(std::span<float> field, const size_t size[3], double sigma);
+void gaussian_blur_3d(std::span<float> field, const size_t size[3], const double sigma[3]);
 
 }  // namespace body

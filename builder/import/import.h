@@ -22,15 +22,17 @@
 //   and last slice planes.
 // - With label_smooth > 0 the contours follow the 0.5 level of f + c * bg
 //   instead, f the label's indicator and bg the background's (label 0 and
-//   beyond the volume), both blurred: between voxel centres, changing
+//   beyond the volume), both blurred (label_smooth voxels of the finest axis,
+//   the same in millimetres on every axis): between voxel centres, changing
 //   gradually from slice to slice. c (0-0.45 per label) is the least that
-//   puts as many voxel centres above 0.5 as the label has voxels: the blur
-//   shrinks thin and convex parts at f = 0.5, and bg moves only boundaries
-//   against unlabelled voxels. Blurred indicators of disjoint labels and the
-//   background sum to 1, so two labels' regions cannot overlap (up to the
-//   linear interpolation inside a cell and the simplification). Thin parts
-//   enclosed by other labels still shrink, and bridges thinner than the blur
-//   may break.
+//   puts as many voxel centres above 0.5 as the label has voxels. Blurred
+//   indicators of disjoint labels and the background sum to 1, so two labels'
+//   regions cannot overlap (up to the linear interpolation inside a cell and
+//   the simplification). A label that this would shrink below 90 % of its
+//   voxel centres or split (thin parts, bridges enclosed by other labels) is
+//   blurred less (half or a quarter), scaled to keep its voxel area, and
+//   it and the labels around it compared blur against blur at the narrower
+//   width of each pair: still no overlap (label_smooth.cpp).
 // - Diagonal-only pixel contacts are not connections (4-connected regions per
 //   label), consistently for every label, so regions of different labels never
 //   overlap and the rings of one structure on a slice never touch or cross,
@@ -60,7 +62,7 @@ struct ImportOptions {
     // At most 8, so no dropped island can contain a hole.
     double min_area = 0.0;
     // Sub-voxel contours: each label's indicator blurred in 3-D by a Gaussian
-    // of this standard deviation (voxels, 0-4), traced as above with linear
+    // of this standard deviation (voxels of the finest axis, 0-4), traced as above with linear
     // interpolation along cell edges (gaussian_blur.h, trace_field_isolines in
     // marching_squares.h). 0: the voxel-face boundary described above.
     double label_smooth = 0.0;

@@ -26,20 +26,15 @@
 #include "builder/import/gaussian_blur.h"
 #include "builder/import/import.h"
 #include "builder/import/label_table.h"
+#include "builder/import/label_volume.h"
 #include "builder/import/nifti_header.h"
 #include "builder/import/ring_simplify.h"
 #include "builder/slicing/marching_squares.h"
 #include "shared/input_file.h"
 
 namespace body {
+using namespace label_import;
 namespace {
-
-struct LabelVolume {
-    size_t dim[3] = {1, 1, 1};
-    double affine[3][4] = {};  // voxel index (i, j, k, 1) -> scanner mm
-    std::vector<int32_t> labels;
-    size_t index(size_t i, size_t j, size_t k) const { return (k * dim[1] + j) * dim[0] + i; }
-};
 
 struct NiftiDeleter {
     void operator()(nifti_image* nim) const { nifti_image_free(nim); }
@@ -233,26 +228,13 @@ Result<LabelVolume> read_label_volume(const std::string& path, const ImportOptio
                        vol.affine[0][1] * (vol.affine[1][0] * vol.affine[2][2] - vol.affine[1][2] * vol.affine[2][0]) +
                        vol.affine[0][2] * (vol.affine[1][0] * vol.affine[2][1] - vol.affine[1][1] * vol.affine[2][0]);
     if (!(std::abs(det) > 0.0)) return input_error(where + "singular voxel-to-scanner transform (voxels of no volume)");
+    for (int c = 0; c < 3; ++c)
+        vol.spacing[c] = std::sqrt(vol.affine[0][c] * vol.affine[0][c] + vol.affine[1][c] * vol.affine[1][c] +
+                                   vol.affine[2][c] * vol.affine[2][c]);
     return vol;
 }
 
 // Phase 2: the output frame of a slicing axis (see import.h).
-struct SliceFrame {
-    int axis = 2, u = 0, v = 1;  // voxel axes: slice normal, in-plane x, in-plane y
-    Vec3 e1, e2, n;              // output x, y, z directions in scanner space
-    Vec3 col[3], origin;
-    bool oblique = false;
-
-    Vec3 scanner(double i_u, double i_v, double k) const {
-        return origin + col[u] * i_u + col[v] * i_v + col[axis] * k;
-    }
-    Vec2 in_plane(double i_u, double i_v, double k) const {
-        const Vec3 p = scanner(i_u, i_v, k);
-        return {glm::dot(e1, p), glm::dot(e2, p)};
-    }
-    double z(double k) const { return glm::dot(n, scanner(0.0, 0.0, k)); }
-};
-
 Result<SliceFrame> slice_frame(const LabelVolume& vol, int axis, const std::string& path) {
     SliceFrame f;
     f.axis = axis;
@@ -280,21 +262,11 @@ Result<SliceFrame> slice_frame(const LabelVolume& vol, int axis, const std::stri
     return f;
 }
 
-struct Extent {
-    size_t lo[3] = {SIZE_MAX, SIZE_MAX, SIZE_MAX};
-    size_t hi[3] = {0, 0, 0};
-    size_t voxels = 0;
-};
+}  // namespace
 
-struct LabelResult {
-    int64_t label = 0;
-    std::vector<std::pair<size_t, std::vector<std::vector<Vec2>>>> slices;  // slice index -> rings (output frame)
-};
-
-// Phase 3: one slice's rings: specks dropped, simplified, into the output frame.
-// (u0, v0) is the voxel index of the traced grid's pixel (0, 0).
-void finish_rings(const SliceFrame& f, double u0, double v0, size_t k, const ImportOptions& o,
-                  std::vector<std::vector<Vec2>>& rings, LabelResult& out) {
+// Phase 3: one slice's rings (label_volume.h).
+void label_import::finish_rings(const SliceFrame& f, double u0, double v0, size_t k, const ImportOptions& o,
+                                std::vector<std::vector<Vec2>>& rings, LabelResult& out) {
     if (o.min_area > 0.0) {
         std::erase_if(rings, [&](const std::vector<Vec2>& r) {
             return std::fabs(signed_area2(r.data(), r.size())) < 2.0 * o.min_area;
@@ -308,6 +280,8 @@ void finish_rings(const SliceFrame& f, double u0, double v0, size_t k, const Imp
     out.slices.emplace_back(k, std::move(rings));
     rings = {};
 }
+
+namespace {
 
 // One label, all its slices: the voxel-face boundary of its mask.
 void extract_label(const LabelVolume& vol, const SliceFrame& f, int32_t label, const Extent& e, const ImportOptions& o,
@@ -334,89 +308,6 @@ void extract_label(const LabelVolume& vol, const SliceFrame& f, int32_t label, c
         if (!any) continue;
         trace_mask_boundaries(mask, w, h, rings);
         finish_rings(f, static_cast<double>(u0), static_cast<double>(v0), k, o, rings, out);
-    }
-}
-
-// The weight c of the blurred background in the traced field f + c * bg: 0
-// (f's 0.5 level: the blur shrinks convex and thin parts there), raised until
-// as many voxel centres lie above 0.5 as the label has voxels, to at most
-// kMostBackground. The background term moves only the boundary against
-// unlabelled voxels: where another label is the neighbour bg is about 0.
-float background_weight(const std::vector<float>& field, const std::vector<float>& bg, size_t voxels) {
-    constexpr float kMostBackground = 0.45f;
-    size_t above = 0;
-    std::vector<float> needed;  // per voxel below the level: the weight that lifts it to 0.5
-    for (size_t i = 0; i < field.size(); ++i) {
-        if (field[i] > 0.5f)
-            ++above;
-        else if (bg[i] > 0.0f && field[i] > 0.0f)
-            needed.push_back((0.5f - field[i]) / bg[i]);
-    }
-    if (above >= voxels || needed.empty()) return 0.0f;
-    const size_t k = std::min(voxels - above, needed.size()) - 1;
-    std::nth_element(needed.begin(), needed.begin() + static_cast<long>(k), needed.end());
-    return std::min(needed[k], kMostBackground);
-}
-
-// One label with label_smooth > 0: its indicator and the background's (label
-// 0, and beyond the volume) over its bounding box padded by twice the blur's
-// radius (so both blurs are exact where the level can lie, and memory follows
-// the structure, not the volume), blurred; every sampled slice plane of the box
-// traced where f + c * bg = 0.5.
-void extract_label_smoothed(const LabelVolume& vol, const SliceFrame& f, int32_t label, const Extent& e,
-                            const ImportOptions& o, LabelResult& out) {
-    out.label = label;
-    const long pad = 2 * static_cast<long>(gaussian_radius(o.label_smooth));
-    long lo[3];
-    size_t size[3];
-    for (int d = 0; d < 3; ++d) {
-        lo[d] = static_cast<long>(e.lo[d]) - pad;
-        size[d] = e.hi[d] - e.lo[d] + 1 + 2 * static_cast<size_t>(pad);
-    }
-    std::vector<float> field(size[0] * size[1] * size[2], 0.0f), bg(field.size(), 0.0f);
-    size_t n = 0;
-    for (size_t z = 0; z < size[2]; ++z) {
-        for (size_t y = 0; y < size[1]; ++y) {
-            for (size_t x = 0; x < size[0]; ++x, ++n) {
-                const long i = lo[0] + long(x), j = lo[1] + long(y), k = lo[2] + long(z);
-                const bool in_volume =
-                    i >= 0 && j >= 0 && k >= 0 && i < long(vol.dim[0]) && j < long(vol.dim[1]) && k < long(vol.dim[2]);
-                const int32_t l = in_volume ? vol.labels[vol.index(size_t(i), size_t(j), size_t(k))] : 0;
-                field[n] = l == label ? 1.0f : 0.0f;
-                bg[n] = l == 0 ? 1.0f : 0.0f;
-            }
-        }
-    }
-    gaussian_blur_3d(field, size, o.label_smooth);
-    gaussian_blur_3d(bg, size, o.label_smooth);
-    const float c = background_weight(field, bg, e.voxels);
-    // The level is never reached beyond the volume's slice range: the
-    // indicator is 0 there and c < 0.5.
-    const size_t w = size[f.u], h = size[f.v];
-    std::vector<float> plane(w * h);
-    std::vector<std::vector<Vec2>> rings;
-    size_t at[3];
-    const long k_first = std::max<long>(lo[f.axis], 0);
-    const long k_last =
-        std::min<long>(lo[f.axis] + static_cast<long>(size[f.axis]), static_cast<long>(vol.dim[f.axis])) - 1;
-    for (long k = k_first; k <= k_last; ++k) {
-        if (k % o.step != 0) continue;
-        at[f.axis] = static_cast<size_t>(k - lo[f.axis]);
-        bool any = false;
-        for (size_t y = 0; y < h; ++y) {
-            at[f.v] = y;
-            for (size_t x = 0; x < w; ++x) {
-                at[f.u] = x;
-                const size_t i = (at[2] * size[1] + at[1]) * size[0] + at[0];
-                const float value = field[i] + c * bg[i];
-                plane[y * w + x] = value;
-                any |= value > 0.5f;
-            }
-        }
-        if (!any) continue;
-        trace_field_isolines(plane, w, h, 0.5f, rings);
-        finish_rings(f, static_cast<double>(lo[f.u]), static_cast<double>(lo[f.v]), static_cast<size_t>(k), o, rings,
-                     out);
     }
 }
 
@@ -511,52 +402,84 @@ Result<std::vector<int32_t>> labels_to_extract(const std::string& path, const Im
     return labels;
 }
 
-// Phase 4: structures in parallel; results in label order, progress reported
-// from the calling thread.
-std::vector<LabelResult> extract_labels(const LabelVolume& vol, const SliceFrame& frame,
-                                        const std::vector<int32_t>& labels, std::map<int32_t, Extent>& extents,
-                                        const ImportOptions& options) {
-    std::vector<LabelResult> results(labels.size());
-    auto extract_one = [&](int32_t label, LabelResult& out) {
-        if (options.label_smooth > 0.0)
-            extract_label_smoothed(vol, frame, label, extents.at(label), options, out);
-        else
-            extract_label(vol, frame, label, extents.at(label), options, out);
-    };
+// Runs fn(i) for i in [0, n) on `jobs` threads; progress(done) from the
+// calling thread as items finish.
+void run_parallel(size_t n, int jobs_option, const std::function<void(size_t)>& fn,
+                  const std::function<void(size_t)>& progress) {
+    if (n == 0) return;
     std::atomic<size_t> next{0};
     size_t done = 0;
     std::mutex mutex;
     std::condition_variable cv;
     auto work = [&] {
-        for (size_t i = next++; i < labels.size(); i = next++) {
-            extract_one(labels[i], results[i]);
+        for (size_t i = next++; i < n; i = next++) {
+            fn(i);
             std::lock_guard lock(mutex);
             ++done;
             cv.notify_one();
         }
     };
-    const size_t jobs = std::clamp<size_t>(static_cast<size_t>(std::max(options.jobs, 1)), 1, labels.size());
+    const size_t jobs = std::clamp<size_t>(static_cast<size_t>(std::max(jobs_option, 1)), 1, n);
     std::vector<std::thread> threads;
     for (size_t t = 0; jobs > 1 && t < jobs; ++t) threads.emplace_back(work);
     if (jobs == 1) {
-        for (size_t i = 0; i < labels.size(); ++i) {
-            extract_one(labels[i], results[i]);
-            if (options.progress) options.progress(i + 1, labels.size());
+        for (size_t i = 0; i < n; ++i) {
+            fn(i);
+            if (progress) progress(i + 1);
         }
     } else {
         std::unique_lock lock(mutex);
         size_t reported = 0;
-        while (reported < labels.size()) {
+        while (reported < n) {
             cv.wait(lock, [&] { return done > reported; });
             reported = done;
-            if (options.progress) {
+            if (progress) {
                 lock.unlock();
-                options.progress(reported, labels.size());
+                progress(reported);
                 lock.lock();
             }
         }
     }
     for (auto& t : threads) t.join();
+}
+
+// Phase 4: structures in parallel; results in label order, progress reported
+// from the calling thread. With --label-smooth, labels the full blur would
+// shrink or split (thin) are smoothed less, and they and the labels around
+// them traced again against each other (extract_label_among_thin).
+std::vector<LabelResult> extract_labels(const LabelVolume& vol, const SliceFrame& frame,
+                                        const std::vector<int32_t>& labels, std::map<int32_t, Extent>& extents,
+                                        const ImportOptions& options) {
+    std::vector<LabelResult> results(labels.size());
+    std::vector<ThinLabel> levels(labels.size());
+    const bool smooth = options.label_smooth > 0.0;
+    auto progress = [&](size_t done) {
+        if (options.progress) options.progress(done, labels.size());
+    };
+    run_parallel(
+        labels.size(), options.jobs,
+        [&](size_t i) {
+            if (smooth)
+                levels[i] = extract_label_smoothed(vol, frame, labels[i], extents.at(labels[i]), options, results[i]);
+            else
+                extract_label(vol, frame, labels[i], extents.at(labels[i]), options, results[i]);
+        },
+        progress);
+    std::map<int32_t, ThinLabel> thin;
+    for (size_t i = 0; i < labels.size(); ++i)
+        if (levels[i].level > 0) thin[labels[i]] = levels[i];
+    if (thin.empty()) return results;
+    std::vector<size_t> again;
+    for (size_t i = 0; i < labels.size(); ++i) {
+        const Extent& e = extents.at(labels[i]);
+        if (levels[i].level > 0 || box_meets_thin(vol, e, labels[i], thin, options.label_smooth)) again.push_back(i);
+    }
+    run_parallel(again.size(), options.jobs,
+                 [&](size_t a) {
+                     const size_t i = again[a];
+                     extract_label_among_thin(vol, frame, labels[i], extents.at(labels[i]), options, thin, results[i]);
+                 },
+                 {});
     return results;
 }
 
