@@ -14,11 +14,7 @@ namespace body::pm {
 
 void ProgressiveMesh::park_decoding_state() {
     if (decoding_state_parked_ || !base_ready_ || decoded_splits_ == split_count_) return;
-    // Swapped out, not cleared: the storage itself goes.
-    replay_ = SplitReplay{};
-    UninitVector<uint16_t>().swap(qpos_);
-    UninitVector<uint8_t>().swap(qoct_);
-    order_scratch_ = {};
+    free_replay_and_codes();
     decoding_state_parked_ = true;
 }
 
@@ -34,7 +30,6 @@ void ProgressiveMesh::unpark_decoding_state() {
         for (size_t v = 0; v < vertices; ++v) file_vertex[vertex_slot_[v]] = uint32_t(v);
     }
     const auto file_of = [&](uint32_t drawn) { return in_batches ? file_vertex[drawn] : drawn; };
-    const auto slot_of = [&](size_t v) { return in_batches ? size_t(vertex_slot_[v]) : v; };
 
     // The codes at the drawn level in the file's numbering, then the parents'
     // moves of the splits from there to the decoded level.
@@ -44,7 +39,7 @@ void ProgressiveMesh::unpark_decoding_state() {
     qoct_.reserve(grown_vertices * 2);
     qoct_.resize(grown_vertices * 2);
     for (size_t v = 0; v < vertices; ++v) {
-        const size_t d = slot_of(v);
+        const size_t d = vertex_in_draw_order(uint32_t(v));
         std::copy_n(&positions_[d * 3], 3, &qpos_[v * 3]);
         // Without normals the codes are only ever copied from parent to child: any value does.
         qoct_[v * 2] = has_normals_ ? normals_[d * 2] : 0;

@@ -424,14 +424,18 @@ size_t ProgressiveMesh::morph_sources(size_t lo, std::vector<Vec3f>& out) const 
     return begin;
 }
 
-void ProgressiveMesh::release_decoding_state() {
+void ProgressiveMesh::free_replay_and_codes() {
     // Swapped out, not `= {}` (that empties a vector but keeps its storage).
     replay_ = SplitReplay{};
-    UninitVector<uint32_t>().swap(face_slot_);
-    UninitVector<uint32_t>().swap(vertex_slot_);
     order_scratch_ = {};
     UninitVector<uint16_t>().swap(qpos_);
     UninitVector<uint8_t>().swap(qoct_);
+}
+
+void ProgressiveMesh::release_decoding_state() {
+    free_replay_and_codes();
+    UninitVector<uint32_t>().swap(face_slot_);
+    UninitVector<uint32_t>().swap(vertex_slot_);
     // patch_corners_ grew geometrically while the splits arrived: to its size,
     // now that the replay's larger arrays are gone (the copy adds no peak).
     patch_corners_.shrink_to_fit();

@@ -326,6 +326,9 @@ private:
     uint32_t vertex_in_draw_order(uint32_t v) const { return vertex_slot_.empty() ? v : vertex_slot_[v]; }
     CacheOrderScratch order_scratch_;
     void release_decoding_state();
+    // The replay, qpos_, qoct_ and the order scratch, storage and all: what a
+    // paused structure drops and a complete one no longer needs.
+    void free_replay_and_codes();
     // Decoding on demand (decoding_state.cpp): a paused structure drops the
     // replay, qpos_ and qoct_ (park) and rebuilds them before its next split
     // (unpark) from what it keeps: the drawn arrays brought to the decoded
