@@ -305,70 +305,99 @@ std::vector<uint32_t> retriangulate(const Work& w, std::span<const uint32_t> ind
 
 // Triangles whose boxes over every place their vertices can take (on the
 // curve or straight) share a cell of a uniform grid: the candidates for
-// meeting a given triangle in any state. Only the boxes are kept: the few
-// queries of a round are answered by one pass over them (a cell map of the
-// whole mesh cost more to build than all the rounds' passes).
+// meeting a given triangle in any state. Only each box's cell range is kept:
+// the few queries of a round are answered by one pass over them (a cell map
+// of the whole mesh cost more to build than all the rounds' passes), their
+// cells marked in a bitmap over the queries' hull.
 class NearTriangles {
 public:
     NearTriangles(std::span<const uint32_t> indices, std::span<const Vec3> curved, std::span<const Vec3> straight) {
         const size_t n = indices.size() / 3;
-        boxes_.resize(n);
+        std::vector<Aabb> boxes(n);
+        Aabb all;
         double sum = 0;
         for (size_t t = 0; t < n; ++t) {
             for (int c = 0; c < 3; ++c) {
                 const uint32_t v = indices[3 * t + size_t(c)];
-                boxes_[t].extend(curved[v]);
-                boxes_[t].extend(straight[v]);
+                boxes[t].extend(curved[v]);
+                boxes[t].extend(straight[v]);
             }
-            const Vec3 d = boxes_[t].max - boxes_[t].min;
+            const Vec3 d = boxes[t].max - boxes[t].min;
             sum += std::max({d.x, d.y, d.z});
-            all_.extend(boxes_[t].min);
-            all_.extend(boxes_[t].max);
+            all.extend(boxes[t].min);
+            all.extend(boxes[t].max);
         }
-        cell_ = std::max(2.0 * sum / double(std::max<size_t>(n, 1)), 1e-9 * std::max(all_.extent(), 1e-300));
+        // At least 1e-9 of the extent: at most 1e9 cells along an axis, which int32 holds.
+        const double cell = std::max(2.0 * sum / double(std::max<size_t>(n, 1)), 1e-9 * std::max(all.extent(), 1e-300));
+        auto at = [&](double x, double lo) { return int32_t(std::floor((x - lo) / cell)); };
+        ranges_.resize(n);
+        for (size_t t = 0; t < n; ++t) {
+            const Aabb& b = boxes[t];
+            ranges_[t] = {{at(b.min.x, all.min.x), at(b.min.y, all.min.y), at(b.min.z, all.min.z)},
+                          {at(b.max.x, all.min.x), at(b.max.y, all.min.y), at(b.max.z, all.min.z)}};
+        }
     }
     // Appends the triangles sharing a cell with any of `queries` (queries included).
     void near(std::span<const uint32_t> queries, std::vector<uint32_t>& out) const {
-        std::unordered_set<uint64_t> cells;
-        Range hull{{INT64_MAX, INT64_MAX, INT64_MAX}, {INT64_MIN, INT64_MIN, INT64_MIN}};
-        for (uint32_t q : queries) {
-            const Range r = range(q);
+        if (queries.empty()) return;
+        Range hull{{INT32_MAX, INT32_MAX, INT32_MAX}, {INT32_MIN, INT32_MIN, INT32_MIN}};
+        for (uint32_t q : queries)
             for (int a = 0; a < 3; ++a) {
-                hull.lo[a] = std::min(hull.lo[a], r.lo[a]);
-                hull.hi[a] = std::max(hull.hi[a], r.hi[a]);
+                hull.lo[a] = std::min(hull.lo[a], ranges_[q].lo[a]);
+                hull.hi[a] = std::max(hull.hi[a], ranges_[q].hi[a]);
             }
-            visit(r, [&](uint64_t key) { cells.insert(key); });
-        }
-        for (uint32_t t = 0; t < boxes_.size(); ++t) {
-            const Range r = range(t);
-            bool hit = true;  // first: does it reach the queries' hull at all?
-            for (int a = 0; a < 3; ++a) hit = hit && r.lo[a] <= hull.hi[a] && hull.lo[a] <= r.hi[a];
-            if (!hit) continue;
-            hit = false;
-            visit(r, [&](uint64_t key) { hit = hit || cells.count(key) != 0; });
+        uint64_t dims[3];
+        for (int a = 0; a < 3; ++a) dims[a] = uint64_t(int64_t(hull.hi[a]) - hull.lo[a] + 1);
+        const double bits = double(dims[0]) * double(dims[1]) * double(dims[2]);
+        // The queries' cells: a bitmap over their hull, or a hash set when the hull is too large for one.
+        std::vector<uint64_t> bitmap;
+        std::unordered_set<uint64_t> cells;
+        const bool dense = bits <= double(kMaxBitmapBits);
+        if (dense) bitmap.assign(size_t((uint64_t(bits) + 63) / 64), 0);
+        auto key = [&](int32_t i, int32_t j, int32_t k) {
+            return (uint64_t(i - hull.lo[0]) * dims[1] + uint64_t(j - hull.lo[1])) * dims[2] + uint64_t(k - hull.lo[2]);
+        };
+        for (uint32_t q : queries)
+            visit(ranges_[q], [&](int32_t i, int32_t j, int32_t k) {
+                const uint64_t c = key(i, j, k);
+                if (dense)
+                    bitmap[c >> 6] |= uint64_t(1) << (c & 63);
+                else
+                    cells.insert(c);
+                return false;
+            });
+        for (uint32_t t = 0; t < ranges_.size(); ++t) {
+            Range r = ranges_[t];
+            bool reach = true;  // first: does it reach the queries' hull at all? Then its cells inside it.
+            for (int a = 0; a < 3; ++a) {
+                reach = reach && r.lo[a] <= hull.hi[a] && hull.lo[a] <= r.hi[a];
+                r.lo[a] = std::max(r.lo[a], hull.lo[a]);
+                r.hi[a] = std::min(r.hi[a], hull.hi[a]);
+            }
+            if (!reach) continue;
+            const bool hit = visit(r, [&](int32_t i, int32_t j, int32_t k) {
+                const uint64_t c = key(i, j, k);
+                return dense ? (bitmap[c >> 6] >> (c & 63) & 1) != 0 : cells.count(c) != 0;
+            });
             if (hit) out.push_back(t);
         }
     }
 
 private:
+    static constexpr uint64_t kMaxBitmapBits = uint64_t(1) << 28;  // 32 MiB
     struct Range {
-        int64_t lo[3], hi[3];  // cells along x, y, z
+        int32_t lo[3], hi[3];  // cells along x, y, z
     };
-    Range range(uint32_t t) const {
-        auto at = [&](double x, double lo) { return int64_t(std::floor((x - lo) / cell_)); };
-        const Aabb& b = boxes_[t];
-        return {{at(b.min.x, all_.min.x), at(b.min.y, all_.min.y), at(b.min.z, all_.min.z)},
-                {at(b.max.x, all_.min.x), at(b.max.y, all_.min.y), at(b.max.z, all_.min.z)}};
-    }
+    // Calls f(i, j, k) on each cell of r until it returns true; whether one did.
     template <class F>
-    static void visit(const Range& r, F&& f) {
-        for (int64_t i = r.lo[0]; i <= r.hi[0]; ++i)
-            for (int64_t j = r.lo[1]; j <= r.hi[1]; ++j)
-                for (int64_t k = r.lo[2]; k <= r.hi[2]; ++k) f(uint64_t(i) << 42 ^ uint64_t(j) << 21 ^ uint64_t(k));
+    static bool visit(const Range& r, F&& f) {
+        for (int32_t i = r.lo[0]; i <= r.hi[0]; ++i)
+            for (int32_t j = r.lo[1]; j <= r.hi[1]; ++j)
+                for (int32_t k = r.lo[2]; k <= r.hi[2]; ++k)
+                    if (f(i, j, k)) return true;
+        return false;
     }
-    std::vector<Aabb> boxes_;
-    Aabb all_;
-    double cell_ = 1;
+    std::vector<Range> ranges_;
 };
 
 // Phase 5: rungs whose curve makes triangles meet that do not meet on the
