@@ -64,11 +64,13 @@ constexpr int kSmoothLevels = 3;
 // finest axis, the same in millimetres on every axis.
 void axis_sigmas(const LabelVolume& vol, double s, int level, double out[3]);
 
-// How a label is smoothed: its level, and the gain its blurred indicator is
-// scaled by where it is compared with its neighbours (levels > 0).
+// How a label is smoothed: its level, the gain its blurred indicator is
+// scaled by where it is compared with its neighbours (levels > 0), and the
+// weight c of the blurred background in its full-width field f + c * bg.
 struct ThinLabel {
     int level = 0;
     float gain = 1.0f;
+    float c = 0.0f;
 };
 
 // Pass 1, one label: traced on its blur by the full width (final unless a
@@ -78,11 +80,14 @@ struct ThinLabel {
 ThinLabel extract_label_smoothed(const LabelVolume& vol, const SliceFrame& fr, int32_t label, const Extent& e,
                                  const ImportOptions& o, LabelResult& out);
 
-// Pass 2, one label that is thin (in `thin`) or has a thin
-// label within its working box: traced again against the thin labels' own
-// blurs, overlap-free (see label_smooth.cpp). `out` is replaced.
+// Pass 2, one label that is thin (`own.level > 0`) or has a thin label within
+// its working box, `own` as pass 1 returned it and `out` as pass 1 traced it:
+// traced again against the thin labels' own blurs, overlap-free (see
+// label_smooth.cpp). A thin label's slices are all replaced; another label's
+// only those within reach of a thin label's blur.
 void extract_label_among_thin(const LabelVolume& vol, const SliceFrame& fr, int32_t label, const Extent& e,
-                              const ImportOptions& o, const std::map<int32_t, ThinLabel>& thin, LabelResult& out);
+                              const ImportOptions& o, const ThinLabel& own, const std::map<int32_t, ThinLabel>& thin,
+                              LabelResult& out);
 
 // Whether a thin label other than `label` has a voxel within its working box.
 bool box_meets_thin(const LabelVolume& vol, const Extent& e, int32_t label, const std::map<int32_t, ThinLabel>& thin,
