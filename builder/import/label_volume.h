@@ -56,6 +56,15 @@ struct LabelResult {
 void finish_rings(const SliceFrame& f, double u0, double v0, size_t k, const ImportOptions& o,
                   std::vector<std::vector<Vec2>>& rings, LabelResult& out);
 
+// A label's traced rings, per traced slice (slice index, rings in the traced
+// plane's pixels, inside on the left), slices `step` apart where adjacent:
+// rings on adjacent slices whose regions meet are joined (solids with solids,
+// holes with holes), and each group whose volume (|ring area| x step, in
+// voxels) stays under `min_volume` is dropped, except the largest group of
+// solids (ring_islands.cpp).
+void drop_small_islands(std::vector<std::pair<size_t, std::vector<std::vector<Vec2>>>>& traced, size_t step,
+                        double min_volume);
+
 // --label-smooth (label_smooth.cpp). Smoothing levels: 0 the full width,
 // each next one half of it (s, s/2, s/4).
 constexpr int kSmoothLevels = 3;
