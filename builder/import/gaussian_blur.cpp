@@ -1,15 +1,19 @@
 // Separable Gaussian blur: three 1-D passes, one per axis (the Gaussian is the
-// only rotationally symmetric separable kernel).
+// only rotationally symmetric separable kernel). Along x each line is
+// convolved from a copy; along y and z whole rows of x values are summed,
+// weighted, so the inner loop runs over contiguous memory.
 #include "builder/import/gaussian_blur.h"
 
+#include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 namespace body {
 namespace {
 
-std::vector<double> kernel(double sigma, size_t radius) {
+std::vector<float> kernel(double sigma, size_t radius) {
     std::vector<double> k(2 * radius + 1);
     double sum = 0.0;
     for (size_t i = 0; i < k.size(); ++i) {
@@ -17,33 +21,54 @@ std::vector<double> kernel(double sigma, size_t radius) {
         k[i] = std::exp(-0.5 * d * d / (sigma * sigma));
         sum += k[i];
     }
-    for (double& w : k) w /= sum;
-    return k;
+    std::vector<float> out(k.size());
+    for (size_t i = 0; i < k.size(); ++i) out[i] = static_cast<float>(k[i] / sum);
+    return out;
 }
 
-// Phase 1: one axis. Lines of `n` values `stride` apart start at every index
-// whose coordinate along the axis is 0.
-void blur_axis(std::span<float> field, const size_t size[3], int axis, const std::vector<double>& k,
-               std::vector<double>& line) {
-    const size_t radius = k.size() / 2;
-    const size_t n = size[axis];
-    const size_t strides[3] = {1, size[0], size[0] * size[1]};
-    const int a = (axis + 1) % 3, b = (axis + 2) % 3;
-    const size_t stride = strides[axis], stride_a = strides[a], stride_b = strides[b];
-    line.assign(n + 2 * radius, 0.0);
-    for (size_t j = 0; j < size[b]; ++j) {
-        for (size_t i = 0; i < size[a]; ++i) {
-            float* p = field.data() + i * stride_a + j * stride_b;
-            bool any = false;
-            for (size_t t = 0; t < n; ++t) {
-                line[radius + t] = p[t * stride];
-                any |= p[t * stride] != 0.0f;
-            }
-            if (!any) continue;  // a zero line stays zero
-            for (size_t t = 0; t < n; ++t) {
-                double s = 0.0;
-                for (size_t q = 0; q < k.size(); ++q) s += k[q] * line[t + q];
-                p[t * stride] = static_cast<float>(s);
+// Phase 1: along x. The kernel is symmetric: pairs of taps share a weight.
+void blur_x(std::span<float> field, const size_t size[3], const std::vector<float>& k, std::vector<float>& line) {
+    const size_t r = k.size() / 2, n = size[0];
+    line.assign(n + 2 * r, 0.0f);
+    for (size_t row = 0; row < size[1] * size[2]; ++row) {
+        float* p = field.data() + row * n;
+        if (std::all_of(p, p + n, [](float v) { return v == 0.0f; })) continue;  // a zero line stays zero
+        std::copy(p, p + n, line.begin() + static_cast<long>(r));
+        for (size_t t = 0; t < n; ++t) {
+            const float* c = line.data() + r + t;
+            float s = k[r] * c[0];
+            for (long q = 1; q <= long(r); ++q) s += k[r + size_t(q)] * (c[-q] + c[q]);
+            p[t] = s;
+        }
+    }
+}
+
+// Phase 2: along y or z. `blocks` blocks of `n` rows of `len` values, rows
+// contiguous within a block: each output row is the weighted sum of the input
+// rows within the radius (zero rows skipped).
+void blur_rows(std::span<float> field, size_t blocks, size_t n, size_t len, const std::vector<float>& k,
+               std::vector<float>& copy, std::vector<uint8_t>& nonzero) {
+    const long r = static_cast<long>(k.size() / 2);
+    copy.resize(n * len);
+    nonzero.resize(n);
+    for (size_t b = 0; b < blocks; ++b) {
+        float* block = field.data() + b * n * len;
+        bool any = false;
+        for (size_t y = 0; y < n; ++y) {
+            const float* row = block + y * len;
+            nonzero[y] = std::any_of(row, row + len, [](float v) { return v != 0.0f; });
+            any |= nonzero[y] != 0;
+        }
+        if (!any) continue;
+        std::copy(block, block + n * len, copy.begin());
+        for (long y = 0; y < long(n); ++y) {
+            float* out = block + y * long(len);
+            std::fill(out, out + len, 0.0f);
+            for (long q = std::max(-r, -y); q <= r && y + q < long(n); ++q) {
+                if (!nonzero[size_t(y + q)]) continue;
+                const float w = k[size_t(q + r)];
+                const float* in = copy.data() + (y + q) * long(len);
+                for (size_t i = 0; i < len; ++i) out[i] += w * in[i];
             }
         }
     }
@@ -55,10 +80,13 @@ size_t gaussian_radius(double sigma) { return sigma > 0.0 ? static_cast<size_t>(
 
 void gaussian_blur_3d(std::span<float> field, const size_t size[3], const double sigma[3]) {
     assert(field.size() >= size[0] * size[1] * size[2]);
-    std::vector<double> line;
-    for (int axis = 0; axis < 3; ++axis) {
-        if (sigma[axis] > 0.0) blur_axis(field, size, axis, kernel(sigma[axis], gaussian_radius(sigma[axis])), line);
-    }
+    std::vector<float> line;
+    std::vector<uint8_t> nonzero;
+    if (sigma[0] > 0.0) blur_x(field, size, kernel(sigma[0], gaussian_radius(sigma[0])), line);
+    if (sigma[1] > 0.0)
+        blur_rows(field, size[2], size[1], size[0], kernel(sigma[1], gaussian_radius(sigma[1])), line, nonzero);
+    if (sigma[2] > 0.0)
+        blur_rows(field, 1, size[2], size[0] * size[1], kernel(sigma[2], gaussian_radius(sigma[2])), line, nonzero);
 }
 
 }  // namespace body

@@ -6,6 +6,7 @@
 //   against each other is the rule of 3D Slicer's "Joint smoothing" (one width
 //   for all); here each label's score has its own width.
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -51,18 +52,39 @@ Box label_box(const Extent& e, const double sigma[3]) {
 // label is 0 (background).
 template <typename Fn>
 void for_box(const LabelVolume& vol, const Box& b, Fn&& fn) {
+    // The box's x range inside the volume, [x0, x1) in box indices.
+    const long x0 = std::clamp(-b.lo[0], 0L, long(b.size[0]));
+    const long x1 = std::clamp(long(vol.dim[0]) - b.lo[0], x0, long(b.size[0]));
     size_t n = 0;
     for (size_t z = 0; z < b.size[2]; ++z) {
-        for (size_t y = 0; y < b.size[1]; ++y) {
-            for (size_t x = 0; x < b.size[0]; ++x, ++n) {
-                const long i = b.lo[0] + long(x), j = b.lo[1] + long(y), k = b.lo[2] + long(z);
-                const bool in_volume =
-                    i >= 0 && j >= 0 && k >= 0 && i < long(vol.dim[0]) && j < long(vol.dim[1]) && k < long(vol.dim[2]);
-                fn(n, in_volume ? vol.labels[vol.index(size_t(i), size_t(j), size_t(k))] : 0);
-            }
+        for (size_t y = 0; y < b.size[1]; ++y, n += b.size[0]) {
+            const long j = b.lo[1] + long(y), k = b.lo[2] + long(z);
+            const bool in_volume = j >= 0 && k >= 0 && j < long(vol.dim[1]) && k < long(vol.dim[2]);
+            const int32_t* row = in_volume ? &vol.labels[vol.index(0, size_t(j), size_t(k))] + b.lo[0] : nullptr;
+            for (long x = 0; x < long(b.size[0]); ++x) fn(n + size_t(x), in_volume && x >= x0 && x < x1 ? row[x] : 0);
         }
     }
 }
+
+// The thin labels' entries, looked up with the last answer kept (labels come
+// in runs along x).
+class ThinLookup {
+public:
+    explicit ThinLookup(const std::map<int32_t, ThinLabel>& thin) : thin_(thin) {}
+    const ThinLabel* find(int32_t l) {
+        if (l != last_) {
+            last_ = l;
+            const auto it = thin_.find(l);
+            found_ = it == thin_.end() ? nullptr : &it->second;
+        }
+        return found_;
+    }
+
+private:
+    const std::map<int32_t, ThinLabel>& thin_;
+    int32_t last_ = 0;
+    const ThinLabel* found_ = nullptr;
+};
 
 // The indicator of `pick(label)` over the box, blurred by `sigma`.
 template <typename Pick>
@@ -130,11 +152,13 @@ size_t count_pieces(const std::vector<uint8_t>& mask, const size_t size[3]) {
     return pieces;
 }
 
+// Pieces of a label under this many voxels are specks the full blur removes.
+constexpr size_t kMinPiece = 20;
+
 // A label's pieces under kMinPiece voxels removed from its mask (all but the
 // largest when every piece is that small): specks the full blur removes, not
 // parts a narrower blur must keep. Returns the pieces kept.
 size_t keep_large_pieces(std::vector<uint8_t>& mask, const size_t size[3]) {
-    constexpr size_t kMinPiece = 20;
     std::vector<std::vector<size_t>> small;
     size_t kept = 0;
     for_each_piece(mask, size, [&](std::vector<size_t>&& piece) {
@@ -177,8 +201,10 @@ struct LabelFields {
     Box box;
     std::vector<float> f, bg, margin;  // margin empty: none
     float c = 0.0f;
-    bool half_rule = true;     // false: the margin alone (thin labels)
-    bool drop_specks = false;  // rings under kMinRingArea dropped (pass 2)
+    bool half_rule = true;                  // false: the margin alone (thin labels)
+    bool drop_specks = false;               // rings under kMinRingArea dropped (pass 2)
+    bool drop_islands = false;              // groups of rings under kMinPiece voxels dropped (thin labels)
+    long k_lo = LONG_MIN, k_hi = LONG_MAX;  // the slices traced (volume indices), within the box's
 };
 
 // Every sampled slice plane of the box traced where the label's value passes 0.5.
@@ -192,9 +218,9 @@ void trace_label(const LabelVolume& vol, const SliceFrame& fr, const LabelFields
     std::vector<std::vector<Vec2>> rings;
     std::vector<std::pair<size_t, std::vector<std::vector<Vec2>>>> traced;  // slice -> rings
     size_t at[3];
-    const long k_first = std::max<long>(b.lo[fr.axis], 0);
-    const long k_last =
-        std::min<long>(b.lo[fr.axis] + static_cast<long>(b.size[fr.axis]), static_cast<long>(vol.dim[fr.axis])) - 1;
+    const long k_first = std::max({b.lo[fr.axis], 0L, lf.k_lo});
+    const long k_last = std::min<long>(
+        {b.lo[fr.axis] + static_cast<long>(b.size[fr.axis]) - 1, static_cast<long>(vol.dim[fr.axis]) - 1, lf.k_hi});
     for (long k = k_first; k <= k_last; ++k) {
         if (k % o.step != 0) continue;
         at[fr.axis] = static_cast<size_t>(k - b.lo[fr.axis]);
@@ -227,6 +253,7 @@ void trace_label(const LabelVolume& vol, const SliceFrame& fr, const LabelFields
     const bool any_large = std::any_of(traced.begin(), traced.end(), [&](const auto& t) {
         return std::any_of(t.second.begin(), t.second.end(), [&](const auto& r) { return !small(r); });
     });
+    if (lf.drop_islands) drop_small_islands(traced, static_cast<size_t>(o.step), double(kMinPiece));
     for (auto& [k, slice_rings] : traced) {
         if (lf.drop_specks && any_large) std::erase_if(slice_rings, small);
         finish_rings(fr, static_cast<double>(b.lo[fr.u]), static_cast<double>(b.lo[fr.v]), k, o, slice_rings, out);
@@ -298,9 +325,10 @@ ThinLabel extract_label_smoothed(const LabelVolume& vol, const SliceFrame& fr, i
     const size_t voxels = static_cast<size_t>(std::count(own.begin(), own.end(), uint8_t(1)));
     if (keeps_label(own, voxels, own_pieces, lf.box.size, [&](size_t i) { return lf.f[i] + lf.c * lf.bg[i] > 0.5f; })) {
         trace_label(vol, fr, lf, o, out);
-        return {};
+        return {0, 1.0f, lf.c};
     }
     ThinLabel t;
+    t.c = lf.c;
     for (t.level = 1; t.level < kSmoothLevels; ++t.level) {
         double narrow[3];
         axis_sigmas(vol, o.label_smooth, t.level, narrow);
@@ -314,22 +342,23 @@ ThinLabel extract_label_smoothed(const LabelVolume& vol, const SliceFrame& fr, i
     return t;
 }
 
-// Pass 2, one label beside or among thin labels. Two labels are compared with
-// both blurred by the narrower of their two widths, each scaled by its own
-// gain (1 at the full width): a label X at level x must beat, at its own
-// width, the gain-weighted blur of the background and the other labels at
-// level <= x (for x = 0 the 0.5 rule of f + c * bg instead, which already
-// keeps two full-width labels apart), and at each narrower level y > x that of
-// the labels at level y. The weighted blur of a set bounds each member's
-// score, so for any two labels each compares the same two scores the other way
-// round: their regions cannot overlap, and a thin label meets its neighbours
-// at its own width: it keeps its voxels.
-void extract_label_among_thin(const LabelVolume& vol, const SliceFrame& fr, int32_t label, const Extent& e,
-                              const ImportOptions& o, const std::map<int32_t, ThinLabel>& thin, LabelResult& out) {
+namespace {
+
+// Pass 2, a thin label. Two labels are compared with both blurred by the
+// narrower of their two widths, each scaled by its own gain (1 at the full
+// width): a label X at level x must beat, at its own width, the gain-weighted
+// blur of the background and the other labels at level <= x (for x = 0 the
+// 0.5 rule of f + c * bg instead, which already keeps two full-width labels
+// apart), and at each narrower level y > x that of the labels at level y. The
+// weighted blur of a set bounds each member's score, so for any two labels
+// each compares the same two scores the other way round: their regions cannot
+// overlap, and a thin label meets its neighbours at its own width: it keeps
+// its voxels.
+void extract_thin_label(const LabelVolume& vol, const SliceFrame& fr, int32_t label, const Extent& e,
+                        const ImportOptions& o, const ThinLabel& own, const std::map<int32_t, ThinLabel>& thin,
+                        LabelResult& out) {
     out = LabelResult{};
     out.label = label;
-    const auto mine = thin.find(label);
-    const ThinLabel own = mine == thin.end() ? ThinLabel{} : mine->second;
     double full[3], sigma[3];
     axis_sigmas(vol, o.label_smooth, 0, full);
     axis_sigmas(vol, o.label_smooth, own.level, sigma);
@@ -340,16 +369,17 @@ void extract_label_among_thin(const LabelVolume& vol, const SliceFrame& fr, int3
     constexpr int8_t kSpeck = -3, kOwn = -2, kBackground = -1;
     std::vector<int8_t> tag(lf.box.count());
     std::vector<float> gain(lf.box.count(), 1.0f);
+    ThinLookup lookup(thin);
     for_box(vol, lf.box, [&](size_t n, int32_t l) {
         if (l == label || l == 0) {
             tag[n] = l == 0 ? kBackground : kOwn;
             return;
         }
-        const auto it = thin.find(l);
-        tag[n] = static_cast<int8_t>(it == thin.end() ? 0 : it->second.level);
-        if (it != thin.end()) gain[n] = it->second.gain;
+        const ThinLabel* t = lookup.find(l);
+        tag[n] = static_cast<int8_t>(t ? t->level : 0);
+        if (t) gain[n] = t->gain;
     });
-    if (own.level > 0) {  // its specks go as in pass 1 (neither it nor a rival)
+    {  // its specks go as in pass 1 (neither it nor a rival)
         std::vector<uint8_t> mask(tag.size());
         for (size_t i = 0; i < tag.size(); ++i) mask[i] = tag[i] == kOwn;
         keep_large_pieces(mask, lf.box.size);
@@ -365,7 +395,7 @@ void extract_label_among_thin(const LabelVolume& vol, const SliceFrame& fr, int3
     lf.f = tagged(sigma, [](int8_t t) { return t == kOwn; });
     lf.bg = tagged(sigma, [](int8_t t) { return t == kBackground; });
     lf.margin.assign(lf.box.count(), std::numeric_limits<float>::max());
-    for (int level = std::max(own.level, 1); level < kSmoothLevels; ++level) {
+    for (int level = own.level; level < kSmoothLevels; ++level) {
         auto rival = [&](int8_t t) {
             return level == own.level ? t == kBackground || (t >= 0 && t <= level) : t == level;
         };
@@ -377,10 +407,116 @@ void extract_label_among_thin(const LabelVolume& vol, const SliceFrame& fr, int3
         for (size_t i = 0; i < others.size(); ++i)
             lf.margin[i] = std::min(lf.margin[i], own.gain * self[i] - others[i]);
     }
-    lf.half_rule = own.level == 0;
+    lf.half_rule = false;
     lf.drop_specks = true;
-    if (lf.half_rule) lf.c = background_weight(lf.f, lf.bg, &lf.margin, e.voxels);
+    lf.drop_islands = true;
     trace_label(vol, fr, lf, o, out);
+}
+
+// A box's sub-box [lo, hi] (box indices, inclusive) padded by `pad` voxels on
+// each axis and clipped to the box, in volume indices.
+Box sub_box(const Box& b, const long lo[3], const long hi[3], const long pad[3]) {
+    Box s;
+    for (int d = 0; d < 3; ++d) {
+        const long a = std::max(lo[d] - pad[d], 0L), z = std::min(hi[d] + pad[d], long(b.size[d]) - 1);
+        s.lo[d] = b.lo[d] + a;
+        s.size[d] = static_cast<size_t>(z - a + 1);
+    }
+    return s;
+}
+
+// Pass 2, a full-width label with thin labels in its working box: the rule of
+// extract_thin_label, which for it is the 0.5 rule of pass 1 (the same c)
+// and, against the thin labels of each level y, its blur at y beating
+// theirs. Only where a thin label's blur reaches does that differ from pass
+// 1: only the slices within that reach are traced again, and the narrow blurs
+// are taken over the thin labels' own box within its box.
+void extract_label_beside_thin(const LabelVolume& vol, const SliceFrame& fr, int32_t label, const Extent& e,
+                               const ImportOptions& o, const ThinLabel& own, const std::map<int32_t, ThinLabel>& thin,
+                               LabelResult& out) {
+    double full[3];
+    axis_sigmas(vol, o.label_smooth, 0, full);
+    const Box b = label_box(e, full);
+    // Per narrow level: the box of its labels' voxels (box indices).
+    long lo[kSmoothLevels][3], hi[kSmoothLevels][3];
+    ThinLookup lookup(thin);
+    for (int y = 0; y < kSmoothLevels; ++y)
+        for (int d = 0; d < 3; ++d) lo[y][d] = LONG_MAX, hi[y][d] = -1;
+    for_box(vol, b, [&](size_t n, int32_t l) {
+        const ThinLabel* t = l > 0 && l != label ? lookup.find(l) : nullptr;
+        if (!t) return;
+        const long at[3] = {long(n % b.size[0]), long((n / b.size[0]) % b.size[1]), long(n / (b.size[0] * b.size[1]))};
+        for (int d = 0; d < 3; ++d)
+            lo[t->level][d] = std::min(lo[t->level][d], at[d]), hi[t->level][d] = std::max(hi[t->level][d], at[d]);
+    });
+    // The slices a narrow blur reaches, and the slab of the box their
+    // full-width blurs need.
+    const int a = fr.axis;
+    long k_lo = LONG_MAX, k_hi = -1;
+    long reach[kSmoothLevels][3];
+    for (int y = 1; y < kSmoothLevels; ++y) {
+        double width[3];
+        axis_sigmas(vol, o.label_smooth, y, width);
+        for (int d = 0; d < 3; ++d) reach[y][d] = static_cast<long>(gaussian_radius(width[d]));
+        if (hi[y][a] < 0) continue;
+        k_lo = std::min(k_lo, lo[y][a] - reach[y][a]), k_hi = std::max(k_hi, hi[y][a] + reach[y][a]);
+    }
+    if (k_hi < 0) return;
+    k_lo = std::max(k_lo, 0L), k_hi = std::min(k_hi, long(b.size[a]) - 1);
+    long slab_lo[3] = {0, 0, 0}, slab_hi[3], pad[3] = {0, 0, 0};
+    for (int d = 0; d < 3; ++d) slab_hi[d] = long(b.size[d]) - 1;
+    slab_lo[a] = k_lo, slab_hi[a] = k_hi, pad[a] = static_cast<long>(gaussian_radius(full[a]));
+    LabelFields lf;
+    lf.box = sub_box(b, slab_lo, slab_hi, pad);
+    lf.f = blurred(vol, lf.box, full, [&](int32_t l) { return l == label; });
+    lf.bg = blurred(vol, lf.box, full, [](int32_t l) { return l == 0; });
+    lf.c = own.c;
+    lf.margin.assign(lf.box.count(), std::numeric_limits<float>::max());
+    for (int y = 1; y < kSmoothLevels; ++y) {
+        if (hi[y][a] < 0) continue;
+        double width[3];
+        axis_sigmas(vol, o.label_smooth, y, width);
+        const long twice[3] = {2 * reach[y][0], 2 * reach[y][1], 2 * reach[y][2]};
+        const Box r = sub_box(b, lo[y], hi[y], twice);
+        const std::vector<float> self = blurred(vol, r, width, [&](int32_t l) { return l == label; });
+        std::vector<float> others(r.count(), 0.0f);
+        for_box(vol, r, [&](size_t n, int32_t l) {
+            const ThinLabel* t = l > 0 && l != label ? lookup.find(l) : nullptr;
+            if (t && t->level == y) others[n] = t->gain;
+        });
+        gaussian_blur_3d(others, r.size, width);
+        size_t n = 0;
+        for (size_t z = 0; z < r.size[2]; ++z)
+            for (size_t yy = 0; yy < r.size[1]; ++yy)
+                for (size_t x = 0; x < r.size[0]; ++x, ++n) {
+                    const long at[3] = {r.lo[0] + long(x) - lf.box.lo[0], r.lo[1] + long(yy) - lf.box.lo[1],
+                                        r.lo[2] + long(z) - lf.box.lo[2]};
+                    if (others[n] <= 0.0f || at[2] < 0 || at[2] >= long(lf.box.size[2]) || at[1] < 0 ||
+                        at[1] >= long(lf.box.size[1]) || at[0] < 0 || at[0] >= long(lf.box.size[0]))
+                        continue;
+                    float& m =
+                        lf.margin[(size_t(at[2]) * lf.box.size[1] + size_t(at[1])) * lf.box.size[0] + size_t(at[0])];
+                    m = std::min(m, self[n] - others[n]);
+                }
+    }
+    lf.k_lo = b.lo[a] + k_lo, lf.k_hi = b.lo[a] + k_hi;
+    lf.drop_specks = true;
+    LabelResult fresh;
+    trace_label(vol, fr, lf, o, fresh);
+    std::erase_if(out.slices, [&](const auto& s) { return long(s.first) >= lf.k_lo && long(s.first) <= lf.k_hi; });
+    for (auto& s : fresh.slices) out.slices.push_back(std::move(s));
+    std::sort(out.slices.begin(), out.slices.end(), [](const auto& p, const auto& q) { return p.first < q.first; });
+}
+
+}  // namespace
+
+void extract_label_among_thin(const LabelVolume& vol, const SliceFrame& fr, int32_t label, const Extent& e,
+                              const ImportOptions& o, const ThinLabel& own, const std::map<int32_t, ThinLabel>& thin,
+                              LabelResult& out) {
+    if (own.level > 0)
+        extract_thin_label(vol, fr, label, e, o, own, thin, out);
+    else
+        extract_label_beside_thin(vol, fr, label, e, o, own, thin, out);
 }
 
 // Whether the label's working box holds a voxel of a thin label other than it.
@@ -389,7 +525,8 @@ bool box_meets_thin(const LabelVolume& vol, const Extent& e, int32_t label, cons
     double sigma[3];
     axis_sigmas(vol, s, 0, sigma);
     bool meets = false;
-    for_box(vol, label_box(e, sigma), [&](size_t, int32_t l) { meets |= l > 0 && l != label && thin.count(l); });
+    ThinLookup lookup(thin);
+    for_box(vol, label_box(e, sigma), [&](size_t, int32_t l) { meets |= l > 0 && l != label && lookup.find(l); });
     return meets;
 }
 

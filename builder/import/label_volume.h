@@ -56,6 +56,15 @@ struct LabelResult {
 void finish_rings(const SliceFrame& f, double u0, double v0, size_t k, const ImportOptions& o,
                   std::vector<std::vector<Vec2>>& rings, LabelResult& out);
 
+// A label's traced rings, per traced slice (slice index, rings in the traced
+// plane's pixels, inside on the left), slices `step` apart where adjacent:
+// rings on adjacent slices whose regions meet are joined (solids with solids,
+// holes with holes), and each group whose volume (|ring area| x step, in
+// voxels) stays under `min_volume` is dropped, except the largest group of
+// solids (ring_islands.cpp).
+void drop_small_islands(std::vector<std::pair<size_t, std::vector<std::vector<Vec2>>>>& traced, size_t step,
+                        double min_volume);
+
 // --label-smooth (label_smooth.cpp). Smoothing levels: 0 the full width,
 // each next one half of it (s, s/2, s/4).
 constexpr int kSmoothLevels = 3;
@@ -64,11 +73,13 @@ constexpr int kSmoothLevels = 3;
 // finest axis, the same in millimetres on every axis.
 void axis_sigmas(const LabelVolume& vol, double s, int level, double out[3]);
 
-// How a label is smoothed: its level, and the gain its blurred indicator is
-// scaled by where it is compared with its neighbours (levels > 0).
+// How a label is smoothed: its level, the gain its blurred indicator is
+// scaled by where it is compared with its neighbours (levels > 0), and the
+// weight c of the blurred background in its full-width field f + c * bg.
 struct ThinLabel {
     int level = 0;
     float gain = 1.0f;
+    float c = 0.0f;
 };
 
 // Pass 1, one label: traced on its blur by the full width (final unless a
@@ -78,11 +89,14 @@ struct ThinLabel {
 ThinLabel extract_label_smoothed(const LabelVolume& vol, const SliceFrame& fr, int32_t label, const Extent& e,
                                  const ImportOptions& o, LabelResult& out);
 
-// Pass 2, one label that is thin (in `thin`) or has a thin
-// label within its working box: traced again against the thin labels' own
-// blurs, overlap-free (see label_smooth.cpp). `out` is replaced.
+// Pass 2, one label that is thin (`own.level > 0`) or has a thin label within
+// its working box, `own` as pass 1 returned it and `out` as pass 1 traced it:
+// traced again against the thin labels' own blurs, overlap-free (see
+// label_smooth.cpp). A thin label's slices are all replaced; another label's
+// only those within reach of a thin label's blur.
 void extract_label_among_thin(const LabelVolume& vol, const SliceFrame& fr, int32_t label, const Extent& e,
-                              const ImportOptions& o, const std::map<int32_t, ThinLabel>& thin, LabelResult& out);
+                              const ImportOptions& o, const ThinLabel& own, const std::map<int32_t, ThinLabel>& thin,
+                              LabelResult& out);
 
 // Whether a thin label other than `label` has a voxel within its working box.
 bool box_meets_thin(const LabelVolume& vol, const Extent& e, int32_t label, const std::map<int32_t, ThinLabel>& thin,

@@ -477,7 +477,8 @@ std::vector<LabelResult> extract_labels(const LabelVolume& vol, const SliceFrame
     run_parallel(again.size(), options.jobs,
                  [&](size_t a) {
                      const size_t i = again[a];
-                     extract_label_among_thin(vol, frame, labels[i], extents.at(labels[i]), options, thin, results[i]);
+                     extract_label_among_thin(vol, frame, labels[i], extents.at(labels[i]), options, levels[i], thin,
+                                              results[i]);
                  },
                  {});
     return results;

@@ -9,6 +9,7 @@
 
 #include "builder/import/gaussian_blur.h"
 #include "builder/import/import.h"
+#include "builder/import/label_volume.h"
 #include "builder/import/ring_simplify.h"
 #include "builder/slicing/marching_squares.h"
 #include "tests/import/nifti_test_util.h"
@@ -249,6 +250,46 @@ TEST(LabelSmooth, ThinLabelsAndBridgesKeepTheirVolumeAndPieces) {
             }
     }
     EXPECT_LT(overlap, 0.005 * double(voxels[2]));
+}
+
+// A square ring of side `side` at (x, y): inside on the left (counter-clockwise).
+std::vector<Vec2> square(double x, double y, double side) {
+    return {{x, y}, {x + side, y}, {x + side, y + side}, {x, y + side}};
+}
+
+// The islands of a label's rings: groups joined across adjacent slices
+// (solids with solids, holes with holes) under the volume limit are dropped,
+// the rest kept whole; a label whose groups are all small keeps its largest.
+TEST(LabelSmooth, SmallIslandsOfRingsDropTheLargestAndRealPartsStay) {
+    using Traced = std::vector<std::pair<size_t, std::vector<std::vector<Vec2>>>>;
+    Traced traced;
+    for (size_t k = 10; k < 16; ++k) {
+        std::vector<std::vector<Vec2>> rings = {square(0, 0, 8), square(30, 0, 4)};  // two real parts
+        if (k >= 12 && k < 15) rings.push_back(square(20, 20, 1.5));                 // an island: 3 slices x 2.25
+        if (k >= 11 && k < 13) rings.push_back(square(7.5, 3, 1));                   // small, but meets the part's ring
+        std::vector<Vec2> cavity = square(2, 2, 1);                                  // a hole of 1 x 1 on two slices
+        std::reverse(cavity.begin(), cavity.end());
+        if (k == 13 || k == 14) rings.push_back(cavity);
+        traced.emplace_back(k, std::move(rings));
+    }
+    label_import::drop_small_islands(traced, 1, 20.0);
+    size_t rings = 0, islands = 0, holes = 0, touching = 0;
+    for (const auto& [k, slice] : traced) {
+        for (const auto& r : slice) {
+            ++rings;
+            islands += r[0] == Vec2{20, 20};
+            touching += r[0] == Vec2{7.5, 3};
+            holes += signed_area2(r.data(), r.size()) < 0.0;
+        }
+    }
+    EXPECT_EQ(islands, 0u) << "an island of 6.75 voxels kept";
+    EXPECT_EQ(holes, 0u) << "a cavity of 2 voxels kept";
+    EXPECT_EQ(touching, 2u) << "a small ring that meets its neighbour dropped";
+    EXPECT_EQ(rings, 6u * 2u + 2u) << "a real part dropped";  // the 4 x 4 part: 96 voxels, kept
+
+    Traced all_small = {{3, {square(0, 0, 1)}}, {4, {square(0.5, 0.5, 1), square(9, 9, 0.5)}}};
+    label_import::drop_small_islands(all_small, 1, 20.0);
+    EXPECT_EQ(all_small[0].second.size() + all_small[1].second.size(), 2u) << "the largest group must stay";
 }
 
 // Anisotropic voxels (1 x 1 x 3 mm, slices 3 mm apart): the blur is the same
