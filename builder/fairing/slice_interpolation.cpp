@@ -481,8 +481,14 @@ size_t keep_free_of_new_crossings(Work& w, std::vector<Vec3>& positions, std::sp
         std::vector<uint32_t> sub_indices;
         for (uint32_t t : subset)
             sub_indices.insert(sub_indices.end(), &indices[3 * size_t(t)], &indices[3 * size_t(t)] + 3);
+        // Only pairs with a triangle that moved: a pair of unmoved ones that
+        // meets and is new would have been found in an earlier round and moved.
+        std::sort(queries.begin(), queries.end());
+        std::vector<uint8_t> moved_here(subset.size(), 0);
+        for (size_t k = 0; k < subset.size(); ++k)
+            moved_here[k] = std::binary_search(queries.begin(), queries.end(), subset[k]);
         pairs.clear();
-        count_self_intersections(positions, sub_indices, 0, &pairs);
+        count_self_intersections_of(positions, sub_indices, moved_here, 0, &pairs);
         for (auto& pair : pairs) pair = {subset[pair.first], subset[pair.second]};
     }
     // Not settled: the straight mesh, which has no new crossing by construction.
