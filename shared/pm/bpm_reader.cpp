@@ -84,6 +84,9 @@ Status BpmStream::feed(std::span<const uint8_t> bytes) {
         pos += total;
     }
     consumed_ += pos;
+    // The batch order's arrays (28 bytes a face of the largest batch) live for one
+    // feed: a stream waiting for bytes holds none.
+    for (auto& m : meshes_) m->order_scratch_.release_batch_arrays();
     if (paused_) {
         std::vector<uint8_t>().swap(pending_);  // a paused stream holds no bytes
         release_scratch();
@@ -485,6 +488,7 @@ Status BpmStream::parse_splits(size_t structure, std::span<const uint8_t> payloa
             : uint32_t(std::clamp<size_t>(split_limit(structure), first + at.next + 1, size_t(first) + count) - first);
     m.unpark_decoding_state();  // a structure paused before: its state back first
     // A split adds 1 to 3 faces: grown for what is decoded now, not the whole section.
+    if (whole_file_) m.grow_decoded(m.split_count_, m.face_count_);
     m.grow_decoded(size_t(first) + stop,
                    std::min(faces_before + h.new_faces, m.decoded_faces_ + 3 * size_t(stop - at.next)));
     SplitDecoder decoder;
@@ -578,6 +582,7 @@ Result<std::vector<std::unique_ptr<ProgressiveMesh>>> read_bpm_bytes(std::span<c
                                                                      const std::string& source_name,
                                                                      BpmStream::FaceOrder order) {
     BpmStream stream(source_name, order);
+    stream.expect_whole_file();
     Status st = stream.feed(bytes);
     if (!st) return st.error();
     st = stream.finish();
@@ -596,6 +601,7 @@ Result<std::vector<std::unique_ptr<ProgressiveMesh>>> read_bpm(const std::string
     const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), &std::fclose);
     if (!file) return input_error(path + ": cannot open: " + std::strerror(errno));
     BpmStream stream(path, order);
+    stream.expect_whole_file();
     std::vector<uint8_t> chunk(1 << 20);
     size_t n = std::fread(chunk.data(), 1, kFileHeaderSize, file.get());
     while (n > 0) {

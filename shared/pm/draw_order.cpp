@@ -31,6 +31,7 @@ constexpr size_t kWindowFaces = 1024;
 // a stable LSD radix sort of (code << 32 | face), 3 passes of 10 bits.
 void sort_spatially(const uint32_t* indices, size_t face_count, const uint16_t* qpos, uint32_t* order,
                     CacheOrderScratch& s) {
+    s.keys.clear();  // no copy of the last batch's keys when it grows
     s.keys.resize(2 * face_count);
     uint64_t* a = s.keys.data();
     uint64_t* b = a + face_count;

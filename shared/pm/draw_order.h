@@ -34,6 +34,7 @@
 #include <vector>
 
 #include "shared/pm/cache_window.h"
+#include "shared/pm/large_array.h"
 
 namespace body::pm {
 
@@ -46,9 +47,16 @@ std::vector<uint32_t> batch_levels(size_t base_vertices, size_t splits);
 
 // Working memory of cache_order, caller-owned and reused between calls (its
 // contents belong to cache_order: local_of stays all UINT32_MAX between calls).
+// The batch arrays are the caller's (ProgressiveMesh::order_batch), uninitialised:
+// each batch writes what it reads, so a larger batch neither zeroes nor copies them.
 struct CacheOrderScratch {
-    std::vector<uint64_t> keys;
+    UninitVector<uint64_t> keys;
     CacheWindowScratch window;
+    UninitVector<uint32_t> faces, order, number, ordered;
+    // Frees the batch arrays (the reader: at the end of each feed).
+    void release_batch_arrays() {
+        for (auto* v : {&faces, &order, &number, &ordered}) UninitVector<uint32_t>().swap(*v);
+    }
 };
 
 // The cache order of `face_count` triangles (`indices`, three per face, each <

@@ -102,11 +102,19 @@ void ProgressiveMesh::order_batch(size_t level) {
     if (n == 0) return;
     // The batch's faces at `level` (the file's numbers; its own vertices still
     // have their file numbers in draw order too), then their order.
-    std::vector<uint32_t> faces(n * 3), order(n);
+    // Scratch reused batch to batch, sized without zeroing (each entry is written before it is read).
+    const auto sized = [](UninitVector<uint32_t>& v, size_t size) -> UninitVector<uint32_t>& {
+        v.clear();
+        v.resize(size);
+        return v;
+    };
+    auto& faces = sized(order_scratch_.faces, n * 3);
+    auto& order = sized(order_scratch_.order, n);
     for (size_t i = 0; i < n * 3; ++i) faces[i] = replay_.index(f0 * 3 + i);
     cache_order(faces.data(), n, base_vertices_ + level, qpos_.data(), order.data(), order_scratch_);
     const uint32_t v0 = uint32_t(base_vertices_ + lo), nv = uint32_t(level - lo);
-    std::vector<uint32_t> number(std::max<uint32_t>(nv, 1)), ordered(n * 3);
+    auto& number = sized(order_scratch_.number, std::max<uint32_t>(nv, 1));
+    auto& ordered = sized(order_scratch_.ordered, n * 3);
     for (size_t t = 0; t < n; ++t) std::copy_n(&faces[size_t(order[t]) * 3], 3, &ordered[t * 3]);
     first_use_order(ordered.data(), n * 3, v0, nv, number.data());
     const auto renumber = [&](uint32_t v) {  // without a branch: older vertices are interleaved unpredictably
