@@ -56,7 +56,7 @@ inline constexpr uint64_t kSettleFrames = 3;
 // would cost a job and a buffer for a draw that is cheap anyway).
 inline constexpr size_t kMinOrderedTriangles = 1024;
 // Triangle moves of a model ordered in place, a frame (SlicedOrder's budget:
-// about one window; 1.1M triangles take some 70 frames).
+// about four windows; 1.1M triangles take some 70 frames).
 inline constexpr size_t kOrderSliceFaces = 32768;
 
 class LevelOrderWorker;
