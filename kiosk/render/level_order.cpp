@@ -271,7 +271,7 @@ size_t level_order_bytes(const Model& m) {
     const auto bytes = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
     const pm::CacheWindowScratch& w = s.scratch;
     size_t total = o.count * sizeof(uint32_t) + (o.job ? o.job->indices.size_bytes() + bytes(o.job->cells) : 0);
-    total += bytes(s.cells) + bytes(s.perm) + bytes(s.start) + bytes(s.next) + bytes(s.faces) + bytes(s.moved) +
+    total += bytes(s.cells) + s.perm.bytes() + bytes(s.start) + bytes(s.next) + bytes(s.faces) + bytes(s.moved) +
              bytes(s.corners) + bytes(s.firsts);
     for (const auto* v : {&w.local_of, &w.local, &w.global, &w.sorted, &w.start, &w.by_first, &w.window})
         total += bytes(*v);

@@ -26,8 +26,8 @@
 // mapped in place is ordered without the copy: its own element buffer is
 // mapped between frames and ordered a slice a frame on the render thread
 // (window_order.h's SlicedOrder; between slices it holds the level's
-// triangles in some order, all drawable), keeping a permutation (4 bytes a
-// triangle instead of the copy's 12) that puts the prefix back before the
+// triangles in some order, all drawable), keeping a permutation (packed:
+// 21 bits a triangle at 1.1M, instead of the copy's 12 bytes) that puts the prefix back before the
 // next change of its indices (restore_level_prefix, from update_model). Its
 // other readers (lines, wireframe, the cut section, picking) then read the
 // same triangles in that order.
@@ -56,7 +56,7 @@ inline constexpr uint64_t kSettleFrames = 3;
 // would cost a job and a buffer for a draw that is cheap anyway).
 inline constexpr size_t kMinOrderedTriangles = 1024;
 // Triangle moves of a model ordered in place, a frame (SlicedOrder's budget:
-// about one window; 1.1M triangles take some 70 frames).
+// about four windows; 1.1M triangles take some 70 frames).
 inline constexpr size_t kOrderSliceFaces = 32768;
 
 class LevelOrderWorker;

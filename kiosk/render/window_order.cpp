@@ -3,6 +3,7 @@
 #include "kiosk/render/window_order.h"
 
 #include <algorithm>
+#include <bit>
 #include <numeric>
 #include <utility>
 #include <vector>
@@ -80,11 +81,24 @@ bool order_in_windows(std::span<uint32_t> indices, std::span<const uint16_t> cel
     return true;
 }
 
+void PackedPermutation::identity(size_t n) {
+    size_ = n;
+    bits_ = n > 1 ? unsigned(std::bit_width(n - 1)) : 1u;
+    mask_ = (uint64_t{1} << bits_) - 1;
+    words_.assign((n * bits_ + 63) / 64 + 1, 0);  // + 1: an entry's high word is always there
+    for (size_t i = 0; i < n; ++i) set(i, uint32_t(i));
+}
+
+void PackedPermutation::clear() {
+    std::vector<uint64_t>().swap(words_);
+    size_ = 0;
+}
+
 namespace {
 
-void swap_triangles(std::span<uint32_t> idx, std::vector<uint32_t>& perm, size_t f, size_t g) {
+void swap_triangles(std::span<uint32_t> idx, PackedPermutation& perm, size_t f, size_t g) {
     for (size_t k = 0; k < 3; ++k) std::swap(idx[3 * f + k], idx[3 * g + k]);
-    std::swap(perm[f], perm[g]);
+    perm.swap(f, g);
 }
 
 // s.moved = the window's corners numbered 0, 1, ... in the order they are
@@ -118,8 +132,9 @@ void order_window(SlicedOrder& s, std::span<uint32_t> idx, size_t a, size_t b) {
     s.faces.resize(n);
     std::iota(s.faces.begin(), s.faces.end(), 0u);
     if (!pm::cache_order_window(s.moved.data(), s.faces.data(), n, s.scratch)) return;  // left in cell order
-    s.moved.assign(s.perm.begin() + static_cast<std::ptrdiff_t>(a), s.perm.begin() + static_cast<std::ptrdiff_t>(b));
-    for (size_t t = 0; t < n; ++t) s.perm[a + t] = s.moved[s.faces[t]];
+    s.moved.resize(n);
+    for (size_t t = 0; t < n; ++t) s.moved[t] = s.perm[a + t];
+    for (size_t t = 0; t < n; ++t) s.perm.set(a + t, s.moved[s.faces[t]]);
     s.moved.assign(tri, tri + 3 * n);
     for (size_t t = 0; t < n; ++t)
         for (size_t k = 0; k < 3; ++k) tri[3 * t + k] = s.moved[3 * size_t(s.faces[t]) + k];
@@ -140,8 +155,7 @@ bool begin_sliced_order(SlicedOrder& s, std::span<const uint32_t> indices, std::
     for (size_t f = 0; f < faces; ++f) ++s.start[cells[indices[3 * f]] + size_t{1}];
     for (size_t c = 0; c < kCells; ++c) s.start[c + 1] += s.start[c];
     s.next.assign(s.start.begin(), s.start.end() - 1);
-    s.perm.resize(faces);
-    std::iota(s.perm.begin(), s.perm.end(), 0u);
+    s.perm.identity(faces);
     s.cells = std::move(cells);
     s.begun = true;
     return true;
@@ -193,24 +207,24 @@ bool step_sliced_order(SlicedOrder& s, std::span<uint32_t> idx, size_t budget) {
     return true;
 }
 
-void restore_order(std::span<uint32_t> indices, std::vector<uint32_t>& perm) {
-    constexpr uint32_t kPlaced = UINT32_MAX;
+void restore_order(std::span<uint32_t> indices, PackedPermutation& perm) {
     const size_t n = std::min(perm.size(), indices.size() / 3);
-    // Cycle by cycle: the triangle at i goes to perm[i].
+    // Cycle by cycle: the triangle at i goes to perm[i]; an entry that names
+    // its own position is home (placed ones are set so).
     for (size_t i = 0; i < n; ++i) {
-        if (perm[i] == kPlaced) continue;
+        if (perm[i] == i) continue;
         uint32_t carry[3] = {indices[3 * i], indices[3 * i + 1], indices[3 * i + 2]};
         size_t j = perm[i];
-        perm[i] = kPlaced;
+        perm.set(i, uint32_t(i));
         for (;;) {
             for (size_t k = 0; k < 3; ++k) std::swap(carry[k], indices[3 * j + k]);
             if (j == i) break;
             const size_t next = perm[j];
-            perm[j] = kPlaced;
+            perm.set(j, uint32_t(j));
             j = next;
         }
     }
-    free_vector(perm);
+    perm.clear();
 }
 
 }  // namespace body::render

@@ -10,7 +10,7 @@
 // triangles first use them, then meshopt_optimizeVertexCache over those numbers
 // (its tables sized by the window, not the mesh). The callers choose the
 // window size (the decoder 1024 faces for the CPU's caches, the kiosk whole
-// Morton cells of about 32K for the cache hits across a large level).
+// Morton cells of about 8K for the cache hits across a large level).
 #include <cstddef>
 #include <cstdint>
 #include <vector>
