@@ -25,10 +25,9 @@ constexpr int kNotBatched = -2;
 constexpr Style kBatchStyles[] = {Style::Smooth, Style::Baseline};
 int style_index(Style s) { return s == Style::Smooth ? 0 : s == Style::Baseline ? 1 : -1; }
 
-Result<Program> link_batch(const char* frag, int slots) {
-    const std::string defines = "#define BODY_BATCH " + std::to_string(slots) + "\n";
-    auto p = link_shader_pair("mesh.vert", frag, defines.c_str());
-    return p;  // a_slot has its location in the shader (kSlot)
+// A batch program, linked at its first draw; a_slot has its location in the shader (kSlot).
+Program batch_program(const char* frag, int slots) {
+    return deferred_program("mesh.vert", frag, "#define BODY_BATCH " + std::to_string(slots) + "\n");
 }
 
 // The room a slot gets: what the model's own buffers hold now.
@@ -217,15 +216,8 @@ Status init_batches(Batches& b, bool on) {
     // mesh.vert's own uniforms take about 20 vectors; slot numbers are bytes.
     const int slots = std::min(255, (vectors - 32) / kBatchSlotVectors);
     if (slots < 8) return ok_status();
-    auto smooth = link_batch("smooth.frag", slots);
-    if (!smooth) return smooth.error();
-    auto baseline = link_batch("baseline.frag", slots);
-    if (!baseline) {
-        glDeleteProgram(smooth.value().id);
-        return baseline.error();
-    }
-    b.smooth = std::move(smooth.value());
-    b.baseline = std::move(baseline.value());
+    b.smooth = batch_program("smooth.frag", slots);
+    b.baseline = batch_program("baseline.frag", slots);
     b.slots_per_chunk = slots;
     b.enabled = true;
     return ok_status();

@@ -72,7 +72,7 @@ struct Batches {
     std::vector<BatchChunk> chunks;
 };
 
-// Links the batch programs when `on` and the driver has uniform room for at
+// Sets up the batch programs (linked at their first draw) when `on` and the driver has uniform room for at
 // least 8 slots a chunk; batching stays off otherwise, and with BODY_BATCH=0
 // in the environment (the per-model path, for comparisons).
 Status init_batches(Batches& b, bool on);

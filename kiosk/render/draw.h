@@ -44,6 +44,7 @@ struct Frame {
     // and free the compiler's scratch into the heap: a frame that drew a
     // program for the first time trims the heap at its end.
     bool first_use = false;
+    size_t programs_linked = 0;  // by use() this frame (FrameStats::programs_linked)
     // The cut plane (styles/cut_cap.h): on for this frame, and the view-space
     // plane of the model being drawn ((0, 0, 0, -1) keeps everything).
     bool clipping = false;
@@ -51,7 +52,10 @@ struct Frame {
     glm::vec4 clip_object{0.0f, 0.0f, 0.0f, -1.0f};  // the same plane in the model's object space
     // GL_CLIP_DISTANCE0_EXT is on exactly while a program that writes it is in use.
     bool clip_distance_on = false;
+    // Makes `p` current, linking it first when this is its first use
+    // (programs.h; a program that cannot be linked draws nothing).
     void use(Program& p) {
+        if (!p.id && link_on_first_use(p)) ++programs_linked;
         glUseProgram(p.id);
         if (clipping) set_clip_uniforms(p, *this);
         if (p.clip_distance != clip_distance_on) {

@@ -199,6 +199,7 @@ void Renderer::render(const View& camera, const Lighting& lighting, const FrameO
     if (f.clip_distance_on) glDisable(kClipDistance0);  // off for the next frame and the overlay
     glBindVertexArray(0);
     glUseProgram(0);
+    s.stats.programs_linked = f.programs_linked;
     if (f.first_use || released) trim_heap();
     BODY_GL_CHECK("render");
 }

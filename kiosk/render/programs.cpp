@@ -3,6 +3,7 @@
 #include "kiosk/render/programs.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <utility>
 
 #include "kiosk/render/renderer.h"
@@ -95,23 +96,48 @@ Result<unsigned> link_program(const char* vertex_source, const char* fragment_so
     return id;
 }
 
+Program deferred_program(std::string vert, std::string frag, std::string defines) {
+    Program p;
+    p.vert = std::move(vert);
+    p.frag = std::move(frag);
+    p.defines = std::move(defines);
+    return p;
+}
+
+bool link_on_first_use(Program& p) {
+    if (p.id) return true;
+    if (p.link_failed || p.vert.empty()) return false;
+    auto linked = link(p.vert, p.frag, p.defines.c_str());
+    if (!linked) {
+        p.link_failed = true;
+        std::fprintf(stderr, "bodyview: %s\n", linked.error().message.c_str());
+        return false;
+    }
+    p.id = linked.value().id;
+    return true;
+}
+
+void defer_programs(Programs& programs, const char* defines) {
+    delete_programs(programs);
+    const std::string d = defines ? defines : "";
+    programs.baseline = deferred_program("mesh.vert", "baseline.frag", d);
+    programs.smooth = deferred_program("mesh.vert", "smooth.frag", d);
+    programs.hatching = deferred_program("mesh.vert", "hatching.frag", d);
+    programs.xray = deferred_program("mesh.vert", "xray.frag", d);
+    programs.lines = deferred_program("lines.vert", "lines.frag", d);
+    programs.wireframe = deferred_program("wireframe.vert", "wireframe.frag", d);
+}
+
 Status link_programs(Programs& programs, const char* defines) {
-    struct Want {
-        Program* p;
-        const char* vert;
-        const char* frag;
-    };
-    for (Want w :
-         {Want{&programs.baseline, "mesh.vert", "baseline.frag"}, Want{&programs.smooth, "mesh.vert", "smooth.frag"},
-          Want{&programs.hatching, "mesh.vert", "hatching.frag"}, Want{&programs.xray, "mesh.vert", "xray.frag"},
-          Want{&programs.lines, "lines.vert", "lines.frag"},
-          Want{&programs.wireframe, "wireframe.vert", "wireframe.frag"}}) {
-        auto p = link(w.vert, w.frag, defines);
-        if (!p) {
+    defer_programs(programs, defines);
+    for (Program* p : {&programs.baseline, &programs.smooth, &programs.hatching, &programs.xray, &programs.lines,
+                       &programs.wireframe}) {
+        auto linked = link(p->vert, p->frag, p->defines.c_str());
+        if (!linked) {
             delete_programs(programs);
-            return p.error();
+            return linked.error();
         }
-        *w.p = std::move(p.value());
+        p->id = linked.value().id;
     }
     return ok_status();
 }

@@ -1,7 +1,8 @@
 #pragma once
-// The renderer's GLSL programs: one per shader pair of kiosk/shaders/, linked
-// at init with the vertex attribute locations below, uniform locations looked
-// up once and cached.
+// The renderer's GLSL programs: one per shader pair of kiosk/shaders/, with the
+// vertex attribute locations below, uniform locations looked up once and
+// cached. The renderer's table and the batch programs are linked at their
+// first use (Frame::use), so a start links only what its first frame draws.
 #include <GLES3/gl3.h>
 
 #include <cstdint>
@@ -20,6 +21,10 @@ inline constexpr GLuint kNormalCode = 4;  // 8:8 octahedral normal codes (mesh.v
 
 struct Program {
     GLuint id = 0;
+    // What link_on_first_use() links while id is 0: kiosk/shaders/ names and
+    // "#define" lines. A failed link is logged once and not tried again.
+    std::string vert, frag, defines;
+    bool link_failed = false;
     bool drawn = false;          // used by a frame already (its shader variants compiled)
     bool clip_distance = false;  // writes gl_ClipDistance[0] (kiosk/shaders/clip_vertex.glsl)
     // The Frame::serial whose per-frame uniforms (projection, view ray; the
@@ -40,6 +45,13 @@ struct Programs {
     Program wireframe;  // wireframe.vert + wireframe.frag
 };
 
+// A program linked at its first use: only its shader pair and defines now.
+Program deferred_program(std::string vert, std::string frag, std::string defines = {});
+// Links `p` from its shader pair unless linked already; false (the reason
+// logged once) when it cannot be linked.
+bool link_on_first_use(Program& p);
+// The table with every program deferred to its first use.
+void defer_programs(Programs& programs, const char* defines = nullptr);
 // Links every program of the table; on an error the ones linked are deleted.
 // `defines` ("#define NAME 1\n" lines) select a variant, e.g. the cut plane's
 // clipped programs (kiosk/render/styles/cut_cap.cpp).

@@ -84,10 +84,7 @@ Status Renderer::init(const RendererOptions& options) {
     // the mmap threshold is the ratio glibc keeps when it adjusts both itself.
     mallopt(M_TRIM_THRESHOLD, 2 << 20);
 #endif
-    if (Status linked = link_programs(s_->programs); !linked) {
-        shutdown();
-        return linked;
-    }
+    defer_programs(s_->programs);  // linked as a frame first draws each (the first frame: its styles only)
     if (Status batched = init_batches(s_->batches, options.batch); !batched) {
         shutdown();
         return batched;

@@ -2,8 +2,10 @@
 // BodyView's OpenGL ES 3.0 renderer (GLSL ES 3.00 only, no geometry shaders):
 // the textbook styles of thesis section 3.4 per model, mixed depth-correctly in
 // one frame. Shaped like Dear ImGui's OpenGL3 backend: init() / shutdown() /
-// render() around one private state struct; shader compile/link logs are
-// returned as errors; debug builds (BODY_GL_DEBUG) check glGetError after
+// render() around one private state struct; each program is compiled at its
+// first draw (a start compiles only what its first frame draws), a failed
+// compile/link logged once with its info log and that program's draws skipped
+// (GL errors, counted by the kiosk); debug builds (BODY_GL_DEBUG) check glGetError after
 // each pass.
 //
 // Usage (the GLES 3 context of a platform::Surface must be current):
@@ -105,6 +107,8 @@ struct FrameStats {
     // uploading ordered ones (kiosk/render/level_order.h; the ordering itself
     // runs on a worker).
     double level_order_ms = 0.0;
+    // Programs linked by this frame: each is linked at its first draw.
+    size_t programs_linked = 0;
 };
 
 // How the renderer writes into its GL buffers (a progressive mesh's packed
@@ -154,8 +158,8 @@ public:
     Renderer(const Renderer&) = delete;
     Renderer& operator=(const Renderer&) = delete;
 
-    // Compiles the shaders (the tonal art map is made at the first hatching draw). Needs a current GLES 3
-    // context. Errors carry the shader name and its info log.
+    // Sets up the state (shaders are compiled at their first draw, the tonal art map at the first hatching
+    // draw). Needs a current GLES 3 context.
     Status init(const RendererOptions& options = {});
     // The access init() chose (never Auto after a successful init).
     BufferAccess buffer_access() const;
