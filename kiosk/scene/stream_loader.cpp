@@ -154,12 +154,14 @@ DecodeNeed StreamLoader::step(std::vector<uint8_t>& chunk) {
                 return finish(st.error().message);
             decoded_ += slice_bytes;
             off += slice_bytes;
+            // Before the pause check: the slice that completes the bases may also reach the wanted level, and a
+            // wait_for_bases() caller blocked on cv_ must hear of the bases either way.
+            if (!had_bases && bases_ready()) cv_.notify_all();
             if (stream_.paused()) {  // nothing more wanted: the next step reads on from where the stream stopped
                 decoded_ = stream_.bytes_consumed();
                 paused_.store(true, std::memory_order_release);
                 return DecodeNeed::Paused;
             }
-            if (!had_bases && bases_ready()) cv_.notify_all();
         }
         std::lock_guard guard(mutex_);
         if (bases_ready()) return DecodeNeed::Detail;

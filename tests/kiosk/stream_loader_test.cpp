@@ -159,6 +159,30 @@ TEST(StreamLoader, StopsWhileWaitingForRelease) {
     ::unlink(path.c_str());
 }
 
+// A small on-demand file: the slice that completes the base also reaches the
+// wanted level (the base), so the pool thread pauses in that same step. A
+// caller already blocked in wait_for_bases() must still be woken; the pause
+// once returned before the wake-up and left it waiting for ever (ctest's
+// time-out is this test's failure). Many rounds with the caller arriving at
+// different moments, since which thread gets there first is up to the
+// scheduler.
+TEST(StreamLoader, AWaiterHearsOfTheBasesWhenTheSameSlicePauses) {
+    lod::LodOptions options;
+    options.chunk_splits = 256;
+    auto bytes = lod::encode_bpm(std::vector<Mesh>{test::uv_sphere(8, 16)}, options);
+    ASSERT_TRUE(bytes) << bytes.error().message;
+    const std::string path = temp_file(bytes.value());
+    for (int round = 0; round < 300; ++round) {
+        StreamLoader loader(path, 1 << 16, 0.0, DecodePool::shared(), true);
+        std::this_thread::sleep_for(std::chrono::microseconds(round % 50 * 10));
+        loader.wait_for_bases();
+        auto held = loader.lock();
+        ASSERT_TRUE(loader.bases_ready()) << "round " << round;
+        ASSERT_TRUE(loader.error().empty()) << loader.error();
+    }
+    ::unlink(path.c_str());
+}
+
 // Waits (bounded) until the loader paused or finished; false on time-out.
 bool settle(const StreamLoader& loader) {
     return loader.wait_idle_until(std::chrono::steady_clock::now() + std::chrono::seconds(20));
