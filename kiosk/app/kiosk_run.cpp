@@ -295,6 +295,9 @@ int KioskLoop::run() {
         const render::View view = camera_view(now);
         stream_locks.clear();  // drawing needs only the GL buffers
         renderer_.render(view, render::Lighting{}, fo);
+        if (options_.verbose && renderer_.last_frame_stats().programs_linked > 0)
+            std::fprintf(stderr, "bodyview: frame %ld linked %zu program(s)\n", frame,
+                         renderer_.last_frame_stats().programs_linked);
         pin_occlusion_.after_render(*app_, view, fo, replaying_ || !options_.screenshot.empty());
         draw_overlay(fo);
 
@@ -342,9 +345,9 @@ int KioskLoop::run() {
         frame_ms_sum += frame_ms;
         ++frames_counted;
         if (options_.verbose && frames_counted % 60 == 0)
-            std::fprintf(stderr, "bodyview: %.2f ms/frame, %zu triangles, budget %zu\n",
-                         frame_ms_sum / static_cast<double>(frames_counted), triangles,
-                         app_->lod_controller().budget());
+            std::fprintf(stderr, "bodyview: %.2f ms/frame, %zu triangles, budget %zu, %zu draw calls\n",
+                         frame_ms_sum / static_cast<double>(frames_counted), triangles, app_->lod_controller().budget(),
+                         renderer_.last_frame_stats().draw_calls);
         if (last) break;
         if (streaming && frame > 0 && !replaying_) yield_to_loaders(frame_ms);
     }

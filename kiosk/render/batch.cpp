@@ -94,13 +94,32 @@ BatchChunk make_chunk(const std::vector<Model*>& models, std::vector<BatchChunk>
     return c;
 }
 
-// Chunks for the models of `drawn` that have none, slots_per_chunk at a time.
+// Chunks for the models of `drawn` that have none: the last chunk's free
+// slots first (that chunk laid out again), then new chunks of slots_per_chunk.
+// Every chunk but the last stays full, so models that arrive over several
+// frames (a streamed start draws its first frame before most have) end in as
+// few chunks, and draw calls, as models that came at once.
 void form_chunks(Batches& b, const std::vector<Model*>& drawn) {
     std::vector<Model*> fresh;
     for (Model* m : drawn)
         if (m->batch_chunk == -1) fresh.push_back(m);
-    for (size_t first = 0; first < fresh.size(); first += static_cast<size_t>(b.slots_per_chunk)) {
-        const size_t n = std::min(fresh.size() - first, static_cast<size_t>(b.slots_per_chunk));
+    const auto per_chunk = static_cast<size_t>(b.slots_per_chunk);
+    size_t first = 0;
+    if (!fresh.empty() && !b.chunks.empty() && b.chunks.back().members.size() < per_chunk) {
+        BatchChunk& last = b.chunks.back();
+        first = std::min(fresh.size(), per_chunk - last.members.size());
+        for (size_t i = 0; i < first; ++i) {
+            fresh[i]->batch_chunk = static_cast<int>(b.chunks.size() - 1);
+            fresh[i]->batch_slot = static_cast<int>(last.members.size());
+            last.members.push_back(fresh[i]);
+        }
+        last.vertex_base.resize(last.members.size());
+        last.vertex_room.resize(last.members.size());
+        last.copied_version.resize(last.members.size());
+        lay_out(last);
+    }
+    for (; first < fresh.size(); first += per_chunk) {
+        const size_t n = std::min(fresh.size() - first, per_chunk);
         std::vector<Model*> members(fresh.begin() + static_cast<std::ptrdiff_t>(first),
                                     fresh.begin() + static_cast<std::ptrdiff_t>(first + n));
         b.chunks.push_back(make_chunk(members, b.chunks));

@@ -19,13 +19,12 @@
 // A model is batched when it has at most kMaxBatchedVertices, is opaque (not selected or faded), in `smooth`
 // or `baseline`, uploaded as position codes with normal codes, not gliding
 // (geomorph) and no cut plane is on; everything else takes the per-model path
-// (frame.cpp). Chunks are formed at the frame that first sees such models and
-// keep their members; a removed model or one whose format changes leaves a
-// dead slot. A slot has room for the vertices its model's own buffers hold
-// (Model::vertex_allocated, grown with a streamed mesh), not its capacity: a
-// scene of thousands of models drawn coarse would otherwise hold every
-// model's full detail twice; a member that outgrows its room has the chunk
-// laid out again (buffers reallocated, every member copied anew).
+// (frame.cpp). Models join chunks at the frame that first sees them, filling
+// the last chunk's free slots before a new chunk is made, and stay there; a
+// removed model or one whose format changes leaves a dead slot. A slot has room for the vertices its model's own
+// buffers hold (Model::vertex_allocated, grown with a streamed mesh), not its capacity: a scene of thousands of models
+// drawn coarse would otherwise hold every model's full detail twice; a member that outgrows its room has the chunk laid
+// out again (buffers reallocated, every member copied anew).
 #include <GLES3/gl3.h>
 
 #include <cstddef>

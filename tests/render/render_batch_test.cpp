@@ -185,6 +185,41 @@ TEST(RenderBatch, SamePixelsAsOneCallAModelInFewCalls) {
     EXPECT_GT(std::count(fg.begin(), fg.end(), true), static_cast<long>(fg.size() / 8));
 }
 
+// A streamed start draws its first frame before most models have arrived, and
+// the rest join over the next frames: once all are in, they draw in as many
+// calls as the same models added before the first frame (the last chunk's free
+// slots are filled before a new chunk is made), with the same pixels, and a
+// frame after that links no program.
+TEST(RenderBatch, ModelsArrivingOverFramesDrawInAsFewCallsAsAtOnce) {
+    constexpr int kArriving = 120, kPerFrame = 12;
+    const Shape shapes[2] = {make_shape(0), make_shape(1)};
+    const View cam = View::framing(Vec3f(0.0f), 14.0f, Vec3f(0.2f, 0.3f, 1.0f));
+    std::vector<Image> images;
+    std::vector<size_t> draw_calls;
+    for (int per_frame : {kArriving, kPerFrame}) {
+        RenderFixture f(200, 160);
+        REQUIRE_GL(f);
+        Renderer& r = f.renderer();
+        for (int i = 0; i < kArriving; ++i) {
+            auto id = r.add_model(shapes[i % 2].data(), std::to_string(i));
+            ASSERT_TRUE(id);
+            ModelState& st = *r.state(id.value());
+            st.transform = glm::translate(glm::mat4(1.0f), Vec3f(static_cast<float>(i % 12) * 2.2f - 12.0f,
+                                                                 static_cast<float>(i / 12) * 2.2f - 10.0f, 0.0f));
+            st.color = Vec3f(0.3f + 0.6f * static_cast<float>(i % 7) / 6.0f, 0.5f, 0.8f);
+            st.style = i % 3 == 0 ? Style::Baseline : Style::Smooth;
+            if ((i + 1) % per_frame == 0) (void)f.draw(cam);  // a frame with the models arrived so far
+        }
+        images.push_back(f.draw(cam));
+        ASSERT_EQ(r.last_frame_stats().models_drawn, static_cast<size_t>(kArriving));
+        draw_calls.push_back(r.last_frame_stats().draw_calls);
+        EXPECT_EQ(r.last_frame_stats().programs_linked, 0u);
+    }
+    EXPECT_EQ(draw_calls[1], draw_calls[0]);
+    EXPECT_LE(draw_calls[0], 2u * ((kArriving + 7) / 8));  // batched: at least 8 models a chunk, 2 styles
+    EXPECT_TRUE(images[1].rgba == images[0].rgba);
+}
+
 // A model above kMaxBatchedVertices is drawn alone: the same pixels with
 // batching on and off, and no chunk holding a second copy of its vertex codes
 // and indices (the renderer's GL bytes equal). A small model beside it still
