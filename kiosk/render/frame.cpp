@@ -200,7 +200,10 @@ void Renderer::render(const View& camera, const Lighting& lighting, const FrameO
     glBindVertexArray(0);
     glUseProgram(0);
     s.stats.programs_linked = f.programs_linked;
-    if (f.first_use || released) trim_heap();
+    // The first frame is the start's clock: its trim waits for the next frame.
+    const bool trim = f.first_use || released || s.trim_deferred;
+    s.trim_deferred = trim && f.serial == 1;
+    if (trim && !s.trim_deferred) trim_heap();
     BODY_GL_CHECK("render");
 }
 

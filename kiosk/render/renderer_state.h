@@ -28,7 +28,8 @@ struct RendererState {
     ModelId next_id = 1;
     ModelId sphere = 0;
     FrameStats stats;
-    uint64_t frame_serial = 0;  // frames begun (Frame::serial)
+    uint64_t frame_serial = 0;   // frames begun (Frame::serial)
+    bool trim_deferred = false;  // the first frame's heap trim, done at the end of the next frame
     Transfers transfers;
     // Software rasterizers (GL_RENDERER llvmpipe, softpipe): large draws are
     // split and flushed (draw.h, kFlushTriangles).

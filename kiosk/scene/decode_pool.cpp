@@ -66,6 +66,7 @@ void DecodePool::release(DecodeTask* task) {
         Entry* e = find(task);
         if (!e || e->released) return;
         e->released = true;
+        any_released_ = true;
     }
     work_.notify_one();
 }
@@ -105,7 +106,7 @@ void DecodePool::run() {
         Entry* e = nullptr;
         work_.wait(guard, [&] {
             if (stop_ || (e = next()) != nullptr) return true;
-            if (finished_since_trim_ == 0) return false;
+            if (finished_since_trim_ == 0 || !any_released_) return false;
             finished_since_trim_ = 0;  // idle after finishing tasks: their freed memory back now
             guard.unlock();
             trim_freed_memory();
@@ -114,7 +115,7 @@ void DecodePool::run() {
         });
         if (stop_) return;
         step(e->task, buffer, guard);
-        if (finished_since_trim_ >= kTrimEvery) {
+        if (finished_since_trim_ >= kTrimEvery && any_released_) {
             finished_since_trim_ = 0;
             guard.unlock();
             trim_freed_memory();

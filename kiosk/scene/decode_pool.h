@@ -19,7 +19,10 @@
 // glibc keeps them resident (it returns only a heap's top by itself: about
 // 200 of 440 MiB of heap on a 2,088-model scene). So every kTrimEvery
 // finished tasks, and whenever the threads go idle after finishing some, a
-// pool thread hands the heaps' free pages back (malloc_trim).
+// pool thread hands the heaps' free pages back (malloc_trim); not before the
+// first release() (the kiosk's first frame): until then the threads race the
+// render thread to its first picture, and a trim's page returns interrupt
+// every core (TLB shootdowns).
 #include <condition_variable>
 #include <cstddef>
 #include <cstdint>
@@ -89,6 +92,7 @@ private:
 
     size_t thread_count_;
     size_t finished_since_trim_ = 0;  // under mutex_
+    bool any_released_ = false;       // under mutex_: trims wait for the first release()
     std::mutex mutex_;
     std::condition_variable work_, idle_;
     std::vector<Entry> entries_;
