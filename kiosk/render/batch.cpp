@@ -9,6 +9,7 @@
 #include <cstring>
 #include <glm/gtc/type_ptr.hpp>
 #include <iterator>
+#include <span>
 #include <string>
 
 #include "kiosk/render/buffer_access.h"
@@ -58,18 +59,24 @@ void lay_out(BatchChunk& c) {
     glBindBuffer(GL_ARRAY_BUFFER, 0);
 }
 
-// A chunk for `models` (batchable, none in a chunk yet), its buffers laid out
-// for their rooms.
-BatchChunk make_chunk(const std::vector<Model*>& models, std::vector<BatchChunk>& chunks) {
-    BatchChunk c;
+// `models` (batchable, none in a chunk yet) appended to chunk number `index`,
+// `c`, as its next slots; the caller lays the chunk out.
+void join(BatchChunk& c, size_t index, std::span<Model* const> models) {
     for (Model* m : models) {
-        m->batch_chunk = static_cast<int>(chunks.size());
+        m->batch_chunk = static_cast<int>(index);
         m->batch_slot = static_cast<int>(c.members.size());
         c.members.push_back(m);
     }
     c.vertex_base.resize(c.members.size());
     c.vertex_room.resize(c.members.size());
     c.copied_version.resize(c.members.size());
+}
+
+// A chunk for `models` (batchable, none in a chunk yet), its buffers laid out
+// for their rooms.
+BatchChunk make_chunk(std::span<Model* const> models, std::vector<BatchChunk>& chunks) {
+    BatchChunk c;
+    join(c, chunks.size(), models);
     glGenVertexArrays(1, &c.vao);
     glBindVertexArray(c.vao);
     GLuint buffers[4];
@@ -108,21 +115,12 @@ void form_chunks(Batches& b, const std::vector<Model*>& drawn) {
     if (!fresh.empty() && !b.chunks.empty() && b.chunks.back().members.size() < per_chunk) {
         BatchChunk& last = b.chunks.back();
         first = std::min(fresh.size(), per_chunk - last.members.size());
-        for (size_t i = 0; i < first; ++i) {
-            fresh[i]->batch_chunk = static_cast<int>(b.chunks.size() - 1);
-            fresh[i]->batch_slot = static_cast<int>(last.members.size());
-            last.members.push_back(fresh[i]);
-        }
-        last.vertex_base.resize(last.members.size());
-        last.vertex_room.resize(last.members.size());
-        last.copied_version.resize(last.members.size());
+        join(last, b.chunks.size() - 1, std::span(fresh).first(first));
         lay_out(last);
     }
     for (; first < fresh.size(); first += per_chunk) {
         const size_t n = std::min(fresh.size() - first, per_chunk);
-        std::vector<Model*> members(fresh.begin() + static_cast<std::ptrdiff_t>(first),
-                                    fresh.begin() + static_cast<std::ptrdiff_t>(first + n));
-        b.chunks.push_back(make_chunk(members, b.chunks));
+        b.chunks.push_back(make_chunk(std::span(fresh).subspan(first, n), b.chunks));
     }
 }
 
