@@ -6,6 +6,7 @@
 //   against each other is the rule of 3D Slicer's "Joint smoothing" (one width
 //   for all); here each label's score has its own width.
 #include <algorithm>
+#include <cassert>
 #include <climits>
 #include <cmath>
 #include <limits>
@@ -92,6 +93,21 @@ std::vector<float> blurred(const LabelVolume& vol, const Box& b, const double si
     std::vector<float> field(b.count(), 0.0f);
     for_box(vol, b, [&](size_t n, int32_t l) { field[n] = pick(l) ? 1.0f : 0.0f; });
     gaussian_blur_3d(field, b.size, sigma);
+    return field;
+}
+
+// The background blur (blur_background) over a label's box, which lies inside it.
+std::vector<float> cropped(const BackgroundBlur& bg, const Box& b) {
+    std::vector<float> field(b.count());
+    float* out = field.data();
+    for (size_t z = 0; z < b.size[2]; ++z)
+        for (size_t y = 0; y < b.size[1]; ++y, out += b.size[0]) {
+            const size_t at[3] = {size_t(b.lo[0] - bg.lo[0]), size_t(b.lo[1] - bg.lo[1] + long(y)),
+                                  size_t(b.lo[2] - bg.lo[2] + long(z))};
+            assert(at[0] + b.size[0] <= bg.size[0] && at[1] < bg.size[1] && at[2] < bg.size[2]);
+            const float* row = bg.field.data() + (at[2] * bg.size[1] + at[1]) * bg.size[0] + at[0];
+            std::copy(row, row + b.size[0], out);
+        }
     return field;
 }
 
@@ -302,6 +318,16 @@ float thin_gain(const std::vector<float>& s, const std::vector<float>& others, s
 
 }  // namespace
 
+BackgroundBlur blur_background(const LabelVolume& vol, const Extent& labelled, double s) {
+    double sigma[3];
+    axis_sigmas(vol, s, 0, sigma);
+    const Box b = label_box(labelled, sigma);
+    BackgroundBlur bg;
+    for (int d = 0; d < 3; ++d) bg.lo[d] = b.lo[d], bg.size[d] = b.size[d];
+    bg.field = blurred(vol, b, sigma, [](int32_t l) { return l == 0; });
+    return bg;
+}
+
 // Pass 1 of --label-smooth, one label: blurred by the full width, the level
 // of f + c * bg traced (final unless a thin neighbour turns up, see
 // extract_labels). Returns the smoothing level the label needs: 0 when the
@@ -310,14 +336,14 @@ float thin_gain(const std::vector<float>& s, const std::vector<float>& others, s
 // it its voxel count), else the last. Pieces under 20 voxels are left out
 // (specks the full blur removes).
 ThinLabel extract_label_smoothed(const LabelVolume& vol, const SliceFrame& fr, int32_t label, const Extent& e,
-                                 const ImportOptions& o, LabelResult& out) {
+                                 const ImportOptions& o, const BackgroundBlur& bg, LabelResult& out) {
     out.label = label;
     double sigma[3];
     axis_sigmas(vol, o.label_smooth, 0, sigma);
     LabelFields lf;
     lf.box = label_box(e, sigma);
     lf.f = blurred(vol, lf.box, sigma, [&](int32_t l) { return l == label; });
-    lf.bg = blurred(vol, lf.box, sigma, [](int32_t l) { return l == 0; });
+    lf.bg = cropped(bg, lf.box);
     lf.c = background_weight(lf.f, lf.bg, nullptr, e.voxels);
     std::vector<uint8_t> own(lf.box.count());
     for_box(vol, lf.box, [&](size_t n, int32_t l) { own[n] = l == label; });
@@ -433,7 +459,7 @@ Box sub_box(const Box& b, const long lo[3], const long hi[3], const long pad[3])
 // are taken over the thin labels' own box within its box.
 void extract_label_beside_thin(const LabelVolume& vol, const SliceFrame& fr, int32_t label, const Extent& e,
                                const ImportOptions& o, const ThinLabel& own, const std::map<int32_t, ThinLabel>& thin,
-                               LabelResult& out) {
+                               const BackgroundBlur& bg, LabelResult& out) {
     double full[3];
     axis_sigmas(vol, o.label_smooth, 0, full);
     const Box b = label_box(e, full);
@@ -469,7 +495,7 @@ void extract_label_beside_thin(const LabelVolume& vol, const SliceFrame& fr, int
     LabelFields lf;
     lf.box = sub_box(b, slab_lo, slab_hi, pad);
     lf.f = blurred(vol, lf.box, full, [&](int32_t l) { return l == label; });
-    lf.bg = blurred(vol, lf.box, full, [](int32_t l) { return l == 0; });
+    lf.bg = cropped(bg, lf.box);
     lf.c = own.c;
     lf.margin.assign(lf.box.count(), std::numeric_limits<float>::max());
     for (int y = 1; y < kSmoothLevels; ++y) {
@@ -512,11 +538,11 @@ void extract_label_beside_thin(const LabelVolume& vol, const SliceFrame& fr, int
 
 void extract_label_among_thin(const LabelVolume& vol, const SliceFrame& fr, int32_t label, const Extent& e,
                               const ImportOptions& o, const ThinLabel& own, const std::map<int32_t, ThinLabel>& thin,
-                              LabelResult& out) {
+                              const BackgroundBlur& bg, LabelResult& out) {
     if (own.level > 0)
         extract_thin_label(vol, fr, label, e, o, own, thin, out);
     else
-        extract_label_beside_thin(vol, fr, label, e, o, own, thin, out);
+        extract_label_beside_thin(vol, fr, label, e, o, own, thin, bg, out);
 }
 
 // Whether the label's working box holds a voxel of a thin label other than it.
