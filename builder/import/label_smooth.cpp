@@ -280,22 +280,51 @@ void trace_label(const LabelVolume& vol, const SliceFrame& fr, const LabelFields
 // (the traced contours' area), in voxels: each voxel counts by how far its
 // centre is inside along the in-plane gradient of the margin m = g * s -
 // others, 0.5 + m / |grad m| clamped to [0, 1] (a line through a pixel splits
-// it so), so the boundary's place between voxel centres counts.
-double inside_volume(float g, const std::vector<float>& s, const std::vector<float>& others, const size_t size[3],
-                     int slice_axis) {
-    const size_t sx = size[0], sxy = size[0] * size[1];
+// it so), so the boundary's place between voxel centres counts. The terms
+// that do not depend on g are taken once (InsideTerms) for the gain's search.
+struct InsideTerms {
+    // Per voxel with s > 0, in index order: s, others, and along the two
+    // in-plane axes (in axis order) the differences of s and of others
+    // across the voxel and the distance they span (0: the box is one voxel
+    // wide there).
+    std::vector<float> s, others, ds[2], dothers[2], span[2];
+};
+
+InsideTerms inside_terms(const std::vector<float>& s, const std::vector<float>& others, const size_t size[3],
+                         int slice_axis) {
+    InsideTerms t;
+    const size_t step[3] = {1, size[0], size[0] * size[1]};
+    int axes[2], na = 0;
+    for (int d = 0; d < 3; ++d)
+        if (d != slice_axis) axes[na++] = d;
+    size_t i = 0, at[3];
+    for (at[2] = 0; at[2] < size[2]; ++at[2])
+        for (at[1] = 0; at[1] < size[1]; ++at[1])
+            for (at[0] = 0; at[0] < size[0]; ++at[0], ++i) {
+                if (s[i] == 0.0f) continue;
+                t.s.push_back(s[i]);
+                t.others.push_back(others[i]);
+                for (int k = 0; k < 2; ++k) {
+                    const int d = axes[k];
+                    const size_t a = at[d] > 0 ? i - step[d] : i, b = at[d] + 1 < size[d] ? i + step[d] : i;
+                    t.ds[k].push_back(s[b] - s[a]);
+                    t.dothers[k].push_back(others[b] - others[a]);
+                    t.span[k].push_back(float((b - a) / step[d]));
+                }
+            }
+    return t;
+}
+
+double inside_volume(float g, const InsideTerms& t) {
     double volume = 0.0;
-    for (size_t i = 0; i < s.size(); ++i) {
-        const float m = g * s[i] - others[i];
-        if (s[i] == 0.0f) continue;
-        const size_t x = i % sx, y = (i / sx) % size[1], z = i / sxy;
-        auto d = [&](bool lo, bool hi, size_t step) {
-            const size_t a = lo ? i - step : i, b = hi ? i + step : i;
-            return b == a ? 0.0f : (g * (s[b] - s[a]) - (others[b] - others[a])) / float((b - a) / step);
-        };
-        float gx = d(x > 0, x + 1 < sx, 1), gy = d(y > 0, y + 1 < size[1], sx), gz = d(z > 0, z + 1 < size[2], sxy);
-        (slice_axis == 0 ? gx : slice_axis == 1 ? gy : gz) = 0.0f;
-        const float grad = std::sqrt(gx * gx + gy * gy + gz * gz);
+    for (size_t j = 0; j < t.s.size(); ++j) {
+        const float m = g * t.s[j] - t.others[j];
+        float grad2 = 0.0f;
+        for (int k = 0; k < 2; ++k) {
+            const float d = t.span[k][j] == 0.0f ? 0.0f : (g * t.ds[k][j] - t.dothers[k][j]) / t.span[k][j];
+            grad2 += d * d;
+        }
+        const float grad = std::sqrt(grad2);
         volume += grad > 0.0f ? std::clamp(0.5f + m / grad, 0.0f, 1.0f) : (m > 0.0f ? 1.0f : 0.0f);
     }
     return volume;
@@ -306,12 +335,13 @@ float thin_gain(const std::vector<float>& s, const std::vector<float>& others, s
                 int slice_axis) {
     constexpr float kMostGain = 2.0f;
     const double target = static_cast<double>(voxels);
-    if (inside_volume(1.0f, s, others, size, slice_axis) >= target) return 1.0f;
-    if (inside_volume(kMostGain, s, others, size, slice_axis) <= target) return kMostGain;
+    const InsideTerms terms = inside_terms(s, others, size, slice_axis);
+    if (inside_volume(1.0f, terms) >= target) return 1.0f;
+    if (inside_volume(kMostGain, terms) <= target) return kMostGain;
     float lo = 1.0f, hi = kMostGain;
     for (int step = 0; step < 12; ++step) {
         const float mid = 0.5f * (lo + hi);
-        (inside_volume(mid, s, others, size, slice_axis) < target ? lo : hi) = mid;
+        (inside_volume(mid, terms) < target ? lo : hi) = mid;
     }
     return hi;
 }
