@@ -61,8 +61,15 @@ void for_box(const LabelVolume& vol, const Box& b, Fn&& fn) {
         for (size_t y = 0; y < b.size[1]; ++y, n += b.size[0]) {
             const long j = b.lo[1] + long(y), k = b.lo[2] + long(z);
             const bool in_volume = j >= 0 && k >= 0 && j < long(vol.dim[1]) && k < long(vol.dim[2]);
-            const int32_t* row = in_volume ? &vol.labels[vol.index(0, size_t(j), size_t(k))] + b.lo[0] : nullptr;
-            for (long x = 0; x < long(b.size[0]); ++x) fn(n + size_t(x), in_volume && x >= x0 && x < x1 ? row[x] : 0);
+            // Three runs per row (before, inside and after the volume's x
+            // range): no test per voxel.
+            const long from = in_volume ? x0 : long(b.size[0]), to = in_volume ? x1 : long(b.size[0]);
+            for (long x = 0; x < from; ++x) fn(n + size_t(x), 0);
+            if (from < to) {
+                const int32_t* row = &vol.labels[vol.index(0, size_t(j), size_t(k))] + b.lo[0];
+                for (long x = from; x < to; ++x) fn(n + size_t(x), row[x]);
+            }
+            for (long x = to; x < long(b.size[0]); ++x) fn(n + size_t(x), 0);
         }
     }
 }
