@@ -27,6 +27,8 @@ std::vector<float> kernel(double sigma, size_t radius) {
 }
 
 // Phase 1: along x. The kernel is symmetric: pairs of taps share a weight.
+// Each tap is added to the whole line before the next (the same sums, in the
+// same order, per value), so the inner loop runs over contiguous values.
 void blur_x(std::span<float> field, const size_t size[3], const std::vector<float>& k, std::vector<float>& line) {
     const size_t r = k.size() / 2, n = size[0];
     line.assign(n + 2 * r, 0.0f);
@@ -34,41 +36,48 @@ void blur_x(std::span<float> field, const size_t size[3], const std::vector<floa
         float* p = field.data() + row * n;
         if (std::all_of(p, p + n, [](float v) { return v == 0.0f; })) continue;  // a zero line stays zero
         std::copy(p, p + n, line.begin() + static_cast<long>(r));
-        for (size_t t = 0; t < n; ++t) {
-            const float* c = line.data() + r + t;
-            float s = k[r] * c[0];
-            for (long q = 1; q <= long(r); ++q) s += k[r + size_t(q)] * (c[-q] + c[q]);
-            p[t] = s;
+        const float* c = line.data() + r;
+        for (size_t t = 0; t < n; ++t) p[t] = k[r] * c[t];
+        for (size_t q = 1; q <= r; ++q) {
+            const float w = k[r + q];
+            const float *before = c - q, *after = c + q;
+            for (size_t t = 0; t < n; ++t) p[t] += w * (before[t] + after[t]);
         }
     }
 }
 
 // Phase 2: along y or z. `blocks` blocks of `n` rows of `len` values, rows
 // contiguous within a block: each output row is the weighted sum of the input
-// rows within the radius (zero rows skipped).
+// rows within the radius (zero rows skipped). Rows are taken in spans of at
+// most kSpan values, so the copy stays small (a z pass's rows are whole planes).
 void blur_rows(std::span<float> field, size_t blocks, size_t n, size_t len, const std::vector<float>& k,
                std::vector<float>& copy, std::vector<uint8_t>& nonzero) {
+    constexpr size_t kSpan = 4096;
     const long r = static_cast<long>(k.size() / 2);
-    copy.resize(n * len);
+    const size_t span = std::min(len, kSpan);
+    copy.resize(n * span);
     nonzero.resize(n);
     for (size_t b = 0; b < blocks; ++b) {
-        float* block = field.data() + b * n * len;
-        bool any = false;
-        for (size_t y = 0; y < n; ++y) {
-            const float* row = block + y * len;
-            nonzero[y] = std::any_of(row, row + len, [](float v) { return v != 0.0f; });
-            any |= nonzero[y] != 0;
-        }
-        if (!any) continue;
-        std::copy(block, block + n * len, copy.begin());
-        for (long y = 0; y < long(n); ++y) {
-            float* out = block + y * long(len);
-            std::fill(out, out + len, 0.0f);
-            for (long q = std::max(-r, -y); q <= r && y + q < long(n); ++q) {
-                if (!nonzero[size_t(y + q)]) continue;
-                const float w = k[size_t(q + r)];
-                const float* in = copy.data() + (y + q) * long(len);
-                for (size_t i = 0; i < len; ++i) out[i] += w * in[i];
+        for (size_t from = 0; from < len; from += span) {
+            const size_t m = std::min(span, len - from);
+            float* block = field.data() + b * n * len + from;
+            bool any = false;
+            for (size_t y = 0; y < n; ++y) {
+                const float* row = block + y * len;
+                nonzero[y] = std::any_of(row, row + m, [](float v) { return v != 0.0f; });
+                any |= nonzero[y] != 0;
+            }
+            if (!any) continue;
+            for (size_t y = 0; y < n; ++y) std::copy(block + y * len, block + y * len + m, copy.begin() + long(y * m));
+            for (long y = 0; y < long(n); ++y) {
+                float* out = block + y * long(len);
+                std::fill(out, out + m, 0.0f);
+                for (long q = std::max(-r, -y); q <= r && y + q < long(n); ++q) {
+                    if (!nonzero[size_t(y + q)]) continue;
+                    const float w = k[size_t(q + r)];
+                    const float* in = copy.data() + (y + q) * long(m);
+                    for (size_t i = 0; i < m; ++i) out[i] += w * in[i];
+                }
             }
         }
     }

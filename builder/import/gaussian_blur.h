@@ -11,7 +11,8 @@
 //   constant and the sum of the blurred fields of disjoint indicators stays
 //   at most 1 everywhere. Values beyond the volume count as 0: pad the volume
 //   by the radius to blur without losing mass at its edges.
-// - An axis with sigma <= 0 is left as it is. Scratch: a copy of the field.
+// - An axis with sigma <= 0 is left as it is. Scratch: a line along x and
+//   up to 4096 values of each line along y or z (not a copy of the field).
 //   Sums are in float (rounding ~1e-7 of the values).
 #include <cstddef>
 #include <span>

@@ -6,6 +6,7 @@
 //   against each other is the rule of 3D Slicer's "Joint smoothing" (one width
 //   for all); here each label's score has its own width.
 #include <algorithm>
+#include <cassert>
 #include <climits>
 #include <cmath>
 #include <limits>
@@ -60,8 +61,15 @@ void for_box(const LabelVolume& vol, const Box& b, Fn&& fn) {
         for (size_t y = 0; y < b.size[1]; ++y, n += b.size[0]) {
             const long j = b.lo[1] + long(y), k = b.lo[2] + long(z);
             const bool in_volume = j >= 0 && k >= 0 && j < long(vol.dim[1]) && k < long(vol.dim[2]);
-            const int32_t* row = in_volume ? &vol.labels[vol.index(0, size_t(j), size_t(k))] + b.lo[0] : nullptr;
-            for (long x = 0; x < long(b.size[0]); ++x) fn(n + size_t(x), in_volume && x >= x0 && x < x1 ? row[x] : 0);
+            // Three runs per row (before, inside and after the volume's x
+            // range): no test per voxel.
+            const long from = in_volume ? x0 : long(b.size[0]), to = in_volume ? x1 : long(b.size[0]);
+            for (long x = 0; x < from; ++x) fn(n + size_t(x), 0);
+            if (from < to) {
+                const int32_t* row = &vol.labels[vol.index(0, size_t(j), size_t(k))] + b.lo[0];
+                for (long x = from; x < to; ++x) fn(n + size_t(x), row[x]);
+            }
+            for (long x = to; x < long(b.size[0]); ++x) fn(n + size_t(x), 0);
         }
     }
 }
@@ -92,6 +100,21 @@ std::vector<float> blurred(const LabelVolume& vol, const Box& b, const double si
     std::vector<float> field(b.count(), 0.0f);
     for_box(vol, b, [&](size_t n, int32_t l) { field[n] = pick(l) ? 1.0f : 0.0f; });
     gaussian_blur_3d(field, b.size, sigma);
+    return field;
+}
+
+// The background blur (blur_background) over a label's box, which lies inside it.
+std::vector<float> cropped(const BackgroundBlur& bg, const Box& b) {
+    std::vector<float> field(b.count());
+    float* out = field.data();
+    for (size_t z = 0; z < b.size[2]; ++z)
+        for (size_t y = 0; y < b.size[1]; ++y, out += b.size[0]) {
+            const size_t at[3] = {size_t(b.lo[0] - bg.lo[0]), size_t(b.lo[1] - bg.lo[1] + long(y)),
+                                  size_t(b.lo[2] - bg.lo[2] + long(z))};
+            assert(at[0] + b.size[0] <= bg.size[0] && at[1] < bg.size[1] && at[2] < bg.size[2]);
+            const float* row = bg.field.data() + (at[2] * bg.size[1] + at[1]) * bg.size[0] + at[0];
+            std::copy(row, row + b.size[0], out);
+        }
     return field;
 }
 
@@ -264,22 +287,51 @@ void trace_label(const LabelVolume& vol, const SliceFrame& fr, const LabelFields
 // (the traced contours' area), in voxels: each voxel counts by how far its
 // centre is inside along the in-plane gradient of the margin m = g * s -
 // others, 0.5 + m / |grad m| clamped to [0, 1] (a line through a pixel splits
-// it so), so the boundary's place between voxel centres counts.
-double inside_volume(float g, const std::vector<float>& s, const std::vector<float>& others, const size_t size[3],
-                     int slice_axis) {
-    const size_t sx = size[0], sxy = size[0] * size[1];
+// it so), so the boundary's place between voxel centres counts. The terms
+// that do not depend on g are taken once (InsideTerms) for the gain's search.
+struct InsideTerms {
+    // Per voxel with s > 0, in index order: s, others, and along the two
+    // in-plane axes (in axis order) the differences of s and of others
+    // across the voxel and the distance they span (0: the box is one voxel
+    // wide there).
+    std::vector<float> s, others, ds[2], dothers[2], span[2];
+};
+
+InsideTerms inside_terms(const std::vector<float>& s, const std::vector<float>& others, const size_t size[3],
+                         int slice_axis) {
+    InsideTerms t;
+    const size_t step[3] = {1, size[0], size[0] * size[1]};
+    int axes[2], na = 0;
+    for (int d = 0; d < 3; ++d)
+        if (d != slice_axis) axes[na++] = d;
+    size_t i = 0, at[3];
+    for (at[2] = 0; at[2] < size[2]; ++at[2])
+        for (at[1] = 0; at[1] < size[1]; ++at[1])
+            for (at[0] = 0; at[0] < size[0]; ++at[0], ++i) {
+                if (s[i] == 0.0f) continue;
+                t.s.push_back(s[i]);
+                t.others.push_back(others[i]);
+                for (int k = 0; k < 2; ++k) {
+                    const int d = axes[k];
+                    const size_t a = at[d] > 0 ? i - step[d] : i, b = at[d] + 1 < size[d] ? i + step[d] : i;
+                    t.ds[k].push_back(s[b] - s[a]);
+                    t.dothers[k].push_back(others[b] - others[a]);
+                    t.span[k].push_back(float((b - a) / step[d]));
+                }
+            }
+    return t;
+}
+
+double inside_volume(float g, const InsideTerms& t) {
     double volume = 0.0;
-    for (size_t i = 0; i < s.size(); ++i) {
-        const float m = g * s[i] - others[i];
-        if (s[i] == 0.0f) continue;
-        const size_t x = i % sx, y = (i / sx) % size[1], z = i / sxy;
-        auto d = [&](bool lo, bool hi, size_t step) {
-            const size_t a = lo ? i - step : i, b = hi ? i + step : i;
-            return b == a ? 0.0f : (g * (s[b] - s[a]) - (others[b] - others[a])) / float((b - a) / step);
-        };
-        float gx = d(x > 0, x + 1 < sx, 1), gy = d(y > 0, y + 1 < size[1], sx), gz = d(z > 0, z + 1 < size[2], sxy);
-        (slice_axis == 0 ? gx : slice_axis == 1 ? gy : gz) = 0.0f;
-        const float grad = std::sqrt(gx * gx + gy * gy + gz * gz);
+    for (size_t j = 0; j < t.s.size(); ++j) {
+        const float m = g * t.s[j] - t.others[j];
+        float grad2 = 0.0f;
+        for (int k = 0; k < 2; ++k) {
+            const float d = t.span[k][j] == 0.0f ? 0.0f : (g * t.ds[k][j] - t.dothers[k][j]) / t.span[k][j];
+            grad2 += d * d;
+        }
+        const float grad = std::sqrt(grad2);
         volume += grad > 0.0f ? std::clamp(0.5f + m / grad, 0.0f, 1.0f) : (m > 0.0f ? 1.0f : 0.0f);
     }
     return volume;
@@ -290,17 +342,28 @@ float thin_gain(const std::vector<float>& s, const std::vector<float>& others, s
                 int slice_axis) {
     constexpr float kMostGain = 2.0f;
     const double target = static_cast<double>(voxels);
-    if (inside_volume(1.0f, s, others, size, slice_axis) >= target) return 1.0f;
-    if (inside_volume(kMostGain, s, others, size, slice_axis) <= target) return kMostGain;
+    const InsideTerms terms = inside_terms(s, others, size, slice_axis);
+    if (inside_volume(1.0f, terms) >= target) return 1.0f;
+    if (inside_volume(kMostGain, terms) <= target) return kMostGain;
     float lo = 1.0f, hi = kMostGain;
     for (int step = 0; step < 12; ++step) {
         const float mid = 0.5f * (lo + hi);
-        (inside_volume(mid, s, others, size, slice_axis) < target ? lo : hi) = mid;
+        (inside_volume(mid, terms) < target ? lo : hi) = mid;
     }
     return hi;
 }
 
 }  // namespace
+
+BackgroundBlur blur_background(const LabelVolume& vol, const Extent& labelled, double s) {
+    double sigma[3];
+    axis_sigmas(vol, s, 0, sigma);
+    const Box b = label_box(labelled, sigma);
+    BackgroundBlur bg;
+    for (int d = 0; d < 3; ++d) bg.lo[d] = b.lo[d], bg.size[d] = b.size[d];
+    bg.field = blurred(vol, b, sigma, [](int32_t l) { return l == 0; });
+    return bg;
+}
 
 // Pass 1 of --label-smooth, one label: blurred by the full width, the level
 // of f + c * bg traced (final unless a thin neighbour turns up, see
@@ -310,14 +373,14 @@ float thin_gain(const std::vector<float>& s, const std::vector<float>& others, s
 // it its voxel count), else the last. Pieces under 20 voxels are left out
 // (specks the full blur removes).
 ThinLabel extract_label_smoothed(const LabelVolume& vol, const SliceFrame& fr, int32_t label, const Extent& e,
-                                 const ImportOptions& o, LabelResult& out) {
+                                 const ImportOptions& o, const BackgroundBlur& bg, LabelResult& out) {
     out.label = label;
     double sigma[3];
     axis_sigmas(vol, o.label_smooth, 0, sigma);
     LabelFields lf;
     lf.box = label_box(e, sigma);
     lf.f = blurred(vol, lf.box, sigma, [&](int32_t l) { return l == label; });
-    lf.bg = blurred(vol, lf.box, sigma, [](int32_t l) { return l == 0; });
+    lf.bg = cropped(bg, lf.box);
     lf.c = background_weight(lf.f, lf.bg, nullptr, e.voxels);
     std::vector<uint8_t> own(lf.box.count());
     for_box(vol, lf.box, [&](size_t n, int32_t l) { own[n] = l == label; });
@@ -433,7 +496,7 @@ Box sub_box(const Box& b, const long lo[3], const long hi[3], const long pad[3])
 // are taken over the thin labels' own box within its box.
 void extract_label_beside_thin(const LabelVolume& vol, const SliceFrame& fr, int32_t label, const Extent& e,
                                const ImportOptions& o, const ThinLabel& own, const std::map<int32_t, ThinLabel>& thin,
-                               LabelResult& out) {
+                               const BackgroundBlur& bg, LabelResult& out) {
     double full[3];
     axis_sigmas(vol, o.label_smooth, 0, full);
     const Box b = label_box(e, full);
@@ -469,7 +532,7 @@ void extract_label_beside_thin(const LabelVolume& vol, const SliceFrame& fr, int
     LabelFields lf;
     lf.box = sub_box(b, slab_lo, slab_hi, pad);
     lf.f = blurred(vol, lf.box, full, [&](int32_t l) { return l == label; });
-    lf.bg = blurred(vol, lf.box, full, [](int32_t l) { return l == 0; });
+    lf.bg = cropped(bg, lf.box);
     lf.c = own.c;
     lf.margin.assign(lf.box.count(), std::numeric_limits<float>::max());
     for (int y = 1; y < kSmoothLevels; ++y) {
@@ -512,11 +575,11 @@ void extract_label_beside_thin(const LabelVolume& vol, const SliceFrame& fr, int
 
 void extract_label_among_thin(const LabelVolume& vol, const SliceFrame& fr, int32_t label, const Extent& e,
                               const ImportOptions& o, const ThinLabel& own, const std::map<int32_t, ThinLabel>& thin,
-                              LabelResult& out) {
+                              const BackgroundBlur& bg, LabelResult& out) {
     if (own.level > 0)
         extract_thin_label(vol, fr, label, e, o, own, thin, out);
     else
-        extract_label_beside_thin(vol, fr, label, e, o, own, thin, out);
+        extract_label_beside_thin(vol, fr, label, e, o, own, thin, bg, out);
 }
 
 // Whether the label's working box holds a voxel of a thin label other than it.

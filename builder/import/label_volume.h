@@ -82,12 +82,27 @@ struct ThinLabel {
     float c = 0.0f;
 };
 
+// The background's indicator (label 0, and 1 beyond the volume) blurred by
+// the full width once for all labels: over `labelled` (the union of the
+// labels' extents) padded by twice the blur's radius on each axis, so every
+// label's working box lies inside it.
+// Wherever a label's field can reach its level (within one radius of the
+// label) the taps of this blur and of the box's own blur are the same voxels,
+// summed in the same order: the values there are the same floats. Memory:
+// one float per voxel of that padded box.
+struct BackgroundBlur {
+    long lo[3] = {0, 0, 0};  // volume index of the field's voxel (0, 0, 0)
+    size_t size[3] = {0, 0, 0};
+    std::vector<float> field;  // x fastest
+};
+BackgroundBlur blur_background(const LabelVolume& vol, const Extent& labelled, double s);
+
 // Pass 1, one label: traced on its blur by the full width (final unless a
 // thin label is near). Returns how the label is to be smoothed: level 0 when
 // the full width keeps at least 90 % of its voxel centres and does not split
 // it, else the first narrower level that would.
 ThinLabel extract_label_smoothed(const LabelVolume& vol, const SliceFrame& fr, int32_t label, const Extent& e,
-                                 const ImportOptions& o, LabelResult& out);
+                                 const ImportOptions& o, const BackgroundBlur& bg, LabelResult& out);
 
 // Pass 2, one label that is thin (`own.level > 0`) or has a thin label within
 // its working box, `own` as pass 1 returned it and `out` as pass 1 traced it:
@@ -96,7 +111,7 @@ ThinLabel extract_label_smoothed(const LabelVolume& vol, const SliceFrame& fr, i
 // only those within reach of a thin label's blur.
 void extract_label_among_thin(const LabelVolume& vol, const SliceFrame& fr, int32_t label, const Extent& e,
                               const ImportOptions& o, const ThinLabel& own, const std::map<int32_t, ThinLabel>& thin,
-                              LabelResult& out);
+                              const BackgroundBlur& bg, LabelResult& out);
 
 // Whether a thin label other than `label` has a voxel within its working box.
 bool box_meets_thin(const LabelVolume& vol, const Extent& e, int32_t label, const std::map<int32_t, ThinLabel>& thin,

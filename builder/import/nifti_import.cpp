@@ -456,11 +456,21 @@ std::vector<LabelResult> extract_labels(const LabelVolume& vol, const SliceFrame
     auto progress = [&](size_t done) {
         if (options.progress) options.progress(done, labels.size());
     };
+    // The background's full-width blur is the same for every label: made once.
+    Extent labelled;
+    for (int32_t label : labels) {
+        const Extent& e = extents.at(label);
+        for (int d = 0; d < 3; ++d) labelled.lo[d] = std::min(labelled.lo[d], e.lo[d]);
+        for (int d = 0; d < 3; ++d) labelled.hi[d] = std::max(labelled.hi[d], e.hi[d]);
+    }
+    const BackgroundBlur bg =
+        smooth && !labels.empty() ? blur_background(vol, labelled, options.label_smooth) : BackgroundBlur{};
     run_parallel(
         labels.size(), options.jobs,
         [&](size_t i) {
             if (smooth)
-                levels[i] = extract_label_smoothed(vol, frame, labels[i], extents.at(labels[i]), options, results[i]);
+                levels[i] =
+                    extract_label_smoothed(vol, frame, labels[i], extents.at(labels[i]), options, bg, results[i]);
             else
                 extract_label(vol, frame, labels[i], extents.at(labels[i]), options, results[i]);
         },
@@ -478,7 +488,7 @@ std::vector<LabelResult> extract_labels(const LabelVolume& vol, const SliceFrame
                  [&](size_t a) {
                      const size_t i = again[a];
                      extract_label_among_thin(vol, frame, labels[i], extents.at(labels[i]), options, levels[i], thin,
-                                              results[i]);
+                                              bg, results[i]);
                  },
                  {});
     return results;

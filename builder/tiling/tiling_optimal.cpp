@@ -91,12 +91,37 @@ struct Grid {
 
     // Area of advancing A from cell (r, c): triangle (A_r, A_r+1, B_c); of
     // advancing B: triangle (B_c, B_c+1, A_r).
-    double area_a(uint32_t r, uint32_t c) const {
+    double area_a_of(uint32_t r, uint32_t c) const {
         return 0.5 * glm::length(glm::cross(ae[r + 1], bp[c + 1] - ap[r + 1]));
     }
-    double area_b(uint32_t r, uint32_t c) const {
+    double area_b_of(uint32_t r, uint32_t c) const {
         return 0.5 * glm::length(glm::cross(be[c + 1], ap[r + 1] - bp[c + 1]));
     }
+    // The same areas tabulated once per band when it has at most kTableCells
+    // cells (2 doubles each): the divide and conquer visits a cell about
+    // log |B| times, and the square roots were most of its time. Column c +
+    // |B| holds the points of column c, and row |A| those of row 0, so the
+    // table is |A| x |B| and gives the very same values.
+    static constexpr size_t kTableCells = size_t(1) << 18;
+    std::vector<double> table_a, table_b;
+    void tabulate() {
+        if (size_t(rows) * cols > kTableCells) return;
+        table_a.resize(size_t(rows) * cols);
+        table_b.resize(size_t(rows) * cols);
+        for (uint32_t r = 0; r < rows; ++r)
+            for (uint32_t c = 0; c < cols; ++c) {
+                table_a[size_t(r) * cols + c] = area_a_of(r, c);
+                table_b[size_t(r) * cols + c] = area_b_of(r, c);
+            }
+    }
+    size_t cell_of(uint32_t r, uint32_t c) const {
+        r -= r >= rows ? rows : 0;
+        c -= c >= cols ? cols : 0;
+        c -= c >= cols ? cols : 0;
+        return size_t(r) * cols + c;
+    }
+    double area_a(uint32_t r, uint32_t c) const { return table_a.empty() ? area_a_of(r, c) : table_a[cell_of(r, c)]; }
+    double area_b(uint32_t r, uint32_t c) const { return table_b.empty() ? area_b_of(r, c) : table_b[cell_of(r, c)]; }
     // Fold between A edge ea and B edge eb (either may be -1 as uint32_t: wrapped).
     uint32_t fold(uint32_t ea, uint32_t eb) const {
         return glm::dot(ad[ea + 1u], bd[eb + 1u]) < tiling_detail::kFoldCosine ? 1u : 0u;
@@ -238,6 +263,7 @@ void tile_optimal(std::span<const Vec3> lower, std::span<const Vec3> upper, std:
     // Every triangle's area is below extent^2 / 2: the weight exceeds any band's area.
     grid.fold_weight = charge_corners ? double(rows + cols) * box.extent() * box.extent() + 1.0 : 0.0;
 
+    grid.tabulate();
     std::vector<uint32_t> lo0(rows + 1, 0), hi0(rows + 1, cols);
     Path first;
     best_path(grid, 0, lo0, hi0, first);
