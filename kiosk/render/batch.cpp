@@ -21,6 +21,10 @@ namespace {
 
 constexpr GLuint kSlot = 5;  // mesh.vert's a_slot
 constexpr int kNotBatched = -2;
+// A chunk's draw order is made again when the camera turned by more than
+// this (15 degrees): often enough to stay front to back under an orbit, seldom
+// enough that rebuilding the stream costs nothing per frame.
+constexpr float kReorderCos = 0.966f;
 
 // The batch styles, in drawing order, and their programs.
 constexpr Style kBatchStyles[] = {Style::Smooth, Style::Baseline};
@@ -148,12 +152,33 @@ bool sync_vertices(BatchChunk& c, size_t slot) {
     return true;
 }
 
+// The order the chunk's `slots` are drawn in: nearest bounding-sphere centre
+// first (ties by slot), so that the front structures fill the depth buffer
+// before the ones they hide are shaded (a software rasterizer shades only the
+// fragments that pass the early depth test); slot order is arrival order.
+std::vector<size_t> draw_order(const BatchChunk& c, const std::vector<size_t>& slots, const glm::mat4& view) {
+    std::vector<std::pair<float, size_t>> by_depth;
+    by_depth.reserve(slots.size());
+    for (size_t slot : slots) {
+        Vec3f centre;
+        float r = 0.0f;
+        world_sphere(*c.members[slot], centre, r);
+        by_depth.emplace_back(-(view * glm::vec4(centre, 1.0f)).z, slot);
+    }
+    std::sort(by_depth.begin(), by_depth.end());
+    std::vector<size_t> order;
+    order.reserve(slots.size());
+    for (const auto& [depth, slot] : by_depth) order.push_back(slot);
+    return order;
+}
+
 // The element stream of the chunk's `slots` (on screen this frame), by style:
 // each member's index prefix (or its ordered level, level_order.h) read back
-// from its element buffer, offset to the chunk's vertices. Rebuilt only when
-// the key (slot, style, index count, geometry version and element buffer of
-// each) differs from the last frame's.
-void build_stream(BatchChunk& c, const std::vector<size_t>& slots) {
+// from its element buffer, offset to the chunk's vertices, nearest member
+// first. Rebuilt only when the key (slot, style, index count, geometry version
+// and element buffer of each) differs from the last frame's, or the camera
+// turned by more than 15 degrees (kReorderCos) since the order was made.
+void build_stream(BatchChunk& c, const std::vector<size_t>& slots, const glm::mat4& view) {
     std::vector<uint64_t> key;
     key.reserve(slots.size() * 4);
     for (size_t slot : slots) {
@@ -163,13 +188,17 @@ void build_stream(BatchChunk& c, const std::vector<size_t>& slots) {
         key.push_back(m.geometry_version);
         key.push_back(drawn_element_buffer(m));
     }
-    if (key == c.stream_key) return;
+    // The camera's forward axis in world space (the view's third row, negated).
+    const Vec3f forward = -Vec3f(view[0][2], view[1][2], view[2][2]);
+    if (key == c.stream_key && glm::dot(forward, c.order_forward) >= kReorderCos) return;
     c.stream_key = std::move(key);
+    c.order_forward = forward;
+    const std::vector<size_t> order = draw_order(c, slots, view);
     std::vector<uint32_t> stream;
     for (size_t k = 0; k < std::size(kBatchStyles); ++k) {
         const Style style = kBatchStyles[k];
         c.range_first[k] = stream.size();
-        for (size_t slot : slots) {
+        for (size_t slot : order) {
             const Model& m = *c.members[slot];
             if (m.state.style != style) continue;
             const MappedBuffer<uint32_t> map(m, drawn_element_buffer(m), m.index_count);
@@ -203,7 +232,7 @@ void fill_slots(const BatchChunk& c, const Frame& f, const std::vector<size_t>& 
 
 void draw_chunk(RendererState& s, Frame& f, BatchChunk& c, const std::vector<size_t>& slots,
                 std::vector<glm::vec4>& uniforms) {
-    build_stream(c, slots);
+    build_stream(c, slots, f.view);
     fill_slots(c, f, slots, uniforms);
     for (size_t k = 0; k < std::size(kBatchStyles); ++k) {
         const Style style = kBatchStyles[k];

@@ -10,11 +10,13 @@
 // octahedral codes, both copied buffer to buffer from the model's own) and a
 // per-vertex slot number; each frame it draws one element stream per style:
 // the index prefixes (the current level of detail) of its members on screen,
-// offset to the chunk's vertices. The stream is rebuilt (read back from the
-// models' element buffers) only when its members, their styles or their
-// levels change. Each slot's model-view, normal matrix, position box and
-// colour go to mesh.vert as one uniform array (BODY_BATCH); the arithmetic is
-// the per-model path's, so a batched model draws the same pixels.
+// offset to the chunk's vertices, nearest member first (a rasterizer then
+// shades fewer hidden fragments; the order does not depend on the order the
+// models arrived in). The stream is rebuilt (read back from the models'
+// element buffers) only when its members, their styles or their levels
+// change, or the camera turned by more than 15 degrees since its order. Each slot's model-view, normal matrix, position
+// box and colour go to mesh.vert as one uniform array (BODY_BATCH); the arithmetic is the per-model path's, so a
+// batched model draws the same pixels.
 //
 // A model is batched when it has at most kMaxBatchedVertices, is opaque (not selected or faded), in `smooth`
 // or `baseline`, uploaded as position codes with normal codes, not gliding
@@ -60,6 +62,7 @@ struct BatchChunk {
     // The element stream drawn last: what it was built from (slot, style,
     // index count and geometry version per member) and each style's range in it.
     std::vector<uint64_t> stream_key;
+    Vec3f order_forward{0.0f};  // the camera's forward axis (world) when the stream's order was made
     size_t stream_entries = 0;
     size_t range_first[2] = {0, 0}, range_count[2] = {0, 0};  // smooth, baseline
 };

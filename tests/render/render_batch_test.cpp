@@ -220,6 +220,55 @@ TEST(RenderBatch, ModelsArrivingOverFramesDrawInAsFewCallsAsAtOnce) {
     EXPECT_TRUE(images[1].rgba == images[0].rgba);
 }
 
+// A chunk draws its models nearest first, whatever the order they arrived in
+// (a streamed start adds them as their files arrive): the front structures fill
+// the depth buffer before the ones behind them are shaded. Two coplanar squares
+// facing the camera, overlapping in the middle, each with a small triangle off
+// the plane (near for "front", far for "back") that moves its bounding sphere;
+// the same quantization box for both, so the squares' depths are equal bit for
+// bit and, under the depth test's LEQUAL, the one drawn last shows where they
+// overlap: "back", in the same picture whichever model came first.
+TEST(RenderBatch, NearerModelsDrawFirstWhateverOrderTheyArrived) {
+    auto make = [](float x0, float tri_x, float tri_z) {
+        Shape s;
+        s.mesh.positions = {Vec3f(x0, -1, 0),         Vec3f(x0 + 2, -1, 0),       Vec3f(x0 + 2, 1, 0),
+                            Vec3f(x0, 1, 0),          Vec3f(tri_x, -0.2f, tri_z), Vec3f(tri_x + 0.4f, -0.2f, tri_z),
+                            Vec3f(tri_x, 0.2f, tri_z)};
+        s.mesh.indices = {0, 1, 2, 0, 2, 3, 4, 5, 6};
+        s.codes.resize(s.mesh.positions.size() * 2);
+        for (size_t v = 0; v < s.mesh.positions.size(); ++v) encode(Vec3f(0, 0, 1), &s.codes[v * 2]);
+        return s;
+    };
+    const Shape front = make(-1.5f, -2.4f, 0.8f), back = make(-0.5f, 2.0f, -0.8f);
+    const Vec3f front_colour(0.9f, 0.1f, 0.1f), back_colour(0.1f, 0.2f, 0.9f);
+    const View cam = View::framing(Vec3f(0.0f), 2.6f, Vec3f(0.0f, 0.0f, 1.0f));
+    std::vector<Image> images;
+    for (bool front_first : {true, false}) {
+        RenderFixture f(160, 120);
+        REQUIRE_GL(f);
+        Renderer& r = f.renderer();
+        for (bool is_front : {front_first, !front_first}) {
+            MeshData data = (is_front ? front : back).data();
+            data.has_position_box = true;  // one box: the squares' codes decode to the same depth
+            data.position_box_min = Vec3f(-2.4f, -1.0f, -0.8f);
+            data.position_box_max = Vec3f(2.4f, 1.0f, 0.8f);
+            auto id = r.add_model(data, is_front ? "front" : "back");
+            ASSERT_TRUE(id);
+            r.state(id.value())->color = is_front ? front_colour : back_colour;
+            r.state(id.value())->style = Style::Smooth;
+            (void)f.draw(cam);  // a frame with the models arrived so far
+        }
+        images.push_back(f.draw(cam));
+        ASSERT_EQ(r.last_frame_stats().models_drawn, 2u);
+        EXPECT_EQ(r.last_frame_stats().draw_calls, 1u);  // both in one chunk
+    }
+    EXPECT_TRUE(images[0].rgba == images[1].rgba);
+    const Image& im = images[0];
+    auto blue = [&](int x) { return im.at(x, im.height / 2)[2] > im.at(x, im.height / 2)[0]; };
+    EXPECT_TRUE(blue(im.width / 2)) << "the overlap shows the model drawn last";
+    EXPECT_FALSE(blue(im.width / 2 - im.width / 8)) << "the front square left of it";
+}
+
 // A model above kMaxBatchedVertices is drawn alone: the same pixels with
 // batching on and off, and no chunk holding a second copy of its vertex codes
 // and indices (the renderer's GL bytes equal). A small model beside it still
