@@ -14,7 +14,10 @@ the child, getrusage) and wall. Prints per stack the median [min-max] of each,
 VTK's Update() alone, and the ratios of medians interpolated / VTK whole.
 
 usage: bench/time_vs_vtk.py [--bodygen BUILD/bin/bodygen] [--base OTHER/bodygen]
-                            [--reps 5] [--rings 3] [--stacks bunny-z40,...]
+                            [--reps 5] [--rings 3] [--ring-tolerance F] [--stacks bunny-z40,...]
+
+--ring-tolerance F is passed to the candidate's interpolated builds only (the
+baseline may predate the option), to time adaptive rings against uniform ones.
 """
 import argparse
 import math
@@ -70,6 +73,7 @@ def main():
     ap.add_argument("--base")
     ap.add_argument("--reps", type=int, default=5)
     ap.add_argument("--rings", type=int, default=3)
+    ap.add_argument("--ring-tolerance")
     ap.add_argument("--resolution", type=int, default=256)
     ap.add_argument("--stacks", default="bunny-z40,bunny-z100,bunny-x100,torus-z40")
     args = ap.parse_args()
@@ -77,7 +81,8 @@ def main():
     work = tempfile.mkdtemp(prefix="time_vs_vtk.")
     meshes = {"bunny": "/usr/share/glmark2/models/bunny.obj", "torus": os.path.join(work, "torus.obj")}
     write_torus(meshes["torus"])
-    print(f"{args.reps} alternated runs; CPU and wall seconds, median [min-max]; --interpolate {args.rings}")
+    print(f"{args.reps} alternated runs; CPU and wall seconds, median [min-max]; --interpolate {args.rings}"
+          + (f", ours --ring-tolerance {args.ring_tolerance}" if args.ring_tolerance else ""))
     print("| stack | VTK whole CPU | VTK whole wall | VTK Update() CPU | binary | linear CPU | linear wall |"
           " interpolated CPU | interpolated wall | interp/VTK whole: CPU, wall |")
     print("|---|---|---|---|---|---|---|---|---|---|")
@@ -100,8 +105,9 @@ def main():
                 cpu, wall, _ = timed([binary, "build", stack, "-o", os.path.join(work, label + ".obj"), "--quiet"])
                 t[label][0].append(cpu)
                 t[label][1].append(wall)
+                adaptive = ["--ring-tolerance", args.ring_tolerance] if args.ring_tolerance and label == "ours" else []
                 cpu, wall, _ = timed([binary, "build", stack, "-o", os.path.join(work, label + "-i.obj"), "--quiet",
-                                      "--interpolate", str(args.rings)])
+                                      "--interpolate", str(args.rings)] + adaptive)
                 t[label][2].append(cpu)
                 t[label][3].append(wall)
         vc, vw, vu = t["vtk"]

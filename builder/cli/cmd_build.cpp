@@ -140,6 +140,9 @@ void print_usage() {
         "  --interpolate N                    N intermediate rings per slice gap on C1 Hermite curves through\n"
         "                                     the traced contours (default 0: linear bands); every traced\n"
         "                                     point stays on the mesh\n"
+        "  --ring-tolerance F                 each curve between two slices takes the fewest of those N\n"
+        "                                     points that keep it within F x the slice gap of their\n"
+        "                                     polyline (default 0: every curve gets N)\n"
         "  --strict                           refuse contours with any problem instead of repairing them\n"
         "  --repair-tolerance D               largest distance a contour repair may move a point, in stack\n"
         "                                     units (default 0.001 x the stack's x-y extent; see bodygen check)\n"
@@ -169,9 +172,14 @@ Result<BuildOptions> build_options_from_args(const CliArgs& args) {
     auto interpolate = args.get_long("interpolate", 0);
     if (!interpolate) return interpolate.error();
     if (*interpolate < 0 || *interpolate > 64) return input_error("build: --interpolate must be between 0 and 64");
+    auto ring_tolerance = args.get_double("ring-tolerance", 0.0);
+    if (!ring_tolerance) return ring_tolerance.error();
+    if (!(*ring_tolerance >= 0.0 && *ring_tolerance <= 1.0))
+        return input_error("build: --ring-tolerance must be between 0 and 1");
     BuildOptions options;
     options.fairing.iterations = int(*smooth);
     options.interpolate = int(*interpolate);
+    options.ring_tolerance = *ring_tolerance;
     auto caps = pick<CapStyle>(
         args, "caps", {{"flat", CapStyle::Flat}, {"dome", CapStyle::Dome}, {"none", CapStyle::None}}, CapStyle::Dome);
     if (!caps) return caps.error();
@@ -212,6 +220,7 @@ void print_json(const std::string& input, const std::string& output, const Build
     j["branching"] = branching_method_name(options.branching);
     j["smooth"] = options.fairing.iterations;
     j["interpolate"] = options.interpolate;
+    j["ring_tolerance"] = options.ring_tolerance;
     j["seconds"] = seconds;
     j["repairs"] = repairs;
     nlohmann::json list = nlohmann::json::array();
@@ -247,7 +256,7 @@ void print_summary(const std::string& output, double seconds, const std::vector<
 int run_build(const Args& argv) {
     auto args = CliArgs::parse(argv,
                                {"output", "caps", "tiling", "correspondence", "branching", "jobs", "smooth",
-                                "interpolate", "repair-tolerance", "min-area",
+                                "interpolate", "ring-tolerance", "repair-tolerance", "min-area",
 #ifdef BODY_WITH_IMPORT
                                 "labels", "axis", "step", "only", "threshold", "tolerance", "label-smooth"
 #endif

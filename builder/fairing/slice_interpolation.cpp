@@ -41,13 +41,15 @@ struct Rung {
     uint32_t lo = 0, hi = 0;  // vertex on the lower slice, on the upper one
     bool band = false;        // used by a band triangle: it is split
     bool curved = true;       // every triangle using it is a band triangle
-    uint32_t first = 0;       // its `rings` points, from lo to hi
+    int count = 0;            // its points (at most `rings`)
+    uint32_t first = 0;       // its `count` points, from lo to hi
 };
 
 struct Work {
     std::span<const double> slice_z;
-    int rings = 0;
-    std::vector<int> slice;                          // per input vertex
+    int rings = 0;           // the most points a rung gets
+    double tolerance = 0.0;  // of the curve from its polyline, per unit of slice gap (0: every rung gets `rings`)
+    std::vector<int> slice;  // per input vertex
     std::unordered_map<uint64_t, uint32_t> rung_of;  // edge_key -> rung
     std::vector<Rung> rungs;
     std::vector<Vec3> straight;  // positions with every rung on its straight line
@@ -180,12 +182,31 @@ std::vector<Vec2> slopes(Work& w, std::span<const Vec3> positions, std::span<con
     return slope;
 }
 
-// Phase 3: each split rung's points, on its curve (`positions`) and on its
+// Phase 3a: each rung's point count. The Hermite curve leaves its chord by
+// at most (4/27) h (|m0'| + |m1'|) (m' = end slope - chord slope, h the gap);
+// n evenly spaced points leave about that / (n + 1)^2 between the curve and
+// their polyline. A curved rung takes the fewest n <= rings that bring this
+// under tolerance x h; a straight one none.
+void choose_counts(Work& w, std::span<const Vec3> positions, std::span<const Vec2> slope) {
+    for (Rung& r : w.rungs) {
+        r.count = r.band ? w.rings : 0;
+        if (!(w.tolerance > 0) || !r.band) continue;
+        r.count = 0;
+        if (!r.curved) continue;
+        const Vec3 a = positions[r.lo], b = positions[r.hi];
+        const Vec2 chord = (Vec2(b) - Vec2(a)) / (b.z - a.z);
+        const double leave = (4.0 / 27.0) * (glm::length(slope[r.lo] - chord) + glm::length(slope[r.hi] - chord));
+        const double n = std::ceil(std::sqrt(leave / w.tolerance)) - 1.0;
+        r.count = n <= 0 ? 0 : n >= double(w.rings) ? w.rings : int(n);
+    }
+}
+
+// Phase 3b: each split rung's points, on its curve (`positions`) and on its
 // straight line (`w.straight`).
 void place_points(Work& w, std::vector<Vec3>& positions, std::span<const Vec2> slope) {
     size_t split = 0;
-    for (const Rung& r : w.rungs) split += r.band;
-    positions.reserve(positions.size() + split * size_t(w.rings));
+    for (const Rung& r : w.rungs) split += r.band ? size_t(r.count) : 0;
+    positions.reserve(positions.size() + split);
     w.straight.reserve(positions.capacity());
     w.straight = positions;
     for (Rung& r : w.rungs) {
@@ -193,8 +214,8 @@ void place_points(Work& w, std::vector<Vec3>& positions, std::span<const Vec2> s
         r.first = uint32_t(positions.size());
         const Vec3 a = positions[r.lo], b = positions[r.hi];
         const double h = b.z - a.z;
-        for (int k = 1; k <= w.rings; ++k) {
-            const double t = double(k) / double(w.rings + 1);
+        for (int k = 1; k <= r.count; ++k) {
+            const double t = double(k) / double(r.count + 1);
             const double z = a.z + t * h;
             const double h00 = (1 + 2 * t) * (1 - t) * (1 - t), h10 = t * (1 - t) * (1 - t);
             const double h01 = t * t * (3 - 2 * t), h11 = t * t * (t - 1);
@@ -206,29 +227,42 @@ void place_points(Work& w, std::vector<Vec3>& positions, std::span<const Vec2> s
     }
 }
 
-// Point k (0 = `from`, rings + 1 = the other end) along split rung `rung` from `from`.
+// Point k (0 = `from`, count + 1 = the other end) along split rung `rung` from `from`.
 uint32_t along(const Work& w, uint32_t rung, uint32_t from, int k) {
     if (k == 0) return from;
     const Rung& r = w.rungs[rung];
-    if (k == w.rings + 1) return from == r.lo ? r.hi : r.lo;
-    return r.first + uint32_t(from == r.lo ? k - 1 : w.rings - k);
+    if (k == r.count + 1) return from == r.lo ? r.hi : r.lo;
+    return r.first + uint32_t(from == r.lo ? k - 1 : r.count - k);
 }
 
 // A band triangle (p, q on one slice, r on the other) as a strip from the
-// base (p, q) to the apex r, each quad split along its shorter diagonal.
+// base (p, q) to the apex r: the two rungs' points merged by their fraction
+// of the way to the apex, a point level with the other side's next one making
+// a quad split along its shorter diagonal (equal counts: quads only), else a
+// triangle to the lower of the two next points.
 void strip(const Work& w, uint32_t p, uint32_t q, uint32_t r, std::vector<uint32_t>& out) {
     const uint32_t pr = split_rung(w, p, r), qr = split_rung(w, q, r);
-    for (int k = 0; k <= w.rings; ++k) {
-        const uint32_t p0 = along(w, pr, p, k), q0 = along(w, qr, q, k);
-        const uint32_t p1 = along(w, pr, p, k + 1), q1 = along(w, qr, q, k + 1);
-        if (k == w.rings) {
-            out.insert(out.end(), {p0, q0, r});
-        } else if (glm::length(w.straight[p0] - w.straight[q1]) <= glm::length(w.straight[q0] - w.straight[p1])) {
-            out.insert(out.end(), {p0, q0, q1, p0, q1, p1});
+    const int a = w.rungs[pr].count, b = w.rungs[qr].count;
+    int i = 0, j = 0;  // the points reached on each side (0: the base)
+    while (i < a || j < b) {
+        const uint32_t p0 = along(w, pr, p, i), q0 = along(w, qr, q, j);
+        const uint32_t p1 = along(w, pr, p, i + 1), q1 = along(w, qr, q, j + 1);
+        const long next_p = long(i + 1) * (b + 1), next_q = long(j + 1) * (a + 1);  // (i+1)/(a+1) vs (j+1)/(b+1)
+        if (i < a && j < b && next_p == next_q) {
+            if (glm::length(w.straight[p0] - w.straight[q1]) <= glm::length(w.straight[q0] - w.straight[p1]))
+                out.insert(out.end(), {p0, q0, q1, p0, q1, p1});
+            else
+                out.insert(out.end(), {p0, q0, p1, q0, q1, p1});
+            ++i, ++j;
+        } else if (j == b || (i < a && next_p < next_q)) {
+            out.insert(out.end(), {p0, q0, p1});
+            ++i;
         } else {
-            out.insert(out.end(), {p0, q0, p1, q0, q1, p1});
+            out.insert(out.end(), {p0, q0, q1});
+            ++j;
         }
     }
+    out.insert(out.end(), {along(w, pr, p, a), along(w, qr, q, b), r});
 }
 
 // Whether `p` lies in the closed triangle (a, b, c) of normal `n` (its plane's).
@@ -248,7 +282,7 @@ void fan(const Work& w, const uint32_t* t, std::vector<uint32_t>& out) {
         poly.push_back(a);
         const uint32_t rung = split_rung(w, a, b);
         if (rung == kNoRung) continue;
-        for (int k = 1; k <= w.rings; ++k) poly.push_back(along(w, rung, a, k));
+        for (int k = 1; k <= w.rungs[rung].count; ++k) poly.push_back(along(w, rung, a, k));
     }
     const auto& P = w.straight;
     const Vec3 n = glm::cross(P[t[1]] - P[t[0]], P[t[2]] - P[t[0]]);
@@ -434,7 +468,7 @@ size_t keep_free_of_new_crossings(Work& w, std::vector<Vec3>& positions, std::sp
     std::vector<uint32_t> rung_at(positions.size() - first_new, 0);
     for (uint32_t r = 0; r < w.rungs.size(); ++r)
         if (w.rungs[r].band)
-            for (int k = 0; k < w.rings; ++k) rung_at[w.rungs[r].first + uint32_t(k) - first_new] = r;
+            for (int k = 0; k < w.rungs[r].count; ++k) rung_at[w.rungs[r].first + uint32_t(k) - first_new] = r;
     // Triangles around each rung's points (CSR).
     std::vector<uint32_t> start(w.rungs.size() + 1, 0), around;
     for (size_t i = 0; i < indices.size(); ++i)
@@ -464,7 +498,7 @@ size_t keep_free_of_new_crossings(Work& w, std::vector<Vec3>& positions, std::sp
                     Rung& r = w.rungs[rung_at[v - first_new]];
                     if (!r.curved) continue;
                     r.curved = false;
-                    for (int k = 0; k < w.rings; ++k)
+                    for (int k = 0; k < r.count; ++k)
                         positions[r.first + uint32_t(k)] = w.straight[r.first + uint32_t(k)];
                     moved.push_back(rung_at[v - first_new]);
                 }
@@ -504,17 +538,20 @@ size_t keep_free_of_new_crossings(Work& w, std::vector<Vec3>& positions, std::sp
 }  // namespace
 
 InterpolationStats interpolate_between_slices(std::vector<Vec3>& positions, std::vector<uint32_t>& indices,
-                                              std::span<const double> slice_z, int rings) {
+                                              std::span<const double> slice_z, int rings, double tolerance) {
     InterpolationStats stats;
     if (rings <= 0 || slice_z.size() < 2) return stats;
     Work w;
     w.slice_z = slice_z;
     w.rings = rings;
+    w.tolerance = tolerance;
     w.slice.resize(positions.size());
     for (size_t v = 0; v < positions.size(); ++v) w.slice[v] = slice_of(positions[v].z, slice_z);
     find_rungs(w, indices);
     const size_t first_new = positions.size();
-    place_points(w, positions, slopes(w, positions, indices));
+    const std::vector<Vec2> slope = slopes(w, positions, indices);
+    choose_counts(w, positions, slope);
+    place_points(w, positions, slope);
     std::vector<uint32_t> parent;
     const std::vector<uint32_t> input_indices = indices;
     indices = retriangulate(w, indices, parent);
@@ -522,6 +559,7 @@ InterpolationStats interpolate_between_slices(std::vector<Vec3>& positions, std:
     for (const Rung& r : w.rungs) {
         stats.rungs += r.band;
         stats.curved += r.band && r.curved;
+        stats.points += r.band ? size_t(r.count) : 0;
     }
     return stats;
 }

@@ -13,8 +13,8 @@
 //   vertices there); a band triangle has its three vertices on two adjacent
 //   slices.
 // - Each edge of a band triangle joining adjacent slices (a "rung": the
-//   tiling's point correspondence) is split into `rings` points at the heights
-//   z_s + k/(rings+1) (z_{s+1} - z_s), placed on the cubic Hermite curve whose
+//   tiling's point correspondence) is split into `count` points (below) at the
+//   heights z_s + k/(count+1) (z_{s+1} - z_s), placed on the cubic Hermite curve whose
 //   end tangents are the Catmull-Rom slopes of each end vertex (the mean of its
 //   rung partners on the slices above and below, weighted for uneven spacing;
 //   parabolic end slope at a structure's end), turned into the bands' tangent
@@ -23,8 +23,16 @@
 //   straight, so flat sides stay flat. A rung also used by a triangle that is not
 //   a band triangle (branch walls, mid-slice rings) is split on its straight
 //   line, and that triangle is re-triangulated in its own plane.
-// - Band triangles become strips of 2 x rings + 1 triangles with the original
-//   orientation; the mesh's connectivity class (closed, manifold, genus) is kept.
+// - Point counts: with `tolerance` > 0 each split rung takes the fewest
+//   points, at most `rings`, that keep the estimated distance between its
+//   curve and the polyline through its points under `tolerance` x the slice
+//   gap (none where the curve stays on its chord, or the rung stays straight);
+//   every triangle on the rung reads its count. `tolerance` = 0: every split
+//   rung gets `rings`.
+// - Band triangles become strips from their base to their apex with the
+//   original orientation: the two rungs' points merged by height (quads where
+//   the counts are equal, 2 x count + 1 triangles); the mesh's connectivity
+//   class (closed, manifold, genus) is kept.
 // - No new self-intersection: rungs whose curves make two triangles meet that
 //   did not meet on the straight mesh are put back on their straight lines
 //   until none is left (the return value counts them).
@@ -42,9 +50,10 @@ struct InterpolationStats {
     size_t rungs = 0;         // band edges split
     size_t curved = 0;        // of these, on their Hermite curve
     size_t straightened = 0;  // put back on their straight line to avoid a self-intersection
+    size_t points = 0;        // points added on the split rungs (rings x rungs without a tolerance)
 };
 
 InterpolationStats interpolate_between_slices(std::vector<Vec3>& positions, std::vector<uint32_t>& indices,
-                                              std::span<const double> slice_z, int rings);
+                                              std::span<const double> slice_z, int rings, double tolerance = 0.0);
 
 }  // namespace body

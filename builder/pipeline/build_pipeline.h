@@ -57,6 +57,9 @@ struct BuildOptions {
     // Intermediate rings per slice gap on C1 Hermite curves through the traced
     // contours (fairing/slice_interpolation.h); 0 keeps the linear bands.
     int interpolate = 0;
+    // Each rung's points: the fewest, at most `interpolate`, keeping its curve
+    // within this fraction of the slice gap of their polyline; 0: all of them.
+    double ring_tolerance = 0.0;
     // Structures built at once (they are independent; the output does not depend on it).
     unsigned jobs = 1;
     // Called after each slice of each structure: (done, total) slices. With

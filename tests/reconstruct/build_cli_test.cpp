@@ -170,6 +170,9 @@ TEST_F(BuildCli, InterpolateAndMinArea) {
     EXPECT_NE(r.output.find("--interpolate must be between 0 and 64"), std::string::npos) << r.output;
     r = run(bin("bodygen") + " build " + in + " -o " + raw + " --min-area -1");
     EXPECT_EQ(r.exit_code, 2);
+    r = run(bin("bodygen") + " build " + in + " -o " + raw + " --interpolate 3 --ring-tolerance 1.5");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.output.find("--ring-tolerance must be between 0 and 1"), std::string::npos) << r.output;
 }
 
 }  // namespace

@@ -95,6 +95,27 @@ std::function<double(const Vec3&)> ellipsoid_distance(double a, double b, double
     };
 }
 
+// One structure built with `rings` at most per gap, each band's count chosen
+// under `tolerance` (BuildOptions::ring_tolerance).
+StructureMesh build_adaptive(const ContourStack& stack, int rings, double tolerance) {
+    BuildOptions options;
+    options.interpolate = rings;
+    options.ring_tolerance = tolerance;
+    auto built = build_structures(stack, options, "test");
+    EXPECT_TRUE(built.ok()) << (built.ok() ? "" : built.error().message);
+    if (!built.ok() || built->size() != 1) return {};
+    return std::move(built->front());
+}
+
+// The vertices strictly between zlo and zhi that are not on a slice: the points added there.
+size_t ring_points(const Mesh& mesh, const ContourStack& stack, double zlo, double zhi) {
+    std::set<double> slices;
+    for (const Slice& s : stack.slices) slices.insert(s.z);
+    size_t n = 0;
+    for (const Vec3& p : mesh.positions) n += p.z > zlo && p.z < zhi && !slices.count(p.z);
+    return n;
+}
+
 TEST(Interpolation, SphereKeepsEveryTracedPointAndHalvesTheError) {
     const ContourStack stack = ellipsoid_stack(1.0, 1.0, 0.0, 10, 128);
     const StructureMesh linear = build_one(stack, 0), smooth = build_one(stack, 4);
@@ -157,6 +178,59 @@ TEST(Interpolation, FlatSidesStayFlat) {
     EXPECT_LE(off(smooth.mesh), off(linear.mesh) + 1e-9) << "linear " << off(linear.mesh);
 }
 
+// A cylinder (four equal circles) under a dome of shrinking circles: with a
+// ring tolerance the cylinder's rungs, whose curves stay near their chords,
+// get no points and the dome's keep some; closed, traced points kept, the error to
+// the sphere on the dome as small as with every ring.
+TEST(Interpolation, FlatBandsGetFewerRingsThanCurvedOnes) {
+    StackBuilder sb;
+    for (int k = 0; k < 8; ++k) {
+        const double z = double(k), r = k <= 3 ? 1.0 : std::sqrt(1.0 - (z - 3.0) * (z - 3.0) / 20.25);
+        std::vector<Vec2> ring;
+        for (int i = 0; i < 256; ++i) {
+            const double t = 2 * kPi * i / 256;  // points above each other: the cylinder's rungs are its rulings
+            ring.emplace_back(r * 4.5 * std::cos(t), r * 4.5 * std::sin(t));
+        }
+        sb.slice(z, {ring});
+    }
+    const StructureMesh every = build_adaptive(sb.stack, 3, 0.0), adaptive = build_adaptive(sb.stack, 3, 0.05);
+    expect_good_structure(adaptive, sb.stack, "");
+    expect_contours_on_mesh(adaptive.mesh, sb.stack);
+    EXPECT_TRUE(adaptive.closed_manifold);
+    EXPECT_EQ(adaptive.components, 1u);
+    EXPECT_GT(ring_points(every.mesh, sb.stack, 0.0, 2.0), 0u);
+    EXPECT_EQ(ring_points(adaptive.mesh, sb.stack, 0.0, 2.0), 0u);  // flat: no points
+    EXPECT_GT(ring_points(adaptive.mesh, sb.stack, 3.0, 7.0), 0u);  // curved: points kept
+    EXPECT_LT(adaptive.triangles, every.triangles);
+    // On the dome, the adaptive mesh stays as close to the sphere as with every ring (within 1 % of the radius).
+    const auto sphere = [](const Vec3& p) { return glm::length(p - Vec3(0, 0, 3)) - 4.5; };
+    const double e_every = distance_to(every.mesh, sphere, 3.0, 7.0);
+    const double e_adaptive = distance_to(adaptive.mesh, sphere, 3.0, 7.0);
+    EXPECT_LT(e_adaptive, e_every + 0.01 * 4.5) << "every ring " << e_every << ", adaptive " << e_adaptive;
+}
+
+// The counts from the interpolation itself: the points it adds drop with the
+// tolerance, and a tolerance too small to matter gives every rung every ring.
+TEST(Interpolation, RingTolerancePointsDropWithTheTolerance) {
+    const ContourStack stack = ellipsoid_stack(1.0, 0.8, 0.2, 9, 48);
+    const StructureMesh linear = build_one(stack, 0);
+    std::vector<double> z;
+    for (const Slice& s : stack.slices) z.push_back(s.z);
+    auto points = [&](double tolerance) {
+        Mesh copy = linear.mesh;
+        const InterpolationStats stats = interpolate_between_slices(copy.positions, copy.indices, z, 4, tolerance);
+        EXPECT_TRUE(analyze_topology(copy.positions, copy.indices).closed_manifold());
+        return std::pair(stats.points, 4 * stats.rungs);
+    };
+    const auto [every, all] = points(0.0);
+    EXPECT_EQ(every, all);
+    EXPECT_EQ(points(1e-9).first, all);
+    const size_t fine = points(0.002).first, coarse = points(0.05).first;
+    EXPECT_LE(coarse, fine);
+    EXPECT_LT(coarse, all);
+    EXPECT_EQ(points(1.0).first, 0u);  // a tolerance of the whole gap: the ellipsoid's curves need none
+}
+
 TEST(Interpolation, NoRingsLeaveTheMeshAsItIs) {
     const ContourStack stack = ellipsoid_stack(1.0, 0.8, 0.2, 6, 32);
     const StructureMesh linear = build_one(stack, 0);
@@ -178,9 +252,10 @@ TEST(Interpolation, RingsLieOnPlanesBetweenTheSlices) {
     EXPECT_EQ(heights.size(), 5u + 4u * 2u);
 }
 
-// The glmark2 bunny sliced at uneven spacing: closed, outward, the same
-// components as the linear build, traced points kept.
-TEST(Interpolation, SlicedBunnyStaysClosedAndKeepsItsContours) {
+// The glmark2 bunny sliced at uneven spacing, built with 2 rings at most per
+// gap under `tolerance`: closed, outward, the same components as the linear
+// build, traced points kept, no new crossing.
+void expect_sliced_bunny_sound(double tolerance) {
     constexpr const char* kBunny = "/usr/share/glmark2/models/bunny.obj";
     if (!std::filesystem::exists(kBunny)) GTEST_SKIP() << "needs " << kBunny << " (Debian package glmark2-data)";
     auto mesh = read_obj_merged(kBunny);
@@ -195,8 +270,9 @@ TEST(Interpolation, SlicedBunnyStaysClosedAndKeepsItsContours) {
     ContourStack repaired = *sliced;
     RepairLog log;
     ASSERT_TRUE(validate_contour_stack(repaired, "bunny", RepairOptions{}, log).ok());
-    const StructureMesh linear = build_one(*sliced, 0), smooth = build_one(*sliced, 2);
+    const StructureMesh linear = build_one(*sliced, 0), smooth = build_adaptive(*sliced, 2, tolerance);
     EXPECT_TRUE(smooth.closed_manifold);
+    EXPECT_GT(smooth.triangles, linear.triangles);
     EXPECT_GT(smooth.volume, 0.0);
     EXPECT_EQ(smooth.components, linear.components);
     EXPECT_NEAR(smooth.volume, linear.volume, 0.05 * linear.volume);
@@ -232,6 +308,10 @@ TEST(Interpolation, SlicedBunnyStaysClosedAndKeepsItsContours) {
         }
     EXPECT_EQ(elsewhere, 0u) << smooth_pairs.size() << " crossing pairs, linear " << linear_pairs.size();
 }
+
+TEST(Interpolation, SlicedBunnyStaysClosedAndKeepsItsContours) { expect_sliced_bunny_sound(0.0); }
+
+TEST(Interpolation, SlicedBunnyWithRingToleranceStaysClosedAndKeepsItsContours) { expect_sliced_bunny_sound(0.05); }
 
 }  // namespace
 }  // namespace body
