@@ -10,16 +10,6 @@
 namespace body::pm {
 namespace {
 
-// Bits 0..9 of x spread to every third bit (one axis of a Morton code).
-uint32_t spread3(uint32_t x) {
-    x &= 0x3ff;
-    x = (x | (x << 16)) & 0x30000ff;
-    x = (x | (x << 8)) & 0x300f00f;
-    x = (x | (x << 4)) & 0x30c30c3;
-    x = (x | (x << 2)) & 0x9249249;
-    return x;
-}
-
 // s.local[0 .. 3 n) = the corners corner(t, k) numbered in the order they
 // first appear, s.global[0 .. nv) = the vertex of each local number; returns nv.
 // s.local_of is all UINT32_MAX on entry and on return.
@@ -73,8 +63,6 @@ bool match_faces(size_t n, uint32_t nv, CacheWindowScratch& s) {
 }
 
 }  // namespace
-
-uint32_t morton_code(uint32_t x, uint32_t y, uint32_t z) { return spread3(x) | spread3(y) << 1 | spread3(z) << 2; }
 
 void reserve_cache_window(CacheWindowScratch& s, size_t window_faces, size_t vertex_count) {
     if (s.local_of.size() < vertex_count) s.local_of.resize(vertex_count, UINT32_MAX);

@@ -1,16 +1,15 @@
 #pragma once
-// One window of triangles in vertex-cache order: the kernel under both cache
-// orders of progressive meshes, the decoder's per-batch order of faces
-// (draw_order.h, a permutation, which must stay bit for bit since the file's
-// vertex numbers follow it) and the kiosk's settled-level order of a mapped
-// element buffer in place (kiosk/render/window_order.h, bounded memory).
-// Both first sort their triangles along a Morton curve of each triangle's first
-// corner (morton_code), then cut that order into windows and order each window
-// here: the window's vertices numbered among themselves in the order its
-// triangles first use them, then meshopt_optimizeVertexCache over those numbers
-// (its tables sized by the window, not the mesh). The callers choose the
-// window size (the decoder 1024 faces for the CPU's caches, the kiosk whole
-// Morton cells of about 8K for the cache hits across a large level).
+// One window of triangles in vertex-cache order: the kernel under the kiosk's
+// settled-level order (kiosk/render/window_order.h, bounded memory), in place
+// over a mapped element buffer or, resumable in slices, as a permutation of face
+// numbers (which must match the in-place form bit for bit). Both first sort
+// their triangles along a Morton curve of each triangle's first corner
+// (morton_code; the decoder's per-batch order, draw_order.h, is that sort
+// alone), then cut that order into windows of whole Morton cells of about 8K
+// triangles and order each window here: the window's vertices numbered among
+// themselves in the order its triangles first use them, then
+// meshopt_optimizeVertexCache over those numbers (its tables sized by the
+// window, not the mesh).
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -19,7 +18,18 @@ namespace body::pm {
 
 // The Morton code of a point's cell: bits 0..9 of x, y and z interleaved
 // (x in bits 0, 3, 6, ...; y one above, z two above); higher bits ignored.
-uint32_t morton_code(uint32_t x, uint32_t y, uint32_t z);
+// Inline: the decoder's sort calls it once a face.
+inline uint32_t morton_spread3(uint32_t x) {  // bits 0..9 of x to every third bit
+    x &= 0x3ff;
+    x = (x | (x << 16)) & 0x30000ff;
+    x = (x | (x << 8)) & 0x300f00f;
+    x = (x | (x << 4)) & 0x30c30c3;
+    x = (x | (x << 2)) & 0x9249249;
+    return x;
+}
+inline uint32_t morton_code(uint32_t x, uint32_t y, uint32_t z) {
+    return morton_spread3(x) | morton_spread3(y) << 1 | morton_spread3(z) << 2;
+}
 
 // Working memory of the window kernels, caller-owned and reused between
 // windows. Its contents belong to the kernels: local_of stays all UINT32_MAX

@@ -23,9 +23,6 @@ std::vector<uint32_t> batch_levels(size_t base_vertices, size_t splits) {
 
 namespace {
 
-// Faces per window of the cache optimiser (a window's tables stay in L1/L2).
-constexpr size_t kWindowFaces = 1024;
-
 // order[0 .. face_count) = the faces by the Morton code of their first corner
 // (10 bits per axis; the faces of one split share it and stay together):
 // a stable LSD radix sort of (code << 32 | face), 3 passes of 10 bits.
@@ -52,13 +49,9 @@ void sort_spatially(const uint32_t* indices, size_t face_count, const uint16_t* 
 
 }  // namespace
 
-void cache_order(const uint32_t* indices, size_t face_count, size_t vertex_count, const uint16_t* qpos, uint32_t* order,
+void cache_order(const uint32_t* indices, size_t face_count, const uint16_t* qpos, uint32_t* order,
                  CacheOrderScratch& scratch) {
     sort_spatially(indices, face_count, qpos, order, scratch);
-    reserve_cache_window(scratch.window, kWindowFaces, vertex_count);
-    // A window meshopt answered with a triangle not among its input keeps its sorted order.
-    for (size_t w = 0; w < face_count; w += kWindowFaces)
-        cache_order_window(indices, order + w, std::min(kWindowFaces, face_count - w), scratch.window);
 }
 
 void first_use_order(const uint32_t* indices, size_t index_count, uint32_t first, uint32_t count, uint32_t* number) {

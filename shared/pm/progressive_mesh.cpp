@@ -111,7 +111,7 @@ void ProgressiveMesh::order_batch(size_t level) {
     auto& faces = sized(order_scratch_.faces, n * 3);
     auto& order = sized(order_scratch_.order, n);
     for (size_t i = 0; i < n * 3; ++i) faces[i] = replay_.index(f0 * 3 + i);
-    cache_order(faces.data(), n, base_vertices_ + level, qpos_.data(), order.data(), order_scratch_);
+    cache_order(faces.data(), n, qpos_.data(), order.data(), order_scratch_);
     const uint32_t v0 = uint32_t(base_vertices_ + lo), nv = uint32_t(level - lo);
     auto& number = sized(order_scratch_.number, std::max<uint32_t>(nv, 1));
     auto& ordered = sized(order_scratch_.ordered, n * 3);

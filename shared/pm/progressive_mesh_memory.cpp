@@ -65,11 +65,9 @@ void ProgressiveMesh::grow_decoded(size_t splits, size_t faces) {
 }
 
 size_t ProgressiveMesh::heap_bytes() const {
-    const CacheWindowScratch& s = order_scratch_.window;
-    const size_t scratch = bytes_of(order_scratch_.keys) + bytes_of(s.local_of) + bytes_of(s.local) +
-                           bytes_of(s.sorted) + bytes_of(s.global) + bytes_of(s.start) + bytes_of(s.by_first) +
-                           bytes_of(s.window) + bytes_of(order_scratch_.faces) + bytes_of(order_scratch_.order) +
-                           bytes_of(order_scratch_.number) + bytes_of(order_scratch_.ordered);
+    const size_t scratch = bytes_of(order_scratch_.keys) + bytes_of(order_scratch_.faces) +
+                           bytes_of(order_scratch_.order) + bytes_of(order_scratch_.number) +
+                           bytes_of(order_scratch_.ordered);
     return sizeof(*this) + name_.capacity() + bytes_of(packed_indices_) + bytes_of(positions_) + bytes_of(normals_) +
            bytes_of(indices_) + bytes_of(split_parents_bytes_) + bytes_of(face_count_bits_) + bytes_of(face_sample_) +
            bytes_of(error_levels_) + bytes_of(error_highs_) + bytes_of(patch_count_) + bytes_of(move_bits_) +
