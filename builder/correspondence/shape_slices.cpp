@@ -100,15 +100,29 @@ void distance_1d(const double* f, size_t n, double* d, std::vector<size_t>& v, s
 // Squared distance in cells from each cell to the nearest cell whose mask equals `target`.
 std::vector<double> squared_distance(const std::vector<uint8_t>& mask, uint8_t target, const Raster& r) {
     constexpr double kFar = 1e20;
-    std::vector<double> g(r.size()), line(std::max(r.width, r.height)), out(line.size());
+    std::vector<double> g(r.size()), out(r.width);
     std::vector<size_t> v;
     std::vector<double> z;
-    for (size_t k = 0; k < r.size(); ++k) g[k] = mask[k] == target ? 0.0 : kFar;
-    for (size_t i = 0; i < r.width; ++i) {
-        for (size_t j = 0; j < r.height; ++j) line[j] = g[j * r.width + i];
-        distance_1d(line.data(), r.height, out.data(), v, z);
-        for (size_t j = 0; j < r.height; ++j) g[j * r.width + i] = out[j];
-    }
+    // Along columns the input is 0 or far: the transform is the squared
+    // distance to the nearest target cell of the column (the same integers
+    // as distance_1d's), found by two scans of all columns at once, row by row.
+    constexpr double kNone = -1.0;
+    std::vector<double> last(r.width, kNone);  // per column: the row of the latest target seen
+    for (size_t j = 0; j < r.height; ++j)
+        for (size_t i = 0; i < r.width; ++i) {
+            const size_t k = j * r.width + i;
+            if (mask[k] == target) last[i] = double(j);
+            const double d = double(j) - last[i];
+            g[k] = last[i] == kNone ? kFar : d * d;
+        }
+    std::fill(last.begin(), last.end(), kNone);
+    for (size_t j = r.height; j-- > 0;)
+        for (size_t i = 0; i < r.width; ++i) {
+            const size_t k = j * r.width + i;
+            if (mask[k] == target) last[i] = double(j);
+            const double d = last[i] - double(j);
+            if (last[i] != kNone) g[k] = std::min(g[k], d * d);
+        }
     for (size_t j = 0; j < r.height; ++j) {
         distance_1d(&g[j * r.width], r.width, out.data(), v, z);
         std::copy(out.begin(), out.begin() + long(r.width), g.begin() + long(j * r.width));

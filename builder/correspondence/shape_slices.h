@@ -35,7 +35,9 @@
 //   openings are narrower than the wall) is inserted too, but the pipeline's
 //   hole constructions do not yet join that hole to the C shapes' notches
 //   (branching/open_holes.h needs a quarter of its vertices outside them): it
-//   is closed by caps, about as far from the surface as the band was.
+//   is closed by caps, about as far from the surface as the band was. Where
+//   such caps close a piece of the mesh that meets no input contour (a
+//   cavity), the pipeline removes the piece (build_pipeline.cpp).
 // - Cost: O(R + E * rows) for R raster cells and E edges, twice when inserted.
 #include <span>
 #include <vector>

@@ -175,9 +175,6 @@ size_t count_pieces(const std::vector<uint8_t>& mask, const size_t size[3]) {
     return pieces;
 }
 
-// Pieces of a label under this many voxels are specks the full blur removes.
-constexpr size_t kMinPiece = 20;
-
 // A label's pieces under kMinPiece voxels removed from its mask (all but the
 // largest when every piece is that small): specks the full blur removes, not
 // parts a narrower blur must keep. Returns the pieces kept.
@@ -226,7 +223,6 @@ struct LabelFields {
     float c = 0.0f;
     bool half_rule = true;                  // false: the margin alone (thin labels)
     bool drop_specks = false;               // rings under kMinRingArea dropped (pass 2)
-    bool drop_islands = false;              // groups of rings under kMinPiece voxels dropped (thin labels)
     long k_lo = LONG_MIN, k_hi = LONG_MAX;  // the slices traced (volume indices), within the box's
 };
 
@@ -276,7 +272,6 @@ void trace_label(const LabelVolume& vol, const SliceFrame& fr, const LabelFields
     const bool any_large = std::any_of(traced.begin(), traced.end(), [&](const auto& t) {
         return std::any_of(t.second.begin(), t.second.end(), [&](const auto& r) { return !small(r); });
     });
-    if (lf.drop_islands) drop_small_islands(traced, static_cast<size_t>(o.step), double(kMinPiece));
     for (auto& [k, slice_rings] : traced) {
         if (lf.drop_specks && any_large) std::erase_if(slice_rings, small);
         finish_rings(fr, static_cast<double>(b.lo[fr.u]), static_cast<double>(b.lo[fr.v]), k, o, slice_rings, out);
@@ -472,7 +467,6 @@ void extract_thin_label(const LabelVolume& vol, const SliceFrame& fr, int32_t la
     }
     lf.half_rule = false;
     lf.drop_specks = true;
-    lf.drop_islands = true;
     trace_label(vol, fr, lf, o, out);
 }
 

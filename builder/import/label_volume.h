@@ -61,9 +61,18 @@ void finish_rings(const SliceFrame& f, double u0, double v0, size_t k, const Imp
 // rings on adjacent slices whose regions meet are joined (solids with solids,
 // holes with holes), and each group whose volume (|ring area| x step, in
 // voxels) stays under `min_volume` is dropped, except the largest group of
-// solids (ring_islands.cpp).
+// solids (ring_islands.cpp). Solids are the rings whose signed area times
+// `solid_sign` is positive, holes the others.
 void drop_small_islands(std::vector<std::pair<size_t, std::vector<std::vector<Vec2>>>>& traced, size_t step,
-                        double min_volume);
+                        double min_volume, double solid_sign = 1.0);
+
+// The same for a label's finished rings (in the output frame): groups under
+// `min_voxels` voxels dropped, the largest group of solids kept.
+void drop_small_islands(const SliceFrame& f, const ImportOptions& o, double min_voxels, LabelResult& out);
+
+// Pieces of a label under this many voxels are specks the full blur removes
+// (--label-smooth): they and groups of rings under it are dropped.
+constexpr size_t kMinPiece = 20;
 
 // --label-smooth (label_smooth.cpp). Smoothing levels: 0 the full width,
 // each next one half of it (s, s/2, s/4).

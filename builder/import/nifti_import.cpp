@@ -478,7 +478,18 @@ std::vector<LabelResult> extract_labels(const LabelVolume& vol, const SliceFrame
     std::map<int32_t, ThinLabel> thin;
     for (size_t i = 0; i < labels.size(); ++i)
         if (levels[i].level > 0) thin[labels[i]] = levels[i];
-    if (thin.empty()) return results;
+    // Islands of the final rings (a piece cut off where a blur closes a
+    // neck, a hole closed off into a cavity, rings joined only through a
+    // speck since dropped) dropped: each would be a mesh piece of its own.
+    auto drop_islands = [&] {
+        if (!smooth) return;
+        run_parallel(labels.size(), options.jobs,
+                     [&](size_t i) { drop_small_islands(frame, options, double(kMinPiece), results[i]); }, {});
+    };
+    if (thin.empty()) {
+        drop_islands();
+        return results;
+    }
     std::vector<size_t> again;
     for (size_t i = 0; i < labels.size(); ++i) {
         const Extent& e = extents.at(labels[i]);
@@ -491,6 +502,7 @@ std::vector<LabelResult> extract_labels(const LabelVolume& vol, const SliceFrame
                                               bg, results[i]);
                  },
                  {});
+    drop_islands();
     return results;
 }
 

@@ -59,14 +59,14 @@ size_t root(std::vector<size_t>& parent, size_t i) {
 }  // namespace
 
 void drop_small_islands(std::vector<std::pair<size_t, std::vector<std::vector<Vec2>>>>& traced, size_t step,
-                        double min_volume) {
+                        double min_volume, double solid_sign) {
     std::vector<RingRef> refs;
     std::vector<size_t> first(traced.size() + 1, 0);  // refs of slice s: [first[s], first[s + 1])
     for (size_t s = 0; s < traced.size(); ++s) {
         first[s] = refs.size();
         for (size_t r = 0; r < traced[s].second.size(); ++r) {
             const auto& ring = traced[s].second[r];
-            RingRef ref{s, r, 0.5 * signed_area2(ring.data(), ring.size()), ring[0], ring[0]};
+            RingRef ref{s, r, 0.5 * solid_sign * signed_area2(ring.data(), ring.size()), ring[0], ring[0]};
             for (const Vec2& p : ring) ref.lo = glm::min(ref.lo, p), ref.hi = glm::max(ref.hi, p);
             refs.push_back(ref);
         }
@@ -116,6 +116,18 @@ void drop_small_islands(std::vector<std::pair<size_t, std::vector<std::vector<Ve
             }
         rings.resize(kept);
     }
+}
+
+void drop_small_islands(const SliceFrame& f, const ImportOptions& o, double min_voxels, LabelResult& out) {
+    if (out.slices.empty()) return;
+    // A pixel's area in the output frame, signed: negative where the frame
+    // mirrors the traced plane (solids turn clockwise there).
+    const double k = static_cast<double>(out.slices.front().first);
+    const Vec2 origin = f.in_plane(0.0, 0.0, k), du = f.in_plane(1.0, 0.0, k) - origin,
+               dv = f.in_plane(0.0, 1.0, k) - origin;
+    const double pixel = du.x * dv.y - du.y * dv.x;
+    drop_small_islands(out.slices, static_cast<size_t>(o.step), min_voxels * std::fabs(pixel), pixel < 0 ? -1.0 : 1.0);
+    std::erase_if(out.slices, [](const auto& s) { return s.second.empty(); });
 }
 
 }  // namespace body::label_import

@@ -340,6 +340,44 @@ bool with_shape_slices(const ContourStack& stack, const std::vector<std::vector<
 
 // ------------------------------------------------ stage 3: one structure
 
+size_t find_root(std::vector<uint32_t>& parent, uint32_t v) {
+    while (parent[v] != v) v = parent[v] = parent[parent[v]];
+    return v;
+}
+
+// Mesh pieces (triangles connected through shared vertices) that meet no
+// input contour removed, with the vertices no triangle uses; the rest keep
+// their order. Such pieces are made of inserted slices' contours alone (a
+// hole of the mean section that matches no hole of either slice, closed by
+// caps): a cavity or a fragment that no input slice shows.
+void drop_inserted_pieces(StructureSurface& surface, const std::vector<bool>& inserted) {
+    std::vector<Vec3>& positions = surface.positions;
+    std::vector<uint32_t>& triangles = surface.triangles;
+    std::vector<uint32_t> parent(positions.size());
+    std::iota(parent.begin(), parent.end(), uint32_t(0));
+    for (size_t t = 0; t + 2 < triangles.size(); t += 3)
+        for (int k = 1; k < 3; ++k)
+            parent[find_root(parent, triangles[t + k])] = uint32_t(find_root(parent, triangles[t]));
+    std::vector<uint8_t> real(positions.size(), 0);  // per root: the piece meets an input contour
+    for (size_t s = 0; s < surface.loops.size(); ++s)
+        if (!inserted[s])
+            for (const Loop& l : surface.loops[s])
+                for (uint32_t v : l.ids) real[find_root(parent, v)] = 1;
+    size_t kept = 0;
+    for (size_t t = 0; t + 2 < triangles.size(); t += 3)
+        if (real[find_root(parent, triangles[t])])
+            for (int k = 0; k < 3; ++k) triangles[kept++] = triangles[t + k];
+    if (kept == triangles.size()) return;
+    triangles.resize(kept);
+    std::vector<uint32_t> to(positions.size(), 0);
+    for (uint32_t v : triangles) to[v] = 1;
+    uint32_t n = 0;
+    for (size_t v = 0; v < positions.size(); ++v)
+        if (to[v]) positions[n] = positions[v], to[v] = n++;
+    positions.resize(n);
+    for (uint32_t& v : triangles) v = to[v];
+}
+
 // The surface of one structure: loops, then per slab bands and branches, then
 // caps. `advance` is called once per slice (progress).
 Status build_surface(StructureSurface& surface, const ContourStack& stack, const BuildOptions& options,
@@ -382,6 +420,7 @@ Result<StructureMesh> build_structure(const ContourStack& stack, const Structure
     surface.correspondence = options.correspondence;
     auto status = build_surface(surface, used, options, shaped ? local_members : members, own_advance);
     if (!status) return status.error();
+    if (shaped) drop_inserted_pieces(surface, inserted);
     StructureMesh sm;
     sm.id = grouping.infos[i].id;
     sm.contours = contours;

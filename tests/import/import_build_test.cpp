@@ -164,5 +164,44 @@ TEST(ImportBuild, SpeckleOverTinyRegionsBuildsClosed) {
     EXPECT_LT(m.volume, 52.0);  // 50 voxels of 1 mm^3
 }
 
+// A thin label (a slab 2 voxels thick inside another label) with a lobe
+// hanging over it by a neck one voxel wide and two high: one 6-connected
+// piece. Its narrow blur keeps the neck only as a speck under the slab's
+// rings, so the lobe's rings were joined to the slab through the speck and
+// left as a piece of their own once specks were dropped. The label must come
+// out as one closed solid that keeps the slab (a 2-slice slab's mesh spans
+// one slice gap plus its domes: about 3/4 of its voxels).
+TEST(ImportBuild, ThinLabelWithANeckIsOneSolid) {
+    test::VolumeSpec spec;
+    spec.nx = spec.ny = spec.nz = 40;
+    std::vector<int16_t> data(size_t(40) * 40 * 40, 0);
+    size_t slab = 0;
+    for (int z = 3; z < 37; ++z)
+        for (int y = 3; y < 37; ++y)
+            for (int x = 3; x < 37; ++x) {
+                int16_t l = 2;
+                if (z >= 19 && z <= 20 && x >= 6 && x <= 30 && y >= 6 && y <= 30) l = 1, ++slab;
+                if (x == 18 && y == 18 && (z == 21 || z == 22)) l = 1;                        // the neck
+                if (x >= 17 && x <= 19 && y >= 17 && y <= 19 && (z == 23 || z == 24)) l = 1;  // the lobe
+                data[(size_t(z) * 40 + size_t(y)) * 40 + size_t(x)] = l;
+            }
+    const std::string path = test::temp_path("neck.nii.gz");
+    test::write_nifti(path, spec, data, DT_INT16);
+    ImportOptions o;
+    o.label_smooth = 2.0;  // the CLI's default
+    auto stack = import_nifti_labels(path, o);
+    std::filesystem::remove(path);
+    ASSERT_TRUE(stack.ok()) << stack.error().message;
+    auto built = build_structures(*stack, {}, path);
+    ASSERT_TRUE(built.ok()) << built.error().message;
+    ASSERT_EQ(built->size(), 2u);
+    const StructureMesh& m = built->front();
+    ASSERT_EQ(m.id, "label_1");
+    EXPECT_TRUE(m.closed_manifold);
+    EXPECT_EQ(m.components, 1u);
+    EXPECT_GT(m.volume, 0.6 * double(slab));
+    EXPECT_LT(m.volume, double(slab));
+}
+
 }  // namespace
 }  // namespace body

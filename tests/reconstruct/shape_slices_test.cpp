@@ -9,6 +9,7 @@
 
 #include <cmath>
 
+#include "builder/contours/contour_stack.h"
 #include "builder/slicing/mesh_slicer.h"
 #include "tests/reconstruct/recon_test_util.h"
 
@@ -138,6 +139,22 @@ TEST(ShapeSlices, TiltedTorusStackStaysNearTheTorus) {
             }
         RecordProperty(rings ? "interpolated" : "linear", std::to_string(worst / gap));
         EXPECT_LT(worst, gap) << "worst distance " << worst << " = " << worst / gap << " of a gap";
+    }
+}
+
+// Two slices of natbrainlab's label 105 (bodygen contours, default options):
+// two regions below meet one above, and the mid section inserted between them
+// has holes that neither slice has. Caps closed them into cavities (and a flat
+// sheet) of their own: 7 mesh pieces. Pieces that meet no input contour are
+// removed: the region and the three small rings that end on a slice remain.
+TEST(ShapeSlices, HolesOnlyTheMidSectionHasLeaveNoCavity) {
+    auto stack = read_contour_stack(std::string(BODY_TEST_DATA_DIR) + "/stacks/inserted_cavity.contours.json");
+    ASSERT_TRUE(stack.ok()) << stack.error().message;
+    for (int rings : {0, 3}) {
+        SCOPED_TRACE(rings);
+        const StructureMesh m = build_one(*stack, rings);
+        expect_good_structure(m, *stack, "");
+        EXPECT_EQ(m.components, 4u);
     }
 }
 
