@@ -16,7 +16,8 @@ sed "s#^ExecStart=/usr/bin/bodyview#ExecStart=$BUILD/bin/bodyview#" "$UNIT" > "$
 out=$(systemd-analyze verify "$tmp/bodyview.service" 2>&1) || { echo "$out"; echo "check-service: verify failed"; exit 1; }
 [ -z "$out" ] || { echo "$out"; echo "check-service: verify complained"; exit 1; }
 for want in '^Type=notify$' '^Restart=always$' '^WatchdogSec=' '^ProtectSystem=strict$' '^NoNewPrivileges=yes$' \
-            '^User=bodyview$' '^ExecStart=/usr/bin/bodyview --config /etc/bodyview/bodyview.conf$'; do
+            '^User=bodyview$' '^CacheDirectory=bodyview$' \
+            '^Environment=MESA_SHADER_CACHE_DIR=/var/cache/bodyview$' '^ExecStart=/usr/bin/bodyview --config /etc/bodyview/bodyview.conf$'; do
     grep -q "$want" "$UNIT" || { echo "check-service: $UNIT lacks $want"; exit 1; }
 done
 if command -v systemd-sysusers >/dev/null; then
