@@ -159,12 +159,7 @@ bool sync_vertices(BatchChunk& c, size_t slot) {
 std::vector<size_t> draw_order(const BatchChunk& c, const std::vector<size_t>& slots, const glm::mat4& view) {
     std::vector<std::pair<float, size_t>> by_depth;
     by_depth.reserve(slots.size());
-    for (size_t slot : slots) {
-        Vec3f centre;
-        float r = 0.0f;
-        world_sphere(*c.members[slot], centre, r);
-        by_depth.emplace_back(-(view * glm::vec4(centre, 1.0f)).z, slot);
-    }
+    for (size_t slot : slots) by_depth.emplace_back(view_depth(*c.members[slot], view), slot);
     std::sort(by_depth.begin(), by_depth.end());
     std::vector<size_t> order;
     order.reserve(slots.size());

@@ -146,13 +146,8 @@ std::vector<Model*> draw_opaque(RendererState& s, Frame& f, bool fade_rest) {
 // Back to front by the view depth of each model's bounding sphere.
 void draw_transparent(RendererState& s, Frame& f, const std::vector<Model*>& transparent) {
     std::vector<std::pair<float, Model*>> order;
-    for (Model* m : transparent) {
-        Vec3f c;
-        float r = 0;
-        world_sphere(*m, c, r);
-        order.emplace_back((f.view * glm::vec4(c, 1.0f)).z, m);
-    }
-    std::sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (Model* m : transparent) order.emplace_back(view_depth(*m, f.view), m);
+    std::sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
     glEnable(GL_BLEND);
     glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
     for (auto& [z, m] : order) {

@@ -76,4 +76,8 @@ void free_model(Model& m);
 // World-space bounding sphere of a model (the largest axis scale of the transform).
 void world_sphere(const Model& m, Vec3f& center, float& radius);
 
+// How far in front of the camera (`view`) the model's bounding-sphere centre
+// lies: the key that orders models front to back or back to front.
+float view_depth(const Model& m, const glm::mat4& view);
+
 }  // namespace body::render

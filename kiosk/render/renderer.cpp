@@ -171,6 +171,13 @@ void world_sphere(const Model& m, Vec3f& c, float& r) {
     r = m.radius * s;
 }
 
+float view_depth(const Model& m, const glm::mat4& view) {
+    Vec3f c;
+    float r = 0.0f;
+    world_sphere(m, c, r);
+    return -(view * glm::vec4(c, 1.0f)).z;
+}
+
 void Renderer::scene_bounds(Vec3f& center, float& radius) const {
     Aabb box;
     for (const auto& [id, m] : s_->models) {
