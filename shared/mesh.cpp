@@ -1,15 +1,11 @@
 #include "shared/mesh.h"
 
 #include <algorithm>
-#include <numeric>
+
+#include "shared/union_find.h"
 
 namespace body {
 namespace {
-
-size_t find_root(std::vector<uint32_t>& parent, uint32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-}
 
 // The common case first: when each link vertex starts exactly one of the
 // `n` link edges (a, b) and ends exactly one (an oriented fan), every degree is
@@ -57,7 +53,8 @@ size_t count_nonmanifold_vertices(size_t vertex_count, std::span<const uint32_t>
         }
     }
     size_t bad = 0;
-    std::vector<uint32_t> ids, parent, degree;  // the link's distinct vertices, sorted; their local union-find
+    std::vector<uint32_t> ids, degree;  // the link's distinct vertices, sorted
+    UnionFind sets;
     for (size_t v = 0; v < vertex_count; ++v) {
         if (start[v] == start[v + 1]) continue;
         if (const int cycles = oriented_link_cycles(&link[start[v]], (start[v + 1] - start[v]) / 2); cycles > 0) {
@@ -67,19 +64,17 @@ size_t count_nonmanifold_vertices(size_t vertex_count, std::span<const uint32_t>
         ids.assign(link.begin() + start[v], link.begin() + start[v + 1]);
         std::sort(ids.begin(), ids.end());
         ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
-        parent.resize(ids.size());
-        std::iota(parent.begin(), parent.end(), 0u);
+        sets.reset(ids.size());
         degree.assign(ids.size(), 0);
         auto id = [&](uint32_t x) { return uint32_t(std::lower_bound(ids.begin(), ids.end(), x) - ids.begin()); };
         for (uint32_t i = start[v]; i < start[v + 1]; i += 2) {
             uint32_t a = id(link[i]), b = id(link[i + 1]);
             degree[a]++;
             degree[b]++;
-            size_t ra = find_root(parent, a), rb = find_root(parent, b);
-            if (ra != rb) parent[ra] = uint32_t(rb);
+            sets.unite(a, b);
         }
         size_t components = 0;
-        for (uint32_t i = 0; i < parent.size(); ++i) components += find_root(parent, i) == i;
+        for (uint32_t i = 0; i < sets.size(); ++i) components += sets.find(i) == i;
         bool ok = components == 1 && std::all_of(degree.begin(), degree.end(), [](uint32_t d) { return d <= 2; });
         bad += !ok;
     }
@@ -96,8 +91,7 @@ MeshTopology analyze_topology(std::span<const Vec3> positions, std::span<const u
     MeshTopology topo;
     topo.triangles = indices.size() / 3;
     std::vector<uint8_t> used(positions.size(), 0);
-    std::vector<uint32_t> parent(topo.triangles);
-    std::iota(parent.begin(), parent.end(), 0u);
+    UnionFind sets(topo.triangles);
     struct EdgeEnd {
         uint32_t upper, triangle;
         int32_t direction;  // +1 for lower -> upper, -1 otherwise
@@ -137,8 +131,7 @@ MeshTopology analyze_topology(std::span<const Vec3> positions, std::span<const u
             size_t count = 0;
             for (; run != last && run->upper == e->upper; ++run, ++count) {
                 direction_sum += run->direction;
-                size_t ra = find_root(parent, run->triangle), rb = find_root(parent, e->triangle);
-                if (ra != rb) parent[ra] = uint32_t(rb);
+                sets.unite(run->triangle, e->triangle);
             }
             topo.edges++;
             if (count == 1)
@@ -151,7 +144,7 @@ MeshTopology analyze_topology(std::span<const Vec3> positions, std::span<const u
         }
     }
     topo.vertices = size_t(std::count(used.begin(), used.end(), uint8_t(1)));
-    for (uint32_t t = 0; t < topo.triangles; ++t) topo.components += find_root(parent, t) == t;
+    for (uint32_t t = 0; t < topo.triangles; ++t) topo.components += sets.find(t) == t;
     topo.nonmanifold_vertices = count_nonmanifold_vertices(positions.size(), indices);
     topo.euler = long(topo.vertices) - long(topo.edges) + long(topo.triangles);
     return topo;

@@ -13,6 +13,7 @@
 #include <set>
 
 #include "builder/contours/repair.h"
+#include "shared/union_find.h"
 
 namespace body {
 namespace {
@@ -229,15 +230,6 @@ Status validate_contour(Context& cx, Contour& c, std::vector<Contour>& out) {
     return ok_status();
 }
 
-struct UnionFind {
-    std::vector<size_t> parent;
-    explicit UnionFind(size_t n) : parent(n) {
-        for (size_t i = 0; i < n; ++i) parent[i] = i;
-    }
-    size_t find(size_t i) { return parent[i] == i ? i : parent[i] = find(parent[i]); }
-    void join(size_t a, size_t b) { parent[find(a)] = find(b); }
-};
-
 std::string crossing_message(const std::string& path, const Contour& a, const Contour& b, const Crossing& x) {
     if (&a == &b) return where(path, a) + ": self-intersects at " + format_point(x.point);
     return where(path, a) + ": crosses slice " + std::to_string(b.source_slice) + " contour " +
@@ -247,14 +239,14 @@ std::string crossing_message(const std::string& path, const Contour& a, const Co
 // Replaces each cluster of crossing contours of one structure by the union of their regions.
 Status repair_clusters(Context& cx, Slice& slice, const std::vector<Crossing>& same) {
     UnionFind uf(slice.contours.size());
-    for (const Crossing& x : same) uf.join(x.loop_a, x.loop_b);
+    for (const Crossing& x : same) uf.unite(uint32_t(x.loop_a), uint32_t(x.loop_b));
     std::map<size_t, std::vector<size_t>> clusters;
     std::map<size_t, const Crossing*> first;
     for (const Crossing& x : same) {
-        first.emplace(uf.find(x.loop_a), &x);
+        first.emplace(uf.find(uint32_t(x.loop_a)), &x);
     }
     for (size_t i = 0; i < slice.contours.size(); ++i)
-        if (first.count(uf.find(i))) clusters[uf.find(i)].push_back(i);
+        if (const uint32_t root = uf.find(uint32_t(i)); first.count(root)) clusters[root].push_back(i);
     std::vector<bool> replaced(slice.contours.size(), false);
     std::vector<Contour> added;
     for (const auto& [root, members] : clusters) {

@@ -4,24 +4,14 @@
 
 #include <algorithm>
 #include <map>
-#include <numeric>
 #include <string>
 
 #include "builder/contours/validate.h"
 #include "builder/correspondence/link_overrides.h"
+#include "shared/union_find.h"
 
 namespace body {
 namespace {
-
-struct UnionFind {
-    std::vector<uint32_t> parent;
-    explicit UnionFind(size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
-    uint32_t find(uint32_t x) {
-        while (parent[x] != x) x = parent[x] = parent[parent[x]];
-        return x;
-    }
-    void unite(uint32_t a, uint32_t b) { parent[find(a)] = find(b); }
-};
 
 const Vec3 kPalette[] = {{0.85, 0.33, 0.31}, {0.36, 0.62, 0.83}, {0.45, 0.75, 0.40}, {0.93, 0.70, 0.25},
                          {0.65, 0.45, 0.80}, {0.30, 0.75, 0.72}, {0.90, 0.55, 0.70}, {0.60, 0.60, 0.60}};

@@ -40,6 +40,7 @@
 #include "builder/correspondence/material_regions.h"
 #include "builder/correspondence/shape_slices.h"
 #include "builder/fairing/slice_interpolation.h"
+#include "shared/union_find.h"
 
 namespace body {
 namespace {
@@ -340,11 +341,6 @@ bool with_shape_slices(const ContourStack& stack, const std::vector<std::vector<
 
 // ------------------------------------------------ stage 3: one structure
 
-size_t find_root(std::vector<uint32_t>& parent, uint32_t v) {
-    while (parent[v] != v) v = parent[v] = parent[parent[v]];
-    return v;
-}
-
 // Mesh pieces (triangles connected through shared vertices) that meet no
 // input contour removed, with the vertices no triangle uses; the rest keep
 // their order. Such pieces are made of inserted slices' contours alone (a
@@ -353,19 +349,17 @@ size_t find_root(std::vector<uint32_t>& parent, uint32_t v) {
 void drop_inserted_pieces(StructureSurface& surface, const std::vector<bool>& inserted) {
     std::vector<Vec3>& positions = surface.positions;
     std::vector<uint32_t>& triangles = surface.triangles;
-    std::vector<uint32_t> parent(positions.size());
-    std::iota(parent.begin(), parent.end(), uint32_t(0));
+    UnionFind sets(positions.size());
     for (size_t t = 0; t + 2 < triangles.size(); t += 3)
-        for (int k = 1; k < 3; ++k)
-            parent[find_root(parent, triangles[t + k])] = uint32_t(find_root(parent, triangles[t]));
+        for (int k = 1; k < 3; ++k) sets.unite(triangles[t + k], triangles[t]);
     std::vector<uint8_t> real(positions.size(), 0);  // per root: the piece meets an input contour
     for (size_t s = 0; s < surface.loops.size(); ++s)
         if (!inserted[s])
             for (const Loop& l : surface.loops[s])
-                for (uint32_t v : l.ids) real[find_root(parent, v)] = 1;
+                for (uint32_t v : l.ids) real[sets.find(v)] = 1;
     size_t kept = 0;
     for (size_t t = 0; t + 2 < triangles.size(); t += 3)
-        if (real[find_root(parent, triangles[t])])
+        if (real[sets.find(triangles[t])])
             for (int k = 0; k < 3; ++k) triangles[kept++] = triangles[t + k];
     if (kept == triangles.size()) return;
     triangles.resize(kept);
