@@ -1,32 +1,26 @@
 #pragma once
-// Batched drawing: opaque `smooth` and `baseline` models drawn many per call,
-// so that a scene of thousands of small structures costs per triangle, not per
-// model (a software rasterizer pays tens of microseconds a draw call, and a
+// Batched drawing: opaque `smooth` and `baseline` models drawn many per call, so that a scene of thousands of small
+// structures costs per triangle, not per model (a software rasterizer pays tens of microseconds a draw call, and a
 // board's driver a state validation).
 //
-// GLES 3.0 has neither a base vertex nor multi-draw, so models are gathered in
-// chunks of up to slots_per_chunk: a chunk owns a copy of its members' vertex
-// codes (positions as 16-bit codes in each model's box, normals as 8:8
-// octahedral codes, both copied buffer to buffer from the model's own) and a
-// per-vertex slot number; each frame it draws one element stream per style:
-// the index prefixes (the current level of detail) of its members on screen,
-// offset to the chunk's vertices, nearest member first (a rasterizer then
-// shades fewer hidden fragments; the order does not depend on the order the
-// models arrived in). The stream is rebuilt (read back from the models'
-// element buffers) only when its members, their styles or their levels
-// change, or the camera turned by more than 15 degrees since its order. Each slot's model-view, normal matrix, position
-// box and colour go to mesh.vert as one uniform array (BODY_BATCH); the arithmetic is the per-model path's, so a
-// batched model draws the same pixels.
+// GLES 3.0 has neither a base vertex nor multi-draw, so models are gathered in chunks of up to slots_per_chunk: a chunk
+// owns a copy of its members' vertex codes (positions as 16-bit codes in each model's box, normals as 8:8 octahedral
+// codes, both copied buffer to buffer from the model's own) and a per-vertex slot number; each frame it draws one
+// element stream per style: the index prefixes (the current level of detail) of its members on screen, offset to the
+// chunk's vertices, nearest member first (a rasterizer then shades fewer hidden fragments; the order does not depend on
+// the order the models arrived in). The stream is rebuilt (read back from the models' element buffers) only when its
+// members, their styles or their levels change, or the camera turned by more than 15 degrees since its order. Each
+// slot's model-view, normal matrix, position box and colour go to mesh.vert as one uniform array (BODY_BATCH); the
+// arithmetic is the per-model path's, so a batched model draws the same pixels.
 //
-// A model is batched when it has at most kMaxBatchedVertices, is opaque (not selected or faded), in `smooth`
-// or `baseline`, uploaded as position codes with normal codes, not gliding
-// (geomorph) and no cut plane is on; everything else takes the per-model path
-// (frame.cpp). Models join chunks at the frame that first sees them, filling
-// the last chunk's free slots before a new chunk is made, and stay there; a
-// removed model or one whose format changes leaves a dead slot. A slot has room for the vertices its model's own
-// buffers hold (Model::vertex_allocated, grown with a streamed mesh), not its capacity: a scene of thousands of models
-// drawn coarse would otherwise hold every model's full detail twice; a member that outgrows its room has the chunk laid
-// out again (buffers reallocated, every member copied anew).
+// A model is batched when it has at most kMaxBatchedVertices, is opaque (not selected or faded), in `smooth` or
+// `baseline`, uploaded as position codes with normal codes, not gliding (geomorph) and no cut plane is on; everything
+// else takes the per-model path (frame.cpp). Models join chunks at the frame that first sees them, filling the last
+// chunk's free slots before a new chunk is made, and stay there; a removed model or one whose format changes leaves a
+// dead slot. A slot has room for the vertices its model's own buffers hold (Model::vertex_allocated, grown with a
+// streamed mesh), not its capacity: a scene of thousands of models drawn coarse would otherwise hold every model's full
+// detail twice; a member that outgrows its room has the chunk laid out again (buffers reallocated, every member copied
+// anew).
 #include <GLES3/gl3.h>
 
 #include <cstddef>
