@@ -24,29 +24,54 @@ bool orderable(std::span<const uint32_t> indices, std::span<const uint16_t> cell
 
 bool cancelled(const std::atomic<bool>* cancel) { return cancel && cancel->load(std::memory_order_relaxed); }
 
-// American flag sort: triangle records moved into their cell's bucket by
-// swaps, each swap placing one for good. `start`: kCells + 1 bucket bounds.
-bool sort_by_cell(std::span<uint32_t> idx, std::span<const uint16_t> cells, std::vector<uint32_t>& start,
-                  const std::atomic<bool>* cancel) {
+// Bucket bounds of the triangles by their first corner's cell: start[c] (kCells + 1 entries) and next[c] = start[c],
+// the bucket's next unplaced triangle.
+void count_buckets(std::span<const uint32_t> idx, std::span<const uint16_t> cells, std::vector<uint32_t>& start,
+                   std::vector<uint32_t>& next) {
     const size_t faces = idx.size() / 3;
     start.assign(kCells + 1, 0);
     for (size_t f = 0; f < faces; ++f) ++start[cells[idx[3 * f]] + size_t{1}];
     for (size_t c = 0; c < kCells; ++c) start[c + 1] += start[c];
-    std::vector<uint32_t> next(start.begin(), start.end() - 1);
-    for (size_t b = 0; b < kCells; ++b) {
-        if ((b & 1023) == 0 && cancelled(cancel)) return false;
-        while (next[b] < start[b + 1]) {
-            const size_t f = next[b];
-            const uint16_t c = cells[idx[3 * f]];
-            if (c == b) {
-                ++next[b];
-                continue;
-            }
-            const size_t g = next[c]++;
-            for (int k = 0; k < 3; ++k) std::swap(idx[3 * f + k], idx[3 * g + k]);
+    next.assign(start.begin(), start.end() - 1);
+}
+
+// American flag sort, resumable: from bucket `bucket` on, triangle records are moved into their cell's bucket by
+// swap(f, g) (each swap placing one for good), until every bucket is full or about `budget` records were looked at
+// (then `bucket` is where to resume). Returns the records looked at.
+template <class Swap>
+size_t fill_buckets(std::span<const uint32_t> idx, std::span<const uint16_t> cells, const std::vector<uint32_t>& start,
+                    std::vector<uint32_t>& next, size_t& bucket, size_t budget, Swap&& swap) {
+    size_t spent = 0;
+    while (bucket < kCells && spent < budget) {
+        const size_t b = bucket;
+        if (next[b] >= start[b + 1]) {
+            ++bucket;
+            continue;
         }
+        ++spent;
+        const size_t f = next[b];
+        const uint16_t c = cells[idx[3 * f]];
+        if (c == b) {
+            ++next[b];
+            continue;
+        }
+        swap(f, size_t(next[c]++));
     }
-    return true;
+    return spent;
+}
+
+// The next window of whole cells from cell `cell` on (at least kOrderWindowFaces triangles, or up to the last cell):
+// [begin, end) in triangles, `cell` and `begin` advanced past it. False when no cell is left.
+bool next_window(const std::vector<uint32_t>& start, size_t window_faces, size_t& cell, size_t& begin, size_t& a,
+                 size_t& b) {
+    while (cell <= kCells) {
+        const size_t c = cell++;
+        if (start[c] - begin < window_faces && c < kCells) continue;
+        a = begin;
+        b = begin = start[c];
+        return true;
+    }
+    return false;
 }
 
 }  // namespace
@@ -63,20 +88,22 @@ uint16_t order_cell(float tx, float ty, float tz) {
 bool order_in_windows(std::span<uint32_t> indices, std::span<const uint16_t> cells, const std::atomic<bool>* cancel,
                       size_t window_faces) {
     if (window_faces == 0 || !orderable(indices, cells)) return false;
-    std::vector<uint32_t> start;
-    if (!sort_by_cell(indices, cells, start, cancel)) return false;
+    std::vector<uint32_t> start, next;
+    count_buckets(indices, cells, start, next);
+    const auto swap = [&](size_t f, size_t g) {
+        for (size_t k = 0; k < 3; ++k) std::swap(indices[3 * f + k], indices[3 * g + k]);
+    };
+    for (size_t bucket = 0; bucket < kCells;) {
+        if (cancelled(cancel)) return false;
+        fill_buckets(indices, cells, start, next, bucket, size_t{1} << 16, swap);
+    }
     pm::CacheWindowScratch w;
-    // Whole buckets per window (a cell's triangles stay together).
-    size_t a = 0;
-    for (size_t c = 1; c <= kCells; ++c) {
-        const size_t b = start[c];
-        if (b - a < window_faces && c < kCells) continue;
-        if (b > a) {
-            if (cancelled(cancel)) return false;
-            pm::reserve_cache_window(w, b - a, cells.size());  // whole cells: may pass window_faces
-            pm::cache_order_window(indices.data() + 3 * a, b - a, w);
-        }
-        a = b;
+    size_t cell = 1, begin = 0, a = 0, b = 0;
+    while (next_window(start, window_faces, cell, begin, a, b)) {
+        if (b == a) continue;
+        if (cancelled(cancel)) return false;
+        pm::reserve_cache_window(w, b - a, cells.size());  // whole cells: may pass window_faces
+        pm::cache_order_window(indices.data() + 3 * a, b - a, w);
     }
     return true;
 }
@@ -150,12 +177,8 @@ void free_vector(V& v) {
 bool begin_sliced_order(SlicedOrder& s, std::span<const uint32_t> indices, std::vector<uint16_t> cells) {
     s = SlicedOrder{};
     if (!orderable(indices, cells) || indices.size() / 3 >= UINT32_MAX) return false;
-    const size_t faces = indices.size() / 3;
-    s.start.assign(kCells + 1, 0);
-    for (size_t f = 0; f < faces; ++f) ++s.start[cells[indices[3 * f]] + size_t{1}];
-    for (size_t c = 0; c < kCells; ++c) s.start[c + 1] += s.start[c];
-    s.next.assign(s.start.begin(), s.start.end() - 1);
-    s.perm.identity(faces);
+    count_buckets(indices, cells, s.start, s.next);
+    s.perm.identity(indices.size() / 3);
     s.cells = std::move(cells);
     s.begun = true;
     return true;
@@ -163,36 +186,19 @@ bool begin_sliced_order(SlicedOrder& s, std::span<const uint32_t> indices, std::
 
 bool step_sliced_order(SlicedOrder& s, std::span<uint32_t> idx, size_t budget) {
     if (!s.begun || s.finished || idx.size() != 3 * s.perm.size()) return s.finished;
-    size_t spent = 0;
     // The bucket sort of order_in_windows, resumed where it stopped.
-    while (s.bucket < kCells && spent < budget) {
-        const size_t b = s.bucket;
-        if (s.next[b] >= s.start[b + 1]) {
-            ++s.bucket;
-            continue;
-        }
-        ++spent;
-        const size_t f = s.next[b];
-        const uint16_t c = s.cells[idx[3 * f]];
-        if (c == b) {
-            ++s.next[b];
-            continue;
-        }
-        swap_triangles(idx, s.perm, f, s.next[c]++);
-    }
+    size_t spent = fill_buckets(idx, s.cells, s.start, s.next, s.bucket, budget,
+                                [&](size_t f, size_t g) { swap_triangles(idx, s.perm, f, g); });
     // Then its windows of whole cells (the cells are not read again: only their count).
     if (s.bucket >= kCells && !s.cells.empty()) {
         s.vertex_count = s.cells.size();
         free_vector(s.cells);
         free_vector(s.next);
     }
-    while (s.bucket >= kCells && s.window_cell <= kCells && spent < budget) {
-        const size_t c = s.window_cell++;
-        const size_t a = s.window_begin, b = s.start[c];
-        if (b - a < kOrderWindowFaces && c < kCells) continue;
+    for (size_t a = 0, b = 0; s.bucket >= kCells && spent < budget &&
+                              next_window(s.start, kOrderWindowFaces, s.window_cell, s.window_begin, a, b);) {
         if (b > a) order_window(s, idx, a, b);
         spent += b - a + 1;
-        s.window_begin = b;
     }
     if (s.bucket < kCells || s.window_cell <= kCells) return false;
     s.finished = true;
