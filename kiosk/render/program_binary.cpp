@@ -6,6 +6,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdint>
 #include <cstdio>
@@ -89,15 +90,20 @@ GLuint load_program_binary(const std::string& key) {
     if (key_size != key.size() || f.size() <= kHeader + key_size ||
         std::memcmp(f.data() + kHeader, key.data(), key_size) != 0)
         return 0;
+    // A format this driver does not offer (another driver wrote it) is skipped: glProgramBinary would raise
+    // GL_INVALID_ENUM, which the kiosk's frame check would count.
+    GLint count = 0;
+    glGetIntegerv(GL_NUM_PROGRAM_BINARY_FORMATS, &count);
+    std::vector<GLint> formats(size_t(std::max(count, 0)));
+    if (count > 0) glGetIntegerv(GL_PROGRAM_BINARY_FORMATS, formats.data());
+    if (std::find(formats.begin(), formats.end(), GLint(format)) == formats.end()) return 0;
     const GLuint id = glCreateProgram();
     const size_t at = kHeader + key_size;
     glProgramBinary(id, format, f.data() + at, GLsizei(f.size() - at));
     GLint ok = 0;
     glGetProgramiv(id, GL_LINK_STATUS, &ok);
-    if (!ok) {
+    if (!ok) {  // refused (another driver version): no GL error, LINK_STATUS false
         glDeleteProgram(id);
-        while (glGetError() != GL_NO_ERROR) {  // a refused format leaves GL_INVALID_ENUM: not the frame's error
-        }
         return 0;
     }
     ++loaded;
