@@ -3,6 +3,7 @@
 // systemd it notifies the service manager (platform/service_notify.h).
 #include "kiosk/app/kiosk_run.h"
 #include "kiosk/modes/modes.h"
+#include "kiosk/render/program_binary.h"
 #include "platform/service_notify.h"
 
 namespace body::kiosk {
@@ -17,6 +18,8 @@ int run_kiosk_mode(platform::Surface& surface, const ViewOptions& o, const scene
     ko.renderer = o.renderer;
     ko.display_width_mm = o.display_width_mm;
     ko.load.file_colours = !o.model_path.empty();
+    // Later starts load the programs' binaries instead of compiling their GLSL.
+    render::set_program_binary_dir(render::default_program_binary_dir());
     // Under systemd: ready after the first frame, the watchdog fed only while frames come.
     platform::ServiceNotifier notifier;
     if (notifier.active())

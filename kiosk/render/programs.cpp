@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <utility>
 
+#include "kiosk/render/program_binary.h"
 #include "kiosk/render/renderer.h"
 
 namespace body::render {
@@ -76,6 +77,13 @@ GLint Program::loc(const char* name) {
 
 Result<unsigned> link_program(const char* vertex_source, const char* fragment_source, const std::string& name,
                               std::span<const std::pair<unsigned, const char*>> attributes) {
+    // The binary's key: everything the link depends on besides the driver (which checks its own).
+    std::string key;
+    if (!program_binary_dir().empty()) {
+        key = std::string(vertex_source) + '\0' + fragment_source + '\0';
+        for (const auto& [location, attribute] : attributes) key += std::to_string(location) + attribute + '\0';
+        if (const GLuint id = load_program_binary(key)) return id;
+    }
     auto vs = compile(GL_VERTEX_SHADER, vertex_source, name + " (vertex)");
     if (!vs) return vs.error();
     auto fs = compile(GL_FRAGMENT_SHADER, fragment_source, name + " (fragment)");
@@ -87,12 +95,14 @@ Result<unsigned> link_program(const char* vertex_source, const char* fragment_so
     glAttachShader(id, vs.value());
     glAttachShader(id, fs.value());
     for (const auto& [location, attribute] : attributes) glBindAttribLocation(id, location, attribute);
+    if (!key.empty()) glProgramParameteri(id, GL_PROGRAM_BINARY_RETRIEVABLE_HINT, GL_TRUE);
     glLinkProgram(id);
     glDeleteShader(vs.value());
     glDeleteShader(fs.value());
     GLint ok = 0;
     glGetProgramiv(id, GL_LINK_STATUS, &ok);
     if (!ok) return runtime_error("program " + name + ": link failed: " + take_info_log(id, true));
+    if (!key.empty()) save_program_binary(key, id);
     return id;
 }
 

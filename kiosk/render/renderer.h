@@ -239,8 +239,9 @@ private:
 const char* shader_source(const std::string& name);
 
 // Compiles and links one GLSL ES 3.00 program (the renderer's and the kiosk
-// overlay's), binding the named attribute locations before linking; a context
-// must be current. Errors name `name` and carry the info log on one line.
+// overlay's), binding the named attribute locations before linking, or loads
+// the binary kept for the same sources (program_binary.h); a context must be
+// current. Errors name `name` and carry the info log on one line.
 Result<unsigned> link_program(const char* vertex_source, const char* fragment_source, const std::string& name,
                               std::span<const std::pair<unsigned, const char*>> attributes = {});
 

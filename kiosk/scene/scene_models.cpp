@@ -28,6 +28,15 @@ double screen_size_estimate(const scene::Model& m) {
     const auto bytes = std::filesystem::file_size(m.path, ec);
     return ec ? 0.0 : static_cast<double>(bytes) * double(m.transform.scale) * double(m.transform.scale);
 }
+
+// std::filesystem::path(path).extension() == ".bpm" without building a path
+// (its parse was a third of the start's per-model cost on 2,000 models): the
+// file name's last dot, not its first character, starts ".bpm".
+bool is_bpm(const std::string& path) {
+    const size_t name = path.find_last_of('/') + 1;  // 0 without a slash
+    const size_t dot = path.rfind('.');
+    return dot != std::string::npos && dot > name && path.compare(dot, std::string::npos, ".bpm") == 0;
+}
 }  // namespace
 
 SceneModels::SceneModels(const scene::Scene& scene)
@@ -37,7 +46,7 @@ SceneModels::SceneModels(const scene::Scene& scene)
     // decoding by size on screen (the world radius; unreadable ones last).
     for (size_t i = 0; i < scene.models.size(); ++i) {
         const scene::Model& m = scene.models[i];
-        if (std::filesystem::path(m.path).extension() != ".bpm") continue;
+        if (!is_bpm(m.path)) continue;
         if (auto summary = pm::read_bpm_summary(m.path)) {
             models_[i].summary = std::move(summary).value();
             summarize(i);
@@ -45,7 +54,7 @@ SceneModels::SceneModels(const scene::Scene& scene)
     }
     for (size_t i = 0; i < scene.models.size(); ++i) {
         const scene::Model& m = scene.models[i];
-        if (std::filesystem::path(m.path).extension() != ".bpm") continue;
+        if (!is_bpm(m.path)) continue;
         const double priority = info_[i].loaded ? double(info_[i].radius) : 0.0;
         // On demand: past the bases only what bind()'s levels want (the kiosk's memory follows what it draws).
         models_[i].loader = std::make_unique<StreamLoader>(m.path, 64 * 1024, priority, DecodePool::shared(), true);
@@ -165,7 +174,7 @@ Status SceneModels::insert_model(size_t index, const LoadOptions& options) {
     models_.insert(models_.begin() + static_cast<std::ptrdiff_t>(index), Model{});
     info_.insert(info_.begin() + static_cast<std::ptrdiff_t>(index), ModelInfo{});
     transforms_.insert(transforms_.begin() + static_cast<std::ptrdiff_t>(index), to_model_matrix(m.transform));
-    if (std::filesystem::path(m.path).extension() == ".bpm")
+    if (is_bpm(m.path))
         models_[index].loader = std::make_unique<StreamLoader>(m.path, 64 * 1024, screen_size_estimate(m));
     if (Status st = load_model(index, options); !st) {
         for (ModelPart& p : models_[index].parts)

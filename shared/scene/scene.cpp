@@ -8,6 +8,7 @@
 #include <initializer_list>
 #include <nlohmann/json.hpp>
 #include <set>
+#include <type_traits>
 
 #include "shared/atomic_file.h"
 #include "shared/input_file.h"
@@ -26,6 +27,29 @@ std::string fmt(double v) {
     return buf;
 }
 
+// A place in the file for a message ("models[3].colour[1]"): a string, or a
+// function that makes one, so that the thousands of places a large scene's
+// models have are built only for the one that fails.
+template <class P>
+std::string place(const P& p) {
+    if constexpr (std::is_invocable_v<const P&>)
+        return p();
+    else
+        return std::string(p);
+}
+
+// The place of `key` inside the place `p` (p must outlive it).
+template <class P>
+auto child(const P& p, const char* key) {
+    return [&p, key] { return place(p) + "." + key; };
+}
+
+// The member `key` of `object`, or null.
+const json* member(const json& object, const char* key) {
+    const auto it = object.find(key);
+    return it == object.end() ? nullptr : &*it;
+}
+
 // Carries the file name and the first error; each reader returns false after failing.
 struct Reader {
     std::string source;
@@ -37,108 +61,124 @@ struct Reader {
         return false;
     }
 
-    bool only_keys(const json& object, const std::string& path, std::initializer_list<const char*> keys) {
-        if (!object.is_object()) return fail(path, "expected an object");
-        for (const auto& [key, value] : object.items()) {
+    template <class P>
+    bool only_keys(const json& object, const P& path, std::initializer_list<const char*> keys) {
+        if (!object.is_object()) return fail(place(path), "expected an object");
+        for (auto it = object.begin(); it != object.end(); ++it) {
+            const std::string& key = it.key();
             bool known = false;
             for (const char* k : keys) known = known || key == k;
-            if (!known) return fail(path + "." + key, "unknown key");
+            if (!known) return fail(place(path) + "." + key, "unknown key");
         }
         return true;
     }
 
-    bool number(const json& v, const std::string& path, float lo, float hi, float& out) {
-        if (!v.is_number()) return fail(path, "expected a number");
+    template <class P>
+    bool number(const json& v, const P& path, float lo, float hi, float& out) {
+        if (!v.is_number()) return fail(place(path), "expected a number");
         double d = v.get<double>();
         if (!std::isfinite(d) || d < lo || d > hi) {
-            return fail(path, "expected a number in [" + fmt(lo) + ", " + fmt(hi) + "]");
+            return fail(place(path), "expected a number in [" + fmt(lo) + ", " + fmt(hi) + "]");
         }
         out = static_cast<float>(d);
         return true;
     }
 
-    bool integer(const json& v, const std::string& path, int lo, int hi, int& out) {
+    template <class P>
+    bool integer(const json& v, const P& path, int lo, int hi, int& out) {
         if (!v.is_number_integer() || v.get<long>() < lo || v.get<long>() > hi) {
-            return fail(path, "expected an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+            return fail(place(path), "expected an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
         }
         out = static_cast<int>(v.get<long>());
         return true;
     }
 
-    bool string(const json& v, const std::string& path, std::string& out, bool allow_empty = false) {
-        if (!v.is_string()) return fail(path, "expected a string");
-        out = v.get<std::string>();
-        if (!allow_empty && out.empty()) return fail(path, "must not be empty");
+    template <class P>
+    bool string(const json& v, const P& path, std::string& out, bool allow_empty = false) {
+        if (!v.is_string()) return fail(place(path), "expected a string");
+        out = v.get_ref<const std::string&>();
+        if (!allow_empty && out.empty()) return fail(place(path), "must not be empty");
         return true;
     }
 
-    bool boolean(const json& v, const std::string& path, bool& out) {
-        if (!v.is_boolean()) return fail(path, "expected true or false");
+    template <class P>
+    bool boolean(const json& v, const P& path, bool& out) {
+        if (!v.is_boolean()) return fail(place(path), "expected true or false");
         out = v.get<bool>();
         return true;
     }
 
-    bool vec3(const json& v, const std::string& path, float lo, float hi, std::array<float, 3>& out) {
-        if (!v.is_array() || v.size() != 3) return fail(path, "expected an array of 3 numbers");
+    template <class P>
+    bool vec3(const json& v, const P& path, float lo, float hi, std::array<float, 3>& out) {
+        if (!v.is_array() || v.size() != 3) return fail(place(path), "expected an array of 3 numbers");
         for (size_t i = 0; i < 3; ++i) {
-            if (!number(v[i], path + "[" + std::to_string(i) + "]", lo, hi, out[i])) return false;
+            const auto at = [&] { return place(path) + "[" + std::to_string(i) + "]"; };
+            if (!number(v[i], at, lo, hi, out[i])) return false;
         }
         return true;
     }
 
-    bool style(const json& v, const std::string& path, Style& out) {
+    template <class P>
+    bool style(const json& v, const P& path, Style& out) {
         std::string name;
         if (!string(v, path, name)) return false;
         auto s = parse_style(name);
-        if (!s) return fail(path, "unknown style '" + name + "' (wireframe, smooth, lines, hatching, hatching-2tone)");
+        if (!s)
+            return fail(place(path),
+                        "unknown style '" + name + "' (wireframe, smooth, lines, hatching, hatching-2tone)");
         out = *s;
         return true;
     }
 
-    bool lod(const json& v, const std::string& path, Lod& out) {
-        if (v.is_string() && v.get<std::string>() == "auto") {
+    template <class P>
+    bool lod(const json& v, const P& path, Lod& out) {
+        if (v.is_string() && v.get_ref<const std::string&>() == "auto") {
             out = Lod{};
             return true;
         }
-        if (!v.is_number()) return fail(path, "expected \"auto\" or a ratio in (0, 1]");
+        if (!v.is_number()) return fail(place(path), "expected \"auto\" or a ratio in (0, 1]");
         double d = v.get<double>();
-        if (!std::isfinite(d) || d <= 0.0 || d > 1.0) return fail(path, "expected \"auto\" or a ratio in (0, 1]");
+        if (!std::isfinite(d) || d <= 0.0 || d > 1.0)
+            return fail(place(path), "expected \"auto\" or a ratio in (0, 1]");
         out = Lod{false, static_cast<float>(d)};
         return true;
     }
 
-    bool transform(const json& v, const std::string& path, Transform& out) {
+    template <class P>
+    bool transform(const json& v, const P& path, Transform& out) {
         if (!only_keys(v, path, {"translate", "rotate_deg", "scale"})) return false;
-        if (v.contains("translate") && !vec3(v["translate"], path + ".translate", -1e6f, 1e6f, out.translate)) {
+        if (const json* t = member(v, "translate");
+            t && !vec3(*t, child(path, "translate"), -1e6f, 1e6f, out.translate))
             return false;
-        }
-        if (v.contains("rotate_deg") && !vec3(v["rotate_deg"], path + ".rotate_deg", -360, 360, out.rotate_deg)) {
+        if (const json* r = member(v, "rotate_deg");
+            r && !vec3(*r, child(path, "rotate_deg"), -360, 360, out.rotate_deg))
             return false;
-        }
-        if (v.contains("scale")) {
-            if (!number(v["scale"], path + ".scale", 1e-6f, 1e6f, out.scale)) return false;
-        }
+        if (const json* s = member(v, "scale"); s && !number(*s, child(path, "scale"), 1e-6f, 1e6f, out.scale))
+            return false;
         return true;
     }
 
-    bool labels(const json& v, const std::string& path, std::vector<LabelText>& out) {
+    template <class P>
+    bool labels(const json& v, const P& path, std::vector<LabelText>& out) {
         if (!v.is_object() || v.empty()) {
-            return fail(path, "expected an object of languages, e.g. {\"en\": {\"title\": ...}}");
+            return fail(place(path), "expected an object of languages, e.g. {\"en\": {\"title\": ...}}");
         }
-        for (const auto& [language, entry] : v.items()) {
-            const std::string p = path + "." + language;
+        for (auto it = v.begin(); it != v.end(); ++it) {
+            const std::string& language = it.key();
+            const json& entry = it.value();
+            const auto p = [&] { return place(path) + "." + language; };
             LabelText text;
             text.language = language;
             if (entry.is_string()) {
-                text.title = entry.get<std::string>();
+                text.title = entry.get_ref<const std::string&>();
             } else {
                 if (!only_keys(entry, p, {"title", "description"})) return false;
-                if (!entry.contains("title")) return fail(p + ".title", "missing");
-                if (!string(entry["title"], p + ".title", text.title)) return false;
-                if (entry.contains("description") &&
-                    !string(entry["description"], p + ".description", text.description, true)) {
+                const json* title = member(entry, "title");
+                if (!title) return fail(p() + ".title", "missing");
+                if (!string(*title, child(p, "title"), text.title)) return false;
+                if (const json* d = member(entry, "description");
+                    d && !string(*d, child(p, "description"), text.description, true))
                     return false;
-                }
             }
             out.push_back(std::move(text));
         }
@@ -146,28 +186,38 @@ struct Reader {
     }
 };
 
-bool read_model(Reader& r, const json& v, const std::string& path, const std::string& base_dir, Model& m) {
+// `file` as seen from `base_dir` (std::filesystem's base_dir / file on POSIX, without building paths).
+std::string beside(const std::string& base_dir, const std::string& file) {
+    if (file.front() == '/' || base_dir.empty()) return file;
+    return base_dir.back() == '/' ? base_dir + file : base_dir + "/" + file;
+}
+
+bool read_model(Reader& r, const json& v, size_t index, const std::string& base_dir, Model& m) {
+    const auto path = [index] { return "models[" + std::to_string(index) + "]"; };
     if (!r.only_keys(v, path, {"name", "file", "group", "colour", "transform", "style", "lod", "label", "pins"})) {
         return false;
     }
-    if (!v.contains("name")) return r.fail(path + ".name", "missing");
-    if (!r.string(v["name"], path + ".name", m.name)) return false;
-    if (!v.contains("file")) return r.fail(path + ".file", "missing");
-    if (!r.string(v["file"], path + ".file", m.file)) return false;
-    std::filesystem::path file(m.file);
-    m.path = file.is_absolute() || base_dir.empty() ? file.string() : (std::filesystem::path(base_dir) / file).string();
-    if (v.contains("group") && !r.string(v["group"], path + ".group", m.group)) return false;
-    if (v.contains("colour") && !r.vec3(v["colour"], path + ".colour", 0, 1, m.colour)) return false;
-    if (v.contains("transform") && !r.transform(v["transform"], path + ".transform", m.transform)) return false;
-    if (v.contains("style") && !r.style(v["style"], path + ".style", m.style)) return false;
-    if (v.contains("lod") && !r.lod(v["lod"], path + ".lod", m.lod)) return false;
-    if (v.contains("label")) {
-        if (!r.labels(v["label"], path + ".label", m.labels)) return false;
+    const json* name = member(v, "name");
+    if (!name) return r.fail(path() + ".name", "missing");
+    if (!r.string(*name, child(path, "name"), m.name)) return false;
+    const json* file = member(v, "file");
+    if (!file) return r.fail(path() + ".file", "missing");
+    if (!r.string(*file, child(path, "file"), m.file)) return false;
+    m.path = beside(base_dir, m.file);
+    if (const json* g = member(v, "group"); g && !r.string(*g, child(path, "group"), m.group)) return false;
+    if (const json* c = member(v, "colour"); c && !r.vec3(*c, child(path, "colour"), 0, 1, m.colour)) return false;
+    if (const json* t = member(v, "transform"); t && !r.transform(*t, child(path, "transform"), m.transform))
+        return false;
+    if (const json* s = member(v, "style"); s && !r.style(*s, child(path, "style"), m.style)) return false;
+    if (const json* l = member(v, "lod"); l && !r.lod(*l, child(path, "lod"), m.lod)) return false;
+    if (const json* l = member(v, "label")) {
+        if (!r.labels(*l, child(path, "label"), m.labels)) return false;
     } else {
         m.labels.push_back(LabelText{"", m.name, ""});
     }
     detail::Failure f;
-    if (v.contains("pins") && !detail::read_pins(v["pins"], path + ".pins", m.pins, f)) return r.fail(f.where, f.why);
+    if (const json* p = member(v, "pins"); p && !detail::read_pins(*p, path() + ".pins", m.pins, f))
+        return r.fail(f.where, f.why);
     return true;
 }
 
@@ -319,15 +369,15 @@ bool check_references(Reader& r, Scene& s) {
     const std::set<std::string> languages(s.kiosk.languages.begin(), s.kiosk.languages.end());
     for (size_t i = 0; i < s.models.size(); ++i) {
         Model& m = s.models[i];
-        const std::string p = "models[" + std::to_string(i) + "]";
-        if (!names.insert(m.name).second) return r.fail(p + ".name", "duplicate model '" + m.name + "'");
+        const auto p = [i] { return "models[" + std::to_string(i) + "]"; };
+        if (!names.insert(m.name).second) return r.fail(p() + ".name", "duplicate model '" + m.name + "'");
         if (!m.group.empty() && !groups.count(m.group)) {
-            return r.fail(p + ".group", "no group named '" + m.group + "' in groups");
+            return r.fail(p() + ".group", "no group named '" + m.group + "' in groups");
         }
         for (LabelText& t : m.labels) {
             if (t.language.empty()) t.language = s.kiosk.languages.front();
             if (!languages.count(t.language)) {
-                return r.fail(p + ".label." + t.language, "language not listed in kiosk.languages");
+                return r.fail(p() + ".label." + t.language, "language not listed in kiosk.languages");
             }
         }
     }
@@ -413,11 +463,10 @@ Result<Scene> parse_scene(const std::string& text, const std::string& source, co
     if (!root.contains("models")) return input_error(source + ": models: missing");
     const json& models = root["models"];
     if (!models.is_array() || models.empty()) return input_error(source + ": models: expected a non-empty array");
+    s.models.reserve(models.size());
     for (size_t i = 0; i < models.size(); ++i) {
         Model m;
-        if (!read_model(r, models[i], "models[" + std::to_string(i) + "]", base_dir, m)) {
-            return input_error(r.message);
-        }
+        if (!read_model(r, models[i], i, base_dir, m)) return input_error(r.message);
         s.models.push_back(std::move(m));
     }
     if (root.contains("camera") && !read_camera(r, root["camera"], "camera", s.camera)) return input_error(r.message);

@@ -101,6 +101,44 @@ TEST(Scene, ErrorsNameFileAndPath) {
               "scene.json: kiosk.admin_gesture.corner: expected top-left, top-right, bottom-left or bottom-right");
 }
 
+// The places inside a model that is not the first (each one's path is made only when it fails).
+TEST(Scene, ErrorsNameTheNestedPlaceInsideAModel) {
+    const std::string first = R"({"name": "a", "file": "a.obj"}, )";
+    auto model = [&](const std::string& rest) {
+        return error_of(R"({"models": [)" + first + R"({"name": "b", "file": "b.obj", )" + rest + "}]}");
+    };
+    EXPECT_EQ(model(R"("transform": {"rotate_deg": [0, 0, 400]})"),
+              "scene.json: models[1].transform.rotate_deg[2]: expected a number in [-360, 360]");
+    EXPECT_EQ(model(R"("transform": {"translate": [0, "x", 0]})"),
+              "scene.json: models[1].transform.translate[1]: expected a number");
+    EXPECT_EQ(model(R"("transform": {"scale": 0})"),
+              "scene.json: models[1].transform.scale: expected a number in [1e-06, 1e+06]");
+    EXPECT_EQ(model(R"("transform": {"shear": 1})"), "scene.json: models[1].transform.shear: unknown key");
+    EXPECT_EQ(model(R"("label": {"en": {"description": "d"}})"), "scene.json: models[1].label.en.title: missing");
+    EXPECT_EQ(model(R"("label": {"en": {"title": ""}})"), "scene.json: models[1].label.en.title: must not be empty");
+    EXPECT_EQ(model(R"("label": {"en": {"title": "t", "description": 3}})"),
+              "scene.json: models[1].label.en.description: expected a string");
+    EXPECT_EQ(model(R"("label": {"en": {"title": "t", "note": 3}})"),
+              "scene.json: models[1].label.en.note: unknown key");
+    EXPECT_EQ(model(R"("group": 7)"), "scene.json: models[1].group: expected a string");
+    EXPECT_EQ(error_of(R"({"models": [)" + first + R"({"file": "b.obj"}]})"), "scene.json: models[1].name: missing");
+}
+
+// A model's file beside the manifest's folder, as std::filesystem joins them.
+TEST(Scene, ModelFilesAreFoundBesideTheManifest) {
+    const char* text = R"({"models": [{"name": "a", "file": "m/a.bpm"}, {"name": "b", "file": "/abs/b.bpm"}]})";
+    for (const char* base : {"/bundle", "/bundle/"}) {
+        auto s = parse_scene(text, "scene.json", base);
+        ASSERT_TRUE(s) << s.error().message;
+        EXPECT_EQ(s->models[0].path, "/bundle/m/a.bpm") << base;
+        EXPECT_EQ(s->models[1].path, "/abs/b.bpm") << base;
+    }
+    auto s = parse_scene(text, "scene.json", "");
+    ASSERT_TRUE(s) << s.error().message;
+    EXPECT_EQ(s->models[0].path, "m/a.bpm");
+    EXPECT_EQ(s->models[0].file, "m/a.bpm");
+}
+
 TEST(Scene, ReadSceneNamesAMissingFile) {
     auto s = read_scene("/nonexistent/scene.json");
     ASSERT_FALSE(s);

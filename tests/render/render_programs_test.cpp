@@ -3,10 +3,14 @@
 // none of them again, and a style first drawn after others gives the same
 // picture as from a renderer that had linked every program before.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
+#include <filesystem>
+#include <fstream>
 #include <glm/gtc/matrix_transform.hpp>
 #include <vector>
 
+#include "kiosk/render/program_binary.h"
 #include "shared/style.h"
 #include "tests/render/render_fixture.h"
 
@@ -94,6 +98,61 @@ TEST(RenderPrograms, AStyleLinkedAtItsFirstDrawDrawsTheSamePicture) {
             shown += b;
         EXPECT_GT(shown, lazily.rgba.size() / 4 / 20) << style_name(style);
     }
+}
+
+// With a binary directory (program_binary.h): a program linked once is loaded
+// from its binary in a later context and draws the same picture; a damaged
+// binary is compiled again (same picture) and written anew.
+TEST(RenderPrograms, ALaterContextLoadsTheProgramsBinaryAndDrawsTheSamePicture) {
+    const std::string dir = testing::TempDir() + "program_binaries_" + std::to_string(::getpid());
+    std::filesystem::remove_all(dir);
+    set_program_binary_dir(dir);
+    struct Off {
+        std::string dir;
+        ~Off() {
+            set_program_binary_dir({});
+            std::filesystem::remove_all(dir);
+        }
+    } off{dir};
+    const auto draw_smooth = [](size_t& loaded) {
+        RenderFixture f(160, 100);
+        if (!f.ok()) return render::Image{};
+        const size_t before = program_binaries_loaded();
+        (void)add_pair(f.renderer(), Style::Smooth);
+        render::Image img = f.draw(camera());
+        loaded = program_binaries_loaded() - before;
+        return img;
+    };
+    size_t loaded = 0;
+    {
+        RenderFixture probe(16, 16);
+        REQUIRE_GL(probe);
+        GLint formats = 0;
+        glGetIntegerv(GL_NUM_PROGRAM_BINARY_FORMATS, &formats);
+        if (formats == 0) GTEST_SKIP() << "the driver offers no program binary format";
+    }
+    const render::Image compiled = draw_smooth(loaded);
+    EXPECT_EQ(loaded, 0u);
+    std::vector<std::filesystem::path> files;
+    for (const auto& e : std::filesystem::directory_iterator(dir)) files.push_back(e.path());
+    ASSERT_EQ(files.size(), 1u);  // the smooth program the frame drew
+    const render::Image from_binary = draw_smooth(loaded);
+    EXPECT_EQ(loaded, 1u);
+    EXPECT_EQ(from_binary.rgba, compiled.rgba);
+    // Damaged past its key: refused, compiled again, rewritten.
+    const auto size = std::filesystem::file_size(files[0]);
+    {
+        std::fstream io(files[0], std::ios::in | std::ios::out | std::ios::binary);
+        io.seekp(std::streamoff(size - 64));
+        const std::string junk(64, 'x');
+        io.write(junk.data(), 64);
+    }
+    const render::Image recompiled = draw_smooth(loaded);
+    EXPECT_EQ(loaded, 0u);
+    EXPECT_EQ(recompiled.rgba, compiled.rgba);
+    (void)draw_smooth(loaded);
+    EXPECT_EQ(loaded, 1u);  // the rewritten binary
+    EXPECT_EQ(load_program_binary("a key never linked"), 0u);
 }
 
 }  // namespace
