@@ -485,6 +485,9 @@ size_t keep_free_of_new_crossings(Work& w, std::vector<Vec3>& positions, std::sp
         if (indices[i] >= first_new && positions[indices[i]] != w.straight[indices[i]]) off_straight[i / 3] = 1;
     // The first round's search, slab by slab: a triangle between two slices
     // (a band's strip) reaches no other slab, so each slab's grid stays small.
+    // It leaves out pairs on either side of a slice that meet only in its
+    // plane: there both are traced points and edges, which no rung moves, so
+    // such a pair meets on the straight mesh alike and is never new.
     std::vector<std::pair<uint32_t, uint32_t>> pairs;
     self_intersections_by_layer(positions, indices, off_straight, w.slice_z, pairs);
     size_t straightened = 0;
