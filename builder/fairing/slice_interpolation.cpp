@@ -337,49 +337,65 @@ std::vector<uint32_t> retriangulate(const Work& w, std::span<const uint32_t> ind
     return out;
 }
 
-// Triangles whose boxes over every place their vertices can take (on the
-// curve or straight) share a cell of a uniform grid: the candidates for
-// meeting a given triangle in any state. Only each box's cell range is kept:
-// the few queries of a round are answered by one pass over them (a cell map
-// of the whole mesh cost more to build than all the rounds' passes), their
-// cells marked in a bitmap over the queries' hull.
+// Triangles whose boxes, at the positions of the moment, share a cell of a
+// uniform grid with a query's box: a superset of those whose boxes overlap a
+// query's. Only the triangles listed in the slabs the queries reach are looked
+// at (a rung's points keep their heights, so the slabs hold in every state);
+// no box is kept: a round computes the few it looks at, and marks the queries'
+// cells in a bitmap over their hull.
 class NearTriangles {
 public:
-    NearTriangles(std::span<const uint32_t> indices, std::span<const Vec3> curved, std::span<const Vec3> straight) {
+    NearTriangles(std::span<const uint32_t> indices, std::span<const Vec3> positions, std::span<const double> slice_z)
+        : indices_(indices), slice_z_(slice_z) {
         const size_t n = indices.size() / 3;
-        std::vector<Aabb> boxes(n);
         Aabb all;
+        std::vector<uint32_t> slab(positions.size());
+        for (size_t v = 0; v < positions.size(); ++v) {
+            all.extend(positions[v]);
+            slab[v] = slab_of(positions[v].z);
+        }
+        origin_ = all.min;
+        start_.assign(slice_z.size() + 2, 0);
+        auto slabs = [&](uint32_t t) {
+            const uint32_t* c = &indices[3 * size_t(t)];
+            return std::pair(std::min({slab[c[0]], slab[c[1]], slab[c[2]]}),
+                             std::max({slab[c[0]], slab[c[1]], slab[c[2]]}));
+        };
         double sum = 0;
         for (size_t t = 0; t < n; ++t) {
-            for (int c = 0; c < 3; ++c) {
-                const uint32_t v = indices[3 * t + size_t(c)];
-                boxes[t].extend(curved[v]);
-                boxes[t].extend(straight[v]);
-            }
-            const Vec3 d = boxes[t].max - boxes[t].min;
+            const auto [first, last] = slabs(uint32_t(t));
+            for (uint32_t l = first; l <= last; ++l) ++start_[l + 1];
+            const Aabb b = box(positions, uint32_t(t));
+            const Vec3 d = b.max - b.min;
             sum += std::max({d.x, d.y, d.z});
-            all.extend(boxes[t].min);
-            all.extend(boxes[t].max);
         }
-        // At least 1e-9 of the extent: at most 1e9 cells along an axis, which int32 holds.
-        const double cell = std::max(2.0 * sum / double(std::max<size_t>(n, 1)), 1e-9 * std::max(all.extent(), 1e-300));
-        auto at = [&](double x, double lo) { return int32_t(std::floor((x - lo) / cell)); };
-        ranges_.resize(n);
-        for (size_t t = 0; t < n; ++t) {
-            const Aabb& b = boxes[t];
-            ranges_[t] = {{at(b.min.x, all.min.x), at(b.min.y, all.min.y), at(b.min.z, all.min.z)},
-                          {at(b.max.x, all.min.x), at(b.max.y, all.min.y), at(b.max.z, all.min.z)}};
+        for (size_t l = 0; l + 1 < start_.size(); ++l) start_[l + 1] += start_[l];
+        members_.resize(start_.back());
+        std::vector<uint32_t> fill(start_.begin(), start_.end() - 1);
+        for (uint32_t t = 0; t < n; ++t) {
+            const auto [first, last] = slabs(t);
+            for (uint32_t l = first; l <= last; ++l) members_[fill[l]++] = t;
         }
+        // At least 1e-9 of the extent: at most 1e9 cells along an axis, which int32 holds. Every
+        // place a vertex can take (its curve or its straight line) lies inside `all`.
+        cell_ = std::max(2.0 * sum / double(std::max<size_t>(n, 1)), 1e-9 * std::max(all.extent(), 1e-300));
     }
-    // Appends the triangles sharing a cell with any of `queries` (queries included).
-    void near(std::span<const uint32_t> queries, std::vector<uint32_t>& out) const {
+    // Appends the triangles sharing a cell with any of `queries` (queries
+    // included; a triangle may be appended more than once).
+    void near(std::span<const uint32_t> queries, std::span<const Vec3> positions, std::vector<uint32_t>& out) const {
         if (queries.empty()) return;
         Range hull{{INT32_MAX, INT32_MAX, INT32_MAX}, {INT32_MIN, INT32_MIN, INT32_MIN}};
-        for (uint32_t q : queries)
+        std::vector<Range> ranges(queries.size());
+        std::vector<uint8_t> reached(start_.size() - 1, 0);
+        for (size_t i = 0; i < queries.size(); ++i) {
+            ranges[i] = range(positions, queries[i]);
             for (int a = 0; a < 3; ++a) {
-                hull.lo[a] = std::min(hull.lo[a], ranges_[q].lo[a]);
-                hull.hi[a] = std::max(hull.hi[a], ranges_[q].hi[a]);
+                hull.lo[a] = std::min(hull.lo[a], ranges[i].lo[a]);
+                hull.hi[a] = std::max(hull.hi[a], ranges[i].hi[a]);
             }
+            const Aabb b = box(positions, queries[i]);
+            for (uint32_t l = slab_of(b.min.z); l <= slab_of(b.max.z); ++l) reached[l] = 1;
+        }
         uint64_t dims[3];
         for (int a = 0; a < 3; ++a) dims[a] = uint64_t(int64_t(hull.hi[a]) - hull.lo[a] + 1);
         const double bits = double(dims[0]) * double(dims[1]) * double(dims[2]);
@@ -391,8 +407,8 @@ public:
         auto key = [&](int32_t i, int32_t j, int32_t k) {
             return (uint64_t(i - hull.lo[0]) * dims[1] + uint64_t(j - hull.lo[1])) * dims[2] + uint64_t(k - hull.lo[2]);
         };
-        for (uint32_t q : queries)
-            visit(ranges_[q], [&](int32_t i, int32_t j, int32_t k) {
+        for (const Range& r : ranges)
+            visit(r, [&](int32_t i, int32_t j, int32_t k) {
                 const uint64_t c = key(i, j, k);
                 if (dense)
                     bitmap[c >> 6] |= uint64_t(1) << (c & 63);
@@ -400,20 +416,24 @@ public:
                     cells.insert(c);
                 return false;
             });
-        for (uint32_t t = 0; t < ranges_.size(); ++t) {
-            Range r = ranges_[t];
-            bool reach = true;  // first: does it reach the queries' hull at all? Then its cells inside it.
-            for (int a = 0; a < 3; ++a) {
-                reach = reach && r.lo[a] <= hull.hi[a] && hull.lo[a] <= r.hi[a];
-                r.lo[a] = std::max(r.lo[a], hull.lo[a]);
-                r.hi[a] = std::min(r.hi[a], hull.hi[a]);
+        for (size_t l = 0; l < reached.size(); ++l) {
+            if (!reached[l]) continue;
+            for (uint32_t m = start_[l]; m < start_[l + 1]; ++m) {
+                const uint32_t t = members_[m];
+                Range r = range(positions, t);
+                bool reach = true;  // first: does it reach the queries' hull at all? Then its cells inside it.
+                for (int a = 0; a < 3; ++a) {
+                    reach = reach && r.lo[a] <= hull.hi[a] && hull.lo[a] <= r.hi[a];
+                    r.lo[a] = std::max(r.lo[a], hull.lo[a]);
+                    r.hi[a] = std::min(r.hi[a], hull.hi[a]);
+                }
+                if (!reach) continue;
+                const bool hit = visit(r, [&](int32_t i, int32_t j, int32_t k) {
+                    const uint64_t c = key(i, j, k);
+                    return dense ? (bitmap[c >> 6] >> (c & 63) & 1) != 0 : cells.count(c) != 0;
+                });
+                if (hit) out.push_back(t);
             }
-            if (!reach) continue;
-            const bool hit = visit(r, [&](int32_t i, int32_t j, int32_t k) {
-                const uint64_t c = key(i, j, k);
-                return dense ? (bitmap[c >> 6] >> (c & 63) & 1) != 0 : cells.count(c) != 0;
-            });
-            if (hit) out.push_back(t);
         }
     }
 
@@ -422,6 +442,21 @@ private:
     struct Range {
         int32_t lo[3], hi[3];  // cells along x, y, z
     };
+    Aabb box(std::span<const Vec3> positions, uint32_t t) const {
+        Aabb b;
+        for (int c = 0; c < 3; ++c) b.extend(positions[indices_[3 * size_t(t) + size_t(c)]]);
+        return b;
+    }
+    Range range(std::span<const Vec3> positions, uint32_t t) const {
+        const Aabb b = box(positions, t);
+        auto at = [&](double x, double lo) { return int32_t(std::floor((x - lo) / cell_)); };
+        return {{at(b.min.x, origin_.x), at(b.min.y, origin_.y), at(b.min.z, origin_.z)},
+                {at(b.max.x, origin_.x), at(b.max.y, origin_.y), at(b.max.z, origin_.z)}};
+    }
+    // The slab of height z: 0 below the first slice, k from slice k - 1 (included) to slice k.
+    uint32_t slab_of(double z) const {
+        return uint32_t(std::upper_bound(slice_z_.begin(), slice_z_.end(), z) - slice_z_.begin());
+    }
     // Calls f(i, j, k) on each cell of r until it returns true; whether one did.
     template <class F>
     static bool visit(const Range& r, F&& f) {
@@ -431,7 +466,11 @@ private:
                     if (f(i, j, k)) return true;
         return false;
     }
-    std::vector<Range> ranges_;
+    std::span<const uint32_t> indices_;
+    std::span<const double> slice_z_;
+    Vec3 origin_{0.0};
+    double cell_ = 1;
+    std::vector<uint32_t> start_, members_;  // triangles by slab (CSR)
 };
 
 // Phase 5: rungs whose curve makes triangles meet that do not meet on the
@@ -478,7 +517,7 @@ size_t keep_free_of_new_crossings(Work& w, std::vector<Vec3>& positions, std::sp
     std::vector<uint32_t> fill(start.begin(), start.end() - 1);
     for (size_t i = 0; i < indices.size(); ++i)
         if (indices[i] >= first_new) around[fill[rung_at[indices[i] - first_new]]++] = uint32_t(i / 3);
-    const NearTriangles near(indices, positions, w.straight);
+    const NearTriangles near(indices, positions, w.slice_z);
 
     std::vector<uint8_t> off_straight(indices.size() / 3, 0);
     for (size_t i = 0; i < indices.size(); ++i)
@@ -512,7 +551,7 @@ size_t keep_free_of_new_crossings(Work& w, std::vector<Vec3>& positions, std::sp
         std::vector<uint32_t> queries, subset;
         for (uint32_t r : moved)
             queries.insert(queries.end(), around.begin() + start[r], around.begin() + start[r + 1]);
-        near.near(queries, subset);
+        near.near(queries, positions, subset);
         std::sort(subset.begin(), subset.end());
         subset.erase(std::unique(subset.begin(), subset.end()), subset.end());
         std::vector<uint32_t> sub_indices;
