@@ -3,9 +3,10 @@
 // The tiling already pairs points on neighbouring slices: each edge of a band
 // joining the two slices (a rung) is a correspondence. Each rung becomes a
 // cubic Hermite curve whose end tangents are Catmull-Rom slopes taken from
-// the rungs above and below its ends, so consecutive curves meet with one
-// tangent at every traced point (C1 across the slice), while the traced
-// points and contour edges themselves stay where they are.
+// the rung continuing it above and below its ends, so a rung and its
+// continuation meet with one tangent at the traced point (C1 across the
+// slice), while the traced points and contour edges themselves stay where
+// they are.
 //
 // References:
 //   E. Catmull, R. Rom, "A class of local interpolating splines", Computer
@@ -93,13 +94,18 @@ void find_rungs(Work& w, std::span<const uint32_t> indices) {
 // sides they join (a cube's edges), so rungs ending there stay straight.
 constexpr double kSharpCos = 0.866;  // 30 degrees
 
-// The slopes turned into the tangent plane of the bands at each vertex with
-// bands on both sides (the area-weighted normal of its band triangles): the
-// mean of a vertex's partners can point off the surface where the tiling fans
-// one point to many. A slope that the plane would make nearly horizontal is
-// left as it was. Rungs at sharp vertices are marked straight.
+// A rung's curve slopes (d(x, y)/dz) at its lower and upper end.
+struct EndSlopes {
+    Vec2 lo{0.0}, hi{0.0};
+};
+
+// The slopes turned into the tangent plane of the bands at each end with
+// bands on both sides (`two_sided`; the area-weighted normal of its band
+// triangles): a slope can point off the surface where the tiling fans one
+// point to many. A slope that the plane would make nearly horizontal is left
+// as it was. Rungs at sharp vertices are marked straight.
 void in_tangent_plane(Work& w, std::span<const Vec3> positions, std::span<const uint32_t> indices,
-                      std::span<const uint32_t> n_up, std::span<const uint32_t> n_down, std::vector<Vec2>& slope) {
+                      std::span<const uint8_t> two_sided, std::vector<EndSlopes>& slope) {
     std::vector<Vec3> normal(positions.size(), Vec3(0.0));
     for (size_t t = 0; t + 2 < indices.size(); t += 3) {
         if (!is_band(w, &indices[t])) continue;
@@ -119,66 +125,82 @@ void in_tangent_plane(Work& w, std::span<const Vec3> positions, std::span<const 
             if (ln > 0 && lv > 0 && glm::dot(n, normal[v]) < kSharpCos * ln * lv) sharp[v] = 1;
         }
     }
-    for (Rung& r : w.rungs)
-        if (sharp[r.lo] || sharp[r.hi]) r.curved = false;
-    for (size_t v = 0; v < positions.size(); ++v) {
+    auto turn = [&](uint32_t v, Vec2& m) {
         const double length = glm::length(normal[v]);
-        if (!(length > 0) || !n_up[v] || !n_down[v]) continue;
-        const Vec3 n = normal[v] / length, d(slope[v], 1.0);
+        if (!(length > 0) || !two_sided[v]) return;
+        const Vec3 n = normal[v] / length, d(m, 1.0);
         const Vec3 in_plane = d - glm::dot(d, n) * n;
-        if (in_plane.z > 0.25) slope[v] = Vec2(in_plane) / in_plane.z;
+        if (in_plane.z > 0.25) m = Vec2(in_plane) / in_plane.z;
+    };
+    for (size_t r = 0; r < w.rungs.size(); ++r) {
+        Rung& rung = w.rungs[r];
+        if (sharp[rung.lo] || sharp[rung.hi]) rung.curved = false;
+        if (!rung.band) continue;
+        turn(rung.lo, slope[r].lo);
+        turn(rung.hi, slope[r].hi);
     }
 }
 
-// Phase 2: the Catmull-Rom slope (d(x, y)/dz) at every vertex from the mean of
-// its rung partners above and below, weighted for uneven spacing. A vertex
-// with partners on one side only (a structure's end, a branch) takes the
-// parabola's end slope, 2 x chord slope - the partners' slope, so the curve
+// Phase 2: each rung's Catmull-Rom slopes at its ends, from its own chord and
+// the chord of the rung continuing it past that end (of the rungs on the far
+// side of the end vertex, the one whose chord slope is nearest its own),
+// weighted for uneven spacing. A rung and its continuation meet with one
+// tangent when each continues the other; where the tiling fans one point to
+// many, each rung keeps its own direction (the mean of all of them would bend
+// rungs that run straight, a cylinder's diagonals). An end with no rung beyond
+// it (a structure's end, a branch) takes the parabola's end slope, 2 x chord
+// slope - the other end's slope, when the other end has one, so the curve
 // keeps bending towards the end instead of running straight into it.
-std::vector<Vec2> slopes(Work& w, std::span<const Vec3> positions, std::span<const uint32_t> indices) {
+std::vector<EndSlopes> slopes(Work& w, std::span<const Vec3> positions, std::span<const uint32_t> indices) {
     const size_t n = positions.size();
-    std::vector<Vec2> up(n, Vec2(0.0)), down(n, Vec2(0.0));
-    std::vector<uint32_t> n_up(n, 0), n_down(n, 0);
-    for (const Rung& r : w.rungs) {
-        if (!r.band) continue;
-        up[r.lo] += Vec2(positions[r.hi]);
-        ++n_up[r.lo];
-        down[r.hi] += Vec2(positions[r.lo]);
-        ++n_down[r.hi];
+    // Band rungs by their lower end (those going up from a vertex) and by their upper end (CSR).
+    std::vector<uint32_t> up_start(n + 1, 0), down_start(n + 1, 0);
+    for (const Rung& r : w.rungs)
+        if (r.band) ++up_start[r.lo + 1], ++down_start[r.hi + 1];
+    for (size_t v = 0; v < n; ++v) up_start[v + 1] += up_start[v], down_start[v + 1] += down_start[v];
+    std::vector<uint32_t> up(up_start[n]), down(down_start[n]);
+    {
+        std::vector<uint32_t> up_fill(up_start.begin(), up_start.end() - 1),
+            down_fill(down_start.begin(), down_start.end() - 1);
+        for (uint32_t r = 0; r < w.rungs.size(); ++r)
+            if (w.rungs[r].band) up[up_fill[w.rungs[r].lo]++] = r, down[down_fill[w.rungs[r].hi]++] = r;
     }
-    std::vector<Vec2> slope(n, Vec2(0.0));
-    for (size_t v = 0; v < n; ++v) {
-        if (w.slice[v] == kNoSlice || (n_up[v] == 0 && n_down[v] == 0)) continue;
-        const size_t s = size_t(w.slice[v]);
-        const Vec2 p(positions[v]);
-        Vec2 su(0.0), sd(0.0);
-        double hu = 0, hd = 0;
-        if (n_up[v]) {
-            hu = w.slice_z[s + 1] - w.slice_z[s];
-            su = (up[v] / double(n_up[v]) - p) / hu;
+    auto gap = [&](const Rung& r) { return positions[r.hi].z - positions[r.lo].z; };
+    auto chord = [&](const Rung& r) { return (Vec2(positions[r.hi]) - Vec2(positions[r.lo])) / gap(r); };
+    // The rung among `beyond` whose chord slope is nearest `c` (UINT32_MAX: none).
+    auto continuing = [&](std::span<const uint32_t> beyond, const Vec2& c) {
+        uint32_t best = UINT32_MAX;
+        double best_d = 0;
+        for (uint32_t u : beyond) {
+            const Vec2 d = chord(w.rungs[u]) - c;
+            const double d2 = glm::dot(d, d);
+            if (best == UINT32_MAX || d2 < best_d) best = u, best_d = d2;
         }
-        if (n_down[v]) {
-            hd = w.slice_z[s] - w.slice_z[s - 1];
-            sd = (p - down[v] / double(n_down[v])) / hd;
-        }
-        if (n_up[v] && n_down[v])
-            slope[v] = (hd * su + hu * sd) / (hu + hd);
-        else
-            slope[v] = n_up[v] ? su : sd;  // the chord's, until the end condition below
-    }
-    // End condition from the two-sided partners' slopes.
-    std::vector<Vec2> partner(n, Vec2(0.0));
-    std::vector<uint32_t> n_partner(n, 0);
-    auto two_sided = [&](uint32_t v) { return n_up[v] > 0 && n_down[v] > 0; };
-    for (const Rung& r : w.rungs) {
+        return best;
+    };
+    std::vector<EndSlopes> slope(w.rungs.size());
+    std::vector<uint8_t> two_sided(n, 0);
+    for (uint32_t v = 0; v < n; ++v) two_sided[v] = up_start[v + 1] > up_start[v] && down_start[v + 1] > down_start[v];
+    for (size_t i = 0; i < w.rungs.size(); ++i) {
+        const Rung& r = w.rungs[i];
         if (!r.band) continue;
-        if (!two_sided(r.lo) && two_sided(r.hi)) partner[r.lo] += slope[r.hi], ++n_partner[r.lo];
-        if (!two_sided(r.hi) && two_sided(r.lo)) partner[r.hi] += slope[r.lo], ++n_partner[r.hi];
+        const Vec2 c = chord(r);
+        const double h = gap(r);
+        slope[i] = {c, c};  // the chord's at a one-sided end, until the end condition below
+        const uint32_t d = continuing({&down[down_start[r.lo]], &down[down_start[r.lo + 1]]}, c);
+        if (d != UINT32_MAX) {
+            const double hd = gap(w.rungs[d]);
+            slope[i].lo = (hd * c + h * chord(w.rungs[d])) / (h + hd);
+        }
+        const uint32_t u = continuing({&up[up_start[r.hi]], &up[up_start[r.hi + 1]]}, c);
+        if (u != UINT32_MAX) {
+            const double hu = gap(w.rungs[u]);
+            slope[i].hi = (h * chord(w.rungs[u]) + hu * c) / (h + hu);
+        }
+        if (d != UINT32_MAX && u == UINT32_MAX) slope[i].hi = 2.0 * c - slope[i].lo;
+        if (u != UINT32_MAX && d == UINT32_MAX) slope[i].lo = 2.0 * c - slope[i].hi;
     }
-    for (size_t v = 0; v < n; ++v)
-        if (n_partner[v] > 0 && n_partner[v] == std::max(n_up[v], n_down[v]))
-            slope[v] = 2.0 * slope[v] - partner[v] / double(n_partner[v]);
-    in_tangent_plane(w, positions, indices, n_up, n_down, slope);
+    in_tangent_plane(w, positions, indices, two_sided, slope);
     return slope;
 }
 
@@ -187,15 +209,16 @@ std::vector<Vec2> slopes(Work& w, std::span<const Vec3> positions, std::span<con
 // n evenly spaced points leave about that / (n + 1)^2 between the curve and
 // their polyline. A curved rung takes the fewest n <= rings that bring this
 // under tolerance x h; a straight one none.
-void choose_counts(Work& w, std::span<const Vec3> positions, std::span<const Vec2> slope) {
-    for (Rung& r : w.rungs) {
+void choose_counts(Work& w, std::span<const Vec3> positions, std::span<const EndSlopes> slope) {
+    for (size_t i = 0; i < w.rungs.size(); ++i) {
+        Rung& r = w.rungs[i];
         r.count = r.band ? w.rings : 0;
         if (!(w.tolerance > 0) || !r.band) continue;
         r.count = 0;
         if (!r.curved) continue;
         const Vec3 a = positions[r.lo], b = positions[r.hi];
         const Vec2 chord = (Vec2(b) - Vec2(a)) / (b.z - a.z);
-        const double leave = (4.0 / 27.0) * (glm::length(slope[r.lo] - chord) + glm::length(slope[r.hi] - chord));
+        const double leave = (4.0 / 27.0) * (glm::length(slope[i].lo - chord) + glm::length(slope[i].hi - chord));
         const double n = std::ceil(std::sqrt(leave / w.tolerance)) - 1.0;
         r.count = n <= 0 ? 0 : n >= double(w.rings) ? w.rings : int(n);
     }
@@ -203,13 +226,14 @@ void choose_counts(Work& w, std::span<const Vec3> positions, std::span<const Vec
 
 // Phase 3b: each split rung's points, on its curve (`positions`) and on its
 // straight line (`w.straight`).
-void place_points(Work& w, std::vector<Vec3>& positions, std::span<const Vec2> slope) {
+void place_points(Work& w, std::vector<Vec3>& positions, std::span<const EndSlopes> slope) {
     size_t split = 0;
     for (const Rung& r : w.rungs) split += r.band ? size_t(r.count) : 0;
     positions.reserve(positions.size() + split);
     w.straight.reserve(positions.capacity());
     w.straight = positions;
-    for (Rung& r : w.rungs) {
+    for (size_t i = 0; i < w.rungs.size(); ++i) {
+        Rung& r = w.rungs[i];
         if (!r.band) continue;
         r.first = uint32_t(positions.size());
         const Vec3 a = positions[r.lo], b = positions[r.hi];
@@ -219,7 +243,7 @@ void place_points(Work& w, std::vector<Vec3>& positions, std::span<const Vec2> s
             const double z = a.z + t * h;
             const double h00 = (1 + 2 * t) * (1 - t) * (1 - t), h10 = t * (1 - t) * (1 - t);
             const double h01 = t * t * (3 - 2 * t), h11 = t * t * (t - 1);
-            const Vec2 curve = h00 * Vec2(a) + h10 * h * slope[r.lo] + h01 * Vec2(b) + h11 * h * slope[r.hi];
+            const Vec2 curve = h00 * Vec2(a) + h10 * h * slope[i].lo + h01 * Vec2(b) + h11 * h * slope[i].hi;
             const Vec2 line = Vec2(a) + t * (Vec2(b) - Vec2(a));
             w.straight.emplace_back(line, z);
             positions.emplace_back(r.curved ? curve : line, z);
@@ -591,9 +615,11 @@ InterpolationStats interpolate_between_slices(std::vector<Vec3>& positions, std:
     for (size_t v = 0; v < positions.size(); ++v) w.slice[v] = slice_of(positions[v].z, slice_z);
     find_rungs(w, indices);
     const size_t first_new = positions.size();
-    const std::vector<Vec2> slope = slopes(w, positions, indices);
-    choose_counts(w, positions, slope);
-    place_points(w, positions, slope);
+    {
+        const std::vector<EndSlopes> slope = slopes(w, positions, indices);
+        choose_counts(w, positions, slope);
+        place_points(w, positions, slope);
+    }
     std::vector<uint32_t> parent;
     const std::vector<uint32_t> input_indices = indices;
     indices = retriangulate(w, indices, parent);
