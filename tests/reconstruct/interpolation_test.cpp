@@ -267,7 +267,7 @@ TEST(Interpolation, NoRingsLeaveTheMeshAsItIs) {
 
 TEST(Interpolation, RingsLieOnPlanesBetweenTheSlices) {
     const ContourStack stack = ellipsoid_stack(1.0, 1.0, 0.3, 5, 24);
-    const StructureMesh smooth = build_one(stack, 2);
+    const StructureMesh smooth = build_adaptive(stack, 2, 0.0);  // every rung 2 points
     std::set<double> heights;
     for (const Vec3& p : smooth.mesh.positions)
         if (p.z >= -0.9 && p.z <= 0.9) heights.insert(p.z);
