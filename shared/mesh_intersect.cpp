@@ -526,11 +526,16 @@ struct LayerSearch {
     }
 };
 
-// The layers a triangle's box reaches, first and last.
-std::pair<size_t, size_t> layers_of(std::span<const Vec3> positions, const uint32_t* tri,
-                                    std::span<const double> cuts) {
-    const double z0 = positions[tri[0]].z, z1 = positions[tri[1]].z, z2 = positions[tri[2]].z;
-    return {layer_of(cuts, std::min({z0, z1, z2})), layer_of(cuts, std::max({z0, z1, z2}))};
+// The layers a triangle is listed in, first and last, from its corners'
+// layers (`layer`): those its box reaches, less the one above a cut that it
+// reaches from below and only touches (its highest corner on the cut).
+std::pair<uint32_t, uint32_t> layers_of(std::span<const Vec3> positions, std::span<const uint32_t> layer,
+                                        const uint32_t* tri, std::span<const double> cuts) {
+    const uint32_t first = std::min({layer[tri[0]], layer[tri[1]], layer[tri[2]]});
+    uint32_t last = std::max({layer[tri[0]], layer[tri[1]], layer[tri[2]]});
+    if (last > first && cuts[last - 1] == std::max({positions[tri[0]].z, positions[tri[1]].z, positions[tri[2]].z}))
+        --last;
+    return {first, last};
 }
 
 }  // namespace
@@ -547,14 +552,16 @@ void self_intersections_by_layer(std::span<const Vec3> positions, std::span<cons
     const Snap snap = Snap::of(all);
     std::vector<IVec> q(positions.size());
     for (size_t v = 0; v < positions.size(); ++v) q[v] = snap(positions[v]);
-    // Each triangle that is not degenerate, listed in every layer its box reaches (CSR by layer).
+    std::vector<uint32_t> layer(positions.size());
+    for (size_t v = 0; v < positions.size(); ++v) layer[v] = uint32_t(layer_of(cuts, positions[v].z));
+    // Each triangle that is not degenerate, listed in its layers (CSR by layer).
     std::vector<uint8_t> skip(tri_count), layer_marked(cuts.size() + 1, 0);
     std::vector<uint32_t> start(cuts.size() + 2, 0);
     for (size_t t = 0; t < tri_count; ++t) {
         const uint32_t* tri = &indices[3 * t];
         skip[t] = degenerate(q[tri[0]], q[tri[1]], q[tri[2]]);
         if (skip[t]) continue;
-        const auto [first, last] = layers_of(positions, tri, cuts);
+        const auto [first, last] = layers_of(positions, layer, tri, cuts);
         for (size_t l = first; l <= last; ++l) {
             ++start[l + 1];
             layer_marked[l] = layer_marked[l] || marked[t];
@@ -564,7 +571,7 @@ void self_intersections_by_layer(std::span<const Vec3> positions, std::span<cons
     std::vector<uint32_t> members(start.back()), fill(start.begin(), start.end() - 1);
     for (uint32_t t = 0; t < tri_count; ++t) {
         if (skip[t]) continue;
-        const auto [first, last] = layers_of(positions, &indices[3 * size_t(t)], cuts);
+        const auto [first, last] = layers_of(positions, layer, &indices[3 * size_t(t)], cuts);
         for (size_t l = first; l <= last; ++l) members[fill[l]++] = t;
     }
     LayerSearch search{positions, indices, marked, cuts, q, {}, {}, {}, {}, {}, {}, {}};

@@ -44,7 +44,11 @@ size_t count_self_intersections_of(std::span<const Vec3> positions, std::span<co
 // consecutive ones, above the last). Each layer gets a grid of its own that
 // stays in cache; a triangle is listed in every layer its box reaches, so
 // cuts where few triangles cross (the slices of a contour stack) pay best.
-// The snap grid is the whole mesh's, as for the count.
+// Left out: pairs on either side of one cut, one reaching it from below (its
+// highest corner on it, its lowest below) and the other at or above it. Those
+// can meet only in the cut's plane, where each triangle is the hull of its
+// corners on the cut, and none is listed in the layer above a cut it only
+// touches from below. The snap grid is the whole mesh's, as for the count.
 void self_intersections_by_layer(std::span<const Vec3> positions, std::span<const uint32_t> indices,
                                  std::span<const uint8_t> marked, std::span<const double> cuts,
                                  std::vector<std::pair<uint32_t, uint32_t>>& pairs);

@@ -142,7 +142,7 @@ void print_usage() {
         "                                     point stays on the mesh\n"
         "  --ring-tolerance F                 each curve between two slices takes the fewest of those N\n"
         "                                     points that keep it within F x the slice gap of their\n"
-        "                                     polyline (default 0: every curve gets N)\n"
+        "                                     polyline (default 0.001; 0: every curve gets N)\n"
         "  --strict                           refuse contours with any problem instead of repairing them\n"
         "  --repair-tolerance D               largest distance a contour repair may move a point, in stack\n"
         "                                     units (default 0.001 x the stack's x-y extent; see bodygen check)\n"
@@ -172,7 +172,7 @@ Result<BuildOptions> build_options_from_args(const CliArgs& args) {
     auto interpolate = args.get_long("interpolate", 0);
     if (!interpolate) return interpolate.error();
     if (*interpolate < 0 || *interpolate > 64) return input_error("build: --interpolate must be between 0 and 64");
-    auto ring_tolerance = args.get_double("ring-tolerance", 0.0);
+    auto ring_tolerance = args.get_double("ring-tolerance", BuildOptions{}.ring_tolerance);
     if (!ring_tolerance) return ring_tolerance.error();
     if (!(*ring_tolerance >= 0.0 && *ring_tolerance <= 1.0))
         return input_error("build: --ring-tolerance must be between 0 and 1");

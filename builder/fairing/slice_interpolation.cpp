@@ -3,9 +3,10 @@
 // The tiling already pairs points on neighbouring slices: each edge of a band
 // joining the two slices (a rung) is a correspondence. Each rung becomes a
 // cubic Hermite curve whose end tangents are Catmull-Rom slopes taken from
-// the rungs above and below its ends, so consecutive curves meet with one
-// tangent at every traced point (C1 across the slice), while the traced
-// points and contour edges themselves stay where they are.
+// the rung continuing it above and below its ends, so a rung and its
+// continuation meet with one tangent at the traced point (C1 across the
+// slice), while the traced points and contour edges themselves stay where
+// they are.
 //
 // References:
 //   E. Catmull, R. Rom, "A class of local interpolating splines", Computer
@@ -93,13 +94,18 @@ void find_rungs(Work& w, std::span<const uint32_t> indices) {
 // sides they join (a cube's edges), so rungs ending there stay straight.
 constexpr double kSharpCos = 0.866;  // 30 degrees
 
-// The slopes turned into the tangent plane of the bands at each vertex with
-// bands on both sides (the area-weighted normal of its band triangles): the
-// mean of a vertex's partners can point off the surface where the tiling fans
-// one point to many. A slope that the plane would make nearly horizontal is
-// left as it was. Rungs at sharp vertices are marked straight.
+// A rung's curve slopes (d(x, y)/dz) at its lower and upper end.
+struct EndSlopes {
+    Vec2 lo{0.0}, hi{0.0};
+};
+
+// The slopes turned into the tangent plane of the bands at each end with
+// bands on both sides (`two_sided`; the area-weighted normal of its band
+// triangles): a slope can point off the surface where the tiling fans one
+// point to many. A slope that the plane would make nearly horizontal is left
+// as it was. Rungs at sharp vertices are marked straight.
 void in_tangent_plane(Work& w, std::span<const Vec3> positions, std::span<const uint32_t> indices,
-                      std::span<const uint32_t> n_up, std::span<const uint32_t> n_down, std::vector<Vec2>& slope) {
+                      std::span<const uint8_t> two_sided, std::vector<EndSlopes>& slope) {
     std::vector<Vec3> normal(positions.size(), Vec3(0.0));
     for (size_t t = 0; t + 2 < indices.size(); t += 3) {
         if (!is_band(w, &indices[t])) continue;
@@ -119,66 +125,82 @@ void in_tangent_plane(Work& w, std::span<const Vec3> positions, std::span<const 
             if (ln > 0 && lv > 0 && glm::dot(n, normal[v]) < kSharpCos * ln * lv) sharp[v] = 1;
         }
     }
-    for (Rung& r : w.rungs)
-        if (sharp[r.lo] || sharp[r.hi]) r.curved = false;
-    for (size_t v = 0; v < positions.size(); ++v) {
+    auto turn = [&](uint32_t v, Vec2& m) {
         const double length = glm::length(normal[v]);
-        if (!(length > 0) || !n_up[v] || !n_down[v]) continue;
-        const Vec3 n = normal[v] / length, d(slope[v], 1.0);
+        if (!(length > 0) || !two_sided[v]) return;
+        const Vec3 n = normal[v] / length, d(m, 1.0);
         const Vec3 in_plane = d - glm::dot(d, n) * n;
-        if (in_plane.z > 0.25) slope[v] = Vec2(in_plane) / in_plane.z;
+        if (in_plane.z > 0.25) m = Vec2(in_plane) / in_plane.z;
+    };
+    for (size_t r = 0; r < w.rungs.size(); ++r) {
+        Rung& rung = w.rungs[r];
+        if (sharp[rung.lo] || sharp[rung.hi]) rung.curved = false;
+        if (!rung.band) continue;
+        turn(rung.lo, slope[r].lo);
+        turn(rung.hi, slope[r].hi);
     }
 }
 
-// Phase 2: the Catmull-Rom slope (d(x, y)/dz) at every vertex from the mean of
-// its rung partners above and below, weighted for uneven spacing. A vertex
-// with partners on one side only (a structure's end, a branch) takes the
-// parabola's end slope, 2 x chord slope - the partners' slope, so the curve
+// Phase 2: each rung's Catmull-Rom slopes at its ends, from its own chord and
+// the chord of the rung continuing it past that end (of the rungs on the far
+// side of the end vertex, the one whose chord slope is nearest its own),
+// weighted for uneven spacing. A rung and its continuation meet with one
+// tangent when each continues the other; where the tiling fans one point to
+// many, each rung keeps its own direction (the mean of all of them would bend
+// rungs that run straight, a cylinder's diagonals). An end with no rung beyond
+// it (a structure's end, a branch) takes the parabola's end slope, 2 x chord
+// slope - the other end's slope, when the other end has one, so the curve
 // keeps bending towards the end instead of running straight into it.
-std::vector<Vec2> slopes(Work& w, std::span<const Vec3> positions, std::span<const uint32_t> indices) {
+std::vector<EndSlopes> slopes(Work& w, std::span<const Vec3> positions, std::span<const uint32_t> indices) {
     const size_t n = positions.size();
-    std::vector<Vec2> up(n, Vec2(0.0)), down(n, Vec2(0.0));
-    std::vector<uint32_t> n_up(n, 0), n_down(n, 0);
-    for (const Rung& r : w.rungs) {
-        if (!r.band) continue;
-        up[r.lo] += Vec2(positions[r.hi]);
-        ++n_up[r.lo];
-        down[r.hi] += Vec2(positions[r.lo]);
-        ++n_down[r.hi];
+    // Band rungs by their lower end (those going up from a vertex) and by their upper end (CSR).
+    std::vector<uint32_t> up_start(n + 1, 0), down_start(n + 1, 0);
+    for (const Rung& r : w.rungs)
+        if (r.band) ++up_start[r.lo + 1], ++down_start[r.hi + 1];
+    for (size_t v = 0; v < n; ++v) up_start[v + 1] += up_start[v], down_start[v + 1] += down_start[v];
+    std::vector<uint32_t> up(up_start[n]), down(down_start[n]);
+    {
+        std::vector<uint32_t> up_fill(up_start.begin(), up_start.end() - 1),
+            down_fill(down_start.begin(), down_start.end() - 1);
+        for (uint32_t r = 0; r < w.rungs.size(); ++r)
+            if (w.rungs[r].band) up[up_fill[w.rungs[r].lo]++] = r, down[down_fill[w.rungs[r].hi]++] = r;
     }
-    std::vector<Vec2> slope(n, Vec2(0.0));
-    for (size_t v = 0; v < n; ++v) {
-        if (w.slice[v] == kNoSlice || (n_up[v] == 0 && n_down[v] == 0)) continue;
-        const size_t s = size_t(w.slice[v]);
-        const Vec2 p(positions[v]);
-        Vec2 su(0.0), sd(0.0);
-        double hu = 0, hd = 0;
-        if (n_up[v]) {
-            hu = w.slice_z[s + 1] - w.slice_z[s];
-            su = (up[v] / double(n_up[v]) - p) / hu;
+    auto gap = [&](const Rung& r) { return positions[r.hi].z - positions[r.lo].z; };
+    auto chord = [&](const Rung& r) { return (Vec2(positions[r.hi]) - Vec2(positions[r.lo])) / gap(r); };
+    // The rung among `beyond` whose chord slope is nearest `c` (UINT32_MAX: none).
+    auto continuing = [&](std::span<const uint32_t> beyond, const Vec2& c) {
+        uint32_t best = UINT32_MAX;
+        double best_d = 0;
+        for (uint32_t u : beyond) {
+            const Vec2 d = chord(w.rungs[u]) - c;
+            const double d2 = glm::dot(d, d);
+            if (best == UINT32_MAX || d2 < best_d) best = u, best_d = d2;
         }
-        if (n_down[v]) {
-            hd = w.slice_z[s] - w.slice_z[s - 1];
-            sd = (p - down[v] / double(n_down[v])) / hd;
-        }
-        if (n_up[v] && n_down[v])
-            slope[v] = (hd * su + hu * sd) / (hu + hd);
-        else
-            slope[v] = n_up[v] ? su : sd;  // the chord's, until the end condition below
-    }
-    // End condition from the two-sided partners' slopes.
-    std::vector<Vec2> partner(n, Vec2(0.0));
-    std::vector<uint32_t> n_partner(n, 0);
-    auto two_sided = [&](uint32_t v) { return n_up[v] > 0 && n_down[v] > 0; };
-    for (const Rung& r : w.rungs) {
+        return best;
+    };
+    std::vector<EndSlopes> slope(w.rungs.size());
+    std::vector<uint8_t> two_sided(n, 0);
+    for (uint32_t v = 0; v < n; ++v) two_sided[v] = up_start[v + 1] > up_start[v] && down_start[v + 1] > down_start[v];
+    for (size_t i = 0; i < w.rungs.size(); ++i) {
+        const Rung& r = w.rungs[i];
         if (!r.band) continue;
-        if (!two_sided(r.lo) && two_sided(r.hi)) partner[r.lo] += slope[r.hi], ++n_partner[r.lo];
-        if (!two_sided(r.hi) && two_sided(r.lo)) partner[r.hi] += slope[r.lo], ++n_partner[r.hi];
+        const Vec2 c = chord(r);
+        const double h = gap(r);
+        slope[i] = {c, c};  // the chord's at a one-sided end, until the end condition below
+        const uint32_t d = continuing({&down[down_start[r.lo]], &down[down_start[r.lo + 1]]}, c);
+        if (d != UINT32_MAX) {
+            const double hd = gap(w.rungs[d]);
+            slope[i].lo = (hd * c + h * chord(w.rungs[d])) / (h + hd);
+        }
+        const uint32_t u = continuing({&up[up_start[r.hi]], &up[up_start[r.hi + 1]]}, c);
+        if (u != UINT32_MAX) {
+            const double hu = gap(w.rungs[u]);
+            slope[i].hi = (h * chord(w.rungs[u]) + hu * c) / (h + hu);
+        }
+        if (d != UINT32_MAX && u == UINT32_MAX) slope[i].hi = 2.0 * c - slope[i].lo;
+        if (u != UINT32_MAX && d == UINT32_MAX) slope[i].lo = 2.0 * c - slope[i].hi;
     }
-    for (size_t v = 0; v < n; ++v)
-        if (n_partner[v] > 0 && n_partner[v] == std::max(n_up[v], n_down[v]))
-            slope[v] = 2.0 * slope[v] - partner[v] / double(n_partner[v]);
-    in_tangent_plane(w, positions, indices, n_up, n_down, slope);
+    in_tangent_plane(w, positions, indices, two_sided, slope);
     return slope;
 }
 
@@ -187,15 +209,16 @@ std::vector<Vec2> slopes(Work& w, std::span<const Vec3> positions, std::span<con
 // n evenly spaced points leave about that / (n + 1)^2 between the curve and
 // their polyline. A curved rung takes the fewest n <= rings that bring this
 // under tolerance x h; a straight one none.
-void choose_counts(Work& w, std::span<const Vec3> positions, std::span<const Vec2> slope) {
-    for (Rung& r : w.rungs) {
+void choose_counts(Work& w, std::span<const Vec3> positions, std::span<const EndSlopes> slope) {
+    for (size_t i = 0; i < w.rungs.size(); ++i) {
+        Rung& r = w.rungs[i];
         r.count = r.band ? w.rings : 0;
         if (!(w.tolerance > 0) || !r.band) continue;
         r.count = 0;
         if (!r.curved) continue;
         const Vec3 a = positions[r.lo], b = positions[r.hi];
         const Vec2 chord = (Vec2(b) - Vec2(a)) / (b.z - a.z);
-        const double leave = (4.0 / 27.0) * (glm::length(slope[r.lo] - chord) + glm::length(slope[r.hi] - chord));
+        const double leave = (4.0 / 27.0) * (glm::length(slope[i].lo - chord) + glm::length(slope[i].hi - chord));
         const double n = std::ceil(std::sqrt(leave / w.tolerance)) - 1.0;
         r.count = n <= 0 ? 0 : n >= double(w.rings) ? w.rings : int(n);
     }
@@ -203,13 +226,14 @@ void choose_counts(Work& w, std::span<const Vec3> positions, std::span<const Vec
 
 // Phase 3b: each split rung's points, on its curve (`positions`) and on its
 // straight line (`w.straight`).
-void place_points(Work& w, std::vector<Vec3>& positions, std::span<const Vec2> slope) {
+void place_points(Work& w, std::vector<Vec3>& positions, std::span<const EndSlopes> slope) {
     size_t split = 0;
     for (const Rung& r : w.rungs) split += r.band ? size_t(r.count) : 0;
     positions.reserve(positions.size() + split);
     w.straight.reserve(positions.capacity());
     w.straight = positions;
-    for (Rung& r : w.rungs) {
+    for (size_t i = 0; i < w.rungs.size(); ++i) {
+        Rung& r = w.rungs[i];
         if (!r.band) continue;
         r.first = uint32_t(positions.size());
         const Vec3 a = positions[r.lo], b = positions[r.hi];
@@ -219,7 +243,7 @@ void place_points(Work& w, std::vector<Vec3>& positions, std::span<const Vec2> s
             const double z = a.z + t * h;
             const double h00 = (1 + 2 * t) * (1 - t) * (1 - t), h10 = t * (1 - t) * (1 - t);
             const double h01 = t * t * (3 - 2 * t), h11 = t * t * (t - 1);
-            const Vec2 curve = h00 * Vec2(a) + h10 * h * slope[r.lo] + h01 * Vec2(b) + h11 * h * slope[r.hi];
+            const Vec2 curve = h00 * Vec2(a) + h10 * h * slope[i].lo + h01 * Vec2(b) + h11 * h * slope[i].hi;
             const Vec2 line = Vec2(a) + t * (Vec2(b) - Vec2(a));
             w.straight.emplace_back(line, z);
             positions.emplace_back(r.curved ? curve : line, z);
@@ -337,49 +361,65 @@ std::vector<uint32_t> retriangulate(const Work& w, std::span<const uint32_t> ind
     return out;
 }
 
-// Triangles whose boxes over every place their vertices can take (on the
-// curve or straight) share a cell of a uniform grid: the candidates for
-// meeting a given triangle in any state. Only each box's cell range is kept:
-// the few queries of a round are answered by one pass over them (a cell map
-// of the whole mesh cost more to build than all the rounds' passes), their
-// cells marked in a bitmap over the queries' hull.
+// Triangles whose boxes, at the positions of the moment, share a cell of a
+// uniform grid with a query's box: a superset of those whose boxes overlap a
+// query's. Only the triangles listed in the slabs the queries reach are looked
+// at (a rung's points keep their heights, so the slabs hold in every state);
+// no box is kept: a round computes the few it looks at, and marks the queries'
+// cells in a bitmap over their hull.
 class NearTriangles {
 public:
-    NearTriangles(std::span<const uint32_t> indices, std::span<const Vec3> curved, std::span<const Vec3> straight) {
+    NearTriangles(std::span<const uint32_t> indices, std::span<const Vec3> positions, std::span<const double> slice_z)
+        : indices_(indices), slice_z_(slice_z) {
         const size_t n = indices.size() / 3;
-        std::vector<Aabb> boxes(n);
         Aabb all;
+        std::vector<uint32_t> slab(positions.size());
+        for (size_t v = 0; v < positions.size(); ++v) {
+            all.extend(positions[v]);
+            slab[v] = slab_of(positions[v].z);
+        }
+        origin_ = all.min;
+        start_.assign(slice_z.size() + 2, 0);
+        auto slabs = [&](uint32_t t) {
+            const uint32_t* c = &indices[3 * size_t(t)];
+            return std::pair(std::min({slab[c[0]], slab[c[1]], slab[c[2]]}),
+                             std::max({slab[c[0]], slab[c[1]], slab[c[2]]}));
+        };
         double sum = 0;
         for (size_t t = 0; t < n; ++t) {
-            for (int c = 0; c < 3; ++c) {
-                const uint32_t v = indices[3 * t + size_t(c)];
-                boxes[t].extend(curved[v]);
-                boxes[t].extend(straight[v]);
-            }
-            const Vec3 d = boxes[t].max - boxes[t].min;
+            const auto [first, last] = slabs(uint32_t(t));
+            for (uint32_t l = first; l <= last; ++l) ++start_[l + 1];
+            const Aabb b = box(positions, uint32_t(t));
+            const Vec3 d = b.max - b.min;
             sum += std::max({d.x, d.y, d.z});
-            all.extend(boxes[t].min);
-            all.extend(boxes[t].max);
         }
-        // At least 1e-9 of the extent: at most 1e9 cells along an axis, which int32 holds.
-        const double cell = std::max(2.0 * sum / double(std::max<size_t>(n, 1)), 1e-9 * std::max(all.extent(), 1e-300));
-        auto at = [&](double x, double lo) { return int32_t(std::floor((x - lo) / cell)); };
-        ranges_.resize(n);
-        for (size_t t = 0; t < n; ++t) {
-            const Aabb& b = boxes[t];
-            ranges_[t] = {{at(b.min.x, all.min.x), at(b.min.y, all.min.y), at(b.min.z, all.min.z)},
-                          {at(b.max.x, all.min.x), at(b.max.y, all.min.y), at(b.max.z, all.min.z)}};
+        for (size_t l = 0; l + 1 < start_.size(); ++l) start_[l + 1] += start_[l];
+        members_.resize(start_.back());
+        std::vector<uint32_t> fill(start_.begin(), start_.end() - 1);
+        for (uint32_t t = 0; t < n; ++t) {
+            const auto [first, last] = slabs(t);
+            for (uint32_t l = first; l <= last; ++l) members_[fill[l]++] = t;
         }
+        // At least 1e-9 of the extent: at most 1e9 cells along an axis, which int32 holds. Every
+        // place a vertex can take (its curve or its straight line) lies inside `all`.
+        cell_ = std::max(2.0 * sum / double(std::max<size_t>(n, 1)), 1e-9 * std::max(all.extent(), 1e-300));
     }
-    // Appends the triangles sharing a cell with any of `queries` (queries included).
-    void near(std::span<const uint32_t> queries, std::vector<uint32_t>& out) const {
+    // Appends the triangles sharing a cell with any of `queries` (queries
+    // included; a triangle may be appended more than once).
+    void near(std::span<const uint32_t> queries, std::span<const Vec3> positions, std::vector<uint32_t>& out) const {
         if (queries.empty()) return;
         Range hull{{INT32_MAX, INT32_MAX, INT32_MAX}, {INT32_MIN, INT32_MIN, INT32_MIN}};
-        for (uint32_t q : queries)
+        std::vector<Range> ranges(queries.size());
+        std::vector<uint8_t> reached(start_.size() - 1, 0);
+        for (size_t i = 0; i < queries.size(); ++i) {
+            ranges[i] = range(positions, queries[i]);
             for (int a = 0; a < 3; ++a) {
-                hull.lo[a] = std::min(hull.lo[a], ranges_[q].lo[a]);
-                hull.hi[a] = std::max(hull.hi[a], ranges_[q].hi[a]);
+                hull.lo[a] = std::min(hull.lo[a], ranges[i].lo[a]);
+                hull.hi[a] = std::max(hull.hi[a], ranges[i].hi[a]);
             }
+            const Aabb b = box(positions, queries[i]);
+            for (uint32_t l = slab_of(b.min.z); l <= slab_of(b.max.z); ++l) reached[l] = 1;
+        }
         uint64_t dims[3];
         for (int a = 0; a < 3; ++a) dims[a] = uint64_t(int64_t(hull.hi[a]) - hull.lo[a] + 1);
         const double bits = double(dims[0]) * double(dims[1]) * double(dims[2]);
@@ -391,8 +431,8 @@ public:
         auto key = [&](int32_t i, int32_t j, int32_t k) {
             return (uint64_t(i - hull.lo[0]) * dims[1] + uint64_t(j - hull.lo[1])) * dims[2] + uint64_t(k - hull.lo[2]);
         };
-        for (uint32_t q : queries)
-            visit(ranges_[q], [&](int32_t i, int32_t j, int32_t k) {
+        for (const Range& r : ranges)
+            visit(r, [&](int32_t i, int32_t j, int32_t k) {
                 const uint64_t c = key(i, j, k);
                 if (dense)
                     bitmap[c >> 6] |= uint64_t(1) << (c & 63);
@@ -400,20 +440,24 @@ public:
                     cells.insert(c);
                 return false;
             });
-        for (uint32_t t = 0; t < ranges_.size(); ++t) {
-            Range r = ranges_[t];
-            bool reach = true;  // first: does it reach the queries' hull at all? Then its cells inside it.
-            for (int a = 0; a < 3; ++a) {
-                reach = reach && r.lo[a] <= hull.hi[a] && hull.lo[a] <= r.hi[a];
-                r.lo[a] = std::max(r.lo[a], hull.lo[a]);
-                r.hi[a] = std::min(r.hi[a], hull.hi[a]);
+        for (size_t l = 0; l < reached.size(); ++l) {
+            if (!reached[l]) continue;
+            for (uint32_t m = start_[l]; m < start_[l + 1]; ++m) {
+                const uint32_t t = members_[m];
+                Range r = range(positions, t);
+                bool reach = true;  // first: does it reach the queries' hull at all? Then its cells inside it.
+                for (int a = 0; a < 3; ++a) {
+                    reach = reach && r.lo[a] <= hull.hi[a] && hull.lo[a] <= r.hi[a];
+                    r.lo[a] = std::max(r.lo[a], hull.lo[a]);
+                    r.hi[a] = std::min(r.hi[a], hull.hi[a]);
+                }
+                if (!reach) continue;
+                const bool hit = visit(r, [&](int32_t i, int32_t j, int32_t k) {
+                    const uint64_t c = key(i, j, k);
+                    return dense ? (bitmap[c >> 6] >> (c & 63) & 1) != 0 : cells.count(c) != 0;
+                });
+                if (hit) out.push_back(t);
             }
-            if (!reach) continue;
-            const bool hit = visit(r, [&](int32_t i, int32_t j, int32_t k) {
-                const uint64_t c = key(i, j, k);
-                return dense ? (bitmap[c >> 6] >> (c & 63) & 1) != 0 : cells.count(c) != 0;
-            });
-            if (hit) out.push_back(t);
         }
     }
 
@@ -422,6 +466,21 @@ private:
     struct Range {
         int32_t lo[3], hi[3];  // cells along x, y, z
     };
+    Aabb box(std::span<const Vec3> positions, uint32_t t) const {
+        Aabb b;
+        for (int c = 0; c < 3; ++c) b.extend(positions[indices_[3 * size_t(t) + size_t(c)]]);
+        return b;
+    }
+    Range range(std::span<const Vec3> positions, uint32_t t) const {
+        const Aabb b = box(positions, t);
+        auto at = [&](double x, double lo) { return int32_t(std::floor((x - lo) / cell_)); };
+        return {{at(b.min.x, origin_.x), at(b.min.y, origin_.y), at(b.min.z, origin_.z)},
+                {at(b.max.x, origin_.x), at(b.max.y, origin_.y), at(b.max.z, origin_.z)}};
+    }
+    // The slab of height z: 0 below the first slice, k from slice k - 1 (included) to slice k.
+    uint32_t slab_of(double z) const {
+        return uint32_t(std::upper_bound(slice_z_.begin(), slice_z_.end(), z) - slice_z_.begin());
+    }
     // Calls f(i, j, k) on each cell of r until it returns true; whether one did.
     template <class F>
     static bool visit(const Range& r, F&& f) {
@@ -431,7 +490,11 @@ private:
                     if (f(i, j, k)) return true;
         return false;
     }
-    std::vector<Range> ranges_;
+    std::span<const uint32_t> indices_;
+    std::span<const double> slice_z_;
+    Vec3 origin_{0.0};
+    double cell_ = 1;
+    std::vector<uint32_t> start_, members_;  // triangles by slab (CSR)
 };
 
 // Phase 5: rungs whose curve makes triangles meet that do not meet on the
@@ -478,13 +541,16 @@ size_t keep_free_of_new_crossings(Work& w, std::vector<Vec3>& positions, std::sp
     std::vector<uint32_t> fill(start.begin(), start.end() - 1);
     for (size_t i = 0; i < indices.size(); ++i)
         if (indices[i] >= first_new) around[fill[rung_at[indices[i] - first_new]]++] = uint32_t(i / 3);
-    const NearTriangles near(indices, positions, w.straight);
+    const NearTriangles near(indices, positions, w.slice_z);
 
     std::vector<uint8_t> off_straight(indices.size() / 3, 0);
     for (size_t i = 0; i < indices.size(); ++i)
         if (indices[i] >= first_new && positions[indices[i]] != w.straight[indices[i]]) off_straight[i / 3] = 1;
     // The first round's search, slab by slab: a triangle between two slices
     // (a band's strip) reaches no other slab, so each slab's grid stays small.
+    // It leaves out pairs on either side of a slice that meet only in its
+    // plane: there both are traced points and edges, which no rung moves, so
+    // such a pair meets on the straight mesh alike and is never new.
     std::vector<std::pair<uint32_t, uint32_t>> pairs;
     self_intersections_by_layer(positions, indices, off_straight, w.slice_z, pairs);
     size_t straightened = 0;
@@ -509,7 +575,7 @@ size_t keep_free_of_new_crossings(Work& w, std::vector<Vec3>& positions, std::sp
         std::vector<uint32_t> queries, subset;
         for (uint32_t r : moved)
             queries.insert(queries.end(), around.begin() + start[r], around.begin() + start[r + 1]);
-        near.near(queries, subset);
+        near.near(queries, positions, subset);
         std::sort(subset.begin(), subset.end());
         subset.erase(std::unique(subset.begin(), subset.end()), subset.end());
         std::vector<uint32_t> sub_indices;
@@ -549,9 +615,11 @@ InterpolationStats interpolate_between_slices(std::vector<Vec3>& positions, std:
     for (size_t v = 0; v < positions.size(); ++v) w.slice[v] = slice_of(positions[v].z, slice_z);
     find_rungs(w, indices);
     const size_t first_new = positions.size();
-    const std::vector<Vec2> slope = slopes(w, positions, indices);
-    choose_counts(w, positions, slope);
-    place_points(w, positions, slope);
+    {
+        const std::vector<EndSlopes> slope = slopes(w, positions, indices);
+        choose_counts(w, positions, slope);
+        place_points(w, positions, slope);
+    }
     std::vector<uint32_t> parent;
     const std::vector<uint32_t> input_indices = indices;
     indices = retriangulate(w, indices, parent);

@@ -1,6 +1,6 @@
 #pragma once
 // Smooth between-slice interpolation of a mesh built from a contour stack: the
-// linear bands between adjacent slices are replaced by C1 cubic (Hermite)
+// linear bands between adjacent slices are replaced by cubic (Hermite)
 // curves through the band's corresponding points, with `rings` intermediate
 // rings per slice gap. Every vertex of the input mesh keeps its position and
 // every input edge lying in a slice plane stays an edge, so the traced
@@ -15,10 +15,12 @@
 // - Each edge of a band triangle joining adjacent slices (a "rung": the
 //   tiling's point correspondence) is split into `count` points (below) at the
 //   heights z_s + k/(count+1) (z_{s+1} - z_s), placed on the cubic Hermite curve whose
-//   end tangents are the Catmull-Rom slopes of each end vertex (the mean of its
-//   rung partners on the slices above and below, weighted for uneven spacing;
-//   parabolic end slope at a structure's end), turned into the bands' tangent
-//   plane at the vertex. Rungs at a crease or corner (a band triangle there
+//   end tangents are Catmull-Rom slopes at each end from the rung and the rung
+//   continuing it past that end (of the end vertex's rungs on the other side,
+//   the one whose direction is nearest; weighted for uneven spacing; parabolic
+//   end slope at a structure's end), turned into the bands' tangent plane at
+//   the vertex. A rung and its continuation meet with one tangent when each
+//   continues the other. Rungs at a crease or corner (a band triangle there
 //   turns more than 30 degrees from the vertex's mean band normal) stay
 //   straight, so flat sides stay flat. A rung also used by a triangle that is not
 //   a band triangle (branch walls, mid-slice rings) is split on its straight

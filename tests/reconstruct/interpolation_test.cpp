@@ -209,6 +209,29 @@ TEST(Interpolation, FlatBandsGetFewerRingsThanCurvedOnes) {
     EXPECT_LT(e_adaptive, e_every + 0.01 * 4.5) << "every ring " << e_every << ", adaptive " << e_adaptive;
 }
 
+// A cylinder whose rings turn half a point spacing per slice: every rung is a
+// diagonal, each point's partners above (and below) lie on either side of it.
+// Each rung's slope comes from the rung continuing it (a helix of diagonals),
+// so the rungs run straight and a small tolerance gives them no points; the
+// mean of a point's partners is vertical and would bend every diagonal.
+TEST(Interpolation, DiagonalRungsOfATwistedCylinderGetNoPoints) {
+    StackBuilder sb;
+    for (int k = 0; k < 6; ++k) {
+        std::vector<Vec2> ring;
+        for (int i = 0; i < 64; ++i) {
+            const double t = 2 * kPi * (i + 0.5 * k) / 64;
+            ring.emplace_back(std::cos(t), std::sin(t));
+        }
+        sb.slice(double(k), {ring});
+    }
+    const StructureMesh every = build_adaptive(sb.stack, 3, 0.0), adaptive = build_adaptive(sb.stack, 3, 0.005);
+    expect_good_structure(adaptive, sb.stack, "");
+    expect_contours_on_mesh(adaptive.mesh, sb.stack);
+    EXPECT_TRUE(adaptive.closed_manifold);
+    EXPECT_EQ(ring_points(every.mesh, sb.stack, 0.0, 5.0), 5u * 128u * 3u);  // every rung a diagonal, 3 points each
+    EXPECT_EQ(ring_points(adaptive.mesh, sb.stack, 0.0, 5.0), 0u);
+}
+
 // The counts from the interpolation itself: the points it adds drop with the
 // tolerance, and a tolerance too small to matter gives every rung every ring.
 TEST(Interpolation, RingTolerancePointsDropWithTheTolerance) {
@@ -244,7 +267,7 @@ TEST(Interpolation, NoRingsLeaveTheMeshAsItIs) {
 
 TEST(Interpolation, RingsLieOnPlanesBetweenTheSlices) {
     const ContourStack stack = ellipsoid_stack(1.0, 1.0, 0.3, 5, 24);
-    const StructureMesh smooth = build_one(stack, 2);
+    const StructureMesh smooth = build_adaptive(stack, 2, 0.0);  // every rung 2 points
     std::set<double> heights;
     for (const Vec3& p : smooth.mesh.positions)
         if (p.z >= -0.9 && p.z <= 0.9) heights.insert(p.z);
