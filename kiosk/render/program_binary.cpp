@@ -2,12 +2,7 @@
 // File: "BVPB", u32 binary format, u32 key length, the key, the binary.
 #include "kiosk/render/program_binary.h"
 
-#include <fcntl.h>
-#include <sys/stat.h>
-#include <unistd.h>
-
 #include <algorithm>
-#include <cerrno>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -17,6 +12,7 @@
 #include <vector>
 
 #include "shared/atomic_file.h"
+#include "shared/input_file.h"
 
 namespace body::render {
 namespace {
@@ -36,25 +32,11 @@ std::string file_for(const std::string& key) {
     return dir_setting() + "/" + name;
 }
 
-// The whole file, or empty (absent, unreadable, not a regular file).
-std::vector<uint8_t> read_whole(const std::string& path) {
-    std::vector<uint8_t> bytes;
-    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
-    if (fd < 0) return bytes;
-    struct stat st {};
-    if (::fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && st.st_size > 0 && st.st_size < (64 << 20)) {
-        bytes.resize(size_t(st.st_size));
-        size_t done = 0;
-        while (done < bytes.size()) {
-            const ssize_t r = ::read(fd, bytes.data() + done, bytes.size() - done);
-            if (r < 0 && errno == EINTR) continue;
-            if (r <= 0) break;
-            done += size_t(r);
-        }
-        bytes.resize(done);
-    }
-    ::close(fd);
-    return bytes;
+// The whole file, or empty (absent, unreadable, not a regular file, 64 MiB or more).
+std::string read_whole(const std::string& path) {
+    if (auto size = regular_file_size(path); !size || *size >= (64u << 20)) return {};
+    auto bytes = read_file(path);
+    return bytes ? std::move(bytes).value() : std::string();
 }
 
 uint32_t get_u32(const uint8_t* p) {
@@ -84,11 +66,12 @@ size_t program_binaries_loaded() { return loaded; }
 
 GLuint load_program_binary(const std::string& key) {
     if (dir_setting().empty()) return 0;
-    const std::vector<uint8_t> f = read_whole(file_for(key));
-    if (f.size() <= kHeader || std::memcmp(f.data(), kMagic, 4) != 0) return 0;
-    const uint32_t format = get_u32(f.data() + 4), key_size = get_u32(f.data() + 8);
-    if (key_size != key.size() || f.size() <= kHeader + key_size ||
-        std::memcmp(f.data() + kHeader, key.data(), key_size) != 0)
+    const std::string file = read_whole(file_for(key));
+    const auto* f = reinterpret_cast<const uint8_t*>(file.data());
+    if (file.size() <= kHeader || std::memcmp(f, kMagic, 4) != 0) return 0;
+    const uint32_t format = get_u32(f + 4), key_size = get_u32(f + 8);
+    if (key_size != key.size() || file.size() <= kHeader + key_size ||
+        std::memcmp(f + kHeader, key.data(), key_size) != 0)
         return 0;
     // A format this driver does not offer (another driver wrote it) is skipped: glProgramBinary would raise
     // GL_INVALID_ENUM, which the kiosk's frame check would count.
@@ -99,7 +82,7 @@ GLuint load_program_binary(const std::string& key) {
     if (std::find(formats.begin(), formats.end(), GLint(format)) == formats.end()) return 0;
     const GLuint id = glCreateProgram();
     const size_t at = kHeader + key_size;
-    glProgramBinary(id, format, f.data() + at, GLsizei(f.size() - at));
+    glProgramBinary(id, format, f + at, GLsizei(file.size() - at));
     GLint ok = 0;
     glGetProgramiv(id, GL_LINK_STATUS, &ok);
     if (!ok) {  // refused (another driver version): no GL error, LINK_STATUS false
