@@ -440,12 +440,6 @@ bool apart_in_z(std::span<const IVec> q, const uint32_t* A, const uint32_t* B) {
     return (shared == 1 && (a_on == 1 || b_on == 1)) || (shared == 2 && a_on == 2 && b_on == 2);
 }
 
-// The layer of height z among the ascending `cuts`: 0 below the first cut,
-// k from cuts[k - 1] (included) to cuts[k] (excluded).
-size_t layer_of(std::span<const double> cuts, double z) {
-    return size_t(std::upper_bound(cuts.begin(), cuts.end(), z) - cuts.begin());
-}
-
 // One layer's search: `members` are the triangles whose boxes reach into it,
 // on a grid of their own (boxes clamped to the layer); a pair is tested in
 // the lowest shared cell, and only in the layer holding its overlap's bottom.
@@ -539,6 +533,10 @@ std::pair<uint32_t, uint32_t> layers_of(std::span<const Vec3> positions, std::sp
 }
 
 }  // namespace
+
+size_t layer_of(std::span<const double> cuts, double z) {
+    return size_t(std::upper_bound(cuts.begin(), cuts.end(), z) - cuts.begin());
+}
 
 void self_intersections_by_layer(std::span<const Vec3> positions, std::span<const uint32_t> indices,
                                  std::span<const uint8_t> marked, std::span<const double> cuts,

@@ -38,6 +38,10 @@ size_t count_self_intersections_of(std::span<const Vec3> positions, std::span<co
                                    std::span<const uint8_t> marked, size_t stop_after = 1,
                                    std::vector<std::pair<uint32_t, uint32_t>>* pairs = nullptr);
 
+// The layer of height z among the ascending `cuts`: 0 below the first cut,
+// k from cuts[k - 1] (included) to cuts[k] (excluded).
+size_t layer_of(std::span<const double> cuts, double z);
+
 // The pairs count_self_intersections_of(positions, indices, marked, 0, &pairs)
 // finds, sorted, searched layer by layer along z: `cuts` are ascending
 // heights that part the mesh into layers (below the first cut, between

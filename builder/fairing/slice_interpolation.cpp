@@ -477,10 +477,8 @@ private:
         return {{at(b.min.x, origin_.x), at(b.min.y, origin_.y), at(b.min.z, origin_.z)},
                 {at(b.max.x, origin_.x), at(b.max.y, origin_.y), at(b.max.z, origin_.z)}};
     }
-    // The slab of height z: 0 below the first slice, k from slice k - 1 (included) to slice k.
-    uint32_t slab_of(double z) const {
-        return uint32_t(std::upper_bound(slice_z_.begin(), slice_z_.end(), z) - slice_z_.begin());
-    }
+    // The slab of height z: its layer among the slices (mesh_intersect.h).
+    uint32_t slab_of(double z) const { return uint32_t(layer_of(slice_z_, z)); }
     // Calls f(i, j, k) on each cell of r until it returns true; whether one did.
     template <class F>
     static bool visit(const Range& r, F&& f) {
