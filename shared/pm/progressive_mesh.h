@@ -248,13 +248,16 @@ private:
     size_t parent_bytes_ = 4;
     // Batched order: per split the vertex it adds (split_child), parent_bytes_ bytes each.
     UninitVector<uint8_t> split_children_bytes_;
-    // Vertex and entry numbers kept in 3 or 4 bytes, least significant first.
+    // Vertex and entry numbers kept in 3 or 4 bytes (`bytes`), least significant first.
     static uint32_t load_le(const uint8_t* p, size_t bytes) {
         const uint32_t v = uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16;
         return bytes == 4 ? v | uint32_t(p[3]) << 24 : v;
     }
-    static void store_le(uint8_t* p, uint32_t v, size_t bytes) {
-        for (size_t k = 0; k < bytes; ++k) p[k] = uint8_t(v >> (8 * k));
+    static void store_le(uint8_t* p, uint32_t v, size_t bytes) {  // unrolled: several calls a split
+        p[0] = uint8_t(v);
+        p[1] = uint8_t(v >> 8);
+        p[2] = uint8_t(v >> 16);
+        if (bytes == 4) p[3] = uint8_t(v >> 24);
     }
     // Per split, 2 bits: the faces it adds (1 to 3), 32 splits a word; per 64
     // splits the triangle count at that level (face_sample_[b]: level 64 b), so
