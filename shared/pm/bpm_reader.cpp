@@ -262,6 +262,9 @@ struct ChunkContext {
     const uint8_t* qoct;   // 2 per vertex
     bool normals;
     int32_t axis_weight[3], plane_weight[3];
+    // Batched order: per vertex its draw number, per face its draw place
+    // (record_split reads both around each parent; null in refinement order).
+    const uint32_t *vertex_slot = nullptr, *face_slot = nullptr;
 };
 
 // One split as it decodes: its topology (the parent's corners, those moving to
@@ -290,9 +293,10 @@ struct DecodedSplit {
         c.replay.prefetch(p, 1);
         prefetch(&c.qpos[size_t(p) * 3]);
         prefetch(&c.qoct[size_t(p) * 2]);
+        if (c.vertex_slot) prefetch(&c.vertex_slot[p]);
     }
-    if (i + kAhead2 < count) c.replay.prefetch(parents[i + kAhead2], 2);
-    if (i + kAhead3 < count) c.replay.prefetch(parents[i + kAhead3], 3, c.qpos);
+    if (i + kAhead2 < count) c.replay.prefetch(parents[i + kAhead2], 2, nullptr, nullptr, c.face_slot);
+    if (i + kAhead3 < count) c.replay.prefetch(parents[i + kAhead3], 3, c.qpos, c.vertex_slot);
 }
 
 // Fan form (a manifold split): the fan faces from ring[start] to ring[start + length]
@@ -526,6 +530,10 @@ Status BpmStream::parse_splits(size_t structure, std::span<const uint8_t> payloa
         need > m.patch_corners_.capacity())
         m.patch_corners_.reserve(std::max(need, 2 * m.patch_corners_.capacity()));
     ChunkContext ctx{m.replay_, m.qpos_.data(), m.qoct_.data(), m.has_normals_, {}, {}};
+    if (m.batched()) {
+        ctx.vertex_slot = m.vertex_slot_.data();
+        ctx.face_slot = m.face_slot_.data();
+    }
     const float box_lo[3] = {m.bbox_min_.x, m.bbox_min_.y, m.bbox_min_.z},
                 box_hi[3] = {m.bbox_max_.x, m.bbox_max_.y, m.bbox_max_.z};
     normal_axis_weights(box_lo, box_hi, ctx.axis_weight);

@@ -181,7 +181,8 @@ bool SplitReplay::apply_mask(uint32_t parent, uint32_t child, uint64_t mask, std
     return true;
 }
 
-void SplitReplay::prefetch(uint32_t v, int stage, const uint16_t* qpos) const {
+void SplitReplay::prefetch(uint32_t v, int stage, const uint16_t* qpos, const uint32_t* per_vertex,
+                           const uint32_t* per_face) const {
 #if defined(__GNUC__)
     if (v >= regions_.size()) return;  // a vertex not arrived yet: nothing to fetch
     if (stage == 0) {
@@ -196,7 +197,10 @@ void SplitReplay::prefetch(uint32_t v, int stage, const uint16_t* qpos) const {
     }
     const uint32_t* c = pool_.data() + r.offset;
     if (stage == 2) {
-        for (uint32_t i = 0; i < r.count && i < 16; ++i) __builtin_prefetch(&indices_[c[i] / 3 * 3]);
+        for (uint32_t i = 0; i < r.count && i < 16; ++i) {
+            __builtin_prefetch(&indices_[c[i] / 3 * 3]);
+            if (per_face) __builtin_prefetch(per_face + c[i] / 3);
+        }
         return;
     }
     // Stage 3: the neighbours' regions (a new face adds a corner to one of them).
@@ -206,11 +210,14 @@ void SplitReplay::prefetch(uint32_t v, int stage, const uint16_t* qpos) const {
         const uint32_t n = t[kNextCorner[c[i] - c[i] / 3 * 3]];
         if (n < regions_.size()) __builtin_prefetch(&regions_[n]);
         if (qpos) __builtin_prefetch(qpos + size_t(n) * 3);
+        if (per_vertex) __builtin_prefetch(per_vertex + n);
     }
 #else
     (void)v;
     (void)stage;
     (void)qpos;
+    (void)per_vertex;
+    (void)per_face;
 #endif
 }
 

@@ -60,6 +60,8 @@ public:
     // boundary or non-manifold vertex).
     size_t ordered_fan(const uint32_t* corners, size_t count, uint32_t* ring, uint8_t* at) const;
     uint32_t index(size_t corner) const { return indices_[corner]; }
+    // Every corner's vertex at the replayed level (index(c) for c < 3 * the faces added).
+    const uint32_t* indices() const { return indices_.data(); }
     // Neighbour j of a vertex given its corners (as corners_of returned them): the
     // vertex after (j even) or before (j odd) corner j / 2 in its face; j < 2 * count.
     uint32_t neighbour(const uint32_t* corners, size_t j) const {
@@ -67,11 +69,13 @@ public:
         return indices_[f + (c - f + 1 + uint32_t(j % 2)) % 3];
     }
     // Cache hints for a split of parent `v` a few splits ahead: stage 0 its
-    // region's descriptor, 1 the region, 2 the faces of its corners, 3 its
-    // neighbours' descriptors and, given `qpos` (3 per vertex), their positions
-    // (stages in this order, a few splits apart). No effect on results; `v` must be
-    // a valid vertex.
-    void prefetch(uint32_t v, int stage, const uint16_t* qpos = nullptr) const;
+    // region's descriptor, 1 the region, 2 the faces of its corners and, given
+    // `per_face` (one entry a face), their entries there, 3 its neighbours'
+    // descriptors and, given `qpos` (3 per vertex) and `per_vertex` (one entry a
+    // vertex), their entries there (stages in this order, a few splits apart).
+    // No effect on results; `v` must be a valid vertex.
+    void prefetch(uint32_t v, int stage, const uint16_t* qpos = nullptr, const uint32_t* per_vertex = nullptr,
+                  const uint32_t* per_face = nullptr) const;
     // Vertices given room for corners so far (those that arrived, and some
     // room): the rest have none and cost nothing.
     size_t vertices_held() const { return regions_.size(); }
