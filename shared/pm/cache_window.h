@@ -19,7 +19,7 @@ namespace body::pm {
 // The Morton code of a point's cell: bits 0..9 of x, y and z interleaved
 // (x in bits 0, 3, 6, ...; y one above, z two above); higher bits ignored.
 // Inline: the decoder's sort calls it once a face.
-inline uint32_t morton_spread3(uint32_t x) {  // bits 0..9 of x to every third bit
+constexpr uint32_t morton_spread3(uint32_t x) {  // bits 0..9 of x to every third bit
     x &= 0x3ff;
     x = (x | (x << 16)) & 0x30000ff;
     x = (x | (x << 8)) & 0x300f00f;

@@ -23,6 +23,20 @@ std::vector<uint32_t> batch_levels(size_t base_vertices, size_t splits) {
 
 namespace {
 
+// How far ahead the batch loops request the scattered lines they will read
+// (faces in sorted order, vertices by a face's corner): in a large batch those
+// are cache misses the hardware prefetcher cannot see coming.
+constexpr size_t kAhead = 16;
+
+// morton_spread3 of every 10-bit value: a face's Morton code is three loads.
+struct SpreadTable {
+    uint32_t spread[1024] = {};
+    constexpr SpreadTable() {
+        for (uint32_t x = 0; x < 1024; ++x) spread[x] = morton_spread3(x);
+    }
+};
+constexpr SpreadTable kSpread;
+
 // order[0 .. face_count) = the faces by the Morton code of their first corner
 // (10 bits per axis; the faces of one split share it and stay together):
 // a stable LSD radix sort of (code << 32 | face), 3 passes of 10 bits.
@@ -32,9 +46,11 @@ void sort_spatially(const uint32_t* indices, size_t face_count, const uint16_t* 
     s.keys.resize(2 * face_count);
     uint64_t* a = s.keys.data();
     uint64_t* b = a + face_count;
+    const uint32_t* spread = kSpread.spread;
     for (size_t f = 0; f < face_count; ++f) {
+        if (f + kAhead < face_count) prefetch(qpos + size_t(indices[(f + kAhead) * 3]) * 3);
         const uint16_t* p = qpos + size_t(indices[f * 3]) * 3;
-        const uint32_t code = morton_code(p[0] >> 6, p[1] >> 6, p[2] >> 6);
+        const uint32_t code = spread[p[0] >> 6] | spread[p[1] >> 6] << 1 | spread[p[2] >> 6] << 2;  // morton_code
         a[f] = uint64_t(code) << 32 | f;
     }
     for (uint32_t shift = 32; shift < 62; shift += 10) {
@@ -54,18 +70,23 @@ void cache_order(const uint32_t* indices, size_t face_count, const uint16_t* qpo
     sort_spatially(indices, face_count, qpos, order, scratch);
 }
 
-void first_use_order(const uint32_t* indices, size_t index_count, uint32_t first, uint32_t count, uint32_t* number) {
+void first_use_order(const uint32_t* indices, const uint32_t* order, size_t face_count, uint32_t first, uint32_t count,
+                     uint32_t* number) {
     std::fill(number, number + count, UINT32_MAX);
     uint32_t next = first;
     if (count == 0) return;
     // Without branches (whether a vertex is new is unpredictable): a vertex
     // outside the range reads and rewrites entry 0 unchanged.
-    for (size_t i = 0; i < index_count; ++i) {
-        const uint32_t k = indices[i] - first;  // wraps above count for a vertex below first
-        const uint32_t inside = 0u - uint32_t(k < count), at = k & inside;
-        const uint32_t fresh = inside & (0u - uint32_t(number[at] == UINT32_MAX));  // all ones or 0
-        number[at] ^= (number[at] ^ next) & fresh;
-        next -= fresh;  // + 1 when fresh
+    for (size_t t = 0; t < face_count; ++t) {
+        if (t + kAhead < face_count) prefetch(indices + size_t(order[t + kAhead]) * 3);
+        const uint32_t* corners = indices + size_t(order[t]) * 3;
+        for (size_t i = 0; i < 3; ++i) {
+            const uint32_t k = corners[i] - first;  // wraps above count for a vertex below first
+            const uint32_t inside = 0u - uint32_t(k < count), at = k & inside;
+            const uint32_t fresh = inside & (0u - uint32_t(number[at] == UINT32_MAX));  // all ones or 0
+            number[at] ^= (number[at] ^ next) & fresh;
+            next -= fresh;  // + 1 when fresh
+        }
     }
     for (uint32_t k = 0; k < count; ++k)
         if (number[k] == UINT32_MAX) number[k] = next++;

@@ -53,10 +53,10 @@ std::vector<uint32_t> batch_levels(size_t base_vertices, size_t splits);
 // each batch writes what it reads, so a larger batch neither zeroes nor copies them.
 struct CacheOrderScratch {
     UninitVector<uint64_t> keys;
-    UninitVector<uint32_t> faces, order, number, ordered;
+    UninitVector<uint32_t> faces, order, number;
     // Frees the batch arrays (the reader: at the end of each feed).
     void release_batch_arrays() {
-        for (auto* v : {&faces, &order, &number, &ordered}) UninitVector<uint32_t>().swap(*v);
+        for (auto* v : {&faces, &order, &number}) UninitVector<uint32_t>().swap(*v);
     }
 };
 
@@ -67,11 +67,14 @@ struct CacheOrderScratch {
 void cache_order(const uint32_t* indices, size_t face_count, const uint16_t* qpos, uint32_t* order,
                  CacheOrderScratch& scratch);
 
-// Numbers the vertices [first, first + count) in the order `indices` first use
+// Numbers the vertices [first, first + count) in the order the faces
+// order[0 .. face_count) (faces of `indices`, three corners each) first use
 // them: number[k] is the new number of vertex first + k, a permutation of
-// [first, first + count) (vertices the indices never use come last, in their
-// order). The vertex fetch order of meshopt_optimizeVertexFetchRemap restricted
-// to one batch's vertices, so a batch's renumbering leaves every other number alone.
-void first_use_order(const uint32_t* indices, size_t index_count, uint32_t first, uint32_t count, uint32_t* number);
+// [first, first + count) (vertices those faces never use come last, in their
+// order). The vertex fetch order of meshopt_optimizeVertexFetchRemap over the
+// faces in that order, restricted to one batch's vertices, so a batch's
+// renumbering leaves every other number alone.
+void first_use_order(const uint32_t* indices, const uint32_t* order, size_t face_count, uint32_t first, uint32_t count,
+                     uint32_t* number);
 
 }  // namespace body::pm

@@ -100,52 +100,59 @@ void ProgressiveMesh::order_batch(size_t level) {
     const size_t f0 = triangles_at(lo), f1 = decoded_faces_, n = f1 - f0;
     ++ordered_batches_;
     if (n == 0) return;
-    // The batch's faces at `level` (the file's numbers; its own vertices still
-    // have their file numbers in draw order too), then their order.
+    // The batch's faces at `level` are the replay's (the file's numbers; its own
+    // vertices still have their file numbers in draw order too): their order,
+    // and the batch's vertices in the order the ordered faces first use them.
     // Scratch reused batch to batch, sized without zeroing (each entry is written before it is read).
     const auto sized = [](UninitVector<uint32_t>& v, size_t size) -> UninitVector<uint32_t>& {
         v.clear();
         v.resize(size);
         return v;
     };
-    auto& faces = sized(order_scratch_.faces, n * 3);
+    const uint32_t* const replayed = replay_.indices() + f0 * 3;
     auto& order = sized(order_scratch_.order, n);
-    for (size_t i = 0; i < n * 3; ++i) faces[i] = replay_.index(f0 * 3 + i);
-    cache_order(faces.data(), n, qpos_.data(), order.data(), order_scratch_);
+    cache_order(replayed, n, qpos_.data(), order.data(), order_scratch_);
     const uint32_t v0 = uint32_t(base_vertices_ + lo), nv = uint32_t(level - lo);
     auto& number = sized(order_scratch_.number, std::max<uint32_t>(nv, 1));
-    auto& ordered = sized(order_scratch_.ordered, n * 3);
-    for (size_t t = 0; t < n; ++t) std::copy_n(&faces[size_t(order[t]) * 3], 3, &ordered[t * 3]);
-    first_use_order(ordered.data(), n * 3, v0, nv, number.data());
+    first_use_order(replayed, order.data(), n, v0, nv, number.data());
+    auto& faces = sized(order_scratch_.faces, n * 3);
     const auto renumber = [&](uint32_t v) {  // without a branch: older vertices are interleaved unpredictably
         const uint32_t k = v - v0, inside = 0u - uint32_t(k < nv), renumbered = number[k & inside];
         return v ^ ((v ^ renumbered) & inside);
     };
     // The faces' entries at level_ (scratch: the old entries), moved and renumbered.
     std::copy(indices_.begin() + ptrdiff_t(f0 * 3), indices_.begin() + ptrdiff_t(f1 * 3), faces.begin());
+    constexpr size_t kAhead = 16;  // scattered lines requested ahead of use (large batches miss the caches)
     for (size_t t = 0; t < n; ++t) {
+        if (t + kAhead < n) {
+            prefetch(&faces[size_t(order[t + kAhead]) * 3]);
+            prefetch(&face_slot_[f0 + order[t + kAhead]]);
+        }
         const size_t f = order[t];
         for (size_t k = 0; k < 3; ++k) indices_[(f0 + t) * 3 + k] = renumber(faces[f * 3 + k]);
         face_slot_[f0 + f] = uint32_t(f0 + t);
     }
     // The splits' records: children, parents, and their patches, which name the
-    // batch's faces (renumbered) or older ones (holding, at `level`, the child
-    // of the batch's last split patching them).
-    size_t i = batch_patch_begin_;
-    const size_t w = corner_bytes_;
+    // batch's faces (moved) or older ones (which hold, at `level`, the child of
+    // the batch's last split patching them: renumbered in indices_ when the
+    // current level is past the batch; below it they do not hold the child).
     for (size_t j = lo; j < level; ++j) {
-        const uint32_t child = number[j - lo];
-        store_le(&split_children_bytes_[j * parent_bytes_], child, parent_bytes_);
+        store_le(&split_children_bytes_[j * parent_bytes_], number[j - lo], parent_bytes_);
         store_le(&split_parents_bytes_[j * parent_bytes_], renumber(split_parent(j)), parent_bytes_);
-        for (const size_t e = i + patch_count_[j]; i < e; ++i) {
-            const uint32_t c = patch_corner(i);
-            if (c >= f0 * 3)
-                store_le(&patch_corners_[i * w], face_slot_[c / 3] * 3 + c % 3, w);
-            else if (level_ >= level)
-                indices_[c] = child;
-        }
     }
-    batch_patch_begin_ = i;
+    const size_t w = corner_bytes_, patches_end = patch_corners_.size() / w;
+    for (size_t i = batch_patch_begin_; i < patches_end; ++i) {
+        if (i + kAhead < patches_end) prefetch(&face_slot_[patch_corner(i + kAhead) / 3]);
+        const uint32_t c = patch_corner(i);
+        if (c >= f0 * 3) store_le(&patch_corners_[i * w], face_slot_[c / 3] * 3 + c % 3, w);
+    }
+    if (level_ >= level) {
+        size_t i = batch_patch_begin_;
+        for (size_t j = lo; j < level; ++j)
+            for (const size_t e = i + patch_count_[j]; i < e; ++i)
+                if (const uint32_t c = patch_corner(i); c < f0 * 3) indices_[c] = number[j - lo];
+    }
+    batch_patch_begin_ = patches_end;
     // The vertex data in the new numbers (the file's numbers map there from now on).
     for (uint32_t k = 0; k < nv; ++k) vertex_slot_[v0 + k] = number[k];
     permute_vertices(v0, {number.data(), nv});
@@ -156,11 +163,20 @@ void ProgressiveMesh::order_batch(size_t level) {
 // Vertex v0 + k moves to number[k] (a permutation of [v0, v0 + number.size())).
 void ProgressiveMesh::permute_vertices(uint32_t v0, std::span<const uint32_t> number) {
     const size_t nv = number.size();
+    // Element by element: a copy_n of 2 or 3 elements is a memmove call a vertex.
     std::vector<uint16_t> codes(positions_.begin() + ptrdiff_t(v0) * 3, positions_.begin() + ptrdiff_t(v0 + nv) * 3);
-    for (size_t k = 0; k < nv; ++k) std::copy_n(&codes[k * 3], 3, &positions_[size_t(number[k]) * 3]);
+    for (size_t k = 0; k < nv; ++k) {
+        uint16_t* to = &positions_[size_t(number[k]) * 3];
+        to[0] = codes[k * 3];
+        to[1] = codes[k * 3 + 1];
+        to[2] = codes[k * 3 + 2];
+    }
     if (!has_normals_) return;
     std::vector<uint8_t> octs(normals_.begin() + ptrdiff_t(v0) * 2, normals_.begin() + ptrdiff_t(v0 + nv) * 2);
-    for (size_t k = 0; k < nv; ++k) std::copy_n(&octs[k * 2], 2, &normals_[size_t(number[k]) * 2]);
+    for (size_t k = 0; k < nv; ++k) {
+        normals_[size_t(number[k]) * 2] = octs[k * 2];
+        normals_[size_t(number[k]) * 2 + 1] = octs[k * 2 + 1];
+    }
 }
 
 size_t ProgressiveMesh::level_for_error(float error) const {

@@ -66,8 +66,7 @@ void ProgressiveMesh::grow_decoded(size_t splits, size_t faces) {
 
 size_t ProgressiveMesh::heap_bytes() const {
     const size_t scratch = bytes_of(order_scratch_.keys) + bytes_of(order_scratch_.faces) +
-                           bytes_of(order_scratch_.order) + bytes_of(order_scratch_.number) +
-                           bytes_of(order_scratch_.ordered);
+                           bytes_of(order_scratch_.order) + bytes_of(order_scratch_.number);
     return sizeof(*this) + name_.capacity() + bytes_of(packed_indices_) + bytes_of(positions_) + bytes_of(normals_) +
            bytes_of(indices_) + bytes_of(split_parents_bytes_) + bytes_of(face_count_bits_) + bytes_of(face_sample_) +
            bytes_of(error_levels_) + bytes_of(error_highs_) + bytes_of(patch_count_) + bytes_of(move_bits_) +
