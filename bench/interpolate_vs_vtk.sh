@@ -5,7 +5,7 @@
 # bodygen linear, with --interpolate N and with --smooth 10, and by VTK's
 # vtkVoxelContoursToSurfaceFilter. Prints one markdown row per stack: the
 # symmetric Hausdorff distance to the original surface within the sliced slab
-# (reconstruct_vs_vtk.py) of each with the mean distance in brackets, the
+# (reconstruct_vs_vtk.py) of each with the area-sampled mean distance in brackets, the
 # interpolated/VTK ratios (goal: Hausdorff <= 0.6) and CPU seconds (bodygen:
 # the whole build process; VTK: the filter's Update()).
 # cat.3ds and horse.3ds are open meshes that `bodygen slice` refuses.

@@ -142,7 +142,7 @@ void print_usage() {
         "                                     point stays on the mesh\n"
         "  --ring-tolerance F                 each curve between two slices takes the fewest of those N\n"
         "                                     points that keep it within F x the slice gap of their\n"
-        "                                     polyline (default 0.001; 0: every curve gets N)\n"
+        "                                     polyline (default 0.004; 0: every curve gets N)\n"
         "  --strict                           refuse contours with any problem instead of repairing them\n"
         "  --repair-tolerance D               largest distance a contour repair may move a point, in stack\n"
         "                                     units (default 0.001 x the stack's x-y extent; see bodygen check)\n"

@@ -141,8 +141,9 @@ void check(size_t planes, body::TilingMethod tiling) {
 }
 
 // Symmetric Hausdorff distance between the rebuilt and the original bunny
-// within the slab the slices span, sampled as bench/reconstruct_vs_vtk.py does
-// (vertices and triangle centroids with z inside the slab), exact distances.
+// within the slab the slices span, sampled at the vertices and triangle centroids
+// with z inside the slab (part of bench/reconstruct_vs_vtk.py's samples, which
+// add area-uniform ones), exact distances.
 double slab_hausdorff(const body::Mesh& a, const body::Mesh& b, double zlo, double zhi) {
     double worst = 0;
     for (const auto* pair : {&a, &b}) {
