@@ -120,6 +120,10 @@ void ensure_edges(Model& m) {
     if (!m.edges_stale && m.edge_texture) return;
     static_assert(sizeof(EdgeRecord) == sizeof(GpuEdge));
     free_wire_textures(m);
+    // Freed heap given back before the walk's scratch and the texture arrive,
+    // whether or not position textures went (wireframe's buffer texture has
+    // none; the previous style's first frame leaves driver scratch behind).
+    trim_heap();
     // Mapping is per buffer: both stay mapped while the other target binding moves on.
     MappedBuffer<uint32_t> index_map(m, m.ebo, m.index_count);
     const MappedPositions positions(m);
