@@ -114,11 +114,12 @@ bool wire_buffer_texture(RendererState& s, Frame& f, Model& m) {
         ++f.programs_linked;
     }
     if (!m.position_buffer_texture) glGenTextures(1, &m.position_buffer_texture);
-    if (m.position_buffer_of != m.vbo_position) {
+    if (m.position_buffer_of != m.vbo_position || m.position_buffer_vertices != m.vertex_allocated) {
         glBindTexture(GL_TEXTURE_BUFFER, m.position_buffer_texture);
         glTexBuffer(GL_TEXTURE_BUFFER, GL_R16UI, m.vbo_position);
         glBindTexture(GL_TEXTURE_BUFFER, 0);
         m.position_buffer_of = m.vbo_position;
+        m.position_buffer_vertices = m.vertex_allocated;
     }
     free_wire_textures(m);  // left from before a change to float positions and back, if any
     free_edge_texture(m);   // one line style's data at a time (data_textures.h)
