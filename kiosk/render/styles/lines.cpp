@@ -81,9 +81,9 @@ Aabb edge_box(std::span<const uint32_t> indices, const MappedPositions& position
 // A first walk counts the edges kept so that the texture is sized to them; the
 // second (the same records again) converts and uploads them a chunk at a time.
 void upload_edges(Model& m, std::span<const uint32_t> indices, const EdgeEncoder& encoder) {
-    // 512 KiB of walk scratch and 128 KiB of records: they are alive while
+    // 256 KiB of walk scratch and 128 KiB of records: they are alive while
     // the texture is filled, the first frame's peak in `lines`.
-    EdgeStream stream(indices, size_t{512} << 10);
+    EdgeStream stream(indices, size_t{256} << 10);
     constexpr size_t kEdgeChunk = 4 * kTextureWidth;
     std::vector<EdgeRecord> chunk(std::min(kEdgeChunk, std::max<size_t>(indices.size(), 1)));  // edges <= corners
     size_t kept = 0;
