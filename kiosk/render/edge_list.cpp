@@ -4,8 +4,8 @@
 // lies in the window by that vertex (CSR, 4 bytes per half-edge), then for each
 // half-edge a->b look for its twin b->a in the same bucket; emit each pair once
 // (from the side with a < b) and every unpaired half-edge as a boundary.
-// O(corners x windows + corners x valence), no sort. A first walk counts the
-// edges, a second (resumable) one emits them in pieces.
+// O(corners x windows + corners x valence), no sort. The walk is resumable and
+// emits the edges in pieces; counting them is a walk of its own, only on request.
 #include "kiosk/render/edge_list.h"
 
 #include <algorithm>
@@ -19,11 +19,6 @@ inline uint32_t next_of(std::span<const uint32_t> idx, uint32_t corner) {
 }
 inline uint32_t prev_of(std::span<const uint32_t> idx, uint32_t corner) {
     return idx[corner - corner % 3 + (corner % 3 + 2) % 3];
-}
-
-bool degenerate(std::span<const uint32_t> idx, uint32_t corner) {
-    uint32_t f = corner - corner % 3;
-    return idx[f] == idx[f + 1] || idx[f + 1] == idx[f + 2] || idx[f] == idx[f + 2];
 }
 
 // The record of the half-edge at `corner` (a = its vertex) found in the bucket
@@ -72,18 +67,32 @@ void EdgeStream::bucket_window(uint32_t lo) {
     window_end_ = static_cast<uint32_t>(std::min<size_t>(size_t{lo} + window_vertices_, vertex_count_));
     const uint32_t n = window_end_ - lo;
     start_.assign(static_cast<size_t>(n) + 1, 0);
-    auto key = [&](uint32_t corner) { return std::min(idx_[corner], next_of(idx_, corner)); };
-    for (uint32_t c = 0; c < idx_.size(); ++c) {
-        const uint32_t k = key(c);
-        if (k >= lo && k < window_end_ && !degenerate(idx_, c)) ++start_[k - lo];
+    // Per face, so a degenerate face is tested once and a corner's successor
+    // needs no division; the half-edge at corner f + k runs to corner f + (k + 1) % 3.
+    const uint32_t faces_end = static_cast<uint32_t>(idx_.size());
+    for (uint32_t f = 0; f < faces_end; f += 3) {
+        const uint32_t a = idx_[f], b = idx_[f + 1], c = idx_[f + 2];
+        if (a == b || b == c || a == c) continue;
+        for (const uint32_t k : {std::min(a, b), std::min(b, c), std::min(c, a)})
+            if (k - lo < n) ++start_[k - lo];
     }
     for (uint32_t i = 1; i < n; ++i) start_[i] += start_[i - 1];
     start_[n] = n ? start_[n - 1] : 0;
-    corner_.resize(start_[n]);
-    for (size_t c = idx_.size(); c-- > 0;) {  // backwards: each bucket ascending
-        const uint32_t k = key(static_cast<uint32_t>(c));
-        if (k >= lo && k < window_end_ && !degenerate(idx_, static_cast<uint32_t>(c)))
-            corner_[--start_[k - lo]] = static_cast<uint32_t>(c);
+    // Sized to the window, never doubled by growth: the old storage is freed
+    // before the new arrives (its contents are all overwritten below).
+    const size_t half_edges = start_[n];
+    if (half_edges > corner_.capacity()) {
+        std::vector<uint32_t>().swap(corner_);
+        corner_.reserve(half_edges + half_edges / 16);
+    }
+    corner_.resize(half_edges);
+    for (uint32_t f = faces_end; f > 0;) {  // backwards: each bucket ascending
+        f -= 3;
+        const uint32_t a = idx_[f], b = idx_[f + 1], c = idx_[f + 2];
+        if (a == b || b == c || a == c) continue;
+        if (const uint32_t k = std::min(c, a); k - lo < n) corner_[--start_[k - lo]] = f + 2;
+        if (const uint32_t k = std::min(b, c); k - lo < n) corner_[--start_[k - lo]] = f + 1;
+        if (const uint32_t k = std::min(a, b); k - lo < n) corner_[--start_[k - lo]] = f;
     }
 }
 
@@ -95,14 +104,21 @@ EdgeStream::EdgeStream(std::span<const uint32_t> indices, size_t scratch_bytes)
     const size_t corner_bytes = std::max<size_t>(idx_.size() * 4, 1);
     const size_t windows = std::max<size_t>(1, (corner_bytes + scratch_bytes - 1) / std::max<size_t>(scratch_bytes, 1));
     window_vertices_ = static_cast<uint32_t>(std::max<size_t>(1, (vertex_count_ + windows - 1) / windows));
+}
+
+size_t EdgeStream::count() {
+    if (counted_) return count_;
     EdgeRecord e;
+    count_ = 0;
     for (uint32_t lo = 0; lo < vertex_count_; lo = window_end_) {
         bucket_window(lo);
         for (uint32_t v = 0; v < window_end_ - lo; ++v)
             for (uint32_t i = start_[v]; i < start_[v + 1]; ++i)
                 count_ += edge_at(idx_, corner_.data() + start_[v], corner_.data() + start_[v + 1], corner_[i], e);
     }
+    counted_ = true;
     restart();
+    return count_;
 }
 
 void EdgeStream::restart() {

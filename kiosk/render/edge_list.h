@@ -60,7 +60,9 @@ std::vector<EdgeRecord> build_edge_list(std::span<const uint32_t> indices);
 class EdgeStream {
 public:
     explicit EdgeStream(std::span<const uint32_t> indices, size_t scratch_bytes = size_t{2} << 20);
-    size_t count() const { return count_; }  // edges in all
+    // Edges in all: a whole walk of its own the first time (then restarts the
+    // stream), so call it before next() or not at all.
+    size_t count();
     // Writes the next up to out.size() records; 0 at the end.
     size_t next(std::span<EdgeRecord> out);
     // Back to the first record (for a second walk over the same records).
@@ -73,6 +75,7 @@ private:
     std::vector<uint32_t> start_;   // per window vertex + 1: first slot of its half-edges in corner_
     std::vector<uint32_t> corner_;  // corner ids (3 * face + k) of the window's half-edges by smaller vertex
     size_t count_ = 0;
+    bool counted_ = false;
     uint32_t window_lo_ = 0, window_end_ = 0;  // the bucketed window
     uint32_t vertex_ = 0, slot_ = 0;           // where next() resumes
 };

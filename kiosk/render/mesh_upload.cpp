@@ -523,8 +523,8 @@ void free_model(Model& m) {
     GLuint buffers[] = {m.vbo_position, m.vbo_normal, m.ebo, m.vbo_morph};
     glDeleteBuffers(4, buffers);
     glDeleteVertexArrays(1, &m.vao);
-    GLuint textures[] = {m.position_texture, m.position_texture_z, m.edge_texture};
-    glDeleteTextures(3, textures);
+    GLuint textures[] = {m.position_texture, m.position_texture_z, m.edge_texture, m.position_buffer_texture};
+    glDeleteTextures(4, textures);
     if (m.section_vbo) glDeleteBuffers(1, &m.section_vbo);
     free_level_order(m);
 }

@@ -45,6 +45,13 @@ struct Model {
     GLuint position_texture = 0, position_texture_z = 0;
     Vec3f wire_origin{0.0f}, wire_scale{0.0f};  // dequantization of the position texture
     bool wire_stale = true;
+    // `wireframe` where the driver offers buffer textures and the positions are
+    // codes: an R16UI view of vbo_position (no storage of its own), attached
+    // to the buffer named position_buffer_of when it held
+    // position_buffer_vertices (a grown buffer is a new one, which may reuse
+    // a deleted buffer's name).
+    GLuint position_buffer_texture = 0, position_buffer_of = 0;
+    size_t position_buffer_vertices = 0;
     GLuint edge_texture = 0;                    // RGBA32UI, one GpuEdge per texel
     Vec3f edge_origin{0.0f}, edge_scale{0.0f};  // dequantization of the GpuEdge endpoints
     size_t edge_capacity = 0;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <string_view>
 #include <utility>
 
 #include "kiosk/render/program_binary.h"
@@ -37,11 +38,14 @@ Result<GLuint> compile(GLenum type, const char* src, const std::string& label) {
     return s;
 }
 
-// `defines` ("#define X 1\n" lines) go after each source's #version line.
+// `defines` ("#define X 1\n" lines) go after each source's #version line;
+// defines that begin with a #version line replace the source's.
 std::string with_defines(const char* source, const char* defines) {
     std::string text(source);
     if (!defines || !*defines) return text;
     const size_t eol = text.find('\n');
+    if (std::string_view(defines).starts_with("#version") && text.starts_with("#version"))
+        return eol == std::string::npos ? defines : text.replace(0, eol + 1, defines);
     return eol == std::string::npos ? text + "\n" + defines : text.insert(eol + 1, defines);
 }
 
@@ -136,6 +140,8 @@ void defer_programs(Programs& programs, const char* defines) {
     programs.xray = deferred_program("mesh.vert", "xray.frag", d);
     programs.lines = deferred_program("lines.vert", "lines.frag", d);
     programs.wireframe = deferred_program("wireframe.vert", "wireframe.frag", d);
+    programs.wireframe_buffer =
+        deferred_program("wireframe.vert", "wireframe.frag", "#version 320 es\n" + d + "#define BODY_WIRE_BUFFER 1\n");
 }
 
 Status link_programs(Programs& programs, const char* defines) {
@@ -158,7 +164,7 @@ Result<Program> link_shader_pair(const std::string& vert, const std::string& fra
 
 void delete_programs(Programs& programs) {
     for (Program* p : {&programs.baseline, &programs.smooth, &programs.hatching, &programs.xray, &programs.lines,
-                       &programs.wireframe}) {
+                       &programs.wireframe, &programs.wireframe_buffer}) {
         if (p->id) glDeleteProgram(p->id);
         *p = Program{};
     }

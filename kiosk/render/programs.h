@@ -43,6 +43,11 @@ struct Programs {
     Program xray;       // mesh.vert + xray.frag
     Program lines;      // lines.vert + lines.frag (the edges of `lines`)
     Program wireframe;  // wireframe.vert + wireframe.frag
+    // The same reading the positions straight from the model's position
+    // buffer through a buffer texture (BODY_WIRE_BUFFER; styles/wireframe.cpp):
+    // always linked at its first use, where the driver offers
+    // GL_EXT_texture_buffer.
+    Program wireframe_buffer;
 };
 
 // A program linked at its first use: only its shader pair and defines now.
@@ -52,7 +57,8 @@ Program deferred_program(std::string vert, std::string frag, std::string defines
 bool link_on_first_use(Program& p);
 // The table with every program deferred to its first use.
 void defer_programs(Programs& programs, const char* defines = nullptr);
-// Links every program of the table; on an error the ones linked are deleted.
+// Links every program of the table but wireframe_buffer (deferred: not every
+// driver offers it); on an error the ones linked are deleted.
 // `defines` ("#define NAME 1\n" lines) select a variant, e.g. the cut plane's
 // clipped programs (kiosk/render/styles/cut_cap.cpp).
 Status link_programs(Programs& programs, const char* defines = nullptr);

@@ -23,6 +23,9 @@ struct RendererState {
     Programs programs;
     GLuint tam = 0;       // tonal art map: a 2D array texture, made at the first hatching draw (styles/hatching.cpp)
     GLuint wire_vao = 0;  // `wireframe`: a model's index buffer as the kWireVertex attribute
+    // `wireframe` reads quantized positions from the position buffer through a
+    // buffer texture of at most this many texels (0: not offered; styles/wireframe.cpp).
+    size_t wire_buffer_texels = 0;
     GLuint quad_vao = 0, quad_ebo = 0;  // `lines`: the shared edge-quad index buffer
     std::map<ModelId, Model> models;
     ModelId next_id = 1;

@@ -42,7 +42,8 @@ TEST(EdgeList, SkipsDegenerateFacesAndEmptyInput) {
 
 // The streamed walk hands out the same records in the same order whatever the
 // piece size (including pieces that end in the middle of a vertex's corners)
-// and however many vertex windows its scratch budget splits the walk into.
+// and however many vertex windows its scratch budget splits the walk into,
+// with or without count() first.
 TEST(EdgeList, StreamInPiecesMatchesTheWholeList) {
     // A 6x5 grid of quads, two triangles each, with one degenerate face.
     std::vector<uint32_t> idx;
@@ -74,6 +75,17 @@ TEST(EdgeList, StreamInPiecesMatchesTheWholeList) {
                 EXPECT_EQ(out[i].b, whole[i].b);
                 EXPECT_EQ(again[i].v0, whole[i].v0);
                 EXPECT_EQ(again[i].b, whole[i].b);
+            }
+            // Without count() (lines' use: count() is a walk of its own) the same records come.
+            EdgeStream uncounted(idx, scratch);
+            std::vector<EdgeRecord> plain;
+            while (size_t n = uncounted.next(chunk)) plain.insert(plain.end(), chunk.begin(), chunk.begin() + n);
+            ASSERT_EQ(plain.size(), whole.size()) << "uncounted, piece " << piece << ", scratch " << scratch;
+            for (size_t i = 0; i < plain.size(); ++i) {
+                EXPECT_EQ(plain[i].v0, whole[i].v0);
+                EXPECT_EQ(plain[i].v1, whole[i].v1);
+                EXPECT_EQ(plain[i].a, whole[i].a);
+                EXPECT_EQ(plain[i].b, whole[i].b);
             }
         }
 }

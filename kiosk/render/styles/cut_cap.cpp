@@ -218,8 +218,8 @@ bool link_clipped(Programs& clipped) {
     constexpr const char* kDistance =
         "#extension GL_EXT_clip_cull_distance : require\n#define BODY_CLIP 1\n#define BODY_CLIP_DISTANCE 1\n";
     if (gl_has_extension("GL_EXT_clip_cull_distance") && link_programs(clipped, kDistance)) {
-        for (Program* p :
-             {&clipped.baseline, &clipped.smooth, &clipped.hatching, &clipped.xray, &clipped.lines, &clipped.wireframe})
+        for (Program* p : {&clipped.baseline, &clipped.smooth, &clipped.hatching, &clipped.xray, &clipped.lines,
+                           &clipped.wireframe, &clipped.wireframe_buffer})
             p->clip_distance = true;
         return true;
     }

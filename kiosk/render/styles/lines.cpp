@@ -79,13 +79,13 @@ Aabb edge_box(std::span<const uint32_t> indices, const MappedPositions& position
 }
 
 // A first walk counts the edges kept so that the texture is sized to them; the
-// second converts and uploads them a chunk at a time.
+// second (the same records again) converts and uploads them a chunk at a time.
 void upload_edges(Model& m, std::span<const uint32_t> indices, const EdgeEncoder& encoder) {
-    // 1 MiB of walk scratch and 128 KiB of records: they are alive while
+    // 256 KiB of walk scratch and 128 KiB of records: they are alive while
     // the texture is filled, the first frame's peak in `lines`.
-    EdgeStream stream(indices, size_t{1} << 20);
+    EdgeStream stream(indices, size_t{256} << 10);
     constexpr size_t kEdgeChunk = 4 * kTextureWidth;
-    std::vector<EdgeRecord> chunk(std::min(kEdgeChunk, std::max<size_t>(stream.count(), 1)));
+    std::vector<EdgeRecord> chunk(std::min(kEdgeChunk, std::max<size_t>(indices.size(), 1)));  // edges <= corners
     size_t kept = 0;
     while (const size_t n = stream.next(chunk))
         for (size_t i = 0; i < n; ++i) kept += encoder.drawable(encoder.classify(chunk[i]));
@@ -120,6 +120,10 @@ void ensure_edges(Model& m) {
     if (!m.edges_stale && m.edge_texture) return;
     static_assert(sizeof(EdgeRecord) == sizeof(GpuEdge));
     free_wire_textures(m);
+    // Freed heap given back before the walk's scratch and the texture arrive,
+    // whether or not position textures went (wireframe's buffer texture has
+    // none; the previous style's first frame leaves driver scratch behind).
+    trim_heap();
     // Mapping is per buffer: both stay mapped while the other target binding moves on.
     MappedBuffer<uint32_t> index_map(m, m.ebo, m.index_count);
     const MappedPositions positions(m);

@@ -1,8 +1,10 @@
 // `wireframe`: barycentric edges of constant pixel width in the fragment
 // shader over lightly flat-shaded faces (GLES has no polygon mode); shaders
 // wireframe.vert + wireframe.frag. The vertex positions come from the model's
-// position textures, built here from its GL buffers when first drawn.
-#include <GLES3/gl3.h>
+// position buffer through a buffer texture where the driver offers them and
+// the positions are codes, else from position textures built here from its GL
+// buffers when first drawn.
+#include <GLES3/gl32.h>
 
 #include <algorithm>
 #include <cstdint>
@@ -11,6 +13,7 @@
 
 #include "kiosk/render/data_textures.h"
 #include "kiosk/render/gl_formats.h"
+#include "kiosk/render/gl_util.h"
 #include "kiosk/render/styles/styles.h"
 
 namespace body::render {
@@ -93,6 +96,36 @@ void draw_wire_chunks(const Frame& f, GLuint vao, GLuint index_buffer, size_t ve
     }
 }
 
+// The buffer texture over the model's position codes (3 R16UI texels a
+// vertex), attached again when the buffer was replaced (buffer_growth.h).
+// Nothing is copied: the texture reads the buffer, so it never goes stale and
+// adds no memory (the position textures took 6 bytes a vertex, built while
+// the level's buffers were held). False where it cannot serve this model:
+// not offered, float positions, more texels than the driver allows, or
+// the program does not link (then the position textures are used).
+bool wire_buffer_texture(RendererState& s, Frame& f, Model& m) {
+    if (!m.quantized || s.wire_buffer_texels == 0 || m.vertex_allocated * 3 > s.wire_buffer_texels) return false;
+    Program& p = s.programs.wireframe_buffer;
+    if (!p.id) {
+        if (!link_on_first_use(p)) {
+            s.wire_buffer_texels = 0;  // not again
+            return false;
+        }
+        ++f.programs_linked;
+    }
+    if (!m.position_buffer_texture) glGenTextures(1, &m.position_buffer_texture);
+    if (m.position_buffer_of != m.vbo_position || m.position_buffer_vertices != m.vertex_allocated) {
+        glBindTexture(GL_TEXTURE_BUFFER, m.position_buffer_texture);
+        glTexBuffer(GL_TEXTURE_BUFFER, GL_R16UI, m.vbo_position);
+        glBindTexture(GL_TEXTURE_BUFFER, 0);
+        m.position_buffer_of = m.vbo_position;
+        m.position_buffer_vertices = m.vertex_allocated;
+    }
+    free_wire_textures(m);  // left from before a change to float positions and back, if any
+    free_edge_texture(m);   // one line style's data at a time (data_textures.h)
+    return true;
+}
+
 }  // namespace
 
 void create_wire_vertex_array(RendererState& s) {
@@ -100,22 +133,41 @@ void create_wire_vertex_array(RendererState& s) {
     glBindVertexArray(s.wire_vao);
     glEnableVertexAttribArray(kWireVertex);
     glBindVertexArray(0);
+    // GLES 3.2 (buffer textures in core and in GLSL ES 3.20; GLSL ES 3.00
+    // shaders cannot enable GL_EXT_texture_buffer).
+    GLint major = 0, minor = 0;
+    glGetIntegerv(GL_MAJOR_VERSION, &major);
+    glGetIntegerv(GL_MINOR_VERSION, &minor);
+    if (major > 3 || (major == 3 && minor >= 2)) {
+        GLint texels = 0;
+        glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &texels);
+        s.wire_buffer_texels = texels > 0 ? static_cast<size_t>(texels) : 0;
+    }
 }
 
 void draw_wireframe(RendererState& s, Frame& f, Model& m) {
     const FrameOptions& o = *f.options;
     const Vec3f col = m.state.color;
-    ensure_wire_positions(m);
-    Program& p = s.programs.wireframe;
+    const bool buffer = wire_buffer_texture(s, f, m);
+    if (!buffer) ensure_wire_positions(m);
+    Program& p = buffer ? s.programs.wireframe_buffer : s.programs.wireframe;
     f.use(p);
     set_matrices(p, f, m);
     set_lights(p, f);
     glUniform4f(p.loc("u_color"), col.r, col.g, col.b, 1.0f);
     glUniform1f(p.loc("u_width_px"), o.line_width_px * 0.75f);
-    set_quantization(p, m.wire_origin, m.wire_scale);
-    bind_data_texture(p, "u_positions", m.position_texture, 0);
-    bind_data_texture(p, "u_positions_z", m.position_texture_z, 1);
-    glActiveTexture(GL_TEXTURE0);
+    if (buffer) {
+        // The buffer's codes in the model's box: the same values the position textures held.
+        set_quantization(p, m.pos_origin, m.pos_scale);
+        glActiveTexture(GL_TEXTURE0);
+        glBindTexture(GL_TEXTURE_BUFFER, m.position_buffer_texture);
+        glUniform1i(p.loc("u_position_codes"), 0);
+    } else {
+        set_quantization(p, m.wire_origin, m.wire_scale);
+        bind_data_texture(p, "u_positions", m.position_texture, 0);
+        bind_data_texture(p, "u_positions_z", m.position_texture_z, 1);
+        glActiveTexture(GL_TEXTURE0);
+    }
     draw_wire_chunks(f, s.wire_vao, m.ebo, m.index_count);
 }
 
