@@ -90,7 +90,7 @@ Status Renderer::init(const RendererOptions& options) {
         return batched;
     }
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    create_wire_vertex_array(*s_);
+    create_wire_vertex_array(*s_, options.wire_buffer_texture);
     create_edge_quads(*s_);
     const char* gl_renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
     s_->flush_large_draws = contains(gl_renderer, {"llvmpipe", "softpipe"});

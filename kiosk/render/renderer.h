@@ -136,6 +136,10 @@ struct RendererOptions {
     // Opaque smooth and baseline models drawn many per call (kiosk/render/batch.h);
     // false (or BODY_BATCH=0 in the environment): one call a model.
     bool batch = true;
+    // `wireframe` reads quantized positions through a buffer texture over the
+    // position buffer where the context is GLES 3.2 (styles/wireframe.cpp);
+    // false: the position textures every context can use (GLES 3.0/3.1 boards).
+    bool wire_buffer_texture = true;
     // A progressive model's level that stays this long (and kSettleFrames
     // frames) is drawn from a copy in vertex-cache order (level_order.h);
     // negative: never (the copy and its making cost memory, see there).

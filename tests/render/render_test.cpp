@@ -383,6 +383,32 @@ TEST(RenderProperty, LineDataIsGivenBackInAnotherStyleAndRebuiltTheSame) {
     }
 }
 
+// The position textures (the path of GLES 3.0/3.1 boards, and of float
+// positions) and the buffer texture (GLES 3.2) give `wireframe` the same codes,
+// so the same picture; only the textures cost GPU bytes.
+TEST(RenderProperty, WireframeFromPositionTexturesMatchesTheBufferTexture) {
+    test::GenMesh sphere = test::icosphere(3);
+    const View cam = View::framing(Vec3f(0.0f), 1.1f, Vec3f(0.2f, 0.3f, 1.0f));
+    Image pictures[2];
+    size_t added[2] = {0, 0};
+    for (int textures = 0; textures < 2; ++textures) {
+        RendererOptions options;
+        options.wire_buffer_texture = textures == 0;
+        RenderFixture f(160, 160, options);
+        REQUIRE_GL(f);
+        auto id = f.renderer().add_model(sphere.data(), "sphere");
+        ASSERT_TRUE(id.ok());
+        const size_t without = f.renderer().gpu_bytes();
+        f.renderer().state(id.value())->style = Style::Wireframe;
+        pictures[textures] = f.draw(cam);
+        added[textures] = f.renderer().gpu_bytes() - without;
+        const std::vector<bool> mask = test::foreground_mask(pictures[textures], f.frame().background, 3);
+        EXPECT_GT(std::count(mask.begin(), mask.end(), true), 2000);  // the sphere was drawn
+    }
+    EXPECT_GT(added[1], 0u) << "the texture path made no position textures";
+    EXPECT_EQ(test::compare(pictures[0], pictures[1], 4).bad_block_fraction, 0.0);
+}
+
 TEST(RenderProperty, HatchingDarkensMonotonicallyAsTheLightMovesAway) {
     for (Style style : {Style::Hatching, Style::Hatching2Tone}) {
         RenderFixture f(200, 200);

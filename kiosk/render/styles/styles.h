@@ -21,7 +21,8 @@ void draw_baseline(RendererState& s, Frame& f, Model& m);   // mesh.vert + basel
 // Renderer::shutdown): `lines`' edge-quad index buffer, `wireframe`'s array
 // reading a model's index buffer as a vertex attribute.
 void create_edge_quads(RendererState& s);
-void create_wire_vertex_array(RendererState& s);
+void create_wire_vertex_array(RendererState& s,
+                              bool buffer_texture);  // buffer_texture: RendererOptions::wire_buffer_texture
 
 // Transparent pass (transparent.cpp): a selected model in the selection colour
 // (mesh.vert + smooth.frag), an unselected one faded by x-ray (xray.frag);

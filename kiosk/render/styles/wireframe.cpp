@@ -128,7 +128,7 @@ bool wire_buffer_texture(RendererState& s, Frame& f, Model& m) {
 
 }  // namespace
 
-void create_wire_vertex_array(RendererState& s) {
+void create_wire_vertex_array(RendererState& s, bool buffer_texture) {
     glGenVertexArrays(1, &s.wire_vao);
     glBindVertexArray(s.wire_vao);
     glEnableVertexAttribArray(kWireVertex);
@@ -138,7 +138,7 @@ void create_wire_vertex_array(RendererState& s) {
     GLint major = 0, minor = 0;
     glGetIntegerv(GL_MAJOR_VERSION, &major);
     glGetIntegerv(GL_MINOR_VERSION, &minor);
-    if (major > 3 || (major == 3 && minor >= 2)) {
+    if (buffer_texture && (major > 3 || (major == 3 && minor >= 2))) {
         GLint texels = 0;
         glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &texels);
         s.wire_buffer_texels = texels > 0 ? static_cast<size_t>(texels) : 0;
