@@ -20,11 +20,82 @@
 namespace body {
 namespace {
 
+// The exact spelling printf's %.Ng gives `value` (N = precision), through
+// the shortest round-trip digits: libstdc++'s to_chars with a precision takes
+// a slower path than its shortest form. The shortest digits differ from the
+// exact binary value by under 23 units of the 17th significant digit, so
+// rounding them to N digits rounds the exact value the same way unless the
+// digits past the Nth lie that close to a half; those values, zero,
+// subnormals (coarser than that bound) and precisions over 15 take to_chars
+// with the precision itself.
+char* general_digits(char* first, char* last, double value, int precision) {
+    if (!std::isnormal(value) || precision > 15)
+        return std::to_chars(first, last, value, std::chars_format::general, precision).ptr;
+    char sci[32];  // "-d.ddddde-xxx": the shortest scientific form
+    const char* end = std::to_chars(sci, sci + sizeof(sci), value, std::chars_format::scientific).ptr;
+    const char* p = sci;
+    const bool negative = *p == '-';
+    if (negative) ++p;
+    char digits[20];
+    int count = 0;
+    for (; *p != 'e'; ++p)
+        if (*p != '.') digits[count++] = *p;
+    int exponent = 0;
+    std::from_chars(p + 1 + (p[1] == '+'), end, exponent);
+    if (count > precision) {
+        uint64_t tail = 0;  // digits past the Nth, as units of the 17th digit
+        for (int i = precision; i < 17; ++i) tail = tail * 10 + uint64_t(i < count ? digits[i] - '0' : 0);
+        uint64_t half = 5;
+        for (int i = precision + 1; i < 17; ++i) half *= 10;
+        if (tail + 25 >= half && tail <= half + 25)
+            return std::to_chars(first, last, value, std::chars_format::general, precision).ptr;
+        count = precision;
+        if (tail > half) {
+            int i = count - 1;
+            while (i >= 0 && digits[i] == '9') digits[i--] = '0';
+            if (i >= 0) {
+                ++digits[i];
+            } else {  // 9.99..9 rounded up to 10.0..0
+                digits[0] = '1';
+                ++exponent;
+            }
+        }
+    }
+    while (count > 1 && digits[count - 1] == '0') --count;
+    char* out = first;
+    if (negative) *out++ = '-';
+    if (exponent < -4 || exponent >= precision) {
+        *out++ = digits[0];
+        if (count > 1) {
+            *out++ = '.';
+            for (int i = 1; i < count; ++i) *out++ = digits[i];
+        }
+        *out++ = 'e';
+        *out++ = exponent < 0 ? '-' : '+';
+        const int magnitude = std::abs(exponent);
+        if (magnitude < 10) *out++ = '0';
+        return std::to_chars(out, last, magnitude).ptr;
+    }
+    if (exponent < 0) {
+        *out++ = '0';
+        *out++ = '.';
+        for (int i = 0; i < -exponent - 1; ++i) *out++ = '0';
+        for (int i = 0; i < count; ++i) *out++ = digits[i];
+        return out;
+    }
+    for (int i = 0; i <= exponent; ++i) *out++ = i < count ? digits[i] : '0';
+    if (count > exponent + 1) {
+        *out++ = '.';
+        for (int i = exponent + 1; i < count; ++i) *out++ = digits[i];
+    }
+    return out;
+}
+
 // Appends a number as printf's %.Ng would (what the stream wrote before,
 // without the stream's per-number locale work); integers in full.
 void append_number(std::string& row, double value, int precision) {
-    char text[32];
-    row.append(text, std::to_chars(text, text + sizeof(text), value, std::chars_format::general, precision).ptr);
+    char text[48];
+    row.append(text, general_digits(text, text + sizeof(text), value, precision));
 }
 void append_number(std::string& row, size_t value) {
     char text[24];
