@@ -20,47 +20,40 @@
 namespace body {
 namespace {
 
-// The exact spelling printf's %.Ng gives `value` (N = precision), through
-// the shortest round-trip digits: libstdc++'s to_chars with a precision takes
-// a slower path than its shortest form. The shortest digits differ from the
-// exact binary value by under 23 units of the 17th significant digit, so
-// rounding them to N digits rounds the exact value the same way unless the
-// digits past the Nth lie that close to a half; those values, zero,
-// subnormals (coarser than that bound) and precisions over 15 take to_chars
-// with the precision itself.
+// The exact spelling printf's %.Ng gives `value` (N = precision), without
+// libstdc++'s to_chars with a precision (its slow path): the value times the
+// power of ten that leaves N digits before the point, one correctly rounded
+// product of two doubles (powers up to 1e22 are exact), is within 0.5 ulp of
+// the exact scaled value, under 1e-7 for N <= 9; rounded to the nearest
+// integer it gives the N digits unless its fraction lies within 1e-6 of a
+// half. Those values, zero, subnormals, magnitudes outside 1e-14..1e30 and
+// precisions over 9 take to_chars with the precision itself.
 char* general_digits(char* first, char* last, double value, int precision) {
-    if (!std::isnormal(value) || precision > 15)
-        return std::to_chars(first, last, value, std::chars_format::general, precision).ptr;
-    char sci[32];  // "-d.ddddde-xxx": the shortest scientific form
-    const char* end = std::to_chars(sci, sci + sizeof(sci), value, std::chars_format::scientific).ptr;
-    const char* p = sci;
-    const bool negative = *p == '-';
-    if (negative) ++p;
-    char digits[20];
-    int count = 0;
-    for (; *p != 'e'; ++p)
-        if (*p != '.') digits[count++] = *p;
-    int exponent = 0;
-    std::from_chars(p + 1 + (p[1] == '+'), end, exponent);
-    if (count > precision) {
-        uint64_t tail = 0;  // digits past the Nth, as units of the 17th digit
-        for (int i = precision; i < 17; ++i) tail = tail * 10 + uint64_t(i < count ? digits[i] - '0' : 0);
-        uint64_t half = 5;
-        for (int i = precision + 1; i < 17; ++i) half *= 10;
-        if (tail + 25 >= half && tail <= half + 25)
-            return std::to_chars(first, last, value, std::chars_format::general, precision).ptr;
-        count = precision;
-        if (tail > half) {
-            int i = count - 1;
-            while (i >= 0 && digits[i] == '9') digits[i--] = '0';
-            if (i >= 0) {
-                ++digits[i];
-            } else {  // 9.99..9 rounded up to 10.0..0
-                digits[0] = '1';
-                ++exponent;
-            }
-        }
+    static constexpr double kPow10[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,  1e8,  1e9,  1e10, 1e11,
+                                        1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+    const auto slow = [&] { return std::to_chars(first, last, value, std::chars_format::general, precision).ptr; };
+    const double magnitude = std::fabs(value);
+    if (!std::isnormal(value) || precision > 9 || magnitude < 1e-14 || magnitude >= 1e30) return slow();
+    int exponent = int(std::floor(std::log10(magnitude)));  // may be off by one at a power of ten: checked below
+    const int shift = precision - 1 - exponent;
+    if (shift > 22 || shift < -22) return slow();
+    const double scaled = shift >= 0 ? magnitude * kPow10[shift] : magnitude / kPow10[-shift];
+    const double low = kPow10[precision - 1], high = kPow10[precision];
+    if (scaled < low || scaled >= high) return slow();
+    const double whole = std::floor(scaled), fraction = scaled - whole;
+    if (std::fabs(fraction - 0.5) < 1e-6) return slow();
+    uint64_t mantissa = uint64_t(whole) + (fraction > 0.5 ? 1 : 0);
+    if (mantissa == uint64_t(high)) {  // 9.99..95 rounded up to 10.0..0
+        mantissa = uint64_t(low);
+        ++exponent;
     }
+    char digits[20] = {};
+    int count = precision;
+    for (int i = count - 1; i >= 0; --i) {
+        digits[i] = char('0' + mantissa % 10);
+        mantissa /= 10;
+    }
+    const bool negative = value < 0;
     while (count > 1 && digits[count - 1] == '0') --count;
     char* out = first;
     if (negative) *out++ = '-';
@@ -72,9 +65,9 @@ char* general_digits(char* first, char* last, double value, int precision) {
         }
         *out++ = 'e';
         *out++ = exponent < 0 ? '-' : '+';
-        const int magnitude = std::abs(exponent);
-        if (magnitude < 10) *out++ = '0';
-        return std::to_chars(out, last, magnitude).ptr;
+        const int power = std::abs(exponent);
+        if (power < 10) *out++ = '0';
+        return std::to_chars(out, last, power).ptr;
     }
     if (exponent < 0) {
         *out++ = '0';
