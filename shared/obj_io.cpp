@@ -84,17 +84,6 @@ char* general_digits(char* first, char* last, double value, int precision) {
     return out;
 }
 
-// Appends a number as printf's %.Ng would (what the stream wrote before,
-// without the stream's per-number locale work); integers in full.
-void append_number(std::string& row, double value, int precision) {
-    char text[48];
-    row.append(text, general_digits(text, text + sizeof(text), value, precision));
-}
-void append_number(std::string& row, size_t value) {
-    char text[24];
-    row.append(text, std::to_chars(text, text + sizeof(text), value).ptr);
-}
-
 // Rows are gathered into `rows` and written a megabyte at a time: one stream
 // call per row (its sentry, a copy into the file buffer, a system call every
 // 8 KB) was most of the writing's own time.
@@ -105,13 +94,18 @@ void flush_if_full(std::ostream& out, std::string& rows, bool always = false) {
     rows.clear();
 }
 
+// Each row is spelled into a local buffer and appended once: appending each
+// number and space to the string cost more than the integers' digits.
 void write_row(std::ostream& out, std::string& rows, const char* tag, const Vec3& p, int precision) {
-    rows.append(tag);
+    char line[3 * 48 + 8];
+    char* end = line;
+    while (*tag != '\0') *end++ = *tag++;
     for (int k = 0; k < 3; ++k) {
-        rows += ' ';
-        append_number(rows, p[k], precision);
+        *end++ = ' ';
+        end = general_digits(end, line + sizeof(line), p[k], precision);
     }
-    rows += '\n';
+    *end++ = '\n';
+    rows.append(line, end);
     flush_if_full(out, rows);
 }
 
@@ -134,17 +128,21 @@ std::string write_meshes(std::ostream& out, std::span<const Mesh> meshes, const 
         if (options.normals)
             for (const Vec3& n : normals) write_row(out, rows, "vn", n, precision);
         for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
-            rows += 'f';
+            char line[3 * 48 + 8];
+            char* end = line;
+            *end++ = 'f';
             for (int k = 0; k < 3; ++k) {
                 const size_t i = base + mesh.indices[t + k];
-                rows += ' ';
-                append_number(rows, i);
+                *end++ = ' ';
+                end = std::to_chars(end, end + 20, i).ptr;
                 if (options.normals) {
-                    rows += "//";
-                    append_number(rows, i);
+                    *end++ = '/';
+                    *end++ = '/';
+                    end = std::to_chars(end, end + 20, i).ptr;
                 }
             }
-            rows += '\n';
+            *end++ = '\n';
+            rows.append(line, end);
             flush_if_full(out, rows);
         }
         base += mesh.positions.size();
