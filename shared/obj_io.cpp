@@ -20,15 +20,68 @@
 namespace body {
 namespace {
 
-// Appends a number as printf's %.Ng would (what the stream wrote before,
-// without the stream's per-number locale work); integers in full.
-void append_number(std::string& row, double value, int precision) {
-    char text[32];
-    row.append(text, std::to_chars(text, text + sizeof(text), value, std::chars_format::general, precision).ptr);
-}
-void append_number(std::string& row, size_t value) {
-    char text[24];
-    row.append(text, std::to_chars(text, text + sizeof(text), value).ptr);
+// The exact spelling printf's %.Ng gives `value` (N = precision), without
+// libstdc++'s to_chars with a precision (its slow path): the value times the
+// power of ten that leaves N digits before the point, one correctly rounded
+// product of two doubles (powers up to 1e22 are exact), is within 0.5 ulp of
+// the exact scaled value, under 1e-7 for N <= 9; rounded to the nearest
+// integer it gives the N digits unless its fraction lies within 1e-6 of a
+// half. Those values, zero, subnormals, magnitudes outside 1e-14..1e30 and
+// precisions over 9 take to_chars with the precision itself.
+char* general_digits(char* first, char* last, double value, int precision) {
+    static constexpr double kPow10[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,  1e8,  1e9,  1e10, 1e11,
+                                        1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+    const auto slow = [&] { return std::to_chars(first, last, value, std::chars_format::general, precision).ptr; };
+    const double magnitude = std::fabs(value);
+    if (!std::isnormal(value) || precision > 9 || magnitude < 1e-14 || magnitude >= 1e30) return slow();
+    int exponent = int(std::floor(std::log10(magnitude)));  // may be off by one at a power of ten: checked below
+    const int shift = precision - 1 - exponent;
+    if (shift > 22 || shift < -22) return slow();
+    const double scaled = shift >= 0 ? magnitude * kPow10[shift] : magnitude / kPow10[-shift];
+    const double low = kPow10[precision - 1], high = kPow10[precision];
+    if (scaled < low || scaled >= high) return slow();
+    const double whole = std::floor(scaled), fraction = scaled - whole;
+    if (std::fabs(fraction - 0.5) < 1e-6) return slow();
+    uint64_t mantissa = uint64_t(whole) + (fraction > 0.5 ? 1 : 0);
+    if (mantissa == uint64_t(high)) {  // 9.99..95 rounded up to 10.0..0
+        mantissa = uint64_t(low);
+        ++exponent;
+    }
+    char digits[20] = {};
+    int count = precision;
+    for (int i = count - 1; i >= 0; --i) {
+        digits[i] = char('0' + mantissa % 10);
+        mantissa /= 10;
+    }
+    const bool negative = value < 0;
+    while (count > 1 && digits[count - 1] == '0') --count;
+    char* out = first;
+    if (negative) *out++ = '-';
+    if (exponent < -4 || exponent >= precision) {
+        *out++ = digits[0];
+        if (count > 1) {
+            *out++ = '.';
+            for (int i = 1; i < count; ++i) *out++ = digits[i];
+        }
+        *out++ = 'e';
+        *out++ = exponent < 0 ? '-' : '+';
+        const int power = std::abs(exponent);
+        if (power < 10) *out++ = '0';
+        return std::to_chars(out, last, power).ptr;
+    }
+    if (exponent < 0) {
+        *out++ = '0';
+        *out++ = '.';
+        for (int i = 0; i < -exponent - 1; ++i) *out++ = '0';
+        for (int i = 0; i < count; ++i) *out++ = digits[i];
+        return out;
+    }
+    for (int i = 0; i <= exponent; ++i) *out++ = i < count ? digits[i] : '0';
+    if (count > exponent + 1) {
+        *out++ = '.';
+        for (int i = exponent + 1; i < count; ++i) *out++ = digits[i];
+    }
+    return out;
 }
 
 // Rows are gathered into `rows` and written a megabyte at a time: one stream
@@ -41,13 +94,18 @@ void flush_if_full(std::ostream& out, std::string& rows, bool always = false) {
     rows.clear();
 }
 
+// Each row is spelled into a local buffer and appended once: appending each
+// number and space to the string cost more than the integers' digits.
 void write_row(std::ostream& out, std::string& rows, const char* tag, const Vec3& p, int precision) {
-    rows.append(tag);
+    char line[3 * 48 + 8];
+    char* end = line;
+    while (*tag != '\0') *end++ = *tag++;
     for (int k = 0; k < 3; ++k) {
-        rows += ' ';
-        append_number(rows, p[k], precision);
+        *end++ = ' ';
+        end = general_digits(end, line + sizeof(line), p[k], precision);
     }
-    rows += '\n';
+    *end++ = '\n';
+    rows.append(line, end);
     flush_if_full(out, rows);
 }
 
@@ -70,17 +128,21 @@ std::string write_meshes(std::ostream& out, std::span<const Mesh> meshes, const 
         if (options.normals)
             for (const Vec3& n : normals) write_row(out, rows, "vn", n, precision);
         for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
-            rows += 'f';
+            char line[3 * 48 + 8];
+            char* end = line;
+            *end++ = 'f';
             for (int k = 0; k < 3; ++k) {
                 const size_t i = base + mesh.indices[t + k];
-                rows += ' ';
-                append_number(rows, i);
+                *end++ = ' ';
+                end = std::to_chars(end, end + 20, i).ptr;
                 if (options.normals) {
-                    rows += "//";
-                    append_number(rows, i);
+                    *end++ = '/';
+                    *end++ = '/';
+                    end = std::to_chars(end, end + 20, i).ptr;
                 }
             }
-            rows += '\n';
+            *end++ = '\n';
+            rows.append(line, end);
             flush_if_full(out, rows);
         }
         base += mesh.positions.size();

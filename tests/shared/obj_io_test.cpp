@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 
@@ -98,6 +101,66 @@ TEST(ObjIo, NumbersAndCornersAtTheEdgesOfThePlainSpelling) {
         EXPECT_NE(m.error().message.find(b.why), std::string::npos) << b.line << ": " << m.error().message;
         EXPECT_NE(m.error().message.find("t.obj: line 5: "), std::string::npos) << m.error().message;
     }
+}
+
+}  // namespace
+}  // namespace body
+
+namespace body {
+namespace {
+
+// Coordinates are spelled exactly as printf's %.Ng spells them, at the default
+// precision and others: across magnitudes, at the switch to exponent form, at
+// roundings that carry into a new digit, and near halves of the last digit.
+TEST(ObjIo, CoordinatesAreSpelledAsPrintfGeneral) {
+    std::vector<double> values = {0.0,
+                                  -0.0,
+                                  1.0,
+                                  0.1,
+                                  -2.5e-5,
+                                  1e-5,
+                                  9.99999999e-5,
+                                  0.0001,
+                                  123456789.0,
+                                  999999999.5,
+                                  1234567890.0,
+                                  0.1234567885,
+                                  0.12345678850000001,
+                                  -7.000000005,
+                                  5e-324,
+                                  1.7976931348623157e308};
+    uint64_t state = 12345;
+    for (int i = 0; i < 3000; ++i) {  // a fixed pseudo-random spread over 40 decades
+        state = state * 6364136223846793005ull + 1442695040888963407ull;
+        const double unit = double(state >> 11) * 0x1p-53 - 0.5;
+        values.push_back(unit * std::pow(10.0, int(state % 40) - 20));
+    }
+    while (values.size() % 3 != 0) values.push_back(0.5);
+    Mesh mesh;
+    mesh.name = "numbers";
+    for (size_t i = 0; i < values.size(); i += 3) mesh.positions.push_back({values[i], values[i + 1], values[i + 2]});
+    const std::string path =
+        (fs::temp_directory_path() / ("body_obj_g_" + std::to_string(::getpid()) + ".obj")).string();
+    for (int precision : {9, 6, 15, 17}) {
+        ASSERT_TRUE(write_obj(path, std::span<const Mesh>(&mesh, 1), {.precision = precision}).ok());
+        std::ifstream in(path);
+        std::string line;
+        size_t row = 0;
+        while (std::getline(in, line)) {
+            if (line.rfind("v ", 0) != 0) continue;
+            ASSERT_LT(row, mesh.positions.size());
+            std::string expected = "v";
+            for (int k = 0; k < 3; ++k) {
+                char text[64];
+                std::snprintf(text, sizeof(text), " %.*g", precision, mesh.positions[row][k]);
+                expected += text;
+            }
+            EXPECT_EQ(line, expected) << "precision " << precision;
+            ++row;
+        }
+        EXPECT_EQ(row, mesh.positions.size());
+    }
+    fs::remove(path);
 }
 
 }  // namespace
