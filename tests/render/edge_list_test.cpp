@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <set>
+#include <string>
+#include <vector>
 
 using namespace body::render;
 
@@ -56,37 +58,34 @@ TEST(EdgeList, StreamInPiecesMatchesTheWholeList) {
     idx.insert(idx.end(), {3, 3, 4});
     const auto whole = build_edge_list(idx);
     ASSERT_EQ(whole.size(), 6u * 6 + 5u * 7 + 30u);  // horizontal + vertical + diagonal edges
+    // Every record of a walk equals the whole list's, field by field.
+    const auto expect_whole = [&](const std::vector<EdgeRecord>& got, const std::string& walk) {
+        ASSERT_EQ(got.size(), whole.size()) << walk;
+        for (size_t i = 0; i < got.size(); ++i) {
+            EXPECT_EQ(got[i].v0, whole[i].v0) << walk << ", record " << i;
+            EXPECT_EQ(got[i].v1, whole[i].v1) << walk << ", record " << i;
+            EXPECT_EQ(got[i].a, whole[i].a) << walk << ", record " << i;
+            EXPECT_EQ(got[i].b, whole[i].b) << walk << ", record " << i;
+        }
+    };
     for (size_t piece : {1u, 2u, 3u, 7u, 64u, 1000u})
         for (size_t scratch : {size_t{4}, size_t{60}, size_t{2} << 20}) {  // one vertex a window .. one window
+            std::vector<EdgeRecord> chunk(piece);
+            const auto walk = [&](EdgeStream& stream) {
+                std::vector<EdgeRecord> out;
+                while (size_t n = stream.next(chunk)) out.insert(out.end(), chunk.begin(), chunk.begin() + n);
+                return out;
+            };
+            const std::string where = "piece " + std::to_string(piece) + ", scratch " + std::to_string(scratch);
             EdgeStream stream(idx, scratch);
             EXPECT_EQ(stream.count(), whole.size());
-            std::vector<EdgeRecord> out, chunk(piece);
-            while (size_t n = stream.next(chunk)) out.insert(out.end(), chunk.begin(), chunk.begin() + n);
-            ASSERT_EQ(out.size(), whole.size()) << "piece " << piece << ", scratch " << scratch;
+            expect_whole(walk(stream), where);
             // A second walk after restart() hands out the same records again.
             stream.restart();
-            std::vector<EdgeRecord> again;
-            while (size_t n = stream.next(chunk)) again.insert(again.end(), chunk.begin(), chunk.begin() + n);
-            ASSERT_EQ(again.size(), whole.size()) << "after restart, piece " << piece << ", scratch " << scratch;
-            for (size_t i = 0; i < out.size(); ++i) {
-                EXPECT_EQ(out[i].v0, whole[i].v0);
-                EXPECT_EQ(out[i].v1, whole[i].v1);
-                EXPECT_EQ(out[i].a, whole[i].a);
-                EXPECT_EQ(out[i].b, whole[i].b);
-                EXPECT_EQ(again[i].v0, whole[i].v0);
-                EXPECT_EQ(again[i].b, whole[i].b);
-            }
+            expect_whole(walk(stream), "after restart, " + where);
             // Without count() (lines' use: count() is a walk of its own) the same records come.
             EdgeStream uncounted(idx, scratch);
-            std::vector<EdgeRecord> plain;
-            while (size_t n = uncounted.next(chunk)) plain.insert(plain.end(), chunk.begin(), chunk.begin() + n);
-            ASSERT_EQ(plain.size(), whole.size()) << "uncounted, piece " << piece << ", scratch " << scratch;
-            for (size_t i = 0; i < plain.size(); ++i) {
-                EXPECT_EQ(plain[i].v0, whole[i].v0);
-                EXPECT_EQ(plain[i].v1, whole[i].v1);
-                EXPECT_EQ(plain[i].a, whole[i].a);
-                EXPECT_EQ(plain[i].b, whole[i].b);
-            }
+            expect_whole(walk(uncounted), "uncounted, " + where);
         }
 }
 
