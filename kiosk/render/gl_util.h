@@ -1,6 +1,7 @@
 #pragma once
 // Small helpers shared by the renderer's files: the debug-build GL error check,
-// the context's extension list and handing freed heap memory back to the system.
+// the context's version and extension list, and handing freed heap memory back
+// to the system.
 #include <GLES3/gl3.h>
 #ifdef __GLIBC__
 #include <malloc.h>
@@ -22,6 +23,14 @@
 #endif
 
 namespace body::render {
+
+// Whether the current context's GL ES version is at least major.minor.
+inline bool gl_version_at_least(GLint major, GLint minor) {
+    GLint have_major = 0, have_minor = 0;
+    glGetIntegerv(GL_MAJOR_VERSION, &have_major);
+    glGetIntegerv(GL_MINOR_VERSION, &have_minor);
+    return have_major > major || (have_major == major && have_minor >= minor);
+}
 
 // Whether the current context lists the GL extension `name`.
 inline bool gl_has_extension(const char* name) {

@@ -14,6 +14,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <span>
 
+#include "kiosk/render/gl_util.h"
 #include "kiosk/scene/model_source.h"
 #include "shared/obj_io.h"
 #include "shared/pm/bpm_reader.h"
@@ -356,10 +357,7 @@ TEST(RenderProperty, LineDataIsGivenBackInAnotherStyleAndRebuiltTheSame) {
     const View cam = View::framing(Vec3f(0.0f), 1.1f, Vec3f(0.2f, 0.3f, 1.0f));
     const size_t without = f.renderer().gpu_bytes();
     // GLES 3.2: `wireframe` reads the position buffer through a buffer texture (no copy).
-    GLint major = 0, minor = 0;
-    glGetIntegerv(GL_MAJOR_VERSION, &major);
-    glGetIntegerv(GL_MINOR_VERSION, &minor);
-    const bool wire_buffer = major > 3 || (major == 3 && minor >= 2);
+    const bool wire_buffer = render::gl_version_at_least(3, 2);
     for (Style line_style : {Style::Lines, Style::Wireframe}) {
         f.renderer().state(id.value())->style = line_style;
         const Image before = f.draw(cam);

@@ -135,10 +135,7 @@ void create_wire_vertex_array(RendererState& s, bool buffer_texture) {
     glBindVertexArray(0);
     // GLES 3.2 (buffer textures in core and in GLSL ES 3.20; GLSL ES 3.00
     // shaders cannot enable GL_EXT_texture_buffer).
-    GLint major = 0, minor = 0;
-    glGetIntegerv(GL_MAJOR_VERSION, &major);
-    glGetIntegerv(GL_MINOR_VERSION, &minor);
-    if (buffer_texture && (major > 3 || (major == 3 && minor >= 2))) {
+    if (buffer_texture && gl_version_at_least(3, 2)) {
         GLint texels = 0;
         glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &texels);
         s.wire_buffer_texels = texels > 0 ? static_cast<size_t>(texels) : 0;
