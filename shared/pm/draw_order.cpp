@@ -23,11 +23,6 @@ std::vector<uint32_t> batch_levels(size_t base_vertices, size_t splits) {
 
 namespace {
 
-// How far ahead the batch loops request the scattered lines they will read
-// (faces in sorted order, vertices by a face's corner): in a large batch those
-// are cache misses the hardware prefetcher cannot see coming.
-constexpr size_t kAhead = 16;
-
 // morton_spread3 of every 10-bit value: a face's Morton code is three loads.
 struct SpreadTable {
     uint32_t spread[1024] = {};
@@ -48,7 +43,7 @@ void sort_spatially(const uint32_t* indices, size_t face_count, const uint16_t* 
     uint64_t* b = a + face_count;
     const uint32_t* spread = kSpread.spread;
     for (size_t f = 0; f < face_count; ++f) {
-        if (f + kAhead < face_count) prefetch(qpos + size_t(indices[(f + kAhead) * 3]) * 3);
+        if (f + kGatherAhead < face_count) prefetch(qpos + size_t(indices[(f + kGatherAhead) * 3]) * 3);
         const uint16_t* p = qpos + size_t(indices[f * 3]) * 3;
         const uint32_t code = spread[p[0] >> 6] | spread[p[1] >> 6] << 1 | spread[p[2] >> 6] << 2;  // morton_code
         a[f] = uint64_t(code) << 32 | f;
@@ -78,7 +73,7 @@ void first_use_order(const uint32_t* indices, const uint32_t* order, size_t face
     // Without branches (whether a vertex is new is unpredictable): a vertex
     // outside the range reads and rewrites entry 0 unchanged.
     for (size_t t = 0; t < face_count; ++t) {
-        if (t + kAhead < face_count) prefetch(indices + size_t(order[t + kAhead]) * 3);
+        if (t + kGatherAhead < face_count) prefetch(indices + size_t(order[t + kGatherAhead]) * 3);
         const uint32_t* corners = indices + size_t(order[t]) * 3;
         for (size_t i = 0; i < 3; ++i) {
             const uint32_t k = corners[i] - first;  // wraps above count for a vertex below first

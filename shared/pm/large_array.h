@@ -50,6 +50,10 @@ inline void prefetch(const void* p) {
     (void)p;
 #endif
 }
+// How many entries ahead a loop over a large batch in a scattered order
+// (faces by sorted order, vertices by a face's corner) requests the lines it
+// will read: the batched decode's gathers (draw_order.cpp, order_batch).
+inline constexpr size_t kGatherAhead = 16;
 
 template <class T, PageFill Fill>
 struct LargeArrayAllocator {

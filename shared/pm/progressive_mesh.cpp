@@ -122,11 +122,10 @@ void ProgressiveMesh::order_batch(size_t level) {
     };
     // The faces' entries at level_ (scratch: the old entries), moved and renumbered.
     std::copy(indices_.begin() + ptrdiff_t(f0 * 3), indices_.begin() + ptrdiff_t(f1 * 3), faces.begin());
-    constexpr size_t kAhead = 16;  // scattered lines requested ahead of use (large batches miss the caches)
     for (size_t t = 0; t < n; ++t) {
-        if (t + kAhead < n) {
-            prefetch(&faces[size_t(order[t + kAhead]) * 3]);
-            prefetch(&face_slot_[f0 + order[t + kAhead]]);
+        if (t + kGatherAhead < n) {
+            prefetch(&faces[size_t(order[t + kGatherAhead]) * 3]);
+            prefetch(&face_slot_[f0 + order[t + kGatherAhead]]);
         }
         const size_t f = order[t];
         for (size_t k = 0; k < 3; ++k) indices_[(f0 + t) * 3 + k] = renumber(faces[f * 3 + k]);
@@ -142,7 +141,7 @@ void ProgressiveMesh::order_batch(size_t level) {
     }
     const size_t w = corner_bytes_, patches_end = patch_corners_.size() / w;
     for (size_t i = batch_patch_begin_; i < patches_end; ++i) {
-        if (i + kAhead < patches_end) prefetch(&face_slot_[patch_corner(i + kAhead) / 3]);
+        if (i + kGatherAhead < patches_end) prefetch(&face_slot_[patch_corner(i + kGatherAhead) / 3]);
         const uint32_t c = patch_corner(i);
         if (c >= f0 * 3) store_le(&patch_corners_[i * w], face_slot_[c / 3] * 3 + c % 3, w);
     }
