@@ -1,5 +1,5 @@
 // See split_order.h. Phases: rounds (replay the splits in their order, tracking
-// each vertex's faces, and give each split the round after the last split of its
+// each vertex's corners, and give each split the round after the last split of its
 // batch sharing a face with it), order (rounds, each by parent number), relabel.
 #include "builder/lod/split_order.h"
 
@@ -22,9 +22,16 @@ std::vector<uint32_t> rounds(const ProgressiveBuild& pm, const std::vector<uint3
                              const std::vector<uint32_t>& first_face) {
     const size_t base = pm.base_vertices, n = pm.splits.size();
     std::vector<uint32_t> idx(pm.indices.begin(), pm.indices.end());
-    std::vector<std::vector<uint32_t>> star(base + n);
-    for (uint32_t f = 0; f < pm.base_faces; ++f)
-        for (int k = 0; k < 3; ++k) star[idx[size_t(f) * 3 + k]].push_back(f);
+    // Each vertex's star as a list of the corners that name it (head, then next per
+    // corner): flat arrays instead of a vector per vertex (no allocation per vertex
+    // or per face moved). Only the set matters: a split's round is a maximum over its
+    // faces, and every face it touches gets the same `last`.
+    std::vector<uint32_t> head(base + n, kNone), next(idx.size(), kNone);
+    auto link = [&](uint32_t c) {
+        next[c] = head[idx[c]];
+        head[idx[c]] = c;
+    };
+    for (uint32_t c = 0; c < uint32_t(pm.base_faces) * 3; ++c) link(c);
     std::vector<uint32_t> last(idx.size() / 3, kNone), round(n, 0);
     size_t lo = 0;
     for (uint32_t hi : bounds) {
@@ -35,20 +42,28 @@ std::vector<uint32_t> rounds(const ProgressiveBuild& pm, const std::vector<uint3
                 if (last[f] != kNone && last[f] >= lo) r = std::max(r, round[last[f]] + 1);
                 last[f] = uint32_t(j);
             };
-            for (uint32_t f : star[p]) after(f);
+            for (uint32_t k = head[p]; k != kNone; k = next[k]) after(k / 3);
             for (uint32_t f = first_face[j]; f < first_face[j + 1]; ++f) after(f);
             round[j] = r;
-            // Apply the split: patched faces move from the parent's star to the child's.
+            // Apply the split: patched faces' corners at the parent become the child's.
+            bool moved = false;
             for (uint32_t i = pm.patch_begin[j]; i < pm.patch_begin[j + 1]; ++i) {
                 const uint32_t f = pm.patch_faces[i];
                 for (int k = 0; k < 3; ++k)
-                    if (idx[size_t(f) * 3 + k] == p) idx[size_t(f) * 3 + k] = c;
-                auto& s = star[p];
-                if (auto it = std::find(s.begin(), s.end(), f); it != s.end()) s.erase(it);
-                star[c].push_back(f);
+                    if (idx[size_t(f) * 3 + k] == p) idx[size_t(f) * 3 + k] = c, moved = true;
             }
-            for (uint32_t f = first_face[j]; f < first_face[j + 1]; ++f)
-                for (int k = 0; k < 3; ++k) star[idx[size_t(f) * 3 + k]].push_back(f);
+            if (moved) {  // ... and move from the parent's list to the child's
+                for (uint32_t* l = &head[p]; *l != kNone;) {
+                    const uint32_t k = *l;
+                    if (idx[k] == p) {
+                        l = &next[k];
+                        continue;
+                    }
+                    *l = next[k];
+                    link(k);
+                }
+            }
+            for (uint32_t k = first_face[j] * 3; k < first_face[j + 1] * 3; ++k) link(k);
         }
         lo = hi;
     }
