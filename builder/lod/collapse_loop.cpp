@@ -171,7 +171,6 @@ static void update_vertex(State& s, uint32_t u) {
     for (const uint32_t c : s.walk) {
         const uint32_t f = c / 3 * 3, at = c - f;
         const uint32_t x = s.idx[f + (at == 2 ? 0 : at + 1)];
-        prefetch(&s.last_changed[x]);
         prefetch(&s.rank[x]);
         prefetch(&s.pos[x]);
         prefetch(&s.q[x]);
@@ -190,14 +189,14 @@ static void update_vertex(State& s, uint32_t u) {
             if (x == u || (s.locked[x] & kFrozen)) continue;
             double cost = 0.0;
             Vec3 p{0.0};
-            const uint32_t t = s.corner_cost[c].time;
-            const bool cached = cache && t != 0 && t >= s.last_changed[u] && t >= s.last_changed[x];
+            const double stored = s.corner_cost[c];
+            const bool cached = cache && stored != kNoCost;
             if (cached) {
-                cost = s.corner_cost[c].cost;
+                cost = stored;
             } else {
                 bool symmetric = false;
                 p = placement_cached(s, u, x, cost, &symmetric);
-                if (cache) s.corner_cost[c] = {cost, s.now};
+                if (cache) s.corner_cost[c] = cost;
                 if (twins && symmetric) s.fresh.push_back({x, cost, p});
             }
             if (twins) s.twins.push_back(before_u);
@@ -214,7 +213,7 @@ static void update_vertex(State& s, uint32_t u) {
         const uint32_t w = s.idx[c];
         for (const auto& e : s.fresh)
             if (e.to == w) {
-                s.corner_cost[c] = {e.cost, s.now};
+                s.corner_cost[c] = e.cost;
                 break;
             }
     }
@@ -325,8 +324,6 @@ static void apply_collapse(State& s, uint32_t u, uint32_t v, const Vec3& target,
     rec.to_before = s.pos[v];
     rec.to_after = target;
     s.pos[v] = target;
-    ++s.now;
-    s.last_changed[v] = s.now;
     s.running_error = std::max(s.running_error, err);
     rec.error = s.running_error;
     for (uint32_t i = 0; i < shared_count; ++i) {
@@ -349,6 +346,14 @@ static void apply_collapse(State& s, uint32_t u, uint32_t v, const Vec3& target,
     }
     s.head[u] = kNone;
     s.fcount[u] = 0;
+    // v moves and its quadric grows: every stored cost with an end at v (the corner at v
+    // and the one before it, in each face of v's fan, now u's and v's) is out of date.
+    for (const std::vector<uint32_t>* corners : {&s.cu, &s.cv})
+        for (const uint32_t c : *corners) {
+            const uint32_t f = c / 3 * 3, at = c - f;
+            s.corner_cost[c] = kNoCost;
+            s.corner_cost[f + (at == 0 ? 2 : at - 1)] = kNoCost;
+        }
     s.alive[u] = 0;
     rec.patch_end = uint32_t(s.patch_faces.size());
     s.collapses.push_back(rec);
@@ -395,7 +400,7 @@ static void restart_ordering(State& s) {
     // heap build.
     if (s.live_faces * 4 > s.idx.size() / 3 * 3) return;
     rebuild_ordering_quadrics(s, s.settings.boundary_weight);
-    for (CornerCost& c : s.corner_cost) c.time = 0;
+    std::fill(s.corner_cost.begin(), s.corner_cost.end(), kNoCost);
     for (uint32_t v = 0; v < uint32_t(s.locked.size()); ++v) {  // new costs, new placements: tried again
         s.locked[v] &= uint8_t(~kGaveUp);
         s.key[v].failed_pops = 0;
@@ -553,13 +558,12 @@ static void lossless_regions(Surface& m, State& s, size_t target_faces, uint32_t
     std::exception_ptr failure;
     // What the workers start from (read only while they run) and end with.
     const State& from = s;
-    uint32_t end_now = s.now, end_stamp = s.stamp;
+    uint32_t end_stamp = s.stamp;
     // A worker: one State (heap, scratch) for each region it takes.
     auto work = [&] {
         try {
             State w(m);
             w.error_cap = w.settings.lossless_distance;
-            w.now = from.now;
             w.stamp = from.stamp;
             w.live_faces = from.live_faces;
             w.restarted = true;  // (never consulted: the region loop stops at the lossless cost)
@@ -567,9 +571,8 @@ static void lossless_regions(Surface& m, State& s, size_t target_faces, uint32_t
                 const uint32_t lo = uint32_t(uint64_t(r) * n / regions), hi = uint32_t(uint64_t(r + 1) * n / regions);
                 simplify_region(w, lo, hi, budget, from.running_error, results[r]);
             }
-            // Corner costs and marks carry the worker's counters: the global loop goes on past all of them.
+            // Marks carry the worker's counter: the global loop goes on past all of them.
             std::lock_guard guard(mutex);
-            end_now = std::max(end_now, w.now);
             end_stamp = std::max(end_stamp, w.stamp);
         } catch (...) {
             std::lock_guard guard(mutex);
@@ -582,7 +585,6 @@ static void lossless_regions(Surface& m, State& s, size_t target_faces, uint32_t
     work();
     for (std::thread& t : pool) t.join();
     if (failure) std::rethrow_exception(failure);
-    s.now = end_now;
     s.stamp = end_stamp;
     for (const RegionResult& r : results) {
         const uint32_t offset = uint32_t(s.patch_faces.size());

@@ -144,8 +144,7 @@ Result<ProgressiveBuild> build_progressive_mesh(const Mesh& mesh, const LodOptio
         [&] {
             // The collapse loop's own arrays meanwhile (mapping them is a good part of their cost).
             m.key.resize(n);
-            m.corner_cost.assign(corners, {0.0, 0});
-            m.last_changed.assign(n, 0);
+            m.corner_cost.assign(corners, kNoCost);
             m.mark.assign(n, 0);
             m.q.resize(n);
             m.e.resize(n);

@@ -231,13 +231,13 @@ struct alignas(64) VertexKey {
     uint8_t failed_pops = 0;  // pops that found no legal collapse (collapse_top; kMaxFailedPops)
 };
 
-// Per corner c: the cost of idx[c] -> the next vertex of its face, computed at
-// collapse number `time` (0: never); valid while both ends' last_changed
-// (the collapse that last moved them or grew their quadric) is not later.
-struct CornerCost {
-    double cost;
-    uint32_t time;
-};
+// Per corner c (Surface::corner_cost): the cost of idx[c] -> the next vertex of its
+// face, or kNoCost. A collapse that moves v or grows its quadric sets kNoCost on every
+// corner of v's fan whose edge has an end at v (apply_collapse), so a stored cost is
+// always that of the current ends: no per-vertex change stamps to compare (one cache
+// line less per neighbour) and 8 bytes per corner. (A cost is >= 0, -0 or NaN, never
+// kNoCost.)
+constexpr double kNoCost = -1.0;
 
 // What stays fixed through a simplification (from LodOptions and the input's bounds).
 struct LoopSettings {
@@ -270,8 +270,7 @@ struct Surface {
     PrefaultedVector<uint8_t> boundary, locked, alive;
     PrefaultedVector<Quadric> q, e;  // ordering quadric, error quadric
     PrefaultedVector<VertexKey> key;
-    PrefaultedVector<CornerCost> corner_cost;  // one load for both
-    PrefaultedVector<uint32_t> last_changed;
+    PrefaultedVector<double> corner_cost;
     PrefaultedVector<uint32_t> face_of_input;  // input face (after clean_input) -> face here
     // Vertex v here is input vertex rank[v] (after clean_input); ties between equal
     // costs go to the lower rank, so the result does not depend on the numbering here.
@@ -301,7 +300,6 @@ struct State {
           e(m.e),
           key(m.key),
           corner_cost(m.corner_cost),
-          last_changed(m.last_changed),
           face_of_input(m.face_of_input),
           rank(m.rank),
           vertex_of_input(m.vertex_of_input),
@@ -315,8 +313,8 @@ struct State {
     std::span<uint8_t> boundary, locked, alive;
     std::span<Quadric> q, e;
     std::span<VertexKey> key;
-    std::span<CornerCost> corner_cost;
-    std::span<uint32_t> last_changed, face_of_input, rank, vertex_of_input, mark;
+    std::span<double> corner_cost;
+    std::span<uint32_t> face_of_input, rank, vertex_of_input, mark;
 
     VertexHeap heap;
     // The optimum of an edge is the same in both directions (Q_u + Q_v, the midpoint and
@@ -333,7 +331,6 @@ struct State {
     std::vector<SymmetricPlacement> sym;
     std::vector<SymmetricPlacement> fresh;  // update_vertex scratch: optima computed this call
     std::vector<uint32_t> twins;            // ... and the corners before u in its faces
-    uint32_t now = 1;                       // collapses so far + 1 (CornerCost::time)
     PrefaultedVector<Collapse> collapses;
     PrefaultedVector<uint32_t> patch_faces;
     size_t live_faces = 0;
