@@ -1,5 +1,5 @@
 // See split_order.h. Phases: rounds (replay the splits in their order, tracking
-// each vertex's corners, and give each split the round after the last split of its
+// each vertex's faces, and give each split the round after the last split of its
 // batch sharing a face with it), order (rounds, each by parent number), relabel.
 #include "builder/lod/split_order.h"
 
@@ -15,23 +15,73 @@ namespace {
 
 constexpr uint32_t kNone = UINT32_MAX;
 
+// The faces around each vertex (a face once per corner naming the vertex), in 64-byte
+// blocks: block v is vertex v's first, overflow blocks follow on through `next`. One
+// cache line for most vertices, and no allocation per vertex or per face moved.
+// Unordered: removal moves the last face into the hole.
+class Stars {
+public:
+    explicit Stars(size_t vertices) {
+        blocks_.reserve(vertices + vertices / 4);
+        blocks_.resize(vertices);
+    }
+    void add(uint32_t v, uint32_t f) {
+        uint32_t b = v, k = blocks_[v].count++;
+        for (; k >= kItems; k -= kItems) {
+            if (blocks_[b].next == kNone) {
+                blocks_[b].next = uint32_t(blocks_.size());
+                blocks_.emplace_back();
+            }
+            b = blocks_[b].next;
+        }
+        blocks_[b].face[k] = f;
+    }
+    // Removes one occurrence of f (none there: nothing).
+    void remove(uint32_t v, uint32_t f) {
+        uint32_t* hole = nullptr;
+        uint32_t* last = nullptr;
+        for (uint32_t b = v, left = blocks_[v].count; left > 0; b = blocks_[b].next) {
+            const uint32_t m = std::min(left, kItems);
+            uint32_t* face = blocks_[b].face;
+            for (uint32_t i = 0; i < m && !hole; ++i)
+                if (face[i] == f) hole = &face[i];
+            left -= m;
+            if (left == 0) last = &face[m - 1];
+        }
+        if (!hole) return;
+        *hole = *last;
+        --blocks_[v].count;
+    }
+    template <class F>
+    void for_each(uint32_t v, F&& fn) const {
+        for (uint32_t b = v, left = blocks_[v].count; left > 0; b = blocks_[b].next) {
+            const uint32_t m = std::min(left, kItems);
+            for (uint32_t i = 0; i < m; ++i) fn(blocks_[b].face[i]);
+            left -= m;
+        }
+    }
+
+private:
+    static constexpr uint32_t kItems = 14;
+    struct alignas(64) Block {
+        uint32_t count = 0;  // (in a vertex's first block)
+        uint32_t face[kItems];
+        uint32_t next = kNone;
+    };
+    std::vector<Block> blocks_;
+};
+
 // Per split, its round inside its batch: two splits that touch a common face (one
 // around its parent, or one it adds) keep their order; splits that share no face
-// change disjoint parts of the mesh, so they commute.
+// change disjoint parts of the mesh, so they commute. (Only each star's set matters:
+// a round is a maximum over the faces, and each face touched gets the same `last`.)
 std::vector<uint32_t> rounds(const ProgressiveBuild& pm, const std::vector<uint32_t>& bounds,
                              const std::vector<uint32_t>& first_face) {
     const size_t base = pm.base_vertices, n = pm.splits.size();
     std::vector<uint32_t> idx(pm.indices.begin(), pm.indices.end());
-    // Each vertex's star as a list of the corners that name it (head, then next per
-    // corner): flat arrays instead of a vector per vertex (no allocation per vertex
-    // or per face moved). Only the set matters: a split's round is a maximum over its
-    // faces, and every face it touches gets the same `last`.
-    std::vector<uint32_t> head(base + n, kNone), next(idx.size(), kNone);
-    auto link = [&](uint32_t c) {
-        next[c] = head[idx[c]];
-        head[idx[c]] = c;
-    };
-    for (uint32_t c = 0; c < uint32_t(pm.base_faces) * 3; ++c) link(c);
+    Stars star(base + n);
+    for (uint32_t f = 0; f < pm.base_faces; ++f)
+        for (int k = 0; k < 3; ++k) star.add(idx[size_t(f) * 3 + k], f);
     std::vector<uint32_t> last(idx.size() / 3, kNone), round(n, 0);
     size_t lo = 0;
     for (uint32_t hi : bounds) {
@@ -42,28 +92,19 @@ std::vector<uint32_t> rounds(const ProgressiveBuild& pm, const std::vector<uint3
                 if (last[f] != kNone && last[f] >= lo) r = std::max(r, round[last[f]] + 1);
                 last[f] = uint32_t(j);
             };
-            for (uint32_t k = head[p]; k != kNone; k = next[k]) after(k / 3);
+            star.for_each(p, after);
             for (uint32_t f = first_face[j]; f < first_face[j + 1]; ++f) after(f);
             round[j] = r;
-            // Apply the split: patched faces' corners at the parent become the child's.
-            bool moved = false;
+            // Apply the split: patched faces move from the parent's star to the child's.
             for (uint32_t i = pm.patch_begin[j]; i < pm.patch_begin[j + 1]; ++i) {
                 const uint32_t f = pm.patch_faces[i];
                 for (int k = 0; k < 3; ++k)
-                    if (idx[size_t(f) * 3 + k] == p) idx[size_t(f) * 3 + k] = c, moved = true;
+                    if (idx[size_t(f) * 3 + k] == p) idx[size_t(f) * 3 + k] = c;
+                star.remove(p, f);
+                star.add(c, f);
             }
-            if (moved) {  // ... and move from the parent's list to the child's
-                for (uint32_t* l = &head[p]; *l != kNone;) {
-                    const uint32_t k = *l;
-                    if (idx[k] == p) {
-                        l = &next[k];
-                        continue;
-                    }
-                    *l = next[k];
-                    link(k);
-                }
-            }
-            for (uint32_t k = first_face[j] * 3; k < first_face[j + 1] * 3; ++k) link(k);
+            for (uint32_t f = first_face[j]; f < first_face[j + 1]; ++f)
+                for (int k = 0; k < 3; ++k) star.add(idx[size_t(f) * 3 + k], f);
         }
         lo = hi;
     }
