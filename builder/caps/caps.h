@@ -38,9 +38,15 @@ Status triangulate_polygon_with_holes(std::span<const std::span<const Vec2>> loo
 // appended to `triangles`. The dome rises as sqrt(u), u the distance to the
 // boundary over its largest value (steep at the rim: a wall that ends flat),
 // or with `tip` as u (2 - u) (a paraboloid over a disc: an end whose
-// cross-section shrinks linearly to a point, end_height.h).
+// cross-section shrinks linearly to a point, end_height.h). The dome's
+// chords between fans stay at the slice's height unless `lift_chords`: then
+// each is split at points on the dome at most half the region's largest
+// boundary distance apart (dome_groups.h), so no flat chord across the region
+// holds part of the cap at the slice (where a solid ends between slices,
+// those chords were the farthest part of the mesh from the true surface,
+// bench/RESULTS.md). Loop edges are never split.
 Status build_cap(std::span<const std::span<const Vec2>> loops, std::span<const std::span<const uint32_t>> ids, double z,
                  bool up, CapStyle style, double dome_height, std::vector<Vec3>& positions,
-                 std::vector<uint32_t>& triangles, bool tip = false);
+                 std::vector<uint32_t>& triangles, bool tip = false, bool lift_chords = false);
 
 }  // namespace body

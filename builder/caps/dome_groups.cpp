@@ -1,6 +1,9 @@
 #include "builder/caps/dome_groups.h"
 
 #include <algorithm>
+#include <cmath>
+#include <unordered_map>
+#include <unordered_set>
 
 namespace body {
 namespace {
@@ -96,12 +99,42 @@ void dome_groups(std::span<const Vec2> at, std::span<const uint32_t> triangles, 
 
 void lift_groups(std::span<const DomeGroup> groups, std::span<const uint32_t> cycles, std::span<const uint32_t> ids,
                  const std::function<Vec3(const Vec2&)>& lift, std::vector<Vec3>& positions,
-                 const std::function<void(uint32_t, uint32_t, uint32_t)>& emit) {
+                 const std::function<void(uint32_t, uint32_t, uint32_t)>& emit, std::span<const Vec2> at,
+                 double piece) {
+    const auto key = [](uint32_t u, uint32_t v) { return (uint64_t(u) << 32) | v; };
+    // Chords: directed cycle edges whose reverse is on another cycle. Each
+    // chord's inner points, from its lower local id to its higher, are made once.
+    std::unordered_set<uint64_t> directed;
+    std::unordered_map<uint64_t, std::pair<uint32_t, uint32_t>> chain;  // (first new vertex, count)
+    const bool split = piece > 0 && !at.empty();
+    if (split)
+        for (const DomeGroup& g : groups)
+            for (uint32_t i = 0; i < g.count; ++i)
+                directed.insert(key(cycles[g.first + i], cycles[g.first + (i + 1) % g.count]));
+    std::vector<uint32_t> along;
     for (const DomeGroup& g : groups) {
         const uint32_t apex = uint32_t(positions.size());
         positions.push_back(lift(g.apex));
-        for (uint32_t i = 0; i < g.count; ++i)
-            emit(ids[cycles[g.first + i]], ids[cycles[g.first + (i + 1) % g.count]], apex);
+        for (uint32_t i = 0; i < g.count; ++i) {
+            const uint32_t u = cycles[g.first + i], v = cycles[g.first + (i + 1) % g.count];
+            along.assign({ids[u]});
+            if (split && directed.count(key(v, u))) {
+                const uint32_t lo = std::min(u, v), hi = std::max(u, v);
+                auto [it, fresh] = chain.try_emplace(key(lo, hi), uint32_t(positions.size()), 0u);
+                if (fresh) {
+                    const double length = glm::length(at[hi] - at[lo]);
+                    const uint32_t pieces =
+                        std::min(kMaxChordPieces, std::max(2u, uint32_t(std::ceil(length / piece))));
+                    it->second.second = pieces - 1;
+                    for (uint32_t k = 1; k < pieces; ++k)
+                        positions.push_back(lift(at[lo] + (at[hi] - at[lo]) * (double(k) / pieces)));
+                }
+                const auto [first, count] = it->second;
+                for (uint32_t k = 0; k < count; ++k) along.push_back(u == lo ? first + k : first + count - 1 - k);
+            }
+            along.push_back(ids[v]);
+            for (size_t k = 0; k + 1 < along.size(); ++k) emit(along[k], along[k + 1], apex);
+        }
     }
 }
 

@@ -35,11 +35,19 @@ void dome_groups(std::span<const Vec2> at, std::span<const uint32_t> triangles, 
 // The lifted groups: each group a fan around its apex, lifted by `lift` (the
 // 3-D point of an apex) and appended to `positions`; `ids[i]` is the mesh
 // vertex of the region's i-th point. `emit` receives each triangle
-// counter-clockwise seen from +z. Chords between groups stay on the boundary's
-// height (splitting them at lifted midpoints was tried: it broke the AAL
-// smoothing and bunny LOD tests, bench/RESULTS.md).
+// counter-clockwise seen from +z. With `piece` = 0 chords between groups stay
+// on the boundary's height (splitting them always was tried: it broke the AAL
+// smoothing and bunny LOD tests, bench/RESULTS.md). With `piece` > 0 (`at`:
+// the region's points, as `cycles` index them) each chord, a cycle edge that
+// another group's cycle runs the other way, is split into the fewest equal
+// pieces, at least 2 and at most kMaxChordPieces, no longer than `piece` in the plane, at
+// lifted points shared by both groups; cycle edges on the region's boundary
+// (traced contour edges) stay whole. The points lie on the chord in the plane,
+// so the cap stays a height field over the region and cannot fold.
+constexpr uint32_t kMaxChordPieces = 16;
 void lift_groups(std::span<const DomeGroup> groups, std::span<const uint32_t> cycles, std::span<const uint32_t> ids,
                  const std::function<Vec3(const Vec2&)>& lift, std::vector<Vec3>& positions,
-                 const std::function<void(uint32_t, uint32_t, uint32_t)>& emit);
+                 const std::function<void(uint32_t, uint32_t, uint32_t)>& emit, std::span<const Vec2> at = {},
+                 double piece = 0.0);
 
 }  // namespace body

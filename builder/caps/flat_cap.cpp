@@ -306,7 +306,7 @@ Status ear_clip(std::span<const std::span<const Vec2>> loops, std::vector<uint32
 
 Status build_cap(std::span<const std::span<const Vec2>> loops, std::span<const std::span<const uint32_t>> ids, double z,
                  bool up, CapStyle style, double dome_height, std::vector<Vec3>& positions,
-                 std::vector<uint32_t>& triangles, bool tip) {
+                 std::vector<uint32_t>& triangles, bool tip, bool lift_chords) {
     if (style == CapStyle::None) return ok_status();
     std::vector<uint32_t> local;
     auto status = triangulate_polygon_with_holes(loops, local);
@@ -346,7 +346,7 @@ Status build_cap(std::span<const std::span<const Vec2>> loops, std::span<const s
         const double h = dome_height * (tip ? u * (2 - u) : std::sqrt(u));
         return Vec3(p, z + (up ? h : -h));
     };
-    lift_groups(groups, cycles, global, lift, positions, emit);
+    lift_groups(groups, cycles, global, lift, positions, emit, flat, lift_chords ? 0.5 * dmax : 0.0);
     return ok_status();
 }
 

@@ -197,7 +197,7 @@ void make_slabs(StructureSurface& surface, size_t s, std::vector<std::vector<uin
 
 // Caps on slice s facing `up` (or down): over the loops that end there
 // (`slab` false: own rings at the slice's z) or over the slab rings.
-Status cap_slice(StructureSurface& surface, size_t s, bool up, bool slab, CapStyle caps,
+Status cap_slice(StructureSurface& surface, size_t s, bool up, bool slab, CapStyle caps, bool lift_chords,
                  const std::vector<std::vector<uint32_t>>& top, const std::vector<std::vector<uint32_t>>& bottom,
                  const RungPartners& partners) {
     const auto& loops = surface.loops[s];
@@ -242,15 +242,19 @@ Status cap_slice(StructureSurface& surface, size_t s, bool up, bool slab, CapSty
         // bulges away from the faces, into the solid (a dome towards the faces
         // would stretch across the void the hole's band bounds).
         const double height = loops[k].hole() && !slab ? -dome : dome;
-        auto status =
-            build_cap(region, ids, at, face_up, style, height, surface.positions, surface.triangles, end.closing);
+        auto status = build_cap(region, ids, at, face_up, style, height, surface.positions, surface.triangles,
+                                end.closing, lift_chords);
         if (!status) return input_error(where(surface, loops[k]) + ": " + status.error().message);
     }
     return ok_status();
 }
 
-// Caps where nothing continues, slabs for contours linked to nothing.
-Status close_ends(StructureSurface& surface, CapStyle caps) {
+// Caps where nothing continues, slabs for contours linked to nothing. Domes
+// lift their chords (caps.h) where the bands will be interpolated: a curved
+// side ending in a dome that is flat along its chords leaves the cap the
+// farthest part of the mesh; the linear build keeps its flat chords (its
+// tests and LOD levels were measured on them).
+Status close_ends(StructureSurface& surface, CapStyle caps, bool lift_chords) {
     std::vector<std::vector<uint32_t>> top, bottom;
     RungPartners partners;  // of the bands built so far: the caps' slopes
     rung_partners(surface.positions, surface.triangles, partners);
@@ -259,7 +263,7 @@ Status close_ends(StructureSurface& surface, CapStyle caps) {
         make_slabs(surface, s, top, bottom);
         for (int up = 0; up < 2; ++up)
             for (int slab = 0; slab < 2; ++slab) {
-                auto status = cap_slice(surface, s, bool(up), bool(slab), caps, top, bottom, partners);
+                auto status = cap_slice(surface, s, bool(up), bool(slab), caps, lift_chords, top, bottom, partners);
                 if (!status) return status;
             }
     }
@@ -385,7 +389,7 @@ Status build_surface(StructureSurface& surface, const ContourStack& stack, const
         advance();
     }
     advance();
-    return close_ends(surface, options.caps);
+    return close_ends(surface, options.caps, options.interpolate > 0);
 }
 
 // One structure of a validated stack: its mesh and statistics.

@@ -56,6 +56,7 @@ struct BuildOptions {
     FairingOptions fairing;
     // Intermediate rings per slice gap on C1 Hermite curves through the traced
     // contours (fairing/slice_interpolation.h); 0 keeps the linear bands.
+    // Above 0 the domes' chords are lifted too (caps/caps.h).
     int interpolate = 0;
     // Each rung's points: the fewest, at most `interpolate`, keeping its curve
     // within this fraction of the slice gap of their polyline; 0: all of them.

@@ -31,7 +31,8 @@ std::vector<Vec2> wavy_ring(double r, double wave, size_t n, bool cw) {
     return ring;
 }
 
-Cap make_cap(const std::vector<std::vector<Vec2>>& loops, CapStyle style, bool up, double height) {
+Cap make_cap(const std::vector<std::vector<Vec2>>& loops, CapStyle style, bool up, double height,
+             bool lift_chords = false) {
     Cap cap;
     std::vector<std::span<const Vec2>> spans;
     std::vector<std::vector<uint32_t>> ids(loops.size());
@@ -45,7 +46,8 @@ Cap make_cap(const std::vector<std::vector<Vec2>>& loops, CapStyle style, bool u
         id_spans.emplace_back(ids[k]);
     }
     cap.rim = cap.positions.size();
-    EXPECT_TRUE(build_cap(spans, id_spans, 1.0, up, style, height, cap.positions, cap.triangles).ok());
+    EXPECT_TRUE(
+        build_cap(spans, id_spans, 1.0, up, style, height, cap.positions, cap.triangles, false, lift_chords).ok());
     return cap;
 }
 
@@ -113,6 +115,43 @@ TEST(DomeCap, LargeCapNearTheFlatCapsSize) {
         EXPECT_NEAR(highest, 2.0, 1e-12);
         expect_height_field_over(dome, loops, up, area);
     }
+}
+
+// Lifted chords (caps.h): the dome is still a height field whose open edges
+// are the loops' edges, and no other edge stays at the slice's height (flat
+// chords did: every edge between two fans). A long thin region, whose
+// ear-clipped chords run across it, and a region with a hole; both sides.
+TEST(DomeCap, LiftedChordsLeaveOnlyTheLoopsAtTheSliceHeight) {
+    const std::vector<std::vector<std::vector<Vec2>>> regions{{ellipse(0, 0, 30, 2, 0.3, 80)},
+                                                              {circle(0, 0, 10, 40), circle(3, 0, 2, 12)}};
+    for (const auto& loops : regions)
+        for (bool up : {true, false}) {
+            SCOPED_TRACE(loops.size());
+            double area = std::abs(signed_area2(loops[0].data(), loops[0].size())) / 2;
+            for (size_t k = 1; k < loops.size(); ++k)
+                area -= std::abs(signed_area2(loops[k].data(), loops[k].size())) / 2;
+            const Cap flat_chords = make_cap(loops, CapStyle::Dome, up, 1.0);
+            const Cap dome = make_cap(loops, CapStyle::Dome, up, 1.0, true);
+            EXPECT_GT(dome.positions.size(), flat_chords.positions.size());
+            expect_height_field_over(dome, loops, up, area);
+            size_t rim_edges = 0;
+            for (size_t t = 0; t < dome.triangles.size(); t += 3)
+                for (int k = 0; k < 3; ++k) {
+                    const uint32_t a = dome.triangles[t + k], b = dome.triangles[t + (k + 1) % 3];
+                    if (dome.positions[a].z != 1.0 || dome.positions[b].z != 1.0) continue;
+                    ++rim_edges;
+                    EXPECT_LT(a, dome.rim);
+                    EXPECT_LT(b, dome.rim);
+                }
+            for (size_t i = dome.rim; i < dome.positions.size(); ++i) {
+                const double h = (dome.positions[i].z - 1.0) * (up ? 1 : -1);
+                EXPECT_GT(h, 0.0);
+                EXPECT_LE(h, 1.0 + 1e-12);
+            }
+            size_t loop_points = 0;
+            for (const auto& l : loops) loop_points += l.size();
+            EXPECT_EQ(rim_edges, loop_points);  // each loop edge once, nothing else
+        }
 }
 
 }  // namespace

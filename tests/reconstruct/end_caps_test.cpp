@@ -54,8 +54,10 @@ double highest(const Mesh& mesh) {
 // Slices 0.2133 apart from -0.96 to 0.96: each pole lies 0.04 (0.19 of a gap)
 // past the last slice. A dome of a fixed 0.45 gap would overshoot the pole by
 // 0.056 (0.26 of a gap); the slope puts the tip within a tenth of a gap. The
-// worst point is then the chord of the cap's flat triangulation through the
-// pole, left at the slice's height (0.19 of a gap).
+// linear build's worst point is then the chord of the cap's flat triangulation
+// through the pole, left at the slice's height (0.19 of a gap); the
+// interpolated build lifts its domes' chords (caps.h), which must bring the
+// whole mesh within a tenth of a gap (0.07; flat chords gave 0.19).
 TEST(EndCaps, SpherePolesBetweenSlicesAreReachedFromTheSlope) {
     StackBuilder sb;
     add_sphere(sb, Vec3(0.0), -0.96, 0.96, 10, 96);
@@ -69,12 +71,15 @@ TEST(EndCaps, SpherePolesBetweenSlicesAreReachedFromTheSlope) {
         EXPECT_NEAR(highest(m.mesh), 1.0, 0.1 * gap);
         const double worst = worst_distance(m.mesh, sphere);
         RecordProperty(rings ? "interpolated" : "linear", std::to_string(worst / gap));
-        EXPECT_LT(worst, 0.2 * gap) << "worst distance " << worst << " = " << worst / gap << " of a gap";
+        EXPECT_LT(worst, (rings ? 0.1 : 0.2) * gap)
+            << "worst distance " << worst << " = " << worst / gap << " of a gap";
     }
 }
 
 // A sphere of radius 0.8 beside a longer column, in one structure: its poles
 // lie 0.05 (0.2 of a gap) past its last slices, inside the stack's range.
+// Interpolated, the lifted chords keep it within a tenth of a gap (0.06; flat
+// chords gave 0.13).
 TEST(EndCaps, PieceBeginningAndEndingBetweenSlicesInsideTheStack) {
     StackBuilder sb;
     const double gap = 0.25, radius = 0.8;
@@ -102,7 +107,7 @@ TEST(EndCaps, PieceBeginningAndEndingBetweenSlicesInsideTheStack) {
             }
         }
         RecordProperty(rings ? "interpolated" : "linear", std::to_string(worst / gap));
-        EXPECT_LT(worst, 0.2 * gap) << worst / gap << " of a gap";
+        EXPECT_LT(worst, (rings ? 0.1 : 0.2) * gap) << worst / gap << " of a gap";
         EXPECT_NEAR(top, radius, 0.1 * gap);
         EXPECT_NEAR(bottom, -radius, 0.1 * gap);
     }
