@@ -211,7 +211,7 @@ struct Grid {
     double cell = 1;
     int dims[3] = {1, 1, 1};
     void cell_of(const Vec3& p, int out[3]) const {
-        for (int k = 0; k < 3; ++k) out[k] = std::clamp(int(std::floor((p[k] - origin[k]) / cell)), 0, dims[k] - 1);
+        for (int k = 0; k < 3; ++k) out[k] = std::clamp(floor_int((p[k] - origin[k]) / cell), 0, dims[k] - 1);
     }
     uint64_t key(int x, int y, int z) const { return (uint64_t(z) * uint64_t(dims[1]) + uint64_t(y)) * dims[0] + x; }
 };
