@@ -318,24 +318,24 @@ bool pair_meets_by_height(std::span<const IVec> q, const uint32_t* A, const uint
 // One grid cell's candidate pairs, the broad phase shared by the count and
 // the layered search. `sweep` holds the cell's entries: `local` indexes
 // `boxes` and `low_cell` (the cell of each box's lowest corner), `t` is the
-// triangle. Sorted along x (ties by triangle), each entry is paired only with
-// those that start before it ends; a pair is passed to `test(i, j)` (entries
-// of `sweep`) when one of its triangles is marked (`marked` empty: all are),
+// triangle, `marked` whether it is marked. Sorted along x (ties by triangle),
+// each entry is paired only with those that start before it ends; a pair is
+// passed to `test(i, j)` (entries of `sweep`) when one of its triangles is marked,
 // its boxes overlap, and this cell holds the lowest corner of that overlap,
 // so each pair is seen in one cell only. Returns true when `test` does (stop).
 struct Swept {
     double min_x, max_x;
     uint32_t t, local;
+    bool marked;
 };
 template <class Test>
 bool sweep_cell(std::vector<Swept>& sweep, std::span<const Aabb> boxes, std::span<const std::array<int, 3>> low_cell,
-                const Grid& grid, uint64_t cell_key, std::span<const uint8_t> marked, Test&& test) {
+                const Grid& grid, uint64_t cell_key, Test&& test) {
     std::sort(sweep.begin(), sweep.end(),
               [](const Swept& a, const Swept& b) { return a.min_x != b.min_x ? a.min_x < b.min_x : a.t < b.t; });
-    const bool all_marked = marked.empty();
     for (size_t i = 0; i < sweep.size(); ++i)
         for (size_t j = i + 1; j < sweep.size() && sweep[j].min_x <= sweep[i].max_x; ++j) {
-            if (!all_marked && !marked[sweep[i].t] && !marked[sweep[j].t]) continue;
+            if (!sweep[i].marked && !sweep[j].marked) continue;
             const Aabb &b1 = boxes[sweep[i].local], &b2 = boxes[sweep[j].local];
             if (std::max(b1.min.y, b2.min.y) > std::min(b1.max.y, b2.max.y) ||
                 std::max(b1.min.z, b2.min.z) > std::min(b1.max.z, b2.max.z))
@@ -360,7 +360,14 @@ struct Snapped {
 };
 
 // A triangle whose snapped corners are collinear has no plane: it is skipped.
+// A component of the cross product whose double value is clear of its
+// rounding (differences < 2^41 are exact in double, each product is rounded
+// once, their difference once) is not zero; the rest are asked exactly.
 bool degenerate(const IVec& a, const IVec& b, const IVec& c) {
+    const double bx = double(b[0] - a[0]), by = double(b[1] - a[1]), bz = double(b[2] - a[2]);
+    const double cx = double(c[0] - a[0]), cy = double(c[1] - a[1]), cz = double(c[2] - a[2]);
+    auto clear = [](double p, double q) { return std::abs(p - q) > 1e-15 * (std::abs(p) + std::abs(q)); };
+    if (clear(by * cz, bz * cy) || clear(bz * cx, bx * cz) || clear(bx * cy, by * cx)) return false;
     const auto n = cross(sub(b, a), sub(c, a));
     return n[0] == 0 && n[1] == 0 && n[2] == 0;
 }
@@ -452,9 +459,9 @@ size_t count_pairs(std::span<const Vec3> positions, std::span<const uint32_t> in
         sweep.clear();
         for (size_t i = begin; i < end; ++i) {
             const uint32_t t = entries[i].second;
-            sweep.push_back({m.boxes[t].min.x, m.boxes[t].max.x, t, t});
+            sweep.push_back({m.boxes[t].min.x, m.boxes[t].max.x, t, t, all_marked || marked[t] != 0});
         }
-        const bool stopped = sweep_cell(sweep, m.boxes, low_cell, grid, cell_key, marked, [&](size_t i, size_t j) {
+        const bool stopped = sweep_cell(sweep, m.boxes, low_cell, grid, cell_key, [&](size_t i, size_t j) {
             const uint32_t t1 = sweep[i].t, t2 = sweep[j].t;
             const auto &h1 = m.height[t1], &h2 = m.height[t2];
             if (!pair_meets_by_height(m.q, &indices[3 * size_t(t1)], &indices[3 * size_t(t2)], h1[0], h1[1], h2[0],
@@ -540,9 +547,10 @@ struct LayerSearch {
         sweep.clear();
         for (size_t i = begin; i < end; ++i) {
             const uint32_t local = in_cell[i];
-            sweep.push_back({boxes[local].min.x, boxes[local].max.x, members[local], local});
+            sweep.push_back(
+                {boxes[local].min.x, boxes[local].max.x, members[local], local, marked[members[local]] != 0});
         }
-        sweep_cell(sweep, boxes, low_cell, grid, cell_key, marked, [&](size_t i, size_t j) {
+        sweep_cell(sweep, boxes, low_cell, grid, cell_key, [&](size_t i, size_t j) {
             const uint32_t t1 = sweep[i].t, t2 = sweep[j].t;
             const Aabb &b1 = boxes[sweep[i].local], &b2 = boxes[sweep[j].local];
             // The overlap's bottom lies below this layer's top (both boxes start below it): is it above its floor?
