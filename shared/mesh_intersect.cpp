@@ -273,30 +273,34 @@ bool pair_meets(std::span<const IVec> q, const uint32_t* A, const uint32_t* B) {
 // below it reaching up to it (its highest corner on it, its lowest below)
 // and B above it reaching down to it. They can meet only in that plane, where
 // each is the hull of its corners on it: a point or an edge. A vertex they
-// share lies there too, so the contract's rules come down to 2-D: no shared
-// vertex, do the two hulls meet; one, do both edges leave it along one ray
-// (they would overlap beyond it); two, never (the shared edge, with the third
-// corners on opposite sides of it).
+// share lies there on both, so the shared vertices are the corners on the
+// plane that both list, and the contract's rules come down to 2-D: none
+// shared, do the two hulls meet; one, do both hulls leave it along one ray
+// (edges that would overlap beyond it); two, never (the shared edge, with the
+// third corners on opposite sides of it).
 bool meet_in_plane(std::span<const IVec> q, const uint32_t* A, const uint32_t* B, int64_t z) {
     uint32_t a[2] = {0, 0}, b[2] = {0, 0};
-    int na = 0, nb = 0, shared = 0;
+    int na = 0, nb = 0;
     for (int i = 0; i < 3; ++i) {
         if (q[A[i]][2] == z) a[na++] = A[i];
         if (q[B[i]][2] == z) b[nb++] = B[i];
-        shared += A[i] == B[0] || A[i] == B[1] || A[i] == B[2];
     }
+    if (na == 1) a[1] = a[0];  // a point: a degenerate edge
+    if (nb == 1) b[1] = b[0];
+    const bool s00 = a[0] == b[0], s01 = a[0] == b[1], s10 = a[1] == b[0], s11 = a[1] == b[1];
     auto xy = [&](uint32_t v) { return IVec2{q[v][0], q[v][1]}; };
-    if (shared == 0) {
-        const IVec2 a0 = xy(a[0]), a1 = xy(a[na - 1]), b0 = xy(b[0]), b1 = xy(b[nb - 1]);
+    if (!s00 && !s01 && !s10 && !s11) {
+        const IVec2 a0 = xy(a[0]), a1 = xy(a[1]), b0 = xy(b[0]), b1 = xy(b[1]);
         for (int k = 0; k < 2; ++k)  // most such pairs are apart along x or y
             if (std::max(a0[k], a1[k]) < std::min(b0[k], b1[k]) || std::max(b0[k], b1[k]) < std::min(a0[k], a1[k]))
                 return false;
         return segments_cross_2d(a0, a1, b0, b1);
     }
-    if (shared >= 2 || na < 2 || nb < 2) return false;
-    // The shared corner first on both.
-    if (a[1] == b[0] || a[1] == b[1]) std::swap(a[0], a[1]);
-    if (b[1] == a[0]) std::swap(b[0], b[1]);
+    // One vertex shared (two shared, or a point's hull, meet only there):
+    // both must be edges, collinear, leaving it the same way.
+    if (na < 2 || nb < 2 || int(s00) + int(s01) + int(s10) + int(s11) != 1) return false;
+    if (s10 || s11) std::swap(a[0], a[1]);  // the shared corner first on both
+    if (s01 || s11) std::swap(b[0], b[1]);
     const IVec2 v = xy(a[0]), p = xy(a[1]), r = xy(b[1]);
     if (orient2(v, p, r) != 0) return false;
     const Wide dot = (Wide(p[0]) - v[0]) * (Wide(r[0]) - v[0]) + (Wide(p[1]) - v[1]) * (Wide(r[1]) - v[1]);
