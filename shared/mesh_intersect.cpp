@@ -249,22 +249,21 @@ namespace {
 
 // Pair test by index adjacency on the snapped positions `q` (the contract's rules).
 bool pair_meets(std::span<const IVec> q, const uint32_t* A, const uint32_t* B) {
-    int shared = 0, ai[3] = {-1, -1, -1};
-    for (int p = 0; p < 3; ++p)
-        for (int k = 0; k < 3; ++k)
-            if (A[p] == B[k]) ai[p] = k;
-    for (int p = 0; p < 3; ++p) shared += ai[p] >= 0;
+    static constexpr int kNext[3] = {1, 2, 0}, kPrev[3] = {2, 0, 1};  // (i + 1) % 3, (i + 2) % 3
+    int ai[3], shared = 0;                                            // A's corners' places in B, or -1
+    for (int p = 0; p < 3; ++p) {
+        ai[p] = A[p] == B[0] ? 0 : (A[p] == B[1] ? 1 : (A[p] == B[2] ? 2 : -1));
+        shared += ai[p] >= 0;
+    }
     if (shared == 0) return disjoint_intersect(q[A[0]], q[A[1]], q[A[2]], q[B[0]], q[B[1]], q[B[2]]);
     if (shared == 1) {
-        int p = ai[0] >= 0 ? 0 : (ai[1] >= 0 ? 1 : 2), k = ai[p];
-        return vertex_adjacent_intersect(q[A[p]], q[A[(p + 1) % 3]], q[A[(p + 2) % 3]], q[B[(k + 1) % 3]],
-                                         q[B[(k + 2) % 3]]);
+        const int p = ai[0] >= 0 ? 0 : (ai[1] >= 0 ? 1 : 2), k = ai[p];
+        return vertex_adjacent_intersect(q[A[p]], q[A[kNext[p]]], q[A[kPrev[p]]], q[B[kNext[k]]], q[B[kPrev[k]]]);
     }
     if (shared == 2) {
-        int p = ai[0] < 0 ? 0 : (ai[1] < 0 ? 1 : 2);  // A's vertex not shared
-        int k = 0;
-        while (k < 3 && (B[k] == A[(p + 1) % 3] || B[k] == A[(p + 2) % 3])) ++k;
-        return edge_adjacent_intersect(q[A[(p + 1) % 3]], q[A[(p + 2) % 3]], q[A[p]], q[B[k]]);
+        const int p = ai[0] < 0 ? 0 : (ai[1] < 0 ? 1 : 2);  // A's vertex not shared
+        const int k = 3 - ai[kNext[p]] - ai[kPrev[p]];      // B's
+        return edge_adjacent_intersect(q[A[kNext[p]]], q[A[kPrev[p]]], q[A[p]], q[B[k]]);
     }
     return true;  // the same triangle twice
 }
