@@ -211,7 +211,7 @@ struct Grid {
     double cell = 1;
     int dims[3] = {1, 1, 1};
     void cell_of(const Vec3& p, int out[3]) const {
-        for (int k = 0; k < 3; ++k) out[k] = std::clamp(int(std::floor((p[k] - origin[k]) / cell)), 0, dims[k] - 1);
+        for (int k = 0; k < 3; ++k) out[k] = std::clamp(floor_int((p[k] - origin[k]) / cell), 0, dims[k] - 1);
     }
     uint64_t key(int x, int y, int z) const { return (uint64_t(z) * uint64_t(dims[1]) + uint64_t(y)) * dims[0] + x; }
 };
@@ -249,47 +249,96 @@ namespace {
 
 // Pair test by index adjacency on the snapped positions `q` (the contract's rules).
 bool pair_meets(std::span<const IVec> q, const uint32_t* A, const uint32_t* B) {
-    int shared = 0, ai[3] = {-1, -1, -1};
-    for (int p = 0; p < 3; ++p)
-        for (int k = 0; k < 3; ++k)
-            if (A[p] == B[k]) ai[p] = k;
-    for (int p = 0; p < 3; ++p) shared += ai[p] >= 0;
+    static constexpr int kNext[3] = {1, 2, 0}, kPrev[3] = {2, 0, 1};  // (i + 1) % 3, (i + 2) % 3
+    int ai[3], shared = 0;                                            // A's corners' places in B, or -1
+    for (int p = 0; p < 3; ++p) {
+        ai[p] = A[p] == B[0] ? 0 : (A[p] == B[1] ? 1 : (A[p] == B[2] ? 2 : -1));
+        shared += ai[p] >= 0;
+    }
     if (shared == 0) return disjoint_intersect(q[A[0]], q[A[1]], q[A[2]], q[B[0]], q[B[1]], q[B[2]]);
     if (shared == 1) {
-        int p = ai[0] >= 0 ? 0 : (ai[1] >= 0 ? 1 : 2), k = ai[p];
-        return vertex_adjacent_intersect(q[A[p]], q[A[(p + 1) % 3]], q[A[(p + 2) % 3]], q[B[(k + 1) % 3]],
-                                         q[B[(k + 2) % 3]]);
+        const int p = ai[0] >= 0 ? 0 : (ai[1] >= 0 ? 1 : 2), k = ai[p];
+        return vertex_adjacent_intersect(q[A[p]], q[A[kNext[p]]], q[A[kPrev[p]]], q[B[kNext[k]]], q[B[kPrev[k]]]);
     }
     if (shared == 2) {
-        int p = ai[0] < 0 ? 0 : (ai[1] < 0 ? 1 : 2);  // A's vertex not shared
-        int k = 0;
-        while (k < 3 && (B[k] == A[(p + 1) % 3] || B[k] == A[(p + 2) % 3])) ++k;
-        return edge_adjacent_intersect(q[A[(p + 1) % 3]], q[A[(p + 2) % 3]], q[A[p]], q[B[k]]);
+        const int p = ai[0] < 0 ? 0 : (ai[1] < 0 ? 1 : 2);  // A's vertex not shared
+        const int k = 3 - ai[kNext[p]] - ai[kPrev[p]];      // B's
+        return edge_adjacent_intersect(q[A[kNext[p]]], q[A[kPrev[p]]], q[A[p]], q[B[k]]);
     }
     return true;  // the same triangle twice
+}
+
+// pair_meets for triangles on either side of one plane z = Z (snapped), A
+// below it reaching up to it (its highest corner on it, its lowest below)
+// and B above it reaching down to it. They can meet only in that plane, where
+// each is the hull of its corners on it: a point or an edge. A vertex they
+// share lies there on both, so the shared vertices are the corners on the
+// plane that both list, and the contract's rules come down to 2-D: none
+// shared, do the two hulls meet; one, do both hulls leave it along one ray
+// (edges that would overlap beyond it); two, never (the shared edge, with the
+// third corners on opposite sides of it).
+bool meet_in_plane(std::span<const IVec> q, const uint32_t* A, const uint32_t* B, int64_t z) {
+    uint32_t a[2] = {0, 0}, b[2] = {0, 0};
+    int na = 0, nb = 0;
+    for (int i = 0; i < 3; ++i) {
+        if (q[A[i]][2] == z) a[na++] = A[i];
+        if (q[B[i]][2] == z) b[nb++] = B[i];
+    }
+    if (na == 1) a[1] = a[0];  // a point: a degenerate edge
+    if (nb == 1) b[1] = b[0];
+    const bool s00 = a[0] == b[0], s01 = a[0] == b[1], s10 = a[1] == b[0], s11 = a[1] == b[1];
+    auto xy = [&](uint32_t v) { return IVec2{q[v][0], q[v][1]}; };
+    if (!s00 && !s01 && !s10 && !s11) {
+        const IVec2 a0 = xy(a[0]), a1 = xy(a[1]), b0 = xy(b[0]), b1 = xy(b[1]);
+        for (int k = 0; k < 2; ++k)  // most such pairs are apart along x or y
+            if (std::max(a0[k], a1[k]) < std::min(b0[k], b1[k]) || std::max(b0[k], b1[k]) < std::min(a0[k], a1[k]))
+                return false;
+        return segments_cross_2d(a0, a1, b0, b1);
+    }
+    // One vertex shared (two shared, or a point's hull, meet only there):
+    // both must be edges, collinear, leaving it the same way.
+    if (na < 2 || nb < 2 || int(s00) + int(s01) + int(s10) + int(s11) != 1) return false;
+    if (s10 || s11) std::swap(a[0], a[1]);  // the shared corner first on both
+    if (s01 || s11) std::swap(b[0], b[1]);
+    const IVec2 v = xy(a[0]), p = xy(a[1]), r = xy(b[1]);
+    if (orient2(v, p, r) != 0) return false;
+    const Wide dot = (Wide(p[0]) - v[0]) * (Wide(r[0]) - v[0]) + (Wide(p[1]) - v[1]) * (Wide(r[1]) - v[1]);
+    return dot > 0;
+}
+
+// pair_meets, answered in 2-D when the triangles lie on either side of a
+// horizontal plane that each reaches (given each one's lowest and highest
+// snapped height).
+bool pair_meets_by_height(std::span<const IVec> q, const uint32_t* A, const uint32_t* B, int64_t a_lo, int64_t a_hi,
+                          int64_t b_lo, int64_t b_hi) {
+    if (a_lo < a_hi && b_lo < b_hi) {
+        if (a_hi == b_lo) return meet_in_plane(q, A, B, a_hi);
+        if (b_hi == a_lo) return meet_in_plane(q, B, A, b_hi);
+    }
+    return pair_meets(q, A, B);
 }
 
 // One grid cell's candidate pairs, the broad phase shared by the count and
 // the layered search. `sweep` holds the cell's entries: `local` indexes
 // `boxes` and `low_cell` (the cell of each box's lowest corner), `t` is the
-// triangle. Sorted along x (ties by triangle), each entry is paired only with
-// those that start before it ends; a pair is passed to `test(i, j)` (entries
-// of `sweep`) when one of its triangles is marked (`marked` empty: all are),
+// triangle, `marked` whether it is marked. Sorted along x (ties by triangle),
+// each entry is paired only with those that start before it ends; a pair is
+// passed to `test(i, j)` (entries of `sweep`) when one of its triangles is marked,
 // its boxes overlap, and this cell holds the lowest corner of that overlap,
 // so each pair is seen in one cell only. Returns true when `test` does (stop).
 struct Swept {
     double min_x, max_x;
     uint32_t t, local;
+    bool marked;
 };
 template <class Test>
 bool sweep_cell(std::vector<Swept>& sweep, std::span<const Aabb> boxes, std::span<const std::array<int, 3>> low_cell,
-                const Grid& grid, uint64_t cell_key, std::span<const uint8_t> marked, Test&& test) {
+                const Grid& grid, uint64_t cell_key, Test&& test) {
     std::sort(sweep.begin(), sweep.end(),
               [](const Swept& a, const Swept& b) { return a.min_x != b.min_x ? a.min_x < b.min_x : a.t < b.t; });
-    const bool all_marked = marked.empty();
     for (size_t i = 0; i < sweep.size(); ++i)
         for (size_t j = i + 1; j < sweep.size() && sweep[j].min_x <= sweep[i].max_x; ++j) {
-            if (!all_marked && !marked[sweep[i].t] && !marked[sweep[j].t]) continue;
+            if (!sweep[i].marked && !sweep[j].marked) continue;
             const Aabb &b1 = boxes[sweep[i].local], &b2 = boxes[sweep[j].local];
             if (std::max(b1.min.y, b2.min.y) > std::min(b1.max.y, b2.max.y) ||
                 std::max(b1.min.z, b2.min.z) > std::min(b1.max.z, b2.max.z))
@@ -309,11 +358,19 @@ struct Snapped {
     std::vector<Aabb> boxes;
     std::vector<IVec> q;
     std::vector<uint8_t> skip;
+    std::vector<std::array<int64_t, 2>> height;  // per triangle: lowest and highest snapped z
     double extent_sum = 0;
 };
 
 // A triangle whose snapped corners are collinear has no plane: it is skipped.
+// A component of the cross product whose double value is clear of its
+// rounding (differences < 2^41 are exact in double, each product is rounded
+// once, their difference once) is not zero; the rest are asked exactly.
 bool degenerate(const IVec& a, const IVec& b, const IVec& c) {
+    const double bx = double(b[0] - a[0]), by = double(b[1] - a[1]), bz = double(b[2] - a[2]);
+    const double cx = double(c[0] - a[0]), cy = double(c[1] - a[1]), cz = double(c[2] - a[2]);
+    auto clear = [](double p, double q) { return std::abs(p - q) > 1e-15 * (std::abs(p) + std::abs(q)); };
+    if (clear(by * cz, bz * cy) || clear(bz * cx, bx * cz) || clear(bx * cy, by * cx)) return false;
     const auto n = cross(sub(b, a), sub(c, a));
     return n[0] == 0 && n[1] == 0 && n[2] == 0;
 }
@@ -344,8 +401,12 @@ Snapped snap_mesh(std::span<const Vec3> positions, std::span<const uint32_t> ind
     const Snap snap = Snap::of(m.all);
     m.q.resize(positions.size());
     for (size_t v = 0; v < positions.size(); ++v) m.q[v] = snap(positions[v]);
-    for (size_t t = 0; t < tri_count; ++t)
-        m.skip[t] = degenerate(m.q[indices[3 * t]], m.q[indices[3 * t + 1]], m.q[indices[3 * t + 2]]);
+    m.height.resize(tri_count);
+    for (size_t t = 0; t < tri_count; ++t) {
+        const IVec &a = m.q[indices[3 * t]], &b = m.q[indices[3 * t + 1]], &c = m.q[indices[3 * t + 2]];
+        m.skip[t] = degenerate(a, b, c);
+        m.height[t] = {std::min({a[2], b[2], c[2]}), std::max({a[2], b[2], c[2]})};
+    }
     return m;
 }
 
@@ -401,11 +462,14 @@ size_t count_pairs(std::span<const Vec3> positions, std::span<const uint32_t> in
         sweep.clear();
         for (size_t i = begin; i < end; ++i) {
             const uint32_t t = entries[i].second;
-            sweep.push_back({m.boxes[t].min.x, m.boxes[t].max.x, t, t});
+            sweep.push_back({m.boxes[t].min.x, m.boxes[t].max.x, t, t, all_marked || marked[t] != 0});
         }
-        const bool stopped = sweep_cell(sweep, m.boxes, low_cell, grid, cell_key, marked, [&](size_t i, size_t j) {
+        const bool stopped = sweep_cell(sweep, m.boxes, low_cell, grid, cell_key, [&](size_t i, size_t j) {
             const uint32_t t1 = sweep[i].t, t2 = sweep[j].t;
-            if (!pair_meets(m.q, &indices[3 * size_t(t1)], &indices[3 * size_t(t2)])) return false;
+            const auto &h1 = m.height[t1], &h2 = m.height[t2];
+            if (!pair_meets_by_height(m.q, &indices[3 * size_t(t1)], &indices[3 * size_t(t2)], h1[0], h1[1], h2[0],
+                                      h2[1]))
+                return false;
             if (pairs) pairs->push_back({std::min(t1, t2), std::max(t1, t2)});
             return ++found == stop_after;
         });
@@ -413,31 +477,6 @@ size_t count_pairs(std::span<const Vec3> positions, std::span<const uint32_t> in
         begin = end;
     }
     return found;
-}
-
-// A shortcut of pair_meets for adjacent triangles on either side of one
-// plane z = Z (snapped): they can meet only in that plane, where each is its
-// corners at height Z. When those are the shared corner alone on one side, or
-// the shared edge on both, they meet nowhere else, and pair_meets says no.
-bool apart_in_z(std::span<const IVec> q, const uint32_t* A, const uint32_t* B) {
-    const int64_t a_lo = std::min({q[A[0]][2], q[A[1]][2], q[A[2]][2]});
-    const int64_t a_hi = std::max({q[A[0]][2], q[A[1]][2], q[A[2]][2]});
-    const int64_t b_lo = std::min({q[B[0]][2], q[B[1]][2], q[B[2]][2]});
-    const int64_t b_hi = std::max({q[B[0]][2], q[B[1]][2], q[B[2]][2]});
-    int64_t z = 0;
-    if (a_hi == b_lo && a_lo < a_hi && b_lo < b_hi)
-        z = a_hi;
-    else if (b_hi == a_lo && a_lo < a_hi && b_lo < b_hi)
-        z = b_hi;
-    else
-        return false;
-    int shared = 0, a_on = 0, b_on = 0;
-    for (int i = 0; i < 3; ++i) {
-        shared += A[i] == B[0] || A[i] == B[1] || A[i] == B[2];
-        a_on += q[A[i]][2] == z;
-        b_on += q[B[i]][2] == z;
-    }
-    return (shared == 1 && (a_on == 1 || b_on == 1)) || (shared == 2 && a_on == 2 && b_on == 2);
 }
 
 // One layer's search: `members` are the triangles whose boxes reach into it,
@@ -451,6 +490,7 @@ struct LayerSearch {
     std::span<const double> cuts;
     std::span<const IVec> q;
     std::vector<Aabb> boxes;                              // per member
+    std::vector<std::array<int64_t, 2>> height;           // per member: lowest and highest snapped z
     std::vector<std::array<int, 3>> low_cell, high_cell;  // per member
     std::vector<uint32_t> cell_start, fill, in_cell;      // members by cell (CSR)
     std::vector<Swept> sweep;
@@ -459,8 +499,12 @@ struct LayerSearch {
         Aabb bounds;
         double extent_sum = 0;
         boxes.assign(members.size(), Aabb{});
+        height.resize(members.size());
         for (size_t i = 0; i < members.size(); ++i) {
-            for (int c = 0; c < 3; ++c) boxes[i].extend(positions[indices[3 * size_t(members[i]) + size_t(c)]]);
+            const uint32_t* tri = &indices[3 * size_t(members[i])];
+            for (int c = 0; c < 3; ++c) boxes[i].extend(positions[tri[c]]);
+            height[i] = {std::min({q[tri[0]][2], q[tri[1]][2], q[tri[2]][2]}),
+                         std::max({q[tri[0]][2], q[tri[1]][2], q[tri[2]][2]})};
             bounds.extend(boxes[i].min);
             bounds.extend(boxes[i].max);
             const Vec3 d = boxes[i].size();
@@ -506,15 +550,18 @@ struct LayerSearch {
         sweep.clear();
         for (size_t i = begin; i < end; ++i) {
             const uint32_t local = in_cell[i];
-            sweep.push_back({boxes[local].min.x, boxes[local].max.x, members[local], local});
+            sweep.push_back(
+                {boxes[local].min.x, boxes[local].max.x, members[local], local, marked[members[local]] != 0});
         }
-        sweep_cell(sweep, boxes, low_cell, grid, cell_key, marked, [&](size_t i, size_t j) {
+        sweep_cell(sweep, boxes, low_cell, grid, cell_key, [&](size_t i, size_t j) {
             const uint32_t t1 = sweep[i].t, t2 = sweep[j].t;
             const Aabb &b1 = boxes[sweep[i].local], &b2 = boxes[sweep[j].local];
             // The overlap's bottom lies below this layer's top (both boxes start below it): is it above its floor?
             if (layer > 0 && std::max(b1.min.z, b2.min.z) < cuts[layer - 1]) return false;
             const uint32_t *A = &indices[3 * size_t(t1)], *B = &indices[3 * size_t(t2)];
-            if (!apart_in_z(q, A, B) && pair_meets(q, A, B)) pairs.push_back({std::min(t1, t2), std::max(t1, t2)});
+            const auto &h1 = height[sweep[i].local], &h2 = height[sweep[j].local];
+            if (pair_meets_by_height(q, A, B, h1[0], h1[1], h2[0], h2[1]))
+                pairs.push_back({std::min(t1, t2), std::max(t1, t2)});
             return false;
         });
     }
@@ -572,7 +619,7 @@ void self_intersections_by_layer(std::span<const Vec3> positions, std::span<cons
         const auto [first, last] = layers_of(positions, layer, &indices[3 * size_t(t)], cuts);
         for (size_t l = first; l <= last; ++l) members[fill[l]++] = t;
     }
-    LayerSearch search{positions, indices, marked, cuts, q, {}, {}, {}, {}, {}, {}, {}};
+    LayerSearch search{positions, indices, marked, cuts, q, {}, {}, {}, {}, {}, {}, {}, {}};
     for (size_t l = 0; l <= cuts.size(); ++l)
         if (layer_marked[l] && start[l + 1] - start[l] > 1)
             search.run(l, std::span<const uint32_t>(members).subspan(start[l], start[l + 1] - start[l]), pairs);

@@ -473,7 +473,7 @@ private:
     }
     Range range(std::span<const Vec3> positions, uint32_t t) const {
         const Aabb b = box(positions, t);
-        auto at = [&](double x, double lo) { return int32_t(std::floor((x - lo) / cell_)); };
+        auto at = [&](double x, double lo) { return int32_t(floor_int((x - lo) / cell_)); };
         return {{at(b.min.x, origin_.x), at(b.min.y, origin_.y), at(b.min.z, origin_.z)},
                 {at(b.max.x, origin_.x), at(b.max.y, origin_.y), at(b.max.z, origin_.z)}};
     }

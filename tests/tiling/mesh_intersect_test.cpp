@@ -261,4 +261,69 @@ TEST(SelfIntersections, GridSearchesFindEveryPairOfARandomSoup) {
     EXPECT_GT(left_out, 0u);  // some pairs meet only in a cut's plane
 }
 
+// Pairs on either side of a horizontal plane that both reach (one from below,
+// one from above) can meet only in it, where each is a point or an edge; the
+// searches decide those in 2-D. Against every pair asked by the general test:
+// corners on a coarse x, y lattice and a few shared heights (no cuts), so such
+// pairs often cross, overlap along a line, or touch at a point in the plane.
+TEST(SelfIntersections, PairsMeetingOnlyInAHorizontalPlaneAreFound) {
+    // By hand: below z = 1, (0, 1, 2) with its top edge on the plane; above,
+    // (3, 4, 5) with its bottom edge crossing that edge (found), (0, 6, 7)
+    // sharing corner 0 with its bottom edge along the same ray (found), and
+    // (1, 8, 9) sharing corner 1 with its bottom edge leaving it the other way.
+    const std::vector<Vec3> hand = {{0, 0, 1},   {2, 0, 1}, {1, 0.5, 0}, {1.5, -1, 1}, {1.5, 1, 1},
+                                    {1.5, 0, 2}, {1, 0, 1}, {0, 1, 2},   {3, 0, 1},    {2, 1, 2}};
+    const std::vector<uint32_t> hand_indices = {0, 1, 2, 3, 4, 5, 0, 6, 7, 1, 8, 9};
+    std::vector<std::pair<uint32_t, uint32_t>> hand_pairs, hand_layered;
+    body::count_self_intersections(hand, hand_indices, 0, &hand_pairs);
+    std::sort(hand_pairs.begin(), hand_pairs.end());
+    const std::vector<std::pair<uint32_t, uint32_t>> expected = {{0, 1}, {0, 2}};
+    EXPECT_EQ(hand_pairs, expected);
+    body::self_intersections_by_layer(hand, hand_indices, std::vector<uint8_t>(4, 1), {}, hand_layered);
+    EXPECT_EQ(hand_layered, expected);
+
+    size_t in_plane = 0;
+    for (uint32_t seed = 1; seed <= 6; ++seed) {
+        std::mt19937 rng(seed);
+        std::uniform_int_distribution<int> lattice(0, 4), level(0, 3);
+        std::vector<Vec3> points;
+        for (int i = 0; i < 50; ++i) points.push_back({0.25 * lattice(rng), 0.25 * lattice(rng), 0.25 * level(rng)});
+        std::vector<uint32_t> indices;
+        std::uniform_int_distribution<uint32_t> pick(0, uint32_t(points.size() - 1));
+        while (indices.size() < 3 * 100) {
+            const uint32_t a = pick(rng), b = pick(rng), c = pick(rng);
+            if (a != b && b != c && a != c) indices.insert(indices.end(), {a, b, c});
+        }
+        const uint32_t n = uint32_t(indices.size() / 3);
+        auto height = [&](uint32_t t, bool high) {
+            const double z0 = points[indices[3 * t]].z, z1 = points[indices[3 * t + 1]].z,
+                         z2 = points[indices[3 * t + 2]].z;
+            return high ? std::max({z0, z1, z2}) : std::min({z0, z1, z2});
+        };
+        std::vector<std::pair<uint32_t, uint32_t>> all;
+        for (uint32_t i = 0; i < n; ++i)
+            for (uint32_t j = i + 1; j < n; ++j) all.push_back({i, j});
+        const std::vector<uint8_t> meet = body::triangle_pairs_meet(points, indices, all);
+        std::vector<uint8_t> marked(n, 0);
+        for (uint32_t t = 0; t < n; ++t) marked[t] = t % 3 != 0;
+        std::vector<std::pair<uint32_t, uint32_t>> brute, brute_marked;
+        for (size_t k = 0; k < all.size(); ++k) {
+            if (!meet[k]) continue;
+            brute.push_back(all[k]);
+            if (marked[all[k].first] || marked[all[k].second]) brute_marked.push_back(all[k]);
+            const auto [t1, t2] = all[k];
+            const bool flat1 = height(t1, false) == height(t1, true), flat2 = height(t2, false) == height(t2, true);
+            in_plane +=
+                !flat1 && !flat2 && (height(t1, true) == height(t2, false) || height(t2, true) == height(t1, false));
+        }
+        std::vector<std::pair<uint32_t, uint32_t>> counted, layered;
+        body::count_self_intersections(points, indices, 0, &counted);
+        std::sort(counted.begin(), counted.end());
+        EXPECT_EQ(counted, brute) << seed;
+        body::self_intersections_by_layer(points, indices, marked, {}, layered);
+        EXPECT_EQ(layered, brute_marked) << seed;
+    }
+    EXPECT_GT(in_plane, 20u);  // the comparison covers pairs that meet only in a plane
+}
+
 }  // namespace
