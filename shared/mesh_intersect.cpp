@@ -247,88 +247,8 @@ bool triangles_intersect(const Vec3& a0, const Vec3& a1, const Vec3& a2, const V
 
 namespace {
 
-// Vertices whose fan meets only at the vertex. Around v, each triangle
-// turned to start at v is (v, a_i, b_i); the fan is simple when these chain
-// into one closed cycle (every b_i is the a_j of exactly one other) and,
-// projected along one axis, all turn the same way (orient2(v, a_i, b_i) of one
-// sign, none zero) and their outline winds once around v. Then the projected
-// triangles tile a disk around v's projection once, so two of them that share
-// no edge meet only at v's projection, and in 3-D only at v (a triangle whose
-// projection is not degenerate meets the line through v along the axis only
-// at v): a pair sharing v alone does not meet. Exact on the snapped points
-// (the axis, the largest component of the fan's summed normal, only decides
-// how often a fan passes); decided once per vertex, when a pair first asks.
-class SimpleFans {
-public:
-    __attribute__((noinline)) SimpleFans(std::span<const IVec> q, std::span<const uint32_t> indices)
-        : q_(q), state_(q.size(), 0), start_(q.size() + 1, 0) {
-        for (uint32_t v : indices) ++start_[v + 1];
-        for (size_t v = 0; v < q.size(); ++v) start_[v + 1] += start_[v];
-        sides_.resize(indices.size());
-        std::vector<uint32_t> fill(start_.begin(), start_.end() - 1);
-        for (size_t t = 0; t + 2 < indices.size(); t += 3) {
-            const uint32_t a = indices[t], b = indices[t + 1], c = indices[t + 2];
-            sides_[fill[a]++] = {b, c};
-            sides_[fill[b]++] = {c, a};
-            sides_[fill[c]++] = {a, b};
-        }
-    }
-    bool simple(uint32_t v) const {
-        if (state_[v] == 0) state_[v] = check(v) ? 1 : 2;
-        return state_[v] == 1;
-    }
-
-private:
-    static constexpr uint32_t kMax = 16;  // larger fans are not asked (not simple)
-    // A component of the cross product whose double value (each product
-    // rounded once, their difference once; differences < 2^41 are exact) is
-    // clear of its rounding has that sign; the rest are asked exactly.
-    static bool clear(double p, double q) { return std::abs(p - q) > 1e-15 * (std::abs(p) + std::abs(q)); }
-    __attribute__((noinline)) bool check(uint32_t v) const {
-        const uint32_t first = start_[v], k = start_[v + 1] - first;
-        if (k < 3 || k > kMax) return false;
-        const std::array<uint32_t, 2>* e = &sides_[first];  // (a_i, b_i)
-        // One closed cycle: from (a_0, b_0), the side starting at each b in turn comes back to it after k steps
-        // (a walk in a function returns to its start only around a cycle, so the k sides are distinct; a
-        // triangle listing v twice has a zero turn below).
-        for (uint32_t at = 0, steps = 1;; ++steps) {
-            uint32_t j = 0;
-            while (j < k && e[j][0] != e[at][1]) ++j;
-            if (j == k || (j == 0) != (steps == k)) return false;
-            if (j == 0) break;
-            at = j;
-        }
-        // The axis: the largest component of the first triangle's normal (it decides only how often fans pass).
-        const IVec& o = q_[v];
-        auto delta = [&](uint32_t x, int c) { return double(q_[x][c] - o[c]); };
-        const double ax = delta(e[0][0], 0), ay = delta(e[0][0], 1), az = delta(e[0][0], 2);
-        const double bx = delta(e[0][1], 0), by = delta(e[0][1], 1), bz = delta(e[0][1], 2);
-        const double nx = std::abs(ay * bz - az * by), ny = std::abs(az * bx - ax * bz),
-                     nz = std::abs(ax * by - ay * bx);
-        const int drop = nx >= ny && nx >= nz ? 0 : (ny >= nz ? 1 : 2), u = (drop + 1) % 3, w = (drop + 2) % 3;
-        // Projected, (u, w): the turn of (v, a_i, b_i) is the cross product's component `drop`.
-        const IVec2 c{o[u], o[w]};
-        int s = 0;
-        uint32_t winding = 0;  // outline sides crossing the ray from c along +u, in the fan's turning direction
-        for (uint32_t i = 0; i < k; ++i) {
-            const IVec &a = q_[e[i][0]], &b = q_[e[i][1]];
-            const double p = double(a[u] - c[0]) * double(b[w] - c[1]), m = double(a[w] - c[1]) * double(b[u] - c[0]);
-            const int si = clear(p, m) ? (p > m ? 1 : -1) : orient2(c, IVec2{a[u], a[w]}, IVec2{b[u], b[w]});
-            if (si == 0 || (s != 0 && si != s)) return false;
-            s = si;
-            if (s > 0 ? (a[w] <= c[1] && c[1] < b[w]) : (b[w] <= c[1] && c[1] < a[w])) ++winding;
-        }
-        return winding == 1;
-    }
-    std::span<const IVec> q_;
-    mutable std::vector<uint8_t> state_;          // per vertex: 0 not asked yet, 1 simple, 2 not
-    std::vector<uint32_t> start_;                 // CSR over vertices into sides_
-    std::vector<std::array<uint32_t, 2>> sides_;  // per corner at v: its triangle's other two, in turn
-};
-
-// Pair test by index adjacency on the snapped positions `q` (the contract's
-// rules); `fans`, when given, answers pairs that share one vertex whose fan is simple.
-bool pair_meets(std::span<const IVec> q, const uint32_t* A, const uint32_t* B, const SimpleFans* fans = nullptr) {
+// Pair test by index adjacency on the snapped positions `q` (the contract's rules).
+bool pair_meets(std::span<const IVec> q, const uint32_t* A, const uint32_t* B) {
     static constexpr int kNext[3] = {1, 2, 0}, kPrev[3] = {2, 0, 1};  // (i + 1) % 3, (i + 2) % 3
     int ai[3], shared = 0;                                            // A's corners' places in B, or -1
     for (int p = 0; p < 3; ++p) {
@@ -338,7 +258,6 @@ bool pair_meets(std::span<const IVec> q, const uint32_t* A, const uint32_t* B, c
     if (shared == 0) return disjoint_intersect(q[A[0]], q[A[1]], q[A[2]], q[B[0]], q[B[1]], q[B[2]]);
     if (shared == 1) {
         const int p = ai[0] >= 0 ? 0 : (ai[1] >= 0 ? 1 : 2), k = ai[p];
-        if (fans && fans->simple(A[p])) return false;
         return vertex_adjacent_intersect(q[A[p]], q[A[kNext[p]]], q[A[kPrev[p]]], q[B[kNext[k]]], q[B[kPrev[k]]]);
     }
     if (shared == 2) {
@@ -391,12 +310,12 @@ bool meet_in_plane(std::span<const IVec> q, const uint32_t* A, const uint32_t* B
 // horizontal plane that each reaches (given each one's lowest and highest
 // snapped height).
 bool pair_meets_by_height(std::span<const IVec> q, const uint32_t* A, const uint32_t* B, int64_t a_lo, int64_t a_hi,
-                          int64_t b_lo, int64_t b_hi, const SimpleFans* fans = nullptr) {
+                          int64_t b_lo, int64_t b_hi) {
     if (a_lo < a_hi && b_lo < b_hi) {
         if (a_hi == b_lo) return meet_in_plane(q, A, B, a_hi);
         if (b_hi == a_lo) return meet_in_plane(q, B, A, b_hi);
     }
-    return pair_meets(q, A, B, fans);
+    return pair_meets(q, A, B);
 }
 
 // One grid cell's candidate pairs, the broad phase shared by the count and
@@ -413,9 +332,8 @@ struct Swept {
     bool marked;
 };
 template <class Test>
-__attribute__((always_inline)) inline bool sweep_cell(std::vector<Swept>& sweep, std::span<const Aabb> boxes,
-                                                      std::span<const std::array<int, 3>> low_cell, const Grid& grid,
-                                                      uint64_t cell_key, Test&& test) {
+bool sweep_cell(std::vector<Swept>& sweep, std::span<const Aabb> boxes, std::span<const std::array<int, 3>> low_cell,
+                const Grid& grid, uint64_t cell_key, Test&& test) {
     std::sort(sweep.begin(), sweep.end(),
               [](const Swept& a, const Swept& b) { return a.min_x != b.min_x ? a.min_x < b.min_x : a.t < b.t; });
     for (size_t i = 0; i < sweep.size(); ++i)
@@ -571,7 +489,6 @@ struct LayerSearch {
     std::span<const uint8_t> marked;
     std::span<const double> cuts;
     std::span<const IVec> q;
-    const SimpleFans* fans;
     std::vector<Aabb> boxes;                              // per member
     std::vector<std::array<int64_t, 2>> height;           // per member: lowest and highest snapped z
     std::vector<std::array<int, 3>> low_cell, high_cell;  // per member
@@ -643,7 +560,7 @@ struct LayerSearch {
             if (layer > 0 && std::max(b1.min.z, b2.min.z) < cuts[layer - 1]) return false;
             const uint32_t *A = &indices[3 * size_t(t1)], *B = &indices[3 * size_t(t2)];
             const auto &h1 = height[sweep[i].local], &h2 = height[sweep[j].local];
-            if (pair_meets_by_height(q, A, B, h1[0], h1[1], h2[0], h2[1], fans))
+            if (pair_meets_by_height(q, A, B, h1[0], h1[1], h2[0], h2[1]))
                 pairs.push_back({std::min(t1, t2), std::max(t1, t2)});
             return false;
         });
@@ -702,8 +619,7 @@ void self_intersections_by_layer(std::span<const Vec3> positions, std::span<cons
         const auto [first, last] = layers_of(positions, layer, &indices[3 * size_t(t)], cuts);
         for (size_t l = first; l <= last; ++l) members[fill[l]++] = t;
     }
-    const SimpleFans fans(q, indices);
-    LayerSearch search{positions, indices, marked, cuts, q, &fans, {}, {}, {}, {}, {}, {}, {}, {}};
+    LayerSearch search{positions, indices, marked, cuts, q, {}, {}, {}, {}, {}, {}, {}, {}};
     for (size_t l = 0; l <= cuts.size(); ++l)
         if (layer_marked[l] && start[l + 1] - start[l] > 1)
             search.run(l, std::span<const uint32_t>(members).subspan(start[l], start[l + 1] - start[l]), pairs);
