@@ -34,7 +34,7 @@ struct Snap {
     double scale = 1;  // grid steps per unit
     IVec operator()(const Vec3& p) const {
         IVec q;
-        for (int k = 0; k < 3; ++k) q[k] = int64_t(std::llround((p[k] - origin[k]) * scale));
+        for (int k = 0; k < 3; ++k) q[k] = round_half_away((p[k] - origin[k]) * scale);
         return q;
     }
     static Snap of(const Aabb& box) {

@@ -18,6 +18,7 @@
 // - `pairs`, when given, receives the triangle index pairs found (first < second).
 // - A uniform grid over the triangles' bounding boxes avoids the quadratic
 //   pair search; memory is O(triangles) for typical meshes.
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -44,6 +45,18 @@ size_t count_self_intersections_of(std::span<const Vec3> positions, std::span<co
 inline int floor_int(double v) {
     const int i = int(v);
     return i - int(double(i) > v);
+}
+
+// std::llround(v) (halves away from zero), without its library call (the
+// snap to the exact predicates' grid): the truncation, moved one step away
+// from zero where the remainder is at least a half. The remainder is exact:
+// v and its truncation i share their sign and |v - i| < 1, so v - i is exact
+// by Sterbenz' lemma, or is v when i = 0. Beyond 2^62 the library answers.
+inline int64_t round_half_away(double v) {
+    if (!(std::abs(v) < 4611686018427387904.0)) return int64_t(std::llround(v));
+    const int64_t i = int64_t(v);
+    const double f = v - double(i);
+    return i + int64_t(f >= 0.5) - int64_t(f <= -0.5);
 }
 
 // The layer of height z among the ascending `cuts`: 0 below the first cut,

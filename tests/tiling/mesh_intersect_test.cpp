@@ -25,6 +25,42 @@ void append(body::Mesh& to, const body::Mesh& from) {
     for (uint32_t i : from.indices) to.indices.push_back(base + i);
 }
 
+TEST(SnapRounding, RoundHalfAwayMatchesLlround) {
+    // Halves (both signs, odd and even integer parts), the doubles next to them,
+    // integers, the snap grid's range (up to 2^40) and beyond 2^52, where every double is an integer.
+    std::vector<double> values = {0.0,
+                                  -0.0,
+                                  0.5,
+                                  -0.5,
+                                  1.5,
+                                  -1.5,
+                                  2.5,
+                                  -2.5,
+                                  0.49999999999999994,
+                                  -0.49999999999999994,
+                                  1099511627776.0,
+                                  1099511627775.5,
+                                  -1099511627775.5,
+                                  4503599627370495.5,
+                                  4503599627370497.0,
+                                  -4503599627370497.0,
+                                  1e17,
+                                  -1e17};
+    for (double h : {0.5, 2.5, 1e6 + 0.5, 1099511627775.5})
+        for (double s : {1.0, -1.0}) {
+            values.push_back(std::nextafter(s * h, 0.0));
+            values.push_back(std::nextafter(s * h, s * 1e300));
+        }
+    std::mt19937_64 rng(7);
+    std::uniform_real_distribution<double> spread(-1.2e12, 1.2e12);
+    std::uniform_int_distribution<int64_t> whole(-(int64_t(1) << 41), int64_t(1) << 41);
+    for (int i = 0; i < 20000; ++i) {
+        values.push_back(spread(rng));
+        values.push_back(double(whole(rng)) + 0.5);  // exact halves
+    }
+    for (double v : values) EXPECT_EQ(body::round_half_away(v), int64_t(std::llround(v))) << v;
+}
+
 TEST(TrianglesIntersect, PairCases) {
     Vec3 a0(0, 0, 0), a1(1, 0, 0), a2(0, 1, 0);
     EXPECT_TRUE(body::triangles_intersect(a0, a1, a2, {0.2, 0.2, -1}, {0.2, 0.2, 1}, {0.3, 0.9, 0}));    // pierces
