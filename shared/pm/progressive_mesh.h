@@ -178,9 +178,9 @@ public:
     bool release_indices_upto(size_t end);
     // Released with the array kept packed until the caller has its copy:
     // pack_indices() packs the array of the current level in place (each
-    // entry as a recent value or a difference, pm/index_code.h: about 10.4
-    // bits an entry on a million-triangle mesh; the pages past the packed size
-    // handed back) and counts as released (as
+    // entry as a recent value or a difference, index_code.h: about 12.4
+    // bits an entry on a million-triangle mesh where plain numbers take 20;
+    // the pages past the packed size handed back) and counts as released (as
     // release_indices(); false where that would be). fill_indices() writes the
     // whole array at the current level into the caller's `out` (>= 3 *
     // max_triangle_count() entries): the packed array plus the patches of the
