@@ -14,6 +14,7 @@
 
 #include "shared/pm/bpm_container.h"
 #include "shared/pm/draw_order.h"
+#include "shared/pm/index_code.h"
 #include "shared/pm/split_codec.h"
 
 namespace body::pm {
@@ -266,53 +267,13 @@ bool ProgressiveMesh::release_indices_upto(size_t end) {
     return true;
 }
 
-// The packed index code (pack_indices / fill_indices): each entry as the
-// zigzag difference to a reference, corner 0 of a face against corner 0 of the
-// face before, corners 1 and 2 against their face's corner 0 (a split's new
-// faces share its child and parent, whose numbers are close); a difference
-// below 4 takes 1 + 2 bits, any other 1 + packed_bits_ bits.
-namespace {
-constexpr uint32_t kSmallIndexBits = 2;
-// In-place packing needs every entry's code within its own 32 bits.
-static_assert(std::bit_width(2 * uint64_t(kMaxVertices - 1)) + 1 <= 32);
-uint32_t zigzag(int64_t d) { return d < 0 ? uint32_t(-2 * d - 1) : uint32_t(2 * d); }
-int64_t unzigzag(uint32_t z) { return (z & 1) ? -int64_t(z >> 1) - 1 : int64_t(z >> 1); }
-}  // namespace
-
 bool ProgressiveMesh::pack_indices() {
     if (indices_released_) return indices_packed();
     if (decoded_splits_ != split_count_ || !base_ready_) return false;
     const size_t n = indices_.size();
-    // Wide enough for the zigzag of any difference between two vertex numbers.
-    const size_t bits = std::max<size_t>(1, size_t(std::bit_width(2 * uint64_t(max_vertex_count() - 1))));
-    // In place: entry i takes at most 1 + bits <= 32 bits, so the words written
-    // after reading entry i are words <= i.
+    const size_t bits = index_code_bits(max_vertex_count());
     uint32_t* w = indices_.data();
-    uint64_t acc = 0;
-    size_t held = 0, out = 0;
-    uint32_t prev_first = 0, first = 0;
-    for (size_t i = 0; i < n; ++i) {
-        const uint32_t v = w[i];
-        uint32_t reference = first;
-        if (i % 3 == 0) {
-            reference = prev_first;
-            prev_first = first = v;
-        }
-        const uint32_t z = zigzag(int64_t(v) - int64_t(reference));
-        if (z < (1u << kSmallIndexBits)) {
-            acc |= uint64_t(z) << (held + 1);  // flag 0
-            held += 1 + kSmallIndexBits;
-        } else {
-            acc |= (uint64_t(1) | uint64_t(z) << 1) << held;
-            held += 1 + bits;
-        }
-        if (held >= 32) {
-            w[out++] = uint32_t(acc);
-            acc >>= 32;
-            held -= 32;
-        }
-    }
-    if (held > 0) w[out++] = uint32_t(acc);
+    const size_t out = pack_index_code(std::span<uint32_t>(w, n), bits);
 #if defined(__linux__)
     const uintptr_t base = reinterpret_cast<uintptr_t>(w), page = uintptr_t(::sysconf(_SC_PAGESIZE));
     const uintptr_t lo = (base + out * 4 + page - 1) / page * page, hi = (base + n * 4) / page * page;
@@ -330,29 +291,8 @@ bool ProgressiveMesh::pack_indices() {
 
 void ProgressiveMesh::fill_indices(std::span<uint32_t> out) {
     if (!indices_packed() || out.size() < packed_count_) return;
-    const uint32_t* w = packed_indices_.data();
-    size_t word = 0;
-    uint64_t acc = 0;
-    size_t held = 0;
-    auto take = [&](size_t count) {  // the next `count` (<= 32) bits of the stream
-        if (held < count) {
-            acc |= uint64_t(word < packed_words_ ? w[word] : 0) << held;
-            ++word;
-            held += 32;
-        }
-        const uint32_t v = uint32_t(acc & ((uint64_t(1) << count) - 1));
-        acc >>= count;
-        held -= count;
-        return v;
-    };
-    uint32_t prev_first = 0, first = 0;
-    for (size_t i = 0; i < packed_count_; ++i) {
-        const uint32_t z = take(1) ? take(packed_bits_) : take(kSmallIndexBits);
-        const uint32_t reference = i % 3 == 0 ? prev_first : first;
-        const uint32_t v = uint32_t(int64_t(reference) + unzigzag(z));
-        if (i % 3 == 0) prev_first = first = v;
-        out[i] = v;
-    }
+    unpack_index_code(std::span<const uint32_t>(packed_indices_.data(), packed_words_), packed_bits_,
+                      out.first(packed_count_));
     UninitVector<uint32_t>().swap(packed_indices_);
     packed_bits_ = packed_count_ = packed_words_ = 0;
     patch_indices(out, 0);  // the levels moved since it was packed

@@ -178,9 +178,9 @@ public:
     bool release_indices_upto(size_t end);
     // Released with the array kept packed until the caller has its copy:
     // pack_indices() packs the array of the current level in place (each
-    // entry as a short difference code: 14.7 bits an entry for a million
-    // vertices where plain numbers take 20; the pages past the packed size
-    // handed back) and counts as released (as
+    // entry as a recent value or a difference, index_code.h: about 12.4
+    // bits an entry on a million-triangle mesh where plain numbers take 20;
+    // the pages past the packed size handed back) and counts as released (as
     // release_indices(); false where that would be). fill_indices() writes the
     // whole array at the current level into the caller's `out` (>= 3 *
     // max_triangle_count() entries): the packed array plus the patches of the
@@ -228,7 +228,7 @@ private:
     // its pending patches touch.
     bool indices_released_ = false, vertices_released_ = false;
     // pack_indices(): packed_count_ entries as a bit stream of packed_words_
-    // words (the code: progressive_mesh.cpp, above pack_indices).
+    // words of bits packed_bits_ (the code: index_code.h).
     UninitVector<uint32_t> packed_indices_;
     size_t packed_bits_ = 0, packed_count_ = 0, packed_words_ = 0;
     size_t position_level_ = 0;  // released vertex data: the level of the caller's codes

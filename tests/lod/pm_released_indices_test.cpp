@@ -3,11 +3,15 @@
 // moment, holds what a mesh that kept its array holds at the same level.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <random>
 #include <vector>
 
 #include "builder/lod/bpm_writer.h"
 #include "builder/lod/simplify.h"
+#include "shared/pm/bpm_container.h"
 #include "shared/pm/bpm_reader.h"
+#include "shared/pm/index_code.h"
 #include "shared/pm/progressive_mesh.h"
 #include "tests/lod/lod_test_util.h"
 
@@ -157,6 +161,65 @@ TEST(PmReleasedIndices, PackedArrayFillsTheCopyAtTheLevelReachedSince) {
     kept->set_level(kept->max_level());
     patch(*given, copy);
     EXPECT_EQ(copy, std::vector<uint32_t>(kept->indices().begin(), kept->indices().end()));
+}
+
+// The packed code gives every entry back exactly: `entries` packed in place
+// (its words a prefix of the array) and decoded from those words only.
+void expect_round_trip(const std::vector<uint32_t>& entries, size_t vertex_count) {
+    const size_t bits = pm::index_code_bits(vertex_count);
+    std::vector<uint32_t> packed = entries;
+    const size_t words = pm::pack_index_code(packed, bits);
+    EXPECT_LE(words, entries.size());
+    packed.resize(words);
+    std::vector<uint32_t> back(entries.size(), 0xdeadbeefu);
+    pm::unpack_index_code(packed, bits, back);
+    EXPECT_EQ(back, entries) << "vertex_count " << vertex_count;
+}
+
+TEST(PmIndexCode, EveryEntryComesBackExactly) {
+    const size_t big = pm::kMaxVertices;
+    expect_round_trip({}, 1);
+    expect_round_trip({0, 0, 0}, 1);  // one vertex: the long code is 1 bit wide
+    expect_round_trip({1, 0, 1, 0, 0, 1}, 2);
+    // The largest jumps both ways, on the first corner and the others.
+    expect_round_trip({uint32_t(big - 1), 0, uint32_t(big - 1), 0, uint32_t(big - 1), 0, 0, 0, uint32_t(big - 1)}, big);
+    // Differences at the short code's edge (zigzag 31 and 32) around a reference.
+    expect_round_trip({100, 115, 84, 116, 100, 83, 100, 100, 100}, big);
+    // More distinct values than the FIFO holds, cycled: each comes back after
+    // being evicted (always a miss), then a run of 16 repeated (always a hit).
+    std::vector<uint32_t> cycled;
+    for (int round = 0; round < 4; ++round)
+        for (uint32_t v = 0; v < 17; ++v) cycled.push_back(v * 1000);
+    for (uint32_t v = 0; v < 16; ++v) cycled.push_back(v * 1000);
+    cycled.push_back(16 * 1000);
+    while (cycled.size() % 3) cycled.push_back(0);
+    expect_round_trip(cycled, 17 * 1000);
+    // Random meshes of every kind of entry: FIFO ages 0..15, short and long
+    // differences, values anywhere below the count.
+    std::mt19937 rng(24);
+    for (size_t vertex_count : {size_t(3), size_t(1000), size_t(557330), big}) {
+        std::vector<uint32_t> mixed;
+        for (size_t i = 0; i < 30000; ++i) {
+            const uint32_t kind = rng() % 4;
+            uint32_t v = rng() % vertex_count;
+            if (kind == 0 && mixed.size() >= 20) v = mixed[mixed.size() - 1 - rng() % 20];
+            if (kind == 1 && !mixed.empty())
+                v = uint32_t(std::clamp<int64_t>(int64_t(mixed.back()) + int64_t(rng() % 41) - 20, 0,
+                                                 int64_t(vertex_count) - 1));
+            mixed.push_back(v);
+        }
+        expect_round_trip(mixed, vertex_count);
+    }
+}
+
+TEST(PmIndexCode, RefinedMeshArrayComesBackExactly) {
+    const auto bytes = sphere_bpm(5);
+    auto m = decode_one(bytes);
+    ASSERT_TRUE(m);
+    for (size_t level : {size_t(0), m->max_level() / 2, m->max_level()}) {
+        m->set_level(level);
+        expect_round_trip(std::vector<uint32_t>(m->indices().begin(), m->indices().end()), m->max_vertex_count());
+    }
 }
 
 TEST(PmReleasedIndices, MovesOfParentsArePending) {
