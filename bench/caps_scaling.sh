@@ -31,7 +31,7 @@ PY
         times=()
         for ((run = 0; run < ${RUNS:-3}; run++)); do
             /usr/bin/time -o "$WORK/time" -f "%e %U %M" \
-                "$BODYGEN" build "$WORK/c$n.contours.json" --caps "$caps" --strict --quiet -o "$WORK/out.obj"
+                "$BODYGEN" build "$WORK/c$n.contours.json" --caps "$caps" --interpolate 0 --strict --quiet -o "$WORK/out.obj"
             read -r wall user kib < "$WORK/time"
             echo "points $n caps $caps: $wall s wall, $user s user, $kib KiB"
             times+=("$user")

@@ -69,9 +69,9 @@ for m in $meshes; do
         original=$work/$m-x.obj
         [ -f "$original" ] || awk '$1 == "v" { print "v", $3, $4, $2; next } { print }' "$work/$m.obj" >"$original"
       fi
-      t_lin=$(cpu "$bodygen" build "$stack" -o "$work/$name-linear.obj" --quiet)
+      t_lin=$(cpu "$bodygen" build "$stack" -o "$work/$name-linear.obj" --quiet --interpolate 0)
       t_int=$(cpu "$bodygen" build "$stack" -o "$work/$name-interp.obj" --quiet --interpolate "$rings")
-      t_smo=$(cpu "$bodygen" build "$stack" -o "$work/$name-smooth.obj" --quiet --smooth 10)
+      t_smo=$(cpu "$bodygen" build "$stack" -o "$work/$name-smooth.obj" --quiet --smooth 10 --interpolate 0)
       row=$($py bench/reconstruct_vs_vtk.py "$stack" "$original" "$work/$name-linear.obj" --resolution "$resolution" \
         --bodygen-seconds "$t_lin" --label linear --also interp "$work/$name-interp.obj" "$t_int" \
         --also smooth "$work/$name-smooth.obj" "$t_smo" --row "$name" | grep '^row ')

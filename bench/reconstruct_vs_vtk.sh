@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Side by side: the glmark2 bunny sliced into contour stacks (40 and 100
-# planes), rebuilt by bodygen (both tiling methods) and by VTK's
+# planes), rebuilt by bodygen (both tiling methods, linear bands: --interpolate 0) and by VTK's
 # vtkVoxelContoursToSurfaceFilter from the same stack; prints for each the
 # build time, the symmetric Hausdorff distance to the original surface within
 # the slab the slices span, and the bodygen/VTK ratios. Times are CPU seconds
@@ -42,7 +42,7 @@ for planes in 40 100; do
     seconds=$($py -c 'import resource, subprocess, sys
 subprocess.run(sys.argv[1:], check=True)
 r = resource.getrusage(resource.RUSAGE_CHILDREN)
-print(r.ru_utime + r.ru_stime)' "$bodygen" build "$stack" -o "$out" --tiling "$tiling" --quiet)
+print(r.ru_utime + r.ru_stime)' "$bodygen" build "$stack" -o "$out" --tiling "$tiling" --interpolate 0 --quiet)
     echo "== bunny, $planes planes, bodygen --tiling $tiling vs VTK (voxel resolution $resolution)"
     $py bench/reconstruct_vs_vtk.py "$stack" "$bunny" "$out" --resolution "$resolution" \
       --bodygen-seconds "$seconds" --label "bodygen $tiling"

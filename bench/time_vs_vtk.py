@@ -7,7 +7,7 @@ along z at 40, each made with `bodygen slice --avoid-self-intersections` (as
 bench/reconstruct_vs_vtk.sh / interpolate_vs_vtk.sh do). For each stack and
 each repetition, in turn: VTK's whole route (bench/vtk_contours_to_obj.py:
 Python start, read the stack, vtkVoxelContoursToSurfaceFilter, write an OBJ),
-then `bodygen build STACK -o OUT --quiet` linear and with `--interpolate N`,
+then `bodygen build STACK -o OUT --quiet` linear (`--interpolate 0`) and with `--interpolate N`,
 for the candidate binary and, when --base is given, the baseline binary
 alternated with it. Each process is timed the same way: CPU (user + system of
 the child, getrusage) and wall. Prints per stack the median [min-max] of each,
@@ -102,7 +102,8 @@ def main():
             t["vtk"][1].append(wall)
             t["vtk"][2].append(float(out.split()[-1]))
             for label, binary in binaries if rep % 2 == 0 else binaries[::-1]:  # alternate which goes first
-                cpu, wall, _ = timed([binary, "build", stack, "-o", os.path.join(work, label + ".obj"), "--quiet"])
+                cpu, wall, _ = timed([binary, "build", stack, "-o", os.path.join(work, label + ".obj"), "--quiet",
+                                      "--interpolate", "0"])
                 t[label][0].append(cpu)
                 t[label][1].append(wall)
                 adaptive = ["--ring-tolerance", args.ring_tolerance] if args.ring_tolerance and label == "ours" else []
