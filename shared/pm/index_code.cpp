@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "shared/pm/bpm_container.h"
+#include "shared/pm/split_codec.h"
 
 namespace body::pm {
 
@@ -13,8 +14,6 @@ constexpr uint32_t kFifoSize = 16, kFifoBits = 4, kShortBits = 5;
 static_assert(kFifoSize == 1u << kFifoBits);
 // In-place packing needs every entry's code within its own 32 bits.
 static_assert(2 + std::bit_width(2 * uint64_t(kMaxVertices - 1)) <= 32);
-uint32_t zigzag(int64_t d) { return d < 0 ? uint32_t(-2 * d - 1) : uint32_t(2 * d); }
-int64_t unzigzag(uint32_t z) { return (z & 1) ? -int64_t(z >> 1) - 1 : int64_t(z >> 1); }
 
 // The FIFO as a ring: slot head - 1 - age (mod 16) holds the value `age`
 // places back. Starts with no vertex number (vertex numbers are < 2^32 - 1).
@@ -76,7 +75,7 @@ size_t pack_index_code(std::span<uint32_t> entries, size_t bits) {
             held += 1 + kFifoBits;
         } else {
             fifo.push(v);
-            const uint32_t z = zigzag(int64_t(v) - int64_t(reference));
+            const uint32_t z = zigzag(v, reference);  // split_codec.h: vertex numbers < 2^29, no wrap
             if (z < (1u << kShortBits)) {
                 acc |= (uint64_t(3) | uint64_t(z) << 2) << held;  // 11
                 held += 2 + kShortBits;
@@ -119,7 +118,7 @@ void unpack_index_code(std::span<const uint32_t> words, size_t bits, std::span<u
         } else {
             const uint32_t z = take(1) ? take(kShortBits) : take(bits);
             const uint32_t reference = i % 3 == 0 ? prev_first : first;
-            v = uint32_t(int64_t(reference) + unzigzag(z));
+            v = unzigzag(z, reference);
             fifo.push(v);
         }
         if (i % 3 == 0) prev_first = first = v;
