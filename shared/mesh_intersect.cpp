@@ -306,11 +306,18 @@ bool meet_in_plane(std::span<const IVec> q, const uint32_t* A, const uint32_t* B
     return dot > 0;
 }
 
+// A triangle's lowest and highest snapped height.
+using Height = std::array<int64_t, 2>;
+Height snapped_height(std::span<const IVec> q, const uint32_t* tri) {
+    return {std::min({q[tri[0]][2], q[tri[1]][2], q[tri[2]][2]}), std::max({q[tri[0]][2], q[tri[1]][2], q[tri[2]][2]})};
+}
+
 // pair_meets, answered in 2-D when the triangles lie on either side of a
-// horizontal plane that each reaches (given each one's lowest and highest
-// snapped height).
-bool pair_meets_by_height(std::span<const IVec> q, const uint32_t* A, const uint32_t* B, int64_t a_lo, int64_t a_hi,
-                          int64_t b_lo, int64_t b_hi) {
+// horizontal plane that each reaches (given each one's snapped_height).
+bool pair_meets_by_height(std::span<const IVec> q, const uint32_t* A, const uint32_t* B, const Height& a,
+                          const Height& b) {
+    const auto [a_lo, a_hi] = a;
+    const auto [b_lo, b_hi] = b;
     if (a_lo < a_hi && b_lo < b_hi) {
         if (a_hi == b_lo) return meet_in_plane(q, A, B, a_hi);
         if (b_hi == a_lo) return meet_in_plane(q, B, A, b_hi);
@@ -358,7 +365,7 @@ struct Snapped {
     std::vector<Aabb> boxes;
     std::vector<IVec> q;
     std::vector<uint8_t> skip;
-    std::vector<std::array<int64_t, 2>> height;  // per triangle: lowest and highest snapped z
+    std::vector<Height> height;  // per triangle
     double extent_sum = 0;
 };
 
@@ -403,9 +410,8 @@ Snapped snap_mesh(std::span<const Vec3> positions, std::span<const uint32_t> ind
     for (size_t v = 0; v < positions.size(); ++v) m.q[v] = snap(positions[v]);
     m.height.resize(tri_count);
     for (size_t t = 0; t < tri_count; ++t) {
-        const IVec &a = m.q[indices[3 * t]], &b = m.q[indices[3 * t + 1]], &c = m.q[indices[3 * t + 2]];
-        m.skip[t] = degenerate(a, b, c);
-        m.height[t] = {std::min({a[2], b[2], c[2]}), std::max({a[2], b[2], c[2]})};
+        m.skip[t] = degenerate(m.q[indices[3 * t]], m.q[indices[3 * t + 1]], m.q[indices[3 * t + 2]]);
+        m.height[t] = snapped_height(m.q, &indices[3 * t]);
     }
     return m;
 }
@@ -466,9 +472,8 @@ size_t count_pairs(std::span<const Vec3> positions, std::span<const uint32_t> in
         }
         const bool stopped = sweep_cell(sweep, m.boxes, low_cell, grid, cell_key, [&](size_t i, size_t j) {
             const uint32_t t1 = sweep[i].t, t2 = sweep[j].t;
-            const auto &h1 = m.height[t1], &h2 = m.height[t2];
-            if (!pair_meets_by_height(m.q, &indices[3 * size_t(t1)], &indices[3 * size_t(t2)], h1[0], h1[1], h2[0],
-                                      h2[1]))
+            if (!pair_meets_by_height(m.q, &indices[3 * size_t(t1)], &indices[3 * size_t(t2)], m.height[t1],
+                                      m.height[t2]))
                 return false;
             if (pairs) pairs->push_back({std::min(t1, t2), std::max(t1, t2)});
             return ++found == stop_after;
@@ -490,7 +495,7 @@ struct LayerSearch {
     std::span<const double> cuts;
     std::span<const IVec> q;
     std::vector<Aabb> boxes;                              // per member
-    std::vector<std::array<int64_t, 2>> height;           // per member: lowest and highest snapped z
+    std::vector<Height> height;                           // per member
     std::vector<std::array<int, 3>> low_cell, high_cell;  // per member
     std::vector<uint32_t> cell_start, fill, in_cell;      // members by cell (CSR)
     std::vector<Swept> sweep;
@@ -503,8 +508,7 @@ struct LayerSearch {
         for (size_t i = 0; i < members.size(); ++i) {
             const uint32_t* tri = &indices[3 * size_t(members[i])];
             for (int c = 0; c < 3; ++c) boxes[i].extend(positions[tri[c]]);
-            height[i] = {std::min({q[tri[0]][2], q[tri[1]][2], q[tri[2]][2]}),
-                         std::max({q[tri[0]][2], q[tri[1]][2], q[tri[2]][2]})};
+            height[i] = snapped_height(q, tri);
             bounds.extend(boxes[i].min);
             bounds.extend(boxes[i].max);
             const Vec3 d = boxes[i].size();
@@ -559,8 +563,7 @@ struct LayerSearch {
             // The overlap's bottom lies below this layer's top (both boxes start below it): is it above its floor?
             if (layer > 0 && std::max(b1.min.z, b2.min.z) < cuts[layer - 1]) return false;
             const uint32_t *A = &indices[3 * size_t(t1)], *B = &indices[3 * size_t(t2)];
-            const auto &h1 = height[sweep[i].local], &h2 = height[sweep[j].local];
-            if (pair_meets_by_height(q, A, B, h1[0], h1[1], h2[0], h2[1]))
+            if (pair_meets_by_height(q, A, B, height[sweep[i].local], height[sweep[j].local]))
                 pairs.push_back({std::min(t1, t2), std::max(t1, t2)});
             return false;
         });
