@@ -248,6 +248,39 @@ TEST(SelfIntersections, LayeredSearchFindsTheMarkedCountsPairs) {
     EXPECT_EQ(one_layer, expected);
 }
 
+// A soup of `count` triangles, each of three distinct corners drawn from
+// `points` corners (a small pool, so triangles share corners and edges).
+std::vector<uint32_t> random_triangles(std::mt19937& rng, uint32_t points, size_t count) {
+    std::vector<uint32_t> indices;
+    std::uniform_int_distribution<uint32_t> pick(0, points - 1);
+    while (indices.size() < 3 * count) {
+        const uint32_t a = pick(rng), b = pick(rng), c = pick(rng);
+        if (a != b && b != c && a != c) indices.insert(indices.end(), {a, b, c});
+    }
+    return indices;
+}
+
+// Every pair of the soup's triangles that the general pair test says meet, in
+// order: all of them, and those with a marked triangle.
+struct MeetingPairs {
+    std::vector<std::pair<uint32_t, uint32_t>> all, marked;
+};
+MeetingPairs meeting_pairs(std::span<const Vec3> points, std::span<const uint32_t> indices,
+                           std::span<const uint8_t> marked) {
+    const uint32_t n = uint32_t(indices.size() / 3);
+    std::vector<std::pair<uint32_t, uint32_t>> all;
+    for (uint32_t i = 0; i < n; ++i)
+        for (uint32_t j = i + 1; j < n; ++j) all.push_back({i, j});
+    const std::vector<uint8_t> meet = body::triangle_pairs_meet(points, indices, all);
+    MeetingPairs out;
+    for (size_t k = 0; k < all.size(); ++k) {
+        if (!meet[k]) continue;
+        out.all.push_back(all[k]);
+        if (marked[all[k].first] || marked[all[k].second]) out.marked.push_back(all[k]);
+    }
+    return out;
+}
+
 // The grid broad phase and its per-cell sweep (shared by the count and the
 // layered search) against every pair asked directly: random soups over a small
 // point pool (so triangles share corners and edges), points on a few heights
@@ -262,25 +295,11 @@ TEST(SelfIntersections, GridSearchesFindEveryPairOfARandomSoup) {
         std::vector<Vec3> points;
         for (int i = 0; i < 60; ++i)
             points.push_back({u(rng), u(rng), i % 3 == 0 ? heights[size_t(i / 3) % 3] : u(rng)});
-        std::vector<uint32_t> indices;
-        std::uniform_int_distribution<uint32_t> pick(0, uint32_t(points.size() - 1));
-        while (indices.size() < 3 * 120) {
-            const uint32_t a = pick(rng), b = pick(rng), c = pick(rng);
-            if (a != b && b != c && a != c) indices.insert(indices.end(), {a, b, c});
-        }
+        const std::vector<uint32_t> indices = random_triangles(rng, uint32_t(points.size()), 120);
         const uint32_t n = uint32_t(indices.size() / 3);
-        std::vector<std::pair<uint32_t, uint32_t>> all;
-        for (uint32_t i = 0; i < n; ++i)
-            for (uint32_t j = i + 1; j < n; ++j) all.push_back({i, j});
-        const std::vector<uint8_t> meet = body::triangle_pairs_meet(points, indices, all);
         std::vector<uint8_t> marked(n, 0);
         for (uint32_t t = 0; t < n; ++t) marked[t] = u(rng) < 0.3;
-        std::vector<std::pair<uint32_t, uint32_t>> brute, brute_marked;
-        for (size_t k = 0; k < all.size(); ++k) {
-            if (!meet[k]) continue;
-            brute.push_back(all[k]);
-            if (marked[all[k].first] || marked[all[k].second]) brute_marked.push_back(all[k]);
-        }
+        const auto [brute, brute_marked] = meeting_pairs(points, indices, marked);
         ASSERT_GT(brute.size(), 20u) << seed;  // the soup is tangled: the comparison means something
         std::vector<std::pair<uint32_t, uint32_t>> counted, counted_marked, layered;
         EXPECT_EQ(body::count_self_intersections(points, indices, 0, &counted), brute.size()) << seed;
@@ -324,30 +343,17 @@ TEST(SelfIntersections, PairsMeetingOnlyInAHorizontalPlaneAreFound) {
         std::uniform_int_distribution<int> lattice(0, 4), level(0, 3);
         std::vector<Vec3> points;
         for (int i = 0; i < 50; ++i) points.push_back({0.25 * lattice(rng), 0.25 * lattice(rng), 0.25 * level(rng)});
-        std::vector<uint32_t> indices;
-        std::uniform_int_distribution<uint32_t> pick(0, uint32_t(points.size() - 1));
-        while (indices.size() < 3 * 100) {
-            const uint32_t a = pick(rng), b = pick(rng), c = pick(rng);
-            if (a != b && b != c && a != c) indices.insert(indices.end(), {a, b, c});
-        }
+        const std::vector<uint32_t> indices = random_triangles(rng, uint32_t(points.size()), 100);
         const uint32_t n = uint32_t(indices.size() / 3);
         auto height = [&](uint32_t t, bool high) {
             const double z0 = points[indices[3 * t]].z, z1 = points[indices[3 * t + 1]].z,
                          z2 = points[indices[3 * t + 2]].z;
             return high ? std::max({z0, z1, z2}) : std::min({z0, z1, z2});
         };
-        std::vector<std::pair<uint32_t, uint32_t>> all;
-        for (uint32_t i = 0; i < n; ++i)
-            for (uint32_t j = i + 1; j < n; ++j) all.push_back({i, j});
-        const std::vector<uint8_t> meet = body::triangle_pairs_meet(points, indices, all);
         std::vector<uint8_t> marked(n, 0);
         for (uint32_t t = 0; t < n; ++t) marked[t] = t % 3 != 0;
-        std::vector<std::pair<uint32_t, uint32_t>> brute, brute_marked;
-        for (size_t k = 0; k < all.size(); ++k) {
-            if (!meet[k]) continue;
-            brute.push_back(all[k]);
-            if (marked[all[k].first] || marked[all[k].second]) brute_marked.push_back(all[k]);
-            const auto [t1, t2] = all[k];
+        const auto [brute, brute_marked] = meeting_pairs(points, indices, marked);
+        for (const auto& [t1, t2] : brute) {
             const bool flat1 = height(t1, false) == height(t1, true), flat2 = height(t2, false) == height(t2, true);
             in_plane +=
                 !flat1 && !flat2 && (height(t1, true) == height(t2, false) || height(t2, true) == height(t1, false));
