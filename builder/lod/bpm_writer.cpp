@@ -346,12 +346,12 @@ bool code_coordinate(uint16_t target, uint16_t predicted, uint32_t grid, uint32_
 // decoded before. False when a coordinate would leave the box on this grid.
 bool code_position(const pm::FanPrediction& pred, const uint32_t order[3], const uint16_t target[3],
                    const uint16_t predicted2[3], bool plane_last, const uint16_t from[3], int64_t offset, int64_t scale,
-                   uint32_t grid, uint32_t* value, uint32_t* shift, uint16_t out[3]) {
+                   uint32_t plane_shift, uint32_t grid, uint32_t* value, uint32_t* shift, uint16_t out[3]) {
     for (uint32_t i = 0; i < 3; ++i) {
         const uint32_t k = order[i];
         const bool plane = i == 2 && plane_last;
         const uint16_t predicted = plane ? pm::plane_coordinate(pred, from, out, offset, scale) : predicted2[k];
-        const uint32_t scale_shift = plane ? pred.axis_shift : pred.shift[k];
+        const uint32_t scale_shift = plane ? plane_shift : pred.shift[k];
         if (!code_coordinate(target[k], predicted, grid, value[i], out[k])) return false;
         shift[i] = scale_shift > grid ? scale_shift - grid : 0;
     }
@@ -372,20 +372,22 @@ CodedPositions code_positions(const pm::FanPrediction& pred, const uint16_t from
     }
     c.child_grid = child_grid + 1;
     do --c.child_grid;
-    while (!code_position(pred, order, at, pred.child, plane, from, pred.child_dot, 4, c.child_grid, c.value, c.shift,
-                          c.at));
+    while (!code_position(pred, order, at, pred.child, plane, from, pred.child_dot, 4, pred.axis_shift, c.child_grid,
+                          c.value, c.shift, c.at));
     std::copy_n(from, 3, c.to);
     if (!moves) return c;
     uint16_t predicted[3];
     for (int k = 0; k < 3; ++k) {
         const uint16_t reflected = pm::reflect16(from[k], c.at[k]);
-        predicted[k] = fan ? pm::midpoint16(reflected, pred.parent_centroid[k]) : reflected;
+        predicted[k] = fan ? pm::parent_position(from[k], c.at[k], pred.parent_centroid[k]) : reflected;
     }
-    const int64_t offset = plane ? pred.parent_dot - 4 * pm::plane_dot(pred, from, c.at) : 0;
+    const int64_t offset = plane ? 2 * pred.parent_dot - 4 * pm::plane_dot(pred, from, c.at) : 0;
+    const uint32_t plane_shift =
+        pred.axis_shift > pm::kParentPlaneShiftLess ? pred.axis_shift - pm::kParentPlaneShiftLess : 0;
     c.parent_grid = parent_grid + 1;
     do --c.parent_grid;
-    while (!code_position(pred, order, to, predicted, plane, from, offset, 8, c.parent_grid, c.value + 3, c.shift + 3,
-                          c.to));
+    while (!code_position(pred, order, to, predicted, plane, from, offset, 64, plane_shift, c.parent_grid, c.value + 3,
+                          c.shift + 3, c.to));
     c.moves = c.to[0] != from[0] || c.to[1] != from[1] || c.to[2] != from[2];
     if (!c.moves) c.parent_grid = 0;
     return c;

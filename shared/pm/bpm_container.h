@@ -12,7 +12,7 @@ namespace body::pm {
 
 inline constexpr char kMagic[4] = {'B', 'P', 'M', '\0'};
 inline constexpr uint16_t kVersion =
-    6;  // 6: intermediate positions on coarser grids (5: parents as steps, splits in rounds)
+    7;  // 7: the parent predicted from its ring and the plane (6: intermediate positions on coarser grids)
 inline constexpr size_t kFileHeaderSize = 16;       // magic, version, flags, structure count, header crc
 inline constexpr size_t kSectionHeaderSize = 12;    // tag, structure, reserved, payload length
 inline constexpr size_t kSectionTrailerSize = 4;    // crc32 over header + payload

@@ -387,13 +387,15 @@ struct DecodedSplit {
     for (uint32_t i = 0; i < (pred.axis < 3 ? 2u : 3u); ++i) {
         const uint32_t k = order[i];
         const uint16_t reflected = reflect16(s.from[k], s.q[k]);
-        const uint16_t predicted = s.fan != 0 ? midpoint16(reflected, pred.parent_centroid[k]) : reflected;
+        const uint16_t predicted = s.fan != 0 ? parent_position(s.from[k], s.q[k], pred.parent_centroid[k]) : reflected;
         s.to[k] = decode_coordinate(values, kCtxParent0 + i, predicted, pred.shift[k], parent_grid);
     }
     if (pred.axis < 3) {
-        const int64_t offset = pred.parent_dot - 4 * plane_dot(pred, s.from, s.q);
-        s.to[order[2]] = decode_coordinate(values, kCtxParent0 + 2, plane_coordinate(pred, s.from, s.to, offset, 8),
-                                           pred.axis_shift, parent_grid);
+        const int64_t offset = 2 * pred.parent_dot - 4 * plane_dot(pred, s.from, s.q);
+        const uint32_t plane_shift =
+            pred.axis_shift > kParentPlaneShiftLess ? pred.axis_shift - kParentPlaneShiftLess : 0;
+        s.to[order[2]] = decode_coordinate(values, kCtxParent0 + 2, plane_coordinate(pred, s.from, s.to, offset, 64),
+                                           plane_shift, parent_grid);
     }
 }
 

@@ -87,7 +87,7 @@ void predict_fan(const uint16_t* q, const uint32_t* ring, uint32_t k, uint32_t s
         out.left[a] = d[start][a];
         out.right[a] = d[end][a];
         const int width = std::bit_width(uint32_t(hi[a] - lo[a]));
-        out.shift[a] = width > 4 ? uint32_t(width - 4) : 0;
+        out.shift[a] = width > 5 ? uint32_t(width - 5) : 0;
         // Sums of absolute coordinates, as the centroid's definition has them.
         const uint32_t cs = uint32_t(child[a] + int32_t(nc) * v[a]);
         const uint32_t ps = uint32_t(all[a] + int32_t(np) * v[a] - child[a] + d[start][a] + d[end][a]);

@@ -28,11 +28,12 @@ inline uint16_t reflect16(uint16_t about, uint16_t x) { return uint16_t(2u * abo
 // level before it (`q`, 3 per vertex; `v` the parent's; ring, k, start, length as
 // in SplitReplay::ordered_fan; integer arithmetic, wrap-around 16-bit results):
 //   child  = midpoint(v, centroid of ring[start .. start + length])   (its future ring)
-//   parent = midpoint(reflection of the child about v, parent_centroid) where
+//   parent = parent_position(v, child, parent_centroid) (version 7) where
 //            parent_centroid = centroid of ring[start + length .. start + k]
 //            (both wings, ring[start] and ring[start + length], are in both rings)
-//   shift per axis = max(0, bit_width(max - min of the ring) - 4): the low bits of
-//            both residuals are about uniform below the ring's extent / 16.
+//   shift per axis = max(0, bit_width(max - min of the ring) - 5) (version 7; 4
+//            before): the low bits of both residuals are about uniform below the
+//            ring's extent / 32.
 // Version 4 adds a plane through v (when `plane` is given: the parent's normal in
 // quantized space, plane_normal): `axis` = its component largest in magnitude (the
 // lowest such), 3 when it is 0 or not given (no plane). Along `axis` the surface is
@@ -40,9 +41,18 @@ inline uint16_t reflect16(uint16_t about, uint16_t x) { return uint16_t(2u * abo
 // predicted from the plane (plane_coordinate) with its own shift
 //   axis_shift = max(0, bit_width(max over the ring of |plane . (ring[t] - v)|)
 //                       - bit_width(|plane[axis]|) - 3)
-// (about the ring's distance from the plane / 8). child_dot and parent_dot are
+// (about the ring's distance from the plane / 8; the parent's one less,
+// kParentPlaneShiftLess). child_dot and parent_dot are
 // plane . (centroid - v) for the two centroids above (the child's: rounded centroid).
 // (A split that is not a fan: child = v, parent = reflection, shift 0, no plane.)
+// Version 7 predicts the parent from v and its ring, nearly without the child
+// (the reflection about v the versions before used missed by more: bench/RESULTS.md,
+// seventeenth session): v + (v - child) / 8 + (parent_centroid - v) / 2, i.e.
+// (5 v - child + 4 parent_centroid + 4) >> 3 (arithmetic shift), wrapped to 16 bits.
+[[gnu::always_inline]] inline uint16_t parent_position(uint16_t v, uint16_t child, uint16_t parent_centroid) {
+    return uint16_t((5 * int32_t(v) - int32_t(child) + 4 * int32_t(parent_centroid) + 4) >> 3);
+}
+inline constexpr uint32_t kParentPlaneShiftLess = 1;
 // centroid of n vertices = divide_small(sum + n / 2, n).
 struct FanPrediction {
     uint16_t child[3];
@@ -98,8 +108,9 @@ inline void plane_axes(uint32_t axis, uint32_t& a, uint32_t& b) {
 // `offset / scale` (offset in units of normal . (x - v)):
 //   v[axis] + round_div(offset - scale * (n_a (t_a - v_a) + n_b (t_b - v_b)), scale * n[axis]).
 // The child's uses offset = child_dot, scale 4 (a quarter of its centroid's
-// distance); the parent's offset = parent_dot - 4 * normal . (child - v), scale 8
-// (the reflection of the child's distance, halved, plus an eighth of its centroid's).
+// distance); the parent's (version 7) offset = 2 parent_dot - 4 normal . (child - v),
+// scale 64 (a 32nd of its centroid's distance less a 16th of the child's: the
+// parent stays close to the plane through v).
 [[gnu::always_inline]] inline uint16_t plane_coordinate(const FanPrediction& pred, const uint16_t v[3],
                                                         const uint16_t t[3], int64_t offset, int64_t scale) {
     uint32_t a, b;

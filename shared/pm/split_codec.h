@@ -1,5 +1,5 @@
 #pragma once
-// How a SPLT section's values are coded (version 3, kept in versions 4 to 6): the
+// How a SPLT section's values are coded (version 3, kept in versions 4 to 7): the
 // contexts, the entropy coder (SplitEncoder, writer) and its decoder
 // (SplitDecoder, reader), and the zig-zag residuals of 16- and 8-bit codes.
 // What the values are and how they are predicted: prediction.h, FORMAT.md.

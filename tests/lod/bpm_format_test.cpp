@@ -1,6 +1,7 @@
-// The version-4 split predictions of the .bpm format (shared/pm/prediction.h,
-// FORMAT.md "Predictions"): the plane through the parent, the child's normal from
-// its faces after the split, and what a file with or without normals decodes to.
+// The split predictions of the .bpm format (shared/pm/prediction.h, FORMAT.md
+// "Predictions"): the plane through the parent (version 4), the child's normal from
+// its faces after the split, the moved parent's prediction (version 7), and what a
+// file with or without normals decodes to.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -97,6 +98,16 @@ TEST(BpmFormat, FlatRingPredictsTheAxisAlongTheNormalExactly) {
         const uint16_t off = pm::plane_coordinate(pred, f.q.data(), f.q.data(), 4 * 10 * n_axis, 4);
         EXPECT_EQ(int(off), int(f.q[pred.axis]) + 10);
     }
+}
+
+TEST(BpmFormat, ParentPredictionIsTheVersion7Blend) {
+    // v + (v - c) / 8 + (C_p - v) / 2, rounded by the arithmetic shift of (5 v - c + 4 C_p + 4).
+    EXPECT_EQ(pm::parent_position(1000, 900, 1200), 1113);  // 1112.5
+    EXPECT_EQ(pm::parent_position(1000, 1000, 1000), 1000);
+    EXPECT_EQ(pm::parent_position(1000, 1080, 1000), 990);
+    // Below 0 it wraps around like every 16-bit prediction (floor(-96 / 8) = -12).
+    EXPECT_EQ(pm::parent_position(0, 100, 0), 65524);
+    EXPECT_EQ(pm::parent_position(65535, 65535, 65535), 65535);
 }
 
 TEST(BpmFormat, NoPlaneWithoutANormal) {
@@ -205,10 +216,39 @@ TEST(BpmFormat, FileWithoutNormalsDecodesEveryPosition) {
     EXPECT_GT(coarse, 0u);
 }
 
+// Version 7's parent prediction round trip: with every position exact, each split
+// puts its parent where the builder moved it (to the quantization), at the level
+// right after it, and the torus moves most of its parents.
+TEST(BpmFormat, MovedParentsRoundTripThroughTheirPrediction) {
+    const Mesh torus = test::bumpy_torus(40, 24);
+    for (bool normals : {true, false}) {  // with and without the plane
+        lod::LodOptions options;
+        options.coarse_intermediate = false;
+        options.normals = normals;
+        auto build = lod::build_progressive_mesh(torus, options);
+        ASSERT_TRUE(build.ok());
+        auto bytes = lod::encode_bpm(std::vector<Mesh>{torus}, options);
+        ASSERT_TRUE(bytes.ok());
+        auto pms = pm::read_bpm_bytes(*bytes, "torus.bpm", pm::BpmStream::FaceOrder::Refinement);  // file numbering
+        ASSERT_TRUE(pms.ok()) << pms.error().message;
+        pm::ProgressiveMesh& m = *(*pms)[0];
+        ASSERT_EQ(m.max_level(), build->splits.size());
+        size_t moved = 0;
+        for (size_t j = 0; j < build->splits.size(); ++j) {
+            const lod::VertexSplit& sp = build->splits[j];
+            m.set_level(j + 1);
+            ASSERT_LE(glm::length(Vec3(m.position(sp.parent)) - sp.parent_to), m.quantization_bound() * 1.01)
+                << "split " << j << (normals ? "" : " (no normals)");
+            moved += glm::length(sp.parent_to - sp.parent_from) > 2 * m.quantization_bound();
+        }
+        EXPECT_GT(moved, build->splits.size() / 2);
+    }
+}
+
 TEST(BpmFormat, OlderVersionsAreRejectedWithTheirNumber) {
     auto bytes = lod::encode_bpm(std::vector<Mesh>{test::icosphere(2)}, lod::LodOptions{});
     ASSERT_TRUE(bytes.ok());
-    for (uint8_t version : {4, 5}) {  // 5: every position exact (no grids in SPLT)
+    for (uint8_t version : {4, 5, 6}) {  // 5: every position exact (no grids); 6: the parent by the child's reflection
         std::vector<uint8_t> old = *bytes;
         old[4] = version;
         old[5] = 0;
