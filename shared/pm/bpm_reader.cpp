@@ -495,7 +495,10 @@ Status BpmStream::parse_splits(size_t structure, std::span<const uint8_t> payloa
             : uint32_t(std::clamp<size_t>(split_limit(structure), first + at.next + 1, size_t(first) + count) - first);
     m.unpark_decoding_state();  // a structure paused before: its state back first
     // A split adds 1 to 3 faces: grown for what is decoded now, not the whole section.
-    if (whole_file_) m.grow_decoded(m.split_count_, m.face_count_);
+    if (whole_file_) {
+        m.grow_decoded(m.split_count_, m.face_count_);
+        m.replay_.hold_vertices(m.base_vertices_ + m.split_count_);
+    }
     m.grow_decoded(size_t(first) + stop,
                    std::min(faces_before + h.new_faces, m.decoded_faces_ + 3 * size_t(stop - at.next)));
     SplitDecoder decoder;

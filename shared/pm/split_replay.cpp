@@ -40,6 +40,13 @@ void SplitReplay::grow(size_t vertices, size_t faces) {
     }
 }
 
+void SplitReplay::hold_vertices(size_t vertices) {
+    if (const size_t n = std::min(vertices, vertex_capacity_); regions_.size() < n) {
+        regions_.reserve(n);
+        regions_.resize(n);  // value-initialised: no corners
+    }
+}
+
 void SplitReplay::grow_regions(uint32_t v) {
     const size_t n = std::min(std::max<size_t>({size_t(v) + 1, 2 * regions_.size(), 64}), vertex_capacity_);
     regions_.resize(std::max<size_t>(n, size_t(v) + 1));  // value-initialised: no corners

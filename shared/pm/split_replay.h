@@ -31,6 +31,10 @@ public:
     // Room for the corners of `vertices` vertices and `faces` faces (never
     // shrinks; faces must stay within what reset/clear's owner announced).
     void grow(size_t vertices, size_t faces);
+    // The descriptors of the first `vertices` vertices (<= the capacity) at
+    // once, for a reader that will decode them all (a whole file): growing
+    // them as vertices arrive copies and faults in each size in turn.
+    void hold_vertices(size_t vertices);
     // Appends faces [first_face, first_face + count) with the given indices; their
     // corners must be above every corner added before (faces arrive in order).
     void add_faces(size_t first_face, std::span<const uint32_t> indices);
