@@ -472,8 +472,10 @@ Status encode_split(SplitWriter& w, size_t j) {
     if (w.normals) put_normal(w, pred, from, coded.to, parent, child, form == pm::kTopoFan);
     // (parent_corners are still the parent's: nothing changed the replay since.)
     w.moved.resize(w.parent_corners.size());
-    if (!w.replay.apply_mask(parent, child, mask, w.parent_corners.data(), w.parent_corners.size(), w.moved.data()) ||
-        size_t(std::popcount(mask)) != w.pm.patch_begin[j + 1] - w.pm.patch_begin[j])
+    const size_t moving = size_t(std::popcount(mask));
+    if (!w.replay.apply_mask(parent, child, mask, moving, w.parent_corners.data(), w.parent_corners.size(),
+                             w.moved.data()) ||
+        moving != w.pm.patch_begin[j + 1] - w.pm.patch_begin[j])
         return split_error(w.mesh, j, "index patches do not replay");
     w.replay.add_faces(w.face, w.faces);
     w.face += sp.face_count;

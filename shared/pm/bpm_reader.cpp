@@ -274,6 +274,7 @@ struct DecodedSplit {
     uint32_t corners[64];
     size_t corner_count = 0;
     uint64_t mask = 0;
+    uint32_t moving = 0;  // popcount(mask): the corners moving to the child
     uint32_t faces = 0, faces_at[9];
     uint32_t fan = 0;               // fan form: the size of the parent's fan
     uint16_t from[3], q[3], to[3];  // the parent before and after, the child
@@ -310,6 +311,7 @@ struct DecodedSplit {
     if (s.fan == 0 || start >= s.fan || length >= s.fan) return "fan split of a vertex without such a fan";
     uint32_t at = start;
     for (uint32_t t = 0; t < length; ++t, at = at + 1 == s.fan ? 0 : at + 1) s.mask |= uint64_t(1) << fan_at[at];
+    s.moving = length;  // fan_at names each fan face once
     s.faces = 2;
     const uint32_t f[6] = {s.child, s.parent, ring[start], s.child, ring[at], s.parent};
     std::copy_n(f, 6, s.faces_at);
@@ -327,6 +329,7 @@ struct DecodedSplit {
     if (!topo.varint(head)) return "topology record truncated";
     s.faces = uint32_t(head & 3);
     s.mask = head >> 2;
+    s.moving = uint32_t(std::popcount(s.mask));
     for (uint32_t f = 0; f < s.faces && f < 3; ++f) {
         uint64_t code = 0;
         if (!topo.varint(code) || (code >> 1) >= 2 * s.corner_count) return "a new face names a missing neighbour";
@@ -494,7 +497,10 @@ Status BpmStream::parse_splits(size_t structure, std::span<const uint8_t> payloa
             : uint32_t(std::clamp<size_t>(split_limit(structure), first + at.next + 1, size_t(first) + count) - first);
     m.unpark_decoding_state();  // a structure paused before: its state back first
     // A split adds 1 to 3 faces: grown for what is decoded now, not the whole section.
-    if (whole_file_) m.grow_decoded(m.split_count_, m.face_count_);
+    if (whole_file_) {
+        m.grow_decoded(m.split_count_, m.face_count_);
+        m.replay_.hold_vertices(m.base_vertices_ + m.split_count_);
+    }
     m.grow_decoded(size_t(first) + stop,
                    std::min(faces_before + h.new_faces, m.decoded_faces_ + 3 * size_t(stop - at.next)));
     SplitDecoder decoder;
@@ -562,10 +568,10 @@ Status BpmStream::parse_splits(size_t structure, std::span<const uint8_t> payloa
         decode_normal(ctx, values, s);
         if (values.past_end()) return fail("values truncated");
         // Index patches first (on the level before the split), then the new faces.
-        if (!m.replay_.apply_mask(s.parent, s.child, s.mask, s.corners, s.corner_count, moved))
+        if (!m.replay_.apply_mask(s.parent, s.child, s.mask, s.moving, s.corners, s.corner_count, moved))
             return fail("patch mask names a missing corner");
-        record_split(m, j, s.parent, s.child, {s.faces_at, s.faces * 3}, {moved, size_t(std::popcount(s.mask))}, s.from,
-                     s.to, s.q, s.oct, uint16_t(previous_error_bits >> 16));  // the low half is 0
+        record_split(m, j, s.parent, s.child, {s.faces_at, s.faces * 3}, {moved, s.moving}, s.from, s.to, s.q, s.oct,
+                     uint16_t(previous_error_bits >> 16));  // the low half is 0
         face_cursor += s.faces;
         if (m.batched() && j + 1 == m.batch_levels_[m.ordered_batches_]) m.order_batch(j + 1);
     }

@@ -40,6 +40,13 @@ void SplitReplay::grow(size_t vertices, size_t faces) {
     }
 }
 
+void SplitReplay::hold_vertices(size_t vertices) {
+    if (const size_t n = std::min(vertices, vertex_capacity_); regions_.size() < n) {
+        regions_.reserve(n);
+        regions_.resize(n);  // value-initialised: no corners
+    }
+}
+
 void SplitReplay::grow_regions(uint32_t v) {
     const size_t n = std::min(std::max<size_t>({size_t(v) + 1, 2 * regions_.size(), 64}), vertex_capacity_);
     regions_.resize(std::max<size_t>(n, size_t(v) + 1));  // value-initialised: no corners
@@ -145,10 +152,9 @@ size_t SplitReplay::ordered_fan(const uint32_t* corners, size_t count, uint32_t*
     return 0;
 }
 
-bool SplitReplay::apply_mask(uint32_t parent, uint32_t child, uint64_t mask, const uint32_t* corners, size_t count,
-                             uint32_t* moved) {
+bool SplitReplay::apply_mask(uint32_t parent, uint32_t child, uint64_t mask, size_t moving, const uint32_t* corners,
+                             size_t count, uint32_t* moved) {
     if (count < 64 && (mask >> count) != 0) return false;
-    const size_t moving = size_t(std::popcount(mask));
     if (parent >= regions_.size()) grow_regions(parent);
     uint32_t* to = make_room(child, region(child).count + moving + 2);  // + the split's new faces
     uint32_t* from = pool_.data() + regions_[parent].offset;            // after make_room: the pool may have moved
@@ -173,7 +179,7 @@ bool SplitReplay::apply_mask(uint32_t parent, uint32_t child, uint64_t mask, std
                              std::vector<uint32_t>& moved) {
     corners_of(parent, scratch);
     moved.resize(scratch.size());
-    if (!apply_mask(parent, child, mask, scratch.data(), scratch.size(), moved.data())) {
+    if (!apply_mask(parent, child, mask, size_t(std::popcount(mask)), scratch.data(), scratch.size(), moved.data())) {
         moved.clear();
         return false;
     }

@@ -31,6 +31,10 @@ public:
     // Room for the corners of `vertices` vertices and `faces` faces (never
     // shrinks; faces must stay within what reset/clear's owner announced).
     void grow(size_t vertices, size_t faces);
+    // The descriptors of the first `vertices` vertices (<= the capacity) at
+    // once, for a reader that will decode them all (a whole file): growing
+    // them as vertices arrive copies and faults in each size in turn.
+    void hold_vertices(size_t vertices);
     // Appends faces [first_face, first_face + count) with the given indices; their
     // corners must be above every corner added before (faces arrive in order).
     void add_faces(size_t first_face, std::span<const uint32_t> indices);
@@ -45,9 +49,11 @@ public:
     bool apply_mask(uint32_t parent, uint32_t child, uint64_t mask, std::vector<uint32_t>& scratch,
                     std::vector<uint32_t>& moved);
     // The same given the parent's corners exactly as corners_of returned them
-    // (count <= 64): the moved corners, ascending, go to moved[0 .. popcount(mask)).
-    bool apply_mask(uint32_t parent, uint32_t child, uint64_t mask, const uint32_t* corners, size_t count,
-                    uint32_t* moved);
+    // (count <= 64) and `moving` == popcount(mask) (the decoder knows it: a
+    // library call per split on baseline x86-64): the moved corners, ascending,
+    // go to moved[0 .. moving).
+    bool apply_mask(uint32_t parent, uint32_t child, uint64_t mask, size_t moving, const uint32_t* corners,
+                    size_t count, uint32_t* moved);
     // The neighbours of `v` (vertices sharing a face with it), ascending, into `out`.
     void ring_of(uint32_t v, std::vector<uint32_t>& out) const;
     // The same from v's corners (as corners_of returned them) into out[0 .. 2 * count);
