@@ -87,6 +87,10 @@ struct ContourStack {
     // the patient's right, y anterior, z superior) when the source says so (label
     // volumes, RT-STRUCTs); not stored in stack files. Orients exhibits' cameras.
     std::optional<std::array<Vec3, 3>> ras_axes;
+    // A label volume's in-plane voxel size (the larger of its two; stack
+    // units): its contours are traced only to within about that. Set by the
+    // label import; not stored in stack files.
+    std::optional<double> voxel;
     // The "links" section, in file order; references are file indices.
     std::vector<LinkOverride> links;
 };
