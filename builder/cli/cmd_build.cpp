@@ -138,7 +138,7 @@ void print_usage() {
         "                                     (small thin structures lose the most volume);\n"
         "                                     vertices leave their slice planes\n"
         "  --interpolate N                    N intermediate rings per slice gap on C1 Hermite curves through\n"
-        "                                     the traced contours (default 0: linear bands); every traced\n"
+        "                                     the traced contours (default 3; 0: linear bands); every traced\n"
         "                                     point stays on the mesh\n"
         "  --ring-tolerance F                 each curve between two slices takes the fewest of those N\n"
         "                                     points that keep it within F x the slice gap of their\n"
@@ -171,6 +171,11 @@ void print_usage() {
 // (contour files, RT-STRUCTs) keep the gap rule alone.
 constexpr double kRingVoxel = 0.25;
 
+// Intermediate rings per slice gap unless --interpolate says otherwise. The
+// command line interpolates by default (the library's BuildOptions stays
+// linear); `--interpolate 0` gives the linear bands.
+constexpr long kDefaultInterpolate = 3;
+
 // The pipeline's options from the command line; errors name the bad option
 // (shared with `bodygen exhibit`).
 Result<BuildOptions> build_options_from_args(const CliArgs& args) {
@@ -179,7 +184,7 @@ Result<BuildOptions> build_options_from_args(const CliArgs& args) {
     auto smooth = args.get_long("smooth", 0);
     if (!smooth) return smooth.error();
     if (*smooth < 0 || *smooth > 1000) return input_error("build: --smooth must be between 0 and 1000");
-    auto interpolate = args.get_long("interpolate", 0);
+    auto interpolate = args.get_long("interpolate", kDefaultInterpolate);
     if (!interpolate) return interpolate.error();
     if (*interpolate < 0 || *interpolate > 64) return input_error("build: --interpolate must be between 0 and 64");
     auto ring_tolerance = args.get_double("ring-tolerance", BuildOptions{}.ring_tolerance);
