@@ -143,7 +143,7 @@ void print_usage() {
         "  --ring-tolerance F                 each curve between two slices takes the fewest of those N\n"
         "                                     points that keep it within F x the slice gap of their\n"
         "                                     polyline (default 0.004; 0: every curve gets N)\n"
-        "  --ring-voxel G                     label volumes: nor points where a curve stays within G x the\n"
+        "  --ring-voxel G                     label volumes: no ring points where a curve stays within G x the\n"
         "                                     in-plane voxel of their polyline, the contours' own precision\n"
         "                                     (default 0.25; 0: the slice gap rule alone)\n"
         "  --strict                           refuse contours with any problem instead of repairing them\n"
@@ -168,7 +168,8 @@ void print_usage() {
 // than a quarter voxel. A 1 mm label map's 1 mm gaps then get few rings, while
 // the same map sliced every 3rd or 5th voxel keeps nearly all the gain of
 // every ring (bench/RESULTS.md, seventeenth session); stacks without a voxel
-// (contour files, RT-STRUCTs) keep the gap rule alone.
+// (sliced meshes, RT-STRUCTs, contour files written without one) keep the
+// gap rule alone.
 constexpr double kRingVoxel = 0.25;
 
 // Intermediate rings per slice gap unless --interpolate says otherwise. The
