@@ -138,11 +138,14 @@ void print_usage() {
         "                                     (small thin structures lose the most volume);\n"
         "                                     vertices leave their slice planes\n"
         "  --interpolate N                    N intermediate rings per slice gap on C1 Hermite curves through\n"
-        "                                     the traced contours (default 0: linear bands); every traced\n"
+        "                                     the traced contours (default 3; 0: linear bands); every traced\n"
         "                                     point stays on the mesh\n"
         "  --ring-tolerance F                 each curve between two slices takes the fewest of those N\n"
         "                                     points that keep it within F x the slice gap of their\n"
         "                                     polyline (default 0.004; 0: every curve gets N)\n"
+        "  --ring-voxel G                     label volumes: no ring points where a curve stays within G x the\n"
+        "                                     in-plane voxel of their polyline, the contours' own precision\n"
+        "                                     (default 0.25; 0: the slice gap rule alone)\n"
         "  --strict                           refuse contours with any problem instead of repairing them\n"
         "  --repair-tolerance D               largest distance a contour repair may move a point, in stack\n"
         "                                     units (default 0.001 x the stack's x-y extent; see bodygen check)\n"
@@ -161,6 +164,19 @@ void print_usage() {
 
 }  // namespace body::cli
 
+// `--ring-voxel`'s default: rings only where a curve leaves its chord by more
+// than a quarter voxel. A 1 mm label map's 1 mm gaps then get few rings, while
+// the same map sliced every 3rd or 5th voxel keeps nearly all the gain of
+// every ring (bench/RESULTS.md, seventeenth session); stacks without a voxel
+// (sliced meshes, RT-STRUCTs, contour files written without one) keep the
+// gap rule alone.
+constexpr double kRingVoxel = 0.25;
+
+// Intermediate rings per slice gap unless --interpolate says otherwise. The
+// command line interpolates by default (the library's BuildOptions stays
+// linear); `--interpolate 0` gives the linear bands.
+constexpr long kDefaultInterpolate = 3;
+
 // The pipeline's options from the command line; errors name the bad option
 // (shared with `bodygen exhibit`).
 Result<BuildOptions> build_options_from_args(const CliArgs& args) {
@@ -169,15 +185,20 @@ Result<BuildOptions> build_options_from_args(const CliArgs& args) {
     auto smooth = args.get_long("smooth", 0);
     if (!smooth) return smooth.error();
     if (*smooth < 0 || *smooth > 1000) return input_error("build: --smooth must be between 0 and 1000");
-    auto interpolate = args.get_long("interpolate", 0);
+    auto interpolate = args.get_long("interpolate", kDefaultInterpolate);
     if (!interpolate) return interpolate.error();
     if (*interpolate < 0 || *interpolate > 64) return input_error("build: --interpolate must be between 0 and 64");
     auto ring_tolerance = args.get_double("ring-tolerance", BuildOptions{}.ring_tolerance);
     if (!ring_tolerance) return ring_tolerance.error();
     if (!(*ring_tolerance >= 0.0 && *ring_tolerance <= 1.0))
         return input_error("build: --ring-tolerance must be between 0 and 1");
+    auto ring_voxel = args.get_double("ring-voxel", kRingVoxel);
+    if (!ring_voxel) return ring_voxel.error();
+    if (!(*ring_voxel >= 0.0 && *ring_voxel <= 10.0))
+        return input_error("build: --ring-voxel must be between 0 and 10");
     BuildOptions options;
     options.fairing.iterations = int(*smooth);
+    options.ring_voxel = *ring_voxel;
     options.interpolate = int(*interpolate);
     options.ring_tolerance = *ring_tolerance;
     auto caps = pick<CapStyle>(
@@ -221,6 +242,7 @@ void print_json(const std::string& input, const std::string& output, const Build
     j["smooth"] = options.fairing.iterations;
     j["interpolate"] = options.interpolate;
     j["ring_tolerance"] = options.ring_tolerance;
+    j["ring_voxel"] = options.ring_voxel;
     j["seconds"] = seconds;
     j["repairs"] = repairs;
     nlohmann::json list = nlohmann::json::array();
@@ -256,7 +278,7 @@ void print_summary(const std::string& output, double seconds, const std::vector<
 int run_build(const Args& argv) {
     auto args = CliArgs::parse(argv,
                                {"output", "caps", "tiling", "correspondence", "branching", "jobs", "smooth",
-                                "interpolate", "ring-tolerance", "repair-tolerance", "min-area",
+                                "interpolate", "ring-tolerance", "ring-voxel", "repair-tolerance", "min-area",
 #ifdef BODY_WITH_IMPORT
                                 "labels", "axis", "step", "only", "threshold", "tolerance", "label-smooth"
 #endif

@@ -55,7 +55,7 @@ constexpr const char* kUsage =
     "  --quiet              no progress bar, warnings or summary\n"
     "  --json               the summary as JSON on stdout\n"
     "  build options:  --caps --tiling --correspondence --branching --smooth --interpolate --ring-tolerance\n"
-    "                  (bodygen build --help)\n"
+    "                  --ring-voxel (bodygen build --help)\n"
     "  lod options:    --min-triangles --chunk-splits --no-normals (bodygen lod --help)\n"
 #ifdef BODY_WITH_IMPORT
     "  --slices-volume GREY.nii  a grey-level NIfTI image (e.g. the template the labels were drawn\n"
@@ -179,16 +179,17 @@ void print_json(const std::vector<exhibit::Part>& parts, const std::vector<exhib
 }  // namespace body::cli
 
 int run_exhibit(const Args& argv) {
-    auto args = CliArgs::parse(argv,
-                               {"output",    "groups",      "translations",   "view",           "orientation",
-                                "jobs",      "caps",        "tiling",         "correspondence", "branching",
-                                "smooth",    "interpolate", "ring-tolerance", "min-triangles",  "chunk-splits",
+    auto args = CliArgs::parse(
+        argv,
+        {"output",         "groups",       "translations",   "view",         "orientation", "jobs",
+         "caps",           "tiling",       "correspondence", "branching",    "smooth",      "interpolate",
+         "ring-tolerance", "ring-voxel",   "min-triangles",  "chunk-splits",
 #ifdef BODY_WITH_IMPORT
-                                "labels",    "axis",        "step",           "only",           "threshold",
-                                "tolerance", "min-area",    "label-smooth",   "slices-volume"
+         "labels",         "axis",         "step",           "only",         "threshold",   "tolerance",
+         "min-area",       "label-smooth", "slices-volume"
 #endif
-                               },
-                               {"help", "quiet", "json", "strict", "no-normals"});
+        },
+        {"help", "quiet", "json", "strict", "no-normals"});
     if (!args) return report(args.error());
     if (args->has("help")) {
         std::printf("%s", kUsage);

@@ -72,6 +72,7 @@ enum class Member : uint8_t {
     Format,
     Version,
     Units,
+    Voxel,
     Structures,
     Slices,
     Links,
@@ -90,6 +91,7 @@ enum class Slot : uint8_t {
     Format,
     Version,
     Units,
+    Voxel,
     StructureList,
     SliceList,
     Links,
@@ -214,6 +216,7 @@ private:
                 if (k == "format") return Member::Format;
                 if (k == "version") return Member::Version;
                 if (k == "units") return Member::Units;
+                if (k == "voxel") return Member::Voxel;
                 if (k == "structures") return Member::Structures;
                 if (k == "slices") return Member::Slices;
                 if (k == "links") return Member::Links;
@@ -245,6 +248,7 @@ private:
                     case Member::Format: return Slot::Format;
                     case Member::Version: return Slot::Version;
                     case Member::Units: return Slot::Units;
+                    case Member::Voxel: return Slot::Voxel;
                     case Member::Structures: return Slot::StructureList;
                     case Member::Slices: return Slot::SliceList;
                     case Member::Links: return Slot::Links;
@@ -310,6 +314,12 @@ private:
                 else
                     fail({kUnits, 0, 0, 0, 0}, path_ + ": \"units\" must be a string");
                 break;
+            case Slot::Voxel:
+                if (number && std::isfinite(v.number) && v.number > 0.0)
+                    stack_.voxel = v.number;
+                else
+                    bad_voxel();
+                break;
             case Slot::StructureList: structures_not_array(); break;
             case Slot::SliceList: slices_ok_ = false; break;
             case Slot::Links: fail({kLinks, 0, 0, 0, 0}, path_ + ": \"links\" must be an array"); break;
@@ -357,6 +367,7 @@ private:
     void not_a_stack() {
         fail({kFormat, 0, 0, 0, 0}, path_ + ": not a contour stack (\"format\" must be \"bodygen.contours\")");
     }
+    void bad_voxel() { fail({kUnits, 1, 0, 0, 0}, path_ + ": \"voxel\" must be a positive number"); }
     void structures_not_array() { fail({kStructures, 0, 0, 0, 0}, path_ + ": \"structures\" must be an array"); }
     void structure_needs_id(size_t i) {
         fail({kStructures, i, 0, 0, 0}, path_ + ": structure " + std::to_string(i) + ": needs a string \"id\"");
@@ -469,6 +480,7 @@ private:
             case Slot::Name: name_ok_ = false; break;
             case Slot::Label: label_state_ = IdState::Wrong; break;
             case Slot::Units: fail({kUnits, 0, 0, 0, 0}, path_ + ": \"units\" must be a string"); break;
+            case Slot::Voxel: bad_voxel(); break;
             case Slot::Format: format_ok_ = false; break;
             case Slot::Version: version_ok_ = false; break;
             case Slot::Ignored: break;
@@ -688,6 +700,7 @@ std::string contour_stack_to_json(const ContourStack& stack) {
     root["format"] = "bodygen.contours";
     root["version"] = stack.links.empty() ? 1 : 2;
     root["units"] = stack.units;
+    if (stack.voxel) root["voxel"] = *stack.voxel;
     json structures = json::array();
     for (const auto& s : stack.structures)
         structures.push_back({{"id", s.id}, {"name", s.name}, {"color", {s.color.r, s.color.g, s.color.b}}});

@@ -24,6 +24,10 @@
 // merging below), or a reference to no contour, is refused when reading.
 // Writers emit version 1 when there are no links, so such files stay readable
 // by older builders.
+// "voxel" (optional, either version; a positive number in the stack's units):
+// the in-plane voxel size of the label volume the contours were traced from
+// (`bodygen contours` writes it), so a build from the file bounds its rings as
+// a build from the volume does. Older readers ignore it, as any unknown member.
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -87,6 +91,10 @@ struct ContourStack {
     // the patient's right, y anterior, z superior) when the source says so (label
     // volumes, RT-STRUCTs); not stored in stack files. Orients exhibits' cameras.
     std::optional<std::array<Vec3, 3>> ras_axes;
+    // A label volume's in-plane voxel size (the larger of its two; stack
+    // units): its contours are traced only to within about that. Set by the
+    // label import; stored in stack files as "voxel".
+    std::optional<double> voxel;
     // The "links" section, in file order; references are file indices.
     std::vector<LinkOverride> links;
 };

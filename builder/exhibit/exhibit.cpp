@@ -23,6 +23,7 @@ ContourStack one_structure(const ContourStack& stack, const StructureInfo& s) {
     ContourStack part;
     part.units = stack.units;
     part.ras_axes = stack.ras_axes;
+    part.voxel = stack.voxel;
     part.structures = {s};
     size_t first = SIZE_MAX, last = 0;
     std::vector<Slice> slices;

@@ -50,6 +50,7 @@ struct Work {
     std::span<const double> slice_z;
     int rings = 0;           // the most points a rung gets
     double tolerance = 0.0;  // of the curve from its polyline, per unit of slice gap (0: every rung gets `rings`)
+    double least = 0.0;      // stack units: the bound is max(tolerance x gap, least)
     std::vector<int> slice;  // per input vertex
     std::unordered_map<uint64_t, uint32_t> rung_of;  // edge_key -> rung
     std::vector<Rung> rungs;
@@ -208,18 +209,19 @@ std::vector<EndSlopes> slopes(Work& w, std::span<const Vec3> positions, std::spa
 // at most (4/27) h (|m0'| + |m1'|) (m' = end slope - chord slope, h the gap);
 // n evenly spaced points leave about that / (n + 1)^2 between the curve and
 // their polyline. A curved rung takes the fewest n <= rings that bring this
-// under tolerance x h; a straight one none.
+// under max(tolerance x h, least); a straight one none.
 void choose_counts(Work& w, std::span<const Vec3> positions, std::span<const EndSlopes> slope) {
     for (size_t i = 0; i < w.rungs.size(); ++i) {
         Rung& r = w.rungs[i];
         r.count = r.band ? w.rings : 0;
-        if (!(w.tolerance > 0) || !r.band) continue;
+        if (!(w.tolerance > 0 || w.least > 0) || !r.band) continue;
         r.count = 0;
         if (!r.curved) continue;
         const Vec3 a = positions[r.lo], b = positions[r.hi];
-        const Vec2 chord = (Vec2(b) - Vec2(a)) / (b.z - a.z);
+        const double h = b.z - a.z;
+        const Vec2 chord = (Vec2(b) - Vec2(a)) / h;
         const double leave = (4.0 / 27.0) * (glm::length(slope[i].lo - chord) + glm::length(slope[i].hi - chord));
-        const double n = std::ceil(std::sqrt(leave / w.tolerance)) - 1.0;
+        const double n = std::ceil(std::sqrt(leave / std::max(w.tolerance, w.least / h))) - 1.0;
         r.count = n <= 0 ? 0 : n >= double(w.rings) ? w.rings : int(n);
     }
 }
@@ -602,13 +604,15 @@ size_t keep_free_of_new_crossings(Work& w, std::vector<Vec3>& positions, std::sp
 }  // namespace
 
 InterpolationStats interpolate_between_slices(std::vector<Vec3>& positions, std::vector<uint32_t>& indices,
-                                              std::span<const double> slice_z, int rings, double tolerance) {
+                                              std::span<const double> slice_z, int rings, double tolerance,
+                                              double least) {
     InterpolationStats stats;
     if (rings <= 0 || slice_z.size() < 2) return stats;
     Work w;
     w.slice_z = slice_z;
     w.rings = rings;
     w.tolerance = tolerance;
+    w.least = least;
     w.slice.resize(positions.size());
     for (size_t v = 0; v < positions.size(); ++v) w.slice[v] = slice_of(positions[v].z, slice_z);
     find_rungs(w, indices);

@@ -29,8 +29,10 @@
 //   points, at most `rings`, that keep the estimated distance between its
 //   curve and the polyline through its points under `tolerance` x the slice
 //   gap (none where the curve stays on its chord, or the rung stays straight);
-//   every triangle on the rung reads its count. `tolerance` = 0: every split
-//   rung gets `rings`.
+//   every triangle on the rung reads its count. `least` > 0 (stack units)
+//   raises that bound to max(`tolerance` x gap, `least`): a curve that leaves
+//   its chord by less than the contours' own precision gets no points. Both
+//   0: every split rung gets `rings`.
 // - Band triangles become strips from their base to their apex with the
 //   original orientation: the two rungs' points merged by height (quads where
 //   the counts are equal, 2 x count + 1 triangles); the mesh's connectivity
@@ -56,6 +58,7 @@ struct InterpolationStats {
 };
 
 InterpolationStats interpolate_between_slices(std::vector<Vec3>& positions, std::vector<uint32_t>& indices,
-                                              std::span<const double> slice_z, int rings, double tolerance = 0.0);
+                                              std::span<const double> slice_z, int rings, double tolerance = 0.0,
+                                              double least = 0.0);
 
 }  // namespace body

@@ -539,6 +539,7 @@ ContourStack assemble_stack(const std::string& path, const ImportOptions& option
     }
     for (auto& [k, s] : slices) stack.slices.push_back(std::move(s));
     stack.ras_axes = std::array<Vec3, 3>{frame.e1, frame.e2, frame.n};  // NIfTI scanner space is RAS+
+    stack.voxel = std::max(glm::length(frame.col[frame.u]), glm::length(frame.col[frame.v]));
     std::sort(stack.slices.begin(), stack.slices.end(), [](const Slice& a, const Slice& b) { return a.z < b.z; });
     for (size_t si = 0; si < stack.slices.size(); ++si) {
         stack.slices[si].source_index = si;

@@ -426,9 +426,10 @@ Result<StructureMesh> build_structure(const ContourStack& stack, const Structure
     sm.mesh.color = grouping.infos[i].color;
     sm.mesh.positions = std::move(surface.positions);
     sm.mesh.indices = std::move(surface.triangles);
-    sm.interpolation_straightened = interpolate_between_slices(sm.mesh.positions, sm.mesh.indices, surface.z,
-                                                               options.interpolate, options.ring_tolerance)
-                                        .straightened;
+    sm.interpolation_straightened =
+        interpolate_between_slices(sm.mesh.positions, sm.mesh.indices, surface.z, options.interpolate,
+                                   options.ring_tolerance, options.ring_voxel * stack.voxel.value_or(0.0))
+            .straightened;
     sm.fairing_restored = taubin_smooth(sm.mesh.positions, sm.mesh.indices, options.fairing);
     const MeshTopology topo = analyze_topology(sm.mesh.positions, sm.mesh.indices);
     sm.triangles = sm.mesh.triangle_count();

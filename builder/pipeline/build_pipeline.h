@@ -65,6 +65,12 @@ struct BuildOptions {
     // rung taking `interpolate` points and the Hausdorff distance the same,
     // with 16-24 % fewer triangles (bench/RESULTS.md).
     double ring_tolerance = 0.004;
+    // For a stack that knows its voxel (ContourStack::voxel: label volumes),
+    // no points where a curve stays within this fraction of a voxel of its
+    // chord: the contours are traced to about a voxel, so finer bends add
+    // triangles, not detail. 0: the gap rule alone. `bodygen build` and
+    // `exhibit` pass 0.25 (bench/RESULTS.md).
+    double ring_voxel = 0.0;
     // Structures built at once (they are independent; the output does not depend on it).
     unsigned jobs = 1;
     // Called after each slice of each structure: (done, total) slices. With

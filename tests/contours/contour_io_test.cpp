@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <optional>
 #include <string>
 
 #include "builder/contours/contour_stack.h"
@@ -35,6 +36,19 @@ TEST(ContourIo, RoundTripsThroughJson) {
     ASSERT_TRUE(again.ok()) << again.error().message;
     ASSERT_EQ(again->slices.size(), s->slices.size());
     EXPECT_EQ(again->slices[1].contours[1].points[2], Vec2(4, 4));
+    EXPECT_FALSE(again->voxel);  // written only when the stack has one
+}
+
+// A label volume's voxel (bounds the build's rings) survives the file.
+TEST(ContourIo, VoxelRoundTripsThroughJson) {
+    auto s = parse_contour_stack(kTwoSlices, "t.json");
+    ASSERT_TRUE(s.ok());
+    s->voxel = 0.7;
+    const std::string text = contour_stack_to_json(*s);
+    EXPECT_NE(text.find("\"voxel\":0.7"), std::string::npos) << text;
+    auto again = parse_contour_stack(text, "again.json");
+    ASSERT_TRUE(again.ok()) << again.error().message;
+    EXPECT_EQ(again->voxel, std::optional<double>(0.7));
 }
 
 struct BadCase {
@@ -58,6 +72,9 @@ TEST(ContourIo, BadInputNamesThePlace) {
         // Found by the fuzzer: a member of the wrong type and a number out of range.
         {R"({"format": [{"id": "k"}], "slices": []})", "format"},
         {R"({"format": "bodygen.contours", "version": 1, "units": 3, "slices": []})", "units"},
+        {R"({"format": "bodygen.contours", "version": 1, "voxel": 0, "slices": []})", "\"voxel\" must be a positive"},
+        {R"({"format": "bodygen.contours", "version": 1, "voxel": "1", "slices": []})", "\"voxel\" must be a positive"},
+        {R"({"format": "bodygen.contours", "version": 1, "voxel": [1], "slices": []})", "\"voxel\" must be a positive"},
         {"5e777777777777777", "invalid JSON"},
     };
     for (const BadCase& c : cases) {

@@ -177,8 +177,11 @@ TEST(ExhibitParts, FailingStructureIsLeftOutOthersBuild) {
         s.source_index = size_t(z);
         stack.slices.push_back(s);
     }
+    stack.voxel = 0.5;  // a label volume's: each part keeps it for --ring-voxel
     const auto parts = parts_from_stack(stack, "two.contours.json", *parse_orientation("RAS"));
     ASSERT_EQ(parts.size(), 2u);
+    ASSERT_TRUE(parts[0].contours);
+    EXPECT_EQ(parts[0].contours->voxel, std::optional<double>(0.5));
     EXPECT_FALSE(parts[0].colour);  // the format's default grey is no colour
     ASSERT_TRUE(parts[1].colour);
     PartOptions options;

@@ -13,6 +13,8 @@
 
 #include <cmath>
 #include <filesystem>
+#include <optional>
+#include <set>
 
 #include "builder/import/import.h"
 #include "builder/pipeline/build_pipeline.h"
@@ -201,6 +203,56 @@ TEST(ImportBuild, ThinLabelWithANeckIsOneSolid) {
     EXPECT_EQ(m.components, 1u);
     EXPECT_GT(m.volume, 0.6 * double(slab));
     EXPECT_LT(m.volume, double(slab));
+}
+
+// The rings between slices scale with the voxel (BuildOptions::ring_voxel;
+// 0.25 is the command line's default): a 1 mm sphere sliced at every voxel,
+// its gap the voxel itself, keeps under a quarter of the ring points the gap
+// rule alone gives it (1 mm gaps: 0.004 mm); sliced at every 4th voxel it
+// keeps a larger share.
+TEST(ImportBuild, RingVoxelScalesTheRingsWithTheVoxel) {
+    test::VolumeSpec spec;
+    spec.nx = spec.ny = spec.nz = 30;
+    std::vector<int16_t> data(30 * 30 * 30, 0);
+    for (int z = 0; z < 30; ++z)
+        for (int y = 0; y < 30; ++y)
+            for (int x = 0; x < 30; ++x)
+                if (std::hypot(x - 14.5, y - 14.5, z - 14.5) <= 12.0) data[(size_t(z) * 30 + size_t(y)) * 30 + x] = 3;
+    const std::string path = test::temp_path("rings.nii.gz");
+    test::write_nifti(path, spec, data, DT_INT16);
+    // Vertices strictly between two slices of the stack: the ring points.
+    auto ring_points = [&](int step, double ring_voxel) -> size_t {
+        ImportOptions import;
+        import.step = step;
+        auto stack = load_any_contour_source(path, import);
+        EXPECT_TRUE(stack.ok());
+        if (!stack.ok()) return 0;
+        EXPECT_EQ(stack->voxel, std::optional<double>(1.0));
+        BuildOptions options;
+        options.interpolate = 3;
+        options.ring_voxel = ring_voxel;
+        auto built = build_structures(*stack, options, path);
+        EXPECT_TRUE(built.ok() && built->size() == 1);
+        if (!built.ok() || built->size() != 1) return 0;
+        EXPECT_TRUE(built->front().closed_manifold);
+        std::set<double> slices;
+        for (const Slice& sl : stack->slices) slices.insert(sl.z);
+        size_t n = 0;
+        for (const Vec3& p : built->front().mesh.positions)
+            n += p.z > *slices.begin() && p.z < *slices.rbegin() && !slices.count(p.z);
+        return n;
+    };
+    const size_t dense_gap_rule = ring_points(1, 0.0), dense = ring_points(1, 0.25);
+    const size_t sparse_gap_rule = ring_points(4, 0.0), sparse = ring_points(4, 0.25);
+    RecordProperty("dense", std::to_string(dense) + " of " + std::to_string(dense_gap_rule));
+    RecordProperty("sparse", std::to_string(sparse) + " of " + std::to_string(sparse_gap_rule));
+    EXPECT_GT(dense_gap_rule, 500u);
+    EXPECT_LT(dense * 4, dense_gap_rule);  // the gap rule alone: every one
+    EXPECT_GT(sparse, 0u);
+    // The sparse stack keeps a larger share: its linear bands leave the sphere
+    // by more than a quarter voxel (about gap^2 / 8R = 0.17 mm at the equator
+    // for 4 mm gaps, against 0.01 mm for 1 mm ones).
+    EXPECT_GT(sparse * dense_gap_rule, dense * sparse_gap_rule);
 }
 
 }  // namespace

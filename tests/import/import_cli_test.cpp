@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <set>
 
 #include "builder/contours/validate.h"
@@ -51,6 +52,31 @@ TEST(ContoursCli, LabelVolumeToContourStack) {
     EXPECT_TRUE(validate_contour_stack(*stack, out, warnings).ok());
     r = test::run(bodygen() + " check " + out);
     EXPECT_EQ(r.exit_code, 0) << r.output;
+}
+
+// The contours file keeps the volume's voxel, so building the file bounds the
+// rings between slices as building the volume does (--ring-voxel), and the two
+// routes give the same mesh.
+TEST(ContoursCli, ContourFileKeepsTheVoxelForTheRings) {
+    const std::string in = write_ball("ball_v.nii.gz"), stack = test::temp_path("ball_v.contours.json");
+    auto r = test::run(bodygen() + " contours " + in + " --quiet -o " + stack);
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    auto read = read_contour_stack(stack);
+    ASSERT_TRUE(read.ok()) << read.error().message;
+    EXPECT_EQ(read->voxel, std::optional<double>(1.0));
+    auto faces = [&](const std::string& source, const std::string& options) -> size_t {
+        const std::string obj = test::temp_path("ball_v.obj");
+        auto b = test::run(bodygen() + " build " + source + " -o " + obj + " --quiet " + options);
+        EXPECT_EQ(b.exit_code, 0) << b.output;
+        std::ifstream f(obj);
+        size_t n = 0;
+        for (std::string line; std::getline(f, line);) n += line.starts_with("f ");
+        return n;
+    };
+    const size_t direct = faces(in, ""), from_file = faces(stack, ""), gap_rule = faces(stack, "--ring-voxel 0");
+    EXPECT_GT(direct, 0u);
+    EXPECT_EQ(from_file, direct);
+    EXPECT_GT(gap_rule, from_file);  // the voxel bound drops ring points
 }
 
 // --label-smooth 0 --tolerance 0.5 is the voxel-face route (the library's

@@ -3,6 +3,7 @@
 // tests/contours/contour_cli_test.cpp.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
@@ -144,7 +145,8 @@ TEST_F(BuildCli, InterpolateAndMinArea) {
       {"z": 2, "contours": [{"points": [[-2,-2],[12,-2],[12,12],[-2,12]]}]},
       {"z": 4, "contours": [{"points": [[1,1],[9,1],[9,9],[1,9]]}, {"points": [[20,0],[20.5,0],[20.5,0.5]]}]}]})");
     const std::string raw = (dir / "raw.obj").string(), rings = (dir / "rings.obj").string();
-    ASSERT_EQ(run(bin("bodygen") + " build " + in + " -o " + raw + " --quiet").exit_code, 0);
+    // --interpolate 0: linear bands, every vertex on a slice plane or a cap.
+    ASSERT_EQ(run(bin("bodygen") + " build " + in + " -o " + raw + " --interpolate 0 --quiet").exit_code, 0);
     RunResult r = run(bin("bodygen") + " build " + in + " -o " + rings + " --json --interpolate 3 --ring-tolerance 0");
     ASSERT_EQ(r.exit_code, 0) << r.output;
     EXPECT_NE(r.output.find("\"interpolate\": 3"), std::string::npos) << r.output;
@@ -153,6 +155,37 @@ TEST_F(BuildCli, InterpolateAndMinArea) {
     ASSERT_EQ(a->size(), 2u);  // the speck is a structure of its own
     EXPECT_GT((*b)[0].indices.size(), (*a)[0].indices.size());
     EXPECT_TRUE(analyze_topology((*b)[0].positions, (*b)[0].indices).closed_manifold());
+
+    // Without the option the command line interpolates (3 rings, default
+    // tolerance): a cone whose radius grows 2, 5, 7, 8 curves between its
+    // slices; --interpolate 0 leaves no vertex strictly between two slices.
+    std::string cone = R"({"format": "bodygen.contours", "version": 1, "slices": [)";
+    for (int k = 0; k < 4; ++k) {
+        const double radius[] = {2, 5, 7, 8};
+        cone += std::string(k ? "," : "") + R"({"z": )" + std::to_string(k) + R"(, "contours": [{"points": [)";
+        for (int i = 0; i < 16; ++i)
+            cone += std::string(i ? "," : "") + "[" + std::to_string(radius[k] * std::cos(i * M_PI / 8)) + "," +
+                    std::to_string(radius[k] * std::sin(i * M_PI / 8)) + "]";
+        cone += "]}]}";
+    }
+    const std::string cone_in = write("cone.contours.json", cone + "]}");
+    const auto between_slices = [](const Mesh& m) {
+        size_t n = 0;
+        for (const Vec3& p : m.positions) n += p.z > 0.0 && p.z < 3.0 && std::abs(p.z - std::round(p.z)) > 1e-9;
+        return n;
+    };
+    const std::string plain = (dir / "default.obj").string();
+    r = run(bin("bodygen") + " build " + cone_in + " -o " + plain + " --json");
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find("\"interpolate\": 3"), std::string::npos) << r.output;
+    auto c = read_obj(plain);
+    ASSERT_TRUE(c.ok());
+    EXPECT_GT(between_slices((*c)[0]), 0u);
+    EXPECT_TRUE(analyze_topology((*c)[0].positions, (*c)[0].indices).closed_manifold());
+    ASSERT_EQ(run(bin("bodygen") + " build " + cone_in + " -o " + plain + " --interpolate 0 --quiet").exit_code, 0);
+    c = read_obj(plain);
+    ASSERT_TRUE(c.ok());
+    EXPECT_EQ(between_slices((*c)[0]), 0u);
 
     r = run(bin("bodygen") + " build " + in + " -o " + raw + " --min-area 0.5");
     ASSERT_EQ(r.exit_code, 0) << r.output;
