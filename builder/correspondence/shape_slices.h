@@ -62,7 +62,7 @@ namespace body {
 
 inline constexpr int kShapeDetectCells = 32;
 inline constexpr int kShapeTraceCells = 256;
-inline constexpr int kShapeBranchCells = 128;
+inline constexpr int kShapeBranchCells = 64;
 
 // A section to insert: its contours (empty when none) at height fraction t
 // of the gap from `lower` (0) to `upper` (1).
