@@ -35,6 +35,9 @@ struct StructureSurface {
     // Set before building.
     std::string path;       // input file, named in error messages
     std::vector<double> z;  // slice heights
+    // Per slice: a shape-based slice inserted at a branch (not for a topology
+    // change); empty when none is. Ends beside them keep the input's gap.
+    std::vector<bool> inserted_at_branch;
     TilingMethod tiling = TilingMethod::Multires;
     CorrespondenceMethod correspondence = CorrespondenceMethod::Overlap;
     // Built.

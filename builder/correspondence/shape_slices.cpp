@@ -197,18 +197,97 @@ bool topology_changes_between(Polygons lower, Polygons upper) {
     return tm.solids > 0 && !same(tm, topology(a, r)) && !same(tm, topology(b, r));
 }
 
+// Whether polys[i] lies inside an odd number of the others (a hole under
+// even-odd inside): its first point tested against each.
+bool is_hole(Polygons polys, size_t i) {
+    const Vec2 p = polys[i][0];
+    bool inside = false;
+    for (size_t j = 0; j < polys.size(); ++j) {
+        if (j == i) continue;
+        std::span<const Vec2> q = polys[j];
+        for (size_t k = 0, n = q.size(); k < n; ++k) {
+            const Vec2 a = q[k], b = q[(k + 1) % n];
+            if ((a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y)) inside = !inside;
+        }
+    }
+    return inside;
+}
+
+// The solids of `polys` that meet the other slice's region grown by one cell
+// (`other_grown`): by a cell inside them or a cell holding one of their
+// points, so specks under a cell count too. Solids over nothing are ends (caps),
+// not branches.
+size_t meeting_solids(Polygons polys, const std::vector<uint8_t>& other_grown, const Raster& r) {
+    size_t count = 0;
+    for (size_t i = 0; i < polys.size(); ++i) {
+        if (is_hole(polys, i)) continue;
+        bool meets = false;
+        for (const Vec2& p : polys[i]) {
+            const Vec2 c = (p - r.origin) / r.cell + Vec2(0.5);
+            const auto x = size_t(std::clamp(c.x, 0.0, double(r.width - 1)));
+            const auto y = size_t(std::clamp(c.y, 0.0, double(r.height - 1)));
+            if ((meets = other_grown[y * r.width + x] != 0)) break;
+        }
+        if (!meets) {
+            const std::span<const Vec2> one[1] = {polys[i]};
+            const std::vector<uint8_t> own = inside_mask(one, r);
+            for (size_t k = 0; k < r.size() && !meets; ++k) meets = own[k] && other_grown[k];
+        }
+        count += meets;
+    }
+    return count;
+}
+
+// The mask grown by one cell (8 neighbours).
+std::vector<uint8_t> grown(const std::vector<uint8_t>& mask, const Raster& r) {
+    std::vector<uint8_t> out(mask);
+    for (size_t j = 0; j < r.height; ++j)
+        for (size_t i = 0; i < r.width; ++i) {
+            if (!mask[j * r.width + i]) continue;
+            for (size_t y = j ? j - 1 : 0; y <= std::min(j + 1, r.height - 1); ++y)
+                for (size_t x = i ? i - 1 : 0; x <= std::min(i + 1, r.width - 1); ++x) out[y * r.width + x] = 1;
+        }
+    return out;
+}
+
+// Where a branch or a piece of its own lies between the slices: the height
+// fraction of the section to insert, negative when none (contract in the header).
+double branch_fraction(Polygons lower, Polygons upper) {
+    Raster r;
+    if (!make_raster(lower, upper, kShapeBranchCells, r)) return -1.0;
+    const std::vector<uint8_t> a = inside_mask(lower, r), b = inside_mask(upper, r);
+    if (meeting_solids(lower, grown(b, r), r) != meeting_solids(upper, grown(a, r), r)) return 0.5;
+    size_t border = 0;
+    const size_t sa = count_regions(a, 1, false, r, border), sb = count_regions(b, 1, false, r, border);
+    const std::vector<double> fa = signed_field(a, r), fb = signed_field(b, r);
+    std::vector<uint8_t> mid(r.size());
+    for (double t : {0.5, 0.25, 0.75}) {
+        for (size_t k = 0; k < r.size(); ++k) mid[k] = (1.0 - t) * fa[k] + t * fb[k] < 0.0;
+        const size_t sm = count_regions(mid, 1, false, r, border);
+        if (sm > 0 && sm != sa && sm != sb) return t;
+    }
+    return -1.0;
+}
+
 }  // namespace
 
-std::vector<std::vector<Vec2>> shape_mid_slice(Polygons lower, Polygons upper) {
-    std::vector<std::vector<Vec2>> rings;
-    if (lower.empty() || upper.empty() || !topology_changes_between(lower, upper)) return rings;
+ShapeSlice shape_slice_between(Polygons lower, Polygons upper, bool at_branches) {
+    ShapeSlice out;
+    if (lower.empty() || upper.empty()) return out;
+    if (!topology_changes_between(lower, upper)) {
+        out.t = at_branches ? branch_fraction(lower, upper) : -1.0;
+        if (out.t < 0.0) return out;
+        out.at_branch = true;
+    }
+    const double t = out.t;
+    std::vector<std::vector<Vec2>>& rings = out.rings;
     Raster r;
     make_raster(lower, upper, kShapeTraceCells, r);
     const std::vector<double> fa = signed_field(inside_mask(lower, r), r), fb = signed_field(inside_mask(upper, r), r);
-    // Inside (mean distance below zero) as values above the level 1; the
+    // Inside (blended distance below zero) as values above the level 1; the
     // border cells are outside, like the tracer's pixels beyond the grid (0).
     std::vector<float> field(r.size());
-    for (size_t k = 0; k < r.size(); ++k) field[k] = float(1.0 - 0.5 * (fa[k] + fb[k]));
+    for (size_t k = 0; k < r.size(); ++k) field[k] = float(1.0 - ((1.0 - t) * fa[k] + t * fb[k]));
     trace_field_isolines(field, r.width, r.height, 1.0f, rings);
     const double min_area2 = 4.0 * r.cell * r.cell;  // twice the area: 2 square cells
     std::erase_if(rings, [&](std::vector<Vec2>& ring) {
@@ -218,7 +297,13 @@ std::vector<std::vector<Vec2>> shape_mid_slice(Polygons lower, Polygons upper) {
         clean_contour(ring, 0.01 * r.cell);
         return ring.size() < 3 || std::abs(signed_area2(ring.data(), ring.size())) < min_area2;
     });
-    return rings;
+    return out;
+}
+
+std::vector<std::vector<Vec2>> shape_mid_slice(Polygons lower, Polygons upper) {
+    ShapeSlice s = shape_slice_between(lower, upper, false);
+    if (s.t != 0.5) return {};
+    return std::move(s.rings);
 }
 
 }  // namespace body

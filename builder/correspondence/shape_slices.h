@@ -38,7 +38,21 @@
 //   is closed by caps, about as far from the surface as the band was. Where
 //   such caps close a piece of the mesh that meets no input contour (a
 //   cavity), the pipeline removes the piece (build_pipeline.cpp).
-// - Cost: O(R + E * rows) for R raster cells and E edges, twice when inserted.
+// - At branches (`at_branches`, the interpolated build), a section is also
+//   inserted where the band or branch construction would decide the shape
+//   between the slices alone, judged on a raster of kShapeBranchCells cells:
+//   (a) the two slices' solids that meet the other slice's region (grown by
+//   one cell; a speck under a cell by a cell holding one of its points) differ
+//   in number (a branch: one contour meets several), at height fraction 0.5;
+//   solids over nothing are ends that the caps close and do not count;
+//   (b) else the first of the blended fields' sections at fractions 0.5,
+//   0.25, 0.75 whose number of 4-connected solids differs from both slices'
+//   (a piece of its own between them: a toe that joins its body's contour
+//   only on the upper slice), at that fraction. The section at fraction t is
+//   the zero set of (1 - t) lower + t upper signed distance, traced as above.
+// - Cost: O(R + E * rows) for R raster cells and E edges, twice when inserted;
+//   at branches a few more rasters of kShapeBranchCells (and one per solid
+//   whose points miss the other region).
 #include <span>
 #include <vector>
 
@@ -48,6 +62,19 @@ namespace body {
 
 inline constexpr int kShapeDetectCells = 32;
 inline constexpr int kShapeTraceCells = 256;
+inline constexpr int kShapeBranchCells = 64;
+
+// A section to insert: its contours (empty when none) at height fraction t
+// of the gap from `lower` (0) to `upper` (1).
+struct ShapeSlice {
+    double t = 0.5;
+    std::vector<std::vector<Vec2>> rings;
+    bool at_branch = false;  // inserted for a branch or a piece of its own, not a topology change
+};
+ShapeSlice shape_slice_between(std::span<const std::span<const Vec2>> lower,
+                               std::span<const std::span<const Vec2>> upper, bool at_branches);
+
+// The topology-change section alone (at_branches false), at fraction 0.5.
 
 std::vector<std::vector<Vec2>> shape_mid_slice(std::span<const std::span<const Vec2>> lower,
                                                std::span<const std::span<const Vec2>> upper);

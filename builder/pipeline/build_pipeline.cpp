@@ -195,6 +195,24 @@ void make_slabs(StructureSurface& surface, size_t s, std::vector<std::vector<uin
     }
 }
 
+// The gap an end on slice s may reach into facing `up` (or down): to the next
+// input slice that way. Shape-based slices inserted in a gap where a structure
+// branches do not shorten the ends of the input slice beside them (a hole
+// seen on one slice only still goes as deep into the gap as without them).
+double end_spacing(const StructureSurface& surface, size_t s, bool up) {
+    const std::vector<bool>& inserted = surface.inserted_at_branch;
+    if (inserted.empty() || inserted[s]) return spacing(surface, s, up);
+    size_t t = s;
+    if (up)
+        while (t + 1 < surface.z.size() && inserted[t + 1]) ++t;
+    else
+        while (t > 0 && inserted[t - 1]) --t;
+    if (t == s) return spacing(surface, s, up);
+    const double next =
+        up ? (t + 1 < surface.z.size() ? surface.z[t + 1] : surface.z[t]) : (t > 0 ? surface.z[t - 1] : surface.z[t]);
+    return std::abs(next - surface.z[s]);
+}
+
 // Caps on slice s facing `up` (or down): over the loops that end there
 // (`slab` false: own rings at the slice's z) or over the slab rings.
 Status cap_slice(StructureSurface& surface, size_t s, bool up, bool slab, CapStyle caps, bool lift_chords,
@@ -227,8 +245,8 @@ Status cap_slice(StructureSurface& surface, size_t s, bool up, bool slab, CapSty
         // each other across one gap stay apart); a slab's: most of the slab's half.
         EndHeight end{0.8 * std::abs(at - surface.z[s]), false};
         if (!slab)
-            end =
-                end_height(loops[k].xy, loops[k].ids, surface.positions, partners, up, 0.45 * spacing(surface, s, up));
+            end = end_height(loops[k].xy, loops[k].ids, surface.positions, partners, up,
+                             0.45 * end_spacing(surface, s, up));
         const double dome = end.height;
         for (size_t c = 0; c < loops.size(); ++c)
             if (in[c] && loops[c].parent == int(k)) {
@@ -276,34 +294,52 @@ Status close_ends(StructureSurface& surface, CapStyle caps, bool lift_chords) {
 // and a neighbour.
 constexpr int kShapeSliceDepth = 2;
 
-// Shape-based slices between `lower` and `upper` (at zl, zu), in z order, appended to `out`.
+// One shape-based slice to insert.
+struct InsertedSlice {
+    double z = 0.0;
+    std::vector<Contour> contours;
+    bool at_branch = false;  // for a branch or a piece of its own (shape_slices.h)
+};
+
+// Shape-based slices between `lower` and `upper` (at zl, zu), in z order,
+// appended to `out`; at branches too when `at_branches` (shape_slices.h).
 void shape_slices_between(std::span<const std::span<const Vec2>> lower, std::span<const std::span<const Vec2>> upper,
-                          double zl, double zu, int depth, std::vector<std::pair<double, std::vector<Contour>>>& out) {
+                          double zl, double zu, int depth, bool at_branches, std::vector<InsertedSlice>& out) {
     if (depth == 0) return;
-    std::vector<std::vector<Vec2>> rings = shape_mid_slice(lower, upper);
+    ShapeSlice shaped = shape_slice_between(lower, upper, at_branches);
+    std::vector<std::vector<Vec2>>& rings = shaped.rings;
     if (rings.empty()) return;
-    const double zm = 0.5 * (zl + zu);
+    const double zm = zl + shaped.t * (zu - zl);
     std::vector<std::span<const Vec2>> mid(rings.begin(), rings.end());
-    std::vector<std::pair<double, std::vector<Contour>>> below, above;
-    shape_slices_between(lower, mid, zl, zm, depth - 1, below);
-    shape_slices_between(mid, upper, zm, zu, depth - 1, above);
+    std::vector<InsertedSlice> below, above;
+    // A gap split for a topology change is left to the hole constructions:
+    // only gaps split at a branch are split again at branches.
+    const bool again = at_branches && shaped.at_branch;
+    shape_slices_between(lower, mid, zl, zm, depth - 1, again, below);
+    shape_slices_between(mid, upper, zm, zu, depth - 1, again, above);
     std::vector<Contour> contours(rings.size());
     for (size_t k = 0; k < rings.size(); ++k) contours[k].points = std::move(rings[k]);
     for (auto& b : below) out.push_back(std::move(b));
-    out.emplace_back(zm, std::move(contours));
+    out.push_back({zm, std::move(contours), shaped.at_branch});
     for (auto& a : above) out.push_back(std::move(a));
 }
 
 // The structure's own stack with shape-based slices inserted where a slice
-// pair's topology changes between them; false (nothing filled) when none is.
+// pair's topology changes between them, and with `at_branches` (the
+// interpolated build) where it branches or a piece of its own lies between
+// them; false (nothing filled) when none is. The linear build keeps its
+// bands and branches: its tests and LOD levels were measured on them, and the
+// traced sections' raster steps (a few thousandths of the extent) would show
+// in an unsmoothed mesh.
 // Stacks with link overrides keep their slices (the overrides name adjacent
 // slices of the file). An inserted contour names the lower slice's first
-// member as its source (for messages).
+// member as its source (for messages). `inserted` and `at_branch` flag the
+// local stack's slices: inserted, and inserted for a branch.
 bool with_shape_slices(const ContourStack& stack, const std::vector<std::vector<uint32_t>>& members,
                        ContourStack& local, std::vector<std::vector<uint32_t>>& local_members,
-                       std::vector<bool>& inserted) {
+                       std::vector<bool>& inserted, std::vector<bool>& at_branch, bool at_branches) {
     if (!stack.links.empty()) return false;
-    std::vector<std::vector<std::pair<double, std::vector<Contour>>>> between(stack.slices.size());
+    std::vector<std::vector<InsertedSlice>> between(stack.slices.size());
     bool any = false;
     std::vector<std::span<const Vec2>> polys[2];
     for (size_t s = 0; s + 1 < stack.slices.size(); ++s) {
@@ -313,31 +349,33 @@ bool with_shape_slices(const ContourStack& stack, const std::vector<std::vector<
             for (uint32_t k : members[s + side]) polys[side].emplace_back(stack.slices[s + side].contours[k].points);
         }
         shape_slices_between(polys[0], polys[1], stack.slices[s].z, stack.slices[s + 1].z, kShapeSliceDepth,
-                             between[s]);
+                             at_branches, between[s]);
         any = any || !between[s].empty();
     }
     if (!any) return false;
     local.slices.clear();
     local_members.clear();
     inserted.clear();
-    auto add = [&](Slice slice, bool is_inserted) {
+    at_branch.clear();
+    auto add = [&](Slice slice, bool is_inserted, bool for_branch) {
         local_members.emplace_back(slice.contours.size());
         std::iota(local_members.back().begin(), local_members.back().end(), uint32_t(0));
         local.slices.push_back(std::move(slice));
         inserted.push_back(is_inserted);
+        at_branch.push_back(for_branch);
     };
     for (size_t s = 0; s < stack.slices.size(); ++s) {
         Slice own{stack.slices[s].z, {}, stack.slices[s].source_index};
         for (uint32_t k : members[s]) own.contours.push_back(stack.slices[s].contours[k]);
-        add(std::move(own), false);
-        for (auto& [z, contours] : between[s]) {
+        add(std::move(own), false, false);
+        for (InsertedSlice& in : between[s]) {
             const Contour& src = stack.slices[s].contours[members[s][0]];
-            for (Contour& c : contours) {
+            for (Contour& c : in.contours) {
                 c.structure = src.structure;
                 c.source_slice = src.source_slice;
                 c.source_contour = src.source_contour;
             }
-            add(Slice{z, std::move(contours), stack.slices[s].source_index}, true);
+            add(Slice{in.z, std::move(in.contours), stack.slices[s].source_index}, true, in.at_branch);
         }
     }
     return true;
@@ -403,8 +441,9 @@ Result<StructureMesh> build_structure(const ContourStack& stack, const Structure
     // Inserted slices do not count for progress: one step per stack slice.
     ContourStack local;
     std::vector<std::vector<uint32_t>> local_members;
-    std::vector<bool> inserted;
-    const bool shaped = with_shape_slices(stack, members, local, local_members, inserted);
+    std::vector<bool> inserted, at_branch;
+    const bool shaped =
+        with_shape_slices(stack, members, local, local_members, inserted, at_branch, options.interpolate > 0);
     size_t step = 0;
     const std::function<void()> own_advance = [&] {
         if (!shaped || step >= inserted.size() || !inserted[step]) advance();
@@ -414,6 +453,7 @@ Result<StructureMesh> build_structure(const ContourStack& stack, const Structure
     StructureSurface surface;
     surface.path = source_path;
     for (const Slice& slice : used.slices) surface.z.push_back(slice.z);
+    if (shaped) surface.inserted_at_branch = at_branch;
     surface.tiling = options.tiling;
     surface.correspondence = options.correspondence;
     auto status = build_surface(surface, used, options, shaped ? local_members : members, own_advance);

@@ -75,6 +75,48 @@ TEST(ShapeSlices, LikeContoursGetNone) {
     EXPECT_TRUE(shape_mid_slice(cs, ring).empty());  // a hole opening into a notch: the ring is one end
 }
 
+// At branches (the interpolated build): a waisted contour below two discs
+// gets the blended section half way; a disc over nothing beside a continuing
+// one is an end (capped) and gets none; like contours get none; without
+// `at_branches` none of them does.
+TEST(ShapeSlices, BranchesGetASectionHalfWayAndEndsNone) {
+    const std::vector<Vec2> left = circle(-0.7, 0, 0.6), right = circle(0.7, 0, 0.6);
+    const std::vector<Vec2> waist = ellipse(0, 0, 1.4, 0.5, 0.0, 96);
+    const std::vector<Vec2> far = circle(5, 0, 0.5), disc = circle(-0.7, 0, 0.62);
+    const std::vector<std::span<const Vec2>> two{left, right}, one{waist}, with_far{disc, far}, alone{disc};
+    const ShapeSlice branch = shape_slice_between(one, two, true);
+    EXPECT_DOUBLE_EQ(branch.t, 0.5);
+    EXPECT_TRUE(branch.at_branch);
+    EXPECT_FALSE(branch.rings.empty());
+    EXPECT_TRUE(shape_slice_between(one, two, false).rings.empty());
+    EXPECT_TRUE(shape_slice_between(alone, with_far, true).rings.empty());
+    EXPECT_TRUE(shape_slice_between(two, two, true).rings.empty());
+}
+
+// A toe: one disc below; above, the same disc with a round lobe joined to it
+// by a thin neck. Three quarters up, the blended fields hold the lobe as a
+// piece of its own (the neck, thinner than the lobe, is not there yet), two
+// solids between slices of one each: that section is inserted.
+TEST(ShapeSlices, APieceOfItsOwnBetweenSlicesGetsItsSection) {
+    const std::vector<Vec2> body = circle(0, 0, 1.0, 128);
+    std::vector<Vec2> toe;  // the disc, a neck 0.16 wide along +x to a lobe of radius 0.4 about (2, 0)
+    const double neck = 0.08, a = std::asin(neck / 1.0), b = std::asin(neck / 0.4);
+    for (int i = 0; i <= 120; ++i) {
+        const double t = a + (2 * kPi - 2 * a) * i / 120;
+        toe.emplace_back(std::cos(t), std::sin(t));
+    }
+    for (int i = 0; i <= 60; ++i) {
+        const double t = kPi + b + (2 * kPi - 2 * b) * i / 60;  // round the lobe from its lower neck side
+        toe.emplace_back(2.0 + 0.4 * std::cos(t), 0.4 * std::sin(t));
+    }
+    const std::vector<std::span<const Vec2>> lower{body}, upper{toe};
+    const ShapeSlice s = shape_slice_between(lower, upper, true);
+    ASSERT_FALSE(s.rings.empty());
+    EXPECT_DOUBLE_EQ(s.t, 0.75);
+    EXPECT_EQ(s.rings.size(), 2u);  // the disc with the neck's stub, and the lobe
+    EXPECT_TRUE(shape_slice_between(lower, upper, false).rings.empty());
+}
+
 // Two slices: the band no longer sweeps across the hole (it came within 0.05
 // of the axis before), the mesh stays closed and the C shapes stay on it.
 TEST(ShapeSlices, BuildOfOppositeCShapesLeavesTheHoleOpen) {
