@@ -12,7 +12,9 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
+#include <thread>
 #include <vector>
 
 #include "shared/mesh.h"
@@ -590,7 +592,7 @@ size_t layer_of(std::span<const double> cuts, double z) {
 
 void self_intersections_by_layer(std::span<const Vec3> positions, std::span<const uint32_t> indices,
                                  std::span<const uint8_t> marked, std::span<const double> cuts,
-                                 std::vector<std::pair<uint32_t, uint32_t>>& pairs) {
+                                 std::vector<std::pair<uint32_t, uint32_t>>& pairs, unsigned threads) {
     pairs.clear();
     const size_t tri_count = indices.size() / 3;
     if (tri_count < 2) return;
@@ -622,10 +624,32 @@ void self_intersections_by_layer(std::span<const Vec3> positions, std::span<cons
         const auto [first, last] = layers_of(positions, layer, &indices[3 * size_t(t)], cuts);
         for (size_t l = first; l <= last; ++l) members[fill[l]++] = t;
     }
-    LayerSearch search{positions, indices, marked, cuts, q, {}, {}, {}, {}, {}, {}, {}, {}};
+    // The layers to search, the largest first so that threads finish close
+    // together; each thread takes the next one and keeps its pairs apart.
+    std::vector<uint32_t> todo;
     for (size_t l = 0; l <= cuts.size(); ++l)
-        if (layer_marked[l] && start[l + 1] - start[l] > 1)
-            search.run(l, std::span<const uint32_t>(members).subspan(start[l], start[l + 1] - start[l]), pairs);
+        if (layer_marked[l] && start[l + 1] - start[l] > 1) todo.push_back(uint32_t(l));
+    std::stable_sort(todo.begin(), todo.end(),
+                     [&](uint32_t a, uint32_t b) { return start[a + 1] - start[a] > start[b + 1] - start[b]; });
+    const size_t workers = std::clamp<size_t>(threads, 1, std::max<size_t>(todo.size(), 1));
+    std::vector<std::vector<std::pair<uint32_t, uint32_t>>> found(workers);
+    std::atomic<size_t> next{0};
+    auto work = [&](size_t w) {
+        LayerSearch search{positions, indices, marked, cuts, q, {}, {}, {}, {}, {}, {}, {}, {}};
+        for (size_t k = next++; k < todo.size(); k = next++) {
+            const uint32_t l = todo[k];
+            search.run(l, std::span<const uint32_t>(members).subspan(start[l], start[l + 1] - start[l]), found[w]);
+        }
+    };
+    if (workers == 1) {
+        work(0);
+    } else {
+        std::vector<std::thread> pool;
+        for (size_t w = 1; w < workers; ++w) pool.emplace_back(work, w);
+        work(0);
+        for (auto& t : pool) t.join();
+    }
+    for (auto& f : found) pairs.insert(pairs.end(), f.begin(), f.end());
     std::sort(pairs.begin(), pairs.end());
 }
 
