@@ -12,7 +12,9 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
+#include <thread>
 #include <vector>
 
 #include "shared/mesh.h"
@@ -326,29 +328,32 @@ bool pair_meets_by_height(std::span<const IVec> q, const uint32_t* A, const uint
 }
 
 // One grid cell's candidate pairs, the broad phase shared by the count and
-// the layered search. `sweep` holds the cell's entries: `local` indexes
-// `boxes` and `low_cell` (the cell of each box's lowest corner), `t` is the
+// the layered search. `sweep` holds the cell's entries: each box, `local`
+// indexing `low_cell` (the cell of each box's lowest corner), `t` the
 // triangle, `marked` whether it is marked. Sorted along x (ties by triangle),
 // each entry is paired only with those that start before it ends; a pair is
 // passed to `test(i, j)` (entries of `sweep`) when one of its triangles is marked,
 // its boxes overlap, and this cell holds the lowest corner of that overlap,
 // so each pair is seen in one cell only. Returns true when `test` does (stop).
 struct Swept {
-    double min_x, max_x;
+    double min_x, max_x, min_y, max_y, min_z, max_z;  // the box, at hand in the sweep's inner loop
     uint32_t t, local;
     bool marked;
+    static Swept of(const Aabb& b, uint32_t t, uint32_t local, bool marked) {
+        return {b.min.x, b.max.x, b.min.y, b.max.y, b.min.z, b.max.z, t, local, marked};
+    }
 };
 template <class Test>
-bool sweep_cell(std::vector<Swept>& sweep, std::span<const Aabb> boxes, std::span<const std::array<int, 3>> low_cell,
-                const Grid& grid, uint64_t cell_key, Test&& test) {
+bool sweep_cell(std::vector<Swept>& sweep, std::span<const std::array<int, 3>> low_cell, const Grid& grid,
+                uint64_t cell_key, Test&& test) {
     std::sort(sweep.begin(), sweep.end(),
               [](const Swept& a, const Swept& b) { return a.min_x != b.min_x ? a.min_x < b.min_x : a.t < b.t; });
     for (size_t i = 0; i < sweep.size(); ++i)
         for (size_t j = i + 1; j < sweep.size() && sweep[j].min_x <= sweep[i].max_x; ++j) {
-            if (!sweep[i].marked && !sweep[j].marked) continue;
-            const Aabb &b1 = boxes[sweep[i].local], &b2 = boxes[sweep[j].local];
-            if (std::max(b1.min.y, b2.min.y) > std::min(b1.max.y, b2.max.y) ||
-                std::max(b1.min.z, b2.min.z) > std::min(b1.max.z, b2.max.z))
+            const Swept &s1 = sweep[i], &s2 = sweep[j];
+            if (!s1.marked && !s2.marked) continue;
+            if (std::max(s1.min_y, s2.min_y) > std::min(s1.max_y, s2.max_y) ||
+                std::max(s1.min_z, s2.min_z) > std::min(s1.max_z, s2.max_z))
                 continue;
             // The overlap's lowest corner is the larger of the two lowest corners (cell_of is monotonic).
             const auto &c1 = low_cell[sweep[i].local], &c2 = low_cell[sweep[j].local];
@@ -468,9 +473,9 @@ size_t count_pairs(std::span<const Vec3> positions, std::span<const uint32_t> in
         sweep.clear();
         for (size_t i = begin; i < end; ++i) {
             const uint32_t t = entries[i].second;
-            sweep.push_back({m.boxes[t].min.x, m.boxes[t].max.x, t, t, all_marked || marked[t] != 0});
+            sweep.push_back(Swept::of(m.boxes[t], t, t, all_marked || marked[t] != 0));
         }
-        const bool stopped = sweep_cell(sweep, m.boxes, low_cell, grid, cell_key, [&](size_t i, size_t j) {
+        const bool stopped = sweep_cell(sweep, low_cell, grid, cell_key, [&](size_t i, size_t j) {
             const uint32_t t1 = sweep[i].t, t2 = sweep[j].t;
             if (!pair_meets_by_height(m.q, &indices[3 * size_t(t1)], &indices[3 * size_t(t2)], m.height[t1],
                                       m.height[t2]))
@@ -554,14 +559,12 @@ struct LayerSearch {
         sweep.clear();
         for (size_t i = begin; i < end; ++i) {
             const uint32_t local = in_cell[i];
-            sweep.push_back(
-                {boxes[local].min.x, boxes[local].max.x, members[local], local, marked[members[local]] != 0});
+            sweep.push_back(Swept::of(boxes[local], members[local], local, marked[members[local]] != 0));
         }
-        sweep_cell(sweep, boxes, low_cell, grid, cell_key, [&](size_t i, size_t j) {
+        sweep_cell(sweep, low_cell, grid, cell_key, [&](size_t i, size_t j) {
             const uint32_t t1 = sweep[i].t, t2 = sweep[j].t;
-            const Aabb &b1 = boxes[sweep[i].local], &b2 = boxes[sweep[j].local];
             // The overlap's bottom lies below this layer's top (both boxes start below it): is it above its floor?
-            if (layer > 0 && std::max(b1.min.z, b2.min.z) < cuts[layer - 1]) return false;
+            if (layer > 0 && std::max(sweep[i].min_z, sweep[j].min_z) < cuts[layer - 1]) return false;
             const uint32_t *A = &indices[3 * size_t(t1)], *B = &indices[3 * size_t(t2)];
             if (pair_meets_by_height(q, A, B, height[sweep[i].local], height[sweep[j].local]))
                 pairs.push_back({std::min(t1, t2), std::max(t1, t2)});
@@ -590,7 +593,7 @@ size_t layer_of(std::span<const double> cuts, double z) {
 
 void self_intersections_by_layer(std::span<const Vec3> positions, std::span<const uint32_t> indices,
                                  std::span<const uint8_t> marked, std::span<const double> cuts,
-                                 std::vector<std::pair<uint32_t, uint32_t>>& pairs) {
+                                 std::vector<std::pair<uint32_t, uint32_t>>& pairs, unsigned threads) {
     pairs.clear();
     const size_t tri_count = indices.size() / 3;
     if (tri_count < 2) return;
@@ -622,10 +625,32 @@ void self_intersections_by_layer(std::span<const Vec3> positions, std::span<cons
         const auto [first, last] = layers_of(positions, layer, &indices[3 * size_t(t)], cuts);
         for (size_t l = first; l <= last; ++l) members[fill[l]++] = t;
     }
-    LayerSearch search{positions, indices, marked, cuts, q, {}, {}, {}, {}, {}, {}, {}, {}};
+    // The layers to search, the largest first so that threads finish close
+    // together; each thread takes the next one and keeps its pairs apart.
+    std::vector<uint32_t> todo;
     for (size_t l = 0; l <= cuts.size(); ++l)
-        if (layer_marked[l] && start[l + 1] - start[l] > 1)
-            search.run(l, std::span<const uint32_t>(members).subspan(start[l], start[l + 1] - start[l]), pairs);
+        if (layer_marked[l] && start[l + 1] - start[l] > 1) todo.push_back(uint32_t(l));
+    std::stable_sort(todo.begin(), todo.end(),
+                     [&](uint32_t a, uint32_t b) { return start[a + 1] - start[a] > start[b + 1] - start[b]; });
+    const size_t workers = std::clamp<size_t>(threads, 1, std::max<size_t>(todo.size(), 1));
+    std::vector<std::vector<std::pair<uint32_t, uint32_t>>> found(workers);
+    std::atomic<size_t> next{0};
+    auto work = [&](size_t w) {
+        LayerSearch search{positions, indices, marked, cuts, q, {}, {}, {}, {}, {}, {}, {}, {}};
+        for (size_t k = next++; k < todo.size(); k = next++) {
+            const uint32_t l = todo[k];
+            search.run(l, std::span<const uint32_t>(members).subspan(start[l], start[l + 1] - start[l]), found[w]);
+        }
+    };
+    if (workers == 1) {
+        work(0);
+    } else {
+        std::vector<std::thread> pool;
+        for (size_t w = 1; w < workers; ++w) pool.emplace_back(work, w);
+        work(0);
+        for (auto& t : pool) t.join();
+    }
+    for (auto& f : found) pairs.insert(pairs.end(), f.begin(), f.end());
     std::sort(pairs.begin(), pairs.end());
 }
 

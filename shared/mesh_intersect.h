@@ -74,9 +74,11 @@ size_t layer_of(std::span<const double> cuts, double z);
 // can meet only in the cut's plane, where each triangle is the hull of its
 // corners on the cut, and none is listed in the layer above a cut it only
 // touches from below. The snap grid is the whole mesh's, as for the count.
+// `threads` > 1 searches that many layers at a time (layers are independent;
+// the sorted pairs are the same for any count).
 void self_intersections_by_layer(std::span<const Vec3> positions, std::span<const uint32_t> indices,
                                  std::span<const uint8_t> marked, std::span<const double> cuts,
-                                 std::vector<std::pair<uint32_t, uint32_t>>& pairs);
+                                 std::vector<std::pair<uint32_t, uint32_t>>& pairs, unsigned threads = 1);
 
 // Whether each given pair of triangles (indices into `indices` / 3) meets,
 // by the rules and on the snap grid of count_self_intersections over the same

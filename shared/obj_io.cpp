@@ -13,6 +13,7 @@
 #include <map>
 #include <ostream>
 #include <string_view>
+#include <thread>
 
 #include "shared/atomic_file.h"
 #include "shared/input_file.h"
@@ -96,7 +97,7 @@ void flush_if_full(std::ostream& out, std::string& rows, bool always = false) {
 
 // Each row is spelled into a local buffer and appended once: appending each
 // number and space to the string cost more than the integers' digits.
-void write_row(std::ostream& out, std::string& rows, const char* tag, const Vec3& p, int precision) {
+void write_row(std::string& rows, const char* tag, const Vec3& p, int precision) {
     char line[3 * 48 + 8];
     char* end = line;
     while (*tag != '\0') *end++ = *tag++;
@@ -106,7 +107,55 @@ void write_row(std::ostream& out, std::string& rows, const char* tag, const Vec3
     }
     *end++ = '\n';
     rows.append(line, end);
-    flush_if_full(out, rows);
+}
+
+// A face row, 1-based vertex numbers from `base`.
+void write_face(std::string& rows, const uint32_t* tri, size_t base, bool normals) {
+    char line[3 * 48 + 8];
+    char* end = line;
+    *end++ = 'f';
+    for (int k = 0; k < 3; ++k) {
+        const size_t i = base + tri[k];
+        *end++ = ' ';
+        end = std::to_chars(end, end + 20, i).ptr;
+        if (normals) {
+            *end++ = '/';
+            *end++ = '/';
+            end = std::to_chars(end, end + 20, i).ptr;
+        }
+    }
+    *end++ = '\n';
+    rows.append(line, end);
+}
+
+// Rows 0..count-1 spelled by row(i, text) and written in order. With
+// `threads` > 1, blocks of kBlock rows are spelled on that many threads at a
+// time and written in order when all are done (the same bytes; memory for
+// `threads` blocks of text).
+constexpr size_t kBlock = 1 << 15;
+template <class Row>
+void write_rows(std::ostream& out, std::string& rows, size_t count, unsigned threads, Row&& row) {
+    if (threads <= 1 || count < 2 * kBlock) {
+        for (size_t i = 0; i < count; ++i) {
+            row(i, rows);
+            flush_if_full(out, rows);
+        }
+        return;
+    }
+    flush_if_full(out, rows, true);
+    std::vector<std::string> parts(threads);
+    for (size_t first = 0; first < count; first += threads * kBlock) {
+        auto spell = [&](size_t w) {
+            parts[w].clear();
+            const size_t begin = std::min(count, first + w * kBlock), end = std::min(count, begin + kBlock);
+            for (size_t i = begin; i < end; ++i) row(i, parts[w]);
+        };
+        std::vector<std::thread> pool;
+        for (size_t w = 1; w < threads; ++w) pool.emplace_back(spell, w);
+        spell(0);
+        for (auto& t : pool) t.join();
+        for (const std::string& part : parts) out.write(part.data(), std::streamsize(part.size()));
+    }
 }
 
 std::string write_meshes(std::ostream& out, std::span<const Mesh> meshes, const ObjWriteOptions& options) {
@@ -118,7 +167,8 @@ std::string write_meshes(std::ostream& out, std::span<const Mesh> meshes, const 
     rows.reserve(kChunk + 256);
     for (const Mesh& mesh : meshes) {
         rows.append("o ").append(mesh.name.empty() ? std::string("structure") : mesh.name).append("\n");
-        for (const Vec3& p : mesh.positions) write_row(out, rows, "v", p, precision);
+        write_rows(out, rows, mesh.positions.size(), options.threads,
+                   [&](size_t i, std::string& text) { write_row(text, "v", mesh.positions[i], precision); });
         std::vector<Vec3> computed;
         std::span<const Vec3> normals = mesh.normals;
         if (options.normals && normals.size() != mesh.positions.size()) {
@@ -126,25 +176,10 @@ std::string write_meshes(std::ostream& out, std::span<const Mesh> meshes, const 
             normals = computed;
         }
         if (options.normals)
-            for (const Vec3& n : normals) write_row(out, rows, "vn", n, precision);
-        for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
-            char line[3 * 48 + 8];
-            char* end = line;
-            *end++ = 'f';
-            for (int k = 0; k < 3; ++k) {
-                const size_t i = base + mesh.indices[t + k];
-                *end++ = ' ';
-                end = std::to_chars(end, end + 20, i).ptr;
-                if (options.normals) {
-                    *end++ = '/';
-                    *end++ = '/';
-                    end = std::to_chars(end, end + 20, i).ptr;
-                }
-            }
-            *end++ = '\n';
-            rows.append(line, end);
-            flush_if_full(out, rows);
-        }
+            write_rows(out, rows, normals.size(), options.threads,
+                       [&](size_t i, std::string& text) { write_row(text, "vn", normals[i], precision); });
+        write_rows(out, rows, mesh.indices.size() / 3, options.threads,
+                   [&](size_t t, std::string& text) { write_face(text, &mesh.indices[3 * t], base, options.normals); });
         base += mesh.positions.size();
     }
     flush_if_full(out, rows, true);

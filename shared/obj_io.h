@@ -13,6 +13,7 @@ namespace body {
 struct ObjWriteOptions {
     bool normals = false;  // write `vn` per vertex (computed when a mesh has none)
     int precision = 9;     // significant digits for coordinates
+    unsigned threads = 1;  // rows spelled on this many threads (the same file)
 };
 
 Status write_obj(const std::string& path, std::span<const Mesh> meshes, const ObjWriteOptions& options = {});

@@ -81,11 +81,12 @@ std::string file_stem(const StructureMesh& s) {
     return stem.empty() ? std::string("structure") : stem;
 }
 
-Status write_output(const std::string& output, const std::vector<StructureMesh>& built, bool normals) {
+Status write_output(const std::string& output, const std::vector<StructureMesh>& built, bool normals, unsigned jobs) {
     std::vector<Mesh> meshes;
     for (const StructureMesh& s : built) meshes.push_back(s.mesh);
     ObjWriteOptions obj;
     obj.normals = normals;
+    obj.threads = jobs;
     switch (output_kind(output)) {
         case OutputKind::Obj: return write_obj(output, meshes, obj);
         case OutputKind::Bpm: return lod::write_bpm_from_meshes(output, meshes);
@@ -154,7 +155,9 @@ void print_usage() {
         "  --normals                          write vertex normals\n"
         "  --quiet                            no progress bar and no summary\n"
         "  --json                             statistics as JSON on stdout\n"
-        "  --jobs N                           structures built on N threads (default 1)\n"
+        "  --jobs N                           threads (default 1): structures built at once; those left\n"
+        "                                     over search an interpolated mesh for crossings and write the\n"
+        "                                     OBJ (the same output for any N)\n"
 #ifdef BODY_WITH_IMPORT
         "  --labels, --axis, --step, --only, --threshold, --tolerance, --min-area, --label-smooth\n"
         "                                     import options for label volumes (see bodygen contours --help)\n"
@@ -310,7 +313,7 @@ int run_build(const Args& argv) {
     if (!stack) return report(stack.error());
     auto built = build_structures(*stack, *options, input);
     if (!built) return report(built.error());
-    Status written = write_output(output, *built, args->has("normals"));
+    Status written = write_output(output, *built, args->has("normals"), options->jobs);
     if (!written) return report(written.error());
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 

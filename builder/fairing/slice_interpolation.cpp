@@ -507,7 +507,7 @@ private:
 // (any other new pair was found before and had its rungs straightened).
 size_t keep_free_of_new_crossings(Work& w, std::vector<Vec3>& positions, std::span<const uint32_t> indices,
                                   std::span<const uint32_t> parent, std::span<const uint32_t> input_indices,
-                                  size_t first_new) {
+                                  size_t first_new, unsigned threads) {
     std::map<std::pair<uint32_t, uint32_t>, bool> parents_meet;
     auto new_pairs = [&](const std::vector<std::pair<uint32_t, uint32_t>>& found) {
         std::vector<std::pair<uint32_t, uint32_t>> ask;
@@ -552,7 +552,7 @@ size_t keep_free_of_new_crossings(Work& w, std::vector<Vec3>& positions, std::sp
     // plane: there both are traced points and edges, which no rung moves, so
     // such a pair meets on the straight mesh alike and is never new.
     std::vector<std::pair<uint32_t, uint32_t>> pairs;
-    self_intersections_by_layer(positions, indices, off_straight, w.slice_z, pairs);
+    self_intersections_by_layer(positions, indices, off_straight, w.slice_z, pairs, threads);
     size_t straightened = 0;
     for (int round = 0; round < 64; ++round) {
         std::vector<uint32_t> moved;
@@ -605,7 +605,7 @@ size_t keep_free_of_new_crossings(Work& w, std::vector<Vec3>& positions, std::sp
 
 InterpolationStats interpolate_between_slices(std::vector<Vec3>& positions, std::vector<uint32_t>& indices,
                                               std::span<const double> slice_z, int rings, double tolerance,
-                                              double least) {
+                                              double least, unsigned threads) {
     InterpolationStats stats;
     if (rings <= 0 || slice_z.size() < 2) return stats;
     Work w;
@@ -625,7 +625,7 @@ InterpolationStats interpolate_between_slices(std::vector<Vec3>& positions, std:
     std::vector<uint32_t> parent;
     const std::vector<uint32_t> input_indices = indices;
     indices = retriangulate(w, indices, parent);
-    stats.straightened = keep_free_of_new_crossings(w, positions, indices, parent, input_indices, first_new);
+    stats.straightened = keep_free_of_new_crossings(w, positions, indices, parent, input_indices, first_new, threads);
     for (const Rung& r : w.rungs) {
         stats.rungs += r.band;
         stats.curved += r.band && r.curved;

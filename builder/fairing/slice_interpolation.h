@@ -41,6 +41,8 @@
 //   did not meet on the straight mesh are put back on their straight lines
 //   until none is left (the return value counts them).
 // - `rings` = 0 leaves the mesh as it is. Memory: O(output size).
+// - `threads` > 1 runs the first round's search for meeting triangles on that
+//   many threads (the result does not depend on it).
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -59,6 +61,6 @@ struct InterpolationStats {
 
 InterpolationStats interpolate_between_slices(std::vector<Vec3>& positions, std::vector<uint32_t>& indices,
                                               std::span<const double> slice_z, int rings, double tolerance = 0.0,
-                                              double least = 0.0);
+                                              double least = 0.0, unsigned threads = 1);
 
 }  // namespace body

@@ -433,7 +433,7 @@ Status build_surface(StructureSurface& surface, const ContourStack& stack, const
 // One structure of a validated stack: its mesh and statistics.
 Result<StructureMesh> build_structure(const ContourStack& stack, const StructureGroups& grouping, size_t i,
                                       const BuildOptions& options, const std::string& source_path,
-                                      const std::function<void()>& advance) {
+                                      const std::function<void()>& advance, unsigned inner_threads) {
     const auto& members = grouping.members[i];
     size_t contours = 0;
     for (const auto& v : members) contours += v.size();
@@ -468,7 +468,8 @@ Result<StructureMesh> build_structure(const ContourStack& stack, const Structure
     sm.mesh.indices = std::move(surface.triangles);
     sm.interpolation_straightened =
         interpolate_between_slices(sm.mesh.positions, sm.mesh.indices, surface.z, options.interpolate,
-                                   options.ring_tolerance, options.ring_voxel * stack.voxel.value_or(0.0))
+                                   options.ring_tolerance, options.ring_voxel * stack.voxel.value_or(0.0),
+                                   inner_threads)
             .straightened;
     sm.fairing_restored = taubin_smooth(sm.mesh.positions, sm.mesh.indices, options.fairing);
     const MeshTopology topo = analyze_topology(sm.mesh.positions, sm.mesh.indices);
@@ -518,15 +519,16 @@ Result<std::vector<StructureMesh>> build_structures(const ContourStack& input, c
     std::vector<std::optional<Result<StructureMesh>>> results(todo.size());
     std::atomic<size_t> next{0};
     std::atomic<bool> failed{false};
+    const size_t threads = std::min<size_t>(std::max(options.jobs, 1u), todo.size());
+    const unsigned inner_threads = std::max(1u, std::max(options.jobs, 1u) / unsigned(std::max<size_t>(threads, 1)));
     auto worker = [&] {
         // Indices are taken in increasing order, so after a failure every
         // structure before it has been taken and finishes: nothing later is needed.
         for (size_t k = next++; k < todo.size() && !failed; k = next++) {
-            results[k] = build_structure(stack, grouping, todo[k], options, source_path, advance);
+            results[k] = build_structure(stack, grouping, todo[k], options, source_path, advance, inner_threads);
             if (!results[k]->ok()) failed = true;
         }
     };
-    const size_t threads = std::min<size_t>(std::max(options.jobs, 1u), todo.size());
     if (threads <= 1) {
         worker();
     } else {

@@ -71,7 +71,10 @@ struct BuildOptions {
     // triangles, not detail. 0: the gap rule alone. `bodygen build` and
     // `exhibit` pass 0.25 (bench/RESULTS.md).
     double ring_voxel = 0.0;
-    // Structures built at once (they are independent; the output does not depend on it).
+    // Threads (the output does not depend on it): structures built at once
+    // (they are independent); threads left over when there are fewer
+    // structures than jobs search each structure's interpolated mesh for
+    // meeting triangles (`interpolate` > 0) a few slabs at a time.
     unsigned jobs = 1;
     // Called after each slice of each structure: (done, total) slices. With
     // jobs > 1 it is called from the worker threads, one call at a time.

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 
 namespace body {
 namespace {
@@ -32,6 +33,40 @@ TEST(ObjIo, RoundTripsTwoNamedObjects) {
     EXPECT_EQ((*back)[1].triangle_count(), 2u);
     EXPECT_DOUBLE_EQ((*back)[1].positions[2].z, 0.25);
     fs::remove(path);
+}
+
+// Rows spelled on threads (blocks of rows, written in order): the same bytes
+// as one thread, with and without normals, for a mesh over two blocks whose
+// block count is not a multiple of the threads, after a small first object.
+TEST(ObjIo, ThreadedWritingGivesTheSameFile) {
+    Mesh small, large;
+    small.name = "small";
+    small.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+    small.indices = {0, 1, 2};
+    large.name = "large";
+    const uint32_t n = 100003;
+    for (uint32_t i = 0; i < n; ++i)
+        large.positions.push_back({std::sin(0.001 * i), std::cos(0.0007 * i) * 3.5, 1e-3 * i - 40.0});
+    for (uint32_t i = 0; i + 2 < n; ++i) large.indices.insert(large.indices.end(), {i, i + 1, i + 2});
+    const std::vector<Mesh> meshes{small, large};
+    const fs::path dir = fs::temp_directory_path();
+    auto text = [](const std::string& path) {
+        std::ifstream f(path, std::ios::binary);
+        return std::string(std::istreambuf_iterator<char>(f), {});
+    };
+    for (bool normals : {false, true}) {
+        const std::string one = (dir / ("body_obj_one_" + std::to_string(::getpid()) + ".obj")).string();
+        ASSERT_TRUE(write_obj(one, meshes, {.normals = normals, .threads = 1}).ok());
+        const std::string serial = text(one);
+        EXPECT_GT(serial.size(), 4000000u);
+        for (unsigned threads : {2u, 3u}) {
+            const std::string many = (dir / ("body_obj_many_" + std::to_string(::getpid()) + ".obj")).string();
+            ASSERT_TRUE(write_obj(many, meshes, {.normals = normals, .threads = threads}).ok());
+            EXPECT_EQ(text(many), serial) << "normals " << normals << " threads " << threads;
+            fs::remove(many);
+        }
+        fs::remove(one);
+    }
 }
 
 TEST(ObjIo, MissingAndEmptyFilesAreInputErrors) {

@@ -311,6 +311,12 @@ TEST(SelfIntersections, GridSearchesFindEveryPairOfARandomSoup) {
         body::self_intersections_by_layer(points, indices, marked, heights, layered);
         const auto kept = not_astride(points, indices, heights, brute_marked);
         EXPECT_EQ(layered, kept) << seed;
+        // Layers searched on several threads, more than the layers too: the same pairs.
+        for (unsigned threads : {2u, 3u, 8u}) {
+            std::vector<std::pair<uint32_t, uint32_t>> threaded;
+            body::self_intersections_by_layer(points, indices, marked, heights, threaded, threads);
+            EXPECT_EQ(threaded, kept) << seed << " threads " << threads;
+        }
         left_out += brute_marked.size() - kept.size();
     }
     EXPECT_GT(left_out, 0u);  // some pairs meet only in a cut's plane
