@@ -48,9 +48,13 @@ tsan_lod_tests() {
     cmake -S "$ROOT" -B build-tsan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DBODY_SANITIZE_THREAD=ON \
         -DBODY_BUILD_BENCH=OFF -DBODY_WITH_IMPORT=OFF >"$LOG_DIR/build-tsan-configure.log" 2>&1 \
         || { tail -30 "$LOG_DIR/build-tsan-configure.log"; return 1; }
-    cmake --build build-tsan -j "$JOBS" --target test_lod 2>&1 | tail -20
+    cmake --build build-tsan -j "$JOBS" --target test_lod test_tiling test_shared 2>&1 | tail -20
     [ "${PIPESTATUS[0]}" -eq 0 ] || return 1
-    TSAN_OPTIONS=halt_on_error=1 build-tsan/bin/test_lod --gtest_brief=1
+    TSAN_OPTIONS=halt_on_error=1 build-tsan/bin/test_lod --gtest_brief=1 || return 1
+    # The interpolation guard's layered search and the OBJ writer on threads.
+    TSAN_OPTIONS=halt_on_error=1 build-tsan/bin/test_tiling --gtest_brief=1 --gtest_filter='SelfIntersections.*' \
+        || return 1
+    TSAN_OPTIONS=halt_on_error=1 build-tsan/bin/test_shared --gtest_brief=1 --gtest_filter='ObjIo.*'
 }
 
 check_debs() {
@@ -93,7 +97,7 @@ step "sanitizer tests (unit, fuzz)" env ASAN_OPTIONS=detect_leaks=1:abort_on_err
 # Leak checks off here: the drivers' (Mesa, EGL) allocations at exit are not ours.
 step "sanitizer tests (cli)" env ASAN_OPTIONS=detect_leaks=0:abort_on_error=0 UBSAN_OPTIONS=print_stacktrace=1 \
     ctest --test-dir build-asan -L cli -E "$ASAN_SKIP" -j "$JOBS" --output-on-failure --no-tests=error
-step "thread sanitizer (progressive-mesh tests)" tsan_lod_tests
+step "thread sanitizer (progressive meshes, guard search, OBJ writer)" tsan_lod_tests
 step "debian packages (amd64, arm64)" check_debs
 
 echo
