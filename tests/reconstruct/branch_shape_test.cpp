@@ -94,5 +94,27 @@ TEST(BranchShape, TwoMergingBallsStayNearTheirUnionAtTheSplit) {
     }
 }
 
+// A label volume whose slices are at most 1.5 voxels apart gets no branch
+// sections (build_pipeline.cpp: the map says nothing finer between
+// neighbouring voxel planes); one sliced every 2nd voxel keeps them. The voxel
+// alone changes (BuildOptions::ring_voxel stays 0, so the rings do not).
+TEST(BranchShape, DenseLabelGapsGetNoBranchSections) {
+    StackBuilder sb;
+    const int slices = 10;
+    const double lo = -0.96, hi = 0.96, gap = (hi - lo) / (slices - 1);
+    for (int k = 0; k < slices; ++k) sb.slice(lo + gap * k, section(lo + gap * k, 96));
+    const StructureMesh traced = build_one(sb.stack, 3);
+    sb.stack.voxel = gap / 2.0;
+    const StructureMesh sparse = build_one(sb.stack, 3);
+    sb.stack.voxel = gap;
+    const StructureMesh dense = build_one(sb.stack, 3);
+    expect_good_structure(dense, sb.stack, "");
+    EXPECT_EQ(sparse.mesh.positions, traced.mesh.positions);
+    EXPECT_EQ(sparse.mesh.indices, traced.mesh.indices);
+    EXPECT_LT(worst_distance(sparse.mesh, hi - gap), 0.25 * gap);
+    EXPECT_NE(dense.triangles, traced.triangles);
+    EXPECT_GT(worst_distance(dense.mesh, hi - gap), 0.25 * gap);  // one branch across the whole gap
+}
+
 }  // namespace
 }  // namespace body
