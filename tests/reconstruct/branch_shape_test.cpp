@@ -57,17 +57,7 @@ std::vector<std::vector<Vec2>> section(double z, int points) {
 // Largest distance of the mesh's surface (6 x 6 barycentric samples per
 // triangle) below |z| = `below`: the bands and branches, not the end caps.
 double worst_distance(const Mesh& mesh, double below) {
-    double worst = 0.0;
-    for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
-        const Vec3 a = mesh.positions[mesh.indices[t]], b = mesh.positions[mesh.indices[t + 1]],
-                   c = mesh.positions[mesh.indices[t + 2]];
-        for (int i = 0; i <= 6; ++i)
-            for (int j = 0; i + j <= 6; ++j) {
-                const Vec3 p = a + (b - a) * (i / 6.0) + (c - a) * (j / 6.0);
-                if (std::abs(p.z) <= below) worst = std::max(worst, distance_to_union(p));
-            }
-    }
-    return worst;
+    return worst_sampled_distance(mesh, distance_to_union, [&](const Vec3& p) { return std::abs(p.z) <= below; });
 }
 
 TEST(BranchShape, TwoMergingBallsStayNearTheirUnionAtTheSplit) {

@@ -55,17 +55,7 @@ void expect_contours_on_mesh(const Mesh& mesh, const ContourStack& stack) {
 // Largest |distance| of the mesh's surface (6 x 6 barycentric samples per
 // triangle) to a surface given by its signed distance, strictly between zlo and zhi (caps excluded).
 double distance_to(const Mesh& mesh, const std::function<double(const Vec3&)>& distance, double zlo, double zhi) {
-    double worst = 0.0;
-    for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
-        const Vec3 a = mesh.positions[mesh.indices[t]], b = mesh.positions[mesh.indices[t + 1]],
-                   c = mesh.positions[mesh.indices[t + 2]];
-        for (int i = 0; i <= 6; ++i)
-            for (int j = 0; i + j <= 6; ++j) {
-                const Vec3 p = a + (b - a) * (i / 6.0) + (c - a) * (j / 6.0);
-                if (p.z > zlo && p.z < zhi) worst = std::max(worst, std::abs(distance(p)));
-            }
-    }
-    return worst;
+    return worst_sampled_distance(mesh, distance, [&](const Vec3& p) { return p.z > zlo && p.z < zhi; });
 }
 
 // A sheared ellipsoid ((x - shear z) / a)^2 + (y / b)^2 + z^2 = 1 sliced at

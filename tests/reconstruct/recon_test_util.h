@@ -233,6 +233,23 @@ inline void expect_good_structure(const StructureMesh& s, const ContourStack& st
     }
 }
 
+// Largest |distance(p)| over the mesh's surface, 6 x 6 barycentric samples
+// per triangle, among the samples `keep(p)` accepts.
+template <class Distance, class Keep>
+double worst_sampled_distance(const Mesh& mesh, const Distance& distance, const Keep& keep) {
+    double worst = 0.0;
+    for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+        const Vec3 a = mesh.positions[mesh.indices[t]], b = mesh.positions[mesh.indices[t + 1]],
+                   c = mesh.positions[mesh.indices[t + 2]];
+        for (int i = 0; i <= 6; ++i)
+            for (int j = 0; i + j <= 6; ++j) {
+                const Vec3 p = a + (b - a) * (i / 6.0) + (c - a) * (j / 6.0);
+                if (keep(p)) worst = std::max(worst, std::abs(distance(p)));
+            }
+    }
+    return worst;
+}
+
 // The one structure `stack` builds with `rings` interpolated rings per gap (a
 // failed build or another count fails the test and gives an empty mesh).
 inline StructureMesh build_one(const ContourStack& stack, int rings) {
