@@ -381,13 +381,11 @@ CodedPositions code_positions(const pm::FanPrediction& pred, const uint16_t from
         const uint16_t reflected = pm::reflect16(from[k], c.at[k]);
         predicted[k] = fan ? pm::parent_position(from[k], c.at[k], pred.parent_centroid[k]) : reflected;
     }
-    const int64_t offset = plane ? 2 * pred.parent_dot - 4 * pm::plane_dot(pred, from, c.at) : 0;
-    const uint32_t plane_shift =
-        pred.axis_shift > pm::kParentPlaneShiftLess ? pred.axis_shift - pm::kParentPlaneShiftLess : 0;
+    const int64_t offset = plane ? pm::parent_plane_offset(pred, from, c.at) : 0;
     c.parent_grid = parent_grid + 1;
     do --c.parent_grid;
-    while (!code_position(pred, order, to, predicted, plane, from, offset, 64, plane_shift, c.parent_grid, c.value + 3,
-                          c.shift + 3, c.to));
+    while (!code_position(pred, order, to, predicted, plane, from, offset, pm::kParentPlaneScale,
+                          pm::parent_plane_shift(pred), c.parent_grid, c.value + 3, c.shift + 3, c.to));
     c.moves = c.to[0] != from[0] || c.to[1] != from[1] || c.to[2] != from[2];
     if (!c.moves) c.parent_grid = 0;
     return c;

@@ -394,11 +394,10 @@ struct DecodedSplit {
         s.to[k] = decode_coordinate(values, kCtxParent0 + i, predicted, pred.shift[k], parent_grid);
     }
     if (pred.axis < 3) {
-        const int64_t offset = 2 * pred.parent_dot - 4 * plane_dot(pred, s.from, s.q);
-        const uint32_t plane_shift =
-            pred.axis_shift > kParentPlaneShiftLess ? pred.axis_shift - kParentPlaneShiftLess : 0;
-        s.to[order[2]] = decode_coordinate(values, kCtxParent0 + 2, plane_coordinate(pred, s.from, s.to, offset, 64),
-                                           plane_shift, parent_grid);
+        const int64_t offset = parent_plane_offset(pred, s.from, s.q);
+        s.to[order[2]] =
+            decode_coordinate(values, kCtxParent0 + 2, plane_coordinate(pred, s.from, s.to, offset, kParentPlaneScale),
+                              parent_plane_shift(pred), parent_grid);
     }
 }
 

@@ -123,6 +123,16 @@ inline int64_t plane_dot(const FanPrediction& pred, const uint16_t v[3], const u
     return pred.normal[0] * (int32_t(t[0]) - int32_t(v[0])) + pred.normal[1] * (int32_t(t[1]) - int32_t(v[1])) +
            pred.normal[2] * (int32_t(t[2]) - int32_t(v[2]));
 }
+// The moved parent's plane prediction (version 7), one definition for the
+// writer and the reader: plane_coordinate(pred, v, t, parent_plane_offset(..),
+// kParentPlaneScale) with its shift parent_plane_shift(pred) (comments above).
+inline constexpr int64_t kParentPlaneScale = 64;
+inline int64_t parent_plane_offset(const FanPrediction& pred, const uint16_t v[3], const uint16_t child[3]) {
+    return 2 * pred.parent_dot - 4 * plane_dot(pred, v, child);
+}
+inline uint32_t parent_plane_shift(const FanPrediction& pred) {
+    return pred.axis_shift > kParentPlaneShiftLess ? pred.axis_shift - kParentPlaneShiftLess : 0;
+}
 
 // Prediction of a fan split's child normal: the area-weighted normal of the child's
 // faces after the split (the closed loop parent_after, ring[start .. start + length]
