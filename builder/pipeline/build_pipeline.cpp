@@ -335,8 +335,8 @@ void shape_slices_between(std::span<const std::span<const Vec2>> lower, std::spa
 // A label volume's gaps of at most kDenseGapVoxels voxels (ContourStack::voxel)
 // get no branch sections: between two neighbouring voxel planes the map says
 // nothing finer than the voxel step, so the sections would only add triangles
-// and build time (the 1 mm AAL atlas: +23 % triangles, +46 % CPU); sparser
-// label stacks (every 2nd voxel and up) and traced stacks keep them.
+// and build time (bench/RESULTS.md); sparser label stacks (every 2nd voxel
+// and up) and traced stacks keep them.
 // Stacks with link overrides keep their slices (the overrides name adjacent
 // slices of the file). An inserted contour names the lower slice's first
 // member as its source (for messages). `inserted` and `at_branch` flag the
